@@ -1,0 +1,66 @@
+// `sglab methods` lists every registered method; `sglab table` prints every
+// irradiance method at one κ over a few cosines, beside the reference.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include <sglab/registry.hpp>
+
+#include "commands.hpp"
+#include "reference.hpp"
+
+namespace sglab::app {
+
+void add_methods_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("methods", "List every method id with its source and constants");
+  cmd->callback([] {
+    auto list = [](const char* title, std::span<const Method> methods) {
+      fmt::print("{}:\n", title);
+      for (const Method& m : methods)
+        fmt::print("  {:<18} {}{}\n", m.id, m.source, m.constants.empty() ? "" : fmt::format(" [{}]", m.constants));
+    };
+    list("irradiance", irradiance_methods);
+    list("hemispherical", hemispherical_methods);
+    fmt::print("erf:\n");
+    for (const ErfVariant& v : erf_variants) fmt::print("  {:<18} {}\n", v.id, v.source);
+  });
+}
+
+void add_table_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("table", "Print every irradiance method at one sharpness over a few cosines");
+  auto kappa = std::make_shared<double>(4.0);
+  auto count = std::make_shared<int>(9);
+  cmd->add_option("--kappa", *kappa, "SG sharpness κ (≥ 0)")->capture_default_str();
+  cmd->add_option("--cosines", *count, "number of cosines, evenly spaced over [-1, 1] (≥ 2)")->capture_default_str();
+  cmd->callback([kappa, count] {
+    if (!(std::isfinite(*kappa) && *kappa >= 0)) throw InputError(fmt::format("--kappa must be finite and >= 0, got {}", *kappa));
+    if (*count < 2) throw InputError(fmt::format("--cosines must be >= 2, got {}", *count));
+    std::vector<validate::Query> queries;
+    for (int i = 0; i < *count; ++i) queries.push_back({*kappa, -1.0 + 2.0 * i / (*count - 1)});
+    const auto ref = validate::reference_engine().evaluate(queries);
+    fmt::print("Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision)\n\n", *kappa);
+    fmt::print("| {:>6} | {:>11} |", "cosine", "reference");
+    for (const Method& m : irradiance_methods) fmt::print(" {:>13} |", m.id);
+    fmt::print("\n|-------:|------------:|");
+    for (std::size_t i = 0; i < std::size(irradiance_methods); ++i) fmt::print("--------------:|");
+    fmt::print("\n");
+    for (const auto& r : ref) {
+      fmt::print("| {:>6.3f} | {:>11.6g} |", r.cosine, r.irradiance);
+      for (const Method& m : irradiance_methods) fmt::print(" {:>13.6g} |", m.f64(r.cosine, r.kappa));
+      fmt::print("\n");
+    }
+    fmt::print("\nMax |error| / E(1, κ) over these cosines (peak_rel):\n");
+    for (const Method& m : irradiance_methods) {
+      double worst = 0;
+      for (const auto& r : ref) {
+        const double err = std::abs(m.f64(r.cosine, r.kappa) - r.irradiance) / ref.back().irradiance;
+        worst = std::isnan(err) ? err : std::max(worst, err);
+      }
+      fmt::print("  {:<14} {:.3e}\n", m.id, worst);
+    }
+  });
+}
+
+}  // namespace sglab::app

@@ -1,0 +1,94 @@
+// sglab/hemispherical.hpp — approximate hemispherical integrals of an SG.
+//
+// H̃(c, κ) = lerp(H(−1, κ), H(1, κ), s̃(c, κ)) with the exact poles
+// H(1, κ) = 2π(1 − e^{−κ})/κ, H(−1, κ) = e^{−κ} H(1, κ) (seed 000 §2.2) and an
+// approximate normalized hemispherical integral s̃.
+#pragma once
+
+#include <cmath>
+
+#include "closed_forms.hpp"
+#include "constants.hpp"
+#include "erf.hpp"
+#include "math.hpp"
+#include "params.hpp"
+
+namespace sglab {
+
+// t(κ) = κ √((0.5κ + A)/((κ + B)κ + C))  (Tokuyoshi 2022, Eq. 6). For κ ≥ 1 the
+// same ratio is evaluated as √κ √((0.5 + A/κ)/(1 + B/κ + C/κ²)) so that
+// nothing overflows up to the largest finite κ; t → √(κ/2) as κ → ∞.
+template <class T, class S = double>
+T steepness2022(const T& kappa, const Steepness2022Params<S>& p = constants::steepness2022_published) {
+  using std::sqrt;
+  const T A = T(p.A), B = T(p.B), C = T(p.C);
+  if (kappa < T(1)) return kappa * sqrt((T(0.5) * kappa + A) / ((kappa + B) * kappa + C));
+  const T r = T(1) / kappa;
+  return sqrt(kappa) * sqrt((T(0.5) + A * r) / (T(1) + (B + C * r) * r));
+}
+
+// t(κ) = κ √(0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E))  (Tokuyoshi et al. 2024,
+// supplementary Listing 7), rearranged for κ ≥ 1 as above.
+template <class T, class S = double>
+T steepness2024(const T& kappa, const Steepness2024Params<S>& p = constants::steepness2024_published) {
+  using std::sqrt;
+  const T A = T(p.A), B = T(p.B), C = T(p.C), D = T(p.D), E = T(p.E);
+  if (kappa < T(1))
+    return kappa * sqrt(T(0.5) * ((kappa + A) * kappa + B) / (((kappa + C) * kappa + D) * kappa + E));
+  const T r = T(1) / kappa;
+  return sqrt(kappa) * sqrt(T(0.5) * (T(1) + (A + B * r) * r) / (T(1) + (C + (D + E * r) * r) * r));
+}
+
+// erf(t c)/erf(t), with its t → 0 limit c: erf(tc)/erf(t) = c(1 + t²(1 − c²)/3 + O(t⁴)),
+// so below t = 2^−13 (float) or 2^−27 (double) the ratio is c to working
+// precision, and erf(t) can no longer underflow into the denormals.
+template <class T, class Erf = ErfStd> T erf_ratio(const T& t, const T& cosine, Erf erf = {}) {
+  const T tiny = sizeof(T) <= sizeof(float) ? T(0x1p-13) : T(0x1p-27);
+  if (t < tiny) return cosine;
+  return erf(t * cosine) / erf(t);
+}
+
+// s̃(c, κ) = ½ + ½ erf(t(κ) c)/erf(t(κ))  (Tokuyoshi 2022, Eq. 5).
+template <class T, class Erf = ErfStd, class S = double>
+T normalized_erf2022(const T& cosine, const T& kappa,
+                     const Steepness2022Params<S>& p = constants::steepness2022_published, Erf erf = {}) {
+  const T t = steepness2022(kappa, p);
+  return T(0.5) + T(0.5) * erf_ratio(t, clamp(cosine, T(-1), T(1)), erf);
+}
+
+// H̃(c, κ) = 2π lerp(e^{−κ}, 1, s̃) (1 − e^{−κ})/κ  (seed 000 Listing 3, SPEC `erf2022`).
+template <class T, class Erf = ErfStd, class S = double>
+T hemispherical_erf2022(const T& cosine, const T& kappa,
+                        const Steepness2022Params<S>& p = constants::steepness2022_published, Erf erf = {}) {
+  using std::exp;
+  const T s = normalized_erf2022(cosine, kappa, p, erf);
+  return two_pi_v<T> * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
+}
+
+// Meder & Brüderlin 2018 logistic steepness t(κ) = √κ (a2κ² + a1κ)/(κ² + b1κ + b0),
+// transcribed as published: κ² overflows for κ ≳ 1.8e19 in float.
+template <class T, class S = double>
+T steepness_meder2018(const T& kappa, const Meder2018Params<S>& p = constants::meder2018_published) {
+  using std::sqrt;
+  return sqrt(kappa) * (T(p.a2) * kappa * kappa + T(p.a1) * kappa) /
+         (kappa * kappa + T(p.b1) * kappa + T(p.b0));
+}
+
+// Meder & Brüderlin 2018 normalized hemispherical integral, the logistic
+// s(c, κ) = 1/(1 + e^{−t(κ) c}).
+template <class T, class S = double>
+T normalized_meder2018(const T& cosine, const T& kappa,
+                       const Meder2018Params<S>& p = constants::meder2018_published) {
+  using std::exp;
+  return T(1) / (T(1) + exp(-steepness_meder2018(kappa, p) * cosine));
+}
+
+template <class T, class S = double>
+T hemispherical_meder2018(const T& cosine, const T& kappa,
+                          const Meder2018Params<S>& p = constants::meder2018_published) {
+  using std::exp;
+  const T s = normalized_meder2018(cosine, kappa, p);
+  return two_pi_v<T> * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
+}
+
+}  // namespace sglab

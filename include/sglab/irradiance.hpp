@@ -1,0 +1,145 @@
+// sglab/irradiance.hpp — approximations Ê(c, κ) of the irradiance
+// E(c, κ) = ∫ G(ω; v, κ) max(ω·n, 0) dω from a unit-amplitude SG light,
+// c = v·n (SPEC §1, §2). One function per method id of SPEC §2.
+//
+// Published methods are faithful transcriptions of their formulas: where they
+// fail (division by κ = 0, overflow, cancellation) that is a finding of
+// `sglab stability`, not something patched here.
+#pragma once
+
+#include <cmath>
+
+#include "closed_forms.hpp"
+#include "constants.hpp"
+#include "erf.hpp"
+#include "hemispherical.hpp"
+#include "math.hpp"
+#include "params.hpp"
+#include "sg.hpp"
+
+namespace sglab {
+
+// `wang2009`: inner product of the light with the cosine-lobe SG
+// a·G(ω; n, λ), λ = 2.133, a = 1.17 (Wang et al. 2009), clamped at 0, as in
+// seed 001 "SGIrradianceInnerProduct": with d = |κv + λn|,
+// Ê = max(2π a e^{d − κ − λ}(1 − e^{−2d})/d, 0). The naive exponent d − κ − λ
+// cancels at large κ, and d = 0 (c = −1, κ = λ) gives 0/0.
+template <class T, class S = double>
+T irradiance_wang2009(const T& cosine, const T& kappa,
+                      const CosineLobeParams<S>& p = constants::cosine_lobe_published) {
+  using std::exp;
+  using std::sqrt;
+  const T lambda = T(p.lambda);
+  const T d = sqrt(kappa * kappa + lambda * lambda + T(2) * kappa * lambda * cosine);
+  const T expo = exp(d - kappa - lambda) * T(p.amplitude);
+  const T other = T(1) - exp(T(-2) * d);
+  return max0(two_pi_v<T> * expo * other / d);
+}
+
+// `punctual`: the cosine pulled out of the integral, Ê = max(c, 0)·2π/κ
+// (seed 001 "SGIrradiancePunctual"). Infinite at κ = 0.
+template <class T> T irradiance_punctual(const T& cosine, const T& kappa) {
+  return saturate(cosine) * sphere_integral_approx(kappa);
+}
+
+namespace detail {
+// Stephen Hill's fitted curve for a normalized SG (seed 001 "SGIrradianceFitted").
+template <class T, class S> T hill_normalized(const T& cosine, const T& kappa, const HillParams<S>& p) {
+  using std::abs;
+  using std::exp;
+  using std::sqrt;
+  const T c0 = T(p.c0);
+  const T c1 = T(1) / (T(4) * c0);
+  const T eml = exp(-kappa);
+  const T em2l = eml * eml;
+  const T rl = T(1) / kappa;
+  const T scale = T(1) + T(2) * em2l - rl;
+  const T bias = (eml - em2l) * rl - em2l;
+  const T x = sqrt(T(1) - scale);
+  const T x0 = c0 * cosine;
+  const T x1 = c1 * x;
+  const T n = x0 + x1;
+  const T y = abs(x0) <= x1 ? n * n / x : saturate(cosine);
+  return scale * y + bias;
+}
+}  // namespace detail
+
+// `hill`: Hill's curve times the approximate SG integral 2π/κ (seed 001).
+// Below κ ≈ 0.6, 1 − 1/κ + 2e^{−2κ} < 0 and sqrt(1 − scale) is taken of a
+// number > 1; at κ = 0 the result is NaN.
+template <class T, class S = double>
+T irradiance_hill(const T& cosine, const T& kappa, const HillParams<S>& p = constants::hill_published) {
+  return detail::hill_normalized(cosine, kappa, p) * sphere_integral_approx(kappa);
+}
+
+// `hill_exact`: the same curve times the exact integral S(κ) (as Probulator does).
+template <class T, class S = double>
+T irradiance_hill_exact(const T& cosine, const T& kappa, const HillParams<S>& p = constants::hill_published) {
+  return detail::hill_normalized(cosine, kappa, p) * sphere_integral(kappa);
+}
+
+// `vsgl2015`: cos⁺/π ≈ G(ω; n, λd)/A(λd) with A(λd) ≈ π and Iwasaki's
+// approximate product integral (seed 004 §3.2):
+// Ê = 2π exp(λ'(c − 1))/(κ + λd), λ' = κλd/(κ + λd).
+template <class T, class S = double>
+T irradiance_vsgl2015(const T& cosine, const T& kappa,
+                      const DiffuseLobeParams<S>& p = constants::diffuse_lobe_published) {
+  return sg_inner_product_iwasaki(cosine, kappa, T(p.lambda_d));
+}
+
+// `meder2018`: cos θ ≈ a·e^{λm(cos θ − 1)} − b on the upper hemisphere and
+// the logistic hemispherical integral (Meder & Brüderlin 2018):
+// Ê = a e^{logAmp} H̃(c3, κ3) − b H̃(c, κ) with (κ3, logAmp, c3) the product of
+// the light and G(ω; n, λm).
+template <class T, class S = double>
+T irradiance_meder2018(const T& cosine, const T& kappa,
+                       const Meder2018Params<S>& p = constants::meder2018_published) {
+  using std::exp;
+  const ProductWithNormal<T> prod = sg_product_with_normal(cosine, kappa, T(p.sharpness));
+  const T upper = exp(prod.log_amplitude) * hemispherical_meder2018(prod.cosine, prod.sharpness, p);
+  return T(p.amplitude) * upper - T(p.offset) * hemispherical_meder2018(cosine, kappa, p);
+}
+
+// `tokuyoshi2022`: cos⁺ ≈ α(e^{λ cos θ} − 1) = α(e^{λ} G(ω; n, λ) − 1) on the
+// upper hemisphere (seed 000 Listing 1):
+// Ê = max(α(H̃(c3, κ3) e^{λ + logAmp} − H̃(c, κ)), 0) with the erf-based H̃.
+template <class T, class Erf = ErfStd, class S = double>
+T irradiance_tokuyoshi2022(const T& cosine, const T& kappa,
+                           const ClampedCosineParams<S>& cc = constants::clamped_cosine_published,
+                           const Steepness2022Params<S>& st = constants::steepness2022_published,
+                           Erf erf = {}) {
+  using std::exp;
+  const T lambda = T(cc.lambda), alpha = T(cc.alpha);
+  const ProductWithNormal<T> prod = sg_product_with_normal(cosine, kappa, lambda);
+  const T p = hemispherical_erf2022(prod.cosine, prod.sharpness, st, erf) * exp(lambda + prod.log_amplitude);
+  const T q = hemispherical_erf2022(cosine, kappa, st, erf);
+  return max0(alpha * p - alpha * q);
+}
+
+// Interpolation factor of `tokuyoshi2024` (Tokuyoshi et al. 2024, supplementary
+// Listing 7): f = ½(c erfc(−tc) + erfc(t)) − e^{−t²c²} expm1(t²(c² − 1))/(2√π t),
+// saturated to [0, 1]. The last term → 0 as t → 0 (it is ~ t(c² − 1)).
+template <class T, class S = double>
+T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa,
+                            const Steepness2024Params<S>& p = constants::steepness2024_published) {
+  using std::erfc;
+  using std::exp;
+  using std::expm1;
+  const T c = clamp(cosine, T(-1), T(1));
+  const T t = steepness2024(kappa, p);
+  const T tz = t * c;
+  const T tail = t > T(0) ? exp(-tz * tz) * expm1(t * t * (c * c - T(1))) / t : T(0);
+  return saturate(T(0.5) * (c * erfc(-tz) + erfc(t)) - T(0.5) * inv_sqrt_pi_v<T> * tail);
+}
+
+// `tokuyoshi2024`: Ê = 2π lerp(Ē(−1), Ē(1), f) with the exact poles
+// Ē(±1) = E(±1, κ)/2π (closed_forms.hpp; Taylor series near κ = 0 as in the
+// paper's Listing 6).
+template <class T, class S = double>
+T irradiance_tokuyoshi2024(const T& cosine, const T& kappa,
+                           const Steepness2024Params<S>& p = constants::steepness2024_published) {
+  const T f = lerp_factor_tokuyoshi2024(cosine, kappa, p);
+  return two_pi_v<T> * lerp(irradiance_lower_over_two_pi(kappa), irradiance_upper_over_two_pi(kappa), f);
+}
+
+}  // namespace sglab

@@ -1,0 +1,75 @@
+// sglab/params.hpp — parameter sets of the fitted methods.
+//
+// Each struct is templated on its own scalar S so that a runtime function
+// template<class T, class S> can run in precision T with constants stored in
+// precision S: double constants rounded to float for the float path, Ceres
+// Jets for the fitters. The published and refitted values themselves live in
+// the generated header sglab/constants.hpp (from data/constants/*.json).
+#pragma once
+
+#include <cstddef>
+
+namespace sglab {
+
+// max(cos θ, 0) ≈ α (e^{λ cos θ} − 1) on the upper hemisphere
+// (Tokuyoshi 2022, seed 000 Listing 1).
+template <class S> struct ClampedCosineParams {
+  S lambda;
+  S alpha;
+};
+
+// Steepness of the erf-based normalized hemispherical integral,
+// t(κ) = κ √((0.5κ + A) / ((κ + B)κ + C))  (Tokuyoshi 2022, Eq. 6; seed 000 Listing 3).
+template <class S> struct Steepness2022Params {
+  S A, B, C;
+};
+
+// Steepness of the 2024 clamped-cosine interpolation factor,
+// t(κ) = κ √(0.5((κ + A)κ + B) / (((κ + C)κ + D)κ + E))
+// (Tokuyoshi et al. 2024, supplementary Listing 7).
+template <class S> struct Steepness2024Params {
+  S A, B, C, D, E;
+};
+
+// Seed 000 Listing 5 erf structure: x·P(x²) on |x| ≤ split (P has NS
+// coefficients, lowest order first), 1 − 2^{−a·Q(a)} on split < a < cutoff
+// (Q has NL coefficients, lowest order first), ±1 beyond.
+template <class S, std::size_t NS, std::size_t NL> struct Listing5Params {
+  S split;
+  S cutoff;
+  S small[NS];
+  S large[NL];
+};
+
+// Abramowitz–Stegun 7.1.25/7.1.26 structure:
+// erf(x) ≈ 1 − (a1 t + a2 t² + … + aN t^N) e^{−x²}, t = 1/(1 + p x), x ≥ 0.
+template <class S, std::size_t N> struct AbramowitzStegunParams {
+  S p;
+  S a[N];
+};
+
+// A single SG standing in for the cosine lobe: a·G(ω; n, λ) (Wang et al. 2009).
+template <class S> struct CosineLobeParams {
+  S lambda;
+  S amplitude;
+};
+
+// Normalized SG standing in for cos⁺/π: G(ω; n, λd)/A(λd) (Tokuyoshi 2015, seed 004 Eq. 1).
+template <class S> struct DiffuseLobeParams {
+  S lambda_d;
+};
+
+// Stephen Hill's fitted irradiance curve (seed 001): c1 = 1/(4 c0).
+template <class S> struct HillParams {
+  S c0;
+};
+
+// Meder & Brüderlin 2018: logistic steepness
+// t(κ) = √κ (a2 κ² + a1 κ) / (κ² + b1 κ + b0) and the cosine fit
+// cos θ ≈ amplitude·e^{sharpness(cos θ − 1)} − offset on the upper hemisphere.
+template <class S> struct Meder2018Params {
+  S a2, a1, b1, b0;
+  S amplitude, sharpness, offset;
+};
+
+}  // namespace sglab

@@ -1,0 +1,114 @@
+// sglab/registry.hpp — the single list of methods that every validator,
+// benchmark and document iterates (no static self-registration).
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "batch.hpp"
+#include "erf.hpp"
+#include "hemispherical.hpp"
+#include "irradiance.hpp"
+
+namespace sglab {
+
+// A scalar quantity f(cosine, κ) in float and in double, scalar and batch.
+struct Method {
+  std::string_view id;
+  std::string_view source;     // paper / document and equation or listing
+  std::string_view constants;  // constant sets from sglab/constants.hpp it uses
+  float (*f32)(float cosine, float kappa);
+  double (*f64)(double cosine, double kappa);
+  void (*batch32)(const float* cosine, const float* kappa, float* out, std::size_t n);
+  void (*batch64)(const double* cosine, const double* kappa, double* out, std::size_t n);
+};
+
+namespace detail {
+template <class F>
+constexpr Method make_method(std::string_view id, std::string_view source, std::string_view constants, F) {
+  return Method{
+      id,
+      source,
+      constants,
+      [](float c, float k) { return F{}(c, k); },
+      [](double c, double k) { return F{}(c, k); },
+      [](const float* c, const float* k, float* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
+      [](const double* c, const double* k, double* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
+  };
+}
+}  // namespace detail
+
+// Irradiance approximations Ê(c, κ) of SPEC §2, with published constants.
+inline constexpr Method irradiance_methods[] = {
+    detail::make_method("wang2009", "Wang et al. 2009 cosine-lobe SG (λ=2.133, a=1.17) inner product; seed 001",
+                        "cosine_lobe_published", [](auto c, auto k) { return irradiance_wang2009(c, k); }),
+    detail::make_method("punctual", "cosine pulled out, approximate integral 2π/κ; seed 001",
+                        "", [](auto c, auto k) { return irradiance_punctual(c, k); }),
+    detail::make_method("hill", "Stephen Hill's fitted curve × 2π/κ; seed 001", "hill_published",
+                        [](auto c, auto k) { return irradiance_hill(c, k); }),
+    detail::make_method("hill_exact", "Hill's fitted curve × exact S(κ) (as Probulator)", "hill_published",
+                        [](auto c, auto k) { return irradiance_hill_exact(c, k); }),
+    detail::make_method("vsgl2015", "Tokuyoshi 2015 diffuse SG λd=2, Iwasaki 2012 product integral; seed 004",
+                        "diffuse_lobe_published", [](auto c, auto k) { return irradiance_vsgl2015(c, k); }),
+    detail::make_method("meder2018", "Meder & Brüderlin 2018 logistic hemispherical integral + SG cosine fit",
+                        "meder2018_published", [](auto c, auto k) { return irradiance_meder2018(c, k); }),
+    detail::make_method("tokuyoshi2022", "Tokuyoshi 2022 Eq. 3-6, supplementary Listings 1-4 (seed 000), std::erf",
+                        "clamped_cosine_published, steepness2022_published",
+                        [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
+    detail::make_method("tokuyoshi2024", "Tokuyoshi et al. 2024 supplementary Listings 6-7 (author's VSGL code)",
+                        "steepness2024_published", [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
+};
+
+// Approximate hemispherical integrals H̃(c, κ) (SPEC §2 `erf2022`, `meder2018`).
+inline constexpr Method hemispherical_methods[] = {
+    detail::make_method("erf2022", "Tokuyoshi 2022 Eq. 5/6, Listing 3 (seed 000), std::erf", "steepness2022_published",
+                        [](auto c, auto k) { return hemispherical_erf2022(c, k); }),
+    detail::make_method("erf2022_listing5", "Tokuyoshi 2022 Eq. 5/6 with the Listing 5 erf (seed 000)",
+                        "steepness2022_published, erf_listing5_published",
+                        [](auto c, auto k) { return hemispherical_erf2022(c, k, constants::steepness2022_published,
+                                                                          ErfListing5{}); }),
+    detail::make_method("meder2018", "Meder & Brüderlin 2018 logistic normalized hemispherical integral",
+                        "meder2018_published", [](auto c, auto k) { return hemispherical_meder2018(c, k); }),
+};
+
+// Normalized hemispherical integrals s̃(c, κ) matching hemispherical_methods.
+inline constexpr Method normalized_methods[] = {
+    detail::make_method("erf2022", "Tokuyoshi 2022 Eq. 5/6 (seed 000), std::erf", "steepness2022_published",
+                        [](auto c, auto k) { return normalized_erf2022(c, k); }),
+    detail::make_method("erf2022_listing5", "Tokuyoshi 2022 Eq. 5/6 with the Listing 5 erf (seed 000)",
+                        "steepness2022_published, erf_listing5_published",
+                        [](auto c, auto k) { return normalized_erf2022(c, k, constants::steepness2022_published,
+                                                                       ErfListing5{}); }),
+    detail::make_method("meder2018", "Meder & Brüderlin 2018 logistic normalized hemispherical integral",
+                        "meder2018_published", [](auto c, auto k) { return normalized_meder2018(c, k); }),
+};
+
+// erf variants (SPEC §2).
+struct ErfVariant {
+  std::string_view id;
+  std::string_view source;
+  float (*f32)(float x);
+  double (*f64)(double x);
+};
+inline constexpr ErfVariant erf_variants[] = {
+    {"listing5", "Tokuyoshi 2022 supplementary Listing 5 (seed 000)", [](float x) { return erf_listing5(x); },
+     [](double x) { return erf_listing5(x); }},
+    {"as7125", "Abramowitz & Stegun 7.1.25, claimed |error| <= 2.5e-5 (seed 002)",
+     [](float x) { return erf_abramowitz_stegun(x); }, [](double x) { return erf_abramowitz_stegun(x); }},
+    {"std", "platform std::erf", [](float x) { return std::erf(x); }, [](double x) { return std::erf(x); }},
+};
+
+// Look-ups by id; nullptr when absent.
+inline const Method* find_method(std::span<const Method> list, std::string_view id) {
+  for (const Method& m : list)
+    if (m.id == id) return &m;
+  return nullptr;
+}
+inline const ErfVariant* find_erf_variant(std::string_view id) {
+  for (const ErfVariant& v : erf_variants)
+    if (v.id == id) return &v;
+  return nullptr;
+}
+
+}  // namespace sglab

@@ -1,0 +1,128 @@
+// sglab/sg.hpp — spherical Gaussian primitives.
+//
+// G(ω; v, κ) = exp(κ(ω·v − 1)), κ ≥ 0, |v| = 1 (unit amplitude; SPEC §1).
+// Every function here is sglab's own and is finite and non-negative for all
+// finite κ ≥ 0 and cosines in [−1, 1].
+#pragma once
+
+#include <cmath>
+
+#include "math.hpp"
+
+namespace sglab {
+
+template <class T> struct Vec3 {
+  T x, y, z;
+};
+template <class T> constexpr Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T> constexpr Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T> constexpr Vec3<T> operator*(const T& s, const Vec3<T>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class T> constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T> T length(const Vec3<T>& a) {
+  using std::sqrt;
+  return sqrt(dot(a, a));
+}
+
+// G at cosine c between ω and the axis.
+template <class T> T sg_evaluate(const T& cosine, const T& kappa) {
+  using std::exp;
+  return exp(kappa * (cosine - T(1)));
+}
+
+// G at direction ω for axis v: ω·v − 1 = −|ω − v|²/2 for unit vectors, which
+// keeps the exponent exact near the peak (Tokuyoshi 2025, vMF on S²).
+template <class T> T sg_evaluate(const Vec3<T>& omega, const Vec3<T>& axis, const T& kappa) {
+  using std::exp;
+  const Vec3<T> d = omega - axis;
+  return exp(T(-0.5) * kappa * dot(d, d));
+}
+
+// Exact sphere integral S(κ) = 2π(1 − e^{−2κ})/κ = 4π·(e^{−2κ} − 1)/(−2κ)
+// (seed 004 §1; → 4π as κ → 0, → 2π/κ as κ → ∞).
+template <class T> T sphere_integral(const T& kappa) {
+  return four_pi_v<T> * expm1_over_x(T(-2) * kappa);
+}
+
+// The large-κ approximation 2π/κ of S(κ) (seed 001 "ApproximateSGIntegral").
+// Infinite at κ = 0: callers that need κ → 0 use sphere_integral.
+template <class T> T sphere_integral_approx(const T& kappa) { return two_pi_v<T> / kappa; }
+
+// Product of two SGs: G(ω; v1, κ1) G(ω; v2, κ2) = e^{logAmp} G(ω; v3, κ3)
+// with κ3 = |κ1 v1 + κ2 v2| (seed 000 Eq. 1).
+template <class T> struct SGLobe {
+  Vec3<T> axis;
+  T sharpness;
+  T log_amplitude;
+};
+
+// The log-amplitude κ3 − κ1 − κ2 cancels catastrophically when κ1 or κ2 is
+// large. Since κ3² = (κ1 + κ2)² − κ1κ2|v1 − v2|²,
+//   κ3 − κ1 − κ2 = −κ1κ2|v1 − v2|² / (κ3 + κ1 + κ2),
+// a sum of non-negative terms (equivalent to seed 000 Eq. 2). The axis of a
+// zero-sharpness product (opposite axes, equal κ) is taken as v1.
+template <class T>
+SGLobe<T> sg_product(const Vec3<T>& v1, const T& kappa1, const Vec3<T>& v2, const T& kappa2) {
+  // Scale by the larger sharpness so that |κ1 v1 + κ2 v2| cannot overflow.
+  const T m = kappa1 < kappa2 ? kappa2 : kappa1;
+  if (!(m > T(0))) return {v1, T(0), T(0)};
+  const Vec3<T> a = (kappa1 / m) * v1 + (kappa2 / m) * v2;
+  const T a_len = length(a);
+  const T k3 = m * a_len;
+  const Vec3<T> d = v1 - v2;
+  // −κ1κ2|d|²/(κ3 + κ1 + κ2) = −κ1·(κ2/(κ3 + κ1 + κ2))·|d|², no overflow.
+  const T log_amp = -kappa1 * (kappa2 / (k3 + kappa1 + kappa2)) * dot(d, d);
+  const Vec3<T> axis = a_len > T(0) ? (T(1) / a_len) * a : v1;
+  return {axis, k3, log_amp};
+}
+
+// Scalar form of the product of a light SG (v, κ) with an SG (n, λ) about
+// the normal, where c = v·n: the product sharpness, its log-amplitude and the
+// cosine between the product axis and n. |v − n|² = 2(1 − c).
+template <class T> struct ProductWithNormal {
+  T sharpness;
+  T log_amplitude;
+  T cosine;
+};
+template <class T>
+ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, const T& lambda) {
+  using std::sqrt;
+  // κ3² = κ² + λ² + 2κλc = (κ − λ)² + 2κλ(1 + c): a sum of non-negative terms,
+  // exact near c = −1, scaled by m = max(κ, λ) against overflow.
+  const T m = kappa < lambda ? lambda : kappa;
+  if (!(m > T(0))) return {T(0), T(0), T(1)};
+  const T ks = kappa / m, ls = lambda / m, diff = ks - ls;
+  const T k3 = m * sqrt(diff * diff + T(2) * ks * ls * (T(1) + cosine));
+  // κ3 − κ − λ = −2κλ(1 − c)/(κ3 + κ + λ)  (see sg_product).
+  const T log_amp = T(-2) * (T(1) - cosine) * kappa * (lambda / (k3 + kappa + lambda));
+  // Product axis (κv + λn)/κ3, its cosine with n = (κc + λ)/κ3, clamped:
+  // rounding may push it a hair outside [−1, 1].
+  const T c3 = k3 > T(0) ? clamp((ks * cosine + ls) * (m / k3), T(-1), T(1)) : T(1);
+  return {k3, log_amp, c3};
+}
+
+// Exact inner product ∫ G(ω; v1, κ1) G(ω; v2, κ2) dω = e^{logAmp} S(κ3)
+// (Wang et al. 2009), with c = v1·v2, evaluated through the stable product.
+template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T& kappa2) {
+  using std::exp;
+  const ProductWithNormal<T> p = sg_product_with_normal(cosine, kappa1, kappa2);
+  return exp(p.log_amplitude) * sphere_integral(p.sharpness);
+}
+
+// Iwasaki et al. 2012 approximate product integral (seed 004 §3.2):
+// ∫ G1 G2 dω ≈ 2π G(c; κ1κ2/(κ1 + κ2)) / (κ1 + κ2). Both κ = 0 gives 0/0;
+// the approximation is meant for κ1 + κ2 ≫ 1 and returns +inf there.
+template <class T> T sg_inner_product_iwasaki(const T& cosine, const T& kappa1, const T& kappa2) {
+  const T sum = kappa1 + kappa2;
+  const T lambda = sum > T(0) ? kappa1 * kappa2 / sum : T(0);
+  return two_pi_v<T> * sg_evaluate(cosine, lambda) / sum;
+}
+
+}  // namespace sglab

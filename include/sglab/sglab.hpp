@@ -1,0 +1,14 @@
+// sglab/sglab.hpp — the whole runtime: SG primitives, exact closed forms,
+// erf variants, hemispherical integrals, irradiance methods, registry.
+#pragma once
+
+#include "batch.hpp"
+#include "closed_forms.hpp"
+#include "constants.hpp"
+#include "erf.hpp"
+#include "hemispherical.hpp"
+#include "irradiance.hpp"
+#include "math.hpp"
+#include "params.hpp"
+#include "registry.hpp"
+#include "sg.hpp"

@@ -1,0 +1,60 @@
+// The generated runtime header agrees with data/constants/*.json, and the
+// published constants are the published digits.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include <sglab/constants.hpp>
+
+#include "constants_io.hpp"
+#include "io.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+TEST(Constants, HeaderMatchesJson) {
+  const auto sets = sglab::fit::load_constant_sets(sglab::fit::default_constants_dir());
+  ASSERT_FALSE(sets.empty());
+  const std::string want = sglab::fit::render_constants_header(sets);
+  const std::string have = sglab::io::read_file(sglab::fit::default_header_path());
+  EXPECT_EQ(have, want) << "include/sglab/constants.hpp is stale: run `build/sglab constants --write-header`";
+}
+
+TEST(Constants, PublishedValuesAreThePublishedDigits) {
+  // seed 000 Listing 1 and 3; SPEC §2 (Tokuyoshi et al. 2024).
+  EXPECT_EQ(sglab::constants::clamped_cosine_published.lambda, 0.00084560872241480124);
+  EXPECT_EQ(sglab::constants::clamped_cosine_published.alpha, 1182.2467339678153);
+  EXPECT_EQ(sglab::constants::steepness2022_published.A, 0.65173288269070562);
+  EXPECT_EQ(sglab::constants::steepness2022_published.B, 1.3418280033141288);
+  EXPECT_EQ(sglab::constants::steepness2022_published.C, 7.2216687798956709);
+  EXPECT_EQ(sglab::constants::steepness2024_published.A, 2.7360831611272558);
+  EXPECT_EQ(sglab::constants::steepness2024_published.E, 76.087896272360737);
+  EXPECT_EQ(sglab::constants::erf_as7125_published.p, 0.47047);
+  EXPECT_EQ(sglab::constants::erf_listing5_published.large[6], 2.58907676e-5);
+}
+
+TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "sglab_constants_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  sglab::io::write_file_atomic(dir / "bad.json", "{\"target\": \"x\",");
+  try {
+    sglab::fit::load_constant_sets(dir);
+    FAIL() << "malformed JSON accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+  }
+  sglab::io::write_file_atomic(dir / "bad.json",
+                               R"({"target":"t","variant":"v","cpp_name":"1x","cpp_type":"T","form":"f",
+                                  "coefficients":{"a":1},"provenance":{}})");
+  EXPECT_THROW(sglab::fit::load_constant_sets(dir), std::runtime_error);
+  const auto r = sglab::test::run_command(std::string(SGLAB_BINARY) + " constants --dir " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.json"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace

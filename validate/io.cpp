@@ -1,0 +1,96 @@
+#include "io.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace sglab::io {
+
+void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+  namespace fs = std::filesystem;
+  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot create directory {}: {}", parent.string(), ec.message()));
+  const fs::path tmp = parent / fmt::format(".{}.{}.tmp", path.filename().string(), ::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.flush();
+    if (!out) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+    }
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ec2;
+    fs::remove(tmp, ec2);
+    throw std::runtime_error(fmt::format("cannot replace {}: {}", path.string(), ec.message()));
+  }
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
+
+struct Progress::Impl {
+  std::string label;
+  std::size_t total;
+  std::atomic<std::size_t> done{0};
+  bool enabled;
+  std::mutex mutex;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last{};
+  bool finished = false;
+};
+
+Progress::Progress(std::string label, std::size_t total) : impl_(new Impl) {
+  impl_->label = std::move(label);
+  impl_->total = total;
+  impl_->enabled = stderr_is_terminal();
+}
+
+Progress::~Progress() {
+  finish();
+  delete impl_;
+}
+
+void Progress::advance(std::size_t n) {
+  const std::size_t done = impl_->done.fetch_add(n) + n;
+  if (!impl_->enabled) return;
+  const auto now = std::chrono::steady_clock::now();
+  std::unique_lock lock(impl_->mutex, std::try_to_lock);
+  if (!lock.owns_lock()) return;
+  if (now - impl_->last < std::chrono::milliseconds(100) && done < impl_->total) return;
+  impl_->last = now;
+  const double secs = std::chrono::duration<double>(now - impl_->start).count();
+  const double pct = impl_->total ? 100.0 * static_cast<double>(done) / static_cast<double>(impl_->total) : 100.0;
+  std::fprintf(stderr, "\r%s: %zu/%zu (%.0f%%) %.1fs   ", impl_->label.c_str(), done, impl_->total, pct, secs);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (!impl_->enabled || impl_->finished) return;
+  impl_->finished = true;
+  std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+}
+
+}  // namespace sglab::io

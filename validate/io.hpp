@@ -1,0 +1,37 @@
+// validate/io.hpp — file output shared by every command: atomic writes
+// (temporary + rename, so no half-written file is ever left) and terminal
+// progress that is quiet when stderr is not a terminal.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace sglab::io {
+
+// Writes `content` to `path` via a temporary in the same directory and an
+// atomic rename. Creates parent directories. Throws std::runtime_error naming
+// the path on failure.
+void write_file_atomic(const std::filesystem::path& path, std::string_view content);
+
+// Reads a whole file; throws std::runtime_error naming the path on failure.
+std::string read_file(const std::filesystem::path& path);
+
+// A progress line on stderr, redrawn in place, shown only when stderr is a
+// terminal. Thread-safe `advance`.
+class Progress {
+ public:
+  Progress(std::string label, std::size_t total);
+  ~Progress();
+  void advance(std::size_t n = 1);
+  void finish();
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+bool stderr_is_terminal();
+
+}  // namespace sglab::io

@@ -1,0 +1,120 @@
+// validate/sweep.hpp — the accuracy sweep of SPEC §4: every method against
+// the reference engine over a (κ, c) grid, in float and in double, with the
+// SPEC §3 metrics.
+//
+// Inputs are rounded to float first and the reference is evaluated at those
+// float-exact inputs, so the float and the double evaluation of a method see
+// identical (κ, c) and differ only by the arithmetic they run in.
+//
+// Used by `sglab sweep`, and by the Pareto/recommend work and the fitters.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <sglab/registry.hpp>
+
+#include "metrics.hpp"
+#include "reference.hpp"
+#include "table.hpp"
+
+namespace sglab::validate {
+
+// What a method approximates, and therefore which reference it is held to:
+// E(c, κ), H(c, κ) or s(c, κ) (SPEC §1).
+enum class Quantity { irradiance, hemispherical, normalized };
+std::string_view to_string(Quantity q);
+
+// The arithmetic a method is evaluated in.
+enum class FloatFormat { binary32, binary64 };
+std::string_view to_string(FloatFormat f);  // "float", "double"
+
+// κ: kappa_count values log-spaced over [kappa_lo, kappa_hi] inclusive;
+// c: cosine_count values evenly spaced over [−1, 1] inclusive. The default is
+// SPEC §4's standard grid: κ = 10^(i/4), i = −12…16, and c = −1 + 2i/40.
+struct SweepGrid {
+  double kappa_lo = 1e-3;
+  double kappa_hi = 1e4;
+  int kappa_count = 29;
+  int cosine_count = 41;
+
+  // Throws std::invalid_argument unless 0 < lo ≤ hi are finite and
+  // representable as positive finite floats, count ≥ 1 (count = 1 needs
+  // lo = hi) and cosine_count ≥ 2.
+  void validate() const;
+
+  // Nominal values in double. κ_j = 10^(e_lo + (e_hi − e_lo)·j/(N − 1)) with
+  // e = log10 (the exponent step is exact for the standard grid, so each κ is
+  // the correctly rounded 10^(i/4) and the end points are lo and hi exactly);
+  // c_i = (2i − (M − 1))/(M − 1), correctly rounded.
+  std::vector<double> kappas() const;
+  std::vector<double> cosines() const;
+};
+
+// The nominal values rounded to float (and back to double, exactly).
+std::vector<double> float_exact(std::span<const double> values);
+
+// A method together with the quantity it approximates.
+struct SweepMethod {
+  Quantity quantity;
+  Method method;
+};
+
+// Every registered method: irradiance_methods against E, hemispherical_methods
+// against H, normalized_methods against s.
+std::vector<SweepMethod> registered_sweep_methods();
+
+struct SweepOptions {
+  std::vector<FloatFormat> precisions{FloatFormat::binary32, FloatFormat::binary64};
+  Precision reference = Precision::standard;
+  bool keep_points = true;  // keep every value and peak_rel (for plots and fitters)
+  bool progress = true;     // terminal progress on stderr (quiet when piped)
+};
+
+// One method, quantity and precision over the whole grid.
+struct SweepEntry {
+  std::string method;
+  Quantity quantity = Quantity::irradiance;
+  FloatFormat precision = FloatFormat::binary64;
+  MetricSummary summary;                // over every (κ, c)
+  std::vector<MetricSummary> per_kappa;  // over c, one per κ
+  // Point data, index k·cosine_count + j (empty unless keep_points).
+  std::vector<double> values;    // the method's output, widened to double
+  std::vector<double> peak_rel;  // NaN where the output is non-finite
+};
+
+struct SweepResult {
+  SweepGrid grid;
+  std::vector<double> kappas;   // evaluated, float-exact
+  std::vector<double> cosines;  // evaluated, float-exact
+  std::vector<ReferencePoint> reference;  // index k·cosine_count + j
+  std::vector<ReferencePoint> peak;       // per κ, at c = 1: the peak values x(1, κ)
+  std::vector<SweepEntry> entries;        // method-major, then precision
+
+  std::size_t index(std::size_t k, std::size_t j) const { return k * cosines.size() + j; }
+  // The reference value of quantity q at grid point (k, j), and its peak at κ_k.
+  double reference_value(Quantity q, std::size_t k, std::size_t j) const;
+  double peak_value(Quantity q, std::size_t k) const;
+  const SweepEntry* find(std::string_view method, Quantity q, FloatFormat f) const;
+};
+
+// The reference value of quantity q in a reference point.
+double reference_value(const ReferencePoint& point, Quantity q);
+
+// Runs the sweep. Throws std::invalid_argument on an invalid grid.
+SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, const SweepOptions& options = {});
+
+// The tables `sglab sweep` writes.
+// summary: method, quantity, precision, max_peak_rel, worst_kappa, worst_cosine,
+//          rms_peak_rel, max_rel, nonfinite
+Table summary_table(const SweepResult& result);
+// per κ: method, quantity, precision, kappa, max_peak_rel, worst_cosine,
+//        rms_peak_rel, max_rel, nonfinite (max and RMS over c at each κ)
+Table per_kappa_table(const SweepResult& result);
+// points: kappa, cosine, method, quantity, precision, value, reference, peak_rel
+Table points_table(const SweepResult& result);
+
+}  // namespace sglab::validate
