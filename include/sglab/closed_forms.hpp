@@ -74,17 +74,17 @@ template <class T> T irradiance_lower_over_two_pi(const T& kappa) {
 
 // E(1, κ) = 2π(κ − 1 + e^{−κ})/κ² (SPEC §1).
 template <class T> T irradiance_upper(const T& kappa) {
-  return two_pi_v<T> * irradiance_upper_over_two_pi(kappa);
+  return two_pi_v<T>() * irradiance_upper_over_two_pi(kappa);
 }
 
 // E(−1, κ) = 2π e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (SPEC §1).
 template <class T> T irradiance_lower(const T& kappa) {
-  return two_pi_v<T> * irradiance_lower_over_two_pi(kappa);
+  return two_pi_v<T>() * irradiance_lower_over_two_pi(kappa);
 }
 
 // H(1, κ) = 2π(1 − e^{−κ})/κ (SPEC §1; seed 000 §2.2 "A(κ)").
 template <class T> T hemispherical_upper(const T& kappa) {
-  return two_pi_v<T> * expm1_over_x(-kappa);
+  return two_pi_v<T>() * expm1_over_x(-kappa);
 }
 
 // H(−1, κ) = e^{−κ} H(1, κ) (SPEC §1; seed 000 §2.2 "B(κ)").

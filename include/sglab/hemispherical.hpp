@@ -62,7 +62,7 @@ T hemispherical_erf2022(const T& cosine, const T& kappa,
                         const Steepness2022Params<S>& p = constants::steepness2022_published, Erf erf = {}) {
   using std::exp;
   const T s = normalized_erf2022(cosine, kappa, p, erf);
-  return two_pi_v<T> * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
+  return two_pi_v<T>() * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
 }
 
 // Meder & Brüderlin 2018 logistic steepness t(κ) = √κ (a2κ² + a1κ)/(κ² + b1κ + b0),
@@ -88,7 +88,7 @@ T hemispherical_meder2018(const T& cosine, const T& kappa,
                           const Meder2018Params<S>& p = constants::meder2018_published) {
   using std::exp;
   const T s = normalized_meder2018(cosine, kappa, p);
-  return two_pi_v<T> * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
+  return two_pi_v<T>() * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
 }
 
 }  // namespace sglab

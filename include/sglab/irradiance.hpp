@@ -33,7 +33,7 @@ T irradiance_wang2009(const T& cosine, const T& kappa,
   const T d = sqrt(kappa * kappa + lambda * lambda + T(2) * kappa * lambda * cosine);
   const T expo = exp(d - kappa - lambda) * T(p.amplitude);
   const T other = T(1) - exp(T(-2) * d);
-  return max0(two_pi_v<T> * expo * other / d);
+  return max0(two_pi_v<T>() * expo * other / d);
 }
 
 // `punctual`: the cosine pulled out of the integral, Ê = max(c, 0)·2π/κ
@@ -116,20 +116,24 @@ T irradiance_tokuyoshi2022(const T& cosine, const T& kappa,
   return max0(alpha * p - alpha * q);
 }
 
-// Interpolation factor of `tokuyoshi2024` (Tokuyoshi et al. 2024, supplementary
-// Listing 7): f = ½(c erfc(−tc) + erfc(t)) − e^{−t²c²} expm1(t²(c² − 1))/(2√π t),
+// Interpolation factor of `tokuyoshi2024` as a function of the steepness t
+// (Tokuyoshi et al. 2024, supplementary Listing 7):
+// f = ½(c erfc(−tc) + erfc(t)) − e^{−t²c²} expm1(t²(c² − 1))/(2√π t),
 // saturated to [0, 1]. The last term → 0 as t → 0 (it is ~ t(c² − 1)).
-template <class T, class S = double>
-T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa,
-                            const Steepness2024Params<S>& p = constants::steepness2024_published) {
+template <class T> T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, const T& t) {
   using std::erfc;
   using std::exp;
   using std::expm1;
   const T c = clamp(cosine, T(-1), T(1));
-  const T t = steepness2024(kappa, p);
   const T tz = t * c;
   const T tail = t > T(0) ? exp(-tz * tz) * expm1(t * t * (c * c - T(1))) / t : T(0);
-  return saturate(T(0.5) * (c * erfc(-tz) + erfc(t)) - T(0.5) * inv_sqrt_pi_v<T> * tail);
+  return saturate(T(0.5) * (c * erfc(-tz) + erfc(t)) - T(0.5) * inv_sqrt_pi_v<T>() * tail);
+}
+
+template <class T, class S = double>
+T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa,
+                            const Steepness2024Params<S>& p = constants::steepness2024_published) {
+  return lerp_factor_tokuyoshi2024_at_steepness(cosine, steepness2024(kappa, p));
 }
 
 // `tokuyoshi2024`: Ê = 2π lerp(Ē(−1), Ē(1), f) with the exact poles
@@ -139,7 +143,7 @@ template <class T, class S = double>
 T irradiance_tokuyoshi2024(const T& cosine, const T& kappa,
                            const Steepness2024Params<S>& p = constants::steepness2024_published) {
   const T f = lerp_factor_tokuyoshi2024(cosine, kappa, p);
-  return two_pi_v<T> * lerp(irradiance_lower_over_two_pi(kappa), irradiance_upper_over_two_pi(kappa), f);
+  return two_pi_v<T>() * lerp(irradiance_lower_over_two_pi(kappa), irradiance_upper_over_two_pi(kappa), f);
 }
 
 }  // namespace sglab

@@ -12,10 +12,11 @@
 
 namespace sglab {
 
-template <class T> inline constexpr T pi_v = T(3.141592653589793238462643383279502884L);
-template <class T> inline constexpr T two_pi_v = T(6.283185307179586476925286766559005768L);
-template <class T> inline constexpr T four_pi_v = T(12.56637061435917295385057353311801154L);
-template <class T> inline constexpr T inv_sqrt_pi_v = T(0.5641895835477562869480794515607725858L);
+// Constants as functions so that they also instantiate for Ceres Jets (not literal types).
+template <class T> constexpr T pi_v() { return T(3.141592653589793238462643383279502884L); }
+template <class T> constexpr T two_pi_v() { return T(6.283185307179586476925286766559005768L); }
+template <class T> constexpr T four_pi_v() { return T(12.56637061435917295385057353311801154L); }
+template <class T> constexpr T inv_sqrt_pi_v() { return T(0.5641895835477562869480794515607725858L); }
 
 // Horner evaluation c[0] + x(c[1] + x(c[2] + ...)), coefficients lowest
 // order first.

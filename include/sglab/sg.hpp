@@ -48,12 +48,12 @@ template <class T> T sg_evaluate(const Vec3<T>& omega, const Vec3<T>& axis, cons
 // Exact sphere integral S(κ) = 2π(1 − e^{−2κ})/κ = 4π·(e^{−2κ} − 1)/(−2κ)
 // (seed 004 §1; → 4π as κ → 0, → 2π/κ as κ → ∞).
 template <class T> T sphere_integral(const T& kappa) {
-  return four_pi_v<T> * expm1_over_x(T(-2) * kappa);
+  return four_pi_v<T>() * expm1_over_x(T(-2) * kappa);
 }
 
 // The large-κ approximation 2π/κ of S(κ) (seed 001 "ApproximateSGIntegral").
 // Infinite at κ = 0: callers that need κ → 0 use sphere_integral.
-template <class T> T sphere_integral_approx(const T& kappa) { return two_pi_v<T> / kappa; }
+template <class T> T sphere_integral_approx(const T& kappa) { return two_pi_v<T>() / kappa; }
 
 // Product of two SGs: G(ω; v1, κ1) G(ω; v2, κ2) = e^{logAmp} G(ω; v3, κ3)
 // with κ3 = |κ1 v1 + κ2 v2| (seed 000 Eq. 1).
@@ -122,7 +122,7 @@ template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T&
 template <class T> T sg_inner_product_iwasaki(const T& cosine, const T& kappa1, const T& kappa2) {
   const T sum = kappa1 + kappa2;
   const T lambda = sum > T(0) ? kappa1 * kappa2 / sum : T(0);
-  return two_pi_v<T> * sg_evaluate(cosine, lambda) / sum;
+  return two_pi_v<T>() * sg_evaluate(cosine, lambda) / sum;
 }
 
 }  // namespace sglab

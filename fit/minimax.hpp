@@ -1,0 +1,73 @@
+// fit/minimax.hpp — the one fitting engine behind every target: Ceres
+// least squares, and minimax (smallest maximum residual) on top of it by
+// Lawson's iteratively reweighted least squares.
+//
+// A problem is a list of scalar residual functions r_i(p) of the same N
+// scalar parameters (each its own size-1 parameter block, so any of them can
+// be held fixed, e.g. after rounding it to float). Residuals are built from
+// small functors with a templated operator() so Ceres can differentiate the
+// runtime code itself (STYLE.md, Ceres examples).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ceres/ceres.h>
+
+namespace sglab::fit {
+
+struct Parameters {
+  std::vector<std::string> names;
+  std::vector<double> values;
+  std::vector<bool> fixed;  // empty = none fixed
+
+  std::size_t size() const { return values.size(); }
+  bool is_fixed(std::size_t i) const { return i < fixed.size() && fixed[i]; }
+};
+
+enum class Norm { least_squares, minimax };
+
+struct FitOptions {
+  Norm norm = Norm::minimax;
+  int lawson_iterations = 40;         // reweighting rounds for minimax
+  int solver_iterations = 200;        // Ceres iterations per round
+  double relative_tolerance = 1e-12;  // Ceres function tolerance
+};
+
+struct FitResult {
+  std::vector<double> values;
+  double max_abs = 0;    // max |r_i| at `values`
+  std::size_t worst = 0; // index of that residual
+  double rms = 0;
+  bool converged = false;
+  int rounds = 0;
+};
+
+// A residual functor F has `template <class T> bool operator()(T const* const* p, T* r) const`
+// writing one residual from the N scalar parameters p[0][0] … p[N−1][0].
+template <class F> std::unique_ptr<ceres::CostFunction> make_residual(F functor, std::size_t num_parameters) {
+  auto* cost = new ceres::DynamicAutoDiffCostFunction<F, 4>(new F(std::move(functor)));
+  for (std::size_t i = 0; i < num_parameters; ++i) cost->AddParameterBlock(1);
+  cost->SetNumResiduals(1);
+  return std::unique_ptr<ceres::CostFunction>(cost);
+}
+
+using Residuals = std::vector<std::unique_ptr<ceres::CostFunction>>;
+
+// Residual values at `values` (NaN where a residual cannot be evaluated).
+std::vector<double> evaluate_residuals(const Residuals& residuals, const std::vector<double>& values);
+
+// Least squares or minimax fit from params.values (the start point). Fixed
+// parameters stay at their values. Deterministic: same inputs, same digits.
+// For minimax, the result is the best iterate on the true max |r|.
+FitResult fit(const Residuals& residuals, const Parameters& params, const FitOptions& options = {});
+
+// Rounds every free parameter to float, one at a time in order, re-fitting
+// the remaining free ones after each rounding (for coefficients that a float
+// shader will store).
+FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params, const FitOptions& options = {});
+
+}  // namespace sglab::fit

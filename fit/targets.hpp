@@ -1,0 +1,63 @@
+// fit/targets.hpp — the `sglab fit` targets. Each target builds its
+// residuals from the runtime templates, fits with fit/minimax, evaluates the
+// published constants on the same objective, and returns constant sets to
+// write plus a report.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sglab::fit {
+
+using ordered_json = nlohmann::ordered_json;
+
+enum class WorkingPrecision { half, single, dbl };
+
+struct FitSpec {
+  std::string target;                   // clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d
+  WorkingPrecision precision = WorkingPrecision::single;
+  std::string objective;                // target-specific; empty = the target's default
+  bool alpha_free = false;              // clamped-cosine: α free instead of tied by energy conservation
+  double kappa_lo = 1e-3, kappa_hi = 1e4;
+  int kappa_count = 29, cosine_count = 41;
+  bool kappa_range_given = false;       // --kappa was given: the variant name records the range
+  std::optional<double> max_error;      // model order: the error budget
+  std::string command;                  // the command line, recorded in provenance
+};
+
+struct FitOutcome {
+  std::vector<ordered_json> constant_sets;  // data/constants/<target>-<variant>.json contents
+  ordered_json report;                      // what --json prints
+  std::string text;                         // human-readable summary
+  bool converged = true;
+};
+
+// Machine epsilon (spacing of 1) of the working precision: 2^−10, 2^−23, 2^−52.
+double machine_epsilon(WorkingPrecision p);
+std::string precision_name(WorkingPrecision p);
+std::optional<WorkingPrecision> parse_precision(const std::string& name);
+
+// Log-spaced κ grid of `count` values over [lo, hi] (count 1: lo) and
+// cosine grid c_i = −1 + 2i/(count − 1).
+std::vector<double> kappa_grid(double lo, double hi, int count);
+std::vector<double> cosine_grid(int count);
+
+// A constant set with provenance; `coefficients` in parameter-struct order.
+ordered_json make_constant_set(const FitSpec& spec, const std::string& target, const std::string& variant,
+                               const std::string& cpp_type, const std::string& form, ordered_json coefficients,
+                               ordered_json objective, ordered_json achieved);
+
+FitOutcome fit_clamped_cosine(const FitSpec& spec);
+FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
+FitOutcome fit_lambda_d(const FitSpec& spec);
+FitOutcome fit_erf(const FitSpec& spec);
+
+// Dispatch by spec.target; throws std::invalid_argument for an unknown target or objective.
+FitOutcome run_fit(const FitSpec& spec);
+const std::vector<std::string>& fit_targets();
+
+}  // namespace sglab::fit

@@ -1,0 +1,184 @@
+// The fitting engine and the fit targets: synthetic problems with known
+// answers (nist.cc style: digits recovered), closed-form minimax, an
+// independent 1-D minimization, the published clamped-cosine constants, and
+// the command's contract.
+#include <cmath>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sglab/sglab.hpp>
+
+#include "minimax.hpp"
+#include "targets.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace sglab::fit;
+
+// Number of correct significant digits of `got` against `want` (nist.cc's LRE).
+double lre(double got, double want) { return -std::log10(std::abs(got - want) / std::abs(want)); }
+
+struct SteepnessData {
+  double kappa, t;
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    r[0] = sglab::steepness2022(T(kappa), sglab::Steepness2022Params<T>{p[0][0], p[1][0], p[2][0]}) / T(t) - T(1);
+    return true;
+  }
+};
+
+TEST(Engine, RecoversSteepnessCoefficientsFromSyntheticData) {
+  const sglab::Steepness2022Params<double> truth{0.8, 2.0, 5.0};
+  Residuals residuals;
+  for (double k : kappa_grid(1e-3, 1e4, 60))
+    residuals.push_back(make_residual(SteepnessData{k, sglab::steepness2022(k, truth)}, 3));
+  Parameters start{{"A", "B", "C"}, {0.65173288269070562, 1.3418280033141288, 7.2216687798956709}, {}};
+  for (Norm norm : {Norm::least_squares, Norm::minimax}) {
+    FitOptions options;
+    options.norm = norm;
+    const FitResult r = fit(residuals, start, options);
+    ASSERT_TRUE(r.converged);
+    EXPECT_GT(lre(r.values[0], truth.A), 8);
+    EXPECT_GT(lre(r.values[1], truth.B), 8);
+    EXPECT_GT(lre(r.values[2], truth.C), 8);
+  }
+}
+
+struct LineResidual {
+  double x;
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    using std::exp;
+    r[0] = exp(T(x)) - p[0][0] - p[1][0] * T(x);
+    return true;
+  }
+};
+
+TEST(Engine, MinimaxMatchesChebyshevEquioscillation) {
+  // Best uniform line for e^x on [0, 1]: slope e − 1, error (1 + b ln b − b)/2.
+  Residuals residuals;
+  for (int i = 0; i <= 1000; ++i) residuals.push_back(make_residual(LineResidual{i / 1000.0}, 2));
+  const FitResult r = fit(residuals, Parameters{{"a", "b"}, {1, 1}, {}});
+  const double b = std::exp(1.0) - 1, e = (1 + b * std::log(b) - b) / 2;
+  EXPECT_NEAR(r.values[1], b, 1e-5);
+  EXPECT_NEAR(r.max_abs, e, 1e-7);
+  // Least squares is not minimax: its max error is larger.
+  FitOptions ls;
+  ls.norm = Norm::least_squares;
+  EXPECT_GT(fit(residuals, Parameters{{"a", "b"}, {1, 1}, {}}, ls).max_abs, e * 1.1);
+}
+
+TEST(Engine, RoundingToFloatKeepsCoefficientsFloatExact) {
+  Residuals residuals;
+  for (int i = 0; i <= 200; ++i) residuals.push_back(make_residual(LineResidual{i / 200.0}, 2));
+  const FitResult r = fit_rounded_to_float(residuals, Parameters{{"a", "b"}, {1, 1}, {}});
+  for (double v : r.values) EXPECT_EQ(v, static_cast<double>(static_cast<float>(v)));
+  EXPECT_LT(r.max_abs, 0.10595);
+}
+
+TEST(ClampedCosine, FloatFitReproducesPublishedConstants) {
+  FitSpec spec;
+  spec.target = "clamped-cosine";
+  spec.kappa_count = 5;  // the irradiance check only; the fit itself does not use κ
+  spec.cosine_count = 5;
+  const FitOutcome out = run_fit(spec);
+  ASSERT_TRUE(out.converged);
+  const double lambda = out.report["lambda"], alpha = out.report["alpha"];
+  // At least 6 significant digits of seed 000 Listing 1.
+  EXPECT_GT(lre(lambda, 0.00084560872241480124), 6.0) << lambda;
+  EXPECT_GT(lre(alpha, 1182.2467339678153), 6.0) << alpha;
+  // At the optimum the two error terms balance (seed 000 §1.1).
+  EXPECT_NEAR(out.report["approximation_error"].get<double>() / out.report["rounding_error_model"].get<double>(), 1.0,
+              0.01);
+}
+
+TEST(ClampedCosine, PrecisionSetsTheBalance) {
+  // λ ≈ √(6ε): half ≫ float ≫ double.
+  FitSpec spec;
+  spec.target = "clamped-cosine";
+  spec.kappa_count = 3;
+  spec.cosine_count = 3;
+  spec.precision = WorkingPrecision::half;
+  const double half = run_fit(spec).report["lambda"];
+  spec.precision = WorkingPrecision::dbl;
+  const double dbl = run_fit(spec).report["lambda"];
+  EXPECT_NEAR(half, std::sqrt(6 * std::ldexp(1.0, -10)), 0.1 * half);
+  EXPECT_NEAR(dbl, std::sqrt(6 * std::ldexp(1.0, -52)), 0.1 * dbl);
+}
+
+TEST(LambdaD, SphereLeastSquaresMatchesIndependentMinimization) {
+  // Independent: the integral by adaptive Gauss–Kronrod, minimized by Brent.
+  auto cost = [](double lambda) {
+    auto f = [&](double u) {
+      const double d = std::max(u, 0.0) / M_PI - std::exp(lambda * (u - 1)) * lambda / (2 * M_PI * -std::expm1(-2 * lambda));
+      return 2 * M_PI * d * d;
+    };
+    using boost::math::quadrature::gauss_kronrod;
+    return gauss_kronrod<double, 61>::integrate(f, -1.0, 0.0, 10, 1e-14) +
+           gauss_kronrod<double, 61>::integrate(f, 0.0, 1.0, 10, 1e-14);
+  };
+  const double want = boost::math::tools::brent_find_minima(cost, 0.5, 5.0, 50).first;
+  FitSpec spec;
+  spec.target = "lambda-d";
+  spec.objective = "sphere-ls";
+  const FitOutcome out = run_fit(spec);
+  ASSERT_EQ(out.report["results"].size(), 1u);
+  EXPECT_NEAR(out.report["results"][0]["lambda_d"].get<double>(), want, 1e-6 * want);
+}
+
+TEST(Fit, IsDeterministic) {
+  FitSpec spec;
+  spec.target = "steepness2024";
+  spec.objective = "irradiance";
+  spec.kappa_count = 8;
+  spec.cosine_count = 9;
+  const auto a = run_fit(spec), b = run_fit(spec);
+  EXPECT_EQ(a.constant_sets[0]["coefficients"].dump(), b.constant_sets[0]["coefficients"].dump());
+}
+
+TEST(Fit, RefitIsNoWorseThanPublishedOnItsObjective) {
+  for (const char* target : {"steepness2022", "steepness2024"}) {
+    for (const char* objective : {"irradiance", "optimal-t"}) {
+      FitSpec spec;
+      spec.target = target;
+      spec.objective = objective;
+      spec.kappa_lo = 1;
+      spec.kappa_hi = 100;
+      spec.kappa_count = 9;
+      spec.cosine_count = 11;
+      const auto out = run_fit(spec);
+      EXPECT_LE(out.report["objective_error"].get<double>(),
+                out.report["published"]["objective_error"].get<double>())
+          << target << " " << objective;
+    }
+  }
+}
+
+TEST(Cli, BadOptionsAreClearErrors) {
+  const std::string bin = SGLAB_BINARY;
+  auto r = sglab::test::run_command(bin + " fit nonsense --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknown fit target 'nonsense'"), std::string::npos) << r.output;
+  r = sglab::test::run_command(bin + " fit steepness2022 --kappa -1:10 --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--kappa"), std::string::npos) << r.output;
+  r = sglab::test::run_command(bin + " fit steepness2022 --kappa 10:1 --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = sglab::test::run_command(bin + " fit clamped-cosine --precision quad --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--precision"), std::string::npos) << r.output;
+  r = sglab::test::run_command(bin + " fit steepness2022 --objective best --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+TEST(Cli, JsonReportHasNamedCoefficientsAndPublished) {
+  const auto r = sglab::test::run_command(std::string(SGLAB_BINARY) + " fit clamped-cosine --json --dry-run");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  EXPECT_TRUE(j.contains("lambda") && j.contains("alpha") && j.contains("approximation_error"));
+  EXPECT_TRUE(j["published"].contains("lambda") && j["published"].contains("objective"));
+}
+
+}  // namespace
