@@ -113,7 +113,7 @@ void add_fit_command(CLI::App& app) {
                   "steepness: optimal-t | irradiance; lambda-d: sphere-ls | hemisphere-ls | free-amplitude | "
                   "irradiance; erf: listing5 | as7125");
   cmd->add_option("--kappa", o->kappa, "κ range LO:HI of the fit (default 1e-3:1e4)");
-  cmd->add_option("--max-error", o->max_error, "model order: smallest model meeting this error (erf)");
+  cmd->add_option("--max-error", o->max_error, "model order: smallest model meeting this error (erf: degrees and split; steepness: rational order of t)");
   cmd->add_flag("--alpha-free", o->alpha_free, "clamped-cosine: α free instead of tied by energy conservation");
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");

@@ -18,5 +18,10 @@ struct InputError : std::runtime_error {
 void add_methods_command(CLI::App& app);
 void add_table_command(CLI::App& app);
 void add_constants_command(CLI::App& app);
+void add_fit_command(CLI::App& app);
+void add_erf_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
+void add_stability_command(CLI::App& app);
+void add_reference_command(CLI::App& app);
 
 }  // namespace sglab::app

@@ -13,6 +13,11 @@ int main(int argc, char** argv) {
   sglab::app::add_methods_command(app);
   sglab::app::add_table_command(app);
   sglab::app::add_constants_command(app);
+  sglab::app::add_fit_command(app);
+  sglab::app::add_erf_command(app);
+  sglab::app::add_sweep_command(app);
+  sglab::app::add_stability_command(app);
+  sglab::app::add_reference_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

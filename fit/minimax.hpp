@@ -1,6 +1,7 @@
 // fit/minimax.hpp — the one fitting engine behind every target: Ceres
 // least squares, and minimax (smallest maximum residual) on top of it by
-// Lawson's iteratively reweighted least squares.
+// Lawson's iteratively reweighted least squares as a warm start, polished
+// by a quadratic-penalty solve of the epigraph form min E, |r_i| ≤ E.
 //
 // A problem is a list of scalar residual functions r_i(p) of the same N
 // scalar parameters (each its own size-1 parameter block, so any of them can
@@ -32,7 +33,8 @@ enum class Norm { least_squares, minimax };
 
 struct FitOptions {
   Norm norm = Norm::minimax;
-  int lawson_iterations = 40;         // reweighting rounds for minimax
+  int lawson_iterations = 20;         // reweighting rounds for minimax (the warm start)
+  int penalty_decades = 12;           // then penalty weights 10^2 … 10^this (relative)
   int solver_iterations = 200;        // Ceres iterations per round
   double relative_tolerance = 1e-12;  // Ceres function tolerance
 };

@@ -120,6 +120,115 @@ double irradiance_error(bool y2022, const std::vector<double>& v, const std::vec
   return m;
 }
 
+// Model order: t(κ) of order M (SteepnessRationalParams) in the 2022 or
+// 2024 method, fitted on the irradiance peak_rel error.
+template <std::size_t M> struct RationalIrradianceResidual {
+  bool y2022;
+  double kappa, cosine, reference, peak;
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    SteepnessRationalParams<T, M> params{};
+    for (std::size_t i = 0; i < M; ++i) params.p[i] = p[i][0];
+    for (std::size_t i = 0; i <= M; ++i) params.q[i] = p[M + i][0];
+    const T k(kappa), c(cosine);
+    const T e = y2022 ? irradiance_tokuyoshi2022(c, k, ClampedCosineParams<T>{T(constants::clamped_cosine_published.lambda),
+                                                                              T(constants::clamped_cosine_published.alpha)},
+                                                 params)
+                      : irradiance_tokuyoshi2024(c, k, params);
+    r[0] = (e - T(reference)) / T(peak);
+    return true;
+  }
+};
+
+struct OrderFit {
+  std::size_t order;
+  std::vector<double> p, q;
+  double error;
+  // Multiply-adds of t(κ) (Horner of P and Q) plus the fixed 0.5·, ÷, √ and κ·.
+  int operations() const { return int(p.size() + q.size()) + 4; }
+};
+
+// Start values of order M from the published forms (M = 1: 2022, M = 2: 2024)
+// or from order M − 1 multiplied through by (κ + 1)/(κ + 1).
+std::pair<std::vector<double>, std::vector<double>> order_start(std::size_t m, const OrderFit* lower) {
+  const auto& a = constants::steepness2022_published;
+  const auto& b = constants::steepness2024_published;
+  if (m == 0) return {{}, {a.C / (2 * a.A)}};  // t ≈ κ√(0.5/(κ + q0)) matches 2022 as κ → 0
+  if (m == 1) return {{2 * a.A}, {a.C, a.B}};
+  if (m == 2) return {{b.B, b.A}, {b.E, b.D, b.C}};
+  // (κ + 1)·P: coefficients shift up.
+  auto times = [](const std::vector<double>& c) {  // c lowest first, implicit leading 1
+    std::vector<double> out(c.size() + 1, 0.0);
+    for (std::size_t i = 0; i < c.size(); ++i) out[i] += c[i], out[i + 1] += c[i];
+    out[c.size()] += 1;
+    return out;
+  };
+  return {times(lower->p), times(lower->q)};
+}
+
+template <std::size_t M>
+OrderFit fit_order(bool y2022, const std::vector<validate::ReferencePoint>& ref, const OrderFit* lower) {
+  auto [p0, q0] = order_start(M, lower);
+  Parameters params;
+  for (std::size_t i = 0; i < M; ++i) params.names.push_back(fmt::format("p{}", i)), params.values.push_back(p0[i]);
+  for (std::size_t i = 0; i <= M; ++i) params.names.push_back(fmt::format("q{}", i)), params.values.push_back(q0[i]);
+  Residuals residuals;
+  for (const auto& r : ref)
+    residuals.push_back(make_residual(
+        RationalIrradianceResidual<M>{y2022, r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)},
+        params.size()));
+  const FitResult f = fit(residuals, params);
+  return {M, std::vector<double>(f.values.begin(), f.values.begin() + M),
+          std::vector<double>(f.values.begin() + M, f.values.end()), f.max_abs};
+}
+
+FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022, const std::vector<validate::ReferencePoint>& ref) {
+  const double budget = *spec.max_error;
+  std::vector<OrderFit> fits;
+  const OrderFit* chosen = nullptr;
+  for (std::size_t m = 0; m <= 3 && !chosen; ++m) {
+    const OrderFit* lower = fits.empty() ? nullptr : &fits.back();
+    switch (m) {
+      case 0: fits.push_back(fit_order<0>(y2022, ref, lower)); break;
+      case 1: fits.push_back(fit_order<1>(y2022, ref, lower)); break;
+      case 2: fits.push_back(fit_order<2>(y2022, ref, lower)); break;
+      default: fits.push_back(fit_order<3>(y2022, ref, lower)); break;
+    }
+    if (fits.back().error <= budget) chosen = &fits.back();
+  }
+  const std::string method = y2022 ? "tokuyoshi2022" : "tokuyoshi2024";
+  FitOutcome out;
+  out.report = {{"target", spec.target}, {"objective", "model-order"}, {"method", method}, {"max_error", budget},
+                {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"orders", ordered_json::array()}};
+  out.text = fmt::format("{} model order for {} irradiance, kappa in [{}, {}], budget {:.3e}:\n", spec.target, method,
+                         spec.kappa_lo, spec.kappa_hi, budget);
+  out.text += "  order  coefficients  operations  max peak_rel\n";
+  for (const auto& f : fits) {
+    out.report["orders"].push_back({{"order", f.order}, {"coefficients", f.p.size() + f.q.size()},
+                                    {"operations", f.operations()}, {"max_peak_rel", f.error}});
+    out.text += fmt::format("  {:>5}  {:>12}  {:>10}  {:.4e}{}\n", f.order, f.p.size() + f.q.size(), f.operations(),
+                            f.error, &f == chosen ? "  <- smallest meeting the budget" : "");
+  }
+  if (!chosen) {
+    out.converged = false;
+    out.text += "  no order up to 3 meets the budget\n";
+    out.report["chosen"] = nullptr;
+    return out;
+  }
+  const std::string variant = fmt::format("order{}-k{}-{}-e{:g}", chosen->order, spec.kappa_lo, spec.kappa_hi, budget);
+  ordered_json coefficients = {{"p", chosen->p.empty() ? std::vector<double>{0.0} : chosen->p}, {"q", chosen->q}};
+  out.constant_sets.push_back(make_constant_set(
+      spec, spec.target, variant, fmt::format("SteepnessRationalParams<double, {}>", chosen->order),
+      "t(kappa) = kappa*sqrt(0.5*P(kappa)/Q(kappa)), P, Q monic of degrees M, M+1 (coefficients lowest order first)",
+      coefficients,
+      fmt::format("smallest order M meeting max {} irradiance peak_rel <= {} over {} kappa x {} cosines, kappa in "
+                  "[{}, {}]",
+                  method, budget, spec.kappa_count, spec.cosine_count, spec.kappa_lo, spec.kappa_hi),
+      {{"objective", chosen->error}, {"max_peak_rel", chosen->error}, {"operations", chosen->operations()}}));
+  out.report["chosen"] = {{"order", chosen->order}, {"p", chosen->p}, {"q", chosen->q}, {"max_peak_rel", chosen->error},
+                          {"operations", chosen->operations()}, {"variant", variant}};
+  return out;
+}
+
 }  // namespace
 
 FitOutcome fit_steepness(const FitSpec& spec) {
@@ -136,6 +245,8 @@ FitOutcome fit_steepness(const FitSpec& spec) {
   for (double k : kappas)
     for (double c : cosines) queries.push_back({k, c});
   const auto ref = validate::reference_engine().evaluate(queries);
+
+  if (spec.max_error) return fit_steepness_order(spec, y2022, ref);
 
   Parameters params;
   params.names = names;

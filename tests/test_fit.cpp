@@ -182,3 +182,38 @@ TEST(Cli, JsonReportHasNamedCoefficientsAndPublished) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ModelOrder, NarrowSceneGetsACheaperSteepness) {
+  auto order_of = [](double lo, double hi, double budget) {
+    sglab::fit::FitSpec spec;
+    spec.target = "steepness2024";
+    spec.kappa_lo = lo;
+    spec.kappa_hi = hi;
+    spec.kappa_count = 15;
+    spec.cosine_count = 21;
+    spec.max_error = budget;
+    const auto out = sglab::fit::run_fit(spec);
+    EXPECT_TRUE(out.converged) << out.text;
+    return out.report["chosen"].is_null() ? 99 : out.report["chosen"]["operations"].get<int>();
+  };
+  // The 2024 lerp structure itself floors near 1e-3 peak_rel, so the budgets
+  // are a loose scene (κ ∈ [2, 50], 1e-2) against a demanding one (κ ∈ [1e-3, 1e4], 2e-3).
+  const int narrow = order_of(2, 50, 1e-2), wide = order_of(1e-3, 1e4, 2e-3);
+  EXPECT_LT(narrow, wide);
+}
+
+TEST(ModelOrder, RationalOrderTwoReproducesThe2024Form) {
+  // SteepnessRationalParams<2> with p = {B, A}, q = {E, D, C} is exactly the published 2024 t(κ).
+  const auto& b = sglab::constants::steepness2024_published;
+  const sglab::SteepnessRationalParams<double, 2> r{{b.B, b.A}, {b.E, b.D, b.C}};
+  const auto& a = sglab::constants::steepness2022_published;
+  const sglab::SteepnessRationalParams<double, 1> r1{{2 * a.A}, {a.C, a.B}};
+  for (double k : {1e-3, 0.5, 0.999, 1.0, 7.0, 1e5}) {
+    EXPECT_NEAR(sglab::steepness_rational(k, r), sglab::steepness2024(k), 1e-15 * sglab::steepness2024(k));
+    EXPECT_NEAR(sglab::steepness_rational(k, r1), sglab::steepness2022(k), 1e-15 * sglab::steepness2022(k));
+  }
+}
+
+}  // namespace

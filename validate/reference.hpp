@@ -46,7 +46,13 @@ class ReferenceEngine {
   std::vector<ReferencePoint> evaluate(std::span<const Query> queries,
                                        Precision precision = Precision::standard) const;
 
+  // Number of cached points (each (κ, c, precision) counts once).
   std::size_t cache_size() const;
+
+  // Empties the cache (logically const: it changes no result; thread-safe).
+  // An addition to the original interface, for long sweeps that want the
+  // memory back and for benchmarks that must not be served from the cache.
+  void clear_cache() const;
 
  private:
   struct Impl;

@@ -76,7 +76,7 @@ std::vector<double> SweepGrid::cosines() const {
   if (cosine_count < 2) return c;
   c.reserve(static_cast<std::size_t>(cosine_count));
   const int last = cosine_count - 1;
-  for (int i = 0; i <= last; ++i) c.push_back(static_cast<double>(2 * i - last) / last);
+  for (int i = 0; i <= last; ++i) c.push_back(-1.0 + 2.0 * i / last);  // SPEC §4's expression; ends exact
   return c;
 }
 

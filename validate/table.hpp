@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct Column {
   std::string name;         // CSV header, Markdown header, JSON key
   int digits = 4;           // significant digits of reals in Markdown
   std::string description;  // free text for documentation (not rendered)
+
+  Column(std::string name_, int digits_ = 4, std::string description_ = {})
+      : name(std::move(name_)), digits(digits_), description(std::move(description_)) {}
+  Column(const char* name_, int digits_ = 4) : Column(std::string(name_), digits_) {}
 };
 
 class Table {

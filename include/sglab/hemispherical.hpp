@@ -39,27 +39,60 @@ T steepness2024(const T& kappa, const Steepness2024Params<S>& p = constants::ste
   return sqrt(kappa) * sqrt(T(0.5) * (T(1) + (A + B * r) * r) / (T(1) + (C + (D + E * r) * r) * r));
 }
 
+// t(κ) of order M (params.hpp), evaluated as κ√(0.5 P/Q) for κ < 1 and as
+// √κ √(0.5 (P/κ^M)/(Q/κ^{M+1})) in powers of 1/κ above, so nothing overflows.
+template <class T, class S, std::size_t M>
+T steepness_rational(const T& kappa, const SteepnessRationalParams<S, M>& p) {
+  using std::sqrt;
+  if (kappa < T(1)) {
+    T P = T(1), Q = T(1);
+    if constexpr (M > 0)
+      for (std::size_t i = M; i-- > 0;) P = P * kappa + T(p.p[i]);
+    for (std::size_t i = M + 1; i-- > 0;) Q = Q * kappa + T(p.q[i]);
+    return kappa * sqrt(T(0.5) * P / Q);
+  }
+  const T r = T(1) / kappa;
+  // P/κ^M = 1 + p[M−1] r + … + p[0] r^M, Horner in r from p[0].
+  T P = T(0), Q = T(0);
+  if constexpr (M > 0)
+    for (std::size_t i = 0; i < M; ++i) P = (P + T(p.p[i])) * r;
+  for (std::size_t i = 0; i <= M; ++i) Q = (Q + T(p.q[i])) * r;
+  return sqrt(kappa) * sqrt(T(0.5) * (T(1) + P) / (T(1) + Q));
+}
+
+// One name for every steepness form, so methods can take any of them.
+template <class T, class S> T steepness(const T& kappa, const Steepness2022Params<S>& p) {
+  return steepness2022(kappa, p);
+}
+template <class T, class S> T steepness(const T& kappa, const Steepness2024Params<S>& p) {
+  return steepness2024(kappa, p);
+}
+template <class T, class S, std::size_t M> T steepness(const T& kappa, const SteepnessRationalParams<S, M>& p) {
+  return steepness_rational(kappa, p);
+}
+
 // erf(t c)/erf(t), with its t → 0 limit c: erf(tc)/erf(t) = c(1 + t²(1 − c²)/3 + O(t⁴)),
 // so below t = 2^−13 (float) or 2^−27 (double) the ratio is c to working
 // precision, and erf(t) can no longer underflow into the denormals.
 template <class T, class Erf = ErfStd> T erf_ratio(const T& t, const T& cosine, Erf erf = {}) {
   const T tiny = sizeof(T) <= sizeof(float) ? T(0x1p-13) : T(0x1p-27);
   if (t < tiny) return cosine;
-  return erf(t * cosine) / erf(t);
+  // An approximate erf need not be monotone to the last ulp (Listing 5 is
+  // not): keep the ratio in [−1, 1] so that s̃ stays in [0, 1].
+  return clamp(erf(t * cosine) / erf(t), T(-1), T(1));
 }
 
 // s̃(c, κ) = ½ + ½ erf(t(κ) c)/erf(t(κ))  (Tokuyoshi 2022, Eq. 5).
-template <class T, class Erf = ErfStd, class S = double>
-T normalized_erf2022(const T& cosine, const T& kappa,
-                     const Steepness2022Params<S>& p = constants::steepness2022_published, Erf erf = {}) {
-  const T t = steepness2022(kappa, p);
+template <class T, class Erf = ErfStd, class P = Steepness2022Params<double>>
+T normalized_erf2022(const T& cosine, const T& kappa, const P& p = constants::steepness2022_published, Erf erf = {}) {
+  const T t = steepness(kappa, p);
   return T(0.5) + T(0.5) * erf_ratio(t, clamp(cosine, T(-1), T(1)), erf);
 }
 
 // H̃(c, κ) = 2π lerp(e^{−κ}, 1, s̃) (1 − e^{−κ})/κ  (seed 000 Listing 3, SPEC `erf2022`).
-template <class T, class Erf = ErfStd, class S = double>
-T hemispherical_erf2022(const T& cosine, const T& kappa,
-                        const Steepness2022Params<S>& p = constants::steepness2022_published, Erf erf = {}) {
+template <class T, class Erf = ErfStd, class P = Steepness2022Params<double>>
+T hemispherical_erf2022(const T& cosine, const T& kappa, const P& p = constants::steepness2022_published,
+                        Erf erf = {}) {
   using std::exp;
   const T s = normalized_erf2022(cosine, kappa, p, erf);
   return two_pi_v<T>() * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);

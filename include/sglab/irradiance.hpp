@@ -103,11 +103,11 @@ T irradiance_meder2018(const T& cosine, const T& kappa,
 // `tokuyoshi2022`: cos⁺ ≈ α(e^{λ cos θ} − 1) = α(e^{λ} G(ω; n, λ) − 1) on the
 // upper hemisphere (seed 000 Listing 1):
 // Ê = max(α(H̃(c3, κ3) e^{λ + logAmp} − H̃(c, κ)), 0) with the erf-based H̃.
-template <class T, class Erf = ErfStd, class S = double>
+// `st` may be any steepness form (Steepness2022Params by default).
+template <class T, class Erf = ErfStd, class S = double, class P = Steepness2022Params<double>>
 T irradiance_tokuyoshi2022(const T& cosine, const T& kappa,
                            const ClampedCosineParams<S>& cc = constants::clamped_cosine_published,
-                           const Steepness2022Params<S>& st = constants::steepness2022_published,
-                           Erf erf = {}) {
+                           const P& st = constants::steepness2022_published, Erf erf = {}) {
   using std::exp;
   const T lambda = T(cc.lambda), alpha = T(cc.alpha);
   const ProductWithNormal<T> prod = sg_product_with_normal(cosine, kappa, lambda);
@@ -130,18 +130,16 @@ template <class T> T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, con
   return saturate(T(0.5) * (c * erfc(-tz) + erfc(t)) - T(0.5) * inv_sqrt_pi_v<T>() * tail);
 }
 
-template <class T, class S = double>
-T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa,
-                            const Steepness2024Params<S>& p = constants::steepness2024_published) {
-  return lerp_factor_tokuyoshi2024_at_steepness(cosine, steepness2024(kappa, p));
+template <class T, class P = Steepness2024Params<double>>
+T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constants::steepness2024_published) {
+  return lerp_factor_tokuyoshi2024_at_steepness(cosine, steepness(kappa, p));
 }
 
 // `tokuyoshi2024`: Ê = 2π lerp(Ē(−1), Ē(1), f) with the exact poles
 // Ē(±1) = E(±1, κ)/2π (closed_forms.hpp; Taylor series near κ = 0 as in the
-// paper's Listing 6).
-template <class T, class S = double>
-T irradiance_tokuyoshi2024(const T& cosine, const T& kappa,
-                           const Steepness2024Params<S>& p = constants::steepness2024_published) {
+// paper's Listing 6). `p` may be any steepness form (Steepness2024Params by default).
+template <class T, class P = Steepness2024Params<double>>
+T irradiance_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constants::steepness2024_published) {
   const T f = lerp_factor_tokuyoshi2024(cosine, kappa, p);
   return two_pi_v<T>() * lerp(irradiance_lower_over_two_pi(kappa), irradiance_upper_over_two_pi(kappa), f);
 }

@@ -31,6 +31,17 @@ template <class S> struct Steepness2024Params {
   S A, B, C, D, E;
 };
 
+// General rational steepness of sglab's model-order search:
+// t(κ) = κ √(0.5 P(κ)/Q(κ)) with monic P = κ^M + p[M−1]κ^{M−1} + … + p[0] and
+// Q = κ^{M+1} + q[M]κ^M + … + q[0], so that t → √(κ/2) as κ → ∞ for every
+// order M (seed 000 §1.2). M = 1 is the 2022 form (p0 = 2A, q1 = B, q0 = C),
+// M = 2 the 2024 form (p1 = A, p0 = B, q2 = C, q1 = D, q0 = E). For M = 0, P = 1
+// and p is unused.
+template <class S, std::size_t M> struct SteepnessRationalParams {
+  S p[M > 0 ? M : 1];
+  S q[M + 1];
+};
+
 // Seed 000 Listing 5 erf structure: x·P(x²) on |x| ≤ split (P has NS
 // coefficients, lowest order first), 1 − 2^{−a·Q(a)} on split < a < cutoff
 // (Q has NL coefficients, lowest order first), ±1 beyond.

@@ -77,8 +77,11 @@ SGLobe<T> sg_product(const Vec3<T>& v1, const T& kappa1, const Vec3<T>& v2, cons
   const T a_len = length(a);
   const T k3 = m * a_len;
   const Vec3<T> d = v1 - v2;
-  // −κ1κ2|d|²/(κ3 + κ1 + κ2) = −κ1·(κ2/(κ3 + κ1 + κ2))·|d|², no overflow.
-  const T log_amp = -kappa1 * (kappa2 / (k3 + kappa1 + kappa2)) * dot(d, d);
+  // −κ1κ2|d|²/(κ3 + κ1 + κ2) = −min(κ1, κ2)|d|²/(κ3/m + κ1/m + κ2/m) with
+  // m = max(κ1, κ2): the denominator lies in [1, 3], so nothing overflows and
+  // the smaller sharpness is never scaled into the denormals.
+  const T kmin = kappa1 < kappa2 ? kappa1 : kappa2;
+  const T log_amp = -kmin * (dot(d, d) / (a_len + kappa1 / m + kappa2 / m));
   const Vec3<T> axis = a_len > T(0) ? (T(1) / a_len) * a : v1;
   return {axis, k3, log_amp};
 }
@@ -99,12 +102,15 @@ ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, con
   const T m = kappa < lambda ? lambda : kappa;
   if (!(m > T(0))) return {T(0), T(0), T(1)};
   const T ks = kappa / m, ls = lambda / m, diff = ks - ls;
-  const T k3 = m * sqrt(diff * diff + T(2) * ks * ls * (T(1) + cosine));
-  // κ3 − κ − λ = −2κλ(1 − c)/(κ3 + κ + λ)  (see sg_product).
-  const T log_amp = T(-2) * (T(1) - cosine) * kappa * (lambda / (k3 + kappa + lambda));
+  const T k3s = sqrt(diff * diff + T(2) * ks * ls * (T(1) + cosine));  // κ3/m
+  const T k3 = m * k3s;
+  // κ3 − κ − λ = −2κλ(1 − c)/(κ3 + κ + λ) = −2 min(κ, λ)(1 − c)/(κ3/m + κ/m + λ/m)
+  // (see sg_product): the denominator lies in [1, 3], nothing overflows or underflows.
+  const T kmin = kappa < lambda ? kappa : lambda;
+  const T log_amp = T(-2) * (kmin * ((T(1) - cosine) / (k3s + ks + ls)));
   // Product axis (κv + λn)/κ3, its cosine with n = (κc + λ)/κ3, clamped:
   // rounding may push it a hair outside [−1, 1].
-  const T c3 = k3 > T(0) ? clamp((ks * cosine + ls) * (m / k3), T(-1), T(1)) : T(1);
+  const T c3 = k3s > T(0) ? clamp((ks * cosine + ls) / k3s, T(-1), T(1)) : T(1);
   return {k3, log_amp, c3};
 }
 

@@ -1,0 +1,86 @@
+// `sglab stability`: every runtime function and method over special inputs
+// (κ = 0, denormals, huge, +inf, NaN; c at and just outside ±1; non-unit and
+// opposite axes), float and double: counts of NaN / Inf / negative /
+// out-of-range outputs for valid and for invalid inputs, and where they occur.
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "io.hpp"
+#include "stability.hpp"
+#include "table.hpp"
+
+namespace sglab::app {
+
+void add_stability_command(CLI::App& app) {
+  struct Args {
+    std::string out = "out/stability";
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand(
+      "stability", "NaN / Inf / negative / out-of-range outputs of every function and method over special inputs");
+  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the full table as JSON on stdout");
+  cmd->callback([args] {
+    const validate::StabilityReport report = validate::stability();
+    const validate::Table full = validate::stability_table(report);
+    const validate::Table findings = validate::stability_findings_table(report);
+    const std::filesystem::path dir(args->out);
+    using validate::TableFormat;
+    validate::write_table(full, dir, "stability", {TableFormat::csv, TableFormat::markdown});
+    validate::write_table(findings, dir, "findings", {TableFormat::csv, TableFormat::markdown});
+
+    nlohmann::ordered_json doc = nlohmann::ordered_json::object();
+    // JSON has no NaN / inf: spell the non-finite inputs as strings.
+    const auto list = [](const std::vector<double>& xs) {
+      nlohmann::ordered_json a = nlohmann::ordered_json::array();
+      for (double x : xs) {
+        if (std::isfinite(x))
+          a.push_back(x);
+        else
+          a.push_back(std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf"));
+      }
+      return a;
+    };
+    doc["inputs"] = {{"kappa_float", list(report.kappas_float)},
+                     {"kappa_double", list(report.kappas_double)},
+                     {"cosine_float", list(report.cosines_float)},
+                     {"cosine_double", list(report.cosines_double)}};
+    doc["results"] = validate::to_json_records(full);
+    nlohmann::ordered_json own = nlohmann::ordered_json::array();
+    for (const validate::StabilityRow* r : validate::own_failures_on_valid_inputs(report))
+      own.push_back(fmt::format("{} ({})", r->function, validate::to_string(r->precision)));
+    doc["sglab_failures_on_valid_inputs"] = std::move(own);
+    const std::string json = doc.dump(2) + "\n";
+    io::write_file_atomic(dir / "stability.json", json);
+
+    if (args->json) {
+      fmt::print("{}", json);
+      return;
+    }
+    fmt::print("{}\n", validate::to_markdown(findings));
+    const auto own_failures = validate::own_failures_on_valid_inputs(report);
+    if (own_failures.empty())
+      fmt::print("sglab's own primitives: no NaN / Inf / negative / out-of-range output on valid inputs.\n");
+    else
+      for (const validate::StabilityRow* r : own_failures)
+        fmt::print("WARNING: sglab primitive {} ({}) fails on valid inputs, e.g. {}\n", r->function,
+                   validate::to_string(r->precision),
+                   [&] {
+                     for (std::size_t k = 0; k < validate::kFailureKinds; ++k)
+                       if (r->failures[k].count && r->is_failure(static_cast<validate::FailureKind>(k)))
+                         return r->failures[k].example;
+                     return std::string();
+                   }());
+    fmt::print("Written to {}: stability.{{csv,md,json}}, findings.{{csv,md}}\n", dir.string());
+  });
+}
+
+}  // namespace sglab::app

@@ -1,0 +1,93 @@
+// Reference engine throughput: (κ, c) points per second, H and E together
+// (s included), on fresh random points (κ log-uniform in [1e−3, 1e4], c
+// uniform in [−1, 1]) so that nothing is served from the cache. Read
+// `items_per_second`. The batch benchmark uses every core (TBB) and is timed
+// in wall-clock time; the single benchmark is one thread.
+//
+//   build-ref/bench/bench_reference --benchmark_min_time=2
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "reference.hpp"
+
+namespace {
+
+using sglab::validate::Precision;
+using sglab::validate::Query;
+using sglab::validate::ReferenceEngine;
+
+std::vector<Query> random_points(std::mt19937_64& rng, std::size_t n) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Query> q(n);
+  for (auto& p : q) p = {std::pow(10.0, -3 + 7 * unit(rng)), -1 + 2 * unit(rng)};
+  return q;
+}
+
+// The batch API: TBB over all cores.
+void BM_ReferenceBatch(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  std::mt19937_64 rng(1);
+  ReferenceEngine engine;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const auto points = random_points(rng, n);
+    engine.clear_cache();
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(engine.evaluate(points));
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
+}
+BENCHMARK(BM_ReferenceBatch)->Arg(4096)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// One point at a time on one thread.
+void BM_ReferenceSingle(benchmark::State& state) {
+  std::mt19937_64 rng(2);
+  ReferenceEngine engine;
+  auto points = random_points(rng, 1 << 16);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    if (i == points.size()) {
+      state.PauseTiming();
+      points = random_points(rng, points.size());
+      engine.clear_cache();
+      i = 0;
+      state.ResumeTiming();
+    }
+    benchmark::DoNotOptimize(engine.evaluate(points[i].kappa, points[i].cosine));
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ReferenceSingle)->Unit(benchmark::kMicrosecond);
+
+// Cache hits (a sweep revisiting its grid).
+void BM_ReferenceCached(benchmark::State& state) {
+  std::mt19937_64 rng(3);
+  ReferenceEngine engine;
+  const auto points = random_points(rng, 1024);
+  engine.evaluate(points);
+  for (auto _ : state) benchmark::DoNotOptimize(engine.evaluate(points));
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * points.size()));
+}
+BENCHMARK(BM_ReferenceCached)->UseRealTime()->Unit(benchmark::kMicrosecond);
+
+// The 50-digit mode, for the ratio (slow: a small batch).
+void BM_ReferenceHighBatch(benchmark::State& state) {
+  std::mt19937_64 rng(4);
+  ReferenceEngine engine;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const auto points = random_points(rng, 32);
+    engine.clear_cache();
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(engine.evaluate(points, Precision::high));
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * 32));
+}
+BENCHMARK(BM_ReferenceHighBatch)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace

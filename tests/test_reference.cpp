@@ -1,0 +1,390 @@
+// Reference engine (validate/reference.hpp): H, E, s of SPEC §1 against
+// independent truth — the closed forms evaluated here in 50-digit arithmetic,
+// the κ → 0 limits, the engine's own 50-digit mode on random points, and a
+// brute-force 2-D quadrature over the sphere that does not use the 1-D
+// reduction at all — plus the cache, argument checks and the
+// `sglab reference` command.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <unistd.h>
+
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "reference.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using sglab::test::hex;
+using sglab::validate::Precision;
+using sglab::validate::Query;
+using sglab::validate::reference_engine;
+using sglab::validate::ReferenceEngine;
+using sglab::validate::ReferencePoint;
+using mp = boost::multiprecision::cpp_bin_float_50;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRelTol = 1e-13;       // required relative accuracy of H, E
+constexpr double kAbsTolS = 1e-13;      // required absolute accuracy of s
+constexpr double kSmallest = 1e-290;    // relative accuracy required above this
+
+double rel_err(double got, double want) { return want == 0 ? std::abs(got) : std::abs(got / want - 1); }
+
+// ---------------------------------------------------------------------------
+// SPEC §1 closed forms in 50-digit arithmetic, written naively on purpose:
+// with 50 digits the cancellations in 1 − e^{−κ} and 1 − e^{−κ} − κe^{−κ}
+// (≈ κ²/2 at κ = 1e−6) still leave ~38 correct digits. Nothing here comes
+// from the engine or from the runtime headers.
+struct ClosedForms {
+  mp h_plus, h_minus, h_zero, e_plus, e_minus;
+  double s_zero;  // s(0, κ) = (S/2 − H(−1)) / (H(1) − H(−1))
+};
+ClosedForms closed_forms(double kappa_in) {
+  const mp k = kappa_in, two_pi = 2 * boost::math::constants::pi<mp>();
+  const mp em = exp(-k);
+  ClosedForms f;
+  f.h_plus = two_pi * (1 - em) / k;                             // H(1, κ)
+  f.h_minus = em * f.h_plus;                                    // H(−1, κ)
+  f.h_zero = (two_pi * (1 - exp(-2 * k)) / k) / 2;              // S(κ)/2
+  f.e_plus = two_pi * (k - 1 + em) / (k * k);                   // E(1, κ)
+  f.e_minus = two_pi * em * (1 - em - k * em) / (k * k);        // E(−1, κ)
+  f.s_zero = static_cast<double>((f.h_zero - f.h_minus) / (f.h_plus - f.h_minus));
+  return f;
+}
+
+const std::vector<double>& closed_form_kappas() {
+  static const std::vector<double> k = {1e-6, 1e-5, 3e-4, 0.01, 0.2, 0.5, 0.999, 1.0, 1.001, 2.5, 10,
+                                        37.5, 100, 710, 1e3, 1e4, 1e5, 3.3e5, 1e6};
+  return k;
+}
+
+// Asserts value ≈ exact (relative) where exact ≥ 1e−290, else finite and tiny.
+void expect_rel(double value, const mp& exact, const char* what, double kappa, double cosine) {
+  const double x = static_cast<double>(exact);
+  ASSERT_FALSE(std::isnan(value)) << what << " NaN at κ=" << hex(kappa) << " c=" << hex(cosine);
+  if (x >= kSmallest) {
+    EXPECT_LE(rel_err(value, x), kRelTol)
+        << what << " at κ=" << hex(kappa) << " c=" << hex(cosine) << ": got " << hex(value) << ", exact " << hex(x);
+  } else {
+    EXPECT_GE(value, 0) << what << " at κ=" << hex(kappa);
+    EXPECT_LE(value, 1e-285) << what << " at κ=" << hex(kappa);
+  }
+}
+
+TEST(ReferenceClosedForms, PolesAndEquator) {
+  ReferenceEngine engine;
+  for (double kappa : closed_form_kappas()) {
+    const ClosedForms f = closed_forms(kappa);
+    const ReferencePoint up = engine.evaluate(kappa, 1.0);
+    const ReferencePoint down = engine.evaluate(kappa, -1.0);
+    const ReferencePoint mid = engine.evaluate(kappa, 0.0);
+    expect_rel(up.hemispherical, f.h_plus, "H(1,κ)", kappa, 1.0);
+    expect_rel(down.hemispherical, f.h_minus, "H(-1,κ)", kappa, -1.0);
+    expect_rel(mid.hemispherical, f.h_zero, "H(0,κ) = S/2", kappa, 0.0);
+    expect_rel(up.irradiance, f.e_plus, "E(1,κ)", kappa, 1.0);
+    expect_rel(down.irradiance, f.e_minus, "E(-1,κ)", kappa, -1.0);
+    EXPECT_NEAR(up.normalized, 1.0, kAbsTolS) << "s(1,κ) at κ=" << hex(kappa);
+    EXPECT_NEAR(down.normalized, 0.0, kAbsTolS) << "s(-1,κ) at κ=" << hex(kappa);
+    EXPECT_NEAR(mid.normalized, f.s_zero, kAbsTolS) << "s(0,κ) at κ=" << hex(kappa);
+  }
+}
+
+// The quadrature's error estimate must bound the actual error (it is the
+// pessimistic |Kronrod − Gauss| sum), and the L1 norms are ≥ |value|.
+TEST(ReferenceClosedForms, ErrorEstimateBoundsActualError) {
+  ReferenceEngine engine;
+  for (double kappa : closed_form_kappas()) {
+    const ClosedForms f = closed_forms(kappa);
+    const std::vector<std::tuple<double, mp, mp>> ends = {{1.0, f.h_plus, f.e_plus}, {-1.0, f.h_minus, f.e_minus}};
+    for (const auto& [c, h, e] : ends) {
+      const ReferencePoint p = engine.evaluate(kappa, c);
+      if (static_cast<double>(h) < kSmallest) continue;
+      const double slack = 4 * std::numeric_limits<double>::epsilon();
+      EXPECT_LE(std::abs(p.hemispherical - static_cast<double>(h)), p.hemispherical_error + slack * p.hemispherical)
+          << "κ=" << hex(kappa) << " c=" << c;
+      EXPECT_LE(std::abs(p.irradiance - static_cast<double>(e)), p.irradiance_error + slack * p.irradiance)
+          << "κ=" << hex(kappa) << " c=" << c;
+      EXPECT_GE(p.hemispherical_error, 0);
+      EXPECT_GE(p.irradiance_error, 0);
+      EXPECT_GE(p.hemispherical_l1, std::abs(p.hemispherical));
+      EXPECT_GE(p.irradiance_l1, std::abs(p.irradiance));
+    }
+  }
+}
+
+// κ → 0: H → 2π, E → π, s → (1+c)/2 (SPEC §1); κ = 0 itself exactly.
+TEST(ReferenceLimits, KappaToZero) {
+  ReferenceEngine engine;
+  for (double c : {-1.0, -0.75, -1e-9, 0.0, 0.3, 0.999, 1.0}) {
+    for (Precision mode : {Precision::standard, Precision::high}) {
+      const ReferencePoint zero = engine.evaluate(0.0, c, mode);
+      EXPECT_NEAR(zero.hemispherical, 2 * kPi, 1e-15) << "c=" << c;
+      EXPECT_NEAR(zero.irradiance, kPi, 1e-15) << "c=" << c;
+      EXPECT_NEAR(zero.normalized, (1 + c) / 2, 1e-16) << "c=" << c;
+    }
+    // H = 2π + O(κ), E = π + O(κ), s = (1+c)/2 + O(κ): |dH/dκ| ≤ ∫_hemi |ω·v − 1| dω
+    // ≤ 4π, |dE/dκ| ≤ 2π, and |s − (1+c)/2| is far below κ (measured
+    // ~1e−2·κ at κ = 1e−4). Plus a few ulps.
+    for (double kappa : {1e-300, 1e-30, 1e-12, 1e-8}) {
+      const ReferencePoint p = engine.evaluate(kappa, c);
+      EXPECT_NEAR(p.hemispherical, 2 * kPi, 4 * kPi * kappa + 1e-14) << "κ=" << kappa << " c=" << c;
+      EXPECT_NEAR(p.irradiance, kPi, 2 * kPi * kappa + 1e-14) << "κ=" << kappa << " c=" << c;
+      EXPECT_NEAR(p.normalized, (1 + c) / 2, kappa + 4e-16) << "κ=" << kappa << " c=" << c;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The high-precision mode (50-digit arithmetic, its own truncation points and
+// tolerances) against the standard mode.
+TEST(ReferenceHighPrecision, AgreesWithStandardOnRandomPoints) {
+  std::vector<Query> queries;
+  // Corners and the awkward places: both poles, the horizon from both sides,
+  // near-pole c, and the underflow edge of H at large κ and c < 0.
+  for (double kappa : {1e-6, 0.7, 1.0, 1.5, 50.0, 1e6})
+    for (double c : {-1.0, -0.0365, -1e-12, 0.0, 1e-12, 0.5, 1 - 1e-12, 1.0}) queries.push_back({kappa, c});
+  std::mt19937_64 rng(20240611);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 220; ++i) queries.push_back({std::pow(10.0, -6 + 12 * unit(rng)), -1 + 2 * unit(rng)});
+
+  ReferenceEngine engine;
+  const auto standard = engine.evaluate(queries, Precision::standard);
+  const auto high = engine.evaluate(queries, Precision::high);
+  double max_h = 0, max_e = 0, max_s = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const double k = queries[i].kappa, c = queries[i].cosine;
+    const ReferencePoint& a = standard[i];
+    const ReferencePoint& b = high[i];
+    for (double v : {a.hemispherical, a.irradiance, a.normalized, b.hemispherical, b.irradiance, b.normalized})
+      ASSERT_TRUE(std::isfinite(v)) << "non-finite at κ=" << hex(k) << " c=" << hex(c);
+    if (b.hemispherical >= kSmallest) max_h = std::max(max_h, rel_err(a.hemispherical, b.hemispherical));
+    if (b.irradiance >= kSmallest) max_e = std::max(max_e, rel_err(a.irradiance, b.irradiance));
+    max_s = std::max(max_s, std::abs(a.normalized - b.normalized));
+    if (b.hemispherical >= kSmallest) {
+      EXPECT_LE(rel_err(a.hemispherical, b.hemispherical), kRelTol) << "H at κ=" << hex(k) << " c=" << hex(c);
+    }
+    if (b.irradiance >= kSmallest) {
+      EXPECT_LE(rel_err(a.irradiance, b.irradiance), kRelTol) << "E at κ=" << hex(k) << " c=" << hex(c);
+    }
+    EXPECT_LE(std::abs(a.normalized - b.normalized), kAbsTolS) << "s at κ=" << hex(k) << " c=" << hex(c);
+    EXPECT_GE(a.normalized, 0);
+    EXPECT_LE(a.normalized, 1);
+    EXPECT_LE(a.irradiance, a.hemispherical);  // u ≤ 1 under the integral
+  }
+  const std::string summary = fmt::format("{} points: max rel H {:.3e}, max rel E {:.3e}, max abs s {:.3e}",
+                                          queries.size(), max_h, max_e, max_s);
+  std::printf("high vs standard: %s\n", summary.c_str());
+  RecordProperty("high_vs_standard", summary);
+}
+
+TEST(ReferenceHighPrecision, NeverNaNAtTheExtremes) {
+  ReferenceEngine engine;
+  for (Precision mode : {Precision::standard, Precision::high}) {
+    for (double kappa : {0.0, 5e-324, 1e-300, 1e-6, 1e6})
+      for (double c : {-1.0, -0.5, -0.0, 0.0, 1.0}) {
+        const ReferencePoint p = engine.evaluate(kappa, c, mode);
+        EXPECT_TRUE(std::isfinite(p.hemispherical) && std::isfinite(p.irradiance) && std::isfinite(p.normalized))
+            << "κ=" << hex(kappa) << " c=" << hex(c);
+      }
+  }
+  // Deep in the tail: H(−1, 1e6) = 2π e^{−1e6}/κ underflows to 0.
+  const ReferencePoint tail = engine.evaluate(1e6, -1.0);
+  EXPECT_EQ(tail.hemispherical, 0.0);
+  EXPECT_EQ(tail.irradiance, 0.0);
+  EXPECT_EQ(tail.normalized, 0.0);
+}
+
+// ---------------------------------------------------------------------------
+// Brute force: ∫_{S²} G(ω; v, κ)·w(ω·n) dω in (θ, φ) about n by composite
+// Gauss–Legendre (Boost's 20-point rule on 24 equal panels in each angle),
+// with v at polar angle acos(c). No 1-D reduction, no Bessel function, no
+// adaptivity: catches a wrong formula that both engine modes would share.
+template <class F> double composite_gauss(const F& f, double a, double b) {
+  constexpr int panels = 24;
+  const double h = (b - a) / panels;
+  double sum = 0;
+  for (int i = 0; i < panels; ++i)
+    sum += boost::math::quadrature::gauss<double, 20>::integrate(f, a + i * h, a + (i + 1) * h);
+  return sum;
+}
+double sphere_quadrature(double kappa, double c, bool cosine_weighted) {
+  const double r = std::sqrt((1 - c) * (1 + c));
+  auto over_phi = [&](double theta) {
+    const double ct = std::cos(theta), st = std::sin(theta);
+    auto g = [&](double phi) { return std::exp(kappa * (st * r * std::cos(phi) + ct * c - 1)); };
+    return 2 * composite_gauss(g, 0.0, kPi) * st * (cosine_weighted ? ct : 1.0);  // φ ∈ [0, 2π], symmetric
+  };
+  return composite_gauss(over_phi, 0.0, kPi / 2);
+}
+
+TEST(ReferenceBruteForce, MatchesSphereQuadrature) {
+  ReferenceEngine engine;
+  for (double kappa : {0.05, 0.9, 4.0, 25.0})
+    for (double c : {-0.8, -0.3, 0.0, 0.35, 0.9}) {
+      const ReferencePoint p = engine.evaluate(kappa, c);
+      const double h = sphere_quadrature(kappa, c, false);
+      const double e = sphere_quadrature(kappa, c, true);
+      EXPECT_LE(rel_err(p.hemispherical, h), 1e-12) << "H at κ=" << kappa << " c=" << c;
+      EXPECT_LE(rel_err(p.irradiance, e), 1e-12) << "E at κ=" << kappa << " c=" << c;
+      // s from the brute-force H and the closed-form ends.
+      const ClosedForms f = closed_forms(kappa);
+      const double s = (h - static_cast<double>(f.h_minus)) / static_cast<double>(f.h_plus - f.h_minus);
+      EXPECT_NEAR(p.normalized, s, 1e-11) << "s at κ=" << kappa << " c=" << c;
+    }
+}
+
+// ---------------------------------------------------------------------------
+TEST(ReferenceEngineApi, RejectsBadArguments) {
+  ReferenceEngine engine;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<double, double>> bad = {{-1.0, 0.0}, {-1e-300, 0.0}, {nan, 0.0}, {inf, 0.0},
+                                                      {1.0, 1.0000000000000002}, {1.0, -1.5}, {1.0, nan}, {1.0, inf}};
+  for (auto [k, c] : bad)
+    EXPECT_THROW(engine.evaluate(k, c), std::invalid_argument) << "κ=" << k << " c=" << c;
+  const std::vector<Query> batch = {{1.0, 0.5}, {2.0, 2.0}};
+  EXPECT_THROW(engine.evaluate(batch), std::invalid_argument);
+  EXPECT_EQ(engine.cache_size(), 0u);  // nothing computed for a rejected batch
+}
+
+TEST(ReferenceEngineApi, CacheKeyedByBitsAndPrecision) {
+  ReferenceEngine engine;
+  EXPECT_EQ(engine.cache_size(), 0u);
+  const ReferencePoint a = engine.evaluate(3.0, 0.25);
+  EXPECT_EQ(engine.cache_size(), 1u);
+  const ReferencePoint b = engine.evaluate(3.0, 0.25);
+  EXPECT_EQ(engine.cache_size(), 1u);
+  EXPECT_EQ(a.hemispherical, b.hemispherical);
+  engine.evaluate(3.0, 0.0);
+  engine.evaluate(3.0, -0.0);  // a different bit pattern, a different entry
+  EXPECT_EQ(engine.cache_size(), 3u);
+  engine.evaluate(3.0, 0.25, Precision::high);
+  EXPECT_EQ(engine.cache_size(), 4u);
+  engine.clear_cache();
+  EXPECT_EQ(engine.cache_size(), 0u);
+  EXPECT_EQ(&reference_engine(), &reference_engine());
+}
+
+TEST(ReferenceEngineApi, BatchIsInQueryOrderAndMatchesSingleCalls) {
+  std::vector<Query> queries;
+  // 300 distinct points (i mod 37, i mod 23 are unique for i < 851), then a repeat.
+  for (int i = 0; i < 300; ++i) queries.push_back({std::pow(10.0, -3 + 7 * (i % 37) / 36.0), -1 + 2 * (i % 23) / 22.0});
+  queries.push_back(queries[17]);
+  ReferenceEngine batch_engine, single_engine;
+  const auto batch = batch_engine.evaluate(queries);
+  ASSERT_EQ(batch.size(), queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    EXPECT_EQ(batch[i].kappa, queries[i].kappa);
+    EXPECT_EQ(batch[i].cosine, queries[i].cosine);
+    const ReferencePoint p = single_engine.evaluate(queries[i].kappa, queries[i].cosine);
+    EXPECT_EQ(batch[i].hemispherical, p.hemispherical);
+    EXPECT_EQ(batch[i].irradiance, p.irradiance);
+    EXPECT_EQ(batch[i].normalized, p.normalized);
+  }
+  EXPECT_EQ(batch_engine.cache_size(), 300u);  // the repeat shares an entry
+}
+
+TEST(ReferenceEngineApi, ConcurrentCallersAgree) {
+  ReferenceEngine engine;
+  std::vector<double> first(64);
+  for (int i = 0; i < 64; ++i) first[i] = engine.evaluate(1.0 + i, 0.5 - i / 64.0).irradiance;
+  std::atomic<int> mismatches{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < 64; ++i) {
+        if (engine.evaluate(1.0 + i, 0.5 - i / 64.0).irradiance != first[i]) ++mismatches;
+        engine.evaluate(100.0 + t, -0.5 + i / 64.0);  // concurrent inserts
+      }
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(mismatches.load(), 0);
+}
+
+// ---------------------------------------------------------------------------
+// `sglab reference`.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    path = std::filesystem::temp_directory_path() / fmt::format("sglab-test-reference-{}", ::getpid());
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  std::string write(const std::string& name, const std::string& content) const {
+    const auto file = path / name;
+    std::ofstream(file) << content;
+    return file.string();
+  }
+};
+
+std::string sglab_reference(const std::string& args) { return fmt::format("'{}' reference {}", SGLAB_BINARY, args); }
+
+TEST(ReferenceCommand, PrintsCsvWith17Digits) {
+  TempDir dir;
+  const std::string file = dir.write("points.csv", "kappa,cosine\n0,0.5\n1e-6,-1\n2.5,0.1\r\n 1000 , -0.25 \n1e6,1\n\n");
+  const auto r = sglab::test::run_command(sglab_reference("--points '" + file + "'"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string expected = "kappa,cosine,hemispherical,irradiance,normalized\n";
+  const std::vector<std::pair<double, double>> points = {{0.0, 0.5}, {1e-6, -1.0}, {2.5, 0.1}, {1000.0, -0.25}, {1e6, 1.0}};
+  for (auto [k, c] : points) {
+    const ReferencePoint p = reference_engine().evaluate(k, c);
+    expected += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", k, c, p.hemispherical, p.irradiance,
+                            p.normalized);
+  }
+  EXPECT_EQ(r.output, expected);
+
+  const auto high = sglab::test::run_command(sglab_reference("--precision high --points '" + file + "'"));
+  ASSERT_EQ(high.exit_code, 0) << high.output;
+  EXPECT_EQ(std::count(high.output.begin(), high.output.end(), '\n'), 6);
+}
+
+TEST(ReferenceCommand, BadInputIsExitCode2NamingTheLine) {
+  TempDir dir;
+  struct Case {
+    const char* name;
+    const char* content;
+    const char* where;  // must appear in the message
+  };
+  const Case cases[] = {
+      {"negative.csv", "kappa,cosine\n1,0.5\n-2,0.5\n", "negative.csv:3"},
+      {"cosine.csv", "kappa,cosine\n1,1.5\n", "cosine.csv:2"},
+      {"text.csv", "kappa,cosine\n1,0\n2,0\nabc,0.5\n", "text.csv:4"},
+      {"trailing.csv", "kappa,cosine\n1,0.5x\n", "trailing.csv:2"},
+      {"missing.csv", "kappa,cosine\n1,0\n3\n", "missing.csv:3"},
+      {"empty_field.csv", "kappa,cosine\n1,\n", "empty_field.csv:2"},
+      {"extra.csv", "kappa,cosine\n1,0,7\n", "extra.csv:2"},
+      {"nan.csv", "kappa,cosine\nnan,0\n", "nan.csv:2"},
+      {"inf.csv", "kappa,cosine\ninf,0\n", "inf.csv:2"},
+      {"header.csv", "k,c\n1,0\n", "header.csv:1"},
+  };
+  for (const Case& c : cases) {
+    const std::string file = dir.write(c.name, c.content);
+    const auto r = sglab::test::run_command(sglab_reference("--points '" + file + "'"));
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.where), std::string::npos) << c.name << ": " << r.output;
+  }
+  const std::string missing = (dir.path / "does-not-exist.csv").string();
+  const auto r = sglab::test::run_command(sglab_reference("--points '" + missing + "'"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("does-not-exist.csv"), std::string::npos) << r.output;
+}
+
+}  // namespace

@@ -1,0 +1,144 @@
+// The stability table: it flags known failures of published methods
+// (punctual is infinite at κ = 0, Hill fails at small κ), splits valid from
+// invalid inputs, and finds no failure of sglab's own primitives on valid
+// inputs (SPEC §5). Plus the `sglab stability --json` contract.
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sglab/registry.hpp>
+
+#include "stability.hpp"
+#include "test_support.hpp"
+
+namespace sv = sglab::validate;
+
+namespace {
+
+const sv::StabilityReport& report() {
+  static const sv::StabilityReport r = sv::stability();
+  return r;
+}
+
+const sv::StabilityRow& row(const std::string& function, sv::FloatFormat f, bool valid) {
+  const sv::StabilityRow* r = report().find(function, f, valid);
+  if (!r) throw std::runtime_error("no stability row for " + function);
+  return *r;
+}
+
+constexpr sv::FloatFormat kFormats[] = {sv::FloatFormat::binary32, sv::FloatFormat::binary64};
+
+}  // namespace
+
+TEST(Stability, EveryFunctionHasFourRows) {
+  const auto& rows = report().rows;
+  ASSERT_FALSE(rows.empty());
+  ASSERT_EQ(rows.size() % 4, 0u);
+  for (std::size_t i = 0; i < rows.size(); i += 4) {
+    EXPECT_EQ(rows[i].function, rows[i + 3].function);
+    EXPECT_EQ(rows[i].precision, sv::FloatFormat::binary32);
+    EXPECT_EQ(rows[i + 2].precision, sv::FloatFormat::binary64);
+    EXPECT_TRUE(rows[i].valid_inputs);
+    EXPECT_FALSE(rows[i + 1].valid_inputs);
+    EXPECT_GT(rows[i].evaluations, 0u) << rows[i].function;
+    EXPECT_GT(rows[i + 1].evaluations, 0u) << rows[i].function;
+  }
+  for (const auto& m : sglab::irradiance_methods)
+    EXPECT_NE(report().find(fmt::format("irradiance/{}", m.id), sv::FloatFormat::binary64, true), nullptr) << m.id;
+  // Probed inputs include κ = 0, the smallest denormal, FLT_MAX, DBL_MAX (double), +inf, NaN.
+  const auto& kd = report().kappas_double;
+  EXPECT_NE(std::find(kd.begin(), kd.end(), 0.0), kd.end());
+  EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::denorm_min()), kd.end());
+  EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::max()), kd.end());
+  EXPECT_NE(std::find(kd.begin(), kd.end(), static_cast<double>(std::numeric_limits<float>::max())), kd.end());
+  EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::infinity()), kd.end());
+  EXPECT_TRUE(std::any_of(kd.begin(), kd.end(), [](double k) { return std::isnan(k); }));
+  const auto& kf = report().kappas_float;
+  EXPECT_NE(std::find(kf.begin(), kf.end(), static_cast<double>(std::numeric_limits<float>::denorm_min())), kf.end());
+}
+
+TEST(Stability, PunctualIsInfiniteAtKappaZero) {
+  for (sv::FloatFormat f : kFormats) {
+    const auto& r = row("irradiance/punctual", f, true);
+    const auto& inf = r[sv::FailureKind::inf];
+    EXPECT_GT(inf.count, 0u);
+    EXPECT_EQ(inf.kappa_min, 0.0);
+    EXPECT_LT(inf.kappa_max, 1e-30);  // 2π/κ overflows only for κ = 0 and the smallest denormals
+    EXPECT_NE(inf.example.find("inf"), std::string::npos) << inf.example;
+  }
+}
+
+TEST(Stability, HillFailsAtSmallKappa) {
+  for (sv::FloatFormat f : kFormats) {
+    const auto& r = row("irradiance/hill", f, true);
+    EXPECT_GT(r.failure_count(), 0u);
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const auto& fs : r.failures)
+      if (fs.count && !std::isnan(fs.kappa_min)) smallest = std::min(smallest, fs.kappa_min);
+    EXPECT_EQ(smallest, 0.0);
+  }
+}
+
+TEST(Stability, InvalidInputsAreCountedSeparately) {
+  for (sv::FloatFormat f : kFormats) {
+    // NaN in, NaN out: a finding on invalid inputs only.
+    const auto& invalid = row("sg_evaluate(c, κ)", f, false);
+    EXPECT_GT(invalid[sv::FailureKind::nan].count, 0u);
+    EXPECT_TRUE(invalid[sv::FailureKind::nan].at_nan_kappa);
+    const auto& valid = row("sg_evaluate(c, κ)", f, true);
+    EXPECT_EQ(valid.failure_count(), 0u) << valid[sv::FailureKind::nan].example;
+  }
+}
+
+TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
+  const auto failures = sv::own_failures_on_valid_inputs(report());
+  for (const sv::StabilityRow* r : failures) {
+    std::string what;
+    for (std::size_t k = 0; k < sv::kFailureKinds; ++k)
+      if (r->failures[k].count && r->is_failure(static_cast<sv::FailureKind>(k)))
+        what += fmt::format("\n  {} x{}: {}", sv::to_string(static_cast<sv::FailureKind>(k)), r->failures[k].count,
+                            r->failures[k].example);
+    ADD_FAILURE() << r->function << " (" << sv::to_string(r->precision) << ") on valid inputs:" << what;
+  }
+  // The list is drawn from the sglab rows only.
+  for (const sv::StabilityRow& r : report().rows) {
+    if (r.function == "irradiance/tokuyoshi2024" || r.function == "sg_product_with_normal.sharpness") {
+      EXPECT_EQ(r.origin, sv::Origin::sglab);
+    }
+    if (r.function == "irradiance/punctual" || r.function == "irradiance/hill") {
+      EXPECT_EQ(r.origin, sv::Origin::published);
+    }
+  }
+}
+
+TEST(Stability, TableHasCountsAndKappaSpans) {
+  const sv::Table t = sv::stability_table(report());
+  EXPECT_EQ(t.rows().size(), report().rows.size());
+  for (const char* c : {"function", "origin", "precision", "inputs", "nan", "nan_kappa_min", "nan_kappa_max", "inf",
+                        "inf_kappa_min", "overflow", "negative", "out_of_range", "out_of_range_kappa_max",
+                        "approximation", "first_failure"})
+    EXPECT_NO_THROW(t.column_index(c)) << c;
+}
+
+TEST(StabilityCli, JsonParses) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / fmt::format("sglab-test-stability-{}", ::getpid())).string();
+  const auto r = sglab::test::run_command(fmt::format("'{}' stability --out '{}' --json", SGLAB_BINARY, dir));
+  ASSERT_EQ(r.exit_code, 0) << r.output.substr(0, 2000);
+  const auto j = nlohmann::json::parse(r.output);
+  ASSERT_TRUE(j.contains("results"));
+  ASSERT_TRUE(j.contains("inputs"));
+  EXPECT_EQ(j.at("results").size(), report().rows.size());
+  for (const auto& e : j.at("results"))
+    for (const char* k : {"function", "origin", "precision", "inputs", "nan", "inf", "overflow", "negative", "out_of_range"})
+      EXPECT_TRUE(e.contains(k)) << k;
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "stability.csv"));
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "stability.md"));
+  std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,152 @@
+// validate/metrics.hpp — the error metrics of SPEC §3, in one place.
+//
+// For a method value x̂ and a reference x at (κ, c), with the lobe's peak
+// value x(1, κ):
+//   peak_rel = |x̂ − x| / |x(1, κ)|           the headline metric
+//   rel      = |x̂/x − 1|, only where |x| ≥ 1e−2·|x(1, κ)| ("significant")
+//   abs      = |x̂ − x|
+//   ulp      = |x̂ − x| / ulp(x), ulp taken in the evaluated precision
+//
+// Defined behaviour for special values (SciPy xsref style), for the scalar
+// functions:
+//   - any NaN argument                         → NaN
+//   - x̂ == x (including equal infinities)      → 0
+//   - otherwise IEEE arithmetic, so a finite x̂ against an infinite x (or the
+//     reverse) is +inf, and a non-zero difference over a zero peak is +inf
+//   - x = 0: rel is 0 when x̂ = 0 and +inf otherwise; ulp(0) is the smallest
+//     denormal of the evaluated precision.
+// The accumulators classify before they measure: a non-finite method output
+// is counted in `nonfinite` and excluded from max and RMS (it would otherwise
+// swamp both); a non-finite reference or peak is counted in
+// `invalid_reference` and excluded too (that is a reference-engine problem,
+// not the method's). Neither is ever silently dropped.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+namespace sglab::validate {
+
+// "Significant" threshold of `rel` relative to the peak value (SPEC §3).
+inline constexpr double kSignificantFraction = 1e-2;
+
+// |x̂ − x| with the special-value rules above.
+double abs_error(double value, double reference);
+
+// |x̂ − x| / |peak|.
+double peak_rel_error(double value, double reference, double peak);
+
+// |x̂/x − 1| (no significance test; see `significant`).
+double rel_error(double value, double reference);
+
+// |x| ≥ 1e−2·|peak| (false when either is NaN).
+bool significant(double reference, double peak);
+
+// ulp(x) in precision T: the spacing of T-values at |x| rounded to T (the
+// smallest denormal for x = 0 and for values below the normal range; NaN for
+// non-finite x; for values that round to infinity, the spacing just below
+// the largest finite value).
+template <class T> double ulp_of(double reference) {
+  if (!std::isfinite(reference)) return std::numeric_limits<double>::quiet_NaN();
+  const T a = static_cast<T>(std::abs(reference));
+  if (!std::isfinite(a)) {
+    const T m = std::numeric_limits<T>::max();
+    return static_cast<double>(m) - static_cast<double>(std::nextafter(m, T(0)));
+  }
+  // Spacing above a (for a power of two this is the larger spacing, the usual
+  // "ulp(x) = 2^(e − p + 1)" convention).
+  const T next = std::nextafter(a, std::numeric_limits<T>::infinity());
+  if (!std::isfinite(next)) return static_cast<double>(a) - static_cast<double>(std::nextafter(a, T(0)));
+  return static_cast<double>(next) - static_cast<double>(a);
+}
+
+// |x̂ − x| / ulp(x) in precision T.
+template <class T> double ulp_error(double value, double reference) {
+  const double e = abs_error(value, reference);
+  if (e == 0 || std::isnan(e)) return e;
+  const double u = ulp_of<T>(reference);
+  if (std::isnan(u)) return std::numeric_limits<double>::infinity();  // finite vs infinite reference
+  return e / u;
+}
+
+// What a comparison found at one point.
+enum class PointStatus : std::uint8_t {
+  ok,                 // finite output against a finite reference and peak
+  nonfinite_output,   // x̂ is NaN or ±inf: counted, excluded from max/RMS
+  invalid_reference,  // x or x(1, κ) is NaN or ±inf: counted, excluded
+};
+
+// All SPEC §3 metrics at one point; NaN where a metric does not apply
+// (rel outside the significant region, every metric unless status == ok).
+struct PointErrors {
+  PointStatus status = PointStatus::ok;
+  double abs = std::numeric_limits<double>::quiet_NaN();
+  double peak_rel = std::numeric_limits<double>::quiet_NaN();
+  double rel = std::numeric_limits<double>::quiet_NaN();
+  bool significant = false;
+};
+
+PointErrors compare(double value, double reference, double peak);
+
+// Summary of one metric over a set of points.
+struct ErrorStats {
+  double max = std::numeric_limits<double>::quiet_NaN();  // NaN when no point entered
+  double worst_kappa = std::numeric_limits<double>::quiet_NaN();
+  double worst_cosine = std::numeric_limits<double>::quiet_NaN();
+  double rms = std::numeric_limits<double>::quiet_NaN();
+  std::size_t count = 0;  // points that entered max and RMS
+};
+
+// Max (first occurrence wins ties, so the result does not depend on
+// anything but the order of `add`), where it occurs, and the RMS with a
+// compensated sum of squares. NaN errors are ignored and counted in
+// `skipped` (use the classification in MetricAccumulator to count them as
+// what they are).
+class ErrorAccumulator {
+ public:
+  void add(double kappa, double cosine, double error);
+  // Appends `other` as if its points had been added after this one's.
+  void merge(const ErrorAccumulator& other);
+  ErrorStats stats() const;
+  std::size_t skipped() const { return skipped_; }
+
+ private:
+  double max_ = -1;
+  double kappa_ = std::numeric_limits<double>::quiet_NaN();
+  double cosine_ = std::numeric_limits<double>::quiet_NaN();
+  double sum_ = 0, compensation_ = 0;  // Neumaier sum of error²
+  std::size_t count_ = 0;
+  std::size_t skipped_ = 0;
+};
+
+// Every SPEC §3 summary of a method against a reference over a table:
+// peak_rel, rel (significant points only) and abs, plus the counts.
+struct MetricSummary {
+  ErrorStats peak_rel;
+  ErrorStats rel;
+  ErrorStats abs;
+  std::size_t points = 0;             // every point added
+  std::size_t nonfinite = 0;          // non-finite method outputs
+  std::size_t invalid_reference = 0;  // non-finite reference or peak
+  // Where the first non-finite output occurred (NaN when none).
+  double first_nonfinite_kappa = std::numeric_limits<double>::quiet_NaN();
+  double first_nonfinite_cosine = std::numeric_limits<double>::quiet_NaN();
+};
+
+class MetricAccumulator {
+ public:
+  // Classifies and accumulates one point; returns what it measured.
+  PointErrors add(double kappa, double cosine, double value, double reference, double peak);
+  void merge(const MetricAccumulator& other);
+  MetricSummary summary() const;
+
+ private:
+  ErrorAccumulator peak_rel_, rel_, abs_;
+  std::size_t points_ = 0, nonfinite_ = 0, invalid_reference_ = 0;
+  double first_nonfinite_kappa_ = std::numeric_limits<double>::quiet_NaN();
+  double first_nonfinite_cosine_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace sglab::validate

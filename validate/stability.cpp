@@ -1,0 +1,678 @@
+#include "stability.hpp"
+
+#include <cmath>
+#include <limits>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include <sglab/closed_forms.hpp>
+#include <sglab/erf.hpp>
+#include <sglab/hemispherical.hpp>
+#include <sglab/irradiance.hpp>
+#include <sglab/math.hpp>
+#include <sglab/registry.hpp>
+#include <sglab/sg.hpp>
+
+namespace sglab::validate {
+
+std::string_view to_string(Origin o) { return o == Origin::sglab ? "sglab" : "published"; }
+
+std::string_view to_string(FailureKind k) {
+  switch (k) {
+    case FailureKind::nan:
+      return "nan";
+    case FailureKind::inf:
+      return "inf";
+    case FailureKind::overflow:
+      return "overflow";
+    case FailureKind::negative:
+      return "negative";
+    case FailureKind::out_of_range:
+      return "out_of_range";
+    case FailureKind::inaccurate:
+      return "inaccurate";
+  }
+  return "?";
+}
+
+bool StabilityRow::is_failure(FailureKind k) const {
+  switch (k) {
+    case FailureKind::overflow:
+      return false;
+    case FailureKind::out_of_range:
+      return !approximation;
+    default:
+      return true;
+  }
+}
+
+std::size_t StabilityRow::failure_count() const {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < kFailureKinds; ++i)
+    if (is_failure(static_cast<FailureKind>(i))) n += failures[i].count;
+  return n;
+}
+
+const StabilityRow* StabilityReport::find(std::string_view function, FloatFormat f, bool valid_inputs) const {
+  for (const StabilityRow& r : rows)
+    if (r.function == function && r.precision == f && r.valid_inputs == valid_inputs) return &r;
+  return nullptr;
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Exact text of a value: shortest decimal in its own precision and hex.
+template <class T> std::string show(T x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return fmt::format("{} ({:a})", x, static_cast<double>(x));
+}
+template <class T> std::string show(const Vec3<T>& v) {
+  return fmt::format("({}, {}, {})", show(v.x), show(v.y), show(v.z));
+}
+
+// The documented output range [lo, hi]. A bound that is not a small integer
+// (π, 2π, 4π) cannot be met exactly in floating point: allow `ulps` units of
+// the evaluated precision's epsilon relative to it.
+struct Range {
+  double lo;
+  double hi;
+  const char* text;
+  double ulps = 0;
+};
+constexpr Range kNonNegative{0, kInf, "[0, inf)"};
+constexpr Range kNonPositive{-kInf, 0, "(-inf, 0]"};
+constexpr Range kUnit{0, 1, "[0, 1]"};
+constexpr Range kSigned{-1, 1, "[-1, 1]"};
+constexpr Range kHalf{0, 0.5, "[0, 1/2]"};
+constexpr Range kPi{0, 3.141592653589793, "[0, π]", 4};
+constexpr Range kTwoPi{0, 6.283185307179586, "[0, 2π]", 4};
+constexpr Range kFourPi{0, 12.566370614359172, "[0, 4π]", 4};
+constexpr Range kUnitLength{1, 1, "|axis| = 1", 8};
+
+template <class T> FloatFormat format_of() {
+  return sizeof(T) == sizeof(float) ? FloatFormat::binary32 : FloatFormat::binary64;
+}
+
+template <class T> bool valid_kappa(T k) { return std::isfinite(k) && k >= T(0); }
+template <class T> bool valid_cosine(T c) { return c >= T(-1) && c <= T(1); }
+
+template <class Describe> void note(FailureStats& f, double key, Describe&& describe, double error = -1) {
+  if (f.count == 0 || error > f.example_error) {
+    f.example = describe();
+    f.example_error = error;
+  }
+  ++f.count;
+  if (std::isnan(key)) {
+    f.at_nan_kappa = true;
+    return;
+  }
+  if (std::isnan(f.kappa_min) || key < f.kappa_min) f.kappa_min = key;
+  if (std::isnan(f.kappa_max) || key > f.kappa_max) f.kappa_max = key;
+}
+
+// For probes without an exact value.
+constexpr auto no_exact = [] { return std::numeric_limits<long double>::quiet_NaN(); };
+
+// |x| beyond the largest finite T (x computed in long double, whose range
+// exceeds double's).
+template <class T> bool beyond_max(long double x) {
+  return std::isinf(x) || std::abs(x) > static_cast<long double>(std::numeric_limits<T>::max());
+}
+
+// Tolerance of the `inaccurate` check against an exact value: far looser than
+// rounding (so only gross errors such as a lost term count), with an absolute
+// floor far below anything that matters (log-amplitudes of 1e−30 are 0).
+constexpr long double kInaccurateRelative = 1e-4L;
+constexpr long double kInaccurateAbsolute = 1e-30L;
+
+// Runs one function over its inputs and fills a valid-input and an
+// invalid-input row.
+template <class T> class Probe {
+ public:
+  Probe(std::string name, Origin origin, Range range) : range_(range) {
+    for (StabilityRow* r : {&valid_, &invalid_}) {
+      r->function = name;
+      r->origin = origin;
+      r->precision = format_of<T>();
+      r->range = range.text;
+      r->sign_checked = range.lo >= 0;
+    }
+    valid_.valid_inputs = true;
+    invalid_.valid_inputs = false;
+  }
+
+  // `key` is the κ (or x) the failure is located by; `describe()` gives the
+  // exact inputs, called only on failure.
+  // `exact()` is the exact result in long double (NaN when unknown): it tells
+  // an overflow of the exact result from a spurious infinity, and flags
+  // finite outputs far from it.
+  template <class Describe, class Exact = std::remove_const_t<decltype(no_exact)>>
+  void check(bool is_valid, double key, T y, Describe&& describe, Exact exact = {}) {
+    StabilityRow& row = is_valid ? valid_ : invalid_;
+    ++row.evaluations;
+    // The exact value is defined for valid inputs only.
+    const auto exact_value = [&]() -> long double {
+      return is_valid ? static_cast<long double>(exact()) : std::numeric_limits<long double>::quiet_NaN();
+    };
+    FailureKind kind;
+    long double error = -1;
+    long double x = std::numeric_limits<long double>::quiet_NaN();
+    if (std::isnan(y)) {
+      kind = FailureKind::nan;
+    } else if (std::isinf(y)) {
+      kind = beyond_max<T>(exact_value()) ? FailureKind::overflow : FailureKind::inf;
+    } else if (row.sign_checked && y < T(0)) {
+      kind = FailureKind::negative;
+    } else if (outside(static_cast<double>(y))) {
+      kind = FailureKind::out_of_range;
+    } else {
+      x = exact_value();
+      if (std::isnan(x) || beyond_max<T>(x)) return;
+      const long double diff = std::abs(static_cast<long double>(y) - x);
+      if (!(diff > kInaccurateRelative * std::abs(x) + kInaccurateAbsolute)) return;
+      kind = FailureKind::inaccurate;
+      error = diff / (std::abs(x) + kInaccurateAbsolute);
+    }
+    note(row.failures[static_cast<std::size_t>(kind)], key, [&] {
+      if (kind == FailureKind::inaccurate)
+        return fmt::format("{} -> {}, exact {:.17g}", describe(), show(y), static_cast<double>(x));
+      return fmt::format("{} -> {}", describe(), show(y));
+    }, static_cast<double>(error));
+  }
+
+  void append_to(std::vector<StabilityRow>& rows) && {
+    rows.push_back(std::move(valid_));
+    rows.push_back(std::move(invalid_));
+  }
+
+ private:
+  bool outside(double y) const {
+    const double eps = std::numeric_limits<T>::epsilon();
+    const double lo = range_.lo - range_.ulps * eps * std::abs(range_.lo);
+    const double hi = range_.hi + range_.ulps * eps * std::abs(range_.hi);
+    return y < lo || y > hi;
+  }
+
+  Range range_;
+  StabilityRow valid_, invalid_;
+};
+
+// The inputs of SPEC's stability sweep, in precision T.
+template <class T> std::vector<T> probe_kappas() {
+  const double list[] = {-1,   0,    1e-30, 1e-6, 1e-3, 1e-2, 0.1,  0.2,  0.3,  0.4,  0.5,  0.6,  0.7,
+                         0.8,  1,    2,     5,    10,   20,   50,   88,   89,   100,  700,  710,  1e3,
+                         1e4,  1e5,  1e6,   1e10, 1e15, 1e20, 1e30, 1e38, 1e100, 1e200, 1e300};
+  std::vector<T> out;
+  out.push_back(std::numeric_limits<T>::denorm_min());
+  for (double v : list) {
+    const T t = static_cast<T>(v);
+    if (std::isfinite(t)) out.push_back(t);
+  }
+  out.push_back(std::numeric_limits<float>::max());
+  if constexpr (sizeof(T) > sizeof(float)) out.push_back(std::numeric_limits<double>::max());
+  out.push_back(std::numeric_limits<T>::infinity());
+  out.push_back(std::numeric_limits<T>::quiet_NaN());
+  return out;
+}
+
+template <class T> std::vector<T> probe_cosines() {
+  const T one(1);
+  return {T(-1) - T(0x1p-10),
+          std::nextafter(-one, T(-2)),
+          T(-1),
+          std::nextafter(-one, T(0)),
+          T(-0.5),
+          T(-0.0),
+          T(0),
+          T(0.5),
+          std::nextafter(one, T(0)),
+          T(1),
+          std::nextafter(one, T(2)),
+          T(1) + T(0x1p-10),
+          std::numeric_limits<T>::quiet_NaN()};
+}
+
+template <class T> struct AxisPair {
+  const char* name;
+  Vec3<T> a, b;
+  bool valid;
+};
+
+template <class T> std::vector<AxisPair<T>> probe_axes() {
+  using std::sqrt;
+  const T z0(0), o(1);
+  const Vec3<T> z{z0, z0, o}, x{o, z0, z0};
+  const T d = sizeof(T) == sizeof(float) ? T(0x1p-12) : T(0x1p-26);
+  const T s = T(0.70710678118654752440L);
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  return {
+      {"same", z, z, true},
+      {"orthogonal", z, x, true},
+      {"opposite", z, Vec3<T>{z0, z0, -o}, true},
+      {"nearly opposite", z, Vec3<T>{d, z0, -sqrt(o - d * d)}, true},
+      {"45 degrees", z, Vec3<T>{s, z0, s}, true},
+      {"generic", Vec3<T>{T(0.36), T(0.48), T(0.8)}, Vec3<T>{T(0.6), z0, T(-0.8)}, true},
+      {"non-unit (2x)", z, Vec3<T>{z0, z0, T(2)}, false},
+      {"non-unit opposite (2x)", z, Vec3<T>{z0, z0, T(-2)}, false},
+      {"non-unit (0.5x) orthogonal", z, Vec3<T>{T(0.5), z0, z0}, false},
+      {"zero axis", z, Vec3<T>{z0, z0, z0}, false},
+      {"NaN axis", z, Vec3<T>{nan, z0, z0}, false},
+  };
+}
+
+// Exact product quantities in long double (SPEC §1 / seed 000 Eq. 1-2):
+// κ3 = |κ1 v1 + κ2 v2|, log-amplitude κ3 − κ1 − κ2 = −κ1κ2|v1 − v2|²/(κ3 + κ1 + κ2).
+// |κ1v1 + κ2v2|² = (κ1 − κ2)(κ1|v1|² − κ2|v2|²) + κ1κ2|v1 + v2|², an identity
+// that does not cancel for nearly opposite axes and nearly equal κ.
+template <class T> long double exact_product_sharpness(const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
+  using L = long double;
+  const L a2 = L(a.x) * a.x + L(a.y) * a.y + L(a.z) * a.z, b2 = L(b.x) * b.x + L(b.y) * b.y + L(b.z) * b.z;
+  const L sx = L(a.x) + b.x, sy = L(a.y) + b.y, sz = L(a.z) + b.z;
+  const L s = (L(k1) - k2) * (L(k1) * a2 - L(k2) * b2) + L(k1) * k2 * (sx * sx + sy * sy + sz * sz);
+  return std::sqrt(s > 0 ? s : L(0));
+}
+template <class T> long double exact_product_log_amplitude(const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
+  using L = long double;
+  const L dx = L(a.x) - b.x, dy = L(a.y) - b.y, dz = L(a.z) - b.z;
+  const L den = exact_product_sharpness(a, k1, b, k2) + L(k1) + L(k2);
+  return den > 0 ? -L(k1) * L(k2) * (dx * dx + dy * dy + dz * dz) / den : L(0);
+}
+template <class T> long double exact_normal_product_sharpness(T c, T k, T l) {
+  using L = long double;
+  const L s = (L(k) - l) * (L(k) - l) + 2 * L(k) * l * (1 + L(c));  // (κ − λ)² + 2κλ(1 + c)
+  return std::sqrt(s > 0 ? s : L(0));
+}
+template <class T> long double exact_normal_product_log_amplitude(T c, T k, T l) {
+  using L = long double;
+  const L den = exact_normal_product_sharpness(c, k, l) + L(k) + L(l);
+  return den > 0 ? -2 * (1 - L(c)) * L(k) * L(l) / den : L(0);
+}
+
+// Exact closed forms of SPEC §1 in long double, for κ ≥ 0 (series near 0,
+// where long double would cancel too).
+using L = long double;
+constexpr L kPiL = 3.141592653589793238462643383279502884L;
+L exact_expm1_over_minus(L k) { return k == 0 ? L(1) : -std::expm1(-k) / k; }  // (1 − e^{−κ})/κ
+L exact_sphere_integral(L k) { return 4 * kPiL * exact_expm1_over_minus(2 * k); }
+L exact_upper_over_two_pi(L k) {  // (κ − 1 + e^{−κ})/κ²
+  if (k < L(1e-2)) return L(1) / 2 - k / 6 + k * k / 24 - k * k * k / 120 + k * k * k * k / 720;
+  return (k - 1 + std::exp(-k)) / (k * k);
+}
+L exact_lower_over_two_pi(L k) {  // e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ²
+  if (k < L(1e-2)) return std::exp(-k) * (L(1) / 2 - 2 * k / 6 + 3 * k * k / 24 - 4 * k * k * k / 120 + 5 * k * k * k * k / 720);
+  const L e = std::exp(-k);
+  return e * (1 - e - k * e) / (k * k);
+}
+template <class S> L exact_steepness2022(L k, const Steepness2022Params<S>& p) {
+  return k * std::sqrt((L(0.5) * k + L(p.A)) / ((k + L(p.B)) * k + L(p.C)));
+}
+template <class S> L exact_steepness2024(L k, const Steepness2024Params<S>& p) {
+  return k * std::sqrt(L(0.5) * ((k + L(p.A)) * k + L(p.B)) / (((k + L(p.C)) * k + L(p.D)) * k + L(p.E)));
+}
+
+template <class T> class Runner {
+ public:
+  std::vector<StabilityRow> rows;
+
+  Runner() : kappas_(probe_kappas<T>()), cosines_(probe_cosines<T>()), axes_(probe_axes<T>()) {}
+
+  // f(κ)
+  template <class F, class Exact = std::nullptr_t>
+  void kappa_only(const char* name, Origin origin, Range range, F f, Exact exact = nullptr) {
+    Probe<T> p(name, origin, range);
+    for (T k : kappas_)
+      p.check(
+          valid_kappa(k), static_cast<double>(k), f(k), [&] { return fmt::format("κ = {}", show(k)); },
+          [&] {
+            if constexpr (std::is_same_v<Exact, std::nullptr_t>)
+              return no_exact();
+            else
+              return exact(k);
+          });
+    std::move(p).append_to(rows);
+  }
+
+  // f(c, κ)
+  template <class F, class Exact = std::nullptr_t>
+  void cosine_kappa(const std::string& name, Origin origin, Range range, F f, Exact exact = nullptr) {
+    Probe<T> p(name, origin, range);
+    for (T k : kappas_)
+      for (T c : cosines_)
+        p.check(
+            valid_kappa(k) && valid_cosine(c), static_cast<double>(k), f(c, k),
+            [&] { return fmt::format("c = {}, κ = {}", show(c), show(k)); },
+            [&] {
+              if constexpr (std::is_same_v<Exact, std::nullptr_t>)
+                return no_exact();
+              else
+                return exact(c, k);
+            });
+    std::move(p).append_to(rows);
+  }
+
+  // f(c, κ1, κ2), located by κ1
+  // `exact(c, κ1, κ2)` (long double, optional): the exact result.
+  template <class F, class Exact = std::nullptr_t>
+  void cosine_two_kappas(const char* name, Origin origin, Range range, F f, Exact exact = nullptr) {
+    Probe<T> p(name, origin, range);
+    for (T k1 : kappas_)
+      for (T k2 : kappas_)
+        for (T c : cosines_)
+          p.check(
+              valid_kappa(k1) && valid_kappa(k2) && valid_cosine(c), static_cast<double>(k1), f(c, k1, k2),
+              [&] { return fmt::format("c = {}, κ1 = {}, κ2 = {}", show(c), show(k1), show(k2)); },
+              [&] {
+                if constexpr (std::is_same_v<Exact, std::nullptr_t>)
+                  return no_exact();
+                else
+                  return exact(c, k1, k2);
+              });
+    std::move(p).append_to(rows);
+  }
+
+  // f(ω, v, κ) over the axis pairs
+  template <class F> void axes_kappa(const char* name, Origin origin, Range range, F f) {
+    Probe<T> p(name, origin, range);
+    for (const AxisPair<T>& ax : axes_)
+      for (T k : kappas_)
+        p.check(ax.valid && valid_kappa(k), static_cast<double>(k), f(ax.a, ax.b, k), [&] {
+          return fmt::format("{} axes ω = {}, v = {}, κ = {}", ax.name, show(ax.a), show(ax.b), show(k));
+        });
+    std::move(p).append_to(rows);
+  }
+
+  // f(v1, κ1, v2, κ2), located by κ1
+  template <class F, class Exact = std::nullptr_t>
+  void axes_two_kappas(const char* name, Origin origin, Range range, F f, Exact exact = nullptr) {
+    Probe<T> p(name, origin, range);
+    for (const AxisPair<T>& ax : axes_)
+      for (T k1 : kappas_)
+        for (T k2 : kappas_)
+          p.check(
+              ax.valid && valid_kappa(k1) && valid_kappa(k2), static_cast<double>(k1), f(ax.a, k1, ax.b, k2),
+              [&] {
+                return fmt::format("{} axes v1 = {}, κ1 = {}, v2 = {}, κ2 = {}", ax.name, show(ax.a), show(k1),
+                                   show(ax.b), show(k2));
+              },
+              [&] {
+                if constexpr (std::is_same_v<Exact, std::nullptr_t>)
+                  return no_exact();
+                else
+                  return exact(ax.a, k1, ax.b, k2);
+              });
+    std::move(p).append_to(rows);
+  }
+
+  // Marks the rows of the probe just run as an approximation.
+  void approximation() {
+    rows[rows.size() - 1].approximation = true;
+    rows[rows.size() - 2].approximation = true;
+  }
+
+  // f(x) over ±κ values and ±inf, NaN; valid when finite; located by x.
+  template <class F> void real_line(const std::string& name, Origin origin, Range range, F f) {
+    Probe<T> p(name, origin, range);
+    std::vector<T> xs;
+    for (T k : kappas_) {
+      xs.push_back(k);
+      if (!std::isnan(k) && k != T(0)) xs.push_back(-k);
+    }
+    for (T x : xs) p.check(std::isfinite(x), static_cast<double>(x), f(x), [&] { return fmt::format("x = {}", show(x)); });
+    std::move(p).append_to(rows);
+  }
+
+  const std::vector<T>& kappas() const { return kappas_; }
+  const std::vector<T>& cosines() const { return cosines_; }
+
+ private:
+  std::vector<T> kappas_;
+  std::vector<T> cosines_;
+  std::vector<AxisPair<T>> axes_;
+};
+
+// Every probe, in a fixed order, for precision T.
+template <class T> std::vector<StabilityRow> run_all(std::vector<double>& kappas, std::vector<double>& cosines) {
+  constexpr Origin own = Origin::sglab, pub = Origin::published;
+  Runner<T> r;
+  for (T k : r.kappas()) kappas.push_back(static_cast<double>(k));
+  for (T c : r.cosines()) cosines.push_back(static_cast<double>(c));
+
+  // SG primitives (sg.hpp).
+  r.cosine_kappa(
+      "sg_evaluate(c, κ)", own, kUnit, [](T c, T k) { return sg_evaluate(c, k); },
+      [](T c, T k) { return std::exp(L(k) * (L(c) - 1)); });
+  r.axes_kappa("sg_evaluate(ω, v, κ)", own, kUnit,
+               [](const Vec3<T>& w, const Vec3<T>& v, T k) { return sg_evaluate(w, v, k); });
+  r.kappa_only(
+      "sphere_integral", own, kFourPi, [](T k) { return sphere_integral(k); },
+      [](T k) { return exact_sphere_integral(k); });
+  r.kappa_only("sphere_integral_approx", pub, kFourPi, [](T k) { return sphere_integral_approx(k); });
+  r.approximation();
+  r.kappa_only(
+      "expm1_over_x(-κ)", own, kUnit, [](T k) { return expm1_over_x(-k); },
+      [](T k) { return exact_expm1_over_minus(k); });
+  r.axes_two_kappas(
+      "sg_product.sharpness", own, kNonNegative,
+      [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) { return sg_product(a, k1, b, k2).sharpness; },
+      exact_product_sharpness<T>);
+  r.axes_two_kappas("sg_product.log_amplitude", own, kNonPositive,
+                    [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
+                      return sg_product(a, k1, b, k2).log_amplitude;
+                    },
+                    exact_product_log_amplitude<T>);
+  r.axes_two_kappas("sg_product.axis_length", own, kUnitLength, [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
+    return length(sg_product(a, k1, b, k2).axis);
+  });
+  r.cosine_two_kappas("sg_product_with_normal.sharpness", own, kNonNegative,
+                      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).sharpness; },
+                      exact_normal_product_sharpness<T>);
+  r.cosine_two_kappas("sg_product_with_normal.log_amplitude", own, kNonPositive,
+                      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).log_amplitude; },
+                      exact_normal_product_log_amplitude<T>);
+  r.cosine_two_kappas("sg_product_with_normal.cosine", own, kSigned,
+                      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).cosine; });
+  r.cosine_two_kappas(
+      "sg_inner_product", own, kFourPi, [](T c, T k1, T k2) { return sg_inner_product(c, k1, k2); },
+      [](T c, T k1, T k2) {
+        return std::exp(exact_normal_product_log_amplitude(c, k1, k2)) *
+               exact_sphere_integral(exact_normal_product_sharpness(c, k1, k2));
+      });
+  r.cosine_two_kappas("sg_inner_product_iwasaki", pub, kFourPi,
+                      [](T c, T k1, T k2) { return sg_inner_product_iwasaki(c, k1, k2); });
+  r.approximation();
+
+  // Closed forms (closed_forms.hpp).
+  r.kappa_only(
+      "irradiance_upper", own, kPi, [](T k) { return irradiance_upper(k); },
+      [](T k) { return 2 * kPiL * exact_upper_over_two_pi(k); });
+  r.kappa_only(
+      "irradiance_lower", own, kPi, [](T k) { return irradiance_lower(k); },
+      [](T k) { return 2 * kPiL * exact_lower_over_two_pi(k); });
+  r.kappa_only(
+      "irradiance_upper_over_two_pi", own, kHalf, [](T k) { return irradiance_upper_over_two_pi(k); },
+      [](T k) { return exact_upper_over_two_pi(k); });
+  r.kappa_only(
+      "irradiance_lower_over_two_pi", own, kHalf, [](T k) { return irradiance_lower_over_two_pi(k); },
+      [](T k) { return exact_lower_over_two_pi(k); });
+  r.kappa_only(
+      "hemispherical_upper", own, kTwoPi, [](T k) { return hemispherical_upper(k); },
+      [](T k) { return 2 * kPiL * exact_expm1_over_minus(k); });
+  r.kappa_only(
+      "hemispherical_lower", own, kTwoPi, [](T k) { return hemispherical_lower(k); },
+      [](T k) { return std::exp(-L(k)) * 2 * kPiL * exact_expm1_over_minus(k); });
+  r.kappa_only(
+      "hemispherical_equator", own, kTwoPi, [](T k) { return hemispherical_equator(k); },
+      [](T k) { return exact_sphere_integral(k) / 2; });
+
+  // Steepness functions and erf-based pieces (hemispherical.hpp, irradiance.hpp).
+  r.kappa_only(
+      "steepness2022", own, kNonNegative, [](T k) { return steepness2022(k); },
+      [](T k) { return exact_steepness2022(k, constants::steepness2022_published); });
+  r.approximation();
+  r.kappa_only(
+      "steepness2024", own, kNonNegative, [](T k) { return steepness2024(k); },
+      [](T k) { return exact_steepness2024(k, constants::steepness2024_published); });
+  r.approximation();
+  r.kappa_only("steepness_meder2018", pub, kNonNegative, [](T k) { return steepness_meder2018(k); });
+  r.approximation();
+  r.cosine_kappa("erf_ratio(t, c)", own, kSigned, [](T c, T t) { return erf_ratio(t, c); });
+  r.cosine_kappa("lerp_factor_tokuyoshi2024", own, kUnit,
+                 [](T c, T k) { return lerp_factor_tokuyoshi2024(c, k); });
+  r.approximation();
+
+  // erf variants.
+  for (const ErfVariant& v : erf_variants) {
+    const auto f = v;
+    r.real_line(fmt::format("erf/{}", v.id), pub, kSigned, [f](T x) {
+      if constexpr (sizeof(T) == sizeof(float))
+        return f.f32(x);
+      else
+        return f.f64(x);
+    });
+    r.approximation();
+  }
+
+  // Every registered method.
+  const auto call = [](const Method& m) {
+    return [m](T c, T k) {
+      if constexpr (sizeof(T) == sizeof(float))
+        return m.f32(c, k);
+      else
+        return m.f64(c, k);
+    };
+  };
+  const auto own_method = [](std::string_view id) {
+    return id == "tokuyoshi2022" || id == "tokuyoshi2024" || id == "erf2022" || id == "erf2022_listing5";
+  };
+  for (const Method& m : normalized_methods) {
+    r.cosine_kappa(fmt::format("normalized/{}", m.id), own_method(m.id) ? own : pub, kUnit, call(m));
+    r.approximation();
+  }
+  for (const Method& m : hemispherical_methods) {
+    r.cosine_kappa(fmt::format("hemispherical/{}", m.id), own_method(m.id) ? own : pub, kTwoPi, call(m));
+    r.approximation();
+  }
+  for (const Method& m : irradiance_methods) {
+    r.cosine_kappa(fmt::format("irradiance/{}", m.id), own_method(m.id) ? own : pub, kPi, call(m));
+    r.approximation();
+  }
+  return std::move(r.rows);
+}
+
+std::string kappa_span(const FailureStats& f) {
+  std::string s;
+  if (!std::isnan(f.kappa_min)) {
+    s = f.kappa_min == f.kappa_max ? fmt::format("κ = {:g}", f.kappa_min)
+                                    : fmt::format("κ in [{:g}, {:g}]", f.kappa_min, f.kappa_max);
+  }
+  if (f.at_nan_kappa) s += s.empty() ? "κ = nan" : ", κ = nan";
+  return s;
+}
+
+std::string findings(const StabilityRow& row) {
+  std::string s;
+  for (std::size_t i = 0; i < kFailureKinds; ++i) {
+    const FailureStats& f = row.failures[i];
+    if (f.count == 0) continue;
+    if (!s.empty()) s += "; ";
+    const auto kind = static_cast<FailureKind>(i);
+    s += fmt::format("{} {}/{} ({}){}", to_string(kind), f.count, row.evaluations, kappa_span(f),
+                     row.is_failure(kind) ? "" : " [not a failure]");
+  }
+  return s.empty() ? "none" : s;
+}
+
+// The first input of the most important kind found: failures first.
+std::string first_failure(const StabilityRow& row) {
+  for (std::size_t i = 0; i < kFailureKinds; ++i)
+    if (row.failures[i].count && row.is_failure(static_cast<FailureKind>(i))) return row.failures[i].example;
+  for (const FailureStats& f : row.failures)
+    if (f.count) return f.example;
+  return {};
+}
+
+bool any_outcome(const StabilityRow& row) {
+  for (const FailureStats& f : row.failures)
+    if (f.count) return true;
+  return false;
+}
+
+}  // namespace
+
+StabilityReport stability() {
+  StabilityReport report;
+  auto f = run_all<float>(report.kappas_float, report.cosines_float);
+  auto d = run_all<double>(report.kappas_double, report.cosines_double);
+  // Interleave: per function, float (valid, invalid) then double (valid, invalid).
+  for (std::size_t i = 0; i + 1 < f.size() && i + 1 < d.size(); i += 2) {
+    report.rows.push_back(std::move(f[i]));
+    report.rows.push_back(std::move(f[i + 1]));
+    report.rows.push_back(std::move(d[i]));
+    report.rows.push_back(std::move(d[i + 1]));
+  }
+  return report;
+}
+
+std::vector<const StabilityRow*> own_failures_on_valid_inputs(const StabilityReport& report) {
+  std::vector<const StabilityRow*> out;
+  for (const StabilityRow& r : report.rows)
+    if (r.origin == Origin::sglab && r.valid_inputs && r.failure_count() > 0) out.push_back(&r);
+  return out;
+}
+
+Table stability_table(const StabilityReport& report) {
+  std::vector<Column> cols = {{"function"}, {"origin"}, {"precision"}, {"inputs"}, {"evaluations"}};
+  for (std::size_t i = 0; i < kFailureKinds; ++i) {
+    const std::string k(to_string(static_cast<FailureKind>(i)));
+    cols.push_back({k});
+    cols.push_back({k + "_kappa_min", 3});
+    cols.push_back({k + "_kappa_max", 3});
+  }
+  cols.push_back({"range"});
+  cols.push_back({"approximation"});
+  cols.push_back({"findings"});
+  cols.push_back({"first_failure"});
+  Table t("Stability: NaN / Inf / negative / out-of-range outputs over special inputs "
+          "(valid inputs: finite κ ≥ 0, c in [-1, 1], unit axes, finite x)",
+          std::move(cols));
+  for (const StabilityRow& r : report.rows) {
+    std::vector<Cell> row = {Table::text(r.function), Table::text(to_string(r.origin)),
+                             Table::text(to_string(r.precision)), Table::text(r.valid_inputs ? "valid" : "invalid"),
+                             Table::count(r.evaluations)};
+    for (std::size_t i = 0; i < kFailureKinds; ++i) {
+      const FailureStats& f = r.failures[i];
+      const bool applies = i != static_cast<std::size_t>(FailureKind::negative) || r.sign_checked;
+      row.push_back(applies ? Table::count(f.count) : Cell{});
+      row.push_back(f.count && !std::isnan(f.kappa_min) ? Table::real(f.kappa_min) : Cell{});
+      row.push_back(f.count && !std::isnan(f.kappa_max) ? Table::real(f.kappa_max) : Cell{});
+    }
+    row.push_back(Table::text(r.range));
+    row.push_back(Cell{r.approximation});
+    row.push_back(Table::text(findings(r)));
+    row.push_back(Table::text(first_failure(r)));
+    t.add_row(std::move(row));
+  }
+  return t;
+}
+
+Table stability_findings_table(const StabilityReport& report) {
+  Table t("Stability findings (rows with any NaN / Inf / overflow / negative / out-of-range output)",
+          {{"function"}, {"origin"}, {"precision"}, {"inputs"}, {"findings"}, {"first_failure"}});
+  for (const StabilityRow& r : report.rows) {
+    if (!any_outcome(r)) continue;
+    t.add_row({Table::text(r.function), Table::text(to_string(r.origin)), Table::text(to_string(r.precision)),
+               Table::text(r.valid_inputs ? "valid" : "invalid"), Table::text(findings(r)),
+               Table::text(first_failure(r))});
+  }
+  return t;
+}
+
+}  // namespace sglab::validate
