@@ -40,25 +40,26 @@ void add_table_command(CLI::App& app) {
     std::vector<validate::Query> queries;
     for (int i = 0; i < *count; ++i) queries.push_back({*kappa, -1.0 + 2.0 * i / (*count - 1)});
     const auto ref = validate::reference_engine().evaluate(queries);
-    fmt::print("Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision)\n\n", *kappa);
-    fmt::print("| {:>6} | {:>11} |", "cosine", "reference");
-    for (const Method& m : irradiance_methods) fmt::print(" {:>13} |", m.id);
-    fmt::print("\n|-------:|------------:|");
-    for (std::size_t i = 0; i < std::size(irradiance_methods); ++i) fmt::print("--------------:|");
-    fmt::print("\n");
-    for (const auto& r : ref) {
-      fmt::print("| {:>6.3f} | {:>11.6g} |", r.cosine, r.irradiance);
-      for (const Method& m : irradiance_methods) fmt::print(" {:>13.6g} |", m.f64(r.cosine, r.kappa));
-      fmt::print("\n");
-    }
-    fmt::print("\nMax |error| / E(1, κ) over these cosines (peak_rel):\n");
+    fmt::print("Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision); last column: max |Ê − E|/E(1, κ)\n\n",
+               *kappa);
+    fmt::print("| {:<22} |", "method \\ cosine");
+    for (const auto& r : ref) fmt::print(" {:>9.3f} |", r.cosine);
+    fmt::print(" {:>9} |\n|:{:-<22}-|", "peak_rel", "");
+    for (std::size_t i = 0; i <= ref.size(); ++i) fmt::print("{:-<10}:|", "");
+    fmt::print("\n| {:<22} |", "reference");
+    for (const auto& r : ref) fmt::print(" {:>9.5f} |", r.irradiance);
+    fmt::print(" {:>9} |\n", "");
+    const double peak = ref.back().irradiance;  // c = 1
     for (const Method& m : irradiance_methods) {
+      fmt::print("| {:<22} |", m.id);
       double worst = 0;
       for (const auto& r : ref) {
-        const double err = std::abs(m.f64(r.cosine, r.kappa) - r.irradiance) / ref.back().irradiance;
-        worst = std::isnan(err) ? err : std::max(worst, err);
+        const double v = m.f64(r.cosine, r.kappa);
+        const double err = std::abs(v - r.irradiance) / peak;
+        worst = std::isnan(err) || std::isnan(worst) ? std::nan("") : std::max(worst, err);
+        fmt::print(" {:>9.5f} |", v);
       }
-      fmt::print("  {:<14} {:.3e}\n", m.id, worst);
+      fmt::print(" {:>9.2e} |\n", worst);
     }
   });
 }

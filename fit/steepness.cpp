@@ -231,6 +231,19 @@ FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022, const std::vecto
 
 }  // namespace
 
+std::vector<double> optimal_steepness(const std::string& target, const std::vector<double>& kappas) {
+  const bool y2022 = target == "steepness2022";
+  std::vector<double> out;
+  const auto dense = cosine_grid(201);
+  for (double k : kappas) {
+    std::vector<validate::Query> q;
+    for (double c : dense) q.push_back({k, c});
+    const auto column = validate::reference_engine().evaluate(q);
+    out.push_back(optimal_steepness(y2022, column, y2022 ? steepness2022(k) : steepness2024(k)));
+  }
+  return out;
+}
+
 FitOutcome fit_steepness(const FitSpec& spec) {
   const bool y2022 = is2022(spec);
   const std::string objective = spec.objective.empty() ? "irradiance" : spec.objective;

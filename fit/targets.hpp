@@ -56,6 +56,11 @@ FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
 
+// t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
+// s̃ − s (target "steepness2022") or the 2024 f − (E − E(−1))/(E(1) − E(−1))
+// ("steepness2024") — the dots of seed 000 Fig. 2.
+std::vector<double> optimal_steepness(const std::string& target, const std::vector<double>& kappas);
+
 // Dispatch by spec.target; throws std::invalid_argument for an unknown target or objective.
 FitOutcome run_fit(const FitSpec& spec);
 const std::vector<std::string>& fit_targets();

@@ -351,8 +351,13 @@ TEST(Methods, FloatAgreesWithDoubleWhereWellConditioned) {
 TEST(Registry, IdsAreUniqueAndMatchSpec) {
   const char* spec_ids[] = {"wang2009", "punctual", "hill", "hill_exact", "vsgl2015",
                             "meder2018", "tokuyoshi2022", "tokuyoshi2024"};
-  ASSERT_EQ(std::size(sglab::irradiance_methods), std::size(spec_ids));
-  for (const char* id : spec_ids) EXPECT_NE(sglab::find_method(sglab::irradiance_methods, id), nullptr) << id;
+  for (const char* id : spec_ids) {
+    const auto* m = sglab::find_method(sglab::irradiance_methods, id);
+    ASSERT_NE(m, nullptr) << id;
+    EXPECT_FALSE(m->refit) << id;
+  }
+  for (std::size_t i = 0; i < std::size(sglab::irradiance_methods); ++i)
+    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(sglab::irradiance_methods[i].id, sglab::irradiance_methods[j].id);
   EXPECT_EQ(sglab::find_method(sglab::irradiance_methods, "nope"), nullptr);
   EXPECT_NE(sglab::find_erf_variant("listing5"), nullptr);
 }

@@ -8,6 +8,58 @@
 
 namespace sglab::constants {
 
+// clamped-cosine / double: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
+//   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = double machine epsilon (2.220446049250313e-16); alpha tied by energy conservation
+//   precision: double
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":1.2166747091954758e-08,"approximation_error":6.083373582654872e-09,"rounding_error_model":6.083373509299887e-09,"rounding_error_measured":3.0405967812465427e-09,"irradiance_max_peak_rel":0.004469850742102348}
+//   command: sglab fit clamped-cosine --precision double
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr ClampedCosineParams<double> clamped_cosine_double{
+    .lambda = 3.650024149988861e-08,
+    .alpha = 27397078.66963852};
+
+// clamped-cosine / float-alpha-free: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
+//   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = float machine epsilon (1.1920928955078125e-07); alpha free
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.00020221013620338473,"approximation_error":0.00010112719403421178,"rounding_error_model":0.00010108294216917295,"rounding_error_measured":5.0529881986815833e-05,"irradiance_max_peak_rel":0.004521868753268737}
+//   command: sglab fit clamped-cosine --alpha-free
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr ClampedCosineParams<double> clamped_cosine_float_alpha_free{
+    .lambda = 0.00117874579300672,
+    .alpha = 847.9451773438616};
+
+// clamped-cosine / float: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
+//   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = float machine epsilon (1.1920928955078125e-07); alpha tied by energy conservation
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.00028188944403300276,"approximation_error":0.00014095465500374438,"rounding_error_model":0.00014093478902925838,"rounding_error_measured":7.052168922164269e-05,"irradiance_max_peak_rel":0.004585575577026213}
+//   command: sglab fit clamped-cosine
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr ClampedCosineParams<double> clamped_cosine_float{
+    .lambda = 0.0008456087476123556,
+    .alpha = 1182.246698729149};
+
+// clamped-cosine / half: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
+//   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = half machine epsilon (0.0009765625); alpha tied by energy conservation
+//   precision: half
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.02535358823929621,"approximation_error":0.01275734390645722,"rounding_error_model":0.012596244332838992,"rounding_error_measured":0.0068007682217004735,"irradiance_max_peak_rel":0.06786490010670339}
+//   command: sglab fit clamped-cosine --precision half
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr ClampedCosineParams<double> clamped_cosine_half{
+    .lambda = 0.07558706178509061,
+    .alpha = 12.898554196827128};
+
 // clamped-cosine / published: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
 //   objective: published
 //   source: Tokuyoshi 2022, Accurate Diffuse Lighting from Spherical Gaussian Lights, supplementary Listing 1 (seed 000)
@@ -28,6 +80,19 @@ inline constexpr CosineLobeParams<double> cosine_lobe_published{
 inline constexpr DiffuseLobeParams<double> diffuse_lobe_published{
     .lambda_d = 2.0};
 
+// erf / as7125-float: erf(x) ≈ 1 - (a1 t + a2 t^2 + ...) exp(-x^2), t = 1/(1 + p x), x >= 0; odd
+//   objective: minimax of |erf_as(x) - erf(x)| on [0, 6] (Lawson IRLS), coefficients rounded to float one at a time with re-fits
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":1.9185245037078857e-05,"max_abs_exact_arithmetic":1.9185245037078857e-05,"max_abs_float_every_16th_float":1.9424239302553226e-05}
+//   command: sglab fit erf
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr AbramowitzStegunParams<double, 3> erf_as7125_float{
+    .p = 0.4718479812145233,
+    .a = {0.3456379771232605, -0.08461321145296097, 0.7389944195747375}};
+
 // erf / as7125-published: erf(x) ≈ 1 - (a1 t + a2 t^2 + a3 t^3) exp(-x^2), t = 1/(1 + p x), x >= 0; odd
 //   objective: published
 //   claimed_max_abs_error: 2.5e-05
@@ -35,6 +100,21 @@ inline constexpr DiffuseLobeParams<double> diffuse_lobe_published{
 inline constexpr AbramowitzStegunParams<double, 3> erf_as7125_published{
     .p = 0.47047,
     .a = {0.3480242, -0.0958798, 0.7478556}};
+
+// erf / listing5-float: erf(x) ≈ x*P(x^2) for |x| <= split; 1 - 2^(-a*Q(a)) for split < a=|x| < cutoff; sign(x) beyond
+//   objective: minimax of |erf_listing5(x) - erf(x)| (Lawson IRLS), coefficients rounded to float one at a time with re-fits
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":2.323774780932375e-08,"max_abs_exact_arithmetic":2.323774780932375e-08,"max_abs_float_every_16th_float":1.0579718168202135e-07}
+//   command: sglab fit erf
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr Listing5Params<double, 6, 7> erf_listing5_float{
+    .split = 1.0,
+    .cutoff = 4.0,
+    .small = {1.1283788681030273, -0.37611818313598633, 0.11277324706315994, -0.026645477861166, 0.0048509808257222176, -0.0005386343691498041},
+    .large = {1.6283657550811768, 0.9160513281822205, 0.15371765196323395, -0.034661319106817245, 0.0054311868734657764, -0.0005082922289147973, 2.0389376004459336e-05}};
 
 // erf / listing5-published: erf(x) ≈ x*P(x^2) for |x| <= split; 1 - 2^(-a*Q(a)) for split < a=|x| < cutoff; sign(x) beyond
 //   objective: published
@@ -51,6 +131,55 @@ inline constexpr Listing5Params<double, 6, 7> erf_listing5_published{
 inline constexpr HillParams<double> hill_published{
     .c0 = 0.36};
 
+// lambda-d / cosine-lobe-free-amplitude: max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere
+//   objective: least squares: integral over the sphere of (max(cos,0) - amplitude*G(lambda))^2
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.06589452890796502,"integral_squared_error":0.06589452890796502}
+//   command: sglab fit lambda-d
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr CosineLobeParams<double> lambda_d_cosine_lobe_free_amplitude{
+    .lambda = 2.1437711387451794,
+    .amplitude = 1.176637895667662};
+
+// lambda-d / diffuse-lobe-hemisphere-ls: max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)
+//   objective: least squares: integral over the upper hemisphere of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.0054269475429693115,"integral_squared_error":0.0054269475429693115}
+//   command: sglab fit lambda-d
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_hemisphere_ls{
+    .lambda_d = 2.2068842920855416};
+
+// lambda-d / diffuse-lobe-irradiance: max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A ≈ pi, Iwasaki product integral (vsgl2015)
+//   objective: minimax of the vsgl2015 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.14114520594870317,"max_peak_rel":0.14114520594870317}
+//   command: sglab fit lambda-d
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_irradiance{
+    .lambda_d = 1.9303713229721635};
+
+// lambda-d / diffuse-lobe-sphere-ls: max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)
+//   objective: least squares: integral over the sphere of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.00743581373289799,"integral_squared_error":0.00743581373289799}
+//   command: sglab fit lambda-d
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_sphere_ls{
+    .lambda_d = 2.292504216798945};
+
 // meder2018 / published: t(kappa) = sqrt(kappa)*(a2*kappa^2 + a1*kappa)/(kappa^2 + b1*kappa + b0); cos ≈ amplitude*exp(sharpness*(cos - 1)) - offset
 //   objective: published
 //   source: Meder & Brüderlin 2018, Hemispherical Gaussians for Accurate Light Integration
@@ -63,6 +192,34 @@ inline constexpr Meder2018Params<double> meder2018_published{
     .sharpness = 0.0315,
     .offset = 31.7003};
 
+// steepness2022 / irradiance: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
+//   objective: minimax of the tokuyoshi2022 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.0034195210251551367,"irradiance_max_peak_rel":0.0034195210251551367}
+//   command: sglab fit steepness2022 --objective irradiance
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr Steepness2022Params<double> steepness2022_irradiance{
+    .A = 0.7751475279650574,
+    .B = 0.8759794997524792,
+    .C = 10.533593420188744};
+
+// steepness2022 / optimal-t: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
+//   objective: minimax of t(kappa)/t*(kappa) - 1 over 29 log-spaced kappa in [0.001, 10000]; t* minimaxes the normalized hemispherical integral s over 201 cosines
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.011040149437023805,"irradiance_max_peak_rel":0.003936628799862629}
+//   command: sglab fit steepness2022 --objective optimal-t
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr Steepness2022Params<double> steepness2022_optimal_t{
+    .A = 1.7830407146619045,
+    .B = 2.7134289005650283,
+    .C = 14.585955670069989};
+
 // steepness2022 / published: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: published
 //   source: Tokuyoshi 2022, Eq. 6; supplementary Listing 3 (seed 000)
@@ -70,6 +227,38 @@ inline constexpr Steepness2022Params<double> steepness2022_published{
     .A = 0.6517328826907056,
     .B = 1.3418280033141288,
     .C = 7.221668779895671};
+
+// steepness2024 / irradiance: t(kappa) = kappa*sqrt(0.5*((kappa + A)*kappa + B)/(((kappa + C)*kappa + D)*kappa + E))
+//   objective: minimax of the tokuyoshi2024 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.0014365043442184774,"irradiance_max_peak_rel":0.0014365043442184774}
+//   command: sglab fit steepness2024 --objective irradiance
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr Steepness2024Params<double> steepness2024_irradiance{
+    .A = 0.643252374663599,
+    .B = 13.732812356818945,
+    .C = 1.9061579039022964,
+    .D = 10.653391611314053,
+    .E = 57.12814628187806};
+
+// steepness2024 / optimal-t: t(kappa) = kappa*sqrt(0.5*((kappa + A)*kappa + B)/(((kappa + C)*kappa + D)*kappa + E))
+//   objective: minimax of t(kappa)/t*(kappa) - 1 over 29 log-spaced kappa in [0.001, 10000]; t* minimaxes the 2024 interpolation factor over 201 cosines
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":29,"cosine_count":41}
+//   achieved: {"objective":0.0008382295151690977,"irradiance_max_peak_rel":0.0014818472721878652}
+//   command: sglab fit steepness2024 --objective optimal-t
+//   tool: sglab 0.1.0
+//   date: 2026-11-21
+inline constexpr Steepness2024Params<double> steepness2024_optimal_t{
+    .A = 3.8296871058834263,
+    .B = 22.096099489562427,
+    .C = 5.178134614398663,
+    .D = 18.70878685689802,
+    .E = 99.86178792471982};
 
 // steepness2024 / published: t(kappa) = kappa*sqrt(0.5*((kappa + A)*kappa + B)/(((kappa + C)*kappa + D)*kappa + E))
 //   objective: published

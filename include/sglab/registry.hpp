@@ -18,6 +18,7 @@ struct Method {
   std::string_view id;
   std::string_view source;     // paper / document and equation or listing
   std::string_view constants;  // constant sets from sglab/constants.hpp it uses
+  bool refit = false;          // true: sglab's refitted constants (data/constants, `sglab fit`)
   float (*f32)(float cosine, float kappa);
   double (*f64)(double cosine, double kappa);
   void (*batch32)(const float* cosine, const float* kappa, float* out, std::size_t n);
@@ -26,11 +27,13 @@ struct Method {
 
 namespace detail {
 template <class F>
-constexpr Method make_method(std::string_view id, std::string_view source, std::string_view constants, F) {
+constexpr Method make_method(std::string_view id, std::string_view source, std::string_view constants, F,
+                             bool refit = false) {
   return Method{
       id,
       source,
       constants,
+      refit,
       [](float c, float k) { return F{}(c, k); },
       [](double c, double k) { return F{}(c, k); },
       [](const float* c, const float* k, float* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
@@ -58,6 +61,32 @@ inline constexpr Method irradiance_methods[] = {
                         [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
     detail::make_method("tokuyoshi2024", "Tokuyoshi et al. 2024 supplementary Listings 6-7 (author's VSGL code)",
                         "steepness2024_published", [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
+    // The published formulas with sglab's refitted constants (`sglab fit all`)
+    // and the shader path of the 2022 method (Listing 5 erf).
+    detail::make_method("tokuyoshi2022_listing5", "tokuyoshi2022 with the Listing 5 erf (seed 000), as a shader runs it",
+                        "clamped_cosine_published, steepness2022_published, erf_listing5_published",
+                        [](auto c, auto k) {
+                          return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_published,
+                                                          constants::steepness2022_published, ErfListing5{});
+                        }),
+    detail::make_method("tokuyoshi2022_refit", "tokuyoshi2022 refitted: float clamped cosine, t(κ) on irradiance",
+                        "clamped_cosine_float, steepness2022_irradiance",
+                        [](auto c, auto k) {
+                          return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_float,
+                                                          constants::steepness2022_irradiance);
+                        },
+                        true),
+    detail::make_method("tokuyoshi2024_refit", "tokuyoshi2024 refitted: t(κ) on irradiance", "steepness2024_irradiance",
+                        [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k, constants::steepness2024_irradiance); },
+                        true),
+    detail::make_method("vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
+                        "lambda_d_diffuse_lobe_irradiance",
+                        [](auto c, auto k) { return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance); },
+                        true),
+    detail::make_method("wang2009_refit", "wang2009 refitted: cosine lobe (λ, a) by least squares over the sphere",
+                        "lambda_d_cosine_lobe_free_amplitude",
+                        [](auto c, auto k) { return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude); },
+                        true),
 };
 
 // Approximate hemispherical integrals H̃(c, κ) (SPEC §2 `erf2022`, `meder2018`).
