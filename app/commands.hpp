@@ -19,9 +19,15 @@ void add_methods_command(CLI::App& app);
 void add_table_command(CLI::App& app);
 void add_constants_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 void add_erf_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
+void add_figures_command(CLI::App& app);
+void add_claims_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+void add_pareto_command(CLI::App& app);
+void add_recommend_command(CLI::App& app);
 
 }  // namespace sglab::app

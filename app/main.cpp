@@ -14,10 +14,16 @@ int main(int argc, char** argv) {
   sglab::app::add_table_command(app);
   sglab::app::add_constants_command(app);
   sglab::app::add_fit_command(app);
+  sglab::app::add_run_command(app);
   sglab::app::add_erf_command(app);
   sglab::app::add_sweep_command(app);
   sglab::app::add_stability_command(app);
   sglab::app::add_reference_command(app);
+  sglab::app::add_figures_command(app);
+  sglab::app::add_claims_command(app);
+  sglab::app::add_bench_command(app);
+  sglab::app::add_pareto_command(app);
+  sglab::app::add_recommend_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

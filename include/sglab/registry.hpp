@@ -18,11 +18,11 @@ struct Method {
   std::string_view id;
   std::string_view source;     // paper / document and equation or listing
   std::string_view constants;  // constant sets from sglab/constants.hpp it uses
-  bool refit = false;          // true: sglab's refitted constants (data/constants, `sglab fit`)
   float (*f32)(float cosine, float kappa);
   double (*f64)(double cosine, double kappa);
   void (*batch32)(const float* cosine, const float* kappa, float* out, std::size_t n);
   void (*batch64)(const double* cosine, const double* kappa, double* out, std::size_t n);
+  bool refit = false;  // true: sglab's refitted constants (data/constants, `sglab fit`)
 };
 
 namespace detail {
@@ -33,11 +33,11 @@ constexpr Method make_method(std::string_view id, std::string_view source, std::
       id,
       source,
       constants,
-      refit,
       [](float c, float k) { return F{}(c, k); },
       [](double c, double k) { return F{}(c, k); },
       [](const float* c, const float* k, float* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
       [](const double* c, const double* k, double* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
+      refit,
   };
 }
 }  // namespace detail

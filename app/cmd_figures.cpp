@@ -1,0 +1,63 @@
+// `sglab figures`: data CSVs, gnuplot scripts, PNG and SVG for the seed
+// figures and the sglab comparisons (validate/figures), plus index.md.
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "figures.hpp"
+#include "targets.hpp"
+
+namespace sglab::app {
+
+namespace {
+struct FiguresArgs {
+  std::string out = "out/figures";
+  std::string pareto = "out/pareto/pareto.csv";
+  std::string gnuplot = "gnuplot";
+};
+}  // namespace
+
+void add_figures_command(CLI::App& app) {
+  auto args = std::make_shared<FiguresArgs>();
+  auto* cmd = app.add_subcommand("figures", "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
+  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
+  cmd->add_option("--pareto", args->pareto, "Pareto CSV written by `sglab pareto` (figure e; skipped when absent)")
+      ->capture_default_str();
+  cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
+  cmd->callback([args] {
+    const auto start = std::chrono::steady_clock::now();
+    validate::FiguresOptions opt;
+    opt.out = args->out;
+    opt.pareto = args->pareto;
+    opt.gnuplot = args->gnuplot;
+    opt.optimal_steepness = [](const std::vector<double>& kappas) {
+      return fit::optimal_steepness("steepness2022", kappas);
+    };
+    std::vector<validate::Figure> figs;
+    try {
+      figs = validate::make_figures(opt);
+    } catch (const validate::GnuplotMissing& e) {
+      throw std::runtime_error(e.what());
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+    for (const auto& f : figs) {
+      if (f.skipped) {
+        fmt::print("{:<22} {}\n", f.id, f.note);
+        continue;
+      }
+      std::string files;
+      for (const auto& p : f.files) files += (files.empty() ? "" : " ") + p.string();
+      fmt::print("{:<22} {}\n", f.id, files);
+      if (!f.note.empty()) fmt::print("{:<22} note: {}\n", "", f.note);
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fmt::print("Written to {} (index.md) in {:.1f} s\n", opt.out.string(), s);
+  });
+}
+
+}  // namespace sglab::app

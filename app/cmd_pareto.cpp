@@ -1,0 +1,59 @@
+// `sglab pareto`: speed against accuracy of every irradiance method (published
+// and refit ids alike) in one precision over a κ range. Cost: median batch ns
+// per evaluation (validate/cost.hpp, quick steady_clock measurement); error:
+// max peak_rel over 29 log-spaced κ × 41 cosines on [LO, HI] (the sweep, so it
+// equals `sglab sweep --kappa LO:HI:29 --cosines 41`; +inf when the method
+// has non-finite outputs there). Marks the Pareto frontier and writes
+// pareto.csv / pareto.md into --out; prints the Markdown table.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "pareto.hpp"
+#include "table.hpp"
+
+namespace sglab::app {
+
+namespace {
+
+struct ParetoArgs {
+  std::string kappa = "1e-3:1e4";
+  std::string precision = "float";
+  std::string out = "out/pareto";
+};
+
+}  // namespace
+
+void add_pareto_command(CLI::App& app) {
+  auto args = std::make_shared<ParetoArgs>();
+  auto* cmd = app.add_subcommand("pareto", "Cost (batch ns/eval) against max peak_rel of every irradiance method, "
+                                           "with the Pareto frontier");
+  cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->capture_default_str();
+  cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
+  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
+  cmd->callback([args] {
+    double lo = 0, hi = 0;
+    if (auto err = validate::parse_kappa_range(args->kappa, lo, hi)) throw InputError("--kappa: " + *err);
+    const auto precision = validate::parse_precision(args->precision);
+    if (!precision)
+      throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
+
+    // The (multi-threaded) reference sweep runs first; the single-threaded
+    // timing afterwards, when its worker threads are idle.
+    std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
+    validate::fill_costs(points, *precision);
+    validate::mark_frontier(points);
+
+    const validate::Table table = validate::pareto_table(points, *precision, lo, hi);
+    const std::filesystem::path dir(args->out);
+    using validate::TableFormat;
+    validate::write_table(table, dir, "pareto", {TableFormat::csv, TableFormat::markdown});
+    fmt::print("{}\nWritten to {}: pareto.{{csv,md}}\n", validate::to_markdown(table), dir.string());
+  });
+}
+
+}  // namespace sglab::app

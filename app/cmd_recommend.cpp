@@ -1,0 +1,112 @@
+// `sglab recommend --kappa LO:HI --budget E`: the cheapest irradiance method
+// whose max peak_rel over [LO, HI] (29 log-spaced κ × 41 cosines, the same
+// grid as `sglab pareto` and `sglab sweep --kappa LO:HI:29 --cosines 41`) is
+// ≤ E, and the runner-up. Cost: the median of 7 repetitions of the batch ns
+// per evaluation (validate/cost.hpp); costs within 5% of the cheapest remaining
+// candidate are ties, broken by the smaller error (validate/pareto.hpp).
+// When no method meets the budget, says so and names the most accurate (exit
+// 0: that is an answer). --json adds every candidate.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "pareto.hpp"
+
+namespace sglab::app {
+
+namespace {
+
+struct RecommendArgs {
+  std::string kappa;
+  std::string budget;
+  std::string precision = "float";
+  bool json = false;
+};
+
+nlohmann::ordered_json number(double x) {
+  if (!std::isfinite(x)) return nullptr;
+  return x;
+}
+
+nlohmann::ordered_json point_json(const std::optional<validate::MethodPoint>& p) {
+  if (!p) return nullptr;
+  return {{"method", p->method},
+          {"refit", p->refit},
+          {"max_peak_rel", number(p->max_peak_rel)},
+          {"ns_per_eval", number(p->ns_per_eval)}};
+}
+
+std::string describe(const validate::MethodPoint& p) {
+  return fmt::format("{}{} (max peak_rel {:.4g}, {:.3g} ns/eval)", p.method, p.refit ? " [refit]" : "",
+                     p.max_peak_rel, p.ns_per_eval);
+}
+
+}  // namespace
+
+void add_recommend_command(CLI::App& app) {
+  auto args = std::make_shared<RecommendArgs>();
+  auto* cmd = app.add_subcommand(
+      "recommend", "The cheapest irradiance method whose max peak_rel over a κ range meets an error budget");
+  cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->required();
+  cmd->add_option("--budget", args->budget, "max peak_rel allowed (> 0)")->required();
+  cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the answer as JSON on stdout");
+  cmd->callback([args] {
+    double lo = 0, hi = 0, budget = 0;
+    if (auto err = validate::parse_kappa_range(args->kappa, lo, hi)) throw InputError("--kappa: " + *err);
+    if (!validate::parse_number(args->budget, budget))
+      throw InputError(fmt::format("--budget: '{}' is not a finite number", args->budget));
+    if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
+    const auto precision = validate::parse_precision(args->precision);
+    if (!precision)
+      throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
+
+    std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
+    validate::fill_costs(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
+    const validate::Recommendation r = validate::recommend(points, budget);
+
+    if (args->json) {
+      nlohmann::ordered_json doc;
+      doc["kappa_lo"] = lo;
+      doc["kappa_hi"] = hi;
+      doc["budget"] = budget;
+      doc["precision"] = std::string(validate::to_string(*precision));
+      doc["choice"] = point_json(r.choice);
+      doc["runner_up"] = point_json(r.runner_up);
+      doc["most_accurate"] = point_json(r.most_accurate);
+      doc["tie_margin"] = validate::kCostTieMargin;
+      nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
+      for (const auto& p : points) {
+        auto j = point_json(p);
+        j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.ns_per_eval) && p.max_peak_rel <= budget;
+        candidates.push_back(std::move(j));
+      }
+      doc["candidates"] = std::move(candidates);
+      fmt::print("{}\n", doc.dump(2));
+      return;
+    }
+    fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi, validate::to_string(*precision), budget);
+    if (r.choice) {
+      fmt::print("  choice:    {}\n", describe(*r.choice));
+      if (r.runner_up)
+        fmt::print("  runner-up: {}\n", describe(*r.runner_up));
+      else
+        fmt::print("  runner-up: none (no other method meets the budget)\n");
+    } else {
+      fmt::print("  no method meets the budget.\n");
+      if (r.most_accurate)
+        fmt::print("  most accurate: {}\n", describe(*r.most_accurate));
+      else
+        fmt::print("  no method has a finite error over this range.\n");
+    }
+    fmt::print("(cost: median batch ns/eval of 7 repetitions; costs within {}% are ties, broken by error)\n",
+               validate::kCostTieMargin * 100);
+  });
+}
+
+}  // namespace sglab::app

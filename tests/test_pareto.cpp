@@ -1,0 +1,250 @@
+// Speed against accuracy: the Pareto frontier and the recommendation on
+// synthetic points, and `sglab recommend` against `sglab sweep`. No timing
+// assertions (costs are measured, hence noisy).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fmt/format.h>
+
+#include "pareto.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using sglab::validate::MethodPoint;
+using sglab::validate::recommend;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+MethodPoint pt(std::string id, double ns, double err) {
+  MethodPoint p;
+  p.method = std::move(id);
+  p.ns_per_eval = ns;
+  p.max_peak_rel = err;
+  return p;
+}
+
+bool on_frontier(const std::vector<MethodPoint>& v, const std::string& id) {
+  for (const auto& p : v)
+    if (p.method == id) return p.frontier;
+  ADD_FAILURE() << "no point " << id;
+  return false;
+}
+
+TEST(Frontier, SyntheticPoints) {
+  std::vector<MethodPoint> v{
+      pt("fast_bad", 1.0, 1e-1),     // cheapest finite: frontier
+      pt("mid", 2.0, 1e-2),          // frontier
+      pt("dominated", 3.0, 5e-2),    // mid is cheaper and more accurate
+      pt("slow_good", 10.0, 1e-4),   // most accurate: frontier
+      pt("nan_err", 0.5, kNaN),      // non-finite error: never, and dominates nothing
+      pt("inf_err", 0.25, kInf),     // same
+      pt("same_cost", 2.0, 2e-2),    // equal cost to mid, worse error: dominated
+      pt("same_err", 12.0, 1e-4),    // equal error to slow_good, dearer: dominated
+  };
+  sglab::validate::mark_frontier(v);
+  EXPECT_TRUE(on_frontier(v, "fast_bad"));
+  EXPECT_TRUE(on_frontier(v, "mid"));
+  EXPECT_FALSE(on_frontier(v, "dominated"));
+  EXPECT_TRUE(on_frontier(v, "slow_good"));
+  EXPECT_FALSE(on_frontier(v, "nan_err"));
+  EXPECT_FALSE(on_frontier(v, "inf_err"));
+  EXPECT_FALSE(on_frontier(v, "same_cost"));
+  EXPECT_FALSE(on_frontier(v, "same_err"));
+}
+
+TEST(Frontier, AllNaNHasNoFrontier) {
+  std::vector<MethodPoint> v{pt("a", 1, kNaN), pt("b", 2, kNaN)};
+  sglab::validate::mark_frontier(v);
+  EXPECT_FALSE(v[0].frontier);
+  EXPECT_FALSE(v[1].frontier);
+}
+
+TEST(Recommend, CheapestQualifyingAndRunnerUp) {
+  const std::vector<MethodPoint> v{pt("cheap_bad", 1.0, 1e-1), pt("a", 3.0, 5e-4), pt("b", 2.0, 9e-4),
+                                   pt("c", 5.0, 1e-5), pt("nan", 0.1, kNaN)};
+  const auto r = recommend(v, 1e-3);
+  ASSERT_TRUE(r.choice);
+  EXPECT_EQ(r.choice->method, "b");
+  ASSERT_TRUE(r.runner_up);
+  EXPECT_EQ(r.runner_up->method, "a");
+  ASSERT_TRUE(r.most_accurate);
+  EXPECT_EQ(r.most_accurate->method, "c");
+  ASSERT_EQ(r.ranked.size(), 3u);
+  EXPECT_EQ(r.ranked[2].method, "c");
+}
+
+TEST(Recommend, BudgetIsInclusive) {
+  const auto r = recommend({pt("x", 1.0, 1e-3), pt("y", 2.0, 1e-4)}, 1e-3);
+  ASSERT_TRUE(r.choice);
+  EXPECT_EQ(r.choice->method, "x");
+}
+
+TEST(Recommend, TiesWithinMarginBrokenByError) {
+  // b is 3% dearer than a but more accurate: a tie, b wins; c is 20% dearer.
+  const std::vector<MethodPoint> v{pt("a", 1.00, 8e-4), pt("b", 1.03, 1e-4), pt("c", 1.2, 1e-6)};
+  const auto r = recommend(v, 1e-3);
+  ASSERT_TRUE(r.choice);
+  EXPECT_EQ(r.choice->method, "b");
+  ASSERT_TRUE(r.runner_up);
+  EXPECT_EQ(r.runner_up->method, "a");
+}
+
+TEST(Recommend, NoneQualifiesNamesMostAccurate) {
+  const std::vector<MethodPoint> v{pt("a", 1.0, 1e-1), pt("b", 2.0, 1e-2), pt("c", 0.5, kNaN), pt("d", 0.2, kInf)};
+  const auto r = recommend(v, 1e-3);
+  EXPECT_FALSE(r.choice);
+  EXPECT_FALSE(r.runner_up);
+  ASSERT_TRUE(r.most_accurate);
+  EXPECT_EQ(r.most_accurate->method, "b");
+}
+
+TEST(Recommend, ParseKappaRange) {
+  double lo = 0, hi = 0;
+  EXPECT_FALSE(sglab::validate::parse_kappa_range("1e-3:1e4", lo, hi));
+  EXPECT_EQ(lo, 1e-3);
+  EXPECT_EQ(hi, 1e4);
+  EXPECT_TRUE(sglab::validate::parse_kappa_range("0:1", lo, hi));
+  EXPECT_TRUE(sglab::validate::parse_kappa_range("2:1", lo, hi));
+  EXPECT_TRUE(sglab::validate::parse_kappa_range("a:1", lo, hi));
+  EXPECT_TRUE(sglab::validate::parse_kappa_range("1:2:3", lo, hi));
+  EXPECT_TRUE(sglab::validate::parse_kappa_range("1", lo, hi));
+}
+
+// ---- CLI -------------------------------------------------------------------
+
+struct Output {
+  int exit_code;
+  std::string out;
+};
+
+// stdout only (stderr discarded), so JSON can be parsed.
+Output run_stdout(const std::string& args) {
+  Output r{-1, {}};
+  FILE* pipe = ::popen(fmt::format("'{}' {} 2>/dev/null", SGLAB_BINARY, args).c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  std::size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string temp_dir(const std::string& tag) {
+  const auto d = std::filesystem::temp_directory_path() / fmt::format("sglab_test_pareto_{}_{}", tag, ::getpid());
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+double sweep_max_peak_rel(const std::string& kappa, const std::string& method, const std::string& precision) {
+  const Output s = run_stdout(fmt::format("sweep --kappa {}:29 --cosines 41 --json --method {} --out '{}'", kappa,
+                                          method, temp_dir("sweep")));
+  EXPECT_EQ(s.exit_code, 0) << s.out;
+  const auto doc = nlohmann::json::parse(s.out);
+  for (const auto& row : doc.at("results"))
+    if (row.at("method") == method && row.at("precision") == precision && row.at("quantity") == "irradiance")
+      return row.at("max_peak_rel").get<double>();
+  ADD_FAILURE() << "sweep has no row for " << method << " " << precision;
+  return kNaN;
+}
+
+void check_recommend(const std::string& kappa, double budget) {
+  SCOPED_TRACE(fmt::format("--kappa {} --budget {}", kappa, budget));
+  const Output r = run_stdout(fmt::format("recommend --kappa {} --budget {} --json", kappa, budget));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc.at("precision"), "float");
+  EXPECT_EQ(doc.at("budget").get<double>(), budget);
+  ASSERT_TRUE(doc.at("most_accurate").is_object());
+  const auto& choice = doc.at("choice");
+  const auto& candidates = doc.at("candidates");
+  ASSERT_FALSE(candidates.empty());
+  if (choice.is_null()) {
+    // Then nothing qualifies, and the most accurate misses the budget.
+    for (const auto& c : candidates) EXPECT_FALSE(c.at("qualifies").get<bool>()) << c.dump();
+    const auto& best = doc.at("most_accurate");
+    const double best_err = best.at("max_peak_rel").get<double>();
+    EXPECT_GT(best_err, budget);
+    const double swept = sweep_max_peak_rel(kappa, best.at("method"), "float");
+    EXPECT_LE(std::abs(best_err - swept), 1e-12 * std::abs(swept)) << best.dump() << " sweep " << swept;
+    for (const auto& c : candidates)
+      if (c.at("max_peak_rel").is_number()) {
+        EXPECT_GE(c.at("max_peak_rel").get<double>(), best_err) << c.dump();
+      }
+    return;
+  }
+  const std::string method = choice.at("method");
+  const double err = choice.at("max_peak_rel").get<double>();
+  const double ns = choice.at("ns_per_eval").get<double>();
+  EXPECT_LE(err, budget);
+  const double swept = sweep_max_peak_rel(kappa, method, "float");
+  EXPECT_LE(std::abs(err - swept), 1e-12 * std::abs(swept)) << method << ": recommend " << err << " sweep " << swept;
+  const double margin = doc.at("tie_margin").get<double>();
+  for (const auto& c : candidates) {
+    if (!c.at("qualifies").get<bool>()) {
+      if (c.at("max_peak_rel").is_number()) {
+        EXPECT_GT(c.at("max_peak_rel").get<double>(), budget) << c.dump();
+      }
+      continue;
+    }
+    // No qualifying method is cheaper than the choice by more than the tie margin.
+    EXPECT_GE(c.at("ns_per_eval").get<double>() * (1 + margin) * (1 + 1e-12), ns) << c.dump();
+  }
+  if (!doc.at("runner_up").is_null()) {
+    EXPECT_NE(doc.at("runner_up").at("method"), method);
+    EXPECT_LE(doc.at("runner_up").at("max_peak_rel").get<double>(), budget);
+  }
+}
+
+TEST(RecommendCli, Kappa1To100Budget1e3) { check_recommend("1:100", 1e-3); }
+TEST(RecommendCli, StandardRangeBudget2e3) { check_recommend("1e-3:1e4", 2e-3); }
+
+TEST(RecommendCli, NoneQualifyingExitsZero) {
+  const Output r = run_stdout("recommend --kappa 1:100 --budget 1e-300 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(doc.at("choice").is_null());
+  EXPECT_TRUE(doc.at("runner_up").is_null());
+  EXPECT_TRUE(doc.at("most_accurate").is_object());
+}
+
+TEST(RecommendCli, BadOptionsExit2) {
+  for (const char* args : {"--kappa 0:10 --budget 1e-3", "--kappa 10:1 --budget 1e-3", "--kappa a:b --budget 1e-3",
+                           "--kappa 1 --budget 1e-3", "--kappa 1:10 --budget 0", "--kappa 1:10 --budget -1",
+                           "--kappa 1:10 --budget abc", "--kappa 1:10 --budget 1e-3 --precision half"}) {
+    const auto r = sglab::test::run_command(fmt::format("'{}' recommend {}", SGLAB_BINARY, args));
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+  }
+  const auto r = sglab::test::run_command(fmt::format("'{}' recommend --kappa 1:10 --budget abc", SGLAB_BINARY));
+  EXPECT_NE(r.output.find("--budget"), std::string::npos) << r.output;
+  const auto k = sglab::test::run_command(fmt::format("'{}' recommend --kappa 0:10 --budget 1", SGLAB_BINARY));
+  EXPECT_NE(k.output.find("--kappa"), std::string::npos) << k.output;
+}
+
+TEST(ParetoCli, WritesCsvWithExactHeader) {
+  const std::string dir = temp_dir("pareto");
+  const auto r = sglab::test::run_command(fmt::format("'{}' pareto --kappa 1:100 --out '{}'", SGLAB_BINARY, dir));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  FILE* f = std::fopen((std::filesystem::path(dir) / "pareto.csv").c_str(), "r");
+  ASSERT_TRUE(f);
+  char line[512] = {};
+  ASSERT_TRUE(std::fgets(line, sizeof line, f));
+  std::fclose(f);
+  EXPECT_EQ(std::string(line), "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n");
+  EXPECT_EQ(sglab::test::run_command(fmt::format("'{}' pareto --kappa 0:1 --out '{}'", SGLAB_BINARY, dir)).exit_code,
+            2);
+}
+
+}  // namespace

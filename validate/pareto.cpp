@@ -1,0 +1,174 @@
+// validate/pareto.cpp — see pareto.hpp.
+#include "pareto.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include <sglab/registry.hpp>
+
+namespace sglab::validate {
+
+namespace {
+
+bool usable(const MethodPoint& p) { return std::isfinite(p.ns_per_eval) && std::isfinite(p.max_peak_rel); }
+
+}  // namespace
+
+void mark_frontier(std::vector<MethodPoint>& points) {
+  for (MethodPoint& p : points) {
+    p.frontier = false;
+    if (!usable(p)) continue;
+    bool dominated = false;
+    for (const MethodPoint& q : points) {
+      if (&q == &p || !usable(q)) continue;
+      if (q.ns_per_eval <= p.ns_per_eval && q.max_peak_rel <= p.max_peak_rel &&
+          (q.ns_per_eval < p.ns_per_eval || q.max_peak_rel < p.max_peak_rel)) {
+        dominated = true;
+        break;
+      }
+    }
+    p.frontier = !dominated;
+  }
+}
+
+Recommendation recommend(const std::vector<MethodPoint>& points, double budget, double tie_margin) {
+  Recommendation r;
+  r.budget = budget;
+  std::vector<MethodPoint> remaining;
+  for (const MethodPoint& p : points) {
+    if (!usable(p)) continue;
+    if (!r.most_accurate || p.max_peak_rel < r.most_accurate->max_peak_rel ||
+        (p.max_peak_rel == r.most_accurate->max_peak_rel && p.ns_per_eval < r.most_accurate->ns_per_eval))
+      r.most_accurate = p;
+    if (p.max_peak_rel <= budget) remaining.push_back(p);
+  }
+  while (!remaining.empty()) {
+    double cheapest = std::numeric_limits<double>::infinity();
+    for (const MethodPoint& p : remaining) cheapest = std::min(cheapest, p.ns_per_eval);
+    const double limit = cheapest * (1.0 + tie_margin);
+    auto best = remaining.end();
+    for (auto it = remaining.begin(); it != remaining.end(); ++it) {
+      if (it->ns_per_eval > limit) continue;
+      if (best == remaining.end() || it->max_peak_rel < best->max_peak_rel ||
+          (it->max_peak_rel == best->max_peak_rel &&
+           (it->ns_per_eval < best->ns_per_eval ||
+            (it->ns_per_eval == best->ns_per_eval && it->method < best->method))))
+        best = it;
+    }
+    r.ranked.push_back(*best);
+    remaining.erase(best);
+  }
+  if (!r.ranked.empty()) r.choice = r.ranked[0];
+  if (r.ranked.size() > 1) r.runner_up = r.ranked[1];
+  return r;
+}
+
+SweepGrid pareto_grid(double kappa_lo, double kappa_hi) {
+  SweepGrid g;
+  g.kappa_lo = kappa_lo;
+  g.kappa_hi = kappa_hi;
+  g.kappa_count = 29;
+  g.cosine_count = 41;
+  return g;
+}
+
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, FloatFormat f) {
+  const SweepGrid grid = pareto_grid(kappa_lo, kappa_hi);
+  grid.validate();
+  std::vector<SweepMethod> methods;
+  for (const Method& m : irradiance_methods) methods.push_back({Quantity::irradiance, m});
+  SweepOptions options;
+  options.precisions = {f};
+  options.keep_points = false;
+  const SweepResult result = sweep(grid, methods, options);
+  std::vector<MethodPoint> out;
+  for (const Method& m : irradiance_methods) {
+    const SweepEntry* e = result.find(m.id, Quantity::irradiance, f);
+    MethodPoint p;
+    p.method = std::string(m.id);
+    p.refit = m.refit;
+    if (!e)
+      p.max_peak_rel = std::numeric_limits<double>::quiet_NaN();
+    else if (e->summary.nonfinite > 0)
+      p.max_peak_rel = std::numeric_limits<double>::infinity();
+    else
+      p.max_peak_rel = e->summary.peak_rel.max;
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions, double min_time) {
+  CostOptions options;
+  options.repetitions = repetitions;
+  options.min_time = min_time;
+  options.kinds = {CostKind::irradiance};
+  options.precisions = {f};
+  options.modes = {CostMode::batch};
+  const std::vector<Cost> costs = measure_costs(options);
+  for (MethodPoint& p : points) {
+    p.ns_per_eval = std::numeric_limits<double>::quiet_NaN();
+    for (const Cost& c : costs)
+      if (c.method == p.method) p.ns_per_eval = c.ns_per_eval;
+  }
+}
+
+Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double kappa_lo, double kappa_hi) {
+  Table t(fmt::format("Speed against accuracy ({}): batch ns/eval against max peak_rel over κ in [{}, {}] "
+                      "(29 κ × 41 c); frontier = not dominated",
+                      to_string(f), kappa_lo, kappa_hi),
+          {{"method"},
+           {"refit"},
+           {"precision"},
+           {"kappa_lo", 4},
+           {"kappa_hi", 4},
+           {"ns_per_eval", 3},
+           {"max_peak_rel", 3},
+           {"frontier"}});
+  for (const MethodPoint& p : points)
+    t.add_row({Table::text(p.method), Table::integer(p.refit ? 1 : 0), Table::text(to_string(f)),
+               Table::real(kappa_lo), Table::real(kappa_hi), Table::real(p.ns_per_eval),
+               Table::real(p.max_peak_rel), Table::integer(p.frontier ? 1 : 0)});
+  return t;
+}
+
+bool parse_number(std::string_view s, double& out) {
+  if (s.empty()) return false;
+  const char* end = s.data() + s.size();
+  double v = 0;
+  auto [ptr, ec] = std::from_chars(s.data(), end, v);
+  if (ec != std::errc() || ptr != end || !std::isfinite(v)) return false;
+  out = v;
+  return true;
+}
+
+std::optional<std::string> parse_kappa_range(std::string_view text, double& lo, double& hi) {
+  const auto a = text.find(':');
+  if (a == std::string_view::npos || text.find(':', a + 1) != std::string_view::npos)
+    return fmt::format("expected LO:HI, e.g. 1e-3:1e4; got '{}'", text);
+  double l = 0, h = 0;
+  if (!parse_number(text.substr(0, a), l)) return fmt::format("LO '{}' is not a finite number", text.substr(0, a));
+  if (!parse_number(text.substr(a + 1), h)) return fmt::format("HI '{}' is not a finite number", text.substr(a + 1));
+  if (!(l > 0)) return fmt::format("LO must be > 0, got {}", l);
+  if (!(h >= l)) return fmt::format("HI must be >= LO, got HI = {} < LO = {}", h, l);
+  if (static_cast<float>(l) == 0.0f) return fmt::format("LO = {} rounds to 0 in float", l);
+  if (h > static_cast<double>(std::numeric_limits<float>::max()))
+    return fmt::format("HI = {} exceeds the largest float", h);
+  lo = l;
+  hi = h;
+  return std::nullopt;
+}
+
+std::optional<FloatFormat> parse_precision(std::string_view text) {
+  if (text == "float") return FloatFormat::binary32;
+  if (text == "double") return FloatFormat::binary64;
+  return std::nullopt;
+}
+
+}  // namespace sglab::validate
