@@ -124,22 +124,14 @@ TEST(Recommend, ParseKappaRange) {
 
 // ---- CLI -------------------------------------------------------------------
 
+// stdout only (stderr discarded), so JSON can be parsed.
 struct Output {
   int exit_code;
   std::string out;
 };
-
-// stdout only (stderr discarded), so JSON can be parsed.
 Output run_stdout(const std::string& args) {
-  Output r{-1, {}};
-  FILE* pipe = ::popen(fmt::format("'{}' {} 2>/dev/null", SGLAB_BINARY, args).c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  const auto r = sglab::test::run_command(fmt::format("'{}' {}", SGLAB_BINARY, args), false);
+  return {r.exit_code, r.output};
 }
 
 std::string temp_dir(const std::string& tag) {

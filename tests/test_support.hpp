@@ -25,14 +25,15 @@ inline std::vector<double> standard_cosines() {
   return c;
 }
 
-// Runs a shell command, returning its exit code and capturing stdout+stderr.
+// Runs a shell command, returning its exit code and capturing stdout and,
+// unless merge_stderr is false (stdout only, e.g. to parse JSON), stderr.
 struct CommandResult {
   int exit_code;
   std::string output;
 };
-inline CommandResult run_command(const std::string& command) {
+inline CommandResult run_command(const std::string& command, bool merge_stderr = true) {
   CommandResult r{-1, {}};
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  FILE* pipe = ::popen((command + (merge_stderr ? " 2>&1" : " 2>/dev/null")).c_str(), "r");
   if (!pipe) return r;
   char buffer[4096];
   std::size_t n;
