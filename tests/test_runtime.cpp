@@ -354,7 +354,7 @@ TEST(Registry, IdsAreUniqueAndMatchSpec) {
   for (const char* id : spec_ids) {
     const auto* m = sglab::find_method(sglab::irradiance_methods, id);
     ASSERT_NE(m, nullptr) << id;
-    EXPECT_FALSE(m->refit) << id;
+    EXPECT_EQ(m->origin, sglab::Origin::published) << id;
   }
   for (std::size_t i = 0; i < std::size(sglab::irradiance_methods); ++i)
     for (std::size_t j = 0; j < i; ++j) EXPECT_NE(sglab::irradiance_methods[i].id, sglab::irradiance_methods[j].id);

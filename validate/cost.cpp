@@ -81,7 +81,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     CostCase c;
     c.kind = kind;
     c.method = std::string(m.id);
-    c.refit = m.refit;
+    c.refit = m.origin == Origin::refit;
     c.precision = f;
     c.mode = mode;
     c.evaluations = n;

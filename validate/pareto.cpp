@@ -92,7 +92,7 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, Flo
     const SweepEntry* e = result.find(m.id, Quantity::irradiance, f);
     MethodPoint p;
     p.method = std::string(m.id);
-    p.refit = m.refit;
+    p.refit = m.origin == Origin::refit;
     if (!e)
       p.max_peak_rel = std::numeric_limits<double>::quiet_NaN();
     else if (e->summary.nonfinite > 0)

@@ -13,6 +13,27 @@
 
 namespace sglab {
 
+// Where a method's formula and constants come from.
+enum class Origin {
+  published,  // a published formula with its published constants
+  refit,      // a published formula with sglab's refitted constants (`sglab fit`)
+  sglab,      // a model of sglab's own, fitted by `sglab fit`
+};
+
+constexpr std::string_view to_string(Origin o) {
+  switch (o) {
+    case Origin::published: return "published";
+    case Origin::refit: return "refit";
+    case Origin::sglab: return "sglab";
+  }
+  return "?";
+}
+
+// Per-light split of a method (optional): everything that depends on κ alone
+// is computed once per light into an opaque state of at most
+// kLightStateFloats floats; each shading point then pays only `eval`.
+inline constexpr std::size_t kLightStateFloats = 16;
+
 // A scalar quantity f(cosine, κ) in float and in double, scalar and batch.
 struct Method {
   std::string_view id;
@@ -22,13 +43,18 @@ struct Method {
   double (*f64)(double cosine, double kappa);
   void (*batch32)(const float* cosine, const float* kappa, float* out, std::size_t n);
   void (*batch64)(const double* cosine, const double* kappa, double* out, std::size_t n);
-  bool refit = false;  // true: sglab's refitted constants (data/constants, `sglab fit`)
+  Origin origin = Origin::published;
+  // Optional per-light split in float (both nullptr when the method has none):
+  // light_setup32(κ, state) fills state[0 .. kLightStateFloats), and
+  // light_eval32(state, c) equals f32(c, κ) up to float rounding.
+  void (*light_setup32)(float kappa, float* state) = nullptr;
+  float (*light_eval32)(const float* state, float cosine) = nullptr;
 };
 
 namespace detail {
 template <class F>
 constexpr Method make_method(std::string_view id, std::string_view source, std::string_view constants, F,
-                             bool refit = false) {
+                             Origin origin = Origin::published) {
   return Method{
       id,
       source,
@@ -37,7 +63,7 @@ constexpr Method make_method(std::string_view id, std::string_view source, std::
       [](double c, double k) { return F{}(c, k); },
       [](const float* c, const float* k, float* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
       [](const double* c, const double* k, double* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
-      refit,
+      origin,
   };
 }
 }  // namespace detail
@@ -75,18 +101,18 @@ inline constexpr Method irradiance_methods[] = {
                           return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_float,
                                                           constants::steepness2022_irradiance);
                         },
-                        true),
+                        Origin::refit),
     detail::make_method("tokuyoshi2024_refit", "tokuyoshi2024 refitted: t(κ) on irradiance", "steepness2024_irradiance",
                         [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k, constants::steepness2024_irradiance); },
-                        true),
+                        Origin::refit),
     detail::make_method("vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
                         "lambda_d_diffuse_lobe_irradiance",
                         [](auto c, auto k) { return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance); },
-                        true),
+                        Origin::refit),
     detail::make_method("wang2009_refit", "wang2009 refitted: cosine lobe (λ, a) by least squares over the sphere",
                         "lambda_d_cosine_lobe_free_amplitude",
                         [](auto c, auto k) { return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude); },
-                        true),
+                        Origin::refit),
 };
 
 // Approximate hemispherical integrals H̃(c, κ) (SPEC §2 `erf2022`, `meder2018`).
