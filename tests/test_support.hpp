@@ -1,8 +1,15 @@
 // tests/test_support.hpp — shared helpers for the GoogleTest suites.
 #pragma once
 
+#include <errno.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -42,5 +49,53 @@ inline CommandResult run_command(const std::string& command, bool merge_stderr =
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+// Runs a program with an argument vector (no shell: paths with spaces, quotes
+// or semicolons are passed as they are), capturing stdout and, unless
+// merge_stderr is false (stdout only, e.g. to parse JSON), stderr. Standard
+// input is /dev/null. exit_code is -1 when the program did not exit normally.
+inline CommandResult run_program(const std::vector<std::string>& argv, bool merge_stderr = true) {
+  CommandResult r{-1, {}};
+  if (argv.empty()) return r;
+  int fds[2];
+  if (::pipe(fds) != 0) return r;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
+  if (merge_stderr)
+    posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
+  else
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  posix_spawn_file_actions_addclose(&actions, fds[1]);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid;
+  const int rc = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (rc == 0) {
+    char buffer[4096];
+    ssize_t n;
+    while ((n = ::read(fds[0], buffer, sizeof buffer)) > 0) r.output.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  if (rc != 0) return r;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+#ifdef SGLAB_BINARY
+// `sglab ARGS...` with an argument vector: run_sglab({"sweep", "--out", dir}).
+inline CommandResult run_sglab(std::vector<std::string> args, bool merge_stderr = true) {
+  args.insert(args.begin(), SGLAB_BINARY);
+  return run_program(args, merge_stderr);
+}
+#endif
 
 }  // namespace sglab::test
