@@ -32,6 +32,7 @@ void add_pareto_command(CLI::App& app) {
   auto args = std::make_shared<ParetoArgs>();
   auto* cmd = app.add_subcommand("pareto", "Cost (batch ns/eval) against max peak_rel of every irradiance method, "
                                            "with the Pareto frontier");
+  cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->capture_default_str();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->capture_default_str();

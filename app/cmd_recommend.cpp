@@ -36,13 +36,14 @@ nlohmann::ordered_json number(double x) {
 nlohmann::ordered_json point_json(const std::optional<validate::MethodPoint>& p) {
   if (!p) return nullptr;
   return {{"method", p->method},
-          {"refit", p->refit},
+          {"origin", std::string(to_string(p->origin))},
           {"max_peak_rel", number(p->max_peak_rel)},
           {"ns_per_eval", number(p->ns_per_eval)}};
 }
 
 std::string describe(const validate::MethodPoint& p) {
-  return fmt::format("{}{} (max peak_rel {:.4g}, {:.3g} ns/eval)", p.method, p.refit ? " [refit]" : "",
+  return fmt::format("{}{} (max peak_rel {:.4g}, {:.3g} ns/eval)", p.method,
+                     p.origin == Origin::published ? std::string() : fmt::format(" [{}]", to_string(p.origin)),
                      p.max_peak_rel, p.ns_per_eval);
 }
 
@@ -52,6 +53,7 @@ void add_recommend_command(CLI::App& app) {
   auto args = std::make_shared<RecommendArgs>();
   auto* cmd = app.add_subcommand(
       "recommend", "The cheapest irradiance method whose max peak_rel over a κ range meets an error budget");
+  cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->required();
   cmd->add_option("--budget", args->budget, "max peak_rel allowed (> 0)")->required();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();

@@ -109,6 +109,7 @@ void add_sweep_command(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* cmd = app.add_subcommand(
       "sweep", "Accuracy of every method against the reference over a (κ, c) grid, in float and double");
+  cmd->footer("peak_rel = |x̂ − x| / x(1, κ) for x = E, H or s: the error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa,
                   "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: SPEC §4, 1e-3:1e4:29)");
   cmd->add_option("--cosines", args->cosines, "number of cosines evenly spaced over [-1, 1] (default 41)");

@@ -92,6 +92,32 @@ TEST(Figures, ReadParetoCsvRejectsBadHeader) {
   fs::remove_all(dir);
 }
 
+TEST(Figures, ReadParetoCsvReadsOrigin) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("sglab_test_claims_origin_{}", ::getpid());
+  fs::create_directories(dir);
+  const std::string header = "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n";
+  sglab::io::write_file_atomic(dir / "ok.csv", header +
+                                                   "a,published,float,1,10,1,0.1,1\n"
+                                                   "b,refit,float,1,10,2,0.01,0\n"
+                                                   "c,sglab,double,1,10,3,0.001,true\n");
+  const auto rows = read_pareto_csv(dir / "ok.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].origin, sglab::Origin::published);
+  EXPECT_EQ(rows[1].origin, sglab::Origin::refit);
+  EXPECT_EQ(rows[2].origin, sglab::Origin::sglab);
+  EXPECT_TRUE(rows[0].frontier);
+  EXPECT_FALSE(rows[1].frontier);
+  EXPECT_TRUE(rows[2].frontier);
+  // The old boolean column is not an origin.
+  sglab::io::write_file_atomic(dir / "old.csv", header + "a,true,float,1,10,1,0.1,1\n");
+  EXPECT_THROW(read_pareto_csv(dir / "old.csv"), std::invalid_argument);
+  sglab::io::write_file_atomic(dir / "oldheader.csv",
+                               "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+                               "a,0,float,1,10,1,0.1,1\n");
+  EXPECT_THROW(read_pareto_csv(dir / "oldheader.csv"), std::invalid_argument);
+  fs::remove_all(dir);
+}
+
 TEST(Figures, CommandWritesPngAndSvg) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   const fs::path dir = fs::temp_directory_path() / fmt::format("sglab_test_figures_{}", ::getpid());
@@ -99,20 +125,21 @@ TEST(Figures, CommandWritesPngAndSvg) {
   fs::create_directories(dir);
   const fs::path pareto = dir / "pareto.csv";
   sglab::io::write_file_atomic(pareto,
-                               "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-                               "punctual,false,float,0.001,10000,0.8,0.9,true\n"
-                               "wang2009,false,float,0.001,10000,2.5,0.35,false\n"
-                               "hill,false,float,0.001,10000,3.0,0.05,true\n"
-                               "tokuyoshi2022,false,float,0.001,10000,12.0,0.0045,true\n"
-                               "tokuyoshi2024_refit,true,float,0.001,10000,15.0,0.0014,true\n"
-                               "tokuyoshi2024,false,double,0.001,10000,20.0,0.0013,true\n"
-                               "\"meder2018\",false,double,0.001,10000,9.0,0.02,true\n");
+                               "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+                               "punctual,published,float,0.001,10000,0.8,0.9,true\n"
+                               "wang2009,published,float,0.001,10000,2.5,0.35,false\n"
+                               "hill,published,float,0.001,10000,3.0,3.1e7,false\n"
+                               "tokuyoshi2022,published,float,0.001,10000,12.0,0.0045,true\n"
+                               "tokuyoshi2024_refit,refit,float,0.001,10000,15.0,0.0014,true\n"
+                               "sglab_model,sglab,float,0.001,10000,4.0,0.002,true\n"
+                               "tokuyoshi2024,published,double,0.001,10000,20.0,0.0013,true\n"
+                               "\"meder2018\",published,double,0.001,10000,9.0,0.02,true\n");
   const fs::path out = dir / "figs";
   const auto r = sglab::test::run_command(fmt::format("'{}' figures --out '{}' --pareto '{}'", SGLAB_BINARY,
                                                       out.string(), pareto.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* stem : {"a_clamped_cosine", "b_steepness", "c_irradiance_kappa4", "d_peak_rel_heatmaps", "e_pareto",
-                           "f_erf_ulp"})
+                           "f_erf_ulp", "g_peak_rel_vs_kappa"})
     for (const char* ext : {".png", ".svg"}) {
       const fs::path p = out / (std::string(stem) + ext);
       ASSERT_TRUE(fs::exists(p)) << p << "\n" << r.output;
@@ -121,6 +148,15 @@ TEST(Figures, CommandWritesPngAndSvg) {
   EXPECT_TRUE(fs::exists(out / "index.md"));
   EXPECT_TRUE(fs::exists(out / "a_clamped_cosine.csv"));
   EXPECT_TRUE(fs::exists(out / "e_pareto_points.csv"));
+  // A method failing on the range (hill, 3.1e7 > 1) is moved into the band, its true error kept;
+  // the origin column is carried through.
+  const std::string points = sglab::io::read_file(out / "e_pareto_points.csv");
+  EXPECT_NE(points.find("3,31000000,10,hill,published,float,0,hill (3.1e+07)"), std::string::npos) << points;
+  EXPECT_NE(points.find(",sglab_model,sglab,float,1,"), std::string::npos) << points;
+  // Figure (g): one row per κ of the standard grid, float and double column per irradiance method.
+  const std::string g = sglab::io::read_file(out / "g_peak_rel_vs_kappa.csv");
+  EXPECT_EQ(std::count(g.begin(), g.end(), '\n'), 30) << g.substr(0, 500);
+  EXPECT_EQ(g.rfind("kappa,wang2009_float,", 0), 0u) << g.substr(0, 200);
   fs::remove_all(dir);
 }
 

@@ -42,6 +42,27 @@ bool on_frontier(const std::vector<MethodPoint>& v, const std::string& id) {
   return false;
 }
 
+// The origin of each point comes from the registry (Method::origin) and the
+// table writes it as text: published, refit or sglab.
+TEST(Pareto, OriginFromRegistryInTable) {
+  const auto points = sglab::validate::irradiance_errors(1, 10, sglab::validate::FloatFormat::binary64);
+  ASSERT_EQ(points.size(), std::size(sglab::irradiance_methods));
+  bool published = false, refit = false;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(points[i].method, sglab::irradiance_methods[i].id);
+    EXPECT_EQ(points[i].origin, sglab::irradiance_methods[i].origin) << points[i].method;
+    published |= points[i].origin == sglab::Origin::published;
+    refit |= points[i].origin == sglab::Origin::refit;
+  }
+  EXPECT_TRUE(published && refit);  // both kinds exist in the registry today
+  const std::string csv = sglab::validate::to_csv(
+      sglab::validate::pareto_table(points, sglab::validate::FloatFormat::binary64, 1, 10));
+  for (const auto& m : sglab::irradiance_methods) {
+    const std::string row = fmt::format("\n{},{},double,", m.id, sglab::to_string(m.origin));
+    EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;
+  }
+}
+
 TEST(Frontier, SyntheticPoints) {
   std::vector<MethodPoint> v{
       pt("fast_bad", 1.0, 1e-1),     // cheapest finite: frontier
@@ -234,7 +255,7 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   char line[512] = {};
   ASSERT_TRUE(std::fgets(line, sizeof line, f));
   std::fclose(f);
-  EXPECT_EQ(std::string(line), "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n");
+  EXPECT_EQ(std::string(line), "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n");
   EXPECT_EQ(sglab::test::run_command(fmt::format("'{}' pareto --kappa 0:1 --out '{}'", SGLAB_BINARY, dir)).exit_code,
             2);
 }

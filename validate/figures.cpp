@@ -122,16 +122,87 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
   return {stem + ".gp", stem + ".png", stem + ".svg"};
 }
 
+// ---- shared styles ------------------------------------------------------------------
+// Tick labels: "1e-2" style on every log axis.
+constexpr const char* kLogFormat = "1e%T";
+
+// 20 colours that stay apart on white (one per method in the line charts).
+constexpr const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                                    "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
+                                    "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#000080"};
+constexpr std::size_t kPaletteSize = std::size(kPalette);
+
+// Line style of a method of family `i`: the family's colour; solid for
+// published constants, dashed for sglab's refits, thick dash-dot for sglab's
+// own models (so they stand out). Colour and dash together tell every curve apart.
+std::string line_style(std::size_t i, Origin origin) {
+  switch (origin) {
+    case Origin::published: return fmt::format("lw 1.6 dt 1 lc rgb '{}'", kPalette[i % kPaletteSize]);
+    case Origin::refit: return fmt::format("lw 1.8 dt (8,4) lc rgb '{}'", kPalette[i % kPaletteSize]);
+    case Origin::sglab: return fmt::format("lw 3.0 dt (12,4,3,4) lc rgb '{}'", kPalette[i % kPaletteSize]);
+  }
+  return "";
+}
+
+std::string origin_suffix(Origin o) {
+  switch (o) {
+    case Origin::published: return "";
+    case Origin::refit: return " (refit)";
+    case Origin::sglab: return " [sglab]";
+  }
+  return "";
+}
+
+// A method's family: its id without a trailing "_refit", so that a refit
+// shares the colour (or marker shape) of the published method it refits.
+std::string family_of(std::string_view id) {
+  constexpr std::string_view suffix = "_refit";
+  if (id.size() > suffix.size() && id.substr(id.size() - suffix.size()) == suffix) id.remove_suffix(suffix.size());
+  return std::string(id);
+}
+
+// Index of each method's family, numbered in order of first appearance.
+std::vector<std::size_t> family_indices(const std::vector<std::string_view>& ids) {
+  std::vector<std::string> families;
+  std::vector<std::size_t> out;
+  for (std::string_view id : ids) {
+    const std::string f = family_of(id);
+    auto it = std::find(families.begin(), families.end(), f);
+    if (it == families.end()) it = families.insert(families.end(), f);
+    out.push_back(static_cast<std::size_t>(it - families.begin()));
+  }
+  return out;
+}
+
+// "1e-3" for a power of ten, else "%g".
+std::string short_number(double x) {
+  if (x > 0 && std::isfinite(x)) {
+    const double e = std::round(std::log10(x));
+    if (std::abs(x / std::pow(10.0, e) - 1) < 1e-9) return fmt::format("1e{}", static_cast<int>(e));
+  }
+  return fmt::format("{:g}", x);
+}
+
+// κ tic labels "1e-3" … "1e4" on an axis that carries log10 κ.
+std::string log10_kappa_tics(int lo, int hi) {
+  std::string s = "(";
+  for (int e = lo; e <= hi; ++e) s += fmt::format("{}'1e{}' {}", e == lo ? "" : ", ", e, e);
+  return s + ")";
+}
+
 // ---- (a) clamped cosine ---------------------------------------------------------
 Figure figure_a(const FiguresOptions& opt) {
   Figure f{"a_clamped_cosine", "Clamped-cosine approximation error and float numerical error",
-           "α(e^{λu}−1) − u in double (approximation error) and float evaluation of α(exp(λu)−1) minus its double value "
-           "(numerical error), u = cos θ ∈ [0, 1], published λ, α (seed 000 Fig. 1).",
+           "α(e^{λu}−1) − u in double (approximation error, line) and float evaluation of α(exp(λu)−1) minus its double "
+           "value (numerical error: one dot per float u, thin lines = min and max per 1/80 of the interval), "
+           "u = cos θ ∈ [0, 1], published λ, α ([Tokuyoshi2022] supplementary Fig. 1).",
            {}, false, ""};
   const auto p = constants::clamped_cosine_published;
   const float lf = static_cast<float>(p.lambda), af = static_cast<float>(p.alpha);
   std::vector<std::vector<double>> rows;
   const int n = 4001;
+  const int bins = 80;
+  std::vector<double> lo(bins, INFINITY), hi(bins, -INFINITY);
   double max_a = 0, max_n = 0;
   for (int i = 0; i < n; ++i) {
     const float uf = static_cast<float>(static_cast<double>(i) / (n - 1));
@@ -141,17 +212,26 @@ Figure figure_a(const FiguresOptions& opt) {
     rows.push_back({u, model - u, fl - model});
     max_a = std::max(max_a, std::abs(model - u));
     max_n = std::max(max_n, std::abs(fl - model));
+    const int b = std::min(bins - 1, static_cast<int>(u * bins));
+    lo[b] = std::min(lo[b], fl - model);
+    hi[b] = std::max(hi[b], fl - model);
   }
-  const std::string csv = f.id + ".csv";
+  std::vector<std::vector<double>> env;
+  for (int b = 0; b < bins; ++b) env.push_back({(b + 0.5) / bins, lo[b], hi[b]});
+  const std::string csv = f.id + ".csv", ecsv = f.id + "_envelope.csv";
   io::write_file_atomic(opt.out / csv, numeric_csv({"u", "approximation_error", "numerical_error_float"}, rows));
+  io::write_file_atomic(opt.out / ecsv, numeric_csv({"u_mid", "numerical_min", "numerical_max"}, env));
   const std::string body = fmt::format(
-      "set title 'seed 000 Fig. 1: clamped cosine ≈ α(exp(λu) − 1), λ = {:.6g}, α = {:.6g}'\n"
+      "set title '[Tokuyoshi2022] supp. Fig. 1: clamped cosine ≈ α(exp(λu) − 1), λ = {:.6g}, α = {:.6g}; float vs double'\n"
       "set xlabel 'u = cos θ'\nset ylabel 'difference from u'\nset grid\nset key top left box opaque\n"
-      "set format y '%.1e'\n"
-      "plot {} u 1:3 w l lw 1 lc rgb '#1f77b4' title 'numerical error (float − double), max {:.3g}', \\\n"
-      "     '' u 1:2 w l lw 3 lc rgb '#ff7f0e' title 'approximation error (double), max {:.3g}'",
-      p.lambda, p.alpha, gp_quote(csv), max_n, max_a);
+      "set format y '%.1te%T'\nset format x '%g'\n"
+      "plot {} u 1:3 w p pt 7 ps 0.25 lc rgb '#a01f77b4' title 'numerical error (float − double), max {:.3g}', \\\n"
+      "     {} u 1:2 w l lw 1 lc rgb '#1f77b4' title 'numerical error, min and max per bin', \\\n"
+      "     '' u 1:3 w l lw 1 lc rgb '#1f77b4' notitle, \\\n"
+      "     {} u 1:2 w l lw 3 lc rgb '#ff7f0e' title 'approximation error (double), max {:.3g}'",
+      p.lambda, p.alpha, gp_quote(csv), max_n, gp_quote(ecsv), gp_quote(csv), max_a);
   f.files.push_back(csv);
+  f.files.push_back(ecsv);
   for (auto& x : render(opt, f.id, body, 1000, 650)) f.files.push_back(x);
   return f;
 }
@@ -159,8 +239,9 @@ Figure figure_a(const FiguresOptions& opt) {
 // ---- (b) steepness ------------------------------------------------------------
 Figure figure_b(const FiguresOptions& opt) {
   Figure f{"b_steepness", "Optimal steepness t*(κ) vs fitted t(κ) and √(κ/2)",
-           "Dots: per-κ optimal t*(κ) (fit::optimal_steepness, 40 log-spaced κ in [1e-2, 1e3]); lines: published Eq. 6 "
-           "t(κ), sglab's refit steepness2022_optimal_t, and the asymptote √(κ/2) (seed 000 Fig. 2).",
+           "Top: per-κ optimal t*(κ) (dots; fit::optimal_steepness, 40 log-spaced κ in [1e-2, 1e3]), the published "
+           "t(κ) ([Tokuyoshi2022] Eq. 6), sglab's refit steepness2022_optimal_t, and the asymptote √(κ/2) "
+           "([Tokuyoshi2022] supplementary Fig. 2). Bottom: relative difference |t/t* − 1| of each curve.",
            {}, false, ""};
   std::vector<double> ks;
   for (int i = 0; i < 40; ++i) ks.push_back(std::pow(10.0, -2 + 5.0 * i / 39));
@@ -170,82 +251,120 @@ Figure figure_b(const FiguresOptions& opt) {
   else
     f.note = "t*(κ) not available (no optimal-steepness function given)";
   std::vector<std::vector<double>> rows;
-  for (std::size_t i = 0; i < ks.size(); ++i)
-    rows.push_back({ks[i], ts[i], steepness2022(ks[i]), steepness2022(ks[i], constants::steepness2022_optimal_t),
-                    std::sqrt(ks[i] / 2)});
+  for (std::size_t i = 0; i < ks.size(); ++i) {
+    const double tp = steepness2022(ks[i]), tr = steepness2022(ks[i], constants::steepness2022_optimal_t);
+    const double ta = std::sqrt(ks[i] / 2);
+    rows.push_back({ks[i], ts[i], tp, tr, ta, std::abs(tp / ts[i] - 1), std::abs(tr / ts[i] - 1),
+                    std::abs(ta / ts[i] - 1)});
+  }
   const std::string csv = f.id + ".csv";
   io::write_file_atomic(opt.out / csv,
-                        numeric_csv({"kappa", "t_optimal", "t_published", "t_refit_optimal_t", "sqrt_kappa_over_2"}, rows));
+                        numeric_csv({"kappa", "t_optimal", "t_published", "t_refit_optimal_t", "sqrt_kappa_over_2",
+                                     "reldiff_published", "reldiff_refit_optimal_t", "reldiff_sqrt_kappa_over_2"},
+                                    rows));
   const std::string body = fmt::format(
-      "set title 'seed 000 Fig. 2: steepness t(κ) of the normalized hemispherical integral'\n"
-      "set xlabel 'κ'\nset ylabel 't(κ)'\nset logscale xy\nset grid\nset key top left box opaque\n"
-      "set format x '%.0e'\nset format y '%g'\n"
-      "plot {} u 1:5 w l lw 2 dt 2 lc rgb '#7f7f7f' title '√(κ/2)', \\\n"
-      "     '' u 1:3 w l lw 3 lc rgb '#ff7f0e' title 'published Eq. 6 t(κ)', \\\n"
-      "     '' u 1:4 w l lw 2 lc rgb '#2ca02c' title 'refit steepness2022_optimal_t', \\\n"
-      "     '' u 1:2 w p pt 7 ps 1.2 lc rgb '#1f77b4' title 'optimal t*(κ)'",
-      gp_quote(csv));
+      "set multiplot title '[Tokuyoshi2022] supp. Fig. 2: steepness t(κ) of the normalized hemispherical integral'\n"
+      "set lmargin at screen 0.10\nset rmargin at screen 0.97\n"
+      "set tmargin at screen 0.93\nset bmargin at screen 0.42\n"
+      "set ylabel 't(κ)'\nset logscale xy\nset grid\nset key top left box opaque\n"
+      "set format x ''\nset format y '{0}'\nunset xlabel\n"
+      "plot {1} u 1:5 w l lw 2 dt 2 lc rgb '#7f7f7f' title '√(κ/2)', \\\n"
+      "     '' u 1:3 w l lw 3 lc rgb '#ff7f0e' title 'published t(κ), Eq. 6', \\\n"
+      "     '' u 1:4 w l lw 2 dt (8,4) lc rgb '#2ca02c' title 'refit steepness2022_optimal_t', \\\n"
+      "     '' u 1:2 w p pt 7 ps 1.2 lc rgb '#1f77b4' title 'optimal t*(κ)'\n"
+      "set tmargin at screen 0.38\nset bmargin at screen 0.08\n"
+      "set format x '{0}'\nset xlabel 'κ'\nset ylabel '|t / t* − 1|'\nset yrange [1e-5:10]\n"
+      "set key bottom left box opaque\n"
+      "plot {1} u 1:8 w l lw 2 dt 2 lc rgb '#7f7f7f' title '√(κ/2)', \\\n"
+      "     '' u 1:6 w lp lw 3 pt 7 ps 0.6 lc rgb '#ff7f0e' title 'published t(κ), Eq. 6', \\\n"
+      "     '' u 1:7 w lp lw 2 pt 5 ps 0.6 dt (8,4) lc rgb '#2ca02c' title 'refit steepness2022_optimal_t'\n",
+      kLogFormat, gp_quote(csv));
   f.files.push_back(csv);
-  for (auto& x : render(opt, f.id, body, 1000, 700)) f.files.push_back(x);
+  for (auto& x : render(opt, f.id, body, 1000, 900)) f.files.push_back(x);
   return f;
 }
 
 // ---- (c) irradiance at κ = 4 ------------------------------------------------------
 Figure figure_c(const FiguresOptions& opt) {
-  Figure f{"c_irradiance_kappa4", "Irradiance vs angle at κ = 4, every method, and the error Ê − E",
+  Figure f{"c_irradiance_kappa4", "Irradiance vs angle at κ = 4, every method, and its peak-relative error",
            "Top: E(θ) of the reference (quadrature) and Ê(θ) of every registered irradiance method (double) for a "
-           "unit-amplitude SG light with κ = 4, θ ∈ [0°, 180°] (seed 001's chart). Bottom: Ê − E.",
+           "unit-amplitude SG light with κ = 4, θ ∈ [0°, 180°] (the chart of [Pettineo2016]). Bottom: "
+           "|Ê − E| / E(1, κ) on a log scale (the peak_rel error of docs/quantities.md). Solid: published constants; "
+           "dashed: sglab refits; thick dash-dot: sglab's own models.",
            {}, false, ""};
   const double kappa = 4;
   const int n = 181;
   std::vector<Query> q;
   for (int i = 0; i < n; ++i) q.push_back({kappa, std::clamp(std::cos(kPi * i / (n - 1)), -1.0, 1.0)});
   const auto ref = reference_engine().evaluate(q);
-  std::vector<std::string> header = {"theta_deg", "reference"};
-  for (const Method& m : irradiance_methods) header.emplace_back(m.id);
-  std::vector<std::vector<double>> rows;
-  for (int i = 0; i < n; ++i) {
-    std::vector<double> r = {180.0 * i / (n - 1), ref[i].irradiance};
-    for (const Method& m : irradiance_methods) r.push_back(m.f64(q[i].cosine, kappa));
-    rows.push_back(std::move(r));
+  const double peak = ref[0].irradiance;  // θ = 0: E(1, κ)
+  std::vector<std::string> header = {"theta_deg", "reference"}, eheader = {"theta_deg"};
+  for (const Method& m : irradiance_methods) {
+    header.emplace_back(m.id);
+    eheader.emplace_back(m.id);
   }
-  const std::string csv = f.id + ".csv";
+  std::vector<std::vector<double>> rows, erows;
+  for (int i = 0; i < n; ++i) {
+    std::vector<double> r = {180.0 * i / (n - 1), ref[i].irradiance}, e = {180.0 * i / (n - 1)};
+    for (const Method& m : irradiance_methods) {
+      const double v = m.f64(q[i].cosine, kappa);
+      r.push_back(v);
+      const double pr = std::abs(v - ref[i].irradiance) / peak;
+      e.push_back(pr > 0 ? pr : std::nan(""));  // exact zeros have no place on a log axis
+    }
+    rows.push_back(std::move(r));
+    erows.push_back(std::move(e));
+  }
+  const std::string csv = f.id + ".csv", ecsv = f.id + "_peak_rel.csv";
   io::write_file_atomic(opt.out / csv, numeric_csv(header, rows));
-  const std::size_t last = header.size();
+  io::write_file_atomic(opt.out / ecsv, numeric_csv(eheader, erows));
+  std::string top = fmt::format("plot {} u 1:2 w l lw 5 lc rgb '#000000' dt 3 title 'reference E'", gp_quote(csv));
+  std::string bottom = "plot ";
+  std::vector<std::string_view> ids;
+  for (const Method& m : irradiance_methods) ids.push_back(m.id);
+  const std::vector<std::size_t> fam = family_indices(ids);
+  std::size_t i = 0;
+  for (const Method& m : irradiance_methods) {
+    const std::string style = line_style(fam[i], m.origin);
+    top += fmt::format(", \\\n     '' u 1:{} w l {} title {}", i + 3, style, gp_quote(std::string(m.id) + origin_suffix(m.origin)));
+    bottom += fmt::format("{}{} u 1:{} w l {} notitle", i ? ", \\\n     " : "", i ? "''" : gp_quote(ecsv), i + 2, style);
+    ++i;
+  }
   const std::string body = fmt::format(
-      "set multiplot layout 2,1 title 'Irradiance from a unit SG light, κ = 4 (seed 001 chart)'\n"
-      "set grid\nset xrange [0:180]\nset xtics 30\nset key outside right top font ',9'\n"
-      "set lmargin 12\nset rmargin 30\n"
-      "set xlabel 'θ (degrees) between light axis and normal'\nset ylabel 'E'\n"
-      "plot for [i=3:{2}] {1} u 1:i w l lw 1.5 title columnheader(i), \\\n"
-      "     for [i={3}:{0}] {1} u 1:i w l lw 1.5 dt 2 title columnheader(i), \\\n"
-      "     '' u 1:2 w l lw 4 lc rgb 'black' dt 3 title 'reference'\n"
-      "set ylabel 'Ê − E'\nset format y '%.2f'\n"
-      "plot for [i=3:{2}] {1} u 1:(column(i)-column(2)) w l lw 1.5 title columnheader(i), \\\n"
-      "     for [i={3}:{0}] {1} u 1:(column(i)-column(2)) w l lw 1.5 dt 2 title columnheader(i), \\\n"
-      "     0 w l lc rgb 'black' notitle\n",
-      last, gp_quote(csv), std::min<std::size_t>(last, 10), std::min<std::size_t>(last, 10) + 1);
+      "set multiplot title 'Irradiance from a unit SG light at κ = 4, double (after the chart of [Pettineo2016])'\n"
+      "set grid\nset xrange [0:180]\nset xtics 30\n"
+      "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
+      "set tmargin at screen 0.94\nset bmargin at screen 0.56\n"
+      "set key at screen 0.735, screen 0.94 left top Left reverse font ',10' samplen 5 spacing 1.1\n"
+      "set xlabel 'θ (degrees) between light axis and normal'\nset ylabel 'E'\nset format y '%g'\n{}\n"
+      "set tmargin at screen 0.47\nset bmargin at screen 0.07\nunset key\n"
+      "set ylabel '|Ê − E| / E(1, κ)'\nset logscale y\nset yrange [1e-8:1]\nset format y '{}'\n{}\n",
+      top, kLogFormat, bottom);
   f.files.push_back(csv);
-  for (auto& x : render(opt, f.id, body, 1200, 1000)) f.files.push_back(x);
+  f.files.push_back(ecsv);
+  for (auto& x : render(opt, f.id, body, 1300, 1050)) f.files.push_back(x);
   return f;
 }
 
-// ---- (d) heat maps ---------------------------------------------------------------
-Figure figure_d(const FiguresOptions& opt) {
-  Figure f{"d_peak_rel_heatmaps", "peak_rel error heat maps over (log10 κ, c), float",
-           "max peak_rel = |Ê − E|/E(1, κ) of every registered irradiance method evaluated in float on the SPEC §4 "
-           "grid (29 κ in [1e-3, 1e4] × 41 c), log color scale clamped to [1e-7, 10] (errors above 10 show as 10; grey: "
-           "non-finite output); one multiplot panel per method.",
-           {}, false, ""};
-  std::vector<SweepMethod> methods;
+// The float and double sweep over the standard grid that figures (d) and (g) share.
+SweepResult irradiance_sweep(std::vector<SweepMethod>& methods) {
   for (const SweepMethod& m : registered_sweep_methods())
     if (m.quantity == Quantity::irradiance) methods.push_back(m);
   SweepOptions so;
-  so.precisions = {FloatFormat::binary32};
+  so.precisions = {FloatFormat::binary32, FloatFormat::binary64};
   so.progress = false;
   so.keep_points = true;
-  const SweepGrid grid;
-  const SweepResult res = sweep(grid, methods, so);
+  return sweep(SweepGrid{}, methods, so);
+}
+
+// ---- (d) heat maps ---------------------------------------------------------------
+Figure figure_d(const FiguresOptions& opt, const std::vector<SweepMethod>& methods, const SweepResult& res) {
+  Figure f{"d_peak_rel_heatmaps", "peak_rel error heat maps over (κ, c), float",
+           "peak_rel = |Ê − E|/E(1, κ) of every registered irradiance method evaluated in float on the standard grid "
+           "(29 κ log-spaced in [1e-3, 1e4] × 41 c, docs/quantities.md), one panel per method, one shared log colour "
+           "scale clamped to [1e-7, 10] (errors above 10 show as 10; grey: non-finite output). The panel title gives "
+           "the method's max.",
+           {}, false, ""};
   std::vector<std::string> header = {"log10_kappa", "cosine"};
   std::vector<const SweepEntry*> entries;
   for (const SweepMethod& m : methods) {
@@ -263,31 +382,110 @@ Figure figure_d(const FiguresOptions& opt) {
   io::write_file_atomic(opt.out / csv, numeric_csv(header, rows, res.cosines.size()));
   const int cols = 4;
   const int nrows = static_cast<int>((methods.size() + cols - 1) / cols);
+  const int height = 340 * nrows + 110;
+  // Panels fill [0.06, 0.88] × [0.04, top]; the one colour bar sits right of them.
+  const double top = 1.0 - 90.0 / height;
   std::string body = fmt::format(
-      "set multiplot layout {},{} title 'peak_rel error |Ê − E| / E(1, κ), float, SPEC §4 grid (log color scale clamped to [1e-7, 10]; grey = non-finite)'\n"
-      "set xlabel 'log10 κ'\nset ylabel 'c = cos θ'\nset xrange [-3.125:4.125]\nset yrange [-1.025:1.025]\n"
-      "set logscale cb\nset cbrange [1e-7:10]\nset format cb '%.0e'\n"
+      "set multiplot layout {},{} margins screen 0.06,0.88,0.04,{:.4f} spacing screen 0.055,{:.4f} "
+      "title 'peak_rel error |Ê − E| / E(1, κ), float, standard grid: 29 κ in [1e-3, 1e4] × 41 c "
+      "(grey = non-finite)' font ',14'\n"
+      "set xlabel 'κ' offset 0,0.5\nset ylabel 'c = cos θ' offset 0.5,0\nset xrange [-3.125:4.125]\nset yrange [-1.025:1.025]\n"
+      "set logscale cb\nset cbrange [1e-7:10]\nset format cb '{}'\nset cbtics font ',11'\n"
+      "set cblabel 'peak_rel (clamped to [1e-7, 10])' font ',12'\n"
       "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n"
       "set object 1 rect from graph 0,0 to graph 1,1 behind fc rgb '#bbbbbb' fs solid noborder\n"
-      "set xtics 1 font ',8'\nset ytics 0.5 font ',8'\nset cbtics font ',8'\nunset key\n",
-      nrows, cols);
+      "set xtics {} font ',10'\nset ytics 0.5 font ',10'\nset format y '%g'\nunset key\n"
+      "unset colorbox\n",
+      nrows, cols, top, 120.0 / height, kLogFormat, log10_kappa_tics(-3, 4));
   for (std::size_t i = 0; i < methods.size(); ++i) {
     const double mx = entries[i] ? entries[i]->summary.peak_rel.max : std::nan("");
+    if (i + 1 == methods.size())
+      body += fmt::format("set colorbox user origin screen 0.91, screen 0.15 size screen 0.018, screen {:.4f}\n",
+                          top - 0.2);
     body += fmt::format(
-        "set title {}\nplot {} u 1:2:(v=column({}), v!=v ? 1/0 : (v < 1e-7 ? 1e-7 : (v > 10 ? 10 : v))) with image\n",
-        gp_quote(fmt::format("{} (max {:.2g})", methods[i].method.id, mx)), gp_quote(csv), i + 3);
+        "set title {} font ',12'\nplot {} u 1:2:(v=column({}), v!=v ? 1/0 : (v < 1e-7 ? 1e-7 : (v > 10 ? 10 : v))) with image\n",
+        gp_quote(fmt::format("{}{} (max {})", methods[i].method.id, origin_suffix(methods[i].method.origin),
+                             fmt::format("{:.2g}", mx))),
+        gp_quote(csv), i + 3);
   }
   f.files.push_back(csv);
-  for (auto& x : render(opt, f.id, body, 1600, 340 * nrows + 60)) f.files.push_back(x);
+  for (auto& x : render(opt, f.id, body, 1600, height)) f.files.push_back(x);
+  return f;
+}
+
+// ---- (g) max peak_rel against κ ------------------------------------------------------
+Figure figure_g(const FiguresOptions& opt, const std::vector<SweepMethod>& methods, const SweepResult& res) {
+  Figure f{"g_peak_rel_vs_kappa", "Max peak_rel over c against κ, every method, float and double",
+           "For each of the 29 κ of the standard grid, the max over the 41 cosines of peak_rel = |Ê − E|/E(1, κ), one "
+           "line per registered irradiance method (log-log), in float (left) and double (right). A gap: the method "
+           "returned a non-finite value at that κ. The dotted line at 1 is an error as large as the peak itself. "
+           "Solid: published constants; dashed: sglab refits; thick dash-dot: sglab's own models.",
+           {}, false, ""};
+  std::vector<std::string> header = {"kappa"};
+  for (const char* prec : {"float", "double"})
+    for (const SweepMethod& m : methods) header.push_back(fmt::format("{}_{}", m.method.id, prec));
+  std::vector<std::vector<double>> rows;
+  std::size_t gaps = 0;
+  for (std::size_t k = 0; k < res.kappas.size(); ++k) {
+    std::vector<double> r = {res.kappas[k]};
+    for (FloatFormat fm : {FloatFormat::binary32, FloatFormat::binary64})
+      for (const SweepMethod& m : methods) {
+        const SweepEntry* e = res.find(m.method.id, Quantity::irradiance, fm);
+        double v = std::nan("");
+        if (e && k < e->per_kappa.size()) {
+          const MetricSummary& s = e->per_kappa[k];
+          if (s.nonfinite == 0) v = s.peak_rel.max;
+          else ++gaps;
+        }
+        r.push_back(v > 0 ? v : std::nan(""));
+      }
+    rows.push_back(std::move(r));
+  }
+  if (gaps) f.note = fmt::format("{} (method, precision, κ) cells with a non-finite output are left as gaps", gaps);
+  const std::string csv = f.id + ".csv";
+  io::write_file_atomic(opt.out / csv, numeric_csv(header, rows));
+  const std::size_t nm = methods.size();
+  std::vector<std::string_view> ids;
+  for (const SweepMethod& m : methods) ids.push_back(m.method.id);
+  const std::vector<std::size_t> fam = family_indices(ids);
+  auto panel = [&](std::size_t offset, bool titles) {
+    std::string s = "plot 1 w l lw 1.5 dt 3 lc rgb '#000000' notitle";
+    for (std::size_t i = 0; i < nm; ++i) {
+      const Method& m = methods[i].method;
+      s += fmt::format(", \\\n     {} u 1:{} w l {} {}", gp_quote(csv), offset + i + 2, line_style(fam[i], m.origin),
+                       titles ? "title " + gp_quote(std::string(m.id) + origin_suffix(m.origin)) : std::string("notitle"));
+    }
+    return s + "\n";
+  };
+  const std::string body = fmt::format(
+      "set multiplot title 'Where each method fails: max over c of |Ê − E| / E(1, κ) against κ, standard grid' font ',14'\n"
+      "set logscale xy\nset grid\nset format x '{0}'\nset format y '{0}'\nset xrange [1e-3:1e4]\nset yrange [1e-10:1e8]\n"
+      "set xlabel 'κ'\nset ytics 100\n"
+      "set tmargin at screen 0.92\nset bmargin at screen 0.09\n"
+      "set lmargin at screen 0.06\nset rmargin at screen 0.40\n"
+      "set title 'float'\nset ylabel 'max peak_rel over c'\nunset key\n{1}"
+      "set lmargin at screen 0.44\nset rmargin at screen 0.78\n"
+      "set title 'double'\nunset ylabel\nset format y ''\n"
+      "set key at screen 0.795, screen 0.92 left top Left reverse font ',10' samplen 5 spacing 1.1\n{2}",
+      kLogFormat, panel(0, false), panel(nm, true));
+  f.files.push_back(csv);
+  for (auto& x : render(opt, f.id, body, 1600, 800)) f.files.push_back(x);
   return f;
 }
 
 // ---- (e) Pareto ------------------------------------------------------------------
+// Methods whose max peak_rel exceeds this (an error larger than the lobe's peak
+// value) fail on the range: drawn in a band above the chart, not on its axis.
+constexpr double kParetoFail = 1.0;
+
 Figure figure_e(const FiguresOptions& opt) {
   Figure f{"e_pareto", "Pareto chart: cost vs accuracy",
-           fmt::format("ns per evaluation vs max peak_rel (log-log) from `sglab pareto` ({}); each point labelled with its "
-                       "method, frontier line per precision.",
-                       opt.pareto.string()),
+           fmt::format("ns per evaluation vs max peak_rel (log-log) from `sglab pareto` ({}); marker shape and colour "
+                       "per method family, open = published constants, filled = sglab refit, large filled with a "
+                       "black ring = sglab's own model; frontier line per precision. Methods whose max peak_rel "
+                       "exceeds {} fail on the range and sit in the shaded band at the top, labelled with their error; "
+                       "the frontier line joins only the methods below the band.",
+                       opt.pareto.string(), kParetoFail),
            {}, false, ""};
   std::error_code ec;
   if (!fs::exists(opt.pareto, ec)) {
@@ -298,7 +496,7 @@ Figure figure_e(const FiguresOptions& opt) {
   const auto all = read_pareto_csv(opt.pareto);
   std::vector<ParetoRow> rows;
   for (const ParetoRow& r : all)
-    if (r.ns_per_eval > 0 && r.max_peak_rel > 0 && std::isfinite(r.ns_per_eval) && std::isfinite(r.max_peak_rel))
+    if (r.ns_per_eval > 0 && std::isfinite(r.ns_per_eval) && r.max_peak_rel > 0 && !std::isnan(r.max_peak_rel))
       rows.push_back(r);
   if (rows.size() < all.size())
     f.note = fmt::format("{} of {} rows without a positive finite cost and error are not plotted", all.size() - rows.size(),
@@ -311,17 +509,45 @@ Figure figure_e(const FiguresOptions& opt) {
   std::vector<std::string> precisions;
   for (const ParetoRow& r : rows)
     if (std::find(precisions.begin(), precisions.end(), r.precision) == precisions.end()) precisions.push_back(r.precision);
-  // Points file (text columns: written directly, quoted where needed).
+  // Families (family_of), in order of first appearance.
+  std::vector<std::string> families;
+  for (const ParetoRow& r : rows)
+    if (std::find(families.begin(), families.end(), family_of(r.method)) == families.end())
+      families.push_back(family_of(r.method));
+  // κ range and precision for the title.
+  std::set<std::pair<double, double>> ranges;
+  for (const ParetoRow& r : rows) ranges.insert({r.kappa_lo, r.kappa_hi});
+  std::string range = ranges.size() == 1 ? fmt::format("κ ∈ [{}, {}]", short_number(ranges.begin()->first),
+                                                        short_number(ranges.begin()->second))
+                                         : std::string("κ ranges differ per row");
+  std::string precs;
+  for (const auto& p : precisions) precs += (precs.empty() ? "" : ", ") + p;
+
   auto field = [](const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
     std::string o = "\"";
     for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
     return o + "\"";
   };
-  std::string pts = "ns_per_eval,max_peak_rel,method,precision,frontier,label\n";
-  for (const ParetoRow& r : rows)
-    pts += fmt::format("{},{},{},{},{},{}\n", r.ns_per_eval, r.max_peak_rel, field(r.method), field(r.precision),
-                       r.frontier ? 1 : 0, field(r.method + (r.refit ? "*" : "")));
+  double ymin = INFINITY, xmin = INFINITY, xmax = 0;
+  bool any_fail = false;
+  for (const ParetoRow& r : rows) {
+    xmin = std::min(xmin, r.ns_per_eval);
+    xmax = std::max(xmax, r.ns_per_eval);
+    if (r.max_peak_rel > kParetoFail) any_fail = true;
+    else ymin = std::min(ymin, r.max_peak_rel);
+  }
+  if (!std::isfinite(ymin)) ymin = 1e-3;
+  const double y_lo = std::pow(10.0, std::floor(std::log10(ymin)) - 0.5);
+  const double band_lo = kParetoFail * 1.8, band_hi = kParetoFail * 60, band_y = kParetoFail * 10;
+  // Points file: failing methods are moved into the band (plot_y); their true error stays in max_peak_rel.
+  std::string pts = "ns_per_eval,max_peak_rel,plot_y,method,origin,precision,frontier,label\n";
+  for (const ParetoRow& r : rows) {
+    const bool fails = r.max_peak_rel > kParetoFail;
+    pts += fmt::format("{},{},{},{},{},{},{},{}\n", r.ns_per_eval, r.max_peak_rel, fails ? band_y : r.max_peak_rel,
+                       field(r.method), to_string(r.origin), field(r.precision), r.frontier ? 1 : 0,
+                       field(fails ? fmt::format("{} ({:.2g})", r.method, r.max_peak_rel) : r.method));
+  }
   // Frontier: per precision, sorted by cost; two blank lines between precisions (gnuplot data blocks, `index`).
   std::string fr = "ns_per_eval,max_peak_rel,precision\n";
   bool any_frontier = false;
@@ -329,7 +555,7 @@ Figure figure_e(const FiguresOptions& opt) {
   for (std::size_t pi = 0; pi < precisions.size(); ++pi) {
     std::vector<ParetoRow> fp;
     for (const ParetoRow& r : rows)
-      if (r.frontier && r.precision == precisions[pi]) fp.push_back(r);
+      if (r.frontier && r.precision == precisions[pi] && r.max_peak_rel <= kParetoFail) fp.push_back(r);
     std::sort(fp.begin(), fp.end(), [](const ParetoRow& a, const ParetoRow& b) { return a.ns_per_eval < b.ns_per_eval; });
     if (fp.empty()) continue;
     if (any_frontier) fr += "\n\nns_per_eval,max_peak_rel,precision\n";  // each block has its header (columnhead)
@@ -340,35 +566,118 @@ Figure figure_e(const FiguresOptions& opt) {
   const std::string csv = f.id + "_points.csv", fcsv = f.id + "_frontier.csv";
   io::write_file_atomic(opt.out / csv, pts);
   io::write_file_atomic(opt.out / fcsv, fr);
-  static const char* kPoint[] = {"7", "5", "9", "11", "13", "3"};
-  static const char* kColor[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
+  // Open/filled point-type pairs: circle, square, triangle up, triangle down, diamond, pentagon.
+  static const int kOpen[] = {6, 4, 8, 10, 12, 14};
+  static const char* kFrontier[] = {"#444444", "#d62728", "#2ca02c", "#9467bd"};
   std::string plot = "plot ";
-  for (std::size_t pi = 0; pi < precisions.size(); ++pi) {
-    plot += fmt::format("{} u 1:(strcol(4) eq {} ? $2 : 1/0) w p pt {} ps 1.5 lc rgb '{}' title {}, \\\n     ",
-                        gp_quote(csv), gp_quote(precisions[pi]), kPoint[pi % 6], kColor[pi % 6],
-                        gp_quote(precisions[pi]));
-  }
   for (std::size_t b = 0; b < frontier_blocks.size(); ++b)
-    plot += fmt::format("{} index {} u 1:2 w l lw 2 lc rgb '{}' title {}, \\\n     ", gp_quote(fcsv), b,
-                        kColor[frontier_blocks[b] % 6], gp_quote("Pareto frontier, " + precisions[frontier_blocks[b]]));
-  plot += fmt::format("{} u 1:2:6 w labels left offset char 0.7,0.5 font ',8' notitle", gp_quote(csv));
+    plot += fmt::format("{} index {} u 1:2 w l lw 1.5 lc rgb '{}' title {}, \\\n     ", gp_quote(fcsv), b,
+                        kFrontier[frontier_blocks[b] % 4],
+                        gp_quote("Pareto frontier" + (precisions.size() > 1 ? ", " + precisions[frontier_blocks[b]] : "")));
+  // Plot elements, one per row, selecting its line of the points file ($0 is the data line number).
+  // Refits and sglab models (filled) first, published (open, larger) on top: a published method and
+  // its refit at nearly the same place read as a ring around a dot.
+  std::vector<std::size_t> order(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return (rows[a].origin == Origin::published) < (rows[b].origin == Origin::published);
+  });
+  std::vector<std::string> elements(rows.size());
+  for (std::size_t idx : order) {
+    const ParetoRow& r = rows[idx];
+    const std::size_t fam =
+        static_cast<std::size_t>(std::find(families.begin(), families.end(), family_of(r.method)) - families.begin());
+    const int shape = kOpen[fam % 6] + (r.origin == Origin::published ? 0 : 1);
+    const char* colour = kPalette[fam % kPaletteSize];
+    const std::string title = r.method + origin_suffix(r.origin) + (precisions.size() > 1 ? ", " + r.precision : "");
+    const std::string sel = fmt::format("($0 == {} ? $3 : 1/0)", idx);
+    if (r.origin == Origin::sglab)
+      plot += fmt::format("{} u 1:{} w p pt 7 ps 3.4 lc rgb '#000000' notitle, \\\n     ", gp_quote(csv), sel);
+    const double size = r.origin == Origin::sglab ? 2.5 : (r.origin == Origin::published ? 2.2 : 1.5);
+    plot += fmt::format("{} u 1:{} w p pt {} ps {} lw 2 lc rgb '{}' notitle, \\\n     ", gp_quote(csv), sel, shape,
+                        size, colour);
+    elements[idx] = fmt::format("keyentry w p pt {} ps {} lw 2 lc rgb '{}' title {}", shape, size, colour,
+                                gp_quote(title));
+  }
+  // The legend in registry order (keyentry: a key line without data).
+  for (std::size_t i = 0; i < rows.size(); ++i) plot += elements[i] + (i + 1 < rows.size() ? ", \\\n     " : "\n");
+
+  // Point labels, placed in pixel space so that no two overlap and none covers a point: for each
+  // point (cheapest first) the first free spot among right, left, above, below and the diagonals.
+  const double W = 1300, H = 800, L = 0.08 * W, R = 0.74 * W, T = (1 - 0.92) * H, B = (1 - 0.09) * H;
+  const double lx0 = std::log10(xmin / 2), lx1 = std::log10(xmax * 3);
+  const double ly0 = std::log10(y_lo), ly1 = std::log10(any_fail ? band_hi : kParetoFail * 3);
+  auto px = [&](double x) { return L + (std::log10(x) - lx0) / (lx1 - lx0) * (R - L); };
+  auto py = [&](double y) { return B - (std::log10(y) - ly0) / (ly1 - ly0) * (B - T); };
+  struct Box {
+    double x0, y0, x1, y1;
+    bool hits(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+  };
+  std::vector<Box> taken;
+  for (const ParetoRow& r : rows) {
+    const double y = r.max_peak_rel > kParetoFail ? band_y : r.max_peak_rel;
+    taken.push_back({px(r.ns_per_eval) - 8, py(y) - 8, px(r.ns_per_eval) + 8, py(y) + 8});
+  }
+  std::vector<std::size_t> by_cost(order);
+  std::sort(by_cost.begin(), by_cost.end(), [&](std::size_t a, std::size_t b) {
+    return rows[a].ns_per_eval < rows[b].ns_per_eval;
+  });
+  std::string labels;
+  int label_id = 10;
+  for (std::size_t idx : by_cost) {
+    const ParetoRow& r = rows[idx];
+    const bool fails = r.max_peak_rel > kParetoFail;
+    const std::string text = fails ? fmt::format("{} ({:.2g})", r.method, r.max_peak_rel) : r.method;
+    const double cx = px(r.ns_per_eval), cy = py(fails ? band_y : r.max_peak_rel);
+    const double w = 6.2 * static_cast<double>(text.size()) + 4, h = 14;
+    // Candidate boxes: (left edge, top edge) relative to the point.
+    const double cand[][2] = {{11, -h / 2},      {-11 - w, -h / 2}, {-w / 2, -11 - h}, {-w / 2, 11},
+                              {9, -9 - h},       {9, 9},            {-9 - w, -9 - h},  {-9 - w, 9},
+                              {11, -h / 2 - 14}, {11, -h / 2 + 14}, {-w / 2, -25 - h}, {-w / 2, 25}};
+    Box chosen{cx + cand[0][0], cy + cand[0][1], cx + cand[0][0] + w, cy + cand[0][1] + h};
+    for (const auto& c : cand) {
+      const Box bx{cx + c[0], cy + c[1], cx + c[0] + w, cy + c[1] + h};
+      if (bx.x0 < L || bx.x1 > R || bx.y0 < T || bx.y1 > B) continue;
+      if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.hits(bx); })) {
+        chosen = bx;
+        break;
+      }
+    }
+    taken.push_back(chosen);
+    // Back to data coordinates: the label's left end, vertically centred.
+    const double ax = std::pow(10.0, lx0 + (chosen.x0 + 2 - L) / (R - L) * (lx1 - lx0));
+    const double ay = std::pow(10.0, ly0 + (B - (chosen.y0 + chosen.y1) / 2) / (B - T) * (ly1 - ly0));
+    labels += fmt::format("set label {} {} at first {:.6g}, first {:.6g} left font ',9'{}\n", label_id++, gp_quote(text),
+                          ax, ay, r.origin == Origin::sglab ? " tc rgb '#000000' front" : " front");
+  }
+  std::string band;
+  if (any_fail)
+    band = fmt::format(
+        "set object 2 rect from graph 0, first {0} to graph 1, first {1} behind fc rgb '#fde0dd' fs solid noborder\n"
+        "set label 3 'fails on this range: max peak_rel > {2} (true value in brackets)' at graph 0.01, first {3} "
+        "left font ',9' tc rgb '#a50f15'\n",
+        band_lo, band_hi, kParetoFail, band_hi / 1.6);
   const std::string body = fmt::format(
-      "set title 'Cost vs accuracy of the irradiance methods (* = refitted constants)'\n"
-      "set xlabel 'cost (ns per evaluation)'\nset ylabel 'max peak_rel error'\nset logscale xy\nset grid\n"
-      "set format y '%.0e'\nset key top right box opaque\nset offsets graph 0.05, graph 0.2, graph 0.1, graph 0.1\n{}",
-      plot);
+      "set title 'Cost vs accuracy of the irradiance methods: {}, {} (29 κ × 41 c)' font ',13'\n"
+      "set xlabel 'cost (ns per evaluation, batch)'\nset ylabel 'max peak_rel error over the range'\n"
+      "set logscale xy\nset grid\nset format x '%g'\nset format y '{}'\n"
+      "set xrange [{}:{}]\nset yrange [{}:{}]\n"
+      "set key outside right top font ',10' spacing 1.15 box\n"
+      "set lmargin at screen 0.08\nset rmargin at screen 0.74\nset tmargin at screen 0.92\nset bmargin at screen 0.09\n"
+      "{}{}{}",
+      precs, range, kLogFormat, xmin / 2, xmax * 3, y_lo, any_fail ? band_hi : kParetoFail * 3, band, labels, plot);
   f.files.push_back(csv);
   f.files.push_back(fcsv);
-  for (auto& x : render(opt, f.id, body, 1200, 800)) f.files.push_back(x);
+  for (auto& x : render(opt, f.id, body, 1300, 800)) f.files.push_back(x);
   return f;
 }
 
 // ---- (f) erf ulp ------------------------------------------------------------------
 Figure figure_f(const FiguresOptions& opt) {
   Figure f{"f_erf_ulp", "erf error in float ulps over x",
-           "Max ulp error per bin of x ∈ [0, 4) (400 bins) of the erf variants listing5, as7125 and std evaluated in "
-           "float, against the correctly rounded float erf (validate/erf_check, sample mode: every 257th float "
-           "pattern plus a uniform grid of 2^20 points).",
+           "Max ulp error per bin of x ∈ [0, 4) (400 bins) of the erf variants listing5 ([Tokuyoshi2022] Listing 5), "
+           "as7125 ([AS1964] 7.1.25) and std evaluated in float, against the correctly rounded float erf "
+           "(validate/erf_check, sample mode: every 257th float pattern plus a uniform grid of 2^20 points).",
            {}, false, ""};
   ErfFloatOptions eo;
   eo.bins = 400;
@@ -396,9 +705,9 @@ Figure figure_f(const FiguresOptions& opt) {
   const std::string body = fmt::format(
       "set title 'erf in float: max error per bin (ulps of the exact erf(x))'\n"
       "set xlabel 'x'\nset ylabel 'max ulp error in bin'\nset logscale y\nset grid\nset xrange [0:4]\n"
-      "set key top right box opaque\nset format y '%g'\n"
+      "set key top right box opaque\nset format y '{}'\nset format x '%g'\n"
       "plot for [i=2:{}] {} u 1:(column(i) > 0 ? column(i) : 1/0) w l lw 2 title columnheader(i)",
-      header.size(), gp_quote(csv));
+      kLogFormat, header.size(), gp_quote(csv));
   f.files.push_back(csv);
   for (auto& x : render(opt, f.id, body, 1000, 650)) f.files.push_back(x);
   return f;
@@ -463,7 +772,7 @@ std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
   std::vector<std::string> header;
   std::map<std::string, std::size_t> col;
   std::vector<ParetoRow> rows;
-  static const char* kRequired[] = {"method", "refit", "precision", "kappa_lo", "kappa_hi",
+  static const char* kRequired[] = {"method", "origin", "precision", "kappa_lo", "kappa_hi",
                                      "ns_per_eval", "max_peak_rel", "frontier"};
   while (std::getline(in, line)) {
     ++lineno;
@@ -475,7 +784,7 @@ std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
       for (const char* r : kRequired)
         if (!col.count(r))
           throw std::invalid_argument(fmt::format("{}: header lacks column '{}' (expected "
-                                                  "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier)",
+                                                  "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier)",
                                                   path.string(), r));
       continue;
     }
@@ -485,8 +794,18 @@ std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
     ParetoRow r;
     r.method = cells[col["method"]];
     r.precision = cells[col["precision"]];
-    if (!parse_bool(cells[col["refit"]], r.refit) || !parse_bool(cells[col["frontier"]], r.frontier))
-      throw std::invalid_argument(fmt::format("{}:{}: refit/frontier must be true/false", path.string(), lineno));
+    const std::string& origin = cells[col["origin"]];
+    if (origin == to_string(Origin::published))
+      r.origin = Origin::published;
+    else if (origin == to_string(Origin::refit))
+      r.origin = Origin::refit;
+    else if (origin == to_string(Origin::sglab))
+      r.origin = Origin::sglab;
+    else
+      throw std::invalid_argument(fmt::format("{}:{}: origin '{}' is not one of published, refit, sglab",
+                                              path.string(), lineno, origin));
+    if (!parse_bool(cells[col["frontier"]], r.frontier))
+      throw std::invalid_argument(fmt::format("{}:{}: frontier must be true/false", path.string(), lineno));
     r.kappa_lo = parse_number(cells[col["kappa_lo"]], path, lineno, "kappa_lo");
     r.kappa_hi = parse_number(cells[col["kappa_hi"]], path, lineno, "kappa_hi");
     r.ns_per_eval = parse_number(cells[col["ns_per_eval"]], path, lineno, "ns_per_eval");
@@ -513,9 +832,12 @@ std::vector<Figure> make_figures(const FiguresOptions& options) {
   figs.push_back(figure_a(options));
   figs.push_back(figure_b(options));
   figs.push_back(figure_c(options));
-  figs.push_back(figure_d(options));
+  std::vector<SweepMethod> methods;
+  const SweepResult sweep_result = irradiance_sweep(methods);
+  figs.push_back(figure_d(options, methods, sweep_result));
   figs.push_back(figure_e(options));
   figs.push_back(figure_f(options));
+  figs.push_back(figure_g(options, methods, sweep_result));
 
   std::string md = "# sglab figures\n\nWritten by `sglab figures`. Each figure has its data CSV, the gnuplot script "
                    "that renders it (run `gnuplot <name>.gp` in this directory), a PNG and an SVG.\n\n";

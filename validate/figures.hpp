@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <sglab/registry.hpp>
+
 namespace sglab::validate {
 
 // gnuplot is not installed (or not runnable).
@@ -46,10 +48,11 @@ bool gnuplot_available(const std::string& gnuplot = "gnuplot");
 std::vector<Figure> make_figures(const FiguresOptions& options);
 
 // Parses `sglab pareto`'s CSV (RFC 4180; header
-// method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier).
+// method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier;
+// origin is published, refit or sglab, frontier true/false or 1/0).
 struct ParetoRow {
   std::string method, precision;
-  bool refit = false;
+  Origin origin = Origin::published;
   double kappa_lo = 0, kappa_hi = 0, ns_per_eval = 0, max_peak_rel = 0;
   bool frontier = false;
 };

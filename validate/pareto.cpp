@@ -92,7 +92,7 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, Flo
     const SweepEntry* e = result.find(m.id, Quantity::irradiance, f);
     MethodPoint p;
     p.method = std::string(m.id);
-    p.refit = m.origin == Origin::refit;
+    p.origin = m.origin;
     if (!e)
       p.max_peak_rel = std::numeric_limits<double>::quiet_NaN();
     else if (e->summary.nonfinite > 0)
@@ -124,7 +124,7 @@ Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double
                       "(29 κ × 41 c); frontier = not dominated",
                       to_string(f), kappa_lo, kappa_hi),
           {{"method"},
-           {"refit"},
+           {"origin"},
            {"precision"},
            {"kappa_lo", 4},
            {"kappa_hi", 4},
@@ -132,7 +132,7 @@ Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double
            {"max_peak_rel", 3},
            {"frontier"}});
   for (const MethodPoint& p : points)
-    t.add_row({Table::text(p.method), Table::integer(p.refit ? 1 : 0), Table::text(to_string(f)),
+    t.add_row({Table::text(p.method), Table::text(std::string(to_string(p.origin))), Table::text(to_string(f)),
                Table::real(kappa_lo), Table::real(kappa_hi), Table::real(p.ns_per_eval),
                Table::real(p.max_peak_rel), Table::integer(p.frontier ? 1 : 0)});
   return t;

@@ -26,7 +26,7 @@ inline constexpr double kCostTieMargin = 0.05;
 
 struct MethodPoint {
   std::string method;
-  bool refit = false;
+  Origin origin = Origin::published;  // from the registry (Method::origin)
   double ns_per_eval = 0;
   double max_peak_rel = 0;  // +inf on non-finite output, NaN if nothing was measured
   bool frontier = false;
@@ -63,8 +63,8 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, Flo
 // (measure_costs, `repetitions` × `min_time` s per method).
 void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions = 5, double min_time = 0.01);
 
-// method, refit, precision, kappa_lo, kappa_hi, ns_per_eval, max_peak_rel,
-// frontier (refit and frontier 0/1).
+// method, origin, precision, kappa_lo, kappa_hi, ns_per_eval, max_peak_rel,
+// frontier (origin published/refit/sglab, frontier 0/1).
 Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double kappa_lo, double kappa_hi);
 
 // "LO:HI" → lo, hi; returns an error message (naming nothing but the value)
