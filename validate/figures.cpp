@@ -627,7 +627,8 @@ Figure figure_e(const FiguresOptions& opt) {
   for (std::size_t idx : by_cost) {
     const ParetoRow& r = rows[idx];
     const bool fails = r.max_peak_rel > kParetoFail;
-    const std::string text = fails ? fmt::format("{} ({:.2g})", r.method, r.max_peak_rel) : r.method;
+    const std::string text = (fails ? fmt::format("{} ({:.2g})", r.method, r.max_peak_rel) : r.method) +
+                             (r.origin == Origin::sglab ? " [sglab]" : "");
     const double cx = px(r.ns_per_eval), cy = py(fails ? band_y : r.max_peak_rel);
     const double w = 6.2 * static_cast<double>(text.size()) + 4, h = 14;
     // Candidate boxes: (left edge, top edge) relative to the point.
