@@ -1,5 +1,6 @@
-// `sglab figures`: data CSVs, gnuplot scripts, PNG and SVG for the seed
-// figures and the sglab comparisons (validate/figures), plus index.md.
+// `sglab figures`: data CSVs, gnuplot scripts, PNG and SVG for the figures
+// after the cited papers ([Tokuyoshi2022], [Pettineo2016]) and the sglab
+// comparisons (validate/figures), plus index.md.
 #include <chrono>
 #include <filesystem>
 #include <memory>

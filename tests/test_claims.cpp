@@ -160,6 +160,28 @@ TEST(Figures, CommandWritesPngAndSvg) {
   fs::remove_all(dir);
 }
 
+// gnuplot is started with an argument vector, not through a shell: the
+// program path is taken literally, whatever characters it holds.
+TEST(Figures, GnuplotPathTakenLiterally) {
+  EXPECT_FALSE(gnuplot_available(""));
+  EXPECT_FALSE(gnuplot_available("/nonexistent/gnuplot"));
+  EXPECT_FALSE(gnuplot_available("gnuplot --version; true"));  // one program name, not a command line
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const fs::path dir = fs::temp_directory_path() / fmt::format("sglab fig's $dir;{}", ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string real;
+  for (const char* p : {"/usr/bin/gnuplot", "/usr/local/bin/gnuplot", "/bin/gnuplot"})
+    if (fs::exists(p)) real = p;
+  if (real.empty()) {
+    fs::remove_all(dir);
+    GTEST_SKIP() << "gnuplot not in a standard directory";
+  }
+  fs::create_symlink(real, dir / "gnu plot");
+  EXPECT_TRUE(gnuplot_available((dir / "gnu plot").string()));
+  fs::remove_all(dir);
+}
+
 TEST(Figures, MissingParetoFileIsSkipped) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   // Only checks the command line path: figure (e) skipped with a message, exit 0.

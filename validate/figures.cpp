@@ -1,6 +1,11 @@
 #include "figures.hpp"
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <cmath>
@@ -32,15 +37,35 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
+// Runs args[0] (searched in PATH unless it contains a '/') with args[1..] in
+// directory `dir` (the current one when empty), stdout and stderr to the file
+// `log`. No shell: paths and user strings are passed as an argument vector.
+// Returns the exit status, or -1 when the program could not be started or did
+// not exit normally.
+int run_in(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log) {
+  std::string program = args.at(0);
+  if (program.find('/') != std::string::npos) program = fs::absolute(program).string();  // before the chdir
+  const std::string log_path = fs::absolute(log).string();
+  posix_spawn_file_actions_t actions;
+  if (posix_spawn_file_actions_init(&actions) != 0) return -1;
+  bool ok = true;
+  if (!dir.empty()) ok = ok && posix_spawn_file_actions_addchdir_np(&actions, dir.c_str()) == 0;
+  ok = ok && posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                              0644) == 0;
+  ok = ok && posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO) == 0;
+  std::vector<char*> argv;
+  argv.push_back(program.data());
+  std::vector<std::string> rest(args.begin() + 1, args.end());
+  for (std::string& a : rest) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (ok) ok = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
+  posix_spawn_file_actions_destroy(&actions);
+  if (!ok) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) == -1)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // gnuplot single-quoted string: only ' needs doubling.
@@ -95,18 +120,16 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
   const fs::path gp = dir / (stem + ".gp");
   io::write_file_atomic(gp, script);
   const fs::path log = dir / (stem + ".gp.log");
-  const std::string cmd = fmt::format("cd {} && {} {} > {} 2>&1", shell_quote(dir.string()), shell_quote(opt.gnuplot),
-                                      shell_quote(stem + ".gp"), shell_quote(stem + ".gp.log"));
-  const int status = std::system(cmd.c_str());
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  const int status = run_in(dir, {opt.gnuplot, stem + ".gp"}, log);
+  if (status != 0) {
     std::string tail;
     try {
       tail = io::read_file(log);
       if (tail.size() > 2000) tail = tail.substr(tail.size() - 2000);
     } catch (...) {
     }
-    throw std::runtime_error(fmt::format("gnuplot failed on {} (exit status {}); log {}:\n{}", gp.string(),
-                                         WIFEXITED(status) ? WEXITSTATUS(status) : status, log.string(), tail));
+    throw std::runtime_error(fmt::format("gnuplot failed on {} (exit status {}); log {}:\n{}", gp.string(), status,
+                                         log.string(), tail));
   }
   {
     std::error_code ec;
@@ -818,9 +841,7 @@ std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
 }
 
 bool gnuplot_available(const std::string& gnuplot) {
-  const std::string cmd = fmt::format("{} --version > /dev/null 2>&1", shell_quote(gnuplot));
-  const int status = std::system(cmd.c_str());
-  return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  return !gnuplot.empty() && run_in({}, {gnuplot, "--version"}, "/dev/null") == 0;
 }
 
 std::vector<Figure> make_figures(const FiguresOptions& options) {
