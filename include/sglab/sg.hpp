@@ -84,12 +84,19 @@ template <class T> struct SGLobe {
 // zero-sharpness product (opposite axes, equal κ) is taken as v1.
 template <class T>
 SGLobe<T> sg_product(const Vec3<T>& v1, const T& kappa1, const Vec3<T>& v2, const T& kappa2) {
+  using std::sqrt;
   // Scale by the larger sharpness so that |κ1 v1 + κ2 v2| cannot overflow.
   const T m = kappa1 < kappa2 ? kappa2 : kappa1;
   if (!(m > T(0))) return {v1, T(0), T(0)};
-  const Vec3<T> a = (kappa1 / m) * v1 + (kappa2 / m) * v2;
+  const T ks1 = kappa1 / m, ks2 = kappa2 / m;
+  const Vec3<T> a = ks1 * v1 + ks2 * v2;
   const T a_len = length(a);
-  const T k3 = m * a_len;
+  // κ3/m from |κ1v1 + κ2v2|² = (κ1 − κ2)² + κ1κ2|v1 + v2|² (unit axes): a sum
+  // of non-negative terms, with κ1 − κ2 exact where it cancels (opposite axes,
+  // nearly equal κ, where |a| would keep only the rounding of κ1/m − κ2/m).
+  const Vec3<T> e = v1 + v2;
+  const T dk = (kappa1 - kappa2) / m;
+  const T k3 = m * sqrt(dk * dk + ks1 * ks2 * dot(e, e));
   const Vec3<T> d = v1 - v2;
   // −κ1κ2|d|²/(κ3 + κ1 + κ2) = −min(κ1, κ2)|d|²/(κ3/m + κ1/m + κ2/m) with
   // m = max(κ1, κ2): the denominator lies in [1, 3], so nothing overflows and
@@ -128,7 +135,9 @@ ScaledProductWithNormal<T> product_with_normal_scaled(const T& cosine_in, const 
   // exact near c = −1, scaled by m = max(κ, λ) against overflow.
   const T m = kappa < lambda ? lambda : kappa;
   if (!(m > T(0))) return {T(0), T(0), T(0), T(1)};
-  const T ks = kappa / m, ls = lambda / m, diff = ks - ls;
+  // (κ − λ)/m, not κ/m − λ/m: κ − λ is exact where it cancels (Sterbenz),
+  // while κ/m − λ/m would keep only the rounding of the larger quotient.
+  const T ks = kappa / m, ls = lambda / m, diff = (kappa - lambda) / m;
   const T k3s = sqrt(diff * diff + T(2) * ks * ls * (T(1) + cosine));  // κ3/m
   // κ3 − κ − λ = −2κλ(1 − c)/(κ3 + κ + λ) = −2 min(κ, λ)(1 − c)/(κ3/m + κ/m + λ/m)
   // (see sg_product): the denominator lies in [1, 3], nothing overflows or underflows.
