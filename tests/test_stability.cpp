@@ -2,7 +2,9 @@
 // (punctual is infinite at κ = 0, Hill fails at small κ), splits valid from
 // invalid inputs, and finds no failure of sglab's own primitives on valid
 // inputs (SPEC §5). Plus the `sglab stability --json` contract.
+#include <algorithm>
 #include <cmath>
+#include <variant>
 #include <filesystem>
 #include <string>
 
@@ -12,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sglab/constants.hpp>
 #include <sglab/registry.hpp>
 
 #include "stability.hpp"
@@ -115,6 +118,94 @@ TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
       EXPECT_EQ(r.origin, sv::Origin::published);
     }
   }
+}
+
+// The κ probes include every method's own lobe sharpness (κ = λ gives κ3 = 0 at
+// c = −1, the 0/0 of the published wang2009 form), in both precisions.
+TEST(Stability, ProbesIncludeTheMethodsSharpnessConstants) {
+  const auto& kf = report().kappas_float;
+  const auto& kd = report().kappas_double;
+  ASSERT_FALSE(sv::method_sharpness_constants().empty());
+  for (double lambda : sv::method_sharpness_constants()) {
+    EXPECT_NE(std::find(kd.begin(), kd.end(), lambda), kd.end()) << sglab::test::hex(lambda);
+    const double lf = static_cast<float>(lambda);
+    EXPECT_NE(std::find(kf.begin(), kf.end(), lf), kf.end()) << sglab::test::hex(lf);
+  }
+  const auto has = [&](double v) { return std::find(kd.begin(), kd.end(), v) != kd.end(); };
+  EXPECT_TRUE(has(sglab::constants::cosine_lobe_published.lambda));
+  EXPECT_TRUE(has(sglab::constants::meder2018_published.sharpness));
+  EXPECT_TRUE(has(sglab::constants::diffuse_lobe_published.lambda_d));
+  EXPECT_TRUE(has(sglab::constants::clamped_cosine_published.lambda));
+}
+
+// Accuracy is judged relative to the exact value wherever that is a normal
+// number of the evaluated precision: a 0 for an exact 1e−300 is a lost
+// result, not rounding. Below the normals, 1e−4 of the smallest normal.
+TEST(Stability, AccuracyIsRelativeDownToTheSmallestNormal) {
+  EXPECT_TRUE(sv::is_inaccurate<double>(0.0, 1e-300L));
+  EXPECT_TRUE(sv::is_inaccurate<double>(2e-300, 1e-300L));
+  EXPECT_TRUE(sv::is_inaccurate<double>(1.001e-300, 1e-300L));
+  EXPECT_FALSE(sv::is_inaccurate<double>(1.00000001e-300, 1e-300L));
+  EXPECT_TRUE(sv::is_inaccurate<double>(0.0, 3.5e-308L));  // 2π/DBL_MAX, a normal double
+  EXPECT_FALSE(sv::is_inaccurate<double>(0.0, 1e-320L));   // a denormal: within 1e−4 of the smallest normal
+  EXPECT_TRUE(sv::is_inaccurate<float>(0.0f, 1.85e-38L));  // 2π/FLT_MAX, a normal float
+  EXPECT_FALSE(sv::is_inaccurate<float>(0.0f, 1e-44L));
+  EXPECT_FALSE(sv::is_inaccurate<float>(1.0f, 1.00001L));
+}
+
+// The reference engine is one of sglab's own primitives: probed like them
+// (exact at the poles and, for H and s, at the horizon), refusing invalid input.
+TEST(Stability, ReferenceEngineIsProbed) {
+  for (const char* name : {"reference/hemispherical", "reference/irradiance", "reference/normalized"})
+    for (sv::FloatFormat f : kFormats) {
+      const auto& valid = row(name, f, true);
+      EXPECT_EQ(valid.origin, sv::Origin::sglab) << name;
+      EXPECT_GT(valid.evaluations, 100u) << name;
+      const auto& invalid = row(name, f, false);
+      EXPECT_GT(invalid.evaluations, 0u) << name;
+      EXPECT_EQ(invalid.failure_count(), 0u) << name << ": invalid input must be refused, not answered";
+    }
+}
+
+// Published methods whose transcription-level defects were fixed: wang2009 at
+// κ = λ, c = −1 (0/0) and at large κ (cancelling exponent); Hill at c = 0 for
+// large κ (0/0). What remains of Hill is its κ = 0 (1/κ) and small-κ finding.
+TEST(Stability, FixedTranscriptionDefectsStayFixed) {
+  for (sv::FloatFormat f : kFormats) {
+    for (const char* id : {"irradiance/wang2009", "irradiance/wang2009_refit"}) {
+      const auto& r = row(id, f, true);
+      EXPECT_EQ(r[sv::FailureKind::nan].count, 0u) << id << ": " << r[sv::FailureKind::nan].example;
+      EXPECT_EQ(r[sv::FailureKind::inf].count, 0u) << id << ": " << r[sv::FailureKind::inf].example;
+    }
+    for (const char* id : {"irradiance/hill", "irradiance/hill_exact"}) {
+      const auto& nan = row(id, f, true)[sv::FailureKind::nan];
+      if (nan.count) EXPECT_LT(nan.kappa_max, 1e-30) << id << ": " << nan.example;
+    }
+    // Meder's s: NaN only where the published t(κ) overflows (κ² beyond max).
+    const auto& meder = row("normalized/meder2018", f, true);
+    if (meder[sv::FailureKind::nan].count)
+      EXPECT_GE(meder[sv::FailureKind::nan].kappa_min, 1e19) << meder[sv::FailureKind::nan].example;
+    EXPECT_EQ(meder[sv::FailureKind::out_of_range].count, 0u);
+  }
+}
+
+TEST(Stability, FindingsSayWhyPublishedFailuresRemain) {
+  const sv::Table t = sv::stability_findings_table(report());
+  const std::size_t why = t.column_index("why"), function = t.column_index("function"),
+                    origin = t.column_index("origin"), inputs = t.column_index("inputs");
+  std::size_t published_valid = 0;
+  for (const auto& r : t.rows()) {
+    const auto& text = std::get<std::string>(r[why]);
+    EXPECT_FALSE(text.empty()) << std::get<std::string>(r[function]);
+    if (std::get<std::string>(r[origin]) == "published" && std::get<std::string>(r[inputs]) == "valid") {
+      ++published_valid;
+      EXPECT_EQ(text.find("a bug"), std::string::npos) << std::get<std::string>(r[function]);
+    }
+  }
+  EXPECT_GT(published_valid, 0u);
+  for (const auto& r : t.rows())
+    if (std::get<std::string>(r[function]) == "irradiance/punctual" && std::get<std::string>(r[inputs]) == "valid")
+      EXPECT_NE(std::get<std::string>(r[why]).find("2π/κ"), std::string::npos);
 }
 
 TEST(Stability, TableHasCountsAndKappaSpans) {

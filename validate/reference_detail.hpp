@@ -109,7 +109,9 @@ template <class Real> Real scaled_bessel_i0(const Real& x) {
     sum += term;
     if (term < eps * sum / 8) break;
   }
-  return sum / sqrt(2 * boost::math::constants::pi<Real>() * x);
+  // √(2π)·√x rather than √(2πx): 2πx overflows for x > max/2π (κ near the
+  // largest finite double), the product of the roots does not.
+  return sum / (sqrt(2 * boost::math::constants::pi<Real>()) * sqrt(x));
 }
 
 // I0(x) − 1 = Σ_{k≥1} (x²/4)^k / (k!)², without cancellation (used for x ≤ 1).
@@ -249,32 +251,76 @@ template <class W> W hemispherical_span(const W& kappa) {
   return 2 * boost::math::constants::pi<W>() * (m / kappa) * m;
 }
 
+// The integrand of (H(c) − H(−1))/2π in u = ω·n, without cancellation.
+// With δ = 1 + c ≥ 0 (so cu = −u + δu) and x = κrρ:
+//   e^{κ(cu−1)} I0(x) − e^{−κ(1+u)} = e^{−κ(1+u)} [expm1(κδu)·I0(x) + (I0(x) − 1)],
+// a sum of non-negative terms, each computed to relative ε: unlike the
+// difference of the two integrands (or of H(c) and H(−1)), it stays accurate
+// relative to itself as c → −1, where both vanish linearly in δ.
+// Returned without the factor e^{−κ}; e^{x − κu} is formed as one exponential
+// so that I0(x) cannot overflow.
+template <class Real> Real difference_integrand(const Real& kappa, const Real& delta, const Real& r, const Real& u,
+                                                const Real& rho) {
+  using boost::math::expm1;
+  using std::exp;
+  const Real x = kappa * r * rho;
+  const Real grow = expm1(kappa * delta * u);  // ≥ 0
+  if (x <= 1) {
+    const Real i0m1 = bessel_i0_minus_one(x);
+    return exp(-kappa * u) * (grow * (1 + i0m1) + i0m1);
+  }
+  // I0(x) − 1 = I0e(x)e^x − 1 loses at most a factor I0(1)/(I0(1) − 1) < 4.
+  const Real i0e = scaled_bessel_i0(x), ex = exp(x - kappa * u), e0 = exp(-kappa * u);
+  return grow * ex * i0e + (ex * i0e - e0);
+}
+
 // s(c, κ) for 0 < κ ≤ 1, where H(c) − H(−1) cancels (both → 2π, the
-// difference is O(κ)). The difference is taken under the integral sign of
-// SPEC §1's 1-D form and divided by κ:
-//   (H(c) − H(−1)) / (2π e^{−κ} κ) = ∫₀¹ d(u) du,
-//   κ d(u) = e^{κcu} I0(x) − e^{−κu}
-//          = expm1(κcu)·I0(x) + (I0(x) − 1) − expm1(−κu),   x = κrρ ≤ 1.
-// d ≥ 0 (since e^{κcu} ≥ e^{−κu} and I0 ≥ 1) and is analytic in u (I0 is
-// even, so I0(κrρ) is a power series in 1 − u²). Each term is computed to
-// relative ε; the only cancellation left (κcu against κu as c → −1) costs
-// accuracy relative to d, i.e. an absolute ε in s, which is what s needs.
-// With H(1) − H(−1) = 2πκ·(expm1(−κ)/κ)²:
-//   s = e^{−κ} ∫₀¹ d du / (expm1(−κ)/κ)².
+// difference is O(κ), and O(δ) near c = −1). The difference is taken under
+// the integral sign (difference_integrand), in u:
+//   (H(c) − H(−1)) / 2π = e^{−κ} ∫₀¹ d(u) du,
+// and with H(1) − H(−1) = 2πκ·(expm1(−κ)/κ)²:
+//   s = e^{−κ} ∫₀¹ (d/κ) du / (expm1(−κ)/κ)².
+// d/κ is analytic in u (I0 is even, so I0(κrρ) is a power series in 1 − u²)
+// and accurate relative to itself for every c, so s is accurate relative to s.
 template <class Real> Real normalized_small_kappa(const Real& kappa, const Real& c, const Real& r) {
   using boost::math::expm1;
   using std::exp;
   using std::sqrt;
+  const Real delta = 1 + c;
   auto d = [&](int, const Real& u) {
     const Real rho = sqrt(std::max(Real(0), (1 - u) * (1 + u)));
-    const Real i0m1 = bessel_i0_minus_one(kappa * r * rho);
-    return (expm1(kappa * c * u) * (1 + i0m1) + i0m1 - expm1(-kappa * u)) / kappa;
+    return difference_integrand(kappa, delta, r, u, rho) / kappa;
   };
   AdaptiveQuadrature<Real, Real> quad;
   quad.add(d, 0, Real(0), Real(1));
   quad.run(d, Settings<Real>::tolerance());
   const Real q = expm1(-kappa) / kappa;
   return exp(-kappa) * quad.value() / (q * q);
+}
+
+// s(c, κ) for κ > 1 and c < 0 where H(c) < 2 H(−1), so that (H(c) − H(−1))
+// would lose more than a bit: the same difference integrand, in the angle
+// ψ = asin u above the horizon (u = sin ψ, du = cos ψ dψ), split
+// geometrically from ψ = 0 on the scale 1/(κ + 1) of e^{−κu}:
+//   (H(c) − H(−1)) / 2π = e^{−κ} ∫₀^{π/2} d(sin ψ) cos ψ dψ,
+//   s = e^{−κ} κ ∫ … dψ / expm1(−κ)²   (formed in the wide type W).
+template <class Real> typename Wide<Real>::type normalized_by_difference(const Real& kappa, const Real& c,
+                                                                         const Real& r) {
+  using W = typename Wide<Real>::type;
+  using boost::math::expm1;
+  using std::cos;
+  using std::exp;
+  using std::sin;
+  const Real delta = 1 + c;
+  auto d = [&](int, const Real& psi) {
+    const Real rho = cos(psi), u = sin(psi);
+    return difference_integrand(kappa, delta, r, u, rho) * rho;
+  };
+  AdaptiveQuadrature<Real, Real> quad;
+  quad.add_from_peak(d, 0, Real(boost::math::constants::half_pi<Real>()), Real(1 / (kappa + 1)));
+  quad.run(d, Settings<Real>::tolerance());
+  const W kw = W(kappa), m = expm1(-kw);
+  return exp(-kw) * kw * W(quad.value()) / (m * m);
 }
 
 // H, E, s at one point, SPEC §1. Requires finite κ ≥ 0 and c ∈ [−1, 1]
@@ -309,7 +355,16 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   // matters; T = ln(1/ε) + 2 ln(1+κ) + 10 leaves that far below ε relative.
   const Real T = -log(std::numeric_limits<Real>::epsilon()) + 2 * log(1 + kappa) + 10;
   // Offset s where −2κ sin²(s/2) reaches −T (π if it never does).
-  const Real gauss_cut = (T / (2 * kappa) < 1) ? Real(2 * asin(sqrt(T / (2 * kappa)))) : pi;
+  // (T/2/κ, not T/(2κ): 2κ overflows for κ > max/2.)
+  const Real gauss_cut = (T / 2 / kappa < 1) ? Real(2 * asin(sqrt(T / 2 / kappa))) : pi;
+  // The integrals below are ~1/κ: for large κ they would reach the denormals
+  // (κ > 4.5e307 in double). The integrand is multiplied by kscale = 2^e ≤ κ
+  // (exactly, a power of two, so nothing else changes) and the result divided
+  // by it in the wide type.
+  int kexp = 0;
+  std::frexp(kappa_in, &kexp);
+  const double kscale_d = kappa_in > 1 ? std::ldexp(1.0, kexp - 1) : 1.0;
+  const Real kscale = kscale_d;
 
   // The integrand of H/(2π·peak factor) as f(side, s) with s ≥ 0 the angular
   // offset from the peak, returned together with γ·u·f for E.
@@ -324,7 +379,7 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
       // κ(cu + rρ − r) = −2κ sin(ψ/2 + β) sin(ψ/2).
       u = sin(s);
       rho = cos(s);
-      exponent = -2 * kappa * sin(s / 2 + beta) * sin(s / 2);
+      exponent = -(kappa * sin(s / 2 + beta)) * (2 * sin(s / 2));  // no −2κ: it overflows
     } else {
       // c ≥ 0, t = ±s: κ(cu + rρ − 1) = −2κ sin²(t/2). θ = θc + t and
       // ψ = π/2 − θ = α − t are both formed from accurate parts, and ρ = sin θ,
@@ -334,11 +389,11 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
       rho = sin(std::max(Real(0), Real(theta_c + t)));
       u = sin(std::max(Real(0), Real(alpha - t)));
       const Real h = sin(s / 2);
-      exponent = -2 * kappa * h * h;
+      exponent = -(kappa * h) * (2 * h);
     }
     rho = std::min(rho, Real(1));
     u = std::min(u, Real(1));
-    const Real value = exp(exponent) * scaled_bessel_i0(Real(kappa * r * rho)) * rho;
+    const Real value = exp(exponent) * scaled_bessel_i0(Real(kappa * r * rho)) * (rho * kscale);
     return Pair<Real>(value, gamma * u * value);
   };
 
@@ -361,13 +416,15 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
     // s = 0 (s ≤ H/(H(1)−H(−1)) < e^{−740}); skip the quadrature.
     if (log_peak < W(-750)) return out;
     beta = atan2(-c, r);  // θc − π/2 = asin|c|
-    gamma = 2 * (1 + kappa * -c + sqrt(kappa));
+    // (Any finite weight will do: capped where 2κ|c| would overflow; there
+    // the peak factor is 0 anyway.)
+    gamma = std::min(Real(2 * (1 + kappa * -c + sqrt(kappa))), std::numeric_limits<Real>::max());
     // Exponent ≈ −κ(ψ|c| + ψ²r/2): boundary layer of width 1/(κ|c|) or 1/√(κr).
     const Real w = 1 / (kappa * -c + sqrt(kappa * r));
     // −2κ sin(ψ/2+β) sin(ψ/2) decreases in ψ and is ≤ −2κ·max(sin β,
     // sin(ψ/2))·sin(ψ/2): cut where either bound reaches −T.
     Real cut = min(Real(pi / 2), gauss_cut);
-    if (T / (2 * kappa * -c) < 1) cut = min(cut, Real(2 * asin(T / (2 * kappa * -c))));
+    if (T / 2 / kappa / -c < 1) cut = min(cut, Real(2 * asin(T / 2 / kappa / -c)));
     quad.add_from_peak(f, boundary_layer, cut, w);
   }
   quad.run(f, Settings<Real>::tolerance());
@@ -378,10 +435,12 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   // H = 2π·e^{log_peak}·q.h, E = 2π·e^{log_peak}·q.e/γ. The combined error
   // estimate bounds |Δh| and γ|Δe| alike.
   const W scale = 2 * boost::math::constants::pi<W>() * exp(log_peak);
-  out.hemispherical = scale * W(q.h);
-  out.irradiance = scale * W(q.e / gamma);
-  out.hemispherical_error = scale * W(q_error);
-  out.irradiance_error = scale * W(q_error / gamma);
+  // (Divided by kscale, see above.)
+  const W kscale_w = W(kscale_d);
+  out.hemispherical = scale * W(q.h) / kscale_w;
+  out.irradiance = scale * W(q.e / gamma) / kscale_w;
+  out.hemispherical_error = scale * W(q_error) / kscale_w;
+  out.irradiance_error = scale * W(q_error / gamma) / kscale_w;
 
   // s = (H − H(−1)) / (H(1) − H(−1)), SPEC §1.
   if (kappa < std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon()) {
@@ -390,10 +449,16 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   } else if (kappa <= 1) {
     out.normalized = W(normalized_small_kappa(kappa, c, r));
   } else {
-    // No cancellation for κ > 1: H(1) − H(−1) ≥ 0.63·H(1) ≥ 0.63·H(c), so an
-    // error ε in H is at most 1.6ε in s.
+    // κ > 1: the denominator H(1) − H(−1) ≥ 0.63·H(1) does not cancel. The
+    // numerator H(c) − H(−1) loses at most a bit while H(c) ≥ 2H(−1); below
+    // that (c < 0, towards c = −1) it is integrated as one non-negative
+    // difference instead, so that s stays accurate relative to itself.
     const W kw = kappa_in;
-    out.normalized = (out.hemispherical - hemispherical_at_minus_one(kw)) / hemispherical_span(kw);
+    const W h_minus = hemispherical_at_minus_one(kw);
+    if (c < 0 && out.hemispherical < 2 * h_minus)
+      out.normalized = normalized_by_difference(kappa, c, r);
+    else
+      out.normalized = (out.hemispherical - h_minus) / hemispherical_span(kw);
   }
   out.normalized = std::clamp(out.normalized, W(0), W(1));
   return out;

@@ -1,7 +1,9 @@
 #include "stability.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <cstddef>
 #include <string>
 #include <type_traits>
@@ -16,6 +18,8 @@
 #include <sglab/math.hpp>
 #include <sglab/registry.hpp>
 #include <sglab/sg.hpp>
+
+#include "reference.hpp"
 
 namespace sglab::validate {
 
@@ -128,10 +132,24 @@ template <class T> bool beyond_max(long double x) {
 }
 
 // Tolerance of the `inaccurate` check against an exact value: far looser than
-// rounding (so only gross errors such as a lost term count), with an absolute
-// floor far below anything that matters (log-amplitudes of 1e−30 are 0).
+// rounding (so only gross errors such as a lost term count).
 constexpr long double kInaccurateRelative = 1e-4L;
-constexpr long double kInaccurateAbsolute = 1e-30L;
+
+}  // namespace
+
+template <class T> long double inaccuracy(T y, long double exact) {
+  // Relative wherever the exact value is a normal number of T; below, relative
+  // to the smallest normal (a denormal result carries fewer bits by design).
+  const long double scale = std::max(std::abs(exact), static_cast<long double>(std::numeric_limits<T>::min()));
+  return std::abs(static_cast<long double>(y) - exact) / scale;
+}
+template <class T> bool is_inaccurate(T y, long double exact) { return inaccuracy(y, exact) > kInaccurateRelative; }
+template long double inaccuracy<float>(float, long double);
+template long double inaccuracy<double>(double, long double);
+template bool is_inaccurate<float>(float, long double);
+template bool is_inaccurate<double>(double, long double);
+
+namespace {
 
 // Runs one function over its inputs and fills a valid-input and an
 // invalid-input row.
@@ -176,16 +194,26 @@ template <class T> class Probe {
     } else {
       x = exact_value();
       if (std::isnan(x) || beyond_max<T>(x)) return;
-      const long double diff = std::abs(static_cast<long double>(y) - x);
-      if (!(diff > kInaccurateRelative * std::abs(x) + kInaccurateAbsolute)) return;
+      if (!is_inaccurate(y, x)) return;
       kind = FailureKind::inaccurate;
-      error = diff / (std::abs(x) + kInaccurateAbsolute);
+      error = inaccuracy(y, x);
     }
     note(row.failures[static_cast<std::size_t>(kind)], key, [&] {
       if (kind == FailureKind::inaccurate)
         return fmt::format("{} -> {}, exact {:.17g}", describe(), show(y), static_cast<double>(x));
       return fmt::format("{} -> {}", describe(), show(y));
     }, static_cast<double>(error));
+  }
+
+  // An input the function refused by throwing (the reference engine's
+  // argument check): right for invalid inputs, a failure (counted as `nan`,
+  // no value) for valid ones.
+  template <class Describe> void refused(bool is_valid, double key, Describe&& describe, const char* what) {
+    StabilityRow& row = is_valid ? valid_ : invalid_;
+    ++row.evaluations;
+    if (!is_valid) return;
+    note(row.failures[static_cast<std::size_t>(FailureKind::nan)], key,
+         [&] { return fmt::format("{} -> refused: {}", describe(), what); });
   }
 
   void append_to(std::vector<StabilityRow>& rows) && {
@@ -205,7 +233,33 @@ template <class T> class Probe {
   StabilityRow valid_, invalid_;
 };
 
-// The inputs of SPEC's stability sweep, in precision T.
+}  // namespace
+
+std::vector<double> method_sharpness_constants() {
+  // The sharpness of the SG each method multiplies the light by (κ = λ is
+  // where the product with it has κ3 = 0 at c = −1), read from the constant
+  // sets the methods use: the cosine lobe of wang2009 and its refit, the
+  // diffuse lobe λd of vsgl2015 and its refits, Meder's cosine-fit λm, and the
+  // clamped-cosine λ of tokuyoshi2022 and its refits.
+  return {constants::cosine_lobe_published.lambda,
+          constants::lambda_d_cosine_lobe_free_amplitude.lambda,
+          constants::diffuse_lobe_published.lambda_d,
+          constants::lambda_d_diffuse_lobe_irradiance.lambda_d,
+          constants::lambda_d_diffuse_lobe_hemisphere_ls.lambda_d,
+          constants::lambda_d_diffuse_lobe_sphere_ls.lambda_d,
+          constants::meder2018_published.sharpness,
+          constants::clamped_cosine_published.lambda,
+          constants::clamped_cosine_float.lambda,
+          constants::clamped_cosine_float_alpha_free.lambda,
+          constants::clamped_cosine_double.lambda,
+          constants::clamped_cosine_half.lambda};
+}
+
+namespace {
+
+// The inputs of the stability sweep, in precision T: special values, a
+// logarithmic ladder, and the methods' own sharpness constants (rounded to T
+// as the methods round them).
 template <class T> std::vector<T> probe_kappas() {
   const double list[] = {-1,   0,    1e-30, 1e-6, 1e-3, 1e-2, 0.1,  0.2,  0.3,  0.4,  0.5,  0.6,  0.7,
                          0.8,  1,    2,     5,    10,   20,   50,   88,   89,   100,  700,  710,  1e3,
@@ -216,6 +270,7 @@ template <class T> std::vector<T> probe_kappas() {
     const T t = static_cast<T>(v);
     if (std::isfinite(t)) out.push_back(t);
   }
+  for (double v : method_sharpness_constants()) out.push_back(static_cast<T>(v));
   out.push_back(std::numeric_limits<float>::max());
   if constexpr (sizeof(T) > sizeof(float)) out.push_back(std::numeric_limits<double>::max());
   out.push_back(std::numeric_limits<T>::infinity());
@@ -411,6 +466,28 @@ template <class T> class Runner {
     std::move(p).append_to(rows);
   }
 
+  // A quantity of the reference engine (validate/reference.hpp) over (c, κ):
+  // the engine runs in double at the probe's values (float probes converted
+  // exactly) and its result is rounded to T. Invalid inputs must be refused.
+  template <class Get, class Exact>
+  void reference(const char* name, Range range, Get get, Exact exact) {
+    Probe<T> p(name, Origin::sglab, range);
+    for (T k : kappas_)
+      for (T c : cosines_) {
+        const bool valid = valid_kappa(k) && valid_cosine(c);
+        const auto describe = [&] { return fmt::format("c = {}, κ = {}", show(c), show(k)); };
+        ReferencePoint point;
+        try {
+          point = reference_engine().evaluate(static_cast<double>(k), static_cast<double>(c));
+        } catch (const std::invalid_argument& e) {
+          p.refused(valid, static_cast<double>(k), describe, e.what());
+          continue;
+        }
+        p.check(valid, static_cast<double>(k), static_cast<T>(get(point)), describe, [&] { return exact(c, k); });
+      }
+    std::move(p).append_to(rows);
+  }
+
   // Marks the rows of the probe just run as an approximation.
   void approximation() {
     rows[rows.size() - 1].approximation = true;
@@ -512,6 +589,36 @@ template <class T> std::vector<StabilityRow> run_all(std::vector<double>& kappas
       "hemispherical_equator", own, kTwoPi, [](T k) { return hemispherical_equator(k); },
       [](T k) { return exact_sphere_integral(k) / 2; });
 
+  // The reference engine, exact at the poles and (H, s) on the horizon.
+  const auto nan_l = std::numeric_limits<L>::quiet_NaN();
+  r.reference(
+      "reference/hemispherical", kTwoPi, [](const ReferencePoint& q) { return q.hemispherical; },
+      [nan_l](T c, T k) {
+        if (c == T(1)) return 2 * kPiL * exact_expm1_over_minus(k);
+        if (c == T(-1)) return std::exp(-L(k)) * 2 * kPiL * exact_expm1_over_minus(k);
+        if (c == T(0)) return exact_sphere_integral(k) / 2;
+        return nan_l;
+      });
+  r.reference(
+      "reference/irradiance", kPi, [](const ReferencePoint& q) { return q.irradiance; },
+      [nan_l](T c, T k) {
+        if (c == T(1)) return 2 * kPiL * exact_upper_over_two_pi(k);
+        if (c == T(-1)) return 2 * kPiL * exact_lower_over_two_pi(k);
+        return nan_l;
+      });
+  r.reference(
+      "reference/normalized", kUnit, [](const ReferencePoint& q) { return q.normalized; },
+      [nan_l](T c, T k) {
+        if (c == T(1)) return L(1);
+        if (c == T(-1)) return L(0);
+        if (c != T(0)) return nan_l;
+        // s(0, κ) = (S/2 − H(−1))/(H(1) − H(−1)) = ½ + O(κ); the difference
+        // form loses ~ε_L/κ in long double, so below κ = 1e−6 take ½.
+        if (L(k) < L(1e-6)) return L(0.5);
+        const L h1 = exact_expm1_over_minus(k), hm1 = std::exp(-L(k)) * h1;
+        return (exact_sphere_integral(k) / (4 * kPiL) - hm1) / (h1 - hm1);
+      });
+
   // Steepness functions and erf-based pieces (hemispherical.hpp, irradiance.hpp).
   r.kappa_only(
       "steepness2022", own, kNonNegative, [](T k) { return steepness2022(k); },
@@ -599,6 +706,34 @@ std::string first_failure(const StabilityRow& row) {
   return {};
 }
 
+// Why a row has outcomes: invalid inputs, outcomes that are not failures,
+// and for published formulas on valid inputs why they are reported and not
+// patched (sglab transcribes published methods as written; it fixes only
+// transcription-level numerical defects that leave the function unchanged:
+// wang2009's 0/0 and cancelling exponent, Hill's 0/0 at c = 0, and Meder's s,
+// which is evaluated as the normalized logistic of [Meder2018]).
+std::string why(const StabilityRow& row) {
+  if (!row.valid_inputs) return "invalid input (outside finite κ ≥ 0, c in [-1, 1], unit axes, finite x)";
+  if (row.failure_count() == 0) return "not a failure (overflow of an exact result beyond the largest finite value, "
+                                       "or an approximation exceeding the exact range by its error)";
+  const std::string_view f = row.function;
+  const auto is = [&](std::string_view id) { return f == id || f.ends_with("/" + std::string(id)); };
+  if (row.origin == Origin::sglab) return "sglab primitive failing on valid input: a bug";
+  if (f == "sphere_integral_approx" || is("punctual"))
+    return "published approximation 2π/κ [Pettineo2016]: infinite at κ = 0 (and NaN where 0·inf) by construction";
+  if (f == "sg_inner_product_iwasaki" || is("vsgl2015") || is("vsgl2015_refit"))
+    return "published approximate product integral [Iwasaki2012]: κ1κ2/(κ1 + κ2) overflows (inf/inf) at the largest "
+           "κ and 2π/(κ1 + κ2) is infinite at κ1 = κ2 = 0; transcribed as published";
+  if (f == "steepness_meder2018" || is("meder2018"))
+    return "published t(κ) = √κ(a2κ² + a1κ)/(κ² + b1κ + b0) forms κ² (inf/inf for κ ≳ 1.8e19 in float, 1.3e154 in "
+           "double); the published cosine fit a·G(λm) − b makes Ê a difference that goes negative; both kept as published";
+  if (is("hill") || is("hill_exact"))
+    return "Hill's published curve [Pettineo2016] is fitted for larger κ: 1/κ is infinite at κ = 0 and the curve goes "
+           "negative below κ ≈ 0.5 (its c = 0 limit at large κ is fixed)";
+  if (f.starts_with("erf/")) return "published erf approximation";
+  return "published formula, transcribed as written";
+}
+
 bool any_outcome(const StabilityRow& row) {
   for (const FailureStats& f : row.failures)
     if (f.count) return true;
@@ -664,13 +799,13 @@ Table stability_table(const StabilityReport& report) {
 }
 
 Table stability_findings_table(const StabilityReport& report) {
-  Table t("Stability findings (rows with any NaN / Inf / overflow / negative / out-of-range output)",
-          {{"function"}, {"origin"}, {"precision"}, {"inputs"}, {"findings"}, {"first_failure"}});
+  Table t("Stability findings (rows with any NaN / Inf / overflow / negative / out-of-range / inaccurate output)",
+          {{"function"}, {"origin"}, {"precision"}, {"inputs"}, {"findings"}, {"first_failure"}, {"why"}});
   for (const StabilityRow& r : report.rows) {
     if (!any_outcome(r)) continue;
     t.add_row({Table::text(r.function), Table::text(to_string(r.origin)), Table::text(to_string(r.precision)),
                Table::text(r.valid_inputs ? "valid" : "invalid"), Table::text(findings(r)),
-               Table::text(first_failure(r))});
+               Table::text(first_failure(r)), Table::text(why(r))});
   }
   return t;
 }

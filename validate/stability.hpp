@@ -36,7 +36,9 @@ std::string_view to_string(Origin o);
 //                representable, such as π, get 4 ulp of slack)
 //   inaccurate   finite and in range, but off the exact value (computed in
 //                long double, where the probe has one) by more than 1e−4
-//                relative + 1e−30 absolute: a lost term, not rounding
+//                relative wherever the exact value is a normal number of the
+//                evaluated precision (below it, 1e−4 of the smallest normal):
+//                a lost term, not rounding
 enum class FailureKind : std::size_t {
   nan = 0,
   inf = 1,
@@ -60,7 +62,7 @@ struct FailureStats {
   // The first failing input and its output, exact (hex floats); for
   // `inaccurate`, the input with the largest error instead.
   std::string example;
-  double example_error = -1;  // `inaccurate` only: |y − exact|/(|exact| + 1e−30)
+  double example_error = -1;  // `inaccurate` only: inaccuracy(y, exact)
 };
 
 // One function or method, in one precision, over valid or over invalid inputs.
@@ -94,6 +96,17 @@ struct StabilityReport {
 };
 
 StabilityReport stability();
+
+// The sharpness constants of the methods' own lobes (λ of wang2009 and its
+// refit, λd of vsgl2015 and its refits, Meder's λm, the clamped-cosine λ of
+// tokuyoshi2022 and its refits), read from sglab/constants.hpp: each is among
+// the κ probes, rounded to the evaluated precision.
+std::vector<double> method_sharpness_constants();
+
+// The `inaccurate` judgement: |y − exact| / max(|exact|, smallest normal of T),
+// and whether it exceeds 1e−4 (T = float or double).
+template <class T> long double inaccuracy(T y, long double exact);
+template <class T> bool is_inaccurate(T y, long double exact);
 
 // Rows of sglab's own primitives with any failure on valid inputs (SPEC §5:
 // finite, non-negative and in range for finite κ ≥ 0, c ∈ [−1, 1]).

@@ -58,7 +58,8 @@ template <class T> T irradiance_upper_over_two_pi(const T& kappa) {
   return (T(1) - expm1_over_x(-kappa)) / kappa;
 }
 
-// Ē(−1, κ) = E(−1, κ)/2π = e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (lower pole; → 0 as κ → 0).
+// Ē(−1, κ) = E(−1, κ)/2π = e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (lower pole; → 1/2 as κ → 0,
+// like Ē(1, κ): at κ = 0 the SG is constant and E = π at every cosine).
 template <class T> T irradiance_lower_over_two_pi(const T& kappa) {
   using std::exp;
   const T e = exp(-kappa);
@@ -72,9 +73,12 @@ template <class T> T irradiance_lower_over_two_pi(const T& kappa) {
   return e * ((expm1_over_x(-kappa) - e) / kappa);
 }
 
-// E(1, κ) = 2π(κ − 1 + e^{−κ})/κ² (SPEC §1).
+// E(1, κ) = 2π(κ − 1 + e^{−κ})/κ². From κ = 1 on, 2π(1 − (1 − e^{−κ})/κ) is
+// divided by κ once, so E stays accurate where Ē(1, κ) ≈ 1/κ would be a
+// denormal (κ > 1/min_normal) but 2π/κ is not.
 template <class T> T irradiance_upper(const T& kappa) {
-  return two_pi_v<T>() * irradiance_upper_over_two_pi(kappa);
+  if (kappa < T(1)) return two_pi_v<T>() * irradiance_upper_over_two_pi(kappa);
+  return two_pi_v<T>() * (T(1) - expm1_over_x(-kappa)) / kappa;
 }
 
 // E(−1, κ) = 2π e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (SPEC §1).
@@ -82,9 +86,13 @@ template <class T> T irradiance_lower(const T& kappa) {
   return two_pi_v<T>() * irradiance_lower_over_two_pi(kappa);
 }
 
-// H(1, κ) = 2π(1 − e^{−κ})/κ (SPEC §1; seed 000 §2.2 "A(κ)").
+// H(1, κ) = 2π(1 − e^{−κ})/κ ([Tokuyoshi2022] "A(κ)"). From κ = 1 on,
+// 2π(1 − e^{−κ}) is divided by κ once: 1/κ is a denormal for κ > 1/min_normal,
+// 2π/κ is not.
 template <class T> T hemispherical_upper(const T& kappa) {
-  return two_pi_v<T>() * expm1_over_x(-kappa);
+  using std::expm1;
+  if (kappa < T(1)) return two_pi_v<T>() * expm1_over_x(-kappa);
+  return two_pi_v<T>() * -expm1(-kappa) / kappa;
 }
 
 // H(−1, κ) = e^{−κ} H(1, κ) (SPEC §1; seed 000 §2.2 "B(κ)").
@@ -93,7 +101,7 @@ template <class T> T hemispherical_lower(const T& kappa) {
   return exp(-kappa) * hemispherical_upper(kappa);
 }
 
-// H(0, κ) = S(κ)/2 (SPEC §1).
+// H(0, κ) = S(κ)/2, accurate through the largest finite κ (see sphere_integral).
 template <class T> T hemispherical_equator(const T& kappa) {
   return T(0.5) * sphere_integral(kappa);
 }

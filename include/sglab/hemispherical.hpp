@@ -107,13 +107,29 @@ T steepness_meder2018(const T& kappa, const Meder2018Params<S>& p = constants::m
          (kappa * kappa + T(p.b1) * kappa + T(p.b0));
 }
 
-// Meder & Brüderlin 2018 normalized hemispherical integral, the logistic
-// s(c, κ) = 1/(1 + e^{−t(κ) c}).
+// Meder & Brüderlin 2018 normalized hemispherical integral: the logistic in
+// t(κ)c normalized so that s(−1) = 0 and s(1) = 1 ([Meder2018]),
+//   s = (e^{t}e^{tc} − 1)/((e^{t} − 1)(e^{tc} + 1)),  → (1 + c)/2 as t → 0.
+// Multiplying through by e^{−t}e^{−tc} gives the same function as
+//   s = σ(tc)·(1 − e^{−t(1+c)})/(1 − e^{−t}),  σ(z) = 1/(1 + e^{−z}),
+// evaluated here stably in float and double: σ from e^{−t|c|} ≤ 1 (no
+// overflow at large t), the ratio as expm1(−t(1+c))/expm1(−t) for t ≥ 1 and as
+// (1 + c)·E(−t(1+c))/E(−t) with E(x) = (e^x − 1)/x below (no 0/0 at t = 0,
+// where E = 1). (The plain logistic 1/(1 + e^{−tc}) is not normalized: its
+// s(1) → 1/2 as κ → 0.)
 template <class T, class S = double>
 T normalized_meder2018(const T& cosine, const T& kappa,
                        const Meder2018Params<S>& p = constants::meder2018_published) {
+  using std::abs;
   using std::exp;
-  return T(1) / (T(1) + exp(-steepness_meder2018(kappa, p) * cosine));
+  using std::expm1;
+  const T t = steepness_meder2018(kappa, p);
+  const T c = clamp(cosine, T(-1), T(1));
+  const T e = exp(-(t * abs(c)));
+  const T sigma = c < T(0) ? e / (T(1) + e) : T(1) / (T(1) + e);  // σ(tc)
+  const T u = T(1) + c;
+  const T ratio = t < T(1) ? u * (expm1_over_x(-(t * u)) / expm1_over_x(-t)) : expm1(-(t * u)) / expm1(-t);
+  return saturate(sigma * ratio);
 }
 
 template <class T, class S = double>

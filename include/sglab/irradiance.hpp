@@ -20,20 +20,19 @@
 namespace sglab {
 
 // `wang2009`: inner product of the light with the cosine-lobe SG
-// a·G(ω; n, λ), λ = 2.133, a = 1.17 (Wang et al. 2009), clamped at 0, as in
-// seed 001 "SGIrradianceInnerProduct": with d = |κv + λn|,
-// Ê = max(2π a e^{d − κ − λ}(1 − e^{−2d})/d, 0). The naive exponent d − κ − λ
-// cancels at large κ, and d = 0 (c = −1, κ = λ) gives 0/0.
+// a·G(ω; n, λ), λ = 2.133, a = 1.17 ([Wang2009]), clamped at 0, as in
+// [Pettineo2016] "SGIrradianceInnerProduct": with d = |κv + λn|,
+// Ê = max(2π a e^{d − κ − λ}(1 − e^{−2d})/d, 0).
+// The same function is evaluated through sg_inner_product (a·e^{κ3−κ−λ}S(κ3)
+// with κ3 = d): the published form subtracts κ + λ from d, which cancels at
+// large κ, forms κ² (NaN from inf − inf for κ ≳ 1.8e19 in float), and gives
+// 0/0 at d = 0 (c = −1, κ = λ), where (1 − e^{−2d})/d → 2. The stable product
+// writes d − κ − λ = −2κλ(1 − c)/(d + κ + λ) (exact algebra: d² − (κ + λ)² =
+// −2κλ(1 − c)) and S(d) = 2π(1 − e^{−2d})/d with its d → 0 limit 4π.
 template <class T, class S = double>
 T irradiance_wang2009(const T& cosine, const T& kappa,
                       const CosineLobeParams<S>& p = constants::cosine_lobe_published) {
-  using std::exp;
-  using std::sqrt;
-  const T lambda = T(p.lambda);
-  const T d = sqrt(kappa * kappa + lambda * lambda + T(2) * kappa * lambda * cosine);
-  const T expo = exp(d - kappa - lambda) * T(p.amplitude);
-  const T other = T(1) - exp(T(-2) * d);
-  return max0(two_pi_v<T>() * expo * other / d);
+  return max0(T(p.amplitude) * sg_inner_product(cosine, kappa, T(p.lambda)));
 }
 
 // `punctual`: the cosine pulled out of the integral, Ê = max(c, 0)·2π/κ
@@ -43,7 +42,12 @@ template <class T> T irradiance_punctual(const T& cosine, const T& kappa) {
 }
 
 namespace detail {
-// Stephen Hill's fitted curve for a normalized SG (seed 001 "SGIrradianceFitted").
+// Stephen Hill's fitted curve for a normalized SG ([Pettineo2016] "SGIrradianceFitted").
+// 1 − scale = 1/κ − 2e^{−2κ} is formed directly (the same value): through
+// 1 − scale it rounds to 0 once 1/κ < ulp(1)/2 (κ ≥ 1e8 in float, 1e17 in
+// double), and at c = 0 the curve's n²/x became 0/0. With x > 0 kept, n²/x is
+// evaluated as n·(n/x): n/x ∈ [c1, 2c1] where the curve applies, so nothing
+// underflows at large κ either (at c = 0 it is c1²x, x → 1/√κ).
 template <class T, class S> T hill_normalized(const T& cosine, const T& kappa, const HillParams<S>& p) {
   using std::abs;
   using std::exp;
@@ -54,12 +58,13 @@ template <class T, class S> T hill_normalized(const T& cosine, const T& kappa, c
   const T em2l = eml * eml;
   const T rl = T(1) / kappa;
   const T scale = T(1) + T(2) * em2l - rl;
+  const T one_minus_scale = rl - T(2) * em2l;  // > 0: 2κe^{−2κ} ≤ 1/e
   const T bias = (eml - em2l) * rl - em2l;
-  const T x = sqrt(T(1) - scale);
+  const T x = sqrt(one_minus_scale);
   const T x0 = c0 * cosine;
   const T x1 = c1 * x;
   const T n = x0 + x1;
-  const T y = abs(x0) <= x1 ? n * n / x : saturate(cosine);
+  const T y = abs(x0) <= x1 ? n * (n / x) : saturate(cosine);
   return scale * y + bias;
 }
 }  // namespace detail

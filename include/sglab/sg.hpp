@@ -45,11 +45,25 @@ template <class T> T sg_evaluate(const Vec3<T>& omega, const Vec3<T>& axis, cons
   return exp(T(-0.5) * kappa * dot(d, d));
 }
 
-// Exact sphere integral S(κ) = 2π(1 − e^{−2κ})/κ = 4π·(e^{−2κ} − 1)/(−2κ)
-// (seed 004 §1; → 4π as κ → 0, → 2π/κ as κ → ∞).
-template <class T> T sphere_integral(const T& kappa) {
-  return four_pi_v<T>() * expm1_over_x(T(-2) * kappa);
+namespace detail {
+// S(m·x) = 2π(1 − e^{−2mx})/(mx) for a sharpness given as a scale m > 0 times
+// a scaled value x ≥ 0, so that a product sharpness m·x that overflows still
+// gives its (normal) S. Below mx = 1, 4π·(e^{−2κ} − 1)/(−2κ) keeps full
+// accuracy down to the denormals. From mx = 1 on, 2π/m times 1 − e^{−2mx} is
+// divided by x once: −2mx may overflow to −inf there, which only makes
+// e^{−2mx} = 0, and 2π/m ≥ 2π/max is a normal number in float and double.
+template <class T> T sphere_integral_scaled(const T& m, const T& x) {
+  using std::expm1;
+  const T kappa = m * x;
+  if (kappa < T(1)) return four_pi_v<T>() * expm1_over_x(T(-2) * kappa);
+  return (two_pi_v<T>() / m) * -expm1(T(-2) * kappa) / x;
 }
+}  // namespace detail
+
+// Exact sphere integral S(κ) = 2π(1 − e^{−2κ})/κ = 4π·(e^{−2κ} − 1)/(−2κ)
+// ([Tokuyoshi2015]; → 4π as κ → 0, → 2π/κ as κ → ∞), accurate from κ = 0
+// through the largest finite κ (where 2π/κ is still a normal number).
+template <class T> T sphere_integral(const T& kappa) { return detail::sphere_integral_scaled(T(1), kappa); }
 
 // The large-κ approximation 2π/κ of S(κ) (seed 001 "ApproximateSGIntegral").
 // Infinite at κ = 0: callers that need κ → 0 use sphere_integral.
@@ -70,12 +84,19 @@ template <class T> struct SGLobe {
 // zero-sharpness product (opposite axes, equal κ) is taken as v1.
 template <class T>
 SGLobe<T> sg_product(const Vec3<T>& v1, const T& kappa1, const Vec3<T>& v2, const T& kappa2) {
+  using std::sqrt;
   // Scale by the larger sharpness so that |κ1 v1 + κ2 v2| cannot overflow.
   const T m = kappa1 < kappa2 ? kappa2 : kappa1;
   if (!(m > T(0))) return {v1, T(0), T(0)};
-  const Vec3<T> a = (kappa1 / m) * v1 + (kappa2 / m) * v2;
+  const T ks1 = kappa1 / m, ks2 = kappa2 / m;
+  const Vec3<T> a = ks1 * v1 + ks2 * v2;
   const T a_len = length(a);
-  const T k3 = m * a_len;
+  // κ3/m from |κ1v1 + κ2v2|² = (κ1 − κ2)² + κ1κ2|v1 + v2|² (unit axes): a sum
+  // of non-negative terms, with κ1 − κ2 exact where it cancels (opposite axes,
+  // nearly equal κ, where |a| would keep only the rounding of κ1/m − κ2/m).
+  const Vec3<T> e = v1 + v2;
+  const T dk = (kappa1 - kappa2) / m;
+  const T k3 = m * sqrt(dk * dk + ks1 * ks2 * dot(e, e));
   const Vec3<T> d = v1 - v2;
   // −κ1κ2|d|²/(κ3 + κ1 + κ2) = −min(κ1, κ2)|d|²/(κ3/m + κ1/m + κ2/m) with
   // m = max(κ1, κ2): the denominator lies in [1, 3], so nothing overflows and
@@ -94,16 +115,30 @@ template <class T> struct ProductWithNormal {
   T log_amplitude;
   T cosine;
 };
+
+namespace detail {
+// The product with the normal as a scale m = max(κ, λ) and κ3/m, so that
+// callers can use κ3 where m·(κ3/m) overflows (sg_inner_product).
+template <class T> struct ScaledProductWithNormal {
+  T scale;             // m = max(κ, λ)
+  T sharpness_scaled;  // κ3/m ∈ [0, 2]
+  T log_amplitude;
+  T cosine;
+};
 template <class T>
-ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, const T& lambda) {
+ScaledProductWithNormal<T> product_with_normal_scaled(const T& cosine_in, const T& kappa, const T& lambda) {
   using std::sqrt;
+  // A cosine a rounding error outside [−1, 1] (c = −1 − ulp from a dot
+  // product) would make κ3² negative at κ = λ: clamp it (NaN stays NaN).
+  const T cosine = clamp(cosine_in, T(-1), T(1));
   // κ3² = κ² + λ² + 2κλc = (κ − λ)² + 2κλ(1 + c): a sum of non-negative terms,
   // exact near c = −1, scaled by m = max(κ, λ) against overflow.
   const T m = kappa < lambda ? lambda : kappa;
-  if (!(m > T(0))) return {T(0), T(0), T(1)};
-  const T ks = kappa / m, ls = lambda / m, diff = ks - ls;
+  if (!(m > T(0))) return {T(0), T(0), T(0), T(1)};
+  // (κ − λ)/m, not κ/m − λ/m: κ − λ is exact where it cancels (Sterbenz),
+  // while κ/m − λ/m would keep only the rounding of the larger quotient.
+  const T ks = kappa / m, ls = lambda / m, diff = (kappa - lambda) / m;
   const T k3s = sqrt(diff * diff + T(2) * ks * ls * (T(1) + cosine));  // κ3/m
-  const T k3 = m * k3s;
   // κ3 − κ − λ = −2κλ(1 − c)/(κ3 + κ + λ) = −2 min(κ, λ)(1 − c)/(κ3/m + κ/m + λ/m)
   // (see sg_product): the denominator lies in [1, 3], nothing overflows or underflows.
   const T kmin = kappa < lambda ? kappa : lambda;
@@ -111,15 +146,25 @@ ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, con
   // Product axis (κv + λn)/κ3, its cosine with n = (κc + λ)/κ3, clamped:
   // rounding may push it a hair outside [−1, 1].
   const T c3 = k3s > T(0) ? clamp((ks * cosine + ls) / k3s, T(-1), T(1)) : T(1);
-  return {k3, log_amp, c3};
+  return {m, k3s, log_amp, c3};
+}
+}  // namespace detail
+
+template <class T>
+ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, const T& lambda) {
+  const detail::ScaledProductWithNormal<T> p = detail::product_with_normal_scaled(cosine, kappa, lambda);
+  return {p.scale * p.sharpness_scaled, p.log_amplitude, p.cosine};
 }
 
 // Exact inner product ∫ G(ω; v1, κ1) G(ω; v2, κ2) dω = e^{logAmp} S(κ3)
-// (Wang et al. 2009), with c = v1·v2, evaluated through the stable product.
+// ([Wang2009]), with c = v1·v2, evaluated through the stable product. κ3 may
+// exceed the largest finite value (κ1, κ2 > max/2, c near 1) while the
+// result, about 2π/κ3, is still a normal number: S is taken from the scaled
+// sharpness.
 template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T& kappa2) {
   using std::exp;
-  const ProductWithNormal<T> p = sg_product_with_normal(cosine, kappa1, kappa2);
-  return exp(p.log_amplitude) * sphere_integral(p.sharpness);
+  const detail::ScaledProductWithNormal<T> p = detail::product_with_normal_scaled(cosine, kappa1, kappa2);
+  return exp(p.log_amplitude) * detail::sphere_integral_scaled(p.scale, p.sharpness_scaled);
 }
 
 // Iwasaki et al. 2012 approximate product integral (seed 004 §3.2):
