@@ -22,6 +22,7 @@
 #include "io.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
+#include "vulkan_runner.hpp"
 
 namespace sglab::app {
 
@@ -101,6 +102,8 @@ struct SweepArgs {
   std::string out = "out/sweep";
   bool json = false;
   std::vector<std::string> methods;
+  std::vector<std::string> backends;  // cpu, vulkan
+  std::string lang = "both";          // shader language(s) of the vulkan backend
 };
 
 }  // namespace
@@ -115,6 +118,12 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "output directory")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the summary as JSON on stdout");
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");
+  cmd->add_option("--backend", args->backends,
+                  "cpu (the C++ runtime in float and double, default) and/or vulkan (each method's `sglab export` "
+                  "run as a compute shader on the first Vulkan device); comma-separated or repeated")
+      ->delimiter(',');
+  cmd->add_option("--lang", args->lang, "shader language(s) of the vulkan backend: glsl, hlsl or both")
+      ->capture_default_str();
   cmd->callback([args] {
     validate::SweepGrid grid;  // SPEC §4 standard grid
     if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
@@ -125,8 +134,42 @@ void add_sweep_command(CLI::App& app) {
       throw InputError(e.what());
     }
     const auto methods = select_methods(args->methods);
+    bool cpu = args->backends.empty(), vulkan = false;
+    for (const std::string& b : args->backends) {
+      if (b == "cpu")
+        cpu = true;
+      else if (b == "vulkan")
+        vulkan = true;
+      else
+        throw InputError(fmt::format("--backend: expected cpu or vulkan, got '{}'", b));
+    }
+    std::vector<validate::shader::Language> langs;
+    if (args->lang == "glsl" || args->lang == "both") langs.push_back(validate::shader::Language::glsl);
+    if (args->lang == "hlsl" || args->lang == "both") langs.push_back(validate::shader::Language::hlsl);
+    if (langs.empty()) throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", args->lang));
 
-    const validate::SweepResult result = validate::sweep(grid, methods);
+    validate::SweepOptions options;
+    if (!cpu) options.precisions.clear();
+    options.progress = io::stderr_is_terminal();
+    validate::SweepResult result = validate::sweep(grid, methods, options);
+    std::string device_name;
+    if (vulkan) {
+      validate::vulkan::Device device;  // throws vulkan::Unavailable with the reason
+      device_name = device.name();
+      std::vector<std::string> skipped;
+      for (auto lang : langs) skipped = validate::vulkan::add_device_entries(result, methods, lang, device);
+      if (!skipped.empty() && !args->json)
+        fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
+      // Method-major order, as the CPU entries.
+      std::stable_sort(result.entries.begin(), result.entries.end(), [&](const auto& a, const auto& b) {
+        auto rank = [&](const validate::SweepEntry& e) {
+          for (std::size_t i = 0; i < methods.size(); ++i)
+            if (methods[i].method.id == e.method && methods[i].quantity == e.quantity) return i;
+          return methods.size();
+        };
+        return rank(a) < rank(b);
+      });
+    }
     const validate::Table summary = validate::summary_table(result);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
@@ -140,6 +183,10 @@ void add_sweep_command(CLI::App& app) {
                    {"kappa_hi", grid.kappa_hi},
                    {"kappa_count", grid.kappa_count},
                    {"cosine_count", grid.cosine_count}};
+    if (vulkan) {
+      doc["backend"] = cpu ? "cpu,vulkan" : "vulkan";
+      doc["device"] = device_name;
+    }
     doc["results"] = validate::to_json_records(summary);
     const std::string json = doc.dump(2) + "\n";
     io::write_file_atomic(dir / "summary.json", json);
