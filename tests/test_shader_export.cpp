@@ -324,3 +324,27 @@ TEST_F(OnVulkan, SweepBackendReportsVulkanRows) {
   EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
   fs::remove_all(dir);
 }
+
+// Without a Vulkan driver: `--backend vulkan` fails with the reason,
+// `--backend auto` reports it and still writes the CPU rows.
+TEST(ShaderExport, SweepWithoutAVulkanDriver) {
+  const char* old = std::getenv("VK_ICD_FILENAMES");
+  const std::string saved = old ? old : "";
+  ::setenv("VK_ICD_FILENAMES", "/nonexistent/sglab_no_icd.json", 1);
+  const fs::path dir = temp_dir("noicd");
+  auto r = run_sglab({"sweep", "--backend", "vulkan", "--method", "tokuyoshi2024", "--out", dir.string()});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("no Vulkan instance"), std::string::npos) << r.output;
+  r = run_sglab({"sweep", "--backend", "auto", "--method", "tokuyoshi2024", "--out", dir.string(), "--json"}, false);
+  if (old)
+    ::setenv("VK_ICD_FILENAMES", saved.c_str(), 1);
+  else
+    ::unsetenv("VK_ICD_FILENAMES");
+  ASSERT_EQ(r.exit_code, 0);
+  const auto doc = nlohmann::json::parse(r.output);
+  EXPECT_FALSE(doc.contains("device"));
+  std::vector<std::string> precisions;
+  for (const auto& rec : doc.at("results")) precisions.push_back(rec.at("precision"));
+  EXPECT_EQ(precisions, (std::vector<std::string>{"float", "double"}));
+  fs::remove_all(dir);
+}
