@@ -152,6 +152,23 @@ TEST(ShaderExport, EveryMethodCompilesToSpirv) {
     }
 }
 
+// The SPIR-V glslang produced passes SPIRV-Tools' validator (an independent
+// implementation) for Vulkan 1.0.
+TEST(ShaderExport, SpirvPassesSpirvVal) {
+  const fs::path dir = temp_dir("spirv");
+  for (const std::string id : {"tokuyoshi2024", "tokuyoshi2022_listing5", "meder2018"})
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
+      const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, id));
+      const auto spirv = vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
+      const fs::path file = dir / fmt::format("{}_{}.spv", id, sh::to_string(lang));
+      std::ofstream(file, std::ios::binary)
+          .write(reinterpret_cast<const char*>(spirv.data()), static_cast<std::streamsize>(spirv.size() * 4));
+      const auto r = run_program({"spirv-val", "--target-env", "vulkan1.0", file.string()});
+      EXPECT_EQ(r.exit_code, 0) << id << " " << sh::to_string(lang) << ": " << r.output;
+    }
+  fs::remove_all(dir);
+}
+
 // The compiler must reject broken code (so the test above can fail).
 TEST(ShaderExport, BrokenSourceDoesNotCompile) {
   std::string text = export_text(sh::Language::glsl, "tokuyoshi2024");
