@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <string>
 
 #include <fmt/format.h>
@@ -21,6 +22,20 @@ namespace sglab::app {
 namespace {
 
 namespace shader = validate::shader;
+
+// Objective, fit command, date and source of a constant set, on one line.
+std::string provenance_line(const fit::ordered_json& j) {
+  const auto& p = j["provenance"];
+  std::string prov;
+  const auto add = [&](const std::string& s) { prov += (prov.empty() ? "" : "; ") + s; };
+  if (p.contains("objective") && p["objective"].is_string()) add("objective: " + p["objective"].get<std::string>());
+  if (p.contains("command") && p["command"].is_string()) add("fitted by `" + p["command"].get<std::string>() + "`");
+  if (p.contains("date") && p["date"].is_string()) add(p["date"].get<std::string>());
+  if (p.contains("source") && p["source"].is_string()) add("source: " + p["source"].get<std::string>());
+  // Older records cite internal working documents as "(seed NNN)"; exported
+  // sources cite papers only.
+  return std::regex_replace(prov, std::regex(R"( ?\(?(quoted in )?seed \d{3}\)?)"), "");
+}
 
 // A constant-set JSON (data/constants/*.json, or one `sglab fit … --out DIR` wrote).
 shader::ConstantSet read_constant_set(const std::string& path) {
@@ -44,18 +59,14 @@ shader::ConstantSet read_constant_set(const std::string& path) {
       v.push_back(value.get<double>());
     s.members.emplace_back(name, std::move(v));
   }
+  s.provenance = fmt::format("from {}; {}", path, provenance_line(j));
   const auto& p = j["provenance"];
-  std::string prov = fmt::format("from {}", path);
-  if (p.contains("objective") && p["objective"].is_string()) prov += "; objective: " + p["objective"].get<std::string>();
-  if (p.contains("command") && p["command"].is_string()) prov += "; fitted by `" + p["command"].get<std::string>() + "`";
-  if (p.contains("date") && p["date"].is_string()) prov += "; " + p["date"].get<std::string>();
-  if (p.contains("source") && p["source"].is_string()) prov += "; source: " + p["source"].get<std::string>();
-  s.provenance = prov;
   if (p.contains("achieved") && p["achieved"].is_object() && p["achieved"].contains("irradiance_max_peak_rel") &&
       p["achieved"]["irradiance_max_peak_rel"].is_number())
     s.achieved_irradiance_error = p["achieved"]["irradiance_max_peak_rel"].get<double>();
   return s;
 }
+
 
 // The error measured on Vulkan for `method` in the committed results
 // (data/results/vulkan_sweep.json, written by `sglab sweep --backend vulkan`).
@@ -104,6 +115,16 @@ void add_export_command(CLI::App& app) {
       throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", args->method,
                                    fmt::join(known, ", ")));
     shader::ExportRequest req = shader::standard_request(*lang, args->method);
+    // Provenance of the compiled-in sets from the JSON they were generated
+    // from, when the source tree is at hand.
+    try {
+      for (const auto& set : fit::load_constant_sets(fit::default_constants_dir()))
+        req.provenance[set["cpp_name"].get<std::string>()] =
+            fmt::format("data/constants/{}-{}.json: {}", set["target"].get<std::string>(),
+                        set["variant"].get<std::string>(), provenance_line(set));
+    } catch (const std::runtime_error&) {
+      // No source tree: the header names the compiled-in set only.
+    }
     if (!args->constants.empty()) {
       req.command += " --constants " + args->constants;
       req.overrides.push_back(read_constant_set(args->constants));

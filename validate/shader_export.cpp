@@ -750,13 +750,22 @@ ExportResult export_source(const ExportRequest& request) {
                    "// unit-amplitude SG light of sharpness kappa >= 0.\n");
   h += fmt::format("// Source: {}.\n", m->citation);
   h += "// Constants:\n";
-  for (const auto& [role, set] : slots)
-    h += fmt::format("//   {}: {} ({})\n", role, set.cpp_name,
-                     set.provenance.empty() ? "compiled in from include/sglab/constants.hpp" : set.provenance);
+  for (const auto& [role, set] : slots) {
+    std::string prov = set.provenance;
+    if (prov.empty()) {
+      prov = "compiled in from include/sglab/constants.hpp";
+      if (auto it = request.provenance.find(set.cpp_name); it != request.provenance.end()) prov += "; " + it->second;
+    }
+    h += fmt::format("//   {}: {} ({})\n", role, set.cpp_name, prov);
+  }
   if (!result.tier.id.empty()) h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
   h += "// Error budget (max |E~ - E|/E(1, kappa), kappa in [1e-3, 1e4], 41 cosines):\n";
-  h += fmt::format("//   model (double precision vs reference): {}\n", fmt_error(b.model));
-  h += fmt::format("//   C++ float runtime vs reference:        {}\n", fmt_error(b.float_cpp));
+  if (request.overrides.empty()) {
+    h += fmt::format("//   model (double precision vs reference): {}\n", fmt_error(b.model));
+    h += fmt::format("//   C++ float runtime vs reference:        {}\n", fmt_error(b.float_cpp));
+  } else {
+    h += fmt::format("//   model (as recorded by the constant set's fit): {}\n", fmt_error(b.model));
+  }
   if (erf_set)
     h += fmt::format("//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
                      "(e^x - 1)/x rel {:.2g}\n",

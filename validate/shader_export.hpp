@@ -72,6 +72,9 @@ struct ExportRequest {
   std::vector<ConstantSet> overrides;
   // The exact command that produced the output, for the header comment.
   std::string command;
+  // One-line provenance of compiled-in constant sets by cpp_name (from the
+  // JSON they were generated from), where known.
+  std::map<std::string, std::string> provenance;
   // Budget entries measured elsewhere (model and float errors from a sweep,
   // the Vulkan error from a results file); the elementary error is filled in.
   ErrorBudget budget;
