@@ -79,6 +79,13 @@ Deviation deviation(const sglab::Method& m, const Grid& g, const std::vector<dou
 }
 constexpr double kAllowance = 2e-5;  // of the peak: the tiers' erf/erfc error is ≤ 1.5e-7, expm1 ≤ 2e-7 relative
 
+// Registered methods with an export entry (CoversEveryRegisteredIrradianceMethod
+// names any without one).
+bool exportable(std::string_view id) {
+  const auto all = sh::exportable_methods();
+  return std::find(all.begin(), all.end(), id) != all.end();
+}
+
 std::string export_text(sh::Language lang, const std::string& method) {
   return sh::export_source(sh::standard_request(lang, method)).source;
 }
@@ -182,6 +189,7 @@ TEST(ShaderExport, BrokenSourceDoesNotCompile) {
 TEST(ShaderExport, CppExportMatchesRuntime) {
   const Grid g = standard_grid();
   for (const sglab::Method& m : sglab::irradiance_methods) {
+    if (!exportable(m.id)) continue;
     const fs::path dir = temp_dir(std::string(m.id));
     const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, std::string(m.id)));
     const auto values = run_cpp_export(ex.source, ex.entry_point, g, dir);
@@ -306,6 +314,7 @@ TEST_F(OnVulkan, EveryMethodMatchesTheRuntime) {
   }
   for (const sglab::Method& m : sglab::irradiance_methods)
     for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
+      if (!exportable(m.id)) continue;
       const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, std::string(m.id)));
       const auto spirv = vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
       const auto out = device_->run(spirv, pairs);
