@@ -759,12 +759,14 @@ ExportResult export_source(const ExportRequest& request) {
     h += fmt::format("//   {}: {} ({})\n", role, set.cpp_name, prov);
   }
   if (!result.tier.id.empty()) h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
-  h += "// Error budget (max |E~ - E|/E(1, kappa), kappa in [1e-3, 1e4], 41 cosines):\n";
+  h += request.overrides.empty()
+           ? "// Error budget (max |E~ - E|/E(1, kappa), kappa in [1e-3, 1e4], 41 cosines):\n"
+           : "// Error budget (max |E~ - E|/E(1, kappa)):\n";
   if (request.overrides.empty()) {
     h += fmt::format("//   model (double precision vs reference): {}\n", fmt_error(b.model));
     h += fmt::format("//   C++ float runtime vs reference:        {}\n", fmt_error(b.float_cpp));
   } else {
-    h += fmt::format("//   model (as recorded by the constant set's fit): {}\n", fmt_error(b.model));
+    h += fmt::format("//   model (as recorded by the constant set's fit, over its own kappa range): {}\n", fmt_error(b.model));
   }
   if (erf_set)
     h += fmt::format("//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
