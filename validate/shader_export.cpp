@@ -527,7 +527,15 @@ const std::vector<Helper> kHelpers2022 = {helper_expm1, helper_erf, helper_steep
 const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steepness2024, helper_poles2024,
                                           helper_lerp2024};
 
-// THE table: one entry per exportable method.
+// THE table: one entry per exportable method. To add a method (e.g. one of
+// sglab's own models): append {id, citation, its constant slots as
+// Slots{{"role", SGLAB_SET(name_in_constants_hpp)}}, how it uses erf, the
+// helpers it calls, and the body in the shading-language subset used here
+// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?:, {VEC3}; constants as
+// {P}<role>_<member>)}. A constant set of a parameter type not yet listed
+// above also needs a named() overload. tests/test_shader_export.cpp then
+// compiles it to SPIR-V (GLSL and HLSL), compiles the C++ form and runs the
+// shader forms on Vulkan against the runtime.
 const std::vector<ShaderMethod>& shader_methods() {
   static const std::vector<ShaderMethod> table = {
       {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
