@@ -79,7 +79,7 @@ void add_run_command(CLI::App& app) {
     const std::vector<Step> steps = {
         {"fit", fmt::format("fit all --out {0}/constants --header {0}/constants/constants.hpp", root.string()),
          "constants"},
-        {"sweep", fmt::format("sweep --out {}/sweep", root.string()), "sweep"},
+        {"sweep", fmt::format("sweep --backend auto --out {}/sweep", root.string()), "sweep"},
         {"erf", fmt::format("erf{} --out {}/erf", *quick ? "" : " --exhaustive", root.string()), "erf"},
         {"stability", fmt::format("stability --out {}/stability", root.string()), "stability"},
         {"claims", fmt::format("claims --out {}/claims", root.string()), "claims"},

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -22,6 +23,7 @@
 #include "io.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
+#include "vulkan_runner.hpp"
 
 namespace sglab::app {
 
@@ -95,12 +97,42 @@ std::vector<validate::SweepMethod> select_methods(const std::vector<std::string>
   return out;
 }
 
+// max over the grid of |x_device − x_float|/x(1, κ) for every device entry
+// that has a C++ float entry of the same method and quantity.
+validate::Table device_vs_float_table(const validate::SweepResult& r) {
+  validate::Table t("Vulkan device against the C++ runtime in float: max |x_device - x_float|/x(1, κ) over the grid",
+                    {{"method"}, {"quantity"}, {"precision"}, {"max_diff_peak_rel", 3}, {"worst_kappa", 4},
+                     {"worst_cosine", 4}});
+  for (const auto& e : r.entries) {
+    if (e.precision != validate::FloatFormat::vulkan && e.precision != validate::FloatFormat::vulkan_hlsl) continue;
+    const auto* f = r.find(e.method, e.quantity, validate::FloatFormat::binary32);
+    if (!f || f->values.size() != e.values.size()) continue;
+    double worst = 0, wk = NAN, wc = NAN;
+    for (std::size_t k = 0; k < r.kappas.size(); ++k)
+      for (std::size_t j = 0; j < r.cosines.size(); ++j) {
+        const std::size_t i = r.index(k, j);
+        const double d = std::fabs(e.values[i] - f->values[i]) / r.peak_value(e.quantity, k);
+        if (!(d <= worst)) {
+          worst = std::isnan(d) ? INFINITY : d;
+          wk = r.kappas[k];
+          wc = r.cosines[j];
+        }
+      }
+    t.add_row({validate::Table::text(e.method), validate::Table::text(to_string(e.quantity)),
+               validate::Table::text(to_string(e.precision)), validate::Table::real(worst), validate::Table::real(wk),
+               validate::Table::real(wc)});
+  }
+  return t;
+}
+
 struct SweepArgs {
   std::string kappa;
   std::string cosines;
   std::string out = "out/sweep";
   bool json = false;
   std::vector<std::string> methods;
+  std::vector<std::string> backends;  // cpu, vulkan
+  std::string lang = "both";          // shader language(s) of the vulkan backend
 };
 
 }  // namespace
@@ -116,6 +148,13 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "output directory")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the summary as JSON on stdout");
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");
+  cmd->add_option("--backend", args->backends,
+                  "cpu (the C++ runtime in float and double, default) and/or vulkan (each irradiance method's "
+                  "`sglab export` run as a compute shader on the first Vulkan device); auto = cpu, plus vulkan when "
+                  "a device can be created; comma-separated or repeated")
+      ->delimiter(',');
+  cmd->add_option("--lang", args->lang, "shader language(s) of the vulkan backend: glsl, hlsl or both")
+      ->capture_default_str();
   cmd->callback([args] {
     validate::SweepGrid grid;  // SPEC §4 standard grid
     if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
@@ -126,8 +165,54 @@ void add_sweep_command(CLI::App& app) {
       throw InputError(e.what());
     }
     const auto methods = select_methods(args->methods);
+    bool cpu = args->backends.empty(), vulkan = false, vulkan_if_available = false;
+    for (const std::string& b : args->backends) {
+      if (b == "cpu")
+        cpu = true;
+      else if (b == "vulkan")
+        vulkan = true;
+      else if (b == "auto")
+        cpu = vulkan_if_available = true;
+      else
+        throw InputError(fmt::format("--backend: expected cpu, vulkan or auto, got '{}'", b));
+    }
+    std::vector<validate::shader::Language> langs;
+    if (args->lang == "glsl" || args->lang == "both") langs.push_back(validate::shader::Language::glsl);
+    if (args->lang == "hlsl" || args->lang == "both") langs.push_back(validate::shader::Language::hlsl);
+    if (langs.empty()) throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", args->lang));
 
-    const validate::SweepResult result = validate::sweep(grid, methods);
+    validate::SweepOptions options;
+    if (!cpu) options.precisions.clear();
+    options.progress = io::stderr_is_terminal();
+    validate::SweepResult result = validate::sweep(grid, methods, options);
+    std::string device_name;
+    std::unique_ptr<validate::vulkan::Device> device;
+    if (vulkan) {
+      device = std::make_unique<validate::vulkan::Device>();  // throws vulkan::Unavailable with the reason
+    } else if (vulkan_if_available) {
+      try {
+        device = std::make_unique<validate::vulkan::Device>();
+        vulkan = true;
+      } catch (const validate::vulkan::Unavailable& e) {
+        fmt::print(stderr, "sglab sweep: --backend auto: no Vulkan rows: {}\n", e.what());
+      }
+    }
+    if (vulkan) {
+      device_name = device->name();
+      std::vector<std::string> skipped;
+      for (auto lang : langs) skipped = validate::vulkan::add_device_entries(result, methods, lang, *device);
+      if (!skipped.empty() && !args->json)
+        fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
+      // Method-major order, as the CPU entries.
+      std::stable_sort(result.entries.begin(), result.entries.end(), [&](const auto& a, const auto& b) {
+        auto rank = [&](const validate::SweepEntry& e) {
+          for (std::size_t i = 0; i < methods.size(); ++i)
+            if (methods[i].method.id == e.method && methods[i].quantity == e.quantity) return i;
+          return methods.size();
+        };
+        return rank(a) < rank(b);
+      });
+    }
     const validate::Table summary = validate::summary_table(result);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
@@ -136,20 +221,32 @@ void add_sweep_command(CLI::App& app) {
                           {TableFormat::csv, TableFormat::markdown});
     validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
 
+    // The device against the C++ runtime in float, point by point.
+    std::optional<validate::Table> device_vs_float;
+    if (vulkan && cpu) device_vs_float = device_vs_float_table(result);
+    if (device_vs_float)
+      validate::write_table(*device_vs_float, dir, "device_vs_float", {TableFormat::csv, TableFormat::markdown});
+
     nlohmann::ordered_json doc = nlohmann::ordered_json::object();
     doc["grid"] = {{"kappa_lo", grid.kappa_lo},
                    {"kappa_hi", grid.kappa_hi},
                    {"kappa_count", grid.kappa_count},
                    {"cosine_count", grid.cosine_count}};
+    if (vulkan) {
+      doc["backend"] = cpu ? "cpu,vulkan" : "vulkan";
+      doc["device"] = device_name;
+    }
     doc["results"] = validate::to_json_records(summary);
+    if (device_vs_float) doc["device_vs_float"] = validate::to_json_records(*device_vs_float);
     const std::string json = doc.dump(2) + "\n";
     io::write_file_atomic(dir / "summary.json", json);
 
     if (args->json)
       fmt::print("{}", json);
     else
-      fmt::print("{}\nWritten to {}: summary.{{csv,md,json}}, per_kappa.{{csv,md}}, points.csv\n",
-                 validate::to_markdown(summary), dir.string());
+      fmt::print("{}\n{}Written to {}: summary.{{csv,md,json}}, per_kappa.{{csv,md}}, points.csv{}\n",
+                 validate::to_markdown(summary), device_vs_float ? validate::to_markdown(*device_vs_float) + "\n" : "",
+                 dir.string(), device_vs_float ? ", device_vs_float.{csv,md}" : "");
   });
 }
 

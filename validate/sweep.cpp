@@ -24,7 +24,19 @@ std::string_view to_string(Quantity q) {
   return "?";
 }
 
-std::string_view to_string(FloatFormat f) { return f == FloatFormat::binary32 ? "float" : "double"; }
+std::string_view to_string(FloatFormat f) {
+  switch (f) {
+    case FloatFormat::binary32:
+      return "float";
+    case FloatFormat::binary64:
+      return "double";
+    case FloatFormat::vulkan:
+      return "vulkan";
+    case FloatFormat::vulkan_hlsl:
+      return "vulkan_hlsl";
+  }
+  return "?";
+}
 
 void SweepGrid::validate() const {
   constexpr double flt_max = std::numeric_limits<float>::max();
@@ -147,6 +159,39 @@ double evaluate(const Method& m, FloatFormat f, double cosine, double kappa) {
 
 }  // namespace
 
+SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, FloatFormat f, std::span<const double> values,
+                       bool keep_points) {
+  const std::size_t nk = r.kappas.size(), nc = r.cosines.size();
+  if (values.size() != nk * nc)
+    throw std::invalid_argument(fmt::format("sweep_entry: {} values for a {} x {} grid", values.size(), nk, nc));
+  SweepEntry e;
+  e.method = std::string(sm.method.id);
+  e.quantity = sm.quantity;
+  e.precision = f;
+  if (keep_points) {
+    e.values.resize(nk * nc);
+    e.peak_rel.resize(nk * nc);
+  }
+  MetricAccumulator total;
+  e.per_kappa.reserve(nk);
+  for (std::size_t k = 0; k < nk; ++k) {
+    MetricAccumulator row;
+    const double peak = r.peak_value(sm.quantity, k);
+    for (std::size_t j = 0; j < nc; ++j) {
+      const double value = values[r.index(k, j)];
+      const PointErrors p = row.add(r.kappas[k], r.cosines[j], value, r.reference_value(sm.quantity, k, j), peak);
+      if (keep_points) {
+        e.values[r.index(k, j)] = value;
+        e.peak_rel[r.index(k, j)] = p.peak_rel;
+      }
+    }
+    total.merge(row);
+    e.per_kappa.push_back(row.summary());
+  }
+  e.summary = total.summary();
+  return e;
+}
+
 SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, const SweepOptions& options) {
   grid.validate();
   SweepResult r;
@@ -167,33 +212,11 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, c
 
   for (const SweepMethod& sm : methods) {
     for (FloatFormat f : options.precisions) {
-      SweepEntry e;
-      e.method = std::string(sm.method.id);
-      e.quantity = sm.quantity;
-      e.precision = f;
-      if (options.keep_points) {
-        e.values.resize(nk * nc);
-        e.peak_rel.resize(nk * nc);
-      }
-      MetricAccumulator total;
-      e.per_kappa.reserve(nk);
-      for (std::size_t k = 0; k < nk; ++k) {
-        MetricAccumulator row;
-        const double peak = r.peak_value(sm.quantity, k);
-        for (std::size_t j = 0; j < nc; ++j) {
-          const double value = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);
-          const PointErrors p =
-              row.add(r.kappas[k], r.cosines[j], value, r.reference_value(sm.quantity, k, j), peak);
-          if (options.keep_points) {
-            e.values[r.index(k, j)] = value;
-            e.peak_rel[r.index(k, j)] = p.peak_rel;
-          }
-        }
-        total.merge(row);
-        e.per_kappa.push_back(row.summary());
-      }
-      e.summary = total.summary();
-      r.entries.push_back(std::move(e));
+      if (f == FloatFormat::vulkan || f == FloatFormat::vulkan_hlsl) continue;
+      std::vector<double> values(nk * nc);
+      for (std::size_t k = 0; k < nk; ++k)
+        for (std::size_t j = 0; j < nc; ++j) values[r.index(k, j)] = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);
+      r.entries.push_back(sweep_entry(r, sm, f, values, options.keep_points));
     }
   }
   return r;

@@ -28,9 +28,11 @@ namespace sglab::validate {
 enum class Quantity { irradiance, hemispherical, normalized };
 std::string_view to_string(Quantity q);
 
-// The arithmetic a method is evaluated in.
-enum class FloatFormat { binary32, binary64 };
-std::string_view to_string(FloatFormat f);  // "float", "double"
+// The arithmetic a method is evaluated in. `vulkan` / `vulkan_hlsl`: the
+// method's GLSL / HLSL export (`sglab export`) run on a Vulkan device (float),
+// values supplied through sweep_entry.
+enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl };
+std::string_view to_string(FloatFormat f);  // "float", "double", "vulkan", "vulkan_hlsl"
 
 // κ: kappa_count values log-spaced over [kappa_lo, kappa_hi] inclusive;
 // c: cosine_count values evenly spaced over [−1, 1] inclusive. The default is
@@ -104,7 +106,13 @@ struct SweepResult {
 // The reference value of quantity q in a reference point.
 double reference_value(const ReferencePoint& point, Quantity q);
 
-// Runs the sweep. Throws std::invalid_argument on an invalid grid.
+// The entry of method `m` in precision `f` from its values at every grid point
+// (index k·cosine_count + j), measured against r's reference.
+SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& m, FloatFormat f, std::span<const double> values,
+                       bool keep_points = true);
+
+// Runs the sweep (the `vulkan` precision is skipped here: its values come from
+// a device). Throws std::invalid_argument on an invalid grid.
 SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, const SweepOptions& options = {});
 
 // The tables `sglab sweep` writes.

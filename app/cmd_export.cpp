@@ -1,0 +1,148 @@
+// `sglab export`: one irradiance method as self-contained GLSL, HLSL or C++
+// source with its constants baked in (compiled-in, or from a constants JSON),
+// its own erf/erfc/expm1 approximations, and a header comment carrying the
+// source paper, the constants' provenance, the error budget and the command.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <string>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "constants_io.hpp"
+#include "io.hpp"
+#include "shader_export.hpp"
+
+namespace sglab::app {
+
+namespace {
+
+namespace shader = validate::shader;
+
+// Objective, fit command, date and source of a constant set, on one line.
+std::string provenance_line(const fit::ordered_json& j) {
+  const auto& p = j["provenance"];
+  std::string prov;
+  const auto add = [&](const std::string& s) { prov += (prov.empty() ? "" : "; ") + s; };
+  if (p.contains("objective") && p["objective"].is_string()) add("objective: " + p["objective"].get<std::string>());
+  if (p.contains("command") && p["command"].is_string()) add("fitted by `" + p["command"].get<std::string>() + "`");
+  if (p.contains("date") && p["date"].is_string()) add(p["date"].get<std::string>());
+  if (p.contains("source") && p["source"].is_string()) add("source: " + p["source"].get<std::string>());
+  // Older records cite internal working documents as "(seed NNN)"; exported
+  // sources cite papers only.
+  return std::regex_replace(prov, std::regex(R"( ?\(?(quoted in )?seed \d{3}\)?)"), "");
+}
+
+// A constant-set JSON (data/constants/*.json, or one `sglab fit … --out DIR` wrote).
+shader::ConstantSet read_constant_set(const std::string& path) {
+  fit::ordered_json j;
+  try {
+    j = fit::ordered_json::parse(io::read_file(path));
+    fit::check_constant_set(j, path);
+  } catch (const fit::ordered_json::parse_error& e) {
+    throw InputError(fmt::format("--constants: {}: malformed JSON: {}", path, e.what()));
+  } catch (const std::runtime_error& e) {
+    throw InputError(fmt::format("--constants: {}", e.what()));
+  }
+  shader::ConstantSet s;
+  s.cpp_type = j["cpp_type"].get<std::string>();
+  s.cpp_name = j["cpp_name"].get<std::string>();
+  for (const auto& [name, value] : j["coefficients"].items()) {
+    std::vector<double> v;
+    if (value.is_array())
+      for (const auto& x : value) v.push_back(x.get<double>());
+    else
+      v.push_back(value.get<double>());
+    s.members.emplace_back(name, std::move(v));
+  }
+  s.provenance = fmt::format("from {}; {}", path, provenance_line(j));
+  const auto& p = j["provenance"];
+  if (p.contains("achieved") && p["achieved"].is_object() && p["achieved"].contains("irradiance_max_peak_rel") &&
+      p["achieved"]["irradiance_max_peak_rel"].is_number())
+    s.achieved_irradiance_error = p["achieved"]["irradiance_max_peak_rel"].get<double>();
+  return s;
+}
+
+
+// The error measured on Vulkan for `method` in the committed results
+// (data/results/vulkan_sweep.json, written by `sglab sweep --backend vulkan`).
+void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang) {
+  const auto file = std::filesystem::path(SGLAB_SOURCE_DIR) / "data" / "results" / "vulkan_sweep.json";
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return;
+  try {
+    const auto doc = nlohmann::json::parse(io::read_file(file));
+    const std::string precision = lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan";
+    for (const auto& rec : doc.at("results"))
+      if (rec.at("method") == method && rec.at("quantity") == "irradiance" && rec.at("precision") == precision &&
+          rec.at("max_peak_rel").is_number()) {
+        b.vulkan = rec["max_peak_rel"].get<double>();
+        b.vulkan_device = fmt::format("{}, {} export, data/results/vulkan_sweep.json",
+                                      doc.value("device", std::string("?")),
+                                      lang == shader::Language::hlsl ? "HLSL" : "GLSL");
+      }
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{}: {}", file.string(), e.what()));
+  }
+}
+
+struct ExportArgs {
+  std::string lang;
+  std::string method;
+  std::string constants;
+};
+
+}  // namespace
+
+void add_export_command(CLI::App& app) {
+  auto args = std::make_shared<ExportArgs>();
+  auto* cmd = app.add_subcommand(
+      "export", "One irradiance method as self-contained GLSL 4.50, HLSL (SM6) or C++ source, constants baked in");
+  cmd->add_option("--lang", args->lang, "glsl, hlsl or cpp")->required();
+  cmd->add_option("--method", args->method, "irradiance method id (see `sglab methods`)")->required();
+  cmd->add_option("--constants", args->constants,
+                  "constant-set JSON replacing the compiled-in set of the same type (e.g. one `sglab fit ... --out DIR` "
+                  "wrote)");
+  cmd->callback([args] {
+    const auto lang = shader::parse_language(args->lang);
+    if (!lang) throw InputError(fmt::format("--lang: expected glsl, hlsl or cpp, got '{}'", args->lang));
+    const auto known = shader::exportable_methods();
+    if (std::find(known.begin(), known.end(), args->method) == known.end())
+      throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", args->method,
+                                   fmt::join(known, ", ")));
+    shader::ExportRequest req = shader::standard_request(*lang, args->method);
+    // Provenance of the compiled-in sets from the JSON they were generated
+    // from, when the source tree is at hand.
+    try {
+      for (const auto& set : fit::load_constant_sets(fit::default_constants_dir()))
+        req.provenance[set["cpp_name"].get<std::string>()] =
+            fmt::format("data/constants/{}-{}.json: {}", set["target"].get<std::string>(),
+                        set["variant"].get<std::string>(), provenance_line(set));
+    } catch (const std::runtime_error&) {
+      // No source tree: the header names the compiled-in set only.
+    }
+    if (!args->constants.empty()) {
+      req.command += " --constants " + args->constants;
+      req.overrides.push_back(read_constant_set(args->constants));
+      // The registry's numbers belong to the compiled-in constants: with
+      // other constants, only the fit's own record (if any) is known.
+      req.budget = {};
+      req.budget.model = req.overrides.back().achieved_irradiance_error;
+    } else {
+      add_vulkan_error(req.budget, args->method, *lang);
+    }
+    shader::ExportResult result;
+    try {
+      result = shader::export_source(req);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+    fmt::print("{}", result.source);
+  });
+}
+
+}  // namespace sglab::app

@@ -1,0 +1,376 @@
+// `sglab export` and the Vulkan backend of the sweep: every registered
+// irradiance method exports to GLSL and HLSL that glslang compiles; the C++
+// export, compiled by the system compiler, agrees with the runtime; the shader
+// exports run on a Vulkan device (lavapipe on CI) agree with the runtime; the
+// elementary tiers are chosen by the model's accuracy; bad input exits 2.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sglab/closed_forms.hpp>
+#include <sglab/registry.hpp>
+
+#include "shader_export.hpp"
+#include "sweep.hpp"
+#include "test_support.hpp"
+#include "vulkan_runner.hpp"
+
+namespace fs = std::filesystem;
+namespace sh = sglab::validate::shader;
+namespace vk = sglab::validate::vulkan;
+using sglab::test::run_program;
+using sglab::test::run_sglab;
+
+namespace {
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / fmt::format("sglab_test_shader_{}_{}", ::getpid(), name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// The standard sweep grid as float (cosine, κ) points, κ-major.
+struct Grid {
+  std::vector<float> cosine, kappa;
+};
+Grid standard_grid() {
+  Grid g;
+  for (double k : sglab::test::standard_kappas())
+    for (double c : sglab::test::standard_cosines()) {
+      g.kappa.push_back(static_cast<float>(k));
+      g.cosine.push_back(static_cast<float>(c));
+    }
+  return g;
+}
+
+// max over the grid of |values − runtime double| / E(1, κ), and the same for
+// the runtime's own float path: the exported code must be no worse than twice
+// the runtime's float rounding plus a small allowance for its own erf/expm1.
+struct Deviation {
+  double exported = 0, runtime_float = 0;
+  std::size_t worst = 0;
+};
+Deviation deviation(const sglab::Method& m, const Grid& g, const std::vector<double>& values) {
+  Deviation d;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double k = g.kappa[i], c = g.cosine[i];
+    const double peak = sglab::irradiance_upper(k);
+    const double ref = m.f64(c, k);
+    const double e = std::fabs(values[i] - ref) / peak;
+    if (!(e <= d.exported)) {
+      d.exported = std::isnan(e) ? INFINITY : e;
+      d.worst = i;
+    }
+    d.runtime_float = std::max(d.runtime_float, std::fabs(double(m.f32(float(c), float(k))) - ref) / peak);
+  }
+  return d;
+}
+constexpr double kAllowance = 2e-5;  // of the peak: the tiers' erf/erfc error is ≤ 1.5e-7, expm1 ≤ 2e-7 relative
+
+// Registered methods with an export entry (CoversEveryRegisteredIrradianceMethod
+// names any without one).
+bool exportable(std::string_view id) {
+  const auto all = sh::exportable_methods();
+  return std::find(all.begin(), all.end(), id) != all.end();
+}
+
+std::string export_text(sh::Language lang, const std::string& method) {
+  return sh::export_source(sh::standard_request(lang, method)).source;
+}
+
+// Compiles the C++ export of `method` with a driver that evaluates it at
+// every grid point, with the system compiler (argument vector, no shell).
+std::vector<double> run_cpp_export(const std::string& source, const std::string& entry, const Grid& g,
+                                   const fs::path& dir, bool vector_form = false) {
+  {
+    std::ofstream(dir / "export.hpp") << source;
+    std::ofstream in(dir / "points.txt");
+    for (std::size_t i = 0; i < g.kappa.size(); ++i) in << fmt::format("{:a} {:a}\n", g.cosine[i], g.kappa[i]);
+    std::ofstream main(dir / "main.cpp");
+    main << "#include <cstdio>\n#include <cstdlib>\n#include <cmath>\n#include \"export.hpp\"\n"
+         << "int main(int, char** argv) {\n"
+         << "  std::FILE* f = std::fopen(argv[1], \"r\");\n"
+         << "  char a[64], b[64];\n"
+         << "  while (std::fscanf(f, \"%63s %63s\", a, b) == 2) {\n"
+         << "    float c = std::strtof(a, nullptr), k = std::strtof(b, nullptr);\n";
+    if (vector_form)
+      main << "    float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));\n"
+           << "    float r = " << entry << "(sglab_export_" << entry.substr(17) << "::float3(s, 0.0f, c), k, "
+           << "sglab_export_" << entry.substr(17) << "::float3(0.0f, 0.0f, 1.0f));\n";
+    else
+      main << "    float r = " << entry << "(c, k);\n";
+    main << "    std::printf(\"%a\\n\", (double)r);\n  }\n  return 0;\n}\n";
+  }
+  const auto build = run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
+                                  (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
+  EXPECT_EQ(build.exit_code, 0) << build.output;
+  if (build.exit_code != 0) return {};
+  const auto run = run_program({(dir / "prog").string(), (dir / "points.txt").string()}, false);
+  EXPECT_EQ(run.exit_code, 0);
+  std::vector<double> out;
+  std::istringstream lines(run.output);
+  std::string line;
+  while (std::getline(lines, line)) out.push_back(std::strtod(line.c_str(), nullptr));
+  return out;
+}
+
+}  // namespace
+
+// Every registered irradiance method has an export entry (a new method
+// without one fails here) and nothing else is exported.
+TEST(ShaderExport, CoversEveryRegisteredIrradianceMethod) {
+  std::vector<std::string> registered;
+  for (const sglab::Method& m : sglab::irradiance_methods) registered.emplace_back(m.id);
+  EXPECT_EQ(sh::exportable_methods(), registered);
+}
+
+TEST(ShaderExport, EntryPointName) {
+  EXPECT_EQ(sh::entry_point_name("tokuyoshi2024"), "sglab_irradiance_tokuyoshi2024");
+  EXPECT_EQ(sh::entry_point_name("a-b.c"), "sglab_irradiance_a_b_c");
+}
+
+// glslang compiles every GLSL and HLSL export inside the compute shader of
+// the Vulkan backend (GLSL 4.50, HLSL through the HLSL front end).
+TEST(ShaderExport, EveryMethodCompilesToSpirv) {
+  for (const std::string& id : sh::exportable_methods())
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
+      const std::string text = export_text(lang, id);
+      EXPECT_NE(text.find("float sglab_irradiance_" + id + "(float cosine, float kappa)"), std::string::npos) << id;
+      EXPECT_NE(text.find("Produced by: sglab export --lang " + std::string(sh::to_string(lang)) + " --method " + id),
+                std::string::npos);
+      EXPECT_EQ(text.find("#extension"), std::string::npos);
+      try {
+        vk::check_compiles(lang, text);
+      } catch (const vk::CompileError& e) {
+        ADD_FAILURE() << id << " " << sh::to_string(lang) << ": " << e.what();
+      }
+    }
+}
+
+// The SPIR-V glslang produced passes SPIRV-Tools' validator (an independent
+// implementation) for Vulkan 1.0.
+TEST(ShaderExport, SpirvPassesSpirvVal) {
+  const fs::path dir = temp_dir("spirv");
+  for (const std::string id : {"tokuyoshi2024", "tokuyoshi2022_listing5", "meder2018"})
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
+      const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, id));
+      const auto spirv = vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
+      const fs::path file = dir / fmt::format("{}_{}.spv", id, sh::to_string(lang));
+      std::ofstream(file, std::ios::binary)
+          .write(reinterpret_cast<const char*>(spirv.data()), static_cast<std::streamsize>(spirv.size() * 4));
+      const auto r = run_program({"spirv-val", "--target-env", "vulkan1.0", file.string()});
+      EXPECT_EQ(r.exit_code, 0) << id << " " << sh::to_string(lang) << ": " << r.output;
+    }
+  fs::remove_all(dir);
+}
+
+// The compiler must reject broken code (so the test above can fail).
+TEST(ShaderExport, BrokenSourceDoesNotCompile) {
+  std::string text = export_text(sh::Language::glsl, "tokuyoshi2024");
+  const auto pos = text.find("return 6.28318548f");
+  ASSERT_NE(pos, std::string::npos);
+  text.insert(pos, "undefined_symbol + ");
+  EXPECT_THROW(vk::check_compiles(sh::Language::glsl, text), vk::CompileError);
+}
+
+// The C++ export, compiled by the system compiler, against the runtime.
+TEST(ShaderExport, CppExportMatchesRuntime) {
+  const Grid g = standard_grid();
+  for (const sglab::Method& m : sglab::irradiance_methods) {
+    if (!exportable(m.id)) continue;
+    const fs::path dir = temp_dir(std::string(m.id));
+    const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, std::string(m.id)));
+    const auto values = run_cpp_export(ex.source, ex.entry_point, g, dir);
+    ASSERT_EQ(values.size(), g.kappa.size()) << m.id;
+    const Deviation d = deviation(m, g, values);
+    EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance)
+        << m.id << ": worst at kappa = " << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst]
+        << ": exported " << values[d.worst] << ", runtime double " << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
+    fs::remove_all(dir);
+  }
+}
+
+// The vector form equals the scalar form at c = v·n.
+TEST(ShaderExport, VectorFormMatchesScalarForm) {
+  Grid g;
+  for (float k : {0.01f, 1.0f, 30.0f})
+    for (float c : {-1.0f, -0.3f, 0.0f, 0.5f, 1.0f}) {
+      g.kappa.push_back(k);
+      g.cosine.push_back(c);
+    }
+  const fs::path dir = temp_dir("vector");
+  const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, "tokuyoshi2024"));
+  const auto scalar = run_cpp_export(ex.source, ex.entry_point, g, dir);
+  const auto vector = run_cpp_export(ex.source, ex.entry_point, g, dir, true);
+  ASSERT_EQ(scalar.size(), vector.size());
+  for (std::size_t i = 0; i < scalar.size(); ++i)
+    EXPECT_NEAR(vector[i], scalar[i], 1e-6 * sglab::irradiance_upper(double(g.kappa[i])))
+        << "kappa " << g.kappa[i] << " cosine " << g.cosine[i];
+  fs::remove_all(dir);
+}
+
+// --constants replaces the compiled-in set of the same type: tokuyoshi2024
+// with the refitted steepness is tokuyoshi2024_refit.
+TEST(ShaderExport, ConstantsFileOverridesTheCompiledInSet) {
+  const fs::path file = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "steepness2024-irradiance.json";
+  const auto r = run_sglab({"export", "--lang", "cpp", "--method", "tokuyoshi2024", "--constants", file.string()}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("steepness2024_irradiance"), std::string::npos);
+  EXPECT_NE(r.output.find("--constants " + file.string()), std::string::npos);
+  const Grid g = standard_grid();
+  const fs::path dir = temp_dir("override");
+  const auto values = run_cpp_export(r.output, "sglab_irradiance_tokuyoshi2024", g, dir);
+  const sglab::Method* refit = sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024_refit");
+  const sglab::Method* published = sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024");
+  ASSERT_TRUE(refit && published);
+  const Deviation d = deviation(*refit, g, values);
+  EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance);
+  // …and is measurably not the published method.
+  EXPECT_GT(deviation(*published, g, values).exported, 10 * kAllowance);
+  fs::remove_all(dir);
+}
+
+TEST(ShaderExport, BadInputExitsWithCode2) {
+  auto r = run_sglab({"export", "--lang", "glsl", "--method", "no_such_method"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("no_such_method"), std::string::npos);
+  r = run_sglab({"export", "--lang", "metal", "--method", "tokuyoshi2024"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("metal"), std::string::npos);
+  // A constant set of a type the method does not use.
+  const fs::path hill = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "hill-published.json";
+  r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants", hill.string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("HillParams"), std::string::npos) << r.output;
+  // Malformed JSON.
+  const fs::path dir = temp_dir("bad");
+  std::ofstream(dir / "bad.json") << "{ not json";
+  r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants", (dir / "bad.json").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("bad.json"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// The tiers: the measured erf/erfc errors of each, and the choice by model error.
+TEST(ShaderExport, ElementaryTiersAreChosenByTheModelError) {
+  const auto listing5 = sh::measure_elementary("listing5");
+  const auto as7125 = sh::measure_elementary("as7125");
+  EXPECT_LT(listing5.erf_abs, 2e-7);
+  EXPECT_LT(listing5.erfc_abs, 2e-7);
+  EXPECT_LT(listing5.erf_rel_small, 1e-6);
+  EXPECT_LT(listing5.expm1_over_x_rel, 3e-7);
+  EXPECT_GT(as7125.erf_abs, 1e-5);  // [AS1964] 7.1.25: |error| ≤ 2.5e-5 claimed
+  EXPECT_LT(as7125.erf_abs, 2.5e-5);
+  EXPECT_EQ(sh::choose_tier(std::nullopt).id, "listing5");
+  EXPECT_EQ(sh::choose_tier(1.55e-3).id, "listing5");  // tokuyoshi2024 needs the accurate erfc
+  const double as_worst = std::max(as7125.max_abs(), as7125.erf_rel_small);
+  EXPECT_EQ(sh::choose_tier(100 * as_worst * 1.01).id, "as7125");  // a coarse model takes the cheap tier
+}
+
+// ---------------------------------------------------------------------------
+// On a Vulkan device (lavapipe needs no GPU). Skipped only when no device can
+// be created.
+
+class OnVulkan : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    try {
+      device_ = new vk::Device();
+    } catch (const vk::Unavailable& e) {
+      skip_reason_ = e.what();
+    }
+  }
+  static void TearDownTestSuite() {
+    delete device_;
+    device_ = nullptr;
+  }
+  void SetUp() override {
+    if (!device_) GTEST_SKIP() << "no Vulkan device: " << skip_reason_;
+  }
+  static vk::Device* device_;
+  static std::string skip_reason_;
+};
+vk::Device* OnVulkan::device_ = nullptr;
+std::string OnVulkan::skip_reason_;
+
+TEST_F(OnVulkan, EveryMethodMatchesTheRuntime) {
+  const Grid g = standard_grid();
+  std::vector<float> pairs;
+  for (std::size_t i = 0; i < g.kappa.size(); ++i) {
+    pairs.push_back(g.cosine[i]);
+    pairs.push_back(g.kappa[i]);
+  }
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
+      if (!exportable(m.id)) continue;
+      const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, std::string(m.id)));
+      const auto spirv = vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
+      const auto out = device_->run(spirv, pairs);
+      ASSERT_EQ(out.size(), g.kappa.size());
+      const std::vector<double> values(out.begin(), out.end());
+      const Deviation d = deviation(m, g, values);
+      EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance)
+          << m.id << " " << sh::to_string(lang) << " on " << device_->name() << ": worst at kappa = "
+          << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst] << ": device " << values[d.worst]
+          << ", runtime double " << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
+    }
+}
+
+// `sglab sweep --backend vulkan --json`: the sweep's schema with "vulkan"
+// rows; published tokuyoshi2024 within a few percent of its C++ float error.
+TEST_F(OnVulkan, SweepBackendReportsVulkanRows) {
+  const fs::path dir = temp_dir("sweep");
+  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "tokuyoshi2024", "--method",
+                            "tokuyoshi2022_listing5", "--out", dir.string(), "--json"},
+                           false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  EXPECT_EQ(doc.at("device"), device_->name());
+  double cpu_float = NAN, glsl = NAN, hlsl = NAN;
+  for (const auto& rec : doc.at("results")) {
+    if (rec.at("method") != "tokuyoshi2024") continue;
+    if (rec.at("precision") == "float") cpu_float = rec.at("max_peak_rel");
+    if (rec.at("precision") == "vulkan") glsl = rec.at("max_peak_rel");
+    if (rec.at("precision") == "vulkan_hlsl") hlsl = rec.at("max_peak_rel");
+  }
+  EXPECT_NEAR(cpu_float, 1.55e-3, 0.01e-3);
+  EXPECT_NEAR(glsl, cpu_float, 0.03 * cpu_float);
+  EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
+  fs::remove_all(dir);
+}
+
+// Without a Vulkan driver: `--backend vulkan` fails with the reason,
+// `--backend auto` reports it and still writes the CPU rows.
+TEST(ShaderExport, SweepWithoutAVulkanDriver) {
+  const char* old = std::getenv("VK_ICD_FILENAMES");
+  const std::string saved = old ? old : "";
+  ::setenv("VK_ICD_FILENAMES", "/nonexistent/sglab_no_icd.json", 1);
+  const fs::path dir = temp_dir("noicd");
+  auto r = run_sglab({"sweep", "--backend", "vulkan", "--method", "tokuyoshi2024", "--out", dir.string()});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("no Vulkan instance"), std::string::npos) << r.output;
+  r = run_sglab({"sweep", "--backend", "auto", "--method", "tokuyoshi2024", "--out", dir.string(), "--json"}, false);
+  if (old)
+    ::setenv("VK_ICD_FILENAMES", saved.c_str(), 1);
+  else
+    ::unsetenv("VK_ICD_FILENAMES");
+  ASSERT_EQ(r.exit_code, 0);
+  const auto doc = nlohmann::json::parse(r.output);
+  EXPECT_FALSE(doc.contains("device"));
+  std::vector<std::string> precisions;
+  for (const auto& rec : doc.at("results")) precisions.push_back(rec.at("precision"));
+  EXPECT_EQ(precisions, (std::vector<std::string>{"float", "double"}));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,841 @@
+#include "shader_export.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include <sglab/constants.hpp>
+#include <sglab/registry.hpp>
+
+#include "sweep.hpp"
+
+namespace sglab::validate::shader {
+
+std::string_view to_string(Language lang) {
+  switch (lang) {
+    case Language::glsl: return "glsl";
+    case Language::hlsl: return "hlsl";
+    case Language::cpp: return "cpp";
+  }
+  return "?";
+}
+
+std::optional<Language> parse_language(std::string_view text) {
+  if (text == "glsl") return Language::glsl;
+  if (text == "hlsl") return Language::hlsl;
+  if (text == "cpp") return Language::cpp;
+  return std::nullopt;
+}
+
+std::string entry_point_name(std::string_view method) {
+  std::string out = "sglab_irradiance_";
+  for (char ch : method) out += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+  return out;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// Constant sets of the runtime, by parameter type (params.hpp).
+
+ConstantSet named(std::string cpp_name, const ClampedCosineParams<double>& p) {
+  return {"ClampedCosineParams<double>", std::move(cpp_name), {{"lambda", {p.lambda}}, {"alpha", {p.alpha}}}, {}, {}};
+}
+ConstantSet named(std::string cpp_name, const Steepness2022Params<double>& p) {
+  return {"Steepness2022Params<double>", std::move(cpp_name), {{"A", {p.A}}, {"B", {p.B}}, {"C", {p.C}}}, {}, {}};
+}
+ConstantSet named(std::string cpp_name, const Steepness2024Params<double>& p) {
+  return {"Steepness2024Params<double>",
+          std::move(cpp_name),
+          {{"A", {p.A}}, {"B", {p.B}}, {"C", {p.C}}, {"D", {p.D}}, {"E", {p.E}}},
+          {},
+          {}};
+}
+ConstantSet named(std::string cpp_name, const CosineLobeParams<double>& p) {
+  return {"CosineLobeParams<double>", std::move(cpp_name), {{"lambda", {p.lambda}}, {"amplitude", {p.amplitude}}}, {}, {}};
+}
+ConstantSet named(std::string cpp_name, const DiffuseLobeParams<double>& p) {
+  return {"DiffuseLobeParams<double>", std::move(cpp_name), {{"lambda_d", {p.lambda_d}}}, {}, {}};
+}
+ConstantSet named(std::string cpp_name, const HillParams<double>& p) {
+  return {"HillParams<double>", std::move(cpp_name), {{"c0", {p.c0}}}, {}, {}};
+}
+ConstantSet named(std::string cpp_name, const Meder2018Params<double>& p) {
+  return {"Meder2018Params<double>",
+          std::move(cpp_name),
+          {{"a2", {p.a2}},
+           {"a1", {p.a1}},
+           {"b1", {p.b1}},
+           {"b0", {p.b0}},
+           {"amplitude", {p.amplitude}},
+           {"sharpness", {p.sharpness}},
+           {"offset", {p.offset}}},
+          {},
+          {}};
+}
+template <std::size_t NS, std::size_t NL>
+ConstantSet named(std::string cpp_name, const Listing5Params<double, NS, NL>& p) {
+  return {fmt::format("Listing5Params<double, {}, {}>", NS, NL),
+          std::move(cpp_name),
+          {{"split", {p.split}},
+           {"cutoff", {p.cutoff}},
+           {"small", std::vector<double>(std::begin(p.small), std::end(p.small))},
+           {"large", std::vector<double>(std::begin(p.large), std::end(p.large))}},
+          {},
+          {}};
+}
+template <std::size_t N>
+ConstantSet named(std::string cpp_name, const AbramowitzStegunParams<double, N>& p) {
+  return {fmt::format("AbramowitzStegunParams<double, {}>", N),
+          std::move(cpp_name),
+          {{"p", {p.p}}, {"a", std::vector<double>(std::begin(p.a), std::end(p.a))}},
+          {},
+          {}};
+}
+
+#define SGLAB_SET(name) named(#name, constants::name)
+
+const std::vector<double>& member(const ConstantSet& set, std::string_view name) {
+  for (const auto& [n, v] : set.members)
+    if (n == name) return v;
+  throw std::invalid_argument(fmt::format("constant set {} ({}) has no member '{}'", set.cpp_name, set.cpp_type, name));
+}
+
+// ---------------------------------------------------------------------------
+// Elementary tiers: the erf/erfc an export carries, cheapest first. Each is
+// one of sglab's fitted erf sets (`sglab fit erf`); the structure of the code
+// follows the set's parameter type.
+
+struct Tier {
+  const char* id;
+  const char* description;
+  ConstantSet (*set)();
+};
+const Tier kTiers[] = {
+    {"as7125", "[AS1964] 7.1.25 form with sglab's float refit erf_as7125_float (erfc = t P(t) e^{-x^2})",
+     [] { return SGLAB_SET(erf_as7125_float); }},
+    {"listing5",
+     "[Tokuyoshi2022] Listing 5 form with sglab's float refit erf_listing5_float "
+     "(erf = x P(x^2) for |x| <= split, erfc = 2^{-|x| Q(|x|)} beyond, no 1 - erf cancellation)",
+     [] { return SGLAB_SET(erf_listing5_float); }},
+};
+
+bool is_listing5(const ConstantSet& s) { return s.cpp_type.rfind("Listing5Params", 0) == 0; }
+bool is_as(const ConstantSet& s) { return s.cpp_type.rfind("AbramowitzStegunParams", 0) == 0; }
+
+// The C++ twin of the exported erf/erfc (same structure, same float
+// arithmetic), for measuring the elementary error in-process.
+template <class T> T horner_v(T x, const std::vector<double>& c) {
+  T y = T(static_cast<float>(c.back()));
+  for (std::size_t i = c.size() - 1; i-- > 0;) y = y * x + T(static_cast<float>(c[i]));
+  return y;
+}
+float twin_erfc_pos(const ConstantSet& s, float a) {
+  if (is_listing5(s)) {
+    if (a >= float(member(s, "cutoff")[0])) return 0.0f;
+    if (a > float(member(s, "split")[0])) return std::exp2(-a * horner_v(a, member(s, "large")));
+    return 1.0f - a * horner_v(a * a, member(s, "small"));
+  }
+  const float t = 1.0f / (1.0f + float(member(s, "p")[0]) * a);
+  return t * horner_v(t, member(s, "a")) * std::exp(-a * a);
+}
+float twin_erf(const ConstantSet& s, float x) {
+  const float a = std::fabs(x);
+  float y;
+  if (is_listing5(s)) {
+    y = a >= float(member(s, "cutoff")[0])  ? 1.0f
+        : a > float(member(s, "split")[0]) ? 1.0f - std::exp2(-a * horner_v(a, member(s, "large")))
+                                           : a * horner_v(a * a, member(s, "small"));
+  } else {
+    y = 1.0f - twin_erfc_pos(s, a);
+  }
+  return x < 0.0f ? -y : y;
+}
+float twin_erfc(const ConstantSet& s, float x) {
+  const float r = twin_erfc_pos(s, std::fabs(x));
+  return x < 0.0f ? 2.0f - r : r;
+}
+
+// (e^x − 1)/x: Taylor series Σ x^n/(n+1)! for |x| < 1, n = 0…10 (the first
+// omitted term is below 1/12! < 2.1e−9), (e^x − 1)/x beyond.
+std::vector<double> expm1_over_x_series() {
+  std::vector<double> c;
+  double f = 1;
+  for (int n = 0; n <= 10; ++n) {
+    f *= (n + 1);
+    c.push_back(1.0 / f);
+  }
+  return c;
+}
+float twin_expm1_over_x(float x) {
+  if (std::fabs(x) < 1.0f) return horner_v(x, expm1_over_x_series());
+  return (std::exp(x) - 1.0f) / x;
+}
+
+// Series of the 2024 poles at κ = 0 (closed_forms.hpp), 11 terms for float:
+// upper Σ (−κ)^m/(m + 2)!, lower Σ (−κ)^m (m + 1)/(m + 2)!.
+std::vector<double> pole_series(bool lower) {
+  std::vector<double> c;
+  for (int m = 0; m <= 10; ++m) {
+    double f = 1;
+    for (int i = 2; i <= m + 2; ++i) f *= i;
+    c.push_back((m % 2 ? -1.0 : 1.0) * (lower ? m + 1 : 1) / f);
+  }
+  return c;
+}
+
+ElementaryError measure(const ConstantSet* erf_set) {
+  ElementaryError e;
+  if (erf_set) {
+    const int n = 400000;
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(-6.0 + 12.0 * i / n);
+      e.erf_abs = std::max(e.erf_abs, std::fabs(double(twin_erf(*erf_set, x)) - std::erf(double(x))));
+    }
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(-6.0 + 16.0 * i / n);
+      e.erfc_abs = std::max(e.erfc_abs, std::fabs(double(twin_erfc(*erf_set, x)) - std::erfc(double(x))));
+    }
+    for (int i = 0; i <= n; ++i) {  // log-spaced 1e-6 … 1
+      const float x = float(std::pow(10.0, -6.0 + 6.0 * i / n));
+      const double ref = std::erf(double(x));
+      e.erf_rel_small = std::max(e.erf_rel_small, std::fabs(double(twin_erf(*erf_set, x)) - ref) / ref);
+    }
+  }
+  for (int i = 0; i <= 200000; ++i) {
+    // x = −100 … −1e−7, log-spaced in |x|, and 0.
+    const float x = i == 0 ? 0.0f : -float(std::pow(10.0, -7.0 + 9.0 * i / 200000));
+    const double xd = x;
+    const double ref = xd == 0 ? 1.0 : std::expm1(xd) / xd;
+    e.expm1_over_x_rel = std::max(e.expm1_over_x_rel, std::fabs(double(twin_expm1_over_x(x)) - ref) / ref);
+  }
+  return e;
+}
+
+// ---------------------------------------------------------------------------
+// Source text.
+
+struct Ctx {
+  Language lang;
+  std::string id;      // sanitized method id
+  std::string prefix;  // sglab_<id>_
+};
+
+// Float literal that the three languages read as the float nearest to v.
+std::string lit(double v) {
+  std::string s = fmt::format("{:.9g}", static_cast<float>(v));
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s + "f";
+}
+
+// Horner text c0 + x * (c1 + x * (…)) of literal coefficients, evaluated in
+// the order of math.hpp's horner.
+std::string horner_text(std::string_view x, const std::vector<std::string>& c) {
+  std::string s = c.back();
+  for (std::size_t i = c.size() - 1; i-- > 0;) s = fmt::format("{} + {} * ({})", c[i], x, s);
+  return "(" + s + ")";
+}
+std::vector<std::string> literals(const std::vector<double>& v) {
+  std::vector<std::string> out;
+  for (double x : v) out.push_back(lit(x));
+  return out;
+}
+
+std::string replace_all(std::string s, std::string_view from, std::string_view to) {
+  for (std::size_t pos = 0; (pos = s.find(from, pos)) != std::string::npos; pos += to.size())
+    s.replace(pos, from.size(), to);
+  return s;
+}
+
+// {P}: the method's prefix; {VEC3}: the vector type; {INLINE}: `inline ` in C++.
+std::string subst(std::string_view tmpl, const Ctx& c) {
+  std::string s(tmpl);
+  s = replace_all(s, "{P}", c.prefix);
+  s = replace_all(s, "{VEC3}", c.lang == Language::glsl ? "vec3" : "float3");
+  s = replace_all(s, "{INLINE}", c.lang == Language::cpp ? "inline " : "");
+  s = replace_all(s, "{ENTRY}", "sglab_irradiance_" + c.id);
+  return s;
+}
+
+// The constant names of a slot: {P}<role>_<member>, arrays <member><i>.
+std::vector<std::string> names(const Ctx& c, std::string_view role, const ConstantSet& s, std::string_view m) {
+  const auto& v = member(s, m);
+  std::vector<std::string> out;
+  if (v.size() == 1) {
+    out.push_back(fmt::format("{}{}_{}", c.prefix, role, m));
+  } else {
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(fmt::format("{}{}_{}{}", c.prefix, role, m, i));
+  }
+  return out;
+}
+
+std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSet& s) {
+  const char* kw = c.lang == Language::glsl ? "const float" : c.lang == Language::hlsl ? "static const float"
+                                                                                       : "inline constexpr float";
+  std::string out = fmt::format("// {}: {} {}\n", role, s.cpp_type, s.cpp_name);
+  for (const auto& [m, v] : s.members) {
+    const auto n = names(c, role, s, m);
+    for (std::size_t i = 0; i < v.size(); ++i) out += fmt::format("{} {} = {};\n", kw, n[i], lit(v[i]));
+  }
+  return out;
+}
+
+// Helpers: text generated from the context and the method's constant slots.
+using Slots = std::vector<std::pair<std::string, ConstantSet>>;
+const ConstantSet& slot(const Slots& slots, std::string_view role) {
+  for (const auto& [r, s] : slots)
+    if (r == role) return s;
+  throw std::logic_error(fmt::format("shader export: no constant slot '{}'", role));
+}
+
+std::string helper_expm1(const Ctx& c, const Slots&) {
+  return subst(fmt::format(R"(// (e^x - 1)/x: Taylor series sum x^n/(n+1)!, n <= 10, for |x| < 1 (first omitted
+// term < 2.1e-9), (e^x - 1)/x beyond (no expm1 in shading languages).
+{{INLINE}}float {{P}}expm1_over_x(float x) {{
+  if (abs(x) < 1.0f) return {};
+  return (exp(x) - 1.0f) / x;
+}}
+)",
+                           horner_text("x", literals(expm1_over_x_series()))),
+               c);
+}
+
+std::string helper_erf(const Ctx& c, const Slots& slots) {
+  const ConstantSet& s = slot(slots, "erf");
+  std::string text;
+  if (is_listing5(s)) {
+    const auto split = names(c, "erf", s, "split")[0], cutoff = names(c, "erf", s, "cutoff")[0];
+    const auto P = horner_text("a * a", names(c, "erf", s, "small"));
+    const auto Q = horner_text("a", names(c, "erf", s, "large"));
+    text = fmt::format(R"(// erf/erfc, [Tokuyoshi2022] Listing 5 structure: erf = x P(x^2) for |x| <= split,
+// erfc(|x|) = 2^(-|x| Q(|x|)) for split < |x| < cutoff (no 1 - erf cancellation), 0 beyond.
+{{INLINE}}float {{P}}erfc_pos(float a) {{
+  if (a >= {1}) return 0.0f;
+  if (a > {0}) return exp2(-a * {3});
+  return 1.0f - a * {2};
+}}
+{{INLINE}}float {{P}}erf(float x) {{
+  float a = abs(x);
+  float y = a >= {1} ? 1.0f : (a > {0} ? 1.0f - exp2(-a * {3}) : a * {2});
+  return x < 0.0f ? -y : y;
+}}
+)",
+                       split, cutoff, P, Q);
+  } else if (is_as(s)) {
+    const auto p = names(c, "erf", s, "p")[0];
+    text = fmt::format(R"(// erf/erfc, [AS1964] 7.1.25 structure: erfc(a) = t P(t) e^(-a^2), t = 1/(1 + p a), a >= 0.
+{{INLINE}}float {{P}}erfc_pos(float a) {{
+  float t = 1.0f / (1.0f + {} * a);
+  return t * {} * exp(-a * a);
+}}
+{{INLINE}}float {{P}}erf(float x) {{
+  float y = 1.0f - {{P}}erfc_pos(abs(x));
+  return x < 0.0f ? -y : y;
+}}
+)",
+                       p, horner_text("t", names(c, "erf", s, "a")));
+  } else {
+    throw std::invalid_argument(fmt::format("shader export: no erf code for constant type {}", s.cpp_type));
+  }
+  text += R"({INLINE}float {P}erfc(float x) {
+  float r = {P}erfc_pos(abs(x));
+  return x < 0.0f ? 2.0f - r : r;
+}
+)";
+  return subst(text, c);
+}
+
+std::string helper_product(const Ctx& c, const Slots&) {
+  return subst(R"(// Product of the light SG with an SG (n, lambda) about the normal, c = v.n:
+// (sharpness, log-amplitude, cosine of the product axis with n), without
+// cancellation or overflow (sglab/sg.hpp sg_product_with_normal; [Tokuyoshi2022] Eq. 1-2).
+{INLINE}{VEC3} {P}product_with_normal(float c, float kappa, float lambda) {
+  float m = max(kappa, lambda);
+  if (!(m > 0.0f)) return {VEC3}(0.0f, 0.0f, 1.0f);
+  float ks = kappa / m;
+  float ls = lambda / m;
+  float diff = ks - ls;
+  float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
+  float kmin = min(kappa, lambda);
+  float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
+  float c3 = k3s > 0.0f ? clamp((ks * c + ls) / k3s, -1.0f, 1.0f) : 1.0f;
+  return {VEC3}(m * k3s, log_amp, c3);
+}
+)",
+               c);
+}
+
+std::string helper_steepness2022(const Ctx& c, const Slots&) {
+  return subst(R"(// t(kappa) = kappa sqrt((0.5 kappa + A)/((kappa + B) kappa + C)) ([Tokuyoshi2022] Eq. 6),
+// in powers of 1/kappa for kappa >= 1 so that nothing overflows.
+{INLINE}float {P}steepness(float kappa) {
+  if (kappa < 1.0f)
+    return kappa * sqrt((0.5f * kappa + {P}steepness_A) / ((kappa + {P}steepness_B) * kappa + {P}steepness_C));
+  float r = 1.0f / kappa;
+  return sqrt(kappa) * sqrt((0.5f + {P}steepness_A * r) / (1.0f + ({P}steepness_B + {P}steepness_C * r) * r));
+}
+)",
+               c);
+}
+
+std::string helper_steepness2024(const Ctx& c, const Slots&) {
+  return subst(R"(// t(kappa) = kappa sqrt(0.5((kappa + A) kappa + B)/(((kappa + C) kappa + D) kappa + E))
+// ([Tokuyoshi2024] Listing 7), in powers of 1/kappa for kappa >= 1.
+{INLINE}float {P}steepness(float kappa) {
+  if (kappa < 1.0f)
+    return kappa * sqrt(0.5f * ((kappa + {P}steepness_A) * kappa + {P}steepness_B) /
+                        (((kappa + {P}steepness_C) * kappa + {P}steepness_D) * kappa + {P}steepness_E));
+  float r = 1.0f / kappa;
+  return sqrt(kappa) * sqrt(0.5f * (1.0f + ({P}steepness_A + {P}steepness_B * r) * r) /
+                            (1.0f + ({P}steepness_C + ({P}steepness_D + {P}steepness_E * r) * r) * r));
+}
+)",
+               c);
+}
+
+std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
+  return subst(R"(// H~(c, kappa) = 2 pi lerp(e^-kappa, 1, s~) (1 - e^-kappa)/kappa, s~ = 1/2 + erf(t c)/(2 erf(t))
+// ([Tokuyoshi2022] Eq. 5-6, Listing 3); the ratio is c below t = 2^-13.
+{INLINE}float {P}hemispherical(float cosine, float kappa) {
+  float t = {P}steepness(kappa);
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float ratio = t < 0.0001220703125f ? c : clamp({P}erf(t * c) / {P}erf(t), -1.0f, 1.0f);
+  float s = 0.5f + 0.5f * ratio;
+  float e = exp(-kappa);
+  return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
+}
+)",
+               c);
+}
+
+std::string helper_poles2024(const Ctx& c, const Slots&) {
+  return subst(fmt::format(R"(// Exact poles E(+-1, kappa)/2 pi, series at kappa < 1 (sglab/closed_forms.hpp).
+{{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
+  if (kappa < 1.0f) return {};
+  return (1.0f - {{P}}expm1_over_x(-kappa)) / kappa;
+}}
+{{INLINE}}float {{P}}lower_over_two_pi(float kappa) {{
+  float e = exp(-kappa);
+  if (kappa < 1.0f) return e * {};
+  return e * (({{P}}expm1_over_x(-kappa) - e) / kappa);
+}}
+)",
+                           horner_text("kappa", literals(pole_series(false))),
+                           horner_text("kappa", literals(pole_series(true)))),
+               c);
+}
+
+std::string helper_lerp2024(const Ctx& c, const Slots&) {
+  return subst(R"(// f = 1/2 (c erfc(-t c) + erfc(t)) - e^(-t^2 c^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t),
+// saturated ([Tokuyoshi2024] Listing 7).
+{INLINE}float {P}lerp_factor(float cosine, float t) {
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float tz = t * c;
+  float x = t * t * (c * c - 1.0f);
+  float tail = t > 0.0f ? exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t : 0.0f;
+  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
+}
+)",
+               c);
+}
+
+std::string helper_meder2018(const Ctx& c, const Slots&) {
+  return subst(R"(// [Meder2018] logistic normalized hemispherical integral s = 1/(1 + e^(-t(kappa) c)),
+// t(kappa) = sqrt(kappa) (a2 kappa^2 + a1 kappa)/(kappa^2 + b1 kappa + b0), as published.
+{INLINE}float {P}hemispherical(float c, float kappa) {
+  float t = sqrt(kappa) * ({P}meder_a2 * kappa * kappa + {P}meder_a1 * kappa) /
+            (kappa * kappa + {P}meder_b1 * kappa + {P}meder_b0);
+  float s = 1.0f / (1.0f + exp(-t * c));
+  float e = exp(-kappa);
+  return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
+}
+)",
+               c);
+}
+
+std::string helper_hill(const Ctx& c, const Slots&) {
+  return subst(R"(// Stephen Hill's fitted curve for a normalized SG ([Pettineo2016]).
+{INLINE}float {P}hill_normalized(float cosine, float kappa) {
+  float c0 = {P}hill_c0;
+  float c1 = 1.0f / (4.0f * c0);
+  float eml = exp(-kappa);
+  float em2l = eml * eml;
+  float rl = 1.0f / kappa;
+  float scale = 1.0f + 2.0f * em2l - rl;
+  float bias = (eml - em2l) * rl - em2l;
+  float x = sqrt(1.0f - scale);
+  float x0 = c0 * cosine;
+  float x1 = c1 * x;
+  float n = x0 + x1;
+  float y = abs(x0) <= x1 ? n * n / x : clamp(cosine, 0.0f, 1.0f);
+  return scale * y + bias;
+}
+)",
+               c);
+}
+
+using Helper = std::string (*)(const Ctx&, const Slots&);
+
+// How a method uses erf: not at all, through the tier the exporter picks for
+// the model's accuracy, or through its own constant slot "erf" (the method is
+// defined by that erf, e.g. tokuyoshi2022_listing5).
+enum class ErfUse { none, tiered, own };
+
+// One exportable method: the registry id, the paper it comes from, its
+// compiled-in constant slots (role → set), the helpers it needs in order and
+// the body of the entry point {ENTRY}(float cosine, float kappa).
+// Constants are named {P}<role>_<member> in the body.
+struct ShaderMethod {
+  std::string_view id;
+  std::string_view citation;
+  Slots (*constants)();
+  ErfUse erf;
+  std::vector<Helper> helpers;
+  std::string_view body;
+};
+
+constexpr std::string_view kBodyTokuyoshi2022 = R"(  float lambda = {P}clamped_cosine_lambda;
+  float alpha = {P}clamped_cosine_alpha;
+  {VEC3} prod = {P}product_with_normal(cosine, kappa, lambda);
+  float p = {P}hemispherical(prod.z, prod.x) * exp(lambda + prod.y);
+  float q = {P}hemispherical(cosine, kappa);
+  return max(alpha * p - alpha * q, 0.0f);
+)";
+constexpr std::string_view kBodyTokuyoshi2024 = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
+  float lo = {P}lower_over_two_pi(kappa);
+  float up = {P}upper_over_two_pi(kappa);
+  return 6.28318548f * (lo + f * (up - lo));
+)";
+constexpr std::string_view kBodyWang2009 = R"(  float lambda = {P}cosine_lobe_lambda;
+  float d = sqrt(kappa * kappa + lambda * lambda + 2.0f * kappa * lambda * cosine);
+  float expo = exp(d - kappa - lambda) * {P}cosine_lobe_amplitude;
+  float other = 1.0f - exp(-2.0f * d);
+  return max(6.28318548f * expo * other / d, 0.0f);
+)";
+constexpr std::string_view kBodyVsgl2015 = R"(  float sum = kappa + {P}diffuse_lobe_lambda_d;
+  float lam = sum > 0.0f ? kappa * {P}diffuse_lobe_lambda_d / sum : 0.0f;
+  return 6.28318548f * exp(lam * (cosine - 1.0f)) / sum;
+)";
+
+const std::vector<Helper> kHelpers2022 = {helper_expm1, helper_erf, helper_steepness2022, helper_product,
+                                          helper_hemispherical2022};
+const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steepness2024, helper_poles2024,
+                                          helper_lerp2024};
+
+// THE table: one entry per exportable method. To add a method (e.g. one of
+// sglab's own models): append {id, citation, its constant slots as
+// Slots{{"role", SGLAB_SET(name_in_constants_hpp)}}, how it uses erf, the
+// helpers it calls, and the body in the shading-language subset used here
+// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?:, {VEC3}; constants as
+// {P}<role>_<member>)}. A constant set of a parameter type not yet listed
+// above also needs a named() overload. tests/test_shader_export.cpp then
+// compiles it to SPIR-V (GLSL and HLSL), compiles the C++ form and runs the
+// shader forms on Vulkan against the runtime.
+const std::vector<ShaderMethod>& shader_methods() {
+  static const std::vector<ShaderMethod> table = {
+      {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
+       [] { return Slots{{"cosine_lobe", SGLAB_SET(cosine_lobe_published)}}; }, ErfUse::none, {}, kBodyWang2009},
+      {"punctual", "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa", [] { return Slots{}; },
+       ErfUse::none, {}, "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
+      {"hill", "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
+       [] { return Slots{{"hill", SGLAB_SET(hill_published)}}; }, ErfUse::none, {helper_hill},
+       "  return {P}hill_normalized(cosine, kappa) * (6.28318548f / kappa);\n"},
+      {"hill_exact", "[Pettineo2016] Hill's fitted curve times the exact SG integral",
+       [] { return Slots{{"hill", SGLAB_SET(hill_published)}}; }, ErfUse::none, {helper_expm1, helper_hill},
+       "  return {P}hill_normalized(cosine, kappa) * (12.566371f * {P}expm1_over_x(-2.0f * kappa));\n"},
+      {"vsgl2015", "[Tokuyoshi2015] diffuse SG lambda_d = 2 with the [Iwasaki2012] product integral",
+       [] { return Slots{{"diffuse_lobe", SGLAB_SET(diffuse_lobe_published)}}; }, ErfUse::none, {}, kBodyVsgl2015},
+      {"meder2018", "[Meder2018] logistic hemispherical integral with an SG cosine fit",
+       [] { return Slots{{"meder", SGLAB_SET(meder2018_published)}}; }, ErfUse::none,
+       {helper_expm1, helper_product, helper_meder2018},
+       R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}meder_sharpness);
+  float upper = exp(prod.y) * {P}hemispherical(prod.z, prod.x);
+  return {P}meder_amplitude * upper - {P}meder_offset * {P}hemispherical(cosine, kappa);
+)"},
+      {"tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, Listings 1-4",
+       [] {
+         return Slots{{"clamped_cosine", SGLAB_SET(clamped_cosine_published)},
+                      {"steepness", SGLAB_SET(steepness2022_published)}};
+       },
+       ErfUse::tiered, kHelpers2022, kBodyTokuyoshi2022},
+      {"tokuyoshi2024", "[Tokuyoshi2024] supplementary Listings 6-7",
+       [] { return Slots{{"steepness", SGLAB_SET(steepness2024_published)}}; }, ErfUse::tiered, kHelpers2024,
+       kBodyTokuyoshi2024},
+      {"tokuyoshi2022_listing5", "[Tokuyoshi2022] Eq. 3-6, Listings 1-5 (its own Listing 5 erf)",
+       [] {
+         return Slots{{"clamped_cosine", SGLAB_SET(clamped_cosine_published)},
+                      {"steepness", SGLAB_SET(steepness2022_published)},
+                      {"erf", SGLAB_SET(erf_listing5_published)}};
+       },
+       ErfUse::own, kHelpers2022, kBodyTokuyoshi2022},
+      {"tokuyoshi2022_refit", "[Tokuyoshi2022] Eq. 3-6 with sglab's refitted constants",
+       [] {
+         return Slots{{"clamped_cosine", SGLAB_SET(clamped_cosine_float)},
+                      {"steepness", SGLAB_SET(steepness2022_irradiance)}};
+       },
+       ErfUse::tiered, kHelpers2022, kBodyTokuyoshi2022},
+      {"tokuyoshi2024_refit", "[Tokuyoshi2024] Listings 6-7 with sglab's refitted t(kappa)",
+       [] { return Slots{{"steepness", SGLAB_SET(steepness2024_irradiance)}}; }, ErfUse::tiered, kHelpers2024,
+       kBodyTokuyoshi2024},
+      {"vsgl2015_refit", "[Tokuyoshi2015] with sglab's refitted lambda_d",
+       [] { return Slots{{"diffuse_lobe", SGLAB_SET(lambda_d_diffuse_lobe_irradiance)}}; }, ErfUse::none, {},
+       kBodyVsgl2015},
+      {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
+       [] { return Slots{{"cosine_lobe", SGLAB_SET(lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, {},
+       kBodyWang2009},
+  };
+  return table;
+}
+
+const ShaderMethod* find_shader_method(std::string_view id) {
+  for (const ShaderMethod& m : shader_methods())
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+std::string prelude(const Ctx& c) {
+  if (c.lang != Language::cpp) return {};
+  return subst(R"(#include <cmath>
+
+namespace sglab_export_{ID} {
+using std::abs;
+using std::exp;
+using std::exp2;
+using std::sqrt;
+inline float min(float a, float b) { return b < a ? b : a; }
+inline float max(float a, float b) { return a < b ? b : a; }
+inline float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
+struct float3 {
+  float x, y, z;
+  float3(float a, float b, float c) : x(a), y(b), z(c) {}
+};
+inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+)",
+               c);
+}
+
+std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }
+
+}  // namespace
+
+std::vector<std::string> exportable_methods() {
+  std::vector<std::string> out;
+  for (const ShaderMethod& m : shader_methods()) out.emplace_back(m.id);
+  return out;
+}
+
+std::vector<ConstantSet> method_constants(std::string_view method) {
+  const ShaderMethod* m = find_shader_method(method);
+  if (!m) return {};
+  std::vector<ConstantSet> out;
+  for (auto& [role, set] : m->constants()) out.push_back(set);
+  return out;
+}
+
+ElementaryError measure_elementary(std::string_view tier_id) {
+  static std::mutex mutex;
+  static std::map<std::string, ElementaryError, std::less<>> cache;
+  std::lock_guard lock(mutex);
+  if (auto it = cache.find(tier_id); it != cache.end()) return it->second;
+  ElementaryError e;
+  if (tier_id.empty()) {
+    e = measure(nullptr);
+  } else {
+    const Tier* t = nullptr;
+    for (const Tier& x : kTiers)
+      if (x.id == tier_id) t = &x;
+    if (!t) throw std::invalid_argument(fmt::format("unknown elementary tier '{}'", tier_id));
+    const ConstantSet s = t->set();
+    e = measure(&s);
+  }
+  cache.emplace(std::string(tier_id), e);
+  return e;
+}
+
+ErrorBudget runtime_budget(std::string_view method) {
+  ErrorBudget b;
+  const Method* m = find_method(irradiance_methods, method);
+  if (!m) return b;
+  SweepOptions options;
+  options.keep_points = false;
+  options.progress = false;
+  const std::vector<SweepMethod> one{{Quantity::irradiance, *m}};
+  const SweepResult r = sweep(SweepGrid{}, one, options);
+  if (const SweepEntry* e = r.find(method, Quantity::irradiance, FloatFormat::binary64)) b.model = e->summary.peak_rel.max;
+  if (const SweepEntry* e = r.find(method, Quantity::irradiance, FloatFormat::binary32))
+    b.float_cpp = e->summary.peak_rel.max;
+  return b;
+}
+
+ExportRequest standard_request(Language lang, std::string_view method) {
+  ExportRequest req;
+  req.lang = lang;
+  req.method = std::string(method);
+  req.command = fmt::format("sglab export --lang {} --method {}", to_string(lang), method);
+  req.budget = runtime_budget(method);
+  return req;
+}
+
+ElementaryTier choose_tier(std::optional<double> model_error) {
+  // The erf/erfc error must stay within 1/100 of the model's error, both
+  // absolutely (erfc in the 2024 interpolation factor) and relatively near 0
+  // (the erf(t c)/erf(t) ratio of the 2022 method at small κ).
+  for (const Tier& t : kTiers) {
+    const ElementaryError e = measure_elementary(t.id);
+    const double worst = std::max(e.max_abs(), e.erf_rel_small);
+    if (model_error && worst <= *model_error / 100) return {t.id, t.description};
+  }
+  const Tier& best = kTiers[std::size(kTiers) - 1];
+  return {best.id, best.description};
+}
+
+ExportResult export_source(const ExportRequest& request) {
+  const ShaderMethod* m = find_shader_method(request.method);
+  if (!m) {
+    std::string known;
+    for (const auto& id : exportable_methods()) known += (known.empty() ? "" : ", ") + id;
+    throw std::invalid_argument(
+        fmt::format("unknown or non-exportable method '{}'; exportable: {}", request.method, known));
+  }
+  Slots slots = m->constants();
+  ExportResult result;
+  result.budget = request.budget;
+  if (m->erf == ErfUse::tiered) {
+    result.tier = choose_tier(request.budget.model);
+    for (const Tier& t : kTiers)
+      if (t.id == result.tier.id) slots.emplace_back("erf", t.set());
+  } else if (m->erf == ErfUse::own) {
+    result.tier = {"own", "the method's own erf constants (slot 'erf')"};
+  }
+  // Overrides replace the slot of the same parameter type.
+  for (const ConstantSet& o : request.overrides) {
+    bool used = false;
+    for (auto& [role, set] : slots)
+      if (set.cpp_type == o.cpp_type) {
+        for (const auto& [name, values] : set.members) {
+          const auto& nv = member(o, name);  // throws when a member is missing
+          if (nv.size() != values.size())
+            throw std::invalid_argument(fmt::format("constant set {}: member '{}' has {} values, {} expects {}",
+                                                    o.cpp_name, name, nv.size(), o.cpp_type, values.size()));
+        }
+        set = o;
+        used = true;
+      }
+    if (!used) {
+      std::string types;
+      for (const auto& [role, set] : slots) types += (types.empty() ? "" : ", ") + set.cpp_type;
+      throw std::invalid_argument(fmt::format("constant set {} has type {}; method {} uses {}", o.cpp_name, o.cpp_type,
+                                              request.method, types.empty() ? "no constants" : types));
+    }
+  }
+  const ConstantSet* erf_set = nullptr;
+  for (const auto& [role, set] : slots)
+    if (role == "erf") erf_set = &set;
+  if (erf_set) {
+    result.budget.elementary = measure(erf_set);
+  } else {
+    result.budget.elementary = measure_elementary("");
+  }
+
+  Ctx c{request.lang, entry_point_name(request.method).substr(std::string_view("sglab_irradiance_").size()), {}};
+  c.prefix = "sglab_" + c.id + "_";
+  result.entry_point = "sglab_irradiance_" + c.id;
+
+  // Header comment.
+  const ErrorBudget& b = result.budget;
+  std::string h;
+  h += fmt::format("// {}: sglab export of method `{}` ({})\n", result.entry_point, m->id,
+                   request.lang == Language::glsl   ? "GLSL 4.50"
+                   : request.lang == Language::hlsl ? "HLSL, Shader Model 6"
+                                                    : "C++");
+  h += fmt::format("// Irradiance E(c, kappa) = integral of exp(kappa (w.v - 1)) max(w.n, 0) dw, c = v.n, of a\n"
+                   "// unit-amplitude SG light of sharpness kappa >= 0.\n");
+  h += fmt::format("// Source: {}.\n", m->citation);
+  h += "// Constants:\n";
+  for (const auto& [role, set] : slots) {
+    std::string prov = set.provenance;
+    if (prov.empty()) {
+      prov = "compiled in from include/sglab/constants.hpp";
+      if (auto it = request.provenance.find(set.cpp_name); it != request.provenance.end()) prov += "; " + it->second;
+    }
+    h += fmt::format("//   {}: {} ({})\n", role, set.cpp_name, prov);
+  }
+  if (!result.tier.id.empty()) h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
+  h += request.overrides.empty()
+           ? "// Error budget (max |E~ - E|/E(1, kappa), kappa in [1e-3, 1e4], 41 cosines):\n"
+           : "// Error budget (max |E~ - E|/E(1, kappa)):\n";
+  if (request.overrides.empty()) {
+    h += fmt::format("//   model (double precision vs reference): {}\n", fmt_error(b.model));
+    h += fmt::format("//   C++ float runtime vs reference:        {}\n", fmt_error(b.float_cpp));
+  } else {
+    h += fmt::format("//   model (as recorded by the constant set's fit, over its own kappa range): {}\n", fmt_error(b.model));
+  }
+  if (erf_set)
+    h += fmt::format("//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
+                     "(e^x - 1)/x rel {:.2g}\n",
+                     b.elementary.erf_abs, b.elementary.erf_rel_small, b.elementary.erfc_abs,
+                     b.elementary.expm1_over_x_rel);
+  else
+    h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n", b.elementary.expm1_over_x_rel);
+  if (b.vulkan)
+    h += fmt::format("//   measured on Vulkan ({}): {}\n", b.vulkan_device, fmt_error(b.vulkan));
+  h += fmt::format("// Produced by: {}\n", request.command);
+
+  std::string body;
+  body += h + "\n" + prelude(c);
+  for (const auto& [role, set] : slots) body += constant_decls(c, role, set);
+  body += "\n";
+  for (Helper helper : m->helpers) body += helper(c, slots) + "\n";
+  body += subst("{INLINE}float {ENTRY}(float cosine, float kappa) {\n", c);
+  body += subst(m->body, c);
+  body += "}\n\n";
+  body += subst(R"(// Vector form: light axis v (unit), sharpness kappa, surface normal n (unit).
+{INLINE}float {ENTRY}({VEC3} axis, float sharpness, {VEC3} normal) {
+  return {ENTRY}(clamp(dot(axis, normal), -1.0f, 1.0f), sharpness);
+}
+)",
+                c);
+  if (c.lang == Language::cpp)
+    body += subst("\n}  // namespace sglab_export_{ID}\nusing sglab_export_{ID}::{ENTRY};\n", c);
+  // {ID} only occurs in the C++ namespace lines.
+  result.source = replace_all(body, "{ID}", c.id);
+  return result;
+}
+
+std::string compute_shader(Language lang, std::string_view exported, std::string_view entry) {
+  if (lang == Language::glsl)
+    return fmt::format(R"(#version 450
+layout(local_size_x = 64) in;
+layout(std430, set = 0, binding = 0) readonly buffer Inputs {{ vec2 cosine_kappa[]; }};
+layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[]; }};
+
+{}
+void main() {{
+  uint i = gl_GlobalInvocationID.x;
+  if (i < uint(cosine_kappa.length())) result[i] = {}(cosine_kappa[i].x, cosine_kappa[i].y);
+}}
+)",
+                       exported, entry);
+  if (lang == Language::hlsl)
+    return fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float2> cosine_kappa;
+[[vk::binding(1, 0)]] RWStructuredBuffer<float> result;
+
+{}
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {{
+  uint n, stride;
+  cosine_kappa.GetDimensions(n, stride);
+  if (id.x < n) result[id.x] = {}(cosine_kappa[id.x].x, cosine_kappa[id.x].y);
+}}
+)",
+                       exported, entry);
+  throw std::invalid_argument("compute_shader: C++ is not a shader language");
+}
+
+}  // namespace sglab::validate::shader

@@ -1,0 +1,125 @@
+// validate/shader_export.hpp — `sglab export`: one irradiance method as
+// self-contained GLSL 4.50, HLSL (Shader Model 6) or C++ source with its
+// constants baked in.
+//
+// Shading languages have no erf, erfc or expm1, so an export carries its own
+// elementary functions, chosen here for the accuracy the model needs
+// (ElementaryTier). Every method body is one entry of one table in
+// shader_export.cpp (kShaderMethods): adding a method is adding one entry.
+//
+// The C++ form is the same code as the shader forms (same templates, same
+// literals), so compiling it in a test and comparing it to the runtime checks
+// the exporter independently of any GPU.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sglab::validate::shader {
+
+enum class Language { glsl, hlsl, cpp };
+std::string_view to_string(Language lang);
+// "glsl", "hlsl", "cpp"; nullopt otherwise.
+std::optional<Language> parse_language(std::string_view text);
+
+// One constant set as a method body sees it: the parameter type of
+// include/sglab/params.hpp it is (e.g. "Steepness2024Params<double>"), its
+// name in sglab/constants.hpp and its members by name (arrays as several
+// values), plus a one-line provenance for the header comment.
+struct ConstantSet {
+  std::string cpp_type;
+  std::string cpp_name;
+  std::vector<std::pair<std::string, std::vector<double>>> members;
+  std::string provenance;
+  // The irradiance max peak_rel the set's fit achieved, when recorded.
+  std::optional<double> achieved_irradiance_error;
+};
+
+// The elementary functions an export carries (erf/erfc, and the series that
+// stand in for expm1): a tier per accuracy. The exporter takes the cheapest
+// tier whose measured erf/erfc error is at most 1/100 of the model's error.
+struct ElementaryTier {
+  std::string id;           // "fast", "accurate"
+  std::string description;  // for the header comment
+};
+
+// Measured error of the exported elementary functions, evaluated in float by
+// the C++ twin of the shader code against std:: functions in double.
+struct ElementaryError {
+  double erf_abs = 0;         // max |erf~(x) − erf(x)|, x ∈ [−6, 6]
+  double erf_rel_small = 0;   // max relative error of erf~ for 1e−6 ≤ |x| ≤ 1
+  double erfc_abs = 0;        // max |erfc~(x) − erfc(x)|, x ∈ [−6, 10]
+  double expm1_over_x_rel = 0;  // max relative error of (e^x − 1)/x, x ∈ [−100, 0]
+  double max_abs() const { return erf_abs > erfc_abs ? erf_abs : erfc_abs; }
+};
+
+// The error budget printed in the header comment and by `sglab export`.
+struct ErrorBudget {
+  std::optional<double> model;     // double-precision runtime vs reference (max peak_rel)
+  std::optional<double> float_cpp; // float runtime vs reference (max peak_rel)
+  ElementaryError elementary;      // of the tier used (erf-free methods: expm1 only)
+  std::optional<double> vulkan;    // measured on a Vulkan device, from a committed results file
+  std::string vulkan_device;
+};
+
+struct ExportRequest {
+  Language lang = Language::glsl;
+  std::string method;
+  // Constant sets replacing the compiled-in set of the same cpp_type.
+  std::vector<ConstantSet> overrides;
+  // The exact command that produced the output, for the header comment.
+  std::string command;
+  // One-line provenance of compiled-in constant sets by cpp_name (from the
+  // JSON they were generated from), where known.
+  std::map<std::string, std::string> provenance;
+  // Budget entries measured elsewhere (model and float errors from a sweep,
+  // the Vulkan error from a results file); the elementary error is filled in.
+  ErrorBudget budget;
+};
+
+struct ExportResult {
+  std::string source;
+  std::string entry_point;  // sglab_irradiance_<ID>
+  ElementaryTier tier;      // empty id when the method needs no erf
+  ErrorBudget budget;
+};
+
+// Method ids that can be exported, in registry order.
+std::vector<std::string> exportable_methods();
+
+// The entry point name for a method id: non-alphanumerics become '_'.
+std::string entry_point_name(std::string_view method);
+
+// The compiled-in constant sets a method uses (before overrides).
+std::vector<ConstantSet> method_constants(std::string_view method);
+
+// The source. Throws std::invalid_argument for an unknown method or an
+// override no constant slot of the method accepts.
+ExportResult export_source(const ExportRequest& request);
+
+// The model error (double) and the C++ float error of a registered
+// irradiance method over the standard sweep grid, for the budget and the
+// choice of tier (both nullopt for an id not in the registry).
+ErrorBudget runtime_budget(std::string_view method);
+
+// The request `sglab export --lang L --method ID` makes with the compiled-in
+// constants: runtime budget filled in, command written out.
+ExportRequest standard_request(Language lang, std::string_view method);
+
+// The measured error of one tier's elementary functions (cached).
+ElementaryError measure_elementary(std::string_view tier_id);
+
+// The tier the exporter picks for a model error (nullopt model error: the
+// most accurate tier).
+ElementaryTier choose_tier(std::optional<double> model_error);
+
+// The sweep-grid wrapper: a compute shader (GLSL) or compute entry point
+// `main` (HLSL) reading float2 (cosine, kappa) from binding 0 and writing the
+// method's value to binding 1, both storage buffers of set 0, 64 threads per
+// group. Used by the Vulkan backend of `sglab sweep`.
+std::string compute_shader(Language lang, std::string_view exported_source, std::string_view entry_point);
+
+}  // namespace sglab::validate::shader

@@ -1,0 +1,343 @@
+#include "vulkan_runner.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <mutex>
+#include <optional>
+
+#include <fmt/format.h>
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <vulkan/vulkan.h>
+
+namespace sglab::validate::vulkan {
+
+namespace {
+
+// glslang's process-wide state, initialized once and never finalized (other
+// threads may still compile at exit).
+void init_glslang() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source) {
+  if (lang == shader::Language::cpp) throw CompileError("C++ is not a shader language");
+  init_glslang();
+  const bool hlsl = lang == shader::Language::hlsl;
+  glslang::TShader sh(EShLangCompute);
+  const char* text = source.data();
+  const int length = static_cast<int>(source.size());
+  sh.setStringsWithLengths(&text, &length, 1);
+  sh.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+  sh.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+  sh.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+  if (hlsl) {
+    sh.setEntryPoint("main");
+    sh.setSourceEntryPoint("main");
+  }
+  const auto messages =
+      static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? EShMsgReadHlsl : EShMsgDefault));
+  if (!sh.parse(GetDefaultResources(), hlsl ? 100 : 450, false, messages))
+    throw CompileError(fmt::format("{} compile failed:\n{}{}", shader::to_string(lang), sh.getInfoLog(),
+                                   sh.getInfoDebugLog()));
+  glslang::TProgram program;
+  program.addShader(&sh);
+  if (!program.link(messages))
+    throw CompileError(fmt::format("{} link failed:\n{}{}", shader::to_string(lang), program.getInfoLog(),
+                                   program.getInfoDebugLog()));
+  std::vector<std::uint32_t> spirv;
+  glslang::SpvOptions options;
+  options.validate = true;
+  glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &options);
+  if (spirv.empty()) throw CompileError("SPIR-V generation produced no code");
+  return spirv;
+}
+
+void check_compiles(shader::Language lang, std::string_view exported_source) {
+  // An export defines functions only; it is checked inside the compute
+  // shader that calls its scalar entry point.
+  const auto pos = exported_source.find("float sglab_irradiance_");
+  if (pos == std::string_view::npos) throw CompileError("no sglab_irradiance_ entry point in the source");
+  const auto end = exported_source.find('(', pos);
+  const std::string entry(exported_source.substr(pos + 6, end - pos - 6));
+  compile_compute(lang, shader::compute_shader(lang, exported_source, entry));
+}
+
+// ---------------------------------------------------------------------------
+
+namespace {
+
+// A zero-initialized Vulkan create-info structure of type t.
+template <class T> T make(VkStructureType t) {
+  T x{};
+  x.sType = t;
+  return x;
+}
+
+void check(VkResult r, const char* what) {
+  if (r != VK_SUCCESS) throw std::runtime_error(fmt::format("Vulkan: {} failed (VkResult {})", what, static_cast<int>(r)));
+}
+
+// A host-visible, host-coherent storage buffer with its memory.
+struct Buffer {
+  VkDevice device = VK_NULL_HANDLE;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  Buffer() = default;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  ~Buffer() {
+    if (buffer) vkDestroyBuffer(device, buffer, nullptr);
+    if (memory) vkFreeMemory(device, memory, nullptr);
+  }
+};
+
+}  // namespace
+
+struct Device::Impl {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  std::uint32_t queue_family = 0;
+  std::string name;
+  VkPhysicalDeviceMemoryProperties memory_properties{};
+
+  ~Impl() {
+    if (device) vkDestroyDevice(device, nullptr);
+    if (instance) vkDestroyInstance(instance, nullptr);
+  }
+
+  void make_buffer(Buffer& b, VkDeviceSize size) {
+    b.device = device;
+    b.size = size;
+    auto info = make<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+    info.size = size;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    check(vkCreateBuffer(device, &info, nullptr, &b.buffer), "vkCreateBuffer");
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device, b.buffer, &req);
+    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    std::optional<std::uint32_t> type;
+    for (std::uint32_t i = 0; i < memory_properties.memoryTypeCount; ++i)
+      if ((req.memoryTypeBits & (1u << i)) && (memory_properties.memoryTypes[i].propertyFlags & want) == want) {
+        type = i;
+        break;
+      }
+    if (!type) throw std::runtime_error("Vulkan: no host-visible coherent memory type for a storage buffer");
+    auto alloc = make<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = *type;
+    check(vkAllocateMemory(device, &alloc, nullptr, &b.memory), "vkAllocateMemory");
+    check(vkBindBufferMemory(device, b.buffer, b.memory, 0), "vkBindBufferMemory");
+  }
+};
+
+Device::Device() : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  auto app = make<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
+  app.pApplicationName = "sglab";
+  app.apiVersion = VK_API_VERSION_1_0;
+  auto ici = make<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
+  ici.pApplicationInfo = &app;
+  if (VkResult r = vkCreateInstance(&ici, nullptr, &d.instance); r != VK_SUCCESS)
+    throw Unavailable(fmt::format("no Vulkan instance (vkCreateInstance returned {}): is a Vulkan driver installed "
+                                  "(e.g. mesa-vulkan-drivers for lavapipe)?",
+                                  static_cast<int>(r)));
+  std::uint32_t count = 0;
+  vkEnumeratePhysicalDevices(d.instance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  if (count) vkEnumeratePhysicalDevices(d.instance, &count, devices.data());
+  for (VkPhysicalDevice pd : devices) {
+    std::uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nq);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, families.data());
+    for (std::uint32_t i = 0; i < nq; ++i)
+      if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+        d.physical = pd;
+        d.queue_family = i;
+        break;
+      }
+    if (d.physical) break;
+  }
+  if (!d.physical) throw Unavailable(fmt::format("no Vulkan device with a compute queue ({} devices)", count));
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(d.physical, &props);
+  d.name = props.deviceName;
+  vkGetPhysicalDeviceMemoryProperties(d.physical, &d.memory_properties);
+  const float priority = 1.0f;
+  auto qci = make<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
+  qci.queueFamilyIndex = d.queue_family;
+  qci.queueCount = 1;
+  qci.pQueuePriorities = &priority;
+  auto dci = make<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
+  dci.queueCreateInfoCount = 1;
+  dci.pQueueCreateInfos = &qci;
+  if (VkResult r = vkCreateDevice(d.physical, &dci, nullptr, &d.device); r != VK_SUCCESS)
+    throw Unavailable(fmt::format("vkCreateDevice on {} returned {}", d.name, static_cast<int>(r)));
+  vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
+}
+
+Device::~Device() = default;
+
+std::string Device::name() const { return impl_->name; }
+
+std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& pairs) {
+  Impl& d = *impl_;
+  if (pairs.empty() || pairs.size() % 2) throw std::invalid_argument("Device::run: need a non-empty list of pairs");
+  const std::size_t n = pairs.size() / 2;
+  VkDevice dev = d.device;
+
+  Buffer in, out;
+  d.make_buffer(in, pairs.size() * sizeof(float));
+  d.make_buffer(out, n * sizeof(float));
+  void* mapped = nullptr;
+  check(vkMapMemory(dev, in.memory, 0, in.size, 0, &mapped), "vkMapMemory");
+  std::memcpy(mapped, pairs.data(), in.size);
+  vkUnmapMemory(dev, in.memory);
+
+  // Every object below is destroyed by one guard, in reverse order.
+  struct Objects {
+    VkDevice dev;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkCommandPool command_pool = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    ~Objects() {
+      if (fence) vkDestroyFence(dev, fence, nullptr);
+      if (command_pool) vkDestroyCommandPool(dev, command_pool, nullptr);
+      if (pool) vkDestroyDescriptorPool(dev, pool, nullptr);
+      if (pipeline) vkDestroyPipeline(dev, pipeline, nullptr);
+      if (pipeline_layout) vkDestroyPipelineLayout(dev, pipeline_layout, nullptr);
+      if (set_layout) vkDestroyDescriptorSetLayout(dev, set_layout, nullptr);
+      if (module) vkDestroyShaderModule(dev, module, nullptr);
+    }
+  } o{dev};
+
+  auto smci = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+  smci.codeSize = spirv.size() * sizeof(std::uint32_t);
+  smci.pCode = spirv.data();
+  check(vkCreateShaderModule(dev, &smci, nullptr, &o.module), "vkCreateShaderModule");
+
+  VkDescriptorSetLayoutBinding bindings[2]{};
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    bindings[i].binding = i;
+    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorCount = 1;
+    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  auto dslci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  dslci.bindingCount = 2;
+  dslci.pBindings = bindings;
+  check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &o.set_layout), "vkCreateDescriptorSetLayout");
+  auto plci = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  plci.setLayoutCount = 1;
+  plci.pSetLayouts = &o.set_layout;
+  check(vkCreatePipelineLayout(dev, &plci, nullptr, &o.pipeline_layout), "vkCreatePipelineLayout");
+  auto cpci = make<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+  cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  cpci.stage.module = o.module;
+  cpci.stage.pName = "main";
+  cpci.layout = o.pipeline_layout;
+  check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpci, nullptr, &o.pipeline), "vkCreateComputePipelines");
+
+  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
+  auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 1;
+  dpci.pPoolSizes = &pool_size;
+  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &o.pool), "vkCreateDescriptorPool");
+  auto dsai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  dsai.descriptorPool = o.pool;
+  dsai.descriptorSetCount = 1;
+  dsai.pSetLayouts = &o.set_layout;
+  VkDescriptorSet set;
+  check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
+  VkDescriptorBufferInfo infos[2] = {{in.buffer, 0, VK_WHOLE_SIZE}, {out.buffer, 0, VK_WHOLE_SIZE}};
+  VkWriteDescriptorSet writes[2]{};
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(dev, 2, writes, 0, nullptr);
+
+  auto cpoolci = make<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+  cpoolci.queueFamilyIndex = d.queue_family;
+  check(vkCreateCommandPool(dev, &cpoolci, nullptr, &o.command_pool), "vkCreateCommandPool");
+  auto cbai = make<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+  cbai.commandPool = o.command_pool;
+  cbai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cbai.commandBufferCount = 1;
+  VkCommandBuffer cb;
+  check(vkAllocateCommandBuffers(dev, &cbai, &cb), "vkAllocateCommandBuffers");
+  auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline_layout, 0, 1, &set, 0, nullptr);
+  vkCmdDispatch(cb, static_cast<std::uint32_t>((n + 63) / 64), 1, 1);
+  auto barrier = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+  check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+  auto fci = make<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+  check(vkCreateFence(dev, &fci, nullptr, &o.fence), "vkCreateFence");
+  auto submit = make<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cb;
+  check(vkQueueSubmit(d.queue, 1, &submit, o.fence), "vkQueueSubmit");
+  check(vkWaitForFences(dev, 1, &o.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+
+  std::vector<float> result(n);
+  check(vkMapMemory(dev, out.memory, 0, out.size, 0, &mapped), "vkMapMemory");
+  std::memcpy(result.data(), mapped, out.size);
+  vkUnmapMemory(dev, out.memory);
+  return result;
+}
+
+std::vector<std::string> add_device_entries(SweepResult& r, std::span<const SweepMethod> methods,
+                                            shader::Language lang, Device& device, bool keep_points) {
+  const auto exportable = shader::exportable_methods();
+  std::vector<float> pairs;
+  pairs.reserve(2 * r.kappas.size() * r.cosines.size());
+  for (std::size_t k = 0; k < r.kappas.size(); ++k)
+    for (std::size_t j = 0; j < r.cosines.size(); ++j) {
+      pairs.push_back(static_cast<float>(r.cosines[j]));
+      pairs.push_back(static_cast<float>(r.kappas[k]));
+    }
+  std::vector<std::string> skipped;
+  for (const SweepMethod& sm : methods) {
+    const std::string id(sm.method.id);
+    if (sm.quantity != Quantity::irradiance ||
+        std::find(exportable.begin(), exportable.end(), id) == exportable.end()) {
+      skipped.push_back(fmt::format("{} ({})", id, to_string(sm.quantity)));
+      continue;
+    }
+    const shader::ExportResult ex = shader::export_source(shader::standard_request(lang, id));
+    const auto spirv = compile_compute(lang, shader::compute_shader(lang, ex.source, ex.entry_point));
+    const std::vector<float> out = device.run(spirv, pairs);
+    const std::vector<double> values(out.begin(), out.end());
+    r.entries.push_back(sweep_entry(r, sm, lang == shader::Language::hlsl ? FloatFormat::vulkan_hlsl : FloatFormat::vulkan,
+                                    values, keep_points));
+  }
+  return skipped;
+}
+
+}  // namespace sglab::validate::vulkan

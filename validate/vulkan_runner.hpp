@@ -1,0 +1,68 @@
+// validate/vulkan_runner.hpp — shader source to SPIR-V with the glslang
+// library (GLSL and HLSL front ends, in-process), and one compute dispatch on
+// the first Vulkan device (the Vulkan loader; Mesa's lavapipe on a CPU-only
+// machine).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shader_export.hpp"
+#include "sweep.hpp"
+
+namespace sglab::validate::vulkan {
+
+// No Vulkan instance or device could be created (no loader ICD, no device
+// with a compute queue): callers report and skip rather than fail.
+struct Unavailable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The source did not compile or link; what() carries glslang's log.
+struct CompileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// GLSL (#version 450) or HLSL (entry point `main`) compute shader → SPIR-V 1.0
+// for Vulkan 1.0. Throws CompileError with the info log.
+std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source);
+
+// Checks that a shader-language export compiles on its own: GLSL as a
+// compute-stage translation unit (it has no main, so parse only), HLSL
+// likewise through the HLSL front end. Throws CompileError with the log.
+void check_compiles(shader::Language lang, std::string_view exported_source);
+
+// The first Vulkan device with a compute queue, and a compute dispatch on it.
+class Device {
+ public:
+  // Throws Unavailable when no instance or device can be created.
+  Device();
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  std::string name() const;
+
+  // Runs a compute shader built by shader::compute_shader over the points:
+  // binding 0 holds (cosine, kappa) pairs as float2, binding 1 receives one
+  // float per point. Throws std::runtime_error naming the failed call.
+  std::vector<float> run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& cosine_kappa_pairs);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Adds a `vulkan` (GLSL) or `vulkan_hlsl` (HLSL) entry to r for every
+// irradiance method of `methods` that `sglab export` can export: the export
+// with its compiled-in constants (exactly what `sglab export --lang L --method
+// ID` prints), compiled with glslang and run on `device` over r's grid.
+// Returns the ids that were skipped because they cannot be exported.
+std::vector<std::string> add_device_entries(SweepResult& r, std::span<const SweepMethod> methods,
+                                            shader::Language lang, Device& device, bool keep_points = true);
+
+}  // namespace sglab::validate::vulkan
