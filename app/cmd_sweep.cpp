@@ -111,11 +111,15 @@ void add_sweep_command(CLI::App& app) {
       "sweep", "Accuracy of every method against the reference over a (κ, c) grid, in float and double");
   cmd->add_option("--kappa", args->kappa,
                   "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: SPEC §4, 1e-3:1e4:29)");
-  cmd->add_option("--cosines", args->cosines, "number of cosines evenly spaced over [-1, 1] (default 41)");
-  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
-  cmd->add_flag("--json", args->json, "print the summary as JSON on stdout");
+  cmd->add_option("--cosines", args->cosines,
+                  fmt::format("number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at "
+                              "most {} points",
+                              validate::SweepGrid::kMaxPoints));
+  auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+                         ->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the summary as JSON on stdout; writes no file unless --out is given");
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");
-  cmd->callback([args] {
+  cmd->callback([args, out_option] {
     validate::SweepGrid grid;  // SPEC §4 standard grid
     if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
     if (!args->cosines.empty()) parse_cosines_option(args->cosines, grid);
@@ -129,11 +133,15 @@ void add_sweep_command(CLI::App& app) {
     const validate::SweepResult result = validate::sweep(grid, methods);
     const validate::Table summary = validate::summary_table(result);
     const std::filesystem::path dir(args->out);
+    // --json prints to stdout; files are written only where asked.
+    const bool write_files = !args->json || out_option->count() > 0;
     using validate::TableFormat;
-    validate::write_table(summary, dir, "summary", {TableFormat::csv, TableFormat::markdown});
-    validate::write_table(validate::per_kappa_table(result), dir, "per_kappa",
-                          {TableFormat::csv, TableFormat::markdown});
-    validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
+    if (write_files) {
+      validate::write_table(summary, dir, "summary", {TableFormat::csv, TableFormat::markdown});
+      validate::write_table(validate::per_kappa_table(result), dir, "per_kappa",
+                            {TableFormat::csv, TableFormat::markdown});
+      validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
+    }
 
     nlohmann::ordered_json doc = nlohmann::ordered_json::object();
     doc["grid"] = {{"kappa_lo", grid.kappa_lo},
@@ -142,7 +150,7 @@ void add_sweep_command(CLI::App& app) {
                    {"cosine_count", grid.cosine_count}};
     doc["results"] = validate::to_json_records(summary);
     const std::string json = doc.dump(2) + "\n";
-    io::write_file_atomic(dir / "summary.json", json);
+    if (write_files) io::write_file_atomic(dir / "summary.json", json);
 
     if (args->json)
       fmt::print("{}", json);

@@ -457,7 +457,7 @@ double parse_number(const std::string& s, const fs::path& path, std::size_t line
 
 std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
   const std::string text = io::read_file(path);
-  std::istringstream in(text);
+  std::istringstream in(std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
   std::string line;
   std::size_t lineno = 0;
   std::vector<std::string> header;

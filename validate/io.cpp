@@ -50,6 +50,12 @@ std::string read_file(const std::filesystem::path& path) {
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
 
+std::string_view strip_utf8_bom(std::string_view text) {
+  constexpr std::string_view bom = "\xEF\xBB\xBF";
+  if (text.substr(0, bom.size()) == bom) text.remove_prefix(bom.size());
+  return text;
+}
+
 struct Progress::Impl {
   std::string label;
   std::size_t total;

@@ -34,4 +34,8 @@ class Progress {
 
 bool stderr_is_terminal();
 
+// `text` without a leading UTF-8 byte-order mark (EF BB BF), which some
+// editors and spreadsheet programs write at the start of a CSV file.
+std::string_view strip_utf8_bom(std::string_view text);
+
 }  // namespace sglab::io
