@@ -38,7 +38,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A Markdown file longer than this is linked from index.md, not inlined.
-constexpr std::size_t kInlineLines = 80;
+constexpr std::size_t kInlineLines = 120;
 
 struct Step {
   std::string name;
@@ -142,10 +142,17 @@ std::string rebase(std::string_view target, const fs::path& from) {
   return (from / fs::path(std::string(target))).lexically_normal().generic_string();
 }
 
+// What index.md already shows (images) and links to (every target), as paths
+// relative to OUT.
+struct Seen {
+  std::set<std::string> images;
+  std::set<std::string> links;
+};
+
 // One line of Markdown with every relative link and image target rebased from
-// `from` to OUT. An image already shown (in `shown`) becomes a plain link, so
-// that each figure appears once. Inline code spans are left as they are.
-std::string rewrite_links(std::string_view line, const fs::path& from, std::set<std::string>& shown) {
+// `from` to OUT. An image already shown becomes a plain link, so that each
+// figure appears once. Inline code spans are left as they are.
+std::string rewrite_links(std::string_view line, const fs::path& from, Seen& seen) {
   std::string out;
   std::size_t i = 0;
   while (i < line.size()) {
@@ -182,7 +189,8 @@ std::string rewrite_links(std::string_view line, const fs::path& from, std::set<
             target = target.substr(0, sp);
           }
           const std::string rebased = is_relative_target(target) ? rebase(target, from) : std::string(target);
-          const bool duplicate = image && !shown.insert(rebased).second;
+          const bool duplicate = image && !seen.images.insert(rebased).second;
+          seen.links.insert(rebased);
           out += fmt::format("{}[{}]({}{})", image && !duplicate ? "!" : "", text, rebased, title);
           i = paren + 1;
           continue;
@@ -198,7 +206,7 @@ std::string rewrite_links(std::string_view line, const fs::path& from, std::set<
 // A Markdown file for inlining under an H3: headings moved down three levels
 // (H1 → H4, at most H6) and links rebased from `from` to OUT. Fenced code
 // blocks are copied unchanged.
-std::string inline_markdown(const std::string& text, const fs::path& from, std::set<std::string>& shown) {
+std::string inline_markdown(const std::string& text, const fs::path& from, Seen& seen) {
   std::string out;
   bool fenced = false;
   std::size_t start = 0;
@@ -217,9 +225,9 @@ std::string inline_markdown(const std::string& text, const fs::path& from, std::
     while (level < line.size() && line[level] == '#') ++level;
     if (level >= 1 && level <= 6 && (level == line.size() || line[level] == ' ')) {
       out += std::string(std::min<std::size_t>(level + 3, 6), '#');
-      out += rewrite_links(line.substr(level), from, shown);
+      out += rewrite_links(line.substr(level), from, seen);
     } else {
-      out += rewrite_links(line, from, shown);
+      out += rewrite_links(line, from, seen);
     }
     out += '\n';
   }
@@ -232,8 +240,8 @@ std::size_t count_lines(const std::string& s) {
 
 // The section of index.md for one step: its command and status, its Markdown
 // files (inlined or linked), the figures not shown by them, and links to the
-// other files it wrote.
-std::string section(const fs::path& out, const Step& step, int status, double seconds, std::set<std::string>& shown) {
+// other files it wrote that those do not link.
+std::string section(const fs::path& out, const Step& step, int status, double seconds, Seen& seen) {
   const std::string log = fmt::format("logs/{}.log", step.name);
   std::string md = fmt::format("## {}\n\n`{}` — {} in {:.1f} s (log: [{}]({}))\n\n", step.name,
                                display_command(step.arguments),
@@ -252,17 +260,22 @@ std::string section(const fs::path& out, const Step& step, int status, double se
     if (f.extension() == ".md") {
       const std::string text = io::read_file(f);
       const std::size_t lines = count_lines(text);
+      seen.links.insert(rel);
       if (lines > kInlineLines)
         md += fmt::format("### {}\n\n[{}]({}) ({} lines, linked rather than inlined)\n\n", rel, rel, rel, lines);
       else
-        md += fmt::format("### {}\n\n{}\n", rel, inline_markdown(text, fs::relative(f.parent_path(), out), shown));
-    } else if (f.extension() != ".png") {
-      others.push_back(rel);
+        md += fmt::format("### {}\n\n{}\n", rel, inline_markdown(text, fs::relative(f.parent_path(), out), seen));
     }
   }
   for (const fs::path& f : files) {
     const std::string rel = fs::relative(f, out).generic_string();
-    if (f.extension() == ".png" && shown.insert(rel).second) md += fmt::format("![{}]({})\n\n", f.stem().string(), rel);
+    if (f.filename().string().front() == '.') continue;
+    if (f.extension() == ".png" && seen.images.insert(rel).second) {
+      md += fmt::format("![{}]({})\n\n", f.stem().string(), rel);
+      seen.links.insert(rel);
+    } else if (!seen.links.count(rel)) {
+      others.push_back(rel);
+    }
   }
   if (!others.empty()) {
     md += "Other files:";
@@ -305,7 +318,7 @@ void add_run_command(CLI::App& app) {
     }
     fs::create_directories(root / "logs");
     std::string index = "# sglab results\n\nProduced by `sglab run`; every section names the command that made it.\n\n";
-    std::set<std::string> shown;  // images already in index.md, relative to OUT
+    Seen seen;
     int failures = 0;
     const auto t0 = std::chrono::steady_clock::now();
     for (const Step& step : steps) {
@@ -323,7 +336,7 @@ void add_run_command(CLI::App& app) {
                  status == 0 ? "ok" : fmt::format("FAILED, see {}", log.string()));
       std::fflush(stdout);
       if (status != 0) ++failures;
-      index += section(root, step, status, secs, shown);
+      index += section(root, step, status, secs, seen);
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     index += fmt::format("Total: {:.1f} s.\n", total);
