@@ -32,17 +32,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
-
 // gnuplot single-quoted string: only ' needs doubling.
 std::string gp_quote(const std::string& s) {
   std::string out = "'";
@@ -95,10 +84,9 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
   const fs::path gp = dir / (stem + ".gp");
   io::write_file_atomic(gp, script);
   const fs::path log = dir / (stem + ".gp.log");
-  const std::string cmd = fmt::format("cd {} && {} {} > {} 2>&1", shell_quote(dir.string()), shell_quote(opt.gnuplot),
-                                      shell_quote(stem + ".gp"), shell_quote(stem + ".gp.log"));
-  const int status = std::system(cmd.c_str());
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  // No shell: gnuplot runs in `dir` with an argument vector.
+  const int status = io::run_program({opt.gnuplot, stem + ".gp"}, dir, stem + ".gp.log");
+  if (status != 0) {
     std::string tail;
     try {
       tail = io::read_file(log);
@@ -106,7 +94,7 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
     } catch (...) {
     }
     throw std::runtime_error(fmt::format("gnuplot failed on {} (exit status {}); log {}:\n{}", gp.string(),
-                                         WIFEXITED(status) ? WEXITSTATUS(status) : status, log.string(), tail));
+                                         status, log.string(), tail));
   }
   {
     std::error_code ec;
@@ -498,9 +486,7 @@ std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
 }
 
 bool gnuplot_available(const std::string& gnuplot) {
-  const std::string cmd = fmt::format("{} --version > /dev/null 2>&1", shell_quote(gnuplot));
-  const int status = std::system(cmd.c_str());
-  return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  return io::run_program({gnuplot, "--version"}) == 0;
 }
 
 std::vector<Figure> make_figures(const FiguresOptions& options) {
