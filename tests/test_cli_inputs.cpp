@@ -2,10 +2,13 @@
 // limit is refused before anything is allocated, `sglab reference` streams
 // (its memory does not grow with the points file), a UTF-8 byte-order mark
 // at the start of a CSV is accepted, and `--json` without `--out` writes no
-// file.
+// file; progress goes to standard error only when it is a terminal.
 //
 // This file runs no reference engine in the test process, so that forking
 // (to measure a child's peak memory) is safe.
+#include <fcntl.h>
+#include <pty.h>
+#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -209,6 +213,58 @@ TEST(ReferenceStreaming, MemoryDoesNotGrowWithTheFile) {
   // about 400 bytes a row, 80 MB here; streaming holds a few chunks.
   EXPECT_LT(large - small, 24 * 1024) << "peak RSS " << small << " KiB for 1,000 rows, " << large
                                       << " KiB for 200,000 rows";
+}
+
+// ---- progress on a terminal only -------------------------------------------
+
+// Runs `sglab ARGS` with standard error on a pseudo-terminal and standard
+// output on a pipe; returns {stdout, what the terminal received}.
+std::pair<std::string, std::string> run_with_terminal_stderr(const std::vector<std::string>& args) {
+  int master = -1, slave = -1;
+  if (::openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) return {};
+  int out[2];
+  if (::pipe(out) != 0) return {};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+  posix_spawn_file_actions_adddup2(&actions, slave, 2);
+  for (int fd : {master, slave, out[0], out[1]}) posix_spawn_file_actions_addclose(&actions, fd);
+  std::vector<std::string> argv = {SGLAB_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> cargs;
+  for (const std::string& a : argv) cargs.push_back(const_cast<char*>(a.c_str()));
+  cargs.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = ::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(slave);
+  ::close(out[1]);
+  std::string stdout_text, terminal;
+  char buffer[4096];
+  ssize_t n;
+  if (rc == 0)
+    while ((n = ::read(out[0], buffer, sizeof buffer)) > 0) stdout_text.append(buffer, static_cast<std::size_t>(n));
+  ::close(out[0]);
+  if (rc == 0) ::waitpid(pid, nullptr, 0);
+  while ((n = ::read(master, buffer, sizeof buffer)) > 0) terminal.append(buffer, static_cast<std::size_t>(n));
+  ::close(master);
+  return {stdout_text, terminal};
+}
+
+TEST(Progress, ReferenceShowsProgressOnATerminalOnly) {
+  TempDir dir("progress");
+  write_points(dir.path / "p.csv", 5'000);
+  const std::string file = (dir.path / "p.csv").string();
+  const auto [out, terminal] = run_with_terminal_stderr({"reference", "--points", file});
+  EXPECT_EQ(out.rfind("kappa,cosine,", 0), 0u) << out.substr(0, 200);
+  EXPECT_EQ(out.find("reference:"), std::string::npos);
+  EXPECT_NE(terminal.find("reference: 5000/5000 (100%)"), std::string::npos) << terminal;
+  // Not a terminal: no progress at all, on either stream.
+  const auto piped = sglab::test::run_sglab({"reference", "--points", file});
+  EXPECT_EQ(piped.exit_code, 0);
+  EXPECT_EQ(piped.output.find("reference:"), std::string::npos);
+  EXPECT_EQ(piped.output.find('\r'), std::string::npos);
 }
 
 }  // namespace
