@@ -215,6 +215,19 @@ TEST(ReferenceStreaming, MemoryDoesNotGrowWithTheFile) {
                                       << " KiB for 200,000 rows";
 }
 
+// ---- io::run_program: an argument vector, no shell ---------------------------
+
+TEST(RunProgram, PassesArgumentsAsGivenInTheWorkingDirectory) {
+  TempDir dir("run-program");
+  const std::string hostile = "a b;touch marker;'q'\"x\" $(touch marker2)";
+  EXPECT_EQ(sglab::io::run_program({"printf", "%s", hostile}, dir.path, "out.txt"), 0);
+  EXPECT_EQ(sglab::io::read_file(dir.path / "out.txt"), hostile);
+  EXPECT_FALSE(fs::exists(dir.path / "marker"));
+  EXPECT_FALSE(fs::exists(dir.path / "marker2"));
+  EXPECT_EQ(sglab::io::run_program({"false"}), 1);
+  EXPECT_EQ(sglab::io::run_program({"sglab-no-such-program-xyz"}), -1);
+}
+
 // ---- progress on a terminal only -------------------------------------------
 
 // Runs `sglab ARGS` with standard error on a pseudo-terminal and standard
