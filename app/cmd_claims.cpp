@@ -26,15 +26,18 @@ struct ClaimsArgs {
 void add_claims_command(CLI::App& app) {
   auto args = std::make_shared<ClaimsArgs>();
   auto* cmd = app.add_subcommand("claims", "Check every quantitative claim of the seed documents numerically");
-  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
-  cmd->add_flag("--json", args->json, "print the table as JSON on stdout (Markdown otherwise)");
-  cmd->callback([args] {
+  auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+                         ->capture_default_str();
+  cmd->add_flag("--json", args->json,
+                "print the table as JSON on stdout (Markdown otherwise); writes no file unless --out is given");
+  cmd->callback([args, out_option] {
     const auto claims = validate::check_claims(
         [](const std::vector<double>& kappas) { return fit::optimal_steepness("steepness2022", kappas); });
     const validate::Table table = validate::claims_table(claims);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
-    validate::write_table(table, dir, "claims", {TableFormat::markdown, TableFormat::json, TableFormat::csv});
+    if (!args->json || out_option->count() > 0)  // files only where asked
+      validate::write_table(table, dir, "claims", {TableFormat::markdown, TableFormat::json, TableFormat::csv});
     int holds = 0, part = 0, fails = 0;
     for (const auto& c : claims) (c.verdict == "holds" ? holds : c.verdict == "holds in part" ? part : fails)++;
     if (args->json) {

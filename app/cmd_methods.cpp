@@ -43,11 +43,14 @@ void add_table_command(CLI::App& app) {
     fmt::print("Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision); last column: max |Ê − E|/E(1, κ)\n\n",
                *kappa);
     fmt::print("| {:<22} |", "method \\ cosine");
-    for (const auto& r : ref) fmt::print(" {:>9.3f} |", r.cosine);
+    // Values in %.4e: five significant digits at every κ (E(c, κ) ≈ 2π/κ is
+    // small for sharp lights, and a fixed number of decimals would print 0).
+    for (const auto& r : ref) fmt::print(" {:>11.3f} |", r.cosine);
     fmt::print(" {:>9} |\n|:{:-<22}-|", "peak_rel", "");
-    for (std::size_t i = 0; i <= ref.size(); ++i) fmt::print("{:-<10}:|", "");
+    for (std::size_t i = 0; i < ref.size(); ++i) fmt::print("{:-<12}:|", "");
+    fmt::print("{:-<10}:|", "");
     fmt::print("\n| {:<22} |", "reference");
-    for (const auto& r : ref) fmt::print(" {:>9.5f} |", r.irradiance);
+    for (const auto& r : ref) fmt::print(" {:>11.4e} |", r.irradiance);
     fmt::print(" {:>9} |\n", "");
     const double peak = ref.back().irradiance;  // c = 1
     for (const Method& m : irradiance_methods) {
@@ -57,7 +60,7 @@ void add_table_command(CLI::App& app) {
         const double v = m.f64(r.cosine, r.kappa);
         const double err = std::abs(v - r.irradiance) / peak;
         worst = std::isnan(err) || std::isnan(worst) ? std::nan("") : std::max(worst, err);
-        fmt::print(" {:>9.5f} |", v);
+        fmt::print(" {:>11.4e} |", v);
       }
       fmt::print(" {:>9.2e} |\n", worst);
     }

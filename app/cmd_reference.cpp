@@ -6,9 +6,13 @@
 // empty lines are skipped. Output (stdout): CSV with the header
 // `kappa,cosine,hemispherical,irradiance,normalized`, every value printed
 // with 17 significant digits (%.17g), so doubles round-trip exactly.
-// Any bad line is an InputError naming the file and the line number.
+// Any bad line is an InputError naming the file and the line number, raised
+// before any output. A UTF-8 byte-order mark before the header is skipped.
+// Rows are streamed (memory does not grow with the file); progress on stderr
+// when it is a terminal.
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -20,6 +24,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "io.hpp"
 #include "reference.hpp"
 
 namespace sglab::app {
@@ -44,20 +49,25 @@ std::vector<std::string_view> split(std::string_view line) {
   return fields;
 }
 
-std::vector<validate::Query> read_points(const std::string& path) {
+// Reads the points file line by line, calling on_point(query) for every data
+// row; returns the number of rows. Nothing is held but the current line.
+template <class OnPoint>
+std::size_t for_each_point(const std::string& path, OnPoint&& on_point) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("{}: no such points file (or not a regular file)", path));
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot open points file", path));
 
-  std::vector<validate::Query> points;
+  std::size_t count = 0;
   std::string line;
   std::size_t line_number = 0;
   bool header_seen = false;
   while (std::getline(in, line)) {
     ++line_number;
-    const std::string_view text = trim(line);
+    std::string_view text = line;
+    if (line_number == 1) text = io::strip_utf8_bom(text);  // a byte-order mark some editors write
+    text = trim(text);
     if (text.empty()) continue;
     const auto fields = split(text);
     auto fail = [&](std::string_view why) {
@@ -83,11 +93,12 @@ std::vector<validate::Query> read_points(const std::string& path) {
     const double kappa = value[0], cosine = value[1];
     if (!(std::isfinite(kappa) && kappa >= 0)) throw fail(fmt::format("kappa must be finite and >= 0, got {}", kappa));
     if (!(cosine >= -1 && cosine <= 1)) throw fail(fmt::format("cosine must be in [-1, 1], got {}", cosine));
-    points.push_back({kappa, cosine});
+    on_point(validate::Query{kappa, cosine});
+    ++count;
   }
   if (in.bad()) throw InputError(fmt::format("{}: read error", path));
   if (!header_seen) throw InputError(fmt::format("{}: empty file, expected the header \"kappa,cosine\"", path));
-  return points;
+  return count;
 }
 
 }  // namespace
@@ -102,14 +113,38 @@ void add_reference_command(CLI::App& app) {
       ->check(CLI::IsMember({"standard", "high"}))
       ->capture_default_str();
   cmd->callback([points, precision] {
-    const auto queries = read_points(*points);
+    // Two passes over the file: the first checks every line (so bad input is
+    // refused before anything is printed) and counts the rows; the second
+    // evaluates and prints them a chunk at a time, so memory does not grow
+    // with the file.
+    const std::size_t total = for_each_point(*points, [](const validate::Query&) {});
     const auto mode = *precision == "high" ? validate::Precision::high : validate::Precision::standard;
-    const auto results = validate::reference_engine().evaluate(queries, mode);
-    std::string out = "kappa,cosine,hemispherical,irradiance,normalized\n";
-    for (const auto& r : results)
-      out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", r.kappa, r.cosine, r.hemispherical,
-                         r.irradiance, r.normalized);
-    fmt::print("{}", out);
+    io::Progress progress("reference", total);
+    constexpr std::size_t kChunk = 4096;  // rows per engine call (each call runs in parallel)
+    std::vector<validate::Query> chunk;
+    chunk.reserve(kChunk);
+    std::string out;
+    const auto flush = [&] {
+      const auto results = validate::reference_engine().evaluate(chunk, mode);
+      for (const auto& r : results)
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", r.kappa, r.cosine, r.hemispherical,
+                           r.irradiance, r.normalized);
+      std::fwrite(out.data(), 1, out.size(), stdout);
+      out.clear();
+      progress.advance(chunk.size());
+      chunk.clear();
+      // The engine caches every point it evaluates; a points file is read
+      // once, so keep the cache from growing with the file.
+      if (validate::reference_engine().cache_size() > 8 * kChunk) validate::reference_engine().clear_cache();
+    };
+    fmt::print("kappa,cosine,hemispherical,irradiance,normalized\n");
+    for_each_point(*points, [&](const validate::Query& q) {
+      chunk.push_back(q);
+      if (chunk.size() == kChunk) flush();
+    });
+    if (!chunk.empty()) flush();
+    progress.finish();
+    std::fflush(stdout);
   });
 }
 

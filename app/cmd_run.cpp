@@ -1,16 +1,29 @@
-// `sglab run`: the main job. Runs every step as its own `sglab` subcommand
-// (so each keeps one implementation), logs each into OUT/logs/, and writes
-// OUT/index.md showing every table and figure. Constants are refitted into
-// OUT/constants so that the main job never rewrites the committed data/.
-#include <sys/wait.h>
+// `sglab run`: the main job. Runs every step as its own `sglab` subcommand, in
+// this process (the subcommands' own code, parsed from an argument vector: no
+// shell, so any output path works, spaces, quotes and semicolons included),
+// logs each into OUT/logs/, and writes OUT/index.md linking every table and
+// figure. Constants are refitted into OUT/constants so that the main job never
+// rewrites the committed data/.
+//
+// OUT/index.md: one H1, one H2 per step, one H3 per Markdown file a step
+// wrote. A short Markdown file is inlined with its headings moved below that
+// H3 and its relative links rewritten to resolve from OUT; a long one (more
+// than kInlineLines lines, e.g. the per-κ sweep table) is linked instead.
+// Every figure is shown once.
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
-
+#include <cctype>
+#include <cerrno>
 #include <chrono>
-#include <cstdlib>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <iostream>
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -24,41 +37,250 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A Markdown file longer than this is linked from index.md, not inlined.
+constexpr std::size_t kInlineLines = 120;
+
 struct Step {
   std::string name;
-  std::string arguments;  // after `sglab`
-  std::string dir;        // output directory under OUT
+  std::vector<std::string> arguments;  // after `sglab`
+  std::string dir;                     // output directory under OUT
 };
 
-std::string self_path() {
-  std::error_code ec;
-  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string("sglab") : p.string();
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// The Markdown files a step wrote, inlined; figures linked as images.
-std::string section(const fs::path& out, const Step& step, int status, double seconds) {
-  std::string md = fmt::format("## {}\n\n`sglab {}` — {} in {:.1f} s (log: `logs/{}.log`)\n\n", step.name,
-                               step.arguments, status == 0 ? "ok" : fmt::format("FAILED (exit {})", status), seconds,
-                               step.name);
-  const fs::path dir = out / step.dir;
-  if (!fs::exists(dir)) return md;
-  std::vector<fs::path> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (const auto& f : files) {
-    const std::string rel = fs::relative(f, out).string();
-    if (f.extension() == ".md") {
-      md += fmt::format("### {}\n\n{}\n\n", rel, io::read_file(f));
-    } else if (f.extension() == ".png") {
-      md += fmt::format("![{}]({})\n\n", f.stem().string(), rel);
+// For display only (index.md, the terminal): the arguments quoted so that the
+// line can be pasted into a POSIX shell. Nothing is ever run through a shell.
+std::string display_command(const std::vector<std::string>& arguments) {
+  std::string out = "sglab";
+  for (const std::string& a : arguments) {
+    const bool plain = !a.empty() && std::all_of(a.begin(), a.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("-_./:=+,").find(c) != std::string_view::npos;
+    });
+    if (plain) {
+      out += " " + a;
+      continue;
     }
+    out += " '";
+    for (char c : a) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    out += "'";
+  }
+  return out;
+}
+
+// Standard output and standard error of this process go to `log` while this
+// object lives (C stdio and iostreams are flushed on both edges).
+class RedirectOutput {
+ public:
+  explicit RedirectOutput(const fs::path& log) {
+    flush();
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", log.string(), std::strerror(errno)));
+    saved_out_ = ::dup(STDOUT_FILENO);
+    saved_err_ = ::dup(STDERR_FILENO);
+    ::dup2(fd, STDOUT_FILENO);
+    ::dup2(fd, STDERR_FILENO);
+    ::close(fd);
+  }
+  ~RedirectOutput() {
+    flush();
+    if (saved_out_ >= 0) {
+      ::dup2(saved_out_, STDOUT_FILENO);
+      ::close(saved_out_);
+    }
+    if (saved_err_ >= 0) {
+      ::dup2(saved_err_, STDERR_FILENO);
+      ::close(saved_err_);
+    }
+  }
+  RedirectOutput(const RedirectOutput&) = delete;
+  RedirectOutput& operator=(const RedirectOutput&) = delete;
+
+ private:
+  static void flush() {
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(stdout);
+    std::fflush(stderr);
+  }
+  int saved_out_ = -1, saved_err_ = -1;
+};
+
+// Runs `sglab ARGUMENTS` in this process with the same exit codes as main():
+// 0 success, 1 failure, 2 bad input, CLI11's code for a command-line error.
+int run_step(const std::vector<std::string>& arguments) {
+  CLI::App app{"sglab"};
+  app.require_subcommand(1);
+  add_fit_command(app);
+  add_sweep_command(app);
+  add_erf_command(app);
+  add_stability_command(app);
+  add_claims_command(app);
+  add_bench_command(app);
+  add_pareto_command(app);
+  add_figures_command(app);
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "sglab: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "sglab: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+bool is_relative_target(std::string_view t) {
+  return !t.empty() && t.front() != '/' && t.front() != '#' && t.find("://") == std::string_view::npos &&
+         t.rfind("mailto:", 0) != 0;
+}
+
+// `target` (relative to the folder `from`, itself relative to OUT) as a path
+// relative to OUT.
+std::string rebase(std::string_view target, const fs::path& from) {
+  return (from / fs::path(std::string(target))).lexically_normal().generic_string();
+}
+
+// What index.md already shows (images) and links to (every target), as paths
+// relative to OUT.
+struct Seen {
+  std::set<std::string> images;
+  std::set<std::string> links;
+};
+
+// One line of Markdown with every relative link and image target rebased from
+// `from` to OUT. An image already shown becomes a plain link, so that each
+// figure appears once. Inline code spans are left as they are.
+std::string rewrite_links(std::string_view line, const fs::path& from, Seen& seen) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    const char ch = line[i];
+    if (ch == '`') {  // code span: copy through the closing run of backticks
+      std::size_t run = 0;
+      while (i + run < line.size() && line[i + run] == '`') ++run;
+      const std::string fence(run, '`');
+      const std::size_t close = line.find(fence, i + run);
+      const std::size_t end = close == std::string_view::npos ? line.size() : close + run;
+      out.append(line.substr(i, end - i));
+      i = end;
+      continue;
+    }
+    const bool image = ch == '!' && i + 1 < line.size() && line[i + 1] == '[';
+    if (ch == '[' || image) {
+      const std::size_t open = image ? i + 1 : i;
+      std::size_t depth = 0, close = std::string_view::npos;
+      for (std::size_t k = open; k < line.size(); ++k) {
+        if (line[k] == '[') ++depth;
+        if (line[k] == ']' && --depth == 0) {
+          close = k;
+          break;
+        }
+      }
+      if (close != std::string_view::npos && close + 1 < line.size() && line[close + 1] == '(') {
+        const std::size_t paren = line.find(')', close + 2);
+        if (paren != std::string_view::npos) {
+          const std::string_view text = line.substr(open + 1, close - open - 1);
+          std::string_view target = line.substr(close + 2, paren - close - 2);
+          std::string_view title;
+          if (const std::size_t sp = target.find(' '); sp != std::string_view::npos) {
+            title = target.substr(sp);
+            target = target.substr(0, sp);
+          }
+          const std::string rebased = is_relative_target(target) ? rebase(target, from) : std::string(target);
+          const bool duplicate = image && !seen.images.insert(rebased).second;
+          seen.links.insert(rebased);
+          out += fmt::format("{}[{}]({}{})", image && !duplicate ? "!" : "", text, rebased, title);
+          i = paren + 1;
+          continue;
+        }
+      }
+    }
+    out += ch;
+    ++i;
+  }
+  return out;
+}
+
+// A Markdown file for inlining under an H3: headings moved down three levels
+// (H1 → H4, at most H6) and links rebased from `from` to OUT. Fenced code
+// blocks are copied unchanged.
+std::string inline_markdown(const std::string& text, const fs::path& from, Seen& seen) {
+  std::string out;
+  bool fenced = false;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + start, end - start);
+    start = end + 1;
+    if (line.rfind("```", 0) == 0 || line.rfind("~~~", 0) == 0) fenced = !fenced;
+    if (fenced || line.rfind("```", 0) == 0 || line.rfind("~~~", 0) == 0) {
+      out.append(line);
+      out += '\n';
+      continue;
+    }
+    std::size_t level = 0;
+    while (level < line.size() && line[level] == '#') ++level;
+    if (level >= 1 && level <= 6 && (level == line.size() || line[level] == ' ')) {
+      out += std::string(std::min<std::size_t>(level + 3, 6), '#');
+      out += rewrite_links(line.substr(level), from, seen);
+    } else {
+      out += rewrite_links(line, from, seen);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::size_t count_lines(const std::string& s) {
+  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')) + (!s.empty() && s.back() != '\n');
+}
+
+// The section of index.md for one step: its command and status, its Markdown
+// files (inlined or linked), the figures not shown by them, and links to the
+// other files it wrote that those do not link.
+std::string section(const fs::path& out, const Step& step, int status, double seconds, Seen& seen) {
+  const std::string log = fmt::format("logs/{}.log", step.name);
+  std::string md = fmt::format("## {}\n\n`{}` — {} in {:.1f} s (log: [{}]({}))\n\n", step.name,
+                               display_command(step.arguments),
+                               status == 0 ? "ok" : fmt::format("FAILED (exit {})", status), seconds, log, log);
+  const fs::path dir = out / step.dir;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return md;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir, ec))
+    if (e.is_regular_file()) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  std::vector<std::string> others;
+  for (const fs::path& f : files) {
+    const std::string rel = fs::relative(f, out).generic_string();
+    if (f.filename().string().front() == '.') continue;  // temporaries
+    if (f.extension() == ".md") {
+      const std::string text = io::read_file(f);
+      const std::size_t lines = count_lines(text);
+      seen.links.insert(rel);
+      if (lines > kInlineLines)
+        md += fmt::format("### {}\n\n[{}]({}) ({} lines, linked rather than inlined)\n\n", rel, rel, rel, lines);
+      else
+        md += fmt::format("### {}\n\n{}\n", rel, inline_markdown(text, fs::relative(f.parent_path(), out), seen));
+    }
+  }
+  for (const fs::path& f : files) {
+    const std::string rel = fs::relative(f, out).generic_string();
+    if (f.filename().string().front() == '.') continue;
+    if (f.extension() == ".png" && seen.images.insert(rel).second) {
+      md += fmt::format("![{}]({})\n\n", f.stem().string(), rel);
+      seen.links.insert(rel);
+    } else if (!seen.links.count(rel)) {
+      others.push_back(rel);
+    }
+  }
+  if (!others.empty()) {
+    md += "Other files:";
+    for (std::size_t i = 0; i < others.size(); ++i) md += fmt::format("{} [{}]({})", i ? "," : "", others[i], others[i]);
+    md += "\n\n";
   }
   return md;
 }
@@ -76,43 +298,48 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
   cmd->callback([out, quick, skip] {
     const fs::path root = *out;
+    const auto in = [&root](const char* sub) { return (root / sub).string(); };
+    std::vector<std::string> erf = {"erf"};
+    if (!*quick) erf.emplace_back("--exhaustive");
+    erf.insert(erf.end(), {"--out", in("erf")});
     const std::vector<Step> steps = {
-        {"fit", fmt::format("fit all --out {0}/constants --header {0}/constants/constants.hpp", root.string()),
-         "constants"},
-        {"sweep", fmt::format("sweep --backend auto --out {}/sweep", root.string()), "sweep"},
-        {"erf", fmt::format("erf{} --out {}/erf", *quick ? "" : " --exhaustive", root.string()), "erf"},
-        {"stability", fmt::format("stability --out {}/stability", root.string()), "stability"},
-        {"claims", fmt::format("claims --out {}/claims", root.string()), "claims"},
-        {"bench", fmt::format("bench --out {}/bench", root.string()), "bench"},
-        {"pareto", fmt::format("pareto --out {}/pareto", root.string()), "pareto"},
-        {"figures", fmt::format("figures --out {0}/figures --pareto {0}/pareto/pareto.csv", root.string()),
-         "figures"},
+        {"fit", {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")}, "constants"},
+        {"sweep", {"sweep", "--backend", "auto", "--out", in("sweep")}, "sweep"},
+        {"erf", erf, "erf"},
+        {"stability", {"stability", "--out", in("stability")}, "stability"},
+        {"claims", {"claims", "--out", in("claims")}, "claims"},
+        {"bench", {"bench", "--out", in("bench")}, "bench"},
+        {"pareto", {"pareto", "--out", in("pareto")}, "pareto"},
+        {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
     };
     for (const auto& s : *skip) {
       if (std::none_of(steps.begin(), steps.end(), [&](const Step& st) { return st.name == s; }))
         throw InputError(fmt::format("--skip: unknown step '{}'", s));
     }
     fs::create_directories(root / "logs");
-    const std::string self = self_path();
     std::string index = "# sglab results\n\nProduced by `sglab run`; every section names the command that made it.\n\n";
+    Seen seen;
     int failures = 0;
     const auto t0 = std::chrono::steady_clock::now();
     for (const Step& step : steps) {
       if (std::find(skip->begin(), skip->end(), step.name) != skip->end()) continue;
-      const std::string log = (root / "logs" / (step.name + ".log")).string();
+      const fs::path log = root / "logs" / (step.name + ".log");
       if (io::stderr_is_terminal()) fmt::print(stderr, "sglab run: {} ...\n", step.name);
       const auto start = std::chrono::steady_clock::now();
-      const int raw = std::system(fmt::format("{} {} > {} 2>&1 < /dev/null", shell_quote(self), step.arguments,
-                                              shell_quote(log))
-                                      .c_str());
-      const int status = raw == -1 ? -1 : WIFEXITED(raw) ? WEXITSTATUS(raw) : 128;
+      int status = 1;
+      {
+        RedirectOutput redirect(log);
+        status = run_step(step.arguments);
+      }
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print("{:<10} {:>7.1f} s  {}\n", step.name, secs, status == 0 ? "ok" : fmt::format("FAILED, see {}", log));
+      fmt::print("{:<10} {:>7.1f} s  {}\n", step.name, secs,
+                 status == 0 ? "ok" : fmt::format("FAILED, see {}", log.string()));
+      std::fflush(stdout);
       if (status != 0) ++failures;
-      index += section(root, step, status, secs);
+      index += section(root, step, status, secs, seen);
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    index += fmt::format("\nTotal: {:.1f} s.\n", total);
+    index += fmt::format("Total: {:.1f} s.\n", total);
     io::write_file_atomic(root / "index.md", index);
     fmt::print("total {:.1f} s; wrote {}\n", total, (root / "index.md").string());
     if (failures) throw std::runtime_error(fmt::format("{} step(s) failed", failures));

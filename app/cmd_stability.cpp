@@ -26,16 +26,21 @@ void add_stability_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
       "stability", "NaN / Inf / negative / out-of-range outputs of every function and method over special inputs");
-  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
-  cmd->add_flag("--json", args->json, "print the full table as JSON on stdout");
-  cmd->callback([args] {
+  auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+                         ->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the full table as JSON on stdout; writes no file unless --out is given");
+  cmd->callback([args, out_option] {
     const validate::StabilityReport report = validate::stability();
     const validate::Table full = validate::stability_table(report);
     const validate::Table findings = validate::stability_findings_table(report);
     const std::filesystem::path dir(args->out);
+    // --json prints to stdout; files are written only where asked.
+    const bool write_files = !args->json || out_option->count() > 0;
     using validate::TableFormat;
-    validate::write_table(full, dir, "stability", {TableFormat::csv, TableFormat::markdown});
-    validate::write_table(findings, dir, "findings", {TableFormat::csv, TableFormat::markdown});
+    if (write_files) {
+      validate::write_table(full, dir, "stability", {TableFormat::csv, TableFormat::markdown});
+      validate::write_table(findings, dir, "findings", {TableFormat::csv, TableFormat::markdown});
+    }
 
     nlohmann::ordered_json doc = nlohmann::ordered_json::object();
     // JSON has no NaN / inf: spell the non-finite inputs as strings.
@@ -59,7 +64,7 @@ void add_stability_command(CLI::App& app) {
       own.push_back(fmt::format("{} ({})", r->function, validate::to_string(r->precision)));
     doc["sglab_failures_on_valid_inputs"] = std::move(own);
     const std::string json = doc.dump(2) + "\n";
-    io::write_file_atomic(dir / "stability.json", json);
+    if (write_files) io::write_file_atomic(dir / "stability.json", json);
 
     if (args->json) {
       fmt::print("{}", json);

@@ -144,9 +144,13 @@ void add_sweep_command(CLI::App& app) {
   cmd->footer("peak_rel = |x̂ − x| / x(1, κ) for x = E, H or s: the error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa,
                   "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: SPEC §4, 1e-3:1e4:29)");
-  cmd->add_option("--cosines", args->cosines, "number of cosines evenly spaced over [-1, 1] (default 41)");
-  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
-  cmd->add_flag("--json", args->json, "print the summary as JSON on stdout");
+  cmd->add_option("--cosines", args->cosines,
+                  fmt::format("number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at "
+                              "most {} points",
+                              validate::SweepGrid::kMaxPoints));
+  auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+                         ->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the summary as JSON on stdout; writes no file unless --out is given");
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");
   cmd->add_option("--backend", args->backends,
                   "cpu (the C++ runtime in float and double, default) and/or vulkan (each irradiance method's "
@@ -155,7 +159,7 @@ void add_sweep_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--lang", args->lang, "shader language(s) of the vulkan backend: glsl, hlsl or both")
       ->capture_default_str();
-  cmd->callback([args] {
+  cmd->callback([args, out_option] {
     validate::SweepGrid grid;  // SPEC §4 standard grid
     if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
     if (!args->cosines.empty()) parse_cosines_option(args->cosines, grid);
@@ -215,16 +219,20 @@ void add_sweep_command(CLI::App& app) {
     }
     const validate::Table summary = validate::summary_table(result);
     const std::filesystem::path dir(args->out);
+    // --json prints to stdout; files are written only where asked.
+    const bool write_files = !args->json || out_option->count() > 0;
     using validate::TableFormat;
-    validate::write_table(summary, dir, "summary", {TableFormat::csv, TableFormat::markdown});
-    validate::write_table(validate::per_kappa_table(result), dir, "per_kappa",
-                          {TableFormat::csv, TableFormat::markdown});
-    validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
+    if (write_files) {
+      validate::write_table(summary, dir, "summary", {TableFormat::csv, TableFormat::markdown});
+      validate::write_table(validate::per_kappa_table(result), dir, "per_kappa",
+                            {TableFormat::csv, TableFormat::markdown});
+      validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
+    }
 
     // The device against the C++ runtime in float, point by point.
     std::optional<validate::Table> device_vs_float;
     if (vulkan && cpu) device_vs_float = device_vs_float_table(result);
-    if (device_vs_float)
+    if (device_vs_float && write_files)
       validate::write_table(*device_vs_float, dir, "device_vs_float", {TableFormat::csv, TableFormat::markdown});
 
     nlohmann::ordered_json doc = nlohmann::ordered_json::object();
@@ -239,7 +247,7 @@ void add_sweep_command(CLI::App& app) {
     doc["results"] = validate::to_json_records(summary);
     if (device_vs_float) doc["device_vs_float"] = validate::to_json_records(*device_vs_float);
     const std::string json = doc.dump(2) + "\n";
-    io::write_file_atomic(dir / "summary.json", json);
+    if (write_files) io::write_file_atomic(dir / "summary.json", json);
 
     if (args->json)
       fmt::print("{}", json);

@@ -135,8 +135,7 @@ TEST(Figures, CommandWritesPngAndSvg) {
                                "tokuyoshi2024,published,double,0.001,10000,20.0,0.0013,true\n"
                                "\"meder2018\",published,double,0.001,10000,9.0,0.02,true\n");
   const fs::path out = dir / "figs";
-  const auto r = sglab::test::run_command(fmt::format("'{}' figures --out '{}' --pareto '{}'", SGLAB_BINARY,
-                                                      out.string(), pareto.string()));
+  const auto r = sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", pareto.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* stem : {"a_clamped_cosine", "b_steepness", "c_irradiance_kappa4", "d_peak_rel_heatmaps", "e_pareto",
                            "f_erf_ulp", "g_peak_rel_vs_kappa"})
@@ -187,8 +186,8 @@ TEST(Figures, MissingParetoFileIsSkipped) {
   // Only checks the command line path: figure (e) skipped with a message, exit 0.
   const fs::path dir = fs::temp_directory_path() / fmt::format("sglab_test_figures_np_{}", ::getpid());
   fs::remove_all(dir);
-  const auto r = sglab::test::run_command(fmt::format("'{}' figures --out '{}' --pareto '{}'", SGLAB_BINARY,
-                                                      (dir / "figs").string(), (dir / "absent.csv").string()));
+  const auto r =
+      sglab::test::run_sglab({"figures", "--out", (dir / "figs").string(), "--pareto", (dir / "absent.csv").string()});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("not found"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "figs" / "e_pareto.png"));

@@ -51,7 +51,7 @@ TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
                                R"({"target":"t","variant":"v","cpp_name":"1x","cpp_type":"T","form":"f",
                                   "coefficients":{"a":1},"provenance":{}})");
   EXPECT_THROW(sglab::fit::load_constant_sets(dir), std::runtime_error);
-  const auto r = sglab::test::run_command(std::string(SGLAB_BINARY) + " constants --dir " + dir.string());
+  const auto r = sglab::test::run_sglab({"constants", "--dir", dir.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("bad.json"), std::string::npos) << r.output;
   fs::remove_all(dir);

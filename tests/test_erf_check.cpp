@@ -1,8 +1,6 @@
 // The erf checker (validate/erf_check.hpp) and `sglab erf`: the checker finds
 // injected errors, its reference is correctly rounded (checked against
 // independent 50-digit evaluation), and the published claims hold.
-#include <sys/wait.h>
-
 #include <bit>
 #include <cfloat>
 #include <cmath>
@@ -17,6 +15,8 @@
 
 #include <sglab/erf.hpp>
 #include <sglab/registry.hpp>
+
+#include "test_support.hpp"
 
 #include "erf_check.hpp"
 
@@ -55,21 +55,6 @@ std::string hexf(double x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%a", x);
   return buf;
-}
-
-struct CommandResult {
-  int status;
-  std::string output;
-};
-CommandResult run(const std::string& args) {
-  const std::string cmd = std::string(SGLAB_BINARY) + " " + args;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return {-1, ""};
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int st = ::pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
 }
 
 }  // namespace
@@ -278,15 +263,16 @@ TEST(ErfCheck, DoubleCheckOfStdIsAccurate) {
 }
 
 TEST(ErfCommand, UnknownVariantExitsTwoNamingIt) {
-  const CommandResult r = run("erf --variant no_such_erf 2>&1");
-  EXPECT_EQ(r.status, 2);
+  const auto r = sglab::test::run_sglab({"erf", "--variant", "no_such_erf"});
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("no_such_erf"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("listing5"), std::string::npos) << r.output;
 }
 
 TEST(ErfCommand, JsonHasTheDocumentedKeys) {
-  const CommandResult r = run("erf --json --variant listing5 --variant std --double-points 20000 2>/dev/null");
-  ASSERT_EQ(r.status, 0) << r.output;
+  const auto r = sglab::test::run_sglab(
+      {"erf", "--json", "--variant", "listing5", "--variant", "std", "--double-points", "20000"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output);
   ASSERT_TRUE(j.contains("results"));
   ASSERT_EQ(j["results"].size(), 4u);  // 2 variants × float, double
@@ -307,8 +293,9 @@ TEST(ErfCommand, JsonHasTheDocumentedKeys) {
 
 TEST(ErfCommand, OutWritesSeriesAndSummary) {
   const std::string dir = ::testing::TempDir() + "sglab_erf_out";
-  const CommandResult r = run("erf --variant as7125 --bins 64 --double-points 20000 --out " + dir + " >/dev/null 2>&1");
-  ASSERT_EQ(r.status, 0);
+  const auto r =
+      sglab::test::run_sglab({"erf", "--variant", "as7125", "--bins", "64", "--double-points", "20000", "--out", dir});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"erf_as7125_float.csv", "erf_as7125_double.csv", "erf_summary.csv", "erf_summary.md", "erf_histogram.csv"}) {
     FILE* p = std::fopen((dir + "/" + f).c_str(), "r");
     EXPECT_NE(p, nullptr) << f;

@@ -157,24 +157,23 @@ TEST(Fit, RefitIsNoWorseThanPublishedOnItsObjective) {
 }
 
 TEST(Cli, BadOptionsAreClearErrors) {
-  const std::string bin = SGLAB_BINARY;
-  auto r = sglab::test::run_command(bin + " fit nonsense --dry-run");
+  auto r = sglab::test::run_sglab({"fit", "nonsense", "--dry-run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("unknown fit target 'nonsense'"), std::string::npos) << r.output;
-  r = sglab::test::run_command(bin + " fit steepness2022 --kappa -1:10 --dry-run");
+  r = sglab::test::run_sglab({"fit", "steepness2022", "--kappa", "-1:10", "--dry-run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--kappa"), std::string::npos) << r.output;
-  r = sglab::test::run_command(bin + " fit steepness2022 --kappa 10:1 --dry-run");
+  r = sglab::test::run_sglab({"fit", "steepness2022", "--kappa", "10:1", "--dry-run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  r = sglab::test::run_command(bin + " fit clamped-cosine --precision quad --dry-run");
+  r = sglab::test::run_sglab({"fit", "clamped-cosine", "--precision", "quad", "--dry-run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--precision"), std::string::npos) << r.output;
-  r = sglab::test::run_command(bin + " fit steepness2022 --objective best --dry-run");
+  r = sglab::test::run_sglab({"fit", "steepness2022", "--objective", "best", "--dry-run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
 TEST(Cli, JsonReportHasNamedCoefficientsAndPublished) {
-  const auto r = sglab::test::run_command(std::string(SGLAB_BINARY) + " fit clamped-cosine --json --dry-run");
+  const auto r = sglab::test::run_sglab({"fit", "clamped-cosine", "--json", "--dry-run"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
   EXPECT_TRUE(j.contains("lambda") && j.contains("alpha") && j.contains("approximation_error"));

@@ -151,7 +151,7 @@ struct Output {
   std::string out;
 };
 Output run_stdout(const std::string& args) {
-  const auto r = sglab::test::run_command(fmt::format("'{}' {}", SGLAB_BINARY, args), false);
+  const auto r = sglab::test::run_sglab(sglab::test::words(args), false);
   return {r.exit_code, r.output};
 }
 
@@ -162,7 +162,7 @@ std::string temp_dir(const std::string& tag) {
 }
 
 double sweep_max_peak_rel(const std::string& kappa, const std::string& method, const std::string& precision) {
-  const Output s = run_stdout(fmt::format("sweep --kappa {}:29 --cosines 41 --json --method {} --out '{}'", kappa,
+  const Output s = run_stdout(fmt::format("sweep --kappa {}:29 --cosines 41 --json --method {} --out {}", kappa,
                                           method, temp_dir("sweep")));
   EXPECT_EQ(s.exit_code, 0) << s.out;
   const auto doc = nlohmann::json::parse(s.out);
@@ -237,18 +237,20 @@ TEST(RecommendCli, BadOptionsExit2) {
   for (const char* args : {"--kappa 0:10 --budget 1e-3", "--kappa 10:1 --budget 1e-3", "--kappa a:b --budget 1e-3",
                            "--kappa 1 --budget 1e-3", "--kappa 1:10 --budget 0", "--kappa 1:10 --budget -1",
                            "--kappa 1:10 --budget abc", "--kappa 1:10 --budget 1e-3 --precision half"}) {
-    const auto r = sglab::test::run_command(fmt::format("'{}' recommend {}", SGLAB_BINARY, args));
+    auto argv = sglab::test::words(args);
+    argv.insert(argv.begin(), "recommend");
+    const auto r = sglab::test::run_sglab(argv);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
   }
-  const auto r = sglab::test::run_command(fmt::format("'{}' recommend --kappa 1:10 --budget abc", SGLAB_BINARY));
+  const auto r = sglab::test::run_sglab({"recommend", "--kappa", "1:10", "--budget", "abc"});
   EXPECT_NE(r.output.find("--budget"), std::string::npos) << r.output;
-  const auto k = sglab::test::run_command(fmt::format("'{}' recommend --kappa 0:10 --budget 1", SGLAB_BINARY));
+  const auto k = sglab::test::run_sglab({"recommend", "--kappa", "0:10", "--budget", "1"});
   EXPECT_NE(k.output.find("--kappa"), std::string::npos) << k.output;
 }
 
 TEST(ParetoCli, WritesCsvWithExactHeader) {
   const std::string dir = temp_dir("pareto");
-  const auto r = sglab::test::run_command(fmt::format("'{}' pareto --kappa 1:100 --out '{}'", SGLAB_BINARY, dir));
+  const auto r = sglab::test::run_sglab({"pareto", "--kappa", "1:100", "--out", dir});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   FILE* f = std::fopen((std::filesystem::path(dir) / "pareto.csv").c_str(), "r");
   ASSERT_TRUE(f);
@@ -256,8 +258,7 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   ASSERT_TRUE(std::fgets(line, sizeof line, f));
   std::fclose(f);
   EXPECT_EQ(std::string(line), "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n");
-  EXPECT_EQ(sglab::test::run_command(fmt::format("'{}' pareto --kappa 0:1 --out '{}'", SGLAB_BINARY, dir)).exit_code,
-            2);
+  EXPECT_EQ(sglab::test::run_sglab({"pareto", "--kappa", "0:1", "--out", dir}).exit_code, 2);
 }
 
 }  // namespace

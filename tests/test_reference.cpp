@@ -335,12 +335,17 @@ struct TempDir {
   }
 };
 
-std::string sglab_reference(const std::string& args) { return fmt::format("'{}' reference {}", SGLAB_BINARY, args); }
+// `sglab reference --points FILE` with extra options before --points.
+sglab::test::CommandResult sglab_reference(const std::string& file, std::vector<std::string> options = {}) {
+  options.insert(options.begin(), "reference");
+  options.insert(options.end(), {"--points", file});
+  return sglab::test::run_sglab(options);
+}
 
 TEST(ReferenceCommand, PrintsCsvWith17Digits) {
   TempDir dir;
   const std::string file = dir.write("points.csv", "kappa,cosine\n0,0.5\n1e-6,-1\n2.5,0.1\r\n 1000 , -0.25 \n1e6,1\n\n");
-  const auto r = sglab::test::run_command(sglab_reference("--points '" + file + "'"));
+  const auto r = sglab_reference(file);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::string expected = "kappa,cosine,hemispherical,irradiance,normalized\n";
   const std::vector<std::pair<double, double>> points = {{0.0, 0.5}, {1e-6, -1.0}, {2.5, 0.1}, {1000.0, -0.25}, {1e6, 1.0}};
@@ -351,7 +356,7 @@ TEST(ReferenceCommand, PrintsCsvWith17Digits) {
   }
   EXPECT_EQ(r.output, expected);
 
-  const auto high = sglab::test::run_command(sglab_reference("--precision high --points '" + file + "'"));
+  const auto high = sglab_reference(file, {"--precision", "high"});
   ASSERT_EQ(high.exit_code, 0) << high.output;
   EXPECT_EQ(std::count(high.output.begin(), high.output.end(), '\n'), 6);
 }
@@ -377,12 +382,12 @@ TEST(ReferenceCommand, BadInputIsExitCode2NamingTheLine) {
   };
   for (const Case& c : cases) {
     const std::string file = dir.write(c.name, c.content);
-    const auto r = sglab::test::run_command(sglab_reference("--points '" + file + "'"));
+    const auto r = sglab_reference(file);
     EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
     EXPECT_NE(r.output.find(c.where), std::string::npos) << c.name << ": " << r.output;
   }
   const std::string missing = (dir.path / "does-not-exist.csv").string();
-  const auto r = sglab::test::run_command(sglab_reference("--points '" + missing + "'"));
+  const auto r = sglab_reference(missing);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("does-not-exist.csv"), std::string::npos) << r.output;
 }

@@ -220,7 +220,7 @@ TEST(Stability, TableHasCountsAndKappaSpans) {
 TEST(StabilityCli, JsonParses) {
   const std::string dir =
       (std::filesystem::temp_directory_path() / fmt::format("sglab-test-stability-{}", ::getpid())).string();
-  const auto r = sglab::test::run_command(fmt::format("'{}' stability --out '{}' --json", SGLAB_BINARY, dir));
+  const auto r = sglab::test::run_sglab({"stability", "--out", dir, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.output.substr(0, 2000);
   const auto j = nlohmann::json::parse(r.output);
   ASSERT_TRUE(j.contains("results"));

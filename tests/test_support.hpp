@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -32,22 +33,25 @@ inline std::vector<double> standard_cosines() {
   return c;
 }
 
-// Runs a shell command, returning its exit code and capturing stdout and,
-// unless merge_stderr is false (stdout only, e.g. to parse JSON), stderr.
+// The exit code and captured output of a program run by run_program.
 struct CommandResult {
   int exit_code;
   std::string output;
 };
-inline CommandResult run_command(const std::string& command, bool merge_stderr = true) {
-  CommandResult r{-1, {}};
-  FILE* pipe = ::popen((command + (merge_stderr ? " 2>&1" : " 2>/dev/null")).c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+
+// Splits at blanks into an argument vector (no quoting, no shell; for fixed
+// option strings in tests): words("--kappa 1:10:5") == {"--kappa", "1:10:5"}.
+inline std::vector<std::string> words(std::string_view text) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+    std::size_t j = i;
+    while (j < text.size() && text[j] != ' ' && text[j] != '\t') ++j;
+    if (j > i) out.emplace_back(text.substr(i, j - i));
+    i = j;
+  }
+  return out;
 }
 
 // Runs a program with an argument vector (no shell: paths with spaces, quotes

@@ -258,7 +258,9 @@ std::string out_dir(const char* tag) {
 }
 
 sglab::test::CommandResult sweep_cli(const std::string& args, const char* tag = "cli") {
-  return sglab::test::run_command(fmt::format("'{}' sweep --out '{}' {}", SGLAB_BINARY, out_dir(tag), args));
+  std::vector<std::string> argv = {"sweep", "--out", out_dir(tag)};
+  for (std::string& w : sglab::test::words(args)) argv.push_back(std::move(w));
+  return sglab::test::run_sglab(argv);
 }
 
 }  // namespace

@@ -37,37 +37,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Runs args[0] (searched in PATH unless it contains a '/') with args[1..] in
-// directory `dir` (the current one when empty), stdout and stderr to the file
-// `log`. No shell: paths and user strings are passed as an argument vector.
-// Returns the exit status, or -1 when the program could not be started or did
-// not exit normally.
-int run_in(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log) {
-  std::string program = args.at(0);
-  if (program.find('/') != std::string::npos) program = fs::absolute(program).string();  // before the chdir
-  const std::string log_path = fs::absolute(log).string();
-  posix_spawn_file_actions_t actions;
-  if (posix_spawn_file_actions_init(&actions) != 0) return -1;
-  bool ok = true;
-  if (!dir.empty()) ok = ok && posix_spawn_file_actions_addchdir_np(&actions, dir.c_str()) == 0;
-  ok = ok && posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                              0644) == 0;
-  ok = ok && posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO) == 0;
-  std::vector<char*> argv;
-  argv.push_back(program.data());
-  std::vector<std::string> rest(args.begin() + 1, args.end());
-  for (std::string& a : rest) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (ok) ok = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
-  posix_spawn_file_actions_destroy(&actions);
-  if (!ok) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) == -1)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 // gnuplot single-quoted string: only ' needs doubling.
 std::string gp_quote(const std::string& s) {
   std::string out = "'";
@@ -120,7 +89,8 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
   const fs::path gp = dir / (stem + ".gp");
   io::write_file_atomic(gp, script);
   const fs::path log = dir / (stem + ".gp.log");
-  const int status = run_in(dir, {opt.gnuplot, stem + ".gp"}, log);
+  // No shell: gnuplot runs in `dir` with an argument vector.
+  const int status = io::run_program({opt.gnuplot, stem + ".gp"}, dir, stem + ".gp.log");
   if (status != 0) {
     std::string tail;
     try {
@@ -790,7 +760,7 @@ double parse_number(const std::string& s, const fs::path& path, std::size_t line
 
 std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
   const std::string text = io::read_file(path);
-  std::istringstream in(text);
+  std::istringstream in(std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
   std::string line;
   std::size_t lineno = 0;
   std::vector<std::string> header;
@@ -841,7 +811,7 @@ std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
 }
 
 bool gnuplot_available(const std::string& gnuplot) {
-  return !gnuplot.empty() && run_in({}, {gnuplot, "--version"}, "/dev/null") == 0;
+  return !gnuplot.empty() && io::run_program({gnuplot, "--version"}) == 0;
 }
 
 std::vector<Figure> make_figures(const FiguresOptions& options) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace sglab::io {
 
@@ -33,5 +34,18 @@ class Progress {
 };
 
 bool stderr_is_terminal();
+
+// Runs `argv[0]` (looked up in PATH) with the argument vector `argv`: no
+// shell, so arguments are passed exactly as given. Standard input is
+// /dev/null; standard output and error go to `output` (created or truncated,
+// relative to `cwd` if relative) or are discarded when it is empty; `cwd`,
+// when not empty, is the child's working directory. Returns the exit code,
+// 128 + the signal number if it was killed, or -1 if it could not be started.
+int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
+                const std::filesystem::path& output = {});
+
+// `text` without a leading UTF-8 byte-order mark (EF BB BF), which some
+// editors and spreadsheet programs write at the start of a CSV file.
+std::string_view strip_utf8_bom(std::string_view text);
 
 }  // namespace sglab::io

@@ -56,6 +56,24 @@ void SweepGrid::validate() const {
     throw std::invalid_argument(
         fmt::format("a κ count of 1 needs equal bounds, got {}:{}", kappa_lo, kappa_hi));
   if (cosine_count < 2) throw std::invalid_argument(fmt::format("cosine count must be >= 2, got {}", cosine_count));
+  if (point_count() > kMaxPoints) {
+    const std::size_t entries = registered_sweep_methods().size() * 2;  // every method, float and double
+    throw std::invalid_argument(fmt::format(
+        "the grid of {} κ × {} cosines = {} points exceeds the limit of {} points; it would need about {:.3g} GB "
+        "of memory for every method in float and double (use fewer κ or cosines, or several smaller sweeps)",
+        kappa_count, cosine_count, point_count(), kMaxPoints, static_cast<double>(sweep_memory_estimate(*this, entries)) / 1e9));
+  }
+}
+
+std::uint64_t SweepGrid::point_count() const {
+  if (kappa_count < 1 || cosine_count < 1) return 0;
+  return static_cast<std::uint64_t>(kappa_count) * static_cast<std::uint64_t>(cosine_count);
+}
+
+std::uint64_t sweep_memory_estimate(const SweepGrid& grid, std::size_t entries) {
+  const std::uint64_t points = grid.point_count();
+  const std::uint64_t per_point = sizeof(Query) + sizeof(ReferencePoint) + entries * kSweepBytesPerPointEntry;
+  return points * per_point;
 }
 
 std::vector<double> SweepGrid::kappas() const {

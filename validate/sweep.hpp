@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -43,9 +44,21 @@ struct SweepGrid {
   int kappa_count = 29;
   int cosine_count = 41;
 
+  // The largest grid a sweep accepts: κ count × cosine count ≤ this many
+  // points (the standard grid has 1,189). A sweep keeps, per point and per
+  // method and precision, the value and its error and a row of points.csv:
+  // about kSweepBytesPerPointEntry bytes per point and entry, so the full
+  // registry in float and double needs about 1.1 GB of memory at the limit
+  // (and writes a 230 MB points.csv).
+  static constexpr std::uint64_t kMaxPoints = 50'000;
+
+  // κ count × cosine count (0 when either is not positive).
+  std::uint64_t point_count() const;
+
   // Throws std::invalid_argument unless 0 < lo ≤ hi are finite and
   // representable as positive finite floats, count ≥ 1 (count = 1 needs
-  // lo = hi) and cosine_count ≥ 2.
+  // lo = hi), cosine_count ≥ 2 and point_count() ≤ kMaxPoints (the message
+  // then says how much memory the grid would need). Allocates nothing.
   void validate() const;
 
   // Nominal values in double. κ_j = 10^(e_lo + (e_hi − e_lo)·j/(N − 1)) with
@@ -55,6 +68,16 @@ struct SweepGrid {
   std::vector<double> kappas() const;
   std::vector<double> cosines() const;
 };
+
+// Estimated bytes a sweep holds per grid point and per entry (one method in
+// one precision) with keep_points: value and peak_rel, and its row of the
+// points table and of points.csv. Measured: `sglab sweep --kappa
+// 1e-3:1e4:1000` (41,000 points, 38 entries) peaks at 886 MB resident.
+inline constexpr std::uint64_t kSweepBytesPerPointEntry = 560;
+
+// Estimated peak memory of sweep() plus the points table of `grid` over
+// `entries` entries (methods × precisions) with keep_points.
+std::uint64_t sweep_memory_estimate(const SweepGrid& grid, std::size_t entries);
 
 // The nominal values rounded to float (and back to double, exactly).
 std::vector<double> float_exact(std::span<const double> values);
