@@ -12,7 +12,7 @@
 #include <sglab/registry.hpp>
 
 #include "commands.hpp"
-#include "erf_check.hpp"
+#include "erf_report.hpp"
 #include "io.hpp"
 
 namespace sglab::app {
