@@ -12,7 +12,7 @@
 #include <sglab/registry.hpp>
 
 #include "commands.hpp"
-#include "erf_check.hpp"
+#include "erf_report.hpp"
 #include "io.hpp"
 
 namespace sglab::app {
@@ -67,10 +67,10 @@ void run_erf(const ErfArgs& args) {
     validate::ErfFloatOptions fopt;
     fopt.exhaustive = args.exhaustive;
     fopt.bins = args.bins;
+    fopt.progress_label = fmt::format("erf {} float{}", v->id, args.exhaustive ? ", exhaustive" : "");  // terminals only
     if (args.exhaustive) {
       fopt.odd_stride = 127;  // negatives: 16.7 million sampled, not all
       fopt.exhaustive_tail_stride = args.tail_stride;
-      fopt.progress_label = fmt::format("erf {} float, exhaustive", v->id);
     }
     with_erf_callables(*v, [&](auto f32, auto f64) {
       reports.push_back(validate::check_erf_float(f32, fopt, v->id));

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "constants_io.hpp"
 #include "io.hpp"
+#include "minimax.hpp"
 #include "targets.hpp"
 
 namespace sglab::app {
@@ -167,6 +168,8 @@ void add_fit_command(CLI::App& app) {
     for (const auto& spec : specs) {
       fit::FitOutcome outcome;
       try {
+        io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);  // open-ended: counts Ceres solves
+        fit::FitProgressScope scope(solves);
         outcome = fit::run_fit(spec);
       } catch (const std::invalid_argument& e) {
         throw InputError(e.what());

@@ -21,6 +21,7 @@
 #include <sglab/sglab.hpp>
 
 #include "half.hpp"
+#include "metrics.hpp"
 #include "minimax.hpp"
 #include "reference.hpp"
 #include "targets.hpp"
@@ -159,15 +160,14 @@ double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
   for (double k : kappas)
     for (double c : cosines) queries.push_back({static_cast<double>(P(k)), static_cast<double>(P(c))});
   const auto ref = validate::reference_engine().evaluate(queries);
-  double worst = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i) {
-    const double peak = sglab::irradiance_upper(ref[i].kappa);
-    const double v = static_cast<double>(
-        irradiance_tokuyoshi2022(P(ref[i].cosine), P(ref[i].kappa), cc, constants::steepness2022_published));
-    const double err = std::abs(v - ref[i].irradiance) / peak;
-    worst = std::isfinite(err) ? std::max(worst, err) : std::numeric_limits<double>::infinity();
+  std::vector<double> values, references, peaks;
+  for (const auto& r : ref) {
+    values.push_back(static_cast<double>(
+        irradiance_tokuyoshi2022(P(r.cosine), P(r.kappa), cc, constants::steepness2022_published)));
+    references.push_back(r.irradiance);
+    peaks.push_back(sglab::irradiance_upper(r.kappa));
   }
-  return worst;
+  return validate::max_peak_rel_error(values, references, peaks);
 }
 
 double measured_cosine_rounding(WorkingPrecision p, double lambda, double alpha) {

@@ -244,10 +244,12 @@ FitOutcome fit_erf(const FitSpec& spec) {
       bool found = false;
       for (double split : {0.5, 0.75, 1.0, 1.25, 1.5, 2.0}) {
         for (std::size_t ns = 2; ns <= kMaxSmall; ++ns) {
+          fit_progress_note(fmt::format("listing5 split {}: {} small terms", split, ns));
           const Listing5Fit small_only =
               fit_listing5({ns, 2, split, pl.cutoff}, taylor_small(ns), pub_large, round);
           if (small_only.small_error > *spec.max_error) continue;
           for (std::size_t nl = 2; nl <= kMaxLarge; ++nl) {
+            fit_progress_note(fmt::format("listing5 split {}: {}+{} terms", split, ns, nl));
             const Listing5Fit f = fit_listing5({ns, nl, split, pl.cutoff}, small_only.small, pub_large, round);
             order_table.push_back({{"split", split}, {"small_terms", ns}, {"large_terms", nl},
                                    {"max_error", f.max_error()}, {"operations", f.operations()}});
@@ -268,6 +270,7 @@ FitOutcome fit_erf(const FitSpec& spec) {
     } else {
       chosen = fit_listing5(pub_shape, pub_small, pub_large, round);
     }
+    fit_progress_note("listing5: error of the chosen and published models (dense and float grids)");
     const Listing5Fit published{pub_shape, pub_small, pub_large, 0, 0};
     const auto exact_fit = max_error_dense([&](double x) { return listing5_eval(chosen, x); }, 6.0);
     const auto exact_pub = max_error_dense([&](double x) { return listing5_eval(published, x); }, 6.0);
@@ -312,6 +315,7 @@ FitOutcome fit_erf(const FitSpec& spec) {
       bool found = false;
       std::vector<double> start = pub;
       for (std::size_t n = 2; n <= kMaxTerms && !found; ++n) {
+        fit_progress_note(fmt::format("as7125: {} terms", n));
         const AsFit f = fit_as(n, start, round);
         order_table.push_back({{"terms", n}, {"max_error", f.error}, {"operations", n + 1}});
         start = f.coefficients;
@@ -325,6 +329,7 @@ FitOutcome fit_erf(const FitSpec& spec) {
     } else {
       chosen = fit_as(3, pub, round);
     }
+    fit_progress_note("as7125: error of the chosen and published models (dense and float grids)");
     const auto exact_fit = max_error_dense([&](double x) { return as_eval(chosen.coefficients, x); }, 6.0);
     const auto exact_pub = max_error_dense([&](double x) { return as_eval(pub, x); }, 6.0);
     const auto float_fit = max_error_float([&](float x) { return as_eval_float(chosen.coefficients, x); }, 4.0f, kFloatStride);

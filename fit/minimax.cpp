@@ -1,6 +1,7 @@
 #include "minimax.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <numeric>
 
@@ -19,6 +20,12 @@ std::vector<double> evaluate_residuals(const Residuals& residuals, const std::ve
 }
 
 namespace {
+
+std::atomic<io::Progress*> g_fit_progress{nullptr};
+
+void count_solve() {
+  if (io::Progress* p = g_fit_progress.load()) p->advance();
+}
 
 void summarize(const std::vector<double>& r, FitResult& result) {
   result.max_abs = 0;
@@ -61,6 +68,7 @@ bool solve_weighted(const Residuals& residuals, const Parameters& params, const 
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
+  count_solve();
   return summary.IsSolutionUsable();
 }
 
@@ -133,10 +141,18 @@ bool solve_penalty(const Residuals& residuals, const Parameters& params, std::ve
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
+  count_solve();
   return summary.IsSolutionUsable();
 }
 
 }  // namespace
+
+FitProgressScope::FitProgressScope(io::Progress& progress) : previous_(g_fit_progress.exchange(&progress)) {}
+FitProgressScope::~FitProgressScope() { g_fit_progress.store(previous_); }
+
+void fit_progress_note(std::string status) {
+  if (io::Progress* p = g_fit_progress.load()) p->note(std::move(status));
+}
 
 FitResult fit(const Residuals& residuals, const Parameters& params, const FitOptions& options) {
   FitResult best;

@@ -18,6 +18,8 @@
 
 #include <ceres/ceres.h>
 
+#include "io.hpp"
+
 namespace sglab::fit {
 
 struct Parameters {
@@ -71,5 +73,22 @@ FitResult fit(const Residuals& residuals, const Parameters& params, const FitOpt
 // the remaining free ones after each rounding (for coefficients that a float
 // shader will store).
 FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params, const FitOptions& options = {});
+
+// Progress of a long fit. While a FitProgressScope is alive, every solve that
+// fit() makes advances its Progress, and fit_progress_note() sets the text
+// shown after the count (the model being fitted). `sglab fit` opens one per
+// target; the Progress draws only when stderr is a terminal.
+class FitProgressScope {
+ public:
+  explicit FitProgressScope(io::Progress& progress);
+  ~FitProgressScope();
+  FitProgressScope(const FitProgressScope&) = delete;
+  FitProgressScope& operator=(const FitProgressScope&) = delete;
+
+ private:
+  io::Progress* previous_;
+};
+// No-op without a scope.
+void fit_progress_note(std::string status);
 
 }  // namespace sglab::fit

@@ -187,6 +187,7 @@ FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022, const std::vecto
   const OrderFit* chosen = nullptr;
   for (std::size_t m = 0; m <= 3 && !chosen; ++m) {
     const OrderFit* lower = fits.empty() ? nullptr : &fits.back();
+    fit_progress_note(fmt::format("rational order {}", m));
     switch (m) {
       case 0: fits.push_back(fit_order<0>(y2022, ref, lower)); break;
       case 1: fits.push_back(fit_order<1>(y2022, ref, lower)); break;

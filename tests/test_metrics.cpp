@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -371,4 +372,110 @@ TEST(Table, WritesEveryFormatAtomically) {
   EXPECT_EQ(sglab::io::read_file(paths[1]), sv::to_markdown(t));
   EXPECT_EQ(nlohmann::json::parse(sglab::io::read_file(paths[2])), nlohmann::json::parse(sv::to_json(t).dump()));
   fs::remove_all(dir);
+}
+
+// ---- ulp of an exact value (the erf checker's metric) ----------------------
+
+TEST(Metrics, UlpFloatAtPowersOfTwoAndBetween) {
+  // 2^e has ulp 2^(e−23); every value in [2^e, 2^(e+1)) shares it.
+  for (int e = -126; e <= 127; ++e) {
+    const double p = std::ldexp(1.0, e);
+    ASSERT_EQ(sv::ulp_float(p), std::ldexp(1.0, e - 23)) << "2^" << e;
+    ASSERT_EQ(sv::ulp_float(-p), std::ldexp(1.0, e - 23)) << "-2^" << e;
+    ASSERT_EQ(sv::ulp_float(1.5 * p), std::ldexp(1.0, e - 23)) << "1.5*2^" << e;
+    // Just below a power of two (the exact value's binade, not its rounding's);
+    // below FLT_MIN = 2^−126 the subnormal spacing 2^−149.
+    ASSERT_EQ(sv::ulp_float(std::nextafter(p, 0.0)), e > -126 ? std::ldexp(1.0, e - 24) : 0x1p-149) << "below 2^" << e;
+  }
+  EXPECT_EQ(sv::ulp_float(1.0), 0x1p-23);
+  EXPECT_EQ(sv::ulp_float(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
+  EXPECT_EQ(sv::ulp_float(0x1p200), 0x1p177);  // beyond the float range: the same formula
+}
+
+TEST(Metrics, UlpFloatDenormalsZeroInfNaN) {
+  const double denorm_min = static_cast<double>(std::numeric_limits<float>::denorm_min());
+  EXPECT_EQ(denorm_min, 0x1p-149);
+  EXPECT_EQ(sv::ulp_float(0.0), 0x1p-149);
+  EXPECT_EQ(sv::ulp_float(-0.0), 0x1p-149);
+  EXPECT_EQ(sv::ulp_float(denorm_min), 0x1p-149);
+  EXPECT_EQ(sv::ulp_float(0x1p-130), 0x1p-149);
+  EXPECT_EQ(sv::ulp_float(std::nextafter(0x1p-126, 0.0)), 0x1p-149);  // largest value below FLT_MIN
+  EXPECT_EQ(sv::ulp_float(0x1p-126), 0x1p-149);                       // FLT_MIN: normal, same spacing
+  EXPECT_EQ(sv::ulp_float(0x1p-125), 0x1p-148);
+  EXPECT_EQ(sv::ulp_float(1e-300), 0x1p-149);
+  EXPECT_EQ(sv::ulp_float(kInf), kInf);
+  EXPECT_EQ(sv::ulp_float(-kInf), kInf);
+  EXPECT_TRUE(std::isnan(sv::ulp_float(kNaN)));
+}
+
+TEST(Metrics, UlpDoubleAtPowersOfTwoDenormalsZeroInfNaN) {
+  for (int e = -1022; e <= 1023; ++e) {
+    const long double p = std::ldexp(1.0L, e);
+    ASSERT_EQ(sv::ulp_double(p), std::ldexp(1.0L, e - 52)) << "2^" << e;
+    ASSERT_EQ(sv::ulp_double(-p), std::ldexp(1.0L, e - 52)) << "-2^" << e;
+    ASSERT_EQ(sv::ulp_double(std::nextafter(p, 0.0L)), e > -1022 ? std::ldexp(1.0L, e - 53) : 0x1p-1074L)
+        << "below 2^" << e;
+  }
+  EXPECT_EQ(sv::ulp_double(1.0L), 0x1p-52L);
+  EXPECT_EQ(sv::ulp_double(0.0L), 0x1p-1074L);
+  EXPECT_EQ(sv::ulp_double(-0.0L), 0x1p-1074L);
+  EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::denorm_min())), 0x1p-1074L);
+  EXPECT_EQ(sv::ulp_double(0x1p-1050L), 0x1p-1074L);
+  EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::max())), 0x1p971L);
+  EXPECT_EQ(sv::ulp_double(static_cast<long double>(kInf)), static_cast<long double>(kInf));
+  EXPECT_EQ(sv::ulp_double(-static_cast<long double>(kInf)), static_cast<long double>(kInf));
+  EXPECT_TRUE(std::isnan(sv::ulp_double(static_cast<long double>(kNaN))));
+}
+
+TEST(Metrics, ExactUlpErrorSpecialValues) {
+  // Ordinary: one float ulp at 1 is 2^−23; just below 1 it is 2^−24.
+  EXPECT_EQ(sv::exact_ulp_error_float(1.0 + 0x1p-23, 1.0), 1.0);
+  EXPECT_EQ(sv::exact_ulp_error_float(1.0, 1.0 - 0x1p-30), 0x1p-30 / 0x1p-24);
+  EXPECT_EQ(sv::exact_ulp_error_float(-1.0 - 0x1p-24, -1.0), 0.5);
+  EXPECT_EQ(sv::exact_ulp_error_float(0x1p-149, 0.0), 1.0);  // denormals: spacing 2^−149
+  EXPECT_EQ(sv::exact_ulp_error_float(0.0, -0.0), 0.0);      // ±0 are equal
+  EXPECT_EQ(sv::exact_ulp_error_float(kInf, kInf), 0.0);
+  EXPECT_EQ(sv::exact_ulp_error_float(1.0, kInf), kInf);
+  EXPECT_EQ(sv::exact_ulp_error_float(kInf, 1.0), kInf);
+  EXPECT_EQ(sv::exact_ulp_error_float(-kInf, kInf), kInf);
+  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_float(kNaN, 1.0)));
+  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_float(1.0, kNaN)));
+
+  EXPECT_EQ(sv::exact_ulp_error_double(1.0 + 0x1p-52, 1.0L), 1.0);
+  EXPECT_EQ(sv::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L), 0x1p-60 / 0x1p-53);  // long double exact value
+  EXPECT_EQ(sv::exact_ulp_error_double(0x1p-1074, 0.0L), 1.0);
+  EXPECT_EQ(sv::exact_ulp_error_double(-0.0, 0.0L), 0.0);
+  EXPECT_EQ(sv::exact_ulp_error_double(kInf, static_cast<long double>(kInf)), 0.0);
+  EXPECT_EQ(sv::exact_ulp_error_double(1.0, static_cast<long double>(kInf)), kInf);
+  EXPECT_EQ(sv::exact_ulp_error_double(kInf, 1.0L), kInf);
+  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_double(kNaN, 1.0L)));
+  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_double(1.0, static_cast<long double>(kNaN))));
+}
+
+TEST(Metrics, ExactUlpDiffersFromRoundedUlpJustBelowAPowerOfTwo) {
+  // ulp_of<float> takes the spacing at the value rounded to float (1.0f: 2^−23),
+  // ulp_float the binade of the exact value (below 1: 2^−24).
+  const double y = 1.0 - 0x1p-30;
+  EXPECT_EQ(sv::ulp_of<float>(y), 0x1p-23);
+  EXPECT_EQ(sv::ulp_float(y), 0x1p-24);
+}
+
+// ---- worst peak_rel as a fit reports it --------------------------------------
+
+TEST(Metrics, MaxPeakRelErrorIsTheMaxOrInfinity) {
+  const std::vector<double> ref = {1.0, 2.0, 0.5};
+  const std::vector<double> peak = {4.0, 4.0, 2.0};
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, 2.0, 0.5}, ref, peak), 0.0);
+  // |1.5 − 1|/4 = 0.125, |2 − 2|/4 = 0, |0.25 − 0.5|/2 = 0.125 → 0.125; with 3 at the second point |3 − 2|/4 = 0.25.
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5, 2.0, 0.25}, ref, peak), 0.125);
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5, 3.0, 0.25}, ref, peak), 0.25);
+  // One non-finite output anywhere makes the worst case infinite, whatever comes after.
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{kNaN, 2.0, 0.5}, ref, peak), kInf);
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, kInf, 0.5}, ref, peak), kInf);
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, 2.0, -kInf}, ref, peak), kInf);
+  // A zero peak with a non-zero difference is infinite too; with no difference it is 0.
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0}, std::vector<double>{1.0}, std::vector<double>{0.0}), 0.0);
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5}, std::vector<double>{1.0}, std::vector<double>{0.0}), kInf);
+  EXPECT_EQ(sv::max_peak_rel_error({}, {}, {}), 0.0);  // no points
+  EXPECT_THROW(sv::max_peak_rel_error(std::vector<double>{1.0}, ref, peak), std::invalid_argument);
 }

@@ -1,5 +1,6 @@
 // validate/erf_check.hpp — accuracy of an erf implementation against a
-// correctly rounded reference (SPEC §2 erf variants, §3 `abs` and `ulp`).
+// correctly rounded reference: walking the inputs and accumulating the error
+// statistics (max, RMS, where, histogram, series over x).
 //
 // The checker takes any callable `float(float)` / `double(double)`: the
 // registry's function pointers, the functors of sglab/erf.hpp, or a lambda
@@ -8,34 +9,18 @@
 //
 // Definitions (every number the checker reports uses these):
 //
-//   ulp_float(y)  = 2^(floor(log2|y|) − 23) for |y| ≥ 2^−126 (FLT_MIN),
-//                   2^−149 for |y| < 2^−126 (zero and the subnormal range):
-//                   the spacing of binary32 numbers in the binade of y.
-//   ulp_double(y) = 2^(floor(log2|y|) − 52) for |y| ≥ 2^−1022, else 2^−1074.
+//   ulp_float(y), ulp_double(y): the spacing of binary32 / binary64 numbers
+//                   in the binade of y (validate/metrics.hpp).
 //   err_ulp(x)    = |f(x) − erf(x)| / ulp(erf(x)), with erf(x) the exact
 //                   value (a reference far more precise than the format),
 //                   not its rounding: a correctly rounded result has
 //                   err_ulp ≤ 0.5, a faithful one < 1.
 //   err_abs(x)    = |f(x) − erf(x)|.
 //
-// Float reference. erf(x) for x ∈ [0, 4) is a degree-6 Taylor expansion in
-// double about the centre of each run of 1024 consecutive inputs (coefficients
-// erf^(k)(x0)/k! from erfl/expl and Hermite polynomials; run half-width
-// h ≤ 2^−9 and h ≤ x0/64, so the remainder is < 2^−66 relative), or std::erf
-// in double where a run is too wide. Either is within a few double ulps of
-// erf(x); when that value lies within 8 double ulps of a midpoint between two
-// floats, the point is re-evaluated with Boost.Math erf in cpp_bin_float_50 to
-// decide the correctly rounded float. Each Taylor run is also compared with
-// std::erf at its end point (`reference_selfcheck_ulps`). For x ≥ 4,
-// erfc(x) ≤ erfc(4) ≈ 1.5e−8 < 2^−25, so the correctly rounded float is
-// exactly 1 and erf(x) = 1 − erfc(x) with erfc in double (0 beyond x = 32,
-// where erfc < 1e−446 underflows anyway).
-//
-// Double reference. cpp_bin_float_50 (Boost.Math erf/erfc), carried in long
-// double: on the uniform grid by the Maclaurin series for x ≤ 1/2 and above by
-// a degree-12 Taylor expansion about a 50-digit centre per run of points of
-// half-width ≤ 2^−7 (relative error ~2^−63, checked against direct 50-digit
-// evaluation at spot points), directly elsewhere.
+// The correctly rounded reference is validate/erf_reference.hpp; the ulp
+// definitions are in validate/metrics.hpp; the writers of the results (JSON,
+// Markdown, CSV) are validate/erf_report.hpp. This file walks the inputs and
+// accumulates the statistics.
 #pragma once
 
 #include <algorithm>
@@ -54,32 +39,14 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "erf_reference.hpp"
 #include "io.hpp"
 
 namespace sglab::validate {
 
 // ---------------------------------------------------------------------------
-// ulp and the error histogram
+// The error histogram
 // ---------------------------------------------------------------------------
-
-// Spacing of binary32 numbers at |y| (see the definition above). NaN → NaN.
-inline double ulp_float(double y) {
-  const double a = std::abs(y);
-  if (!(a >= 0x1p-126)) return std::isnan(y) ? y : 0x1p-149;
-  if (std::isinf(a)) return a;
-  const auto e = static_cast<int>((std::bit_cast<std::uint64_t>(a) >> 52) & 0x7ff) - 1023;  // floor(log2 a)
-  return std::bit_cast<double>(static_cast<std::uint64_t>(e - 23 + 1023) << 52);
-}
-
-// Spacing of binary64 numbers at |y| (see the definition above).
-inline long double ulp_double(long double y) {
-  const long double a = std::abs(y);
-  if (std::isnan(a) || std::isinf(a)) return a;
-  if (!(a >= 0x1p-1022L)) return 0x1p-1074L;
-  int e = 0;
-  (void)std::frexp(a, &e);  // a = m·2^e, m ∈ [0.5, 1)
-  return std::ldexp(1.0L, e - 1 - 52);
-}
 
 // Histogram of ulp errors: bucket 0 counts correctly rounded results
 // (f(x) == RN(erf(x))); bucket 1 results within 0.5 ulp (to double precision)
@@ -193,29 +160,18 @@ struct ErfReport {
 };
 
 // ---------------------------------------------------------------------------
-// Single-point references
-// ---------------------------------------------------------------------------
-
-struct ErfFloatReference {
-  double exact;    // erf(x) to within a few double ulps (50-digit value when resolved)
-  float rounded;   // correctly rounded erf(x), signed zero kept
-  bool resolved;   // decided with cpp_bin_float_50
-};
-// Correctly rounded float erf at any float (±0, ±inf, NaN included).
-ErfFloatReference erf_reference_float(float x);
-
-// erf(x) from Boost.Math in cpp_bin_float_50, rounded to long double.
-long double erf_reference_50(double x);
-// erfc(x) likewise.
-long double erfc_reference_50(double x);
-
-// ---------------------------------------------------------------------------
 // Float check
 // ---------------------------------------------------------------------------
 
+// Bit patterns of the float inputs that delimit the segments (the patterns of
+// non-negative floats are ordered like their values, so a range of values is
+// a range of patterns).
 inline constexpr std::uint32_t kErfFloatTailBits = 0x40800000u;  // 4.0f: from here RN(erf) = 1
-inline constexpr std::uint32_t kErfFloatMaxBits = 0x7f7fffffu;   // FLT_MAX
+inline constexpr std::uint32_t kErfFloatMaxBits = 0x7f7fffffu;   // FLT_MAX = (2 − 2^−23)·2^127
 inline constexpr std::uint32_t kErfFloatFarBits = 0x42800000u;   // 64.0f: exhaustive_tail_stride applies above
+static_assert(std::bit_cast<std::uint32_t>(4.0f) == kErfFloatTailBits);
+static_assert(std::bit_cast<std::uint32_t>(std::numeric_limits<float>::max()) == kErfFloatMaxBits);
+static_assert(std::bit_cast<std::uint32_t>(64.0f) == kErfFloatFarBits);
 
 struct ErfFloatOptions {
   // Every float in [0, 4) and every float in [4, FLT_MAX] (2.14e9 points).
@@ -239,37 +195,6 @@ struct ErfFloatOptions {
 };
 
 namespace detail {
-
-// Taylor expansion of erf about x0 for the inputs of one run [x_first, x_last].
-struct ErfTaylorFloat {
-  bool ok = false;  // false: the run is too wide, evaluate std::erf directly
-  double x0 = 0;
-  double c[7] = {};
-  double operator()(double x) const {
-    const double h = x - x0;  // exact for the float inputs of a run
-    return c[0] + h * (c[1] + h * (c[2] + h * (c[3] + h * (c[4] + h * (c[5] + h * c[6])))));
-  }
-};
-ErfTaylorFloat erf_taylor_float(double x_first, double x0, double x_last);
-
-// Is y (≥ 0, within a few double ulps of erf(x)) within `ulps` double ulps of
-// a midpoint between two consecutive floats? Then RN(y) may differ from RN(erf(x)).
-inline bool near_float_midpoint(double y, int ulps = 8) {
-  const double a = std::abs(y);
-  if (a >= 0x1p-126) {  // float-normal range: the 29 bits below the float's last bit decide
-    const auto low = static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(a) & ((std::uint64_t{1} << 29) - 1));
-    const std::int64_t d = low - (std::int64_t{1} << 28);
-    return d <= ulps && d >= -ulps;
-  }
-  const double q = a * 0x1p149;  // in units of the subnormal spacing; exact
-  const double frac = q - std::floor(q);
-  return std::abs(frac - 0.5) <= ulps * static_cast<double>(ulp_double(a)) * 0x1p149;
-}
-
-// Decide a midpoint case in 50 digits.
-ErfFloatReference erf_resolve_float(float x);
-
-inline constexpr std::size_t kRun = 1024;  // points per Taylor run / work item
 
 // One thread's partial result. The variant is evaluated by the template loop
 // (so that it inlines); the rest of the work per run of points is here.
@@ -296,6 +221,8 @@ void finish_float_report(ErfReport& report, const std::vector<std::shared_ptr<Er
 std::string float_coverage(const ErfFloatOptions& options, std::uint64_t odd_checked);
 std::vector<float> float_specials();
 bool same_result(double expected, double got);
+// n with thousands separators: 1234567 → "1,234,567".
+std::string group_digits(std::uint64_t n);
 
 inline float float_from_bits(std::uint32_t b) { return std::bit_cast<float>(b); }
 
@@ -402,31 +329,8 @@ ErfReport check_erf_float(F f, const ErfFloatOptions& options = {}, std::string_
 // Double check
 // ---------------------------------------------------------------------------
 
-struct ErfDoubleOptions {
-  std::uint32_t grid_points = 1'000'000;  // x = i·x_max/grid_points, i < grid_points
-  double x_max = 6.0;                     // erf(x) rounds to 1 in double from x ≈ 5.93
-  std::uint32_t log_points = 4096;        // evenly spaced bit patterns in (0, x_max): every binade
-  std::uint32_t tail_points = 4096;       // evenly spaced bit patterns in [x_max, DBL_MAX]
-  std::uint32_t odd_points = 1u << 16;    // evenly spaced bit patterns in (0, DBL_MAX]
-  std::size_t bins = 2000;                // series bins over [0, x_max)
-};
-
-// The sample with its 50-digit reference; variant-independent, so build it
-// once and check every variant against it.
-struct ErfDoubleSample {
-  ErfDoubleOptions options;
-  std::vector<double> x;          // [0, main_end): x < x_max; [main_end, size): tail
-  std::vector<long double> ref;   // erf(x) for the main part, erfc(x) for the tail
-  std::size_t main_end = 0;
-  std::size_t grid_end = 0;       // [0, grid_end) is the uniform grid
-  double selfcheck_ulps = 0;      // max |Taylor − direct 50-digit| in double ulps at spot points
-  std::string reference;
-};
-ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options = {});
-
 namespace detail {
 std::vector<double> double_specials();
-long double erf_special_expected_double(double x);
 std::string double_coverage(const ErfDoubleSample& s, std::uint64_t odd_checked);
 }  // namespace detail
 
@@ -459,15 +363,15 @@ ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view varia
         if (is_tail) acc.tail.add_nonfinite(x);
         continue;
       }
-      if (is_tail) {  // exact = 1 − erfc ∈ (1 − 2^−54, 1): RN = 1, ulp 2^−53
+      if (is_tail) {  // exact = 1 − erfc ∈ (1 − 2^−54, 1): RN = 1, ulp_double = 2^−53
         const long double err_abs = std::abs((static_cast<long double>(y) - 1.0L) + s.ref[i]);
-        const double err_ulp = static_cast<double>(err_abs * 0x1p53L);
+        const double err_ulp = static_cast<double>(err_abs * 0x1p53L);  // err_abs / 2^−53
         acc.stats.add(x, err_ulp, static_cast<double>(err_abs), y == 1.0);
         acc.tail.add(x, err_ulp, static_cast<double>(err_abs), y == 1.0);
       } else {
         const long double exact = s.ref[i];
         const long double err_abs = std::abs(static_cast<long double>(y) - exact);
-        const double err_ulp = static_cast<double>(err_abs / ulp_double(exact));
+        const double err_ulp = exact_ulp_error_double(y, exact);
         acc.stats.add(x, err_ulp, static_cast<double>(err_abs), y == static_cast<double>(exact));
         if (!acc.bins.empty())
           acc.bins[std::min(acc.bins.size() - 1, static_cast<std::size_t>(x * bin_scale))].add(x, err_ulp,
@@ -507,20 +411,5 @@ ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view varia
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
-
-// ---------------------------------------------------------------------------
-// Output (one writer for every format)
-// ---------------------------------------------------------------------------
-
-// {"results": [{"variant", "precision", "max_abs", "max_ulp", "worst_x", …}, …]}
-std::string erf_reports_json(const std::vector<ErfReport>& reports, bool exhaustive);
-// Summary table, histogram table, specials and notes as Markdown.
-std::string erf_reports_markdown(const std::vector<ErfReport>& reports, bool exhaustive);
-// One row per report.
-std::string erf_summary_csv(const std::vector<ErfReport>& reports);
-// One row per histogram bucket per report.
-std::string erf_histogram_csv(const std::vector<ErfReport>& reports);
-// The downsampled series of one report: x_lo,x_hi,count,max_ulp,max_ulp_x,rms_ulp,max_abs.
-std::string erf_series_csv(const ErfReport& report);
 
 }  // namespace sglab::validate

@@ -93,21 +93,51 @@ std::string_view strip_utf8_bom(std::string_view text) {
   return text;
 }
 
+ProgressSink ProgressSink::standard_error() {
+  return {stderr_is_terminal(), [](std::string_view text) {
+            std::fwrite(text.data(), 1, text.size(), stderr);
+            std::fflush(stderr);
+          }};
+}
+
 struct Progress::Impl {
   std::string label;
   std::size_t total;
   std::atomic<std::size_t> done{0};
-  bool enabled;
+  ProgressSink sink;
   std::mutex mutex;
+  std::string status;  // guarded by mutex
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point last{};
+  bool drawn = false;
   bool finished = false;
+
+  // Redraws if due; the caller holds `mutex`.
+  void draw(std::size_t count, bool force) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!force && drawn && now - last < std::chrono::milliseconds(100) && (total == 0 || count < total)) return;
+    last = now;
+    drawn = true;
+    const double secs = std::chrono::duration<double>(now - start).count();
+    std::string line;
+    if (total == 0)
+      line = fmt::format("\r{}: {} {:.1f}s", label, count, secs);
+    else
+      line = fmt::format("\r{}: {}/{} ({:.0f}%) {:.1f}s", label, count, total,
+                         100.0 * static_cast<double>(count) / static_cast<double>(total), secs);
+    if (!status.empty()) line += "  " + status;
+    line += "\033[K";  // clear what a longer previous line left
+    sink.write(line);
+  }
 };
 
-Progress::Progress(std::string label, std::size_t total) : impl_(new Impl) {
+Progress::Progress(std::string label, std::size_t total) : Progress(std::move(label), total, ProgressSink::standard_error()) {}
+
+Progress::Progress(std::string label, std::size_t total, ProgressSink sink) : impl_(new Impl) {
   impl_->label = std::move(label);
   impl_->total = total;
-  impl_->enabled = stderr_is_terminal();
+  impl_->sink = std::move(sink);
+  if (!impl_->sink.write) impl_->sink.terminal = false;
 }
 
 Progress::~Progress() {
@@ -117,23 +147,26 @@ Progress::~Progress() {
 
 void Progress::advance(std::size_t n) {
   const std::size_t done = impl_->done.fetch_add(n) + n;
-  if (!impl_->enabled) return;
-  const auto now = std::chrono::steady_clock::now();
+  if (!impl_->sink.terminal) return;
   std::unique_lock lock(impl_->mutex, std::try_to_lock);
-  if (!lock.owns_lock()) return;
-  if (now - impl_->last < std::chrono::milliseconds(100) && done < impl_->total) return;
-  impl_->last = now;
-  const double secs = std::chrono::duration<double>(now - impl_->start).count();
-  const double pct = impl_->total ? 100.0 * static_cast<double>(done) / static_cast<double>(impl_->total) : 100.0;
-  std::fprintf(stderr, "\r%s: %zu/%zu (%.0f%%) %.1fs   ", impl_->label.c_str(), done, impl_->total, pct, secs);
-  std::fflush(stderr);
+  if (!lock.owns_lock() || impl_->finished) return;
+  impl_->draw(done, false);
+}
+
+void Progress::note(std::string status) {
+  if (!impl_->sink.terminal) return;
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->finished) return;
+  impl_->status = std::move(status);
+  impl_->draw(impl_->done.load(), true);  // a new stage is shown at once (notes are rare)
 }
 
 void Progress::finish() {
-  if (!impl_->enabled || impl_->finished) return;
+  if (!impl_->sink.terminal) return;
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->finished) return;
   impl_->finished = true;
-  std::fprintf(stderr, "\r\033[K");
-  std::fflush(stderr);
+  if (impl_->drawn) impl_->sink.write("\r\033[K");
 }
 
 }  // namespace sglab::io

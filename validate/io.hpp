@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,13 +20,30 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 // Reads a whole file; throws std::runtime_error naming the path on failure.
 std::string read_file(const std::filesystem::path& path);
 
-// A progress line on stderr, redrawn in place, shown only when stderr is a
-// terminal. Thread-safe `advance`.
+// Where a Progress line goes: `terminal` says whether anything is drawn at
+// all, `write` receives every redraw. standard_error() is stderr, drawn only
+// when stderr is a terminal; tests inject the flag and a string sink.
+struct ProgressSink {
+  bool terminal = false;
+  std::function<void(std::string_view)> write;
+  static ProgressSink standard_error();
+};
+
+// A progress line, redrawn in place (at most every 100 ms, and when the count
+// reaches the total), shown only on a terminal: under ctest, in pipes and
+// redirected runs nothing extra is printed. Thread-safe `advance` and `note`.
+// Line: "label: done/total (p%) 12.3s  note"; with total 0 (open-ended work,
+// such as a fit's solves) "label: done 12.3s  note". `note` redraws at once. `finish` clears it.
 class Progress {
  public:
-  Progress(std::string label, std::size_t total);
+  Progress(std::string label, std::size_t total);  // on stderr
+  Progress(std::string label, std::size_t total, ProgressSink sink);
   ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
   void advance(std::size_t n = 1);
+  // Replaces the text shown after the count (what the work is doing now).
+  void note(std::string status);
   void finish();
 
  private:

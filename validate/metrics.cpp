@@ -1,7 +1,9 @@
 #include "metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace sglab::validate {
 
@@ -32,6 +34,19 @@ double rel_error(double value, double reference) {
   if (reference == 0) return kInf;
   if (std::isinf(reference)) return std::isinf(value) ? kInf : 1;  // |x̂/±inf − 1| = 1; opposite infinities: inf
   return std::abs(value / reference - 1);
+}
+
+double max_peak_rel_error(std::span<const double> values, std::span<const double> references,
+                          std::span<const double> peaks) {
+  if (values.size() != references.size() || values.size() != peaks.size())
+    throw std::invalid_argument("max_peak_rel_error: values, references and peaks differ in length");
+  double worst = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double e = peak_rel_error(values[i], references[i], peaks[i]);
+    if (!std::isfinite(e)) return kInf;
+    worst = std::max(worst, e);
+  }
+  return worst;
 }
 
 bool significant(double reference, double peak) {

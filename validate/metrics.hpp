@@ -22,10 +22,12 @@
 // not the method's). Neither is ever silently dropped.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 namespace sglab::validate {
 
@@ -70,6 +72,67 @@ template <class T> double ulp_error(double value, double reference) {
   if (std::isnan(u)) return std::numeric_limits<double>::infinity();  // finite vs infinite reference
   return e / u;
 }
+
+// ---------------------------------------------------------------------------
+// ulp of an exact value (the erf checker's metric)
+// ---------------------------------------------------------------------------
+// Unlike ulp_of<T> (the spacing at x rounded to T), these take the binade of
+// the exact value itself, so a correctly rounded result is within 0.5 of
+// them and a faithful one below 1 even just under a power of two:
+//
+//   ulp_float(y)  = 2^(floor(log2|y|) − 23) for |y| ≥ 2^−126 (FLT_MIN),
+//                   2^−149 (the float denorm_min) below, ±0 included;
+//   ulp_double(y) = 2^(floor(log2|y|) − 52) for |y| ≥ 2^−1022 (DBL_MIN),
+//                   2^−1074 (the double denorm_min) below.
+// Both are defined beyond the format's range by the same formula
+// (ulp_float(2^200) = 2^177); ±inf → +inf, NaN → NaN.
+//
+//   exact_ulp_error_{float,double}(f, y) = |f − y| / ulp(y), y exact (not its
+//   rounding): any NaN → NaN; f == y (equal infinities too) → 0; otherwise
+//   an infinite f or y → +inf.
+
+// Spacing of binary32 numbers in the binade of |y|.
+inline double ulp_float(double y) {
+  const double a = std::abs(y);
+  if (!(a >= 0x1p-126)) return std::isnan(y) ? y : 0x1p-149;
+  if (std::isinf(a)) return a;
+  // floor(log2 a) from the biased exponent field of the double (bits 52…62, bias 1023).
+  const auto e = static_cast<int>((std::bit_cast<std::uint64_t>(a) >> 52) & 0x7ff) - 1023;
+  return std::ldexp(1.0, e - 23);
+}
+
+// Spacing of binary64 numbers in the binade of |y|.
+inline long double ulp_double(long double y) {
+  const long double a = std::abs(y);
+  if (std::isnan(a) || std::isinf(a)) return a;
+  if (!(a >= 0x1p-1022L)) return 0x1p-1074L;
+  int e = 0;
+  (void)std::frexp(a, &e);  // a = m·2^e, m ∈ [0.5, 1)
+  return std::ldexp(1.0L, e - 1 - 52);
+}
+
+// |value − exact| / ulp_float(exact), with the special-value rules above.
+inline double exact_ulp_error_float(double value, double exact) {
+  if (std::isnan(value) || std::isnan(exact)) return std::numeric_limits<double>::quiet_NaN();
+  if (value == exact) return 0;
+  if (std::isinf(value) || std::isinf(exact)) return std::numeric_limits<double>::infinity();
+  return std::abs(value - exact) / ulp_float(exact);
+}
+
+// |value − exact| / ulp_double(exact), the difference taken in long double.
+inline double exact_ulp_error_double(double value, long double exact) {
+  if (std::isnan(value) || std::isnan(exact)) return std::numeric_limits<double>::quiet_NaN();
+  if (static_cast<long double>(value) == exact) return 0;
+  if (std::isinf(value) || std::isinf(exact)) return std::numeric_limits<double>::infinity();
+  return static_cast<double>(std::abs(static_cast<long double>(value) - exact) / ulp_double(exact));
+}
+
+// Worst peak_rel over a set of points, as a fit reports it: 0 for no points,
+// +inf as soon as one point's error is not finite (a NaN or infinite output:
+// a method that fails anywhere on the grid has no finite worst case), else
+// the max of peak_rel_error. The three spans have one entry per point.
+double max_peak_rel_error(std::span<const double> values, std::span<const double> references,
+                          std::span<const double> peaks);
 
 // What a comparison found at one point.
 enum class PointStatus : std::uint8_t {
