@@ -76,7 +76,7 @@ void refuse_inapplicable(const std::string& target, const GivenOptions& given, c
   check(given.alpha_free, it->alpha_free, "--alpha-free");
   if (target == "lambda-d" && given.kappa && objective != "irradiance")
     throw InputError(
-        "--kappa applies to `fit lambda-d` only with --objective irradiance (the other lambda-d objectives are "
+        "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other lambda-d objectives are "
         "integrals over the sphere, independent of κ)");
 }
 

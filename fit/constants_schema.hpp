@@ -11,7 +11,7 @@
 // size parameter, `P + k`, `P - k` or `P > k ? A : B`). tests/test_constants_io.cpp
 // checks the table against params.hpp member by member.
 //
-// HOW TO ADD A REQUIRED SET (code that names `constants::some_set`): add one
+// HOW TO ADD A REQUIRED SET (code that names `constants::SOME_SET`): add one
 // line to kRequiredSets in constants_schema.cpp — the cpp_name and the
 // canonical cpp_type the code was written against. The header is refused
 // unless every required set is present with that type; a test scans the
@@ -52,7 +52,7 @@ struct ParamStruct {
 std::span<const ParamStruct> param_structs();
 
 struct RequiredSet {
-  std::string_view cpp_name;  // constants::cpp_name
+  std::string_view cpp_name;  // the name in namespace sglab::constants
   std::string_view cpp_type;  // canonical: "Name<double>" or "Name<double, 6, 7>"
 };
 std::span<const RequiredSet> required_sets();
