@@ -1,6 +1,8 @@
 // `sglab fit TARGET`: refit a constant set (fit/targets.hpp), write it to
-// data/constants/<target>-<variant>.json with provenance and regenerate the
-// runtime header. `sglab fit all` runs every target at its standard settings.
+// <out>/<target>-<variant>.json with provenance and regenerate the runtime
+// header, both as one unit (--out defaults to the project's data/constants;
+// with another --out the header goes there too, never into the checkout).
+// `sglab fit all` runs every target at its standard settings.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -37,15 +39,14 @@ struct FitCliOptions {
 struct TargetOptions {
   std::string_view target;
   bool precision, objective, kappa, max_error, alpha_free;
-  std::string_view note;  // when an option applies only in part
 };
 constexpr TargetOptions kTargetOptions[] = {
-    {"clamped-cosine", true, true, true, false, true, ""},
-    {"steepness2022", false, true, true, true, false, ""},
-    {"steepness2024", false, true, true, true, false, ""},
-    {"erf", true, true, false, true, false, ""},
-    {"lambda-d", false, true, true, false, false, "--kappa only with --objective irradiance"},
-    {"all", false, false, true, false, false, ""},
+    {"clamped-cosine", true, true, true, false, true},
+    {"steepness2022", false, true, true, true, false},
+    {"steepness2024", false, true, true, true, false},
+    {"erf", true, true, false, true, false},
+    {"lambda-d", false, true, true, false, false},  // --kappa only with --objective irradiance
+    {"all", false, false, true, false, false},
 };
 
 struct GivenOptions {
