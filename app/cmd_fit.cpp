@@ -1,12 +1,20 @@
 // `sglab fit TARGET`: refit a constant set (fit/targets.hpp), write it to
-// data/constants/<target>-<variant>.json with provenance and regenerate the
-// runtime header. `sglab fit all` runs every target at its standard settings.
+// <out>/<target>-<variant>.json with provenance and regenerate the runtime
+// header, both as one unit (--out defaults to the project's data/constants;
+// with another --out the header goes there too, never into the checkout).
+// `sglab fit all` runs every target at its standard settings.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <variant>
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "constants_io.hpp"
 #include "io.hpp"
@@ -24,21 +32,54 @@ struct FitCliOptions {
   std::string kappa;
   double max_error = 0;
   bool alpha_free = false, json = false, force = false, dry_run = false;
-  std::string out_dir = fit::default_constants_dir().string();
-  std::string header = fit::default_header_path().string();
+  std::string out_dir;  // default: the project's data/constants
+  std::string header;   // default: fit::default_header_for(out_dir)
 };
 
-double parse_number(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || !std::isfinite(v))
-    throw InputError(fmt::format("{}: '{}' is not a finite number", what, text));
-  return v;
+// Which options each target uses; any other is refused (never silently ignored).
+struct TargetOptions {
+  std::string_view target;
+  bool precision, objective, kappa, max_error, alpha_free;
+};
+constexpr TargetOptions kTargetOptions[] = {
+    {"clamped-cosine", true, true, true, false, true},
+    {"steepness2022", false, true, true, true, false},
+    {"steepness2024", false, true, true, true, false},
+    {"erf", true, true, false, true, false},
+    {"lambda-d", false, true, true, false, false},  // --kappa only with --objective irradiance
+    {"all", false, false, true, false, false},
+};
+
+struct GivenOptions {
+  bool precision, objective, kappa, max_error, alpha_free;
+};
+
+void refuse_inapplicable(const std::string& target, const GivenOptions& given, const std::string& objective) {
+  const auto it = std::find_if(std::begin(kTargetOptions), std::end(kTargetOptions),
+                               [&](const TargetOptions& t) { return t.target == target; });
+  if (it == std::end(kTargetOptions)) return;  // unknown targets are reported by the caller
+  const auto check = [&](bool is_given, bool applies, const char* option) {
+    if (!is_given || applies) return;
+    std::string users;
+    for (const auto& t : kTargetOptions) {
+      const bool a = std::string_view(option) == "--precision"   ? t.precision
+                     : std::string_view(option) == "--objective" ? t.objective
+                     : std::string_view(option) == "--kappa"     ? t.kappa
+                     : std::string_view(option) == "--max-error" ? t.max_error
+                                                                 : t.alpha_free;
+      if (a) users += (users.empty() ? "" : ", ") + std::string(t.target);
+    }
+    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option, target, users));
+  };
+  check(given.precision, it->precision, "--precision");
+  check(given.objective, it->objective, "--objective");
+  check(given.kappa, it->kappa, "--kappa");
+  check(given.max_error, it->max_error, "--max-error");
+  check(given.alpha_free, it->alpha_free, "--alpha-free");
+  if (target == "lambda-d" && given.kappa && objective != "irradiance")
+    throw InputError(
+        "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other lambda-d objectives are "
+        "integrals over the sphere, independent of κ)");
 }
 
 fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const std::string& command) {
@@ -51,12 +92,15 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
   spec.alpha_free = o.alpha_free;
   spec.command = command;
   if (!o.kappa.empty()) {
-    const auto colon = o.kappa.find(':');
-    if (colon == std::string::npos) throw InputError(fmt::format("--kappa must be LO:HI; got '{}'", o.kappa));
-    spec.kappa_lo = parse_number(o.kappa.substr(0, colon), "--kappa LO");
-    spec.kappa_hi = parse_number(o.kappa.substr(colon + 1), "--kappa HI");
-    if (!(spec.kappa_lo > 0) || !(spec.kappa_hi > spec.kappa_lo))
-      throw InputError(fmt::format("--kappa needs 0 < LO < HI; got '{}'", o.kappa));
+    // κ must survive the precision the constants are fitted for.
+    validate::KappaRangeRules rules;
+    rules.format = spec.precision == fit::WorkingPrecision::half     ? validate::kHalfFormat
+                   : spec.precision == fit::WorkingPrecision::single ? validate::kFloatFormat
+                                                                     : validate::kDoubleFormat;
+    const auto parsed = validate::parse_kappa_range(o.kappa, rules);
+    if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
+    spec.kappa_lo = std::get<validate::KappaRange>(parsed).lo;
+    spec.kappa_hi = std::get<validate::KappaRange>(parsed).hi;
     spec.kappa_range_given = true;
   }
   if (o.max_error != 0) {
@@ -68,38 +112,40 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
 }
 
 double achieved_objective(const fit::ordered_json& set) {
-  const auto& a = set["provenance"]["achieved"];
-  return a.contains("objective") ? a["objective"].get<double>() : std::numeric_limits<double>::infinity();
+  const auto& prov = set["provenance"];
+  if (!prov.contains("achieved") || !prov["achieved"].contains("objective")) return std::numeric_limits<double>::infinity();
+  return prov["achieved"]["objective"].get<double>();
 }
 
-// Writes each set unless the fit did not converge or an existing file is
-// better (then only with --force). Returns a line per set.
-std::string write_sets(const fit::FitOutcome& outcome, const FitCliOptions& o) {
+// The sets to write: each converged set unless an existing file in the output
+// folder is better (then only with --force). Appends a line per set to `log`.
+std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, const std::filesystem::path& out_dir,
+                                                bool force, std::string& log) {
   namespace fs = std::filesystem;
-  std::string log;
+  std::vector<fit::ConstantSetFile> out;
   for (const auto& set : outcome.constant_sets) {
     const fs::path path =
-        fs::path(o.out_dir) / fmt::format("{}-{}.json", set["target"].get<std::string>(), set["variant"].get<std::string>());
+        out_dir / fmt::format("{}-{}.json", set["target"].get<std::string>(), set["variant"].get<std::string>());
     if (!outcome.converged) {
       log += fmt::format("  not written: the fit did not converge ({})\n", path.string());
       continue;
     }
-    if (fs::exists(path) && !o.force) {
-      fit::ordered_json old;
+    std::error_code ec;
+    if (fs::exists(path, ec) && !force) {
       try {
-        old = fit::ordered_json::parse(io::read_file(path));
-      } catch (const std::exception&) {
-      }
-      if (old.is_object() && old.contains("provenance") && achieved_objective(old) < achieved_objective(set)) {
-        log += fmt::format("  kept {}: its objective {:.6e} beats the new {:.6e} (use --force to replace)\n",
-                           path.string(), achieved_objective(old), achieved_objective(set));
-        continue;
+        const fit::ordered_json old = fit::load_constant_set(path);
+        if (achieved_objective(old) < achieved_objective(set)) {
+          log += fmt::format("  kept {}: its objective {:.6e} beats the new {:.6e} (use --force to replace)\n",
+                             path.string(), achieved_objective(old), achieved_objective(set));
+          continue;
+        }
+      } catch (const fit::ConstantsError& e) {
+        log += fmt::format("  replacing an invalid file: {}\n", e.what());
       }
     }
-    io::write_file_atomic(path, set.dump(2) + "\n");
-    log += fmt::format("  wrote {}\n", path.string());
+    out.push_back({path, set});
   }
-  return log;
+  return out;
 }
 
 }  // namespace
@@ -109,19 +155,36 @@ void add_fit_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
   cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | all")
       ->required();
-  cmd->add_option("--precision", o->precision, "working precision: half | float | double")->capture_default_str();
-  cmd->add_option("--objective", o->objective,
-                  "steepness: optimal-t | irradiance; lambda-d: sphere-ls | hemisphere-ls | free-amplitude | "
-                  "irradiance; erf: listing5 | as7125");
-  cmd->add_option("--kappa", o->kappa, "κ range LO:HI of the fit (default 1e-3:1e4)");
-  cmd->add_option("--max-error", o->max_error, "model order: smallest model meeting this error (erf: degrees and split; steepness: rational order of t)");
-  cmd->add_flag("--alpha-free", o->alpha_free, "clamped-cosine: α free instead of tied by energy conservation");
+  auto* precision = cmd->add_option("--precision", o->precision,
+                                    "working precision: half | float | double (clamped-cosine, erf)")
+                        ->capture_default_str();
+  auto* objective = cmd->add_option("--objective", o->objective,
+                                    "steepness: optimal-t | irradiance; lambda-d: sphere-ls | hemisphere-ls | "
+                                    "free-amplitude | irradiance; erf: listing5 | as7125");
+  auto* kappa = cmd->add_option("--kappa", o->kappa,
+                                "κ range LO:HI of the fit (default 1e-3:1e4; clamped-cosine, steepness, lambda-d "
+                                "irradiance, all); LO must not round to 0 in the working precision");
+  auto* max_error = cmd->add_option("--max-error", o->max_error,
+                                    "model order: smallest model meeting this error (erf: degrees and split; "
+                                    "steepness: rational order of t)");
+  auto* alpha_free = cmd->add_flag("--alpha-free", o->alpha_free,
+                                   "clamped-cosine: α free instead of tied by energy conservation");
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
-  cmd->add_option("--out", o->out_dir, "directory of constant-set JSON files")->capture_default_str();
-  cmd->add_option("--header", o->header, "runtime header regenerated from --out")->capture_default_str();
-  cmd->callback([o] {
+  cmd->add_option("--out", o->out_dir,
+                  "directory of constant-set JSON files (default: data/constants of the sglab project found at or "
+                  "above the working directory)");
+  cmd->add_option("--header", o->header,
+                  "runtime header to regenerate (default: the project's include/sglab/constants.hpp when --out is "
+                  "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
+                  "checkout). The header holds the project's sets with those of --out in their place");
+  cmd->callback([o, precision, objective, kappa, max_error, alpha_free] {
+    namespace fs = std::filesystem;
+    const GivenOptions given{precision->count() > 0, objective->count() > 0, kappa->count() > 0,
+                             max_error->count() > 0, alpha_free->count() > 0};
+    refuse_inapplicable(o->target, given, o->objective);
+
     std::string command = "sglab fit " + o->target;
     if (o->precision != "float") command += " --precision " + o->precision;
     if (!o->objective.empty()) command += " --objective " + o->objective;
@@ -131,18 +194,18 @@ void add_fit_command(CLI::App& app) {
 
     std::vector<fit::FitSpec> specs;
     if (o->target == "all") {
-      if (!o->objective.empty() || o->alpha_free || o->max_error != 0)
-        throw InputError("`fit all` takes no --objective, --alpha-free or --max-error");
       auto add = [&](const std::string& target, const std::string& objective, bool alpha_free, const std::string& prec) {
         FitCliOptions each = *o;
         each.objective = objective;
         each.alpha_free = alpha_free;
         each.precision = prec;
+        const bool uses_kappa = target != "erf" && target != "lambda-d";
+        if (!uses_kappa) each.kappa.clear();
         std::string c = "sglab fit " + target;
         if (prec != "float") c += " --precision " + prec;
         if (!objective.empty()) c += " --objective " + objective;
         if (alpha_free) c += " --alpha-free";
-        if (!o->kappa.empty()) c += " --kappa " + o->kappa;
+        if (!each.kappa.empty()) c += " --kappa " + each.kappa;
         specs.push_back(make_spec(each, target, c));
       };
       for (const char* prec : {"half", "float", "double"}) add("clamped-cosine", "", false, prec);
@@ -161,7 +224,44 @@ void add_fit_command(CLI::App& app) {
       specs.push_back(make_spec(*o, o->target, command));
     }
 
+    // Where the results go, resolved before the (long) fits so that a missing
+    // project is reported at once. A dry run writes nothing and needs none.
+    fs::path out_dir, header;
+    std::optional<fs::path> base_dir;
+    try {
+      if (!o->dry_run || !o->out_dir.empty()) {
+        out_dir = o->out_dir.empty() ? fit::default_constants_dir() : fs::path(o->out_dir);
+        header = o->header.empty() ? fit::default_header_for(out_dir) : fs::path(o->header);
+      }
+      std::error_code ec;
+      if (const auto root = fit::find_project_root(fs::current_path(ec)); root && !ec)
+        base_dir = *root / "data" / "constants";
+      if (!o->dry_run && !base_dir) {
+        // Outside a project the header can only come from --out itself: it
+        // must already hold every set the code uses.
+        std::vector<fit::ordered_json> sets;
+        std::vector<std::string> files;
+        if (fs::exists(out_dir, ec))
+          for (auto& f : fit::load_constant_set_files(out_dir)) {
+            files.push_back(f.file.string());
+            sets.push_back(std::move(f.set));
+          }
+        try {
+          fit::validate_header_sets(sets, files);
+        } catch (const fit::ConstantsError& e) {
+          throw fit::ConstantsError(fmt::format(
+              "no sglab project at or above the working directory, so the header would hold only the sets in {}, "
+              "and {}: run inside a checkout, or use --dry-run",
+              out_dir.string(), e.what()));
+        }
+      }
+    } catch (const fit::ConstantsError& e) {
+      throw InputError(e.what());
+    }
+
     fit::ordered_json reports = fit::ordered_json::array();
+    std::vector<fit::ConstantSetFile> to_write;
+    std::string log;
     bool all_converged = true;
     const auto start = std::chrono::steady_clock::now();
     io::Progress progress("fit", specs.size());
@@ -175,23 +275,42 @@ void add_fit_command(CLI::App& app) {
         throw InputError(e.what());
       }
       all_converged = all_converged && outcome.converged;
-      std::string log = o->dry_run ? "" : write_sets(outcome, *o);
       progress.advance();
-      if (!o->json) fmt::print("{}{}", outcome.text, log);
+      if (!o->json) fmt::print("{}", outcome.text);
+      if (!o->dry_run) {
+        std::string set_log;
+        for (auto& f : sets_to_write(outcome, out_dir, o->force, set_log)) to_write.push_back(std::move(f));
+        log += set_log;
+      }
       outcome.report["command"] = spec.command;
       reports.push_back(outcome.report);
     }
     progress.finish();
+
+    fit::ordered_json written = fit::ordered_json::array();
     if (!o->dry_run) {
-      fit::write_constants_header(o->out_dir, o->header);
-      if (!o->json) fmt::print("regenerated {}\n", o->header);
+      try {
+        fit::write_sets_and_header(to_write, out_dir, base_dir, header);
+      } catch (const fit::ConstantsError& e) {
+        throw InputError(fmt::format("nothing was written: {}", e.what()));
+      }
+      for (const auto& f : to_write) {
+        log += fmt::format("  wrote {}\n", f.file.string());
+        written.push_back(f.file.string());
+      }
+      log += fmt::format("regenerated {}\n", header.string());
+      written.push_back(header.string());
     }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o->json) {
       fit::ordered_json out = reports.size() == 1 ? reports[0] : fit::ordered_json{{"fits", reports}};
+      out["dry_run"] = o->dry_run;
+      out["written"] = written;
       out["seconds"] = secs;
       fmt::print("{}\n", out.dump(2));
     } else {
+      fmt::print("{}", log);
+      if (o->dry_run) fmt::print("dry run: nothing was written\n");
       fmt::print("fit took {:.1f} s\n", secs);
     }
     if (!all_converged) throw std::runtime_error("a fit did not converge (see above); nothing was written for it");

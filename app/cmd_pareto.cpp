@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "pareto.hpp"
 #include "table.hpp"
@@ -38,7 +40,12 @@ void add_pareto_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "output directory")->capture_default_str();
   cmd->callback([args] {
     double lo = 0, hi = 0;
-    if (auto err = validate::parse_kappa_range(args->kappa, lo, hi)) throw InputError("--kappa: " + *err);
+    {
+      const auto parsed = validate::parse_kappa_range(args->kappa, validate::KappaRangeRules{});  // LO:HI, float
+      if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
+      lo = std::get<validate::KappaRange>(parsed).lo;
+      hi = std::get<validate::KappaRange>(parsed).hi;
+    }
     const auto precision = validate::parse_precision(args->precision);
     if (!precision)
       throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));

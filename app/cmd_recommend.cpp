@@ -9,11 +9,13 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "pareto.hpp"
 
@@ -60,7 +62,12 @@ void add_recommend_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print the answer as JSON on stdout");
   cmd->callback([args] {
     double lo = 0, hi = 0, budget = 0;
-    if (auto err = validate::parse_kappa_range(args->kappa, lo, hi)) throw InputError("--kappa: " + *err);
+    {
+      const auto parsed = validate::parse_kappa_range(args->kappa, validate::KappaRangeRules{});  // LO:HI, float
+      if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
+      lo = std::get<validate::KappaRange>(parsed).lo;
+      hi = std::get<validate::KappaRange>(parsed).hi;
+    }
     if (!validate::parse_number(args->budget, budget))
       throw InputError(fmt::format("--budget: '{}' is not a finite number", args->budget));
     if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 
 #include <sglab/registry.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "io.hpp"
 #include "sweep.hpp"
@@ -29,14 +31,6 @@ namespace sglab::app {
 
 namespace {
 
-// Whole-string number parsing: "1e-3" yes, "1e-3x", "" and " 1" no.
-bool parse_double(std::string_view s, double& out) {
-  if (s.empty()) return false;
-  const char* end = s.data() + s.size();
-  auto [ptr, ec] = std::from_chars(s.data(), end, out);
-  return ec == std::errc() && ptr == end;
-}
-
 bool parse_int(std::string_view s, int& out) {
   if (s.empty()) return false;
   const char* begin = s.data();
@@ -46,33 +40,16 @@ bool parse_int(std::string_view s, int& out) {
   return ec == std::errc() && ptr == end;
 }
 
-// --kappa LO:HI:N
+// --kappa LO:HI:N (validate/args.hpp; float: the sweep rounds its inputs to float)
 void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
-  const auto fail = [&](std::string_view why) {
-    throw InputError(fmt::format("--kappa: {} (expected LO:HI:N, e.g. 1e-3:1e4:29; got '{}')", why, text));
-  };
-  const auto a = text.find(':');
-  const auto b = a == std::string::npos ? a : text.find(':', a + 1);
-  if (a == std::string::npos || b == std::string::npos || text.find(':', b + 1) != std::string::npos)
-    fail("needs exactly three fields separated by ':'");
-  const std::string_view sv(text);
-  double lo = 0, hi = 0;
-  int n = 0;
-  if (!parse_double(sv.substr(0, a), lo)) fail(fmt::format("LO '{}' is not a number", sv.substr(0, a)));
-  if (!parse_double(sv.substr(a + 1, b - a - 1), hi))
-    fail(fmt::format("HI '{}' is not a number", sv.substr(a + 1, b - a - 1)));
-  if (!parse_int(sv.substr(b + 1), n)) fail(fmt::format("N '{}' is not an integer", sv.substr(b + 1)));
-  if (!std::isfinite(lo) || !std::isfinite(hi)) fail("LO and HI must be finite");
-  if (!(lo > 0)) fail(fmt::format("LO must be > 0, got {}", lo));
-  if (!(hi >= lo)) fail(fmt::format("HI must be >= LO, got HI = {} < LO = {}", hi, lo));
-  if (n < 1) fail(fmt::format("N must be >= 1, got {}", n));
-  if (n == 1 && lo != hi) fail(fmt::format("N = 1 needs LO = HI, got {} and {}", lo, hi));
-  if (static_cast<float>(lo) == 0.0f) fail(fmt::format("LO = {} rounds to 0 in float (inputs are rounded to float)", lo));
-  if (hi > static_cast<double>(std::numeric_limits<float>::max()))
-    fail(fmt::format("HI = {} exceeds the largest float (inputs are rounded to float)", hi));
-  grid.kappa_lo = lo;
-  grid.kappa_hi = hi;
-  grid.kappa_count = n;
+  validate::KappaRangeRules rules;
+  rules.with_count = true;
+  const auto parsed = validate::parse_kappa_range(text, rules);
+  if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
+  const auto& r = std::get<validate::KappaRange>(parsed);
+  grid.kappa_lo = r.lo;
+  grid.kappa_hi = r.hi;
+  grid.kappa_count = r.count;
 }
 
 void parse_cosines_option(const std::string& text, validate::SweepGrid& grid) {

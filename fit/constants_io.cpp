@@ -1,62 +1,107 @@
 #include "constants_io.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include <fmt/format.h>
 
-#include "io.hpp"
+#include "atomic_files.hpp"
 
 namespace sglab::fit {
 
 namespace fs = std::filesystem;
 
-fs::path default_constants_dir() { return fs::path(SGLAB_SOURCE_DIR) / "data" / "constants"; }
-fs::path default_header_path() { return fs::path(SGLAB_SOURCE_DIR) / "include" / "sglab" / "constants.hpp"; }
-
-void check_constant_set(const ordered_json& set, const std::string& where) {
-  auto require_string = [&](const char* key) {
-    if (!set.contains(key) || !set[key].is_string())
-      throw std::runtime_error(fmt::format("{}: missing or non-string field \"{}\"", where, key));
-  };
-  if (!set.is_object()) throw std::runtime_error(fmt::format("{}: not a JSON object", where));
-  for (const char* key : {"target", "variant", "cpp_name", "cpp_type", "form"}) require_string(key);
-  if (!set.contains("coefficients") || !set["coefficients"].is_object() || set["coefficients"].empty())
-    throw std::runtime_error(fmt::format("{}: missing or empty object \"coefficients\"", where));
-  for (const auto& [name, value] : set["coefficients"].items()) {
-    const bool ok = value.is_number() ||
-                    (value.is_array() && !value.empty() &&
-                     std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_number(); }));
-    if (!ok) throw std::runtime_error(fmt::format("{}: coefficient \"{}\" is not a number or array of numbers", where, name));
+std::optional<fs::path> find_project_root(const fs::path& start) {
+  std::error_code ec;
+  fs::path dir = fs::absolute(start, ec);
+  if (ec) return std::nullopt;
+  for (;;) {
+    if (fs::is_directory(dir / "data" / "constants", ec) && fs::is_directory(dir / "include" / "sglab", ec))
+      return dir;
+    if (!dir.has_parent_path() || dir.parent_path() == dir) return std::nullopt;
+    dir = dir.parent_path();
   }
-  const std::string name = set["cpp_name"];
-  const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-                          std::all_of(name.begin(), name.end(), [](char ch) {
-                            return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
-                          });
-  if (!identifier) throw std::runtime_error(fmt::format("{}: cpp_name \"{}\" is not a C++ identifier", where, name));
-  if (!set.contains("provenance") || !set["provenance"].is_object())
-    throw std::runtime_error(fmt::format("{}: missing object \"provenance\"", where));
+}
+
+fs::path project_root() {
+  std::error_code ec;
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec)
+    if (auto root = find_project_root(cwd)) return *root;
+  throw ConstantsError(fmt::format(
+      "no sglab project found at or above {} (a folder holding both data/constants and include/sglab); run sglab "
+      "inside a checkout or name the files with --dir/--out and --header",
+      ec ? std::string("the working directory") : cwd.string()));
+}
+
+fs::path default_constants_dir() { return project_root() / "data" / "constants"; }
+fs::path default_header_path() { return project_root() / "include" / "sglab" / "constants.hpp"; }
+
+namespace {
+
+bool same_folder(const fs::path& a, const fs::path& b) {
+  std::error_code ea, eb;
+  const fs::path ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
+  return !ea && !eb && ca == cb;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw ConstantsError(
+        fmt::format("{}: cannot read: {}", file.string(), std::error_code(errno, std::generic_category()).message()));
+  // Read at most one byte past the limit: parse_untrusted_json refuses larger files.
+  std::string text(kMaxConstantsFileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) throw ConstantsError(fmt::format("{}: cannot read", file.string()));
+  return text;
+}
+
+}  // namespace
+
+fs::path default_header_for(const fs::path& dir) {
+  const std::optional<fs::path> root = [] {
+    std::error_code ec;
+    const fs::path cwd = fs::current_path(ec);
+    return ec ? std::nullopt : find_project_root(cwd);
+  }();
+  if (root && same_folder(dir, *root / "data" / "constants")) return *root / "include" / "sglab" / "constants.hpp";
+  return dir / "constants.hpp";
+}
+
+void check_constant_set(const ordered_json& set, const std::string& where) { validate_constant_set(set, where); }
+
+ordered_json load_constant_set(const fs::path& file) {
+  const std::string name = file.string();
+  ordered_json set = parse_untrusted_json(read_text(file), name);
+  validate_constant_set(set, name);
+  return set;
+}
+
+std::vector<ConstantSetFile> load_constant_set_files(const fs::path& dir) {
+  std::vector<fs::path> files;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw ConstantsError(fmt::format("{}: not a folder of constant sets{}", dir.string(),
+                                     ec ? ": " + ec.message() : std::string()));
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".json") files.push_back(it->path());
+  if (ec) throw ConstantsError(fmt::format("cannot list {}: {}", dir.string(), ec.message()));
+  std::sort(files.begin(), files.end());
+  std::vector<ConstantSetFile> sets;
+  for (const auto& file : files) sets.push_back({file, load_constant_set(file)});
+  return sets;
 }
 
 std::vector<ordered_json> load_constant_sets(const fs::path& dir) {
-  std::vector<fs::path> files;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.path().extension() == ".json") files.push_back(entry.path());
-  if (ec) throw std::runtime_error(fmt::format("cannot list {}: {}", dir.string(), ec.message()));
-  std::sort(files.begin(), files.end());
   std::vector<ordered_json> sets;
-  for (const auto& file : files) {
-    ordered_json set;
-    try {
-      set = ordered_json::parse(io::read_file(file));
-    } catch (const ordered_json::parse_error& e) {
-      throw std::runtime_error(fmt::format("{}: malformed JSON: {}", file.string(), e.what()));
-    }
-    check_constant_set(set, file.string());
-    sets.push_back(std::move(set));
-  }
+  for (auto& f : load_constant_set_files(dir)) sets.push_back(std::move(f.set));
   return sets;
 }
 
@@ -70,9 +115,9 @@ std::string number(const ordered_json& v) {
 }
 
 std::string comment_line(const std::string& key, const ordered_json& value) {
-  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  return fmt::format("//   {}: {}\n", key, text);
+  const std::string text =
+      value.is_string() ? value.get<std::string>() : value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+  return fmt::format("//   {}: {}\n", comment_text(key), comment_text(text));
 }
 
 }  // namespace
@@ -85,13 +130,16 @@ std::string render_constants_header(const std::vector<ordered_json>& sets) {
       "// refits, the objective, grid and achieved error it was fitted with.\n"
       "#pragma once\n\n#include \"params.hpp\"\n\nnamespace sglab::constants {\n";
   for (const auto& set : sets) {
-    out += fmt::format("\n// {} / {}: {}\n", set["target"].get<std::string>(), set["variant"].get<std::string>(),
-                       set["form"].get<std::string>());
+    const std::string where = set["cpp_name"].get<std::string>();
+    const ResolvedType type = resolve_cpp_type(set["cpp_type"].get<std::string>(), where);
+    out += fmt::format("\n// {} / {}: {}\n", comment_text(set["target"].get<std::string>()),
+                       comment_text(set["variant"].get<std::string>()), comment_text(set["form"].get<std::string>()));
     for (const auto& [key, value] : set["provenance"].items()) out += comment_line(key, value);
     std::string init;
-    for (const auto& [name, value] : set["coefficients"].items()) {
+    for (const auto& [name, length] : type.members) {  // declaration order: designated initializers need it
+      const ordered_json& value = set["coefficients"].at(name);
       if (!init.empty()) init += ",\n";
-      if (value.is_array()) {
+      if (length > 0) {
         std::string elems;
         for (const auto& v : value) elems += (elems.empty() ? "" : ", ") + number(v);
         init += fmt::format("    .{} = {{{}}}", name, elems);
@@ -99,15 +147,63 @@ std::string render_constants_header(const std::vector<ordered_json>& sets) {
         init += fmt::format("    .{} = {}", name, number(value));
       }
     }
-    out += fmt::format("inline constexpr {} {}{{\n{}}};\n", set["cpp_type"].get<std::string>(),
-                       set["cpp_name"].get<std::string>(), init);
+    out += fmt::format("inline constexpr {} {}{{\n{}}};\n", type.canonical, set["cpp_name"].get<std::string>(), init);
   }
   out += "\n}  // namespace sglab::constants\n";
   return out;
 }
 
-void write_constants_header(const fs::path& dir, const fs::path& header) {
-  io::write_file_atomic(header, render_constants_header(load_constant_sets(dir)));
+namespace {
+
+std::string checked_header(const std::vector<ConstantSetFile>& files) {
+  std::vector<ordered_json> sets;
+  std::vector<std::string> names;
+  for (const auto& f : files) {
+    sets.push_back(f.set);
+    names.push_back(f.file.string());
+  }
+  validate_header_sets(sets, names);
+  return render_constants_header(sets);
+}
+
+}  // namespace
+
+std::size_t write_constants_header(const fs::path& dir, const fs::path& header) {
+  const auto files = load_constant_set_files(dir);
+  io::write_files_atomic({{header, checked_header(files)}});
+  return files.size();
+}
+
+std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, const fs::path& out_dir,
+                                  const std::optional<fs::path>& base_dir, const fs::path& header) {
+  // By file name: base, then what out_dir already has, then the new sets.
+  std::map<std::string, ConstantSetFile> merged;
+  if (base_dir && !same_folder(*base_dir, out_dir))
+    for (auto& f : load_constant_set_files(*base_dir)) merged[f.file.filename().string()] = std::move(f);
+  std::error_code ec;
+  if (fs::exists(out_dir, ec)) {
+    // Files the new sets replace are not loaded: a malformed one may be overwritten.
+    std::vector<fs::path> replaced;
+    for (const auto& n : new_sets) replaced.push_back(n.file.filename());
+    for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+      const fs::path& p = it->path();
+      if (p.extension() != ".json" || std::find(replaced.begin(), replaced.end(), p.filename()) != replaced.end())
+        continue;
+      merged[p.filename().string()] = {p, load_constant_set(p)};
+    }
+    if (ec) throw ConstantsError(fmt::format("cannot list {}: {}", out_dir.string(), ec.message()));
+  }
+  std::vector<io::FileContent> writes;
+  for (const auto& n : new_sets) {
+    validate_constant_set(n.set, n.file.string());
+    merged[n.file.filename().string()] = n;
+    writes.push_back({n.file, n.set.dump(2) + "\n"});
+  }
+  std::vector<ConstantSetFile> all;
+  for (auto& [name, f] : merged) all.push_back(std::move(f));
+  writes.push_back({header, checked_header(all)});
+  io::write_files_atomic(writes);
+  return all.size();
 }
 
 }  // namespace sglab::fit

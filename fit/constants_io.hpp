@@ -3,35 +3,75 @@
 //
 // Each JSON file holds one constant set: target, variant, the C++ name and
 // parameter type it becomes in the header, the functional form, the
-// coefficients (at full double precision, in the member order of the
-// parameter struct of include/sglab/params.hpp) and its provenance.
+// coefficients (at full double precision, named by the members of the
+// parameter struct of include/sglab/params.hpp) and its provenance. What a set
+// may contain is fit/constants_schema.hpp; every file is checked against it
+// when loaded, and a header is only written from a complete, valid collection.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "constants_schema.hpp"
+
 namespace sglab::fit {
 
 using ordered_json = nlohmann::ordered_json;
 
-// The source tree's data/constants and include/sglab/constants.hpp.
+// The sglab project around `start`: the nearest folder at or above it that
+// holds both data/constants and include/sglab; nullopt when there is none.
+std::optional<std::filesystem::path> find_project_root(const std::filesystem::path& start);
+// The project around the working directory; throws ConstantsError (bad input)
+// saying there is none and which options to pass instead.
+std::filesystem::path project_root();
+
+// <project>/data/constants and <project>/include/sglab/constants.hpp of the
+// project around the working directory (throw like project_root()).
 std::filesystem::path default_constants_dir();
 std::filesystem::path default_header_path();
 
-// All constant sets in `dir`, sorted by file name. Throws std::runtime_error
-// naming the file and the missing or malformed field.
+// The header that goes with the constant sets in `dir` when no --header is
+// given: the project's include/sglab/constants.hpp when `dir` is the
+// project's data/constants, otherwise dir/constants.hpp (a fit or a header
+// regeneration into another folder never touches the checkout).
+std::filesystem::path default_header_for(const std::filesystem::path& dir);
+
+struct ConstantSetFile {
+  std::filesystem::path file;
+  ordered_json set;
+};
+
+// One constants file, parsed as untrusted input and validated. Throws ConstantsError.
+ordered_json load_constant_set(const std::filesystem::path& file);
+// All *.json files of `dir`, sorted by file name, each validated. Throws
+// ConstantsError naming the file and the key (or the folder and the OS reason).
+std::vector<ConstantSetFile> load_constant_set_files(const std::filesystem::path& dir);
 std::vector<ordered_json> load_constant_sets(const std::filesystem::path& dir);
 
-// Checks one set's required fields; throws std::runtime_error naming `where`.
+// Checks one set's fields (validate_constant_set); throws ConstantsError naming `where`.
 void check_constant_set(const ordered_json& set, const std::string& where);
 
-// The text of include/sglab/constants.hpp for these sets.
+// The text of include/sglab/constants.hpp for these (valid) sets; members in
+// the declaration order of their struct; text fields escaped into comments.
 std::string render_constants_header(const std::vector<ordered_json>& sets);
 
-// Regenerates the header from the JSON files (atomically).
-void write_constants_header(const std::filesystem::path& dir, const std::filesystem::path& header);
+// Regenerates `header` from the sets in `dir` after checking that they are
+// complete (validate_header_sets); writes nothing otherwise. Returns the
+// number of sets.
+std::size_t write_constants_header(const std::filesystem::path& dir, const std::filesystem::path& header);
+
+// Writes `new_sets` (each with its destination file in `out_dir`) and the
+// header generated from: the sets of `base_dir` (when given and not out_dir),
+// replaced by those of out_dir with the same file name, replaced by new_sets.
+// Everything is validated first and then written as one unit
+// (io::write_files_atomic): all files or none. Returns the number of sets in
+// the header.
+std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, const std::filesystem::path& out_dir,
+                                  const std::optional<std::filesystem::path>& base_dir,
+                                  const std::filesystem::path& header);
 
 }  // namespace sglab::fit

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "targets.hpp"
 
 namespace sglab::fit {
@@ -34,15 +35,7 @@ std::optional<WorkingPrecision> parse_precision(const std::string& name) {
   return std::nullopt;
 }
 
-std::vector<double> kappa_grid(double lo, double hi, int count) {
-  std::vector<double> k;
-  if (count == 1) return {lo};
-  const double a = std::log10(lo), b = std::log10(hi);
-  for (int i = 0; i < count; ++i) k.push_back(std::pow(10.0, a + (b - a) * i / (count - 1)));
-  k.front() = lo;
-  k.back() = hi;
-  return k;
-}
+std::vector<double> kappa_grid(double lo, double hi, int count) { return validate::log_spaced(lo, hi, count); }
 
 std::vector<double> cosine_grid(int count) {
   std::vector<double> c;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <sys/wait.h>
@@ -16,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "pareto.hpp"
 #include "test_support.hpp"
 
@@ -132,15 +134,15 @@ TEST(Recommend, NoneQualifiesNamesMostAccurate) {
 }
 
 TEST(Recommend, ParseKappaRange) {
-  double lo = 0, hi = 0;
-  EXPECT_FALSE(sglab::validate::parse_kappa_range("1e-3:1e4", lo, hi));
-  EXPECT_EQ(lo, 1e-3);
-  EXPECT_EQ(hi, 1e4);
-  EXPECT_TRUE(sglab::validate::parse_kappa_range("0:1", lo, hi));
-  EXPECT_TRUE(sglab::validate::parse_kappa_range("2:1", lo, hi));
-  EXPECT_TRUE(sglab::validate::parse_kappa_range("a:1", lo, hi));
-  EXPECT_TRUE(sglab::validate::parse_kappa_range("1:2:3", lo, hi));
-  EXPECT_TRUE(sglab::validate::parse_kappa_range("1", lo, hi));
+  // The shared parser (validate/args.hpp; tests/test_args.cpp has the rules).
+  using sglab::validate::KappaRange;
+  const sglab::validate::KappaRangeRules rules;  // LO:HI, used in float
+  const auto ok = sglab::validate::parse_kappa_range("1e-3:1e4", rules);
+  ASSERT_TRUE(std::holds_alternative<KappaRange>(ok));
+  EXPECT_EQ(std::get<KappaRange>(ok).lo, 1e-3);
+  EXPECT_EQ(std::get<KappaRange>(ok).hi, 1e4);
+  for (const char* bad : {"0:1", "2:1", "a:1", "1:2:3", "1"})
+    EXPECT_TRUE(std::holds_alternative<std::string>(sglab::validate::parse_kappa_range(bad, rules))) << bad;
 }
 
 // ---- CLI -------------------------------------------------------------------

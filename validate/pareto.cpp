@@ -148,23 +148,6 @@ bool parse_number(std::string_view s, double& out) {
   return true;
 }
 
-std::optional<std::string> parse_kappa_range(std::string_view text, double& lo, double& hi) {
-  const auto a = text.find(':');
-  if (a == std::string_view::npos || text.find(':', a + 1) != std::string_view::npos)
-    return fmt::format("expected LO:HI, e.g. 1e-3:1e4; got '{}'", text);
-  double l = 0, h = 0;
-  if (!parse_number(text.substr(0, a), l)) return fmt::format("LO '{}' is not a finite number", text.substr(0, a));
-  if (!parse_number(text.substr(a + 1), h)) return fmt::format("HI '{}' is not a finite number", text.substr(a + 1));
-  if (!(l > 0)) return fmt::format("LO must be > 0, got {}", l);
-  if (!(h >= l)) return fmt::format("HI must be >= LO, got HI = {} < LO = {}", h, l);
-  if (static_cast<float>(l) == 0.0f) return fmt::format("LO = {} rounds to 0 in float", l);
-  if (h > static_cast<double>(std::numeric_limits<float>::max()))
-    return fmt::format("HI = {} exceeds the largest float", h);
-  lo = l;
-  hi = h;
-  return std::nullopt;
-}
-
 std::optional<FloatFormat> parse_precision(std::string_view text) {
   if (text == "float") return FloatFormat::binary32;
   if (text == "double") return FloatFormat::binary64;

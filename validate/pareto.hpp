@@ -67,10 +67,6 @@ void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions
 // frontier (origin published/refit/sglab, frontier 0/1).
 Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double kappa_lo, double kappa_hi);
 
-// "LO:HI" → lo, hi; returns an error message (naming nothing but the value)
-// or std::nullopt on success. LO > 0, HI ≥ LO, both finite, LO not rounding
-// to 0 in float, HI ≤ FLT_MAX.
-std::optional<std::string> parse_kappa_range(std::string_view text, double& lo, double& hi);
 // Whole-string finite number.
 bool parse_number(std::string_view text, double& out);
 // "float" / "double".

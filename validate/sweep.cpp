@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "io.hpp"
 
 namespace sglab::validate {
@@ -76,30 +77,7 @@ std::uint64_t sweep_memory_estimate(const SweepGrid& grid, std::size_t entries) 
   return points * per_point;
 }
 
-std::vector<double> SweepGrid::kappas() const {
-  std::vector<double> k;
-  if (kappa_count < 1) return k;
-  k.reserve(static_cast<std::size_t>(kappa_count));
-  if (kappa_count == 1) {
-    k.push_back(kappa_lo);
-    return k;
-  }
-  const double e_lo = std::log10(kappa_lo), e_hi = std::log10(kappa_hi);
-  const int last = kappa_count - 1;
-  for (int j = 0; j <= last; ++j) {
-    if (j == 0) {
-      k.push_back(kappa_lo);
-    } else if (j == last) {
-      k.push_back(kappa_hi);
-    } else {
-      // (e_hi − e_lo)·j is exact for integral exponents; the division then
-      // rounds once (exactly 0.25·i for the standard grid).
-      const double e = e_lo + ((e_hi - e_lo) * j) / last;
-      k.push_back(std::pow(10.0, e));
-    }
-  }
-  return k;
-}
+std::vector<double> SweepGrid::kappas() const { return log_spaced(kappa_lo, kappa_hi, kappa_count); }
 
 std::vector<double> SweepGrid::cosines() const {
   std::vector<double> c;

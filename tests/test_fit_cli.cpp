@@ -1,0 +1,144 @@
+// `sglab fit` writes only where asked: a fit into --out DIR never touches the
+// checkout (the header goes into DIR, holding the project's sets with DIR's in
+// their place); sets and header are written all or nothing; an option that
+// does not apply to the target is refused; --dry-run says nothing was written.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "constants_io.hpp"
+#include "io.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sglab::test::run_sglab;
+
+const fs::path kRoot = fs::path(SGLAB_TEST_SOURCE_DIR).parent_path();
+const fs::path kHeader = kRoot / "include" / "sglab" / "constants.hpp";
+
+std::string slurp(const fs::path& p) { return sglab::io::read_file(p); }
+
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& name) {
+    path = fs::temp_directory_path() / fmt::format("sglab_test_{}_{}", name, ::getpid());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+// Inside the checkout (wherever the build folder is), so that the project is found.
+struct InCheckout {
+  fs::path old = fs::current_path();
+  InCheckout() { fs::current_path(kRoot); }
+  ~InCheckout() { fs::current_path(old); }
+};
+
+// lambda-d sphere-ls is a one-parameter least-squares fit: instant.
+const std::vector<std::string> kQuickFit = {"fit", "lambda-d", "--objective", "sphere-ls"};
+std::vector<std::string> quick_fit(std::vector<std::string> more) {
+  std::vector<std::string> args = kQuickFit;
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+TEST(FitCli, FitIntoAFolderNeverTouchesTheCheckout) {
+  InCheckout cwd;
+  TempDir tmp("fit_out");
+  const std::string header_before = slurp(kHeader);
+  const fs::path out = tmp.path / "mine";
+  const auto r = run_sglab(quick_fit({"--out", out.string(), "--force"}));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(slurp(kHeader), header_before) << "the checkout's header changed";
+  ASSERT_TRUE(fs::exists(out / "constants.hpp")) << r.output;
+  ASSERT_TRUE(fs::exists(out / "lambda-d-diffuse-lobe-sphere-ls.json")) << r.output;
+  EXPECT_NE(r.output.find("regenerated " + (out / "constants.hpp").string()), std::string::npos) << r.output;
+  // The header is the checkout's sets with the new one in its place: exactly
+  // what rendering that collection gives, and it holds every required set.
+  std::vector<sglab::fit::ordered_json> sets;
+  for (auto& f : sglab::fit::load_constant_set_files(kRoot / "data" / "constants"))
+    sets.push_back(f.file.filename() == "lambda-d-diffuse-lobe-sphere-ls.json"
+                       ? sglab::fit::load_constant_set(out / "lambda-d-diffuse-lobe-sphere-ls.json")
+                       : f.set);
+  const std::string header = slurp(out / "constants.hpp");
+  EXPECT_EQ(header, sglab::fit::render_constants_header(sets));
+  for (const auto& req : sglab::fit::required_sets())
+    EXPECT_NE(header.find(fmt::format(" {}{{", req.cpp_name)), std::string::npos) << req.cpp_name;
+}
+
+TEST(FitCli, SetsAndHeaderAreOneUnit) {
+  InCheckout cwd;
+  TempDir tmp("fit_unit");
+  const fs::path out = tmp.path / "sets";
+  fs::create_directories(out);
+  const fs::path json = out / "lambda-d-diffuse-lobe-sphere-ls.json";
+  fs::copy_file(kRoot / "data" / "constants" / "lambda-d-diffuse-lobe-sphere-ls.json", json);
+  const std::string before = slurp(json);
+  // The header cannot be written (a directory is in its place): the set is not replaced either.
+  const fs::path blocked = tmp.path / "header.hpp";
+  fs::create_directories(blocked);
+  auto r = run_sglab(quick_fit({"--out", out.string(), "--header", blocked.string(), "--force"}));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write " + blocked.string() + ": Is a directory"), std::string::npos) << r.output;
+  EXPECT_EQ(slurp(json), before);
+  // An invalid set already in --out: refused before anything is written.
+  std::ofstream(out / "zz-bad.json") << "{\"target\": 1}";
+  const fs::path header = tmp.path / "h.hpp";
+  r = run_sglab(quick_fit({"--out", out.string(), "--header", header.string(), "--force"}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("nothing was written"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("zz-bad.json"), std::string::npos) << r.output;
+  EXPECT_EQ(slurp(json), before);
+  EXPECT_FALSE(fs::exists(header));
+}
+
+TEST(FitCli, OptionsThatDoNotApplyAreRefused) {
+  const std::vector<std::vector<std::string>> refused = {
+      {"fit", "erf", "--alpha-free"},
+      {"fit", "erf", "--kappa", "1:10"},
+      {"fit", "lambda-d", "--kappa", "1:10"},
+      {"fit", "lambda-d", "--objective", "sphere-ls", "--kappa", "1:10"},
+      {"fit", "steepness2022", "--precision", "half"},
+      {"fit", "steepness2024", "--alpha-free"},
+      {"fit", "clamped-cosine", "--max-error", "1e-3"},
+      {"fit", "lambda-d", "--max-error", "1e-3"},
+      {"fit", "all", "--objective", "irradiance"},
+      {"fit", "all", "--precision", "double"},
+  };
+  for (auto args : refused) {
+    args.push_back("--dry-run");
+    const auto r = run_sglab(args);
+    std::string joined;
+    for (const auto& a : args) joined += a + " ";
+    EXPECT_EQ(r.exit_code, 2) << joined << "\n" << r.output;
+    EXPECT_NE(r.output.find("does not apply"), std::string::npos) << joined << "\n" << r.output;
+  }
+  // Where it applies, the same option is accepted.
+  const auto r = run_sglab({"fit", "lambda-d", "--objective", "irradiance", "--kappa", "1:10", "--dry-run", "--json"}, false);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST(FitCli, DryRunSaysNothingWasWritten) {
+  TempDir tmp("fit_dry");
+  const fs::path out = tmp.path / "never";
+  auto r = run_sglab(quick_fit({"--out", out.string(), "--dry-run"}));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("dry run: nothing was written"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("wrote"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_sglab(quick_fit({"--out", out.string(), "--dry-run", "--json"}), false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["dry_run"], true);
+  EXPECT_TRUE(j["written"].empty());
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace

@@ -1,0 +1,84 @@
+// validate/args.hpp — the one parser of κ ranges (`--kappa LO:HI` and
+// `--kappa LO:HI:N`) shared by `sglab fit`, `sweep`, `pareto` and
+// `recommend`, its number syntax, and the log-spaced points of a range.
+//
+// Rules (every command, one set):
+// - A number is a plain decimal: an optional '-', digits with an optional
+//   fraction ("1", "1.5", ".5", "5."), an optional exponent ("e-3", "E+4").
+//   No hex floats, no "inf"/"nan", no leading '+', no whitespace, nothing after
+//   the number.
+// - A decimal beyond the largest double, or nonzero but below the smallest
+//   positive double (about 4.9e-324), is "out of range".
+// - LO and HI are finite, 0 < LO ≤ HI (the points are log-spaced, so LO = 0 is
+//   refused).
+// - The values must survive the precision κ is used in (`KappaRangeRules::
+//   format`: float for the sweep, pareto and recommend, which round their
+//   inputs to float; the working precision for `fit`): a nonzero LO that rounds
+//   to 0 there is refused, and so is an HI above its largest finite value.
+//   Subnormal values that do not round to 0 are accepted (1e-310 in double,
+//   1e-40 in float).
+// - N is a decimal integer (digits only), 1 ≤ N ≤ kMaxKappaCount; N = 1 needs
+//   LO = HI.
+// - Error messages quote the offending text escaped (printable ASCII as is,
+//   every other byte as \xNN, so a NUL byte cannot cut the message short) and
+//   shortened to kMaxQuotedChars characters.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace sglab::validate {
+
+// The largest N of LO:HI:N.
+inline constexpr int kMaxKappaCount = 100000;
+// The longest piece of bad input quoted in an error message.
+inline constexpr std::size_t kMaxQuotedChars = 64;
+
+// The precision a value is used in: its smallest positive (subnormal) value
+// and its largest finite value.
+struct NumberFormat {
+  std::string_view name;
+  double denorm_min;
+  double max_finite;
+};
+inline constexpr NumberFormat kHalfFormat{"half", 0x1p-24, 65504.0};
+inline constexpr NumberFormat kFloatFormat{"float", 0x1p-149, 0x1.fffffep127};
+inline constexpr NumberFormat kDoubleFormat{"double", 0x0.0000000000001p-1022, 0x1.fffffffffffffp1023};
+
+struct KappaRangeRules {
+  bool with_count = false;               // LO:HI:N (true) or LO:HI (false)
+  NumberFormat format = kFloatFormat;    // the precision the κ values are used in
+  int max_count = kMaxKappaCount;
+};
+
+struct KappaRange {
+  double lo = 0, hi = 0;
+  int count = 0;  // N of LO:HI:N; 0 for LO:HI
+};
+
+// `text` as LO:HI or LO:HI:N under `rules`. On failure, the error message
+// (quoting the bad part escaped; the caller prefixes the option name).
+std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, const KappaRangeRules& rules);
+
+// One plain decimal number (syntax above) as a double. On failure, why:
+// "is not a number" or "is out of range (...)".
+std::variant<double, std::string> parse_decimal(std::string_view text);
+
+// `count` values log-spaced over [lo, hi]: v_j = 10^(e_lo + (e_hi − e_lo)·j/(N − 1))
+// with e = log10, then made to start exactly at lo, end exactly at hi and be
+// non-decreasing (lo = hi gives N copies of lo). count = 1 gives {lo}; the
+// exponent step (e_hi − e_lo)·j is exact for integral exponents, so the
+// standard grid 1e-3:1e4:29 gives the correctly rounded 10^(i/4).
+// Requires 0 < lo ≤ hi finite.
+std::vector<double> log_spaced(double lo, double hi, int count);
+
+// `text` for an error message: printable ASCII as is, '\' and every other
+// byte as \xNN, at most `max_chars` characters of it followed by
+// "... (N bytes)" when longer.
+std::string quote_escaped(std::string_view text, std::size_t max_chars = kMaxQuotedChars);
+
+}  // namespace sglab::validate

@@ -1,0 +1,124 @@
+#include "atomic_files.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <optional>
+#include <stdexcept>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "io.hpp"
+
+namespace sglab::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string os_reason(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+fs::path temporary_for(const fs::path& path) {
+  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  return parent / fmt::format(".{}.{}.tmp", path.filename().string(), ::getpid());
+}
+
+// Writes `content` to a new file `tmp`; on failure removes it and returns the errno.
+int write_new_file(const fs::path& tmp, const std::string& content) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) return errno;
+  const char* p = content.data();
+  std::size_t left = content.size();
+  int err = 0;
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      err = errno;
+      break;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (err == 0 && ::fsync(fd) != 0) err = errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err != 0) ::unlink(tmp.c_str());
+  return err;
+}
+
+struct Pending {
+  fs::path path, tmp;
+  std::optional<std::string> previous;  // the content it had, if it was a regular file
+  bool replaced = false;
+};
+
+}  // namespace
+
+void write_files_atomic(const std::vector<FileContent>& files) {
+  std::vector<Pending> pending;
+  const auto discard_temporaries = [&] {
+    for (const Pending& p : pending)
+      if (!p.replaced) ::unlink(p.tmp.c_str());
+  };
+  // 1. Every temporary, before any destination changes.
+  for (const FileContent& f : files) {
+    const fs::path parent = f.path.has_parent_path() ? f.path.parent_path() : fs::path(".");
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec) {
+      discard_temporaries();
+      throw std::runtime_error(fmt::format("cannot write {}: cannot create directory {}: {}", f.path.string(),
+                                           parent.string(), ec.message()));
+    }
+    Pending p{f.path, temporary_for(f.path), std::nullopt, false};
+    if (fs::is_regular_file(f.path, ec)) {
+      try {
+        p.previous = read_file(f.path);
+      } catch (const std::exception&) {
+        discard_temporaries();
+        throw std::runtime_error(fmt::format("cannot write {}: cannot read its current content ({})",
+                                             f.path.string(), os_reason(errno)));
+      }
+    }
+    if (const int err = write_new_file(p.tmp, f.content)) {
+      discard_temporaries();
+      throw std::runtime_error(fmt::format("cannot write {}: {} (temporary {})", f.path.string(), os_reason(err),
+                                           p.tmp.string()));
+    }
+    pending.push_back(std::move(p));
+  }
+  // 2. The renames; on failure put back what was replaced.
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    Pending& p = pending[i];
+    if (::rename(p.tmp.c_str(), p.path.c_str()) == 0) {
+      p.replaced = true;
+      continue;
+    }
+    const int err = errno;
+    std::string message = fmt::format("cannot write {}: {}", p.path.string(), os_reason(err));
+    discard_temporaries();
+    std::string restored;
+    for (std::size_t j = 0; j < i; ++j) {
+      const Pending& done = pending[j];
+      if (done.previous) {
+        const fs::path tmp = temporary_for(done.path);
+        const int e = write_new_file(tmp, *done.previous);
+        if (e == 0 && ::rename(tmp.c_str(), done.path.c_str()) == 0) {
+          restored += fmt::format(" {}", done.path.string());
+        } else {
+          ::unlink(tmp.c_str());
+          message += fmt::format("; could not restore {}: {}", done.path.string(), os_reason(e ? e : errno));
+        }
+      } else {
+        ::unlink(done.path.c_str());
+        restored += fmt::format(" {} (removed)", done.path.string());
+      }
+    }
+    if (!restored.empty()) message += "; restored" + restored;
+    throw std::runtime_error(message);
+  }
+}
+
+}  // namespace sglab::io
