@@ -221,8 +221,10 @@ T irradiance_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constan
 }
 
 // Float batch of `tokuyoshi2024` that vectorizes: the same setup and
-// evaluation with branch_free.hpp's exp, expm1, erfc and sqrt. It differs from
-// the scalar float path by at most ~2e−7 of the peak (the erfc approximation).
+// evaluation with branch_free.hpp's exp, expm1, erfc and sqrt. Its distance
+// from the double path stays below 1e−6 of the peak E(1, κ) (an erfc error e
+// moves f by at most e; measured 3.3e−7 over 2^20 random inputs, as the scalar
+// float path), tests/test_branch_free.cpp.
 template <class S = double>
 void irradiance_tokuyoshi2024_batch(const float* __restrict cosine, const float* __restrict kappa,
                                     float* __restrict out, std::size_t n,
