@@ -1,12 +1,21 @@
 // `sglab bench`: ns per evaluation of every irradiance method, hemispherical
-// method and erf variant, float and double, scalar and batch, timed with
-// Google Benchmark inside the process (one thread, wall-clock time, the
-// median of --repetitions). The cases and the workload are validate/cost.hpp's:
-// 4096 inputs, κ log-uniform in [1e-3, 1e4], c uniform in [-1, 1] (erf: x
-// uniform in [0, 4]), fixed seed; "scalar" calls the registry function pointer
-// once per element, "batch" calls the batch pointer once over all inputs.
-// Writes bench.csv and bench.md into --out; --json prints the table as JSON.
+// method and erf variant, float and double, scalar and batch (and, for methods
+// with the per-light split, float setup ns per light and eval ns per shading
+// point), timed with Google Benchmark inside the process (one thread,
+// wall-clock time, the median of --repetitions). The cases and the workload
+// are validate/cost.hpp's: 2^20 inputs, κ log-uniform in [1e-3, 1e4], c
+// uniform in [-1, 1] (erf: x uniform in [0, 4]), fixed seed; "scalar" calls
+// the registry function pointer once per element, "batch" calls the batch
+// pointer once over all inputs.
+// Writes into --out: bench.csv and bench.md (every case), bench_summary.csv/.md
+// (one row per method and precision: scalar, batch, batch speed-up, setup,
+// eval) and costs.json, the cost table `sglab pareto` and `sglab recommend`
+// read (validate/cost_table.hpp). --json prints the table as JSON.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
+#include <tuple>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -20,6 +29,7 @@
 
 #include "commands.hpp"
 #include "cost.hpp"
+#include "cost_table.hpp"
 #include "io.hpp"
 #include "table.hpp"
 
@@ -33,7 +43,48 @@ struct BenchArgs {
   int repetitions = 5;
   std::string filter;
   double min_time = 0.05;
+  std::string command_line;  // as recorded in costs.json
 };
+
+double find_ns(const std::vector<validate::Cost>& costs, validate::CostKind kind, const std::string& method,
+               validate::FloatFormat f, validate::CostMode mode) {
+  for (const validate::Cost& c : costs)
+    if (c.kind == kind && c.method == method && c.precision == f && c.mode == mode) return c.ns_per_eval;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// One row per (kind, method, precision): scalar and batch ns/eval, their
+// ratio, and for methods with the per-light split the float setup ns per
+// light and eval ns per shading point (empty otherwise).
+validate::Table summary_table(const std::vector<validate::Cost>& costs) {
+  validate::Table t("Per method: ns/eval scalar and batch, batch speed-up, per-light setup ns/light and eval "
+                    "ns/point (methods with the split)",
+                    {{"kind"},
+                     {"method"},
+                     {"precision"},
+                     {"scalar_ns", 3},
+                     {"batch_ns", 3},
+                     {"batch_speedup", 3},
+                     {"setup_ns_per_light", 3},
+                     {"eval_ns_per_point", 3}});
+  std::vector<std::tuple<validate::CostKind, std::string, validate::FloatFormat>> keys;
+  for (const validate::Cost& c : costs) {
+    const auto key = std::make_tuple(c.kind, c.method, c.precision);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
+  using validate::CostMode;
+  using validate::Table;
+  const auto cell = [](double x) { return std::isnan(x) ? validate::Cell{} : Table::real(x); };
+  for (const auto& [kind, method, f] : keys) {
+    const double scalar = find_ns(costs, kind, method, f, CostMode::scalar);
+    const double batch = find_ns(costs, kind, method, f, CostMode::batch);
+    t.add_row({Table::text(validate::to_string(kind)), Table::text(method), Table::text(validate::to_string(f)),
+               cell(scalar), cell(batch), cell(scalar / batch),
+               cell(find_ns(costs, kind, method, f, CostMode::light_setup)),
+               cell(find_ns(costs, kind, method, f, CostMode::light_eval))});
+  }
+  return t;
+}
 
 // Collects, per benchmark name, the median aggregate (or the single run when
 // there is one repetition); prints nothing but a progress line.
@@ -80,7 +131,14 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--filter", args->filter, "ECMAScript regex searched in kind/method/precision/mode");
   cmd->add_option("--min-time", args->min_time, "seconds per repetition")->capture_default_str();
-  cmd->callback([args] {
+  cmd->callback([args, cmd] {
+    args->command_line = "sglab bench";
+    for (const CLI::Option* o : cmd->get_options()) {
+      if (o->count() == 0 || o->get_name() == "--help") continue;
+      args->command_line += " " + o->get_name();
+      if (o->get_type_size_min() > 0)
+        for (const std::string& r : o->results()) args->command_line += " " + r;
+    }
     if (args->repetitions < 1)
       throw InputError(fmt::format("--repetitions: must be >= 1, got {}", args->repetitions));
     if (!(args->min_time > 0) || !(args->min_time <= 10))
@@ -115,7 +173,9 @@ void add_bench_command(CLI::App& app) {
           ->ReportAggregatesOnly(true);
     }
     CollectingReporter reporter(cases.size());
+    const double load_start = validate::load_average_1min();
     benchmark::RunSpecifiedBenchmarks(&reporter);
+    const double load_end = validate::load_average_1min();
     benchmark::ClearRegisteredBenchmarks();
 
     std::vector<validate::Cost> costs;
@@ -125,17 +185,38 @@ void add_bench_command(CLI::App& app) {
       costs.push_back(validate::Cost{c.kind, c.method, c.refit, c.precision, c.mode,
                                      ns / static_cast<double>(c.evaluations)});
     }
-    const validate::Table table = validate::cost_table(
-        costs, fmt::format("ns per evaluation (Google Benchmark, 1 thread, median of {} repetitions × {} s; "
-                           "{} inputs; scalar = registry function pointer per element, batch = batch pointer)",
-                           args->repetitions, args->min_time, validate::kCostInputs));
+    const std::string timer = fmt::format(
+        "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry function "
+        "pointer per element, batch = batch pointer over all inputs, light_setup = ns per light, light_eval = ns "
+        "per shading point",
+        args->repetitions, args->min_time);
+    const validate::Table table =
+        validate::cost_table(costs, fmt::format("ns per evaluation ({}; {})", timer, validate::cost_input_description()));
+    const validate::Table summary = summary_table(costs);
+
+    validate::CostTable cost_table;
+    cost_table.info = validate::current_cost_table_info();
+    cost_table.info.command = args->command_line;
+    cost_table.info.timer = timer;
+    cost_table.info.inputs = validate::cost_input_description();
+    cost_table.info.load_start = load_start;
+    cost_table.info.load_end = load_end;
+    cost_table.costs = costs;
+
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
     validate::write_table(table, dir, "bench", {TableFormat::csv, TableFormat::markdown});
-    if (args->json)
+    validate::write_table(summary, dir, "bench_summary", {TableFormat::csv, TableFormat::markdown});
+    validate::write_cost_table(cost_table, dir / "costs.json");
+    if (args->json) {
       fmt::print("{}\n", validate::to_json(table).dump(2));
-    else
-      fmt::print("{}\nWritten to {}: bench.{{csv,md}}\n", validate::to_markdown(table), dir.string());
+    } else {
+      fmt::print("{}\n{}\nMachine: {}, {} cores; {} {} {}; 1-min load average {:.2f} at start, {:.2f} at end\n",
+                 validate::to_markdown(summary), validate::to_markdown(table), cost_table.info.cpu,
+                 cost_table.info.cores, cost_table.info.compiler_id, cost_table.info.compiler_version,
+                 cost_table.info.build_type, load_start, load_end);
+      fmt::print("Written to {}: bench.{{csv,md}}, bench_summary.{{csv,md}}, costs.json\n", dir.string());
+    }
   });
 }
 

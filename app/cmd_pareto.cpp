@@ -1,6 +1,7 @@
 // `sglab pareto`: speed against accuracy of every irradiance method (published
-// and refit ids alike) in one precision over a κ range. Cost: median batch ns
-// per evaluation (validate/cost.hpp, quick steady_clock measurement); error:
+// and refit ids alike) in one precision over a κ range. Cost: batch ns per
+// evaluation from the cost table `sglab bench` wrote (--costs; data/results/
+// costs.json by default), or timed now with --live-timing; error:
 // max peak_rel over 29 log-spaced κ × 41 cosines on [LO, HI] (the sweep, so it
 // equals `sglab sweep --kappa LO:HI:29 --cosines 41`; +inf when the method
 // has non-finite outputs there). Marks the Pareto frontier and writes
@@ -15,6 +16,7 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "costs_option.hpp"
 #include "pareto.hpp"
 #include "table.hpp"
 
@@ -26,6 +28,7 @@ struct ParetoArgs {
   std::string kappa = "1e-3:1e4";
   std::string precision = "float";
   std::string out = "out/pareto";
+  CostsOption costs;
 };
 
 }  // namespace
@@ -38,6 +41,7 @@ void add_pareto_command(CLI::App& app) {
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->capture_default_str();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->capture_default_str();
+  args->costs.add_to(cmd);
   cmd->callback([args] {
     double lo = 0, hi = 0;
     {
@@ -53,14 +57,15 @@ void add_pareto_command(CLI::App& app) {
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
     std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
-    validate::fill_costs(points, *precision);
+    const std::string source = args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
     validate::mark_frontier(points);
 
     const validate::Table table = validate::pareto_table(points, *precision, lo, hi);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
     validate::write_table(table, dir, "pareto", {TableFormat::csv, TableFormat::markdown});
-    fmt::print("{}\nWritten to {}: pareto.{{csv,md}}\n", validate::to_markdown(table), dir.string());
+    fmt::print("{}\nCost: {}\nWritten to {}: pareto.{{csv,md}}\n", validate::to_markdown(table), source,
+               dir.string());
   });
 }
 

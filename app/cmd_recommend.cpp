@@ -1,8 +1,10 @@
 // `sglab recommend --kappa LO:HI --budget E`: the cheapest irradiance method
 // whose max peak_rel over [LO, HI] (29 log-spaced κ × 41 cosines, the same
 // grid as `sglab pareto` and `sglab sweep --kappa LO:HI:29 --cosines 41`) is
-// ≤ E, and the runner-up. Cost: the median of 7 repetitions of the batch ns
-// per evaluation (validate/cost.hpp); costs within 5% of the cheapest remaining
+// ≤ E, and the runner-up. Cost: the batch ns per evaluation from the cost
+// table `sglab bench` wrote (--costs; data/results/costs.json by default), or
+// with --live-timing the median of 7 repetitions timed now (validate/cost.hpp);
+// costs within 5% of the cheapest remaining
 // candidate are ties, broken by the smaller error (validate/pareto.hpp).
 // When no method meets the budget, says so and names the most accurate (exit
 // 0: that is an answer). --json adds every candidate.
@@ -17,6 +19,7 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "costs_option.hpp"
 #include "pareto.hpp"
 
 namespace sglab::app {
@@ -28,6 +31,7 @@ struct RecommendArgs {
   std::string budget;
   std::string precision = "float";
   bool json = false;
+  CostsOption costs;
 };
 
 nlohmann::ordered_json number(double x) {
@@ -60,6 +64,7 @@ void add_recommend_command(CLI::App& app) {
   cmd->add_option("--budget", args->budget, "max peak_rel allowed (> 0)")->required();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the answer as JSON on stdout");
+  args->costs.add_to(cmd);
   cmd->callback([args] {
     double lo = 0, hi = 0, budget = 0;
     {
@@ -76,7 +81,7 @@ void add_recommend_command(CLI::App& app) {
       throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
 
     std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
-    validate::fill_costs(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
+    const std::string source = args->costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
     const validate::Recommendation r = validate::recommend(points, budget);
 
     if (args->json) {
@@ -89,6 +94,7 @@ void add_recommend_command(CLI::App& app) {
       doc["runner_up"] = point_json(r.runner_up);
       doc["most_accurate"] = point_json(r.most_accurate);
       doc["tie_margin"] = validate::kCostTieMargin;
+      doc["cost_source"] = source;
       nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
       for (const auto& p : points) {
         auto j = point_json(p);
@@ -113,7 +119,7 @@ void add_recommend_command(CLI::App& app) {
       else
         fmt::print("  no method has a finite error over this range.\n");
     }
-    fmt::print("(cost: median batch ns/eval of 7 repetitions; costs within {}% are ties, broken by error)\n",
+    fmt::print("(cost: batch ns/eval from {}; costs within {}% are ties, broken by error)\n", source,
                validate::kCostTieMargin * 100);
   });
 }

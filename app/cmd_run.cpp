@@ -309,7 +309,7 @@ void add_run_command(CLI::App& app) {
         {"stability", {"stability", "--out", in("stability")}, "stability"},
         {"claims", {"claims", "--out", in("claims")}, "claims"},
         {"bench", {"bench", "--out", in("bench")}, "bench"},
-        {"pareto", {"pareto", "--out", in("pareto")}, "pareto"},
+        {"pareto", {"pareto", "--costs", in("bench/costs.json"), "--out", in("pareto")}, "pareto"},
         {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
     };
     for (const auto& s : *skip) {

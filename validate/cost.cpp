@@ -24,7 +24,35 @@ std::string_view to_string(CostKind k) {
   return "?";
 }
 
-std::string_view to_string(CostMode m) { return m == CostMode::scalar ? "scalar" : "batch"; }
+std::string_view to_string(CostMode m) {
+  switch (m) {
+    case CostMode::scalar: return "scalar";
+    case CostMode::batch: return "batch";
+    case CostMode::light_setup: return "light_setup";
+    case CostMode::light_eval: return "light_eval";
+  }
+  return "?";
+}
+
+std::optional<CostKind> parse_cost_kind(std::string_view s) {
+  for (CostKind k : {CostKind::irradiance, CostKind::hemispherical, CostKind::erf})
+    if (to_string(k) == s) return k;
+  return std::nullopt;
+}
+
+std::optional<CostMode> parse_cost_mode(std::string_view s) {
+  for (CostMode m : {CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval})
+    if (to_string(m) == s) return m;
+  return std::nullopt;
+}
+
+std::string cost_input_description(std::size_t n) {
+  return fmt::format(
+      "{} inputs: kappa log-uniform in [1e-3, 1e4], cosine uniform in [-1, 1] (erf: x uniform in [0, 4]); "
+      "std::mt19937_64 seed {}, drawn in double and rounded to float; light_eval: {} lights (the first kappa) "
+      "x {} cosines each",
+      n, kCostSeed, kCostLights, n / kCostLights);
+}
 
 std::string CostCase::name() const {
   return fmt::format("{}/{}/{}/{}", to_string(kind), method, to_string(precision), to_string(mode));
@@ -115,6 +143,32 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     b64(w->cosine64.data(), w->kappa64.data(), w->out64.data(), n);
     clobber(w->out64.data());
   });
+  if (m.light_setup32 && m.light_eval32 && n >= kCostLights) {
+    auto setup = m.light_setup32;
+    auto eval = m.light_eval32;
+    // Setup: once per κ of the inputs, into a small ring of states.
+    auto ring = std::make_shared<std::vector<float>>(64 * kLightStateFloats);
+    make(FloatFormat::binary32, CostMode::light_setup, [w, setup, ring, n] {
+      const float* k = w->kappa32.data();
+      float* s = ring->data();
+      for (std::size_t i = 0; i < n; ++i) setup(k[i], s + (i % 64) * kLightStateFloats);
+      clobber(s);
+    });
+    // Eval: kCostLights lights, each at a contiguous block of the cosines.
+    auto states = std::make_shared<std::vector<float>>(kCostLights * kLightStateFloats);
+    for (std::size_t j = 0; j < kCostLights; ++j) setup(w->kappa32[j], states->data() + j * kLightStateFloats);
+    make(FloatFormat::binary32, CostMode::light_eval, [w, eval, states, n] {
+      const float* c = w->cosine32.data();
+      float* o = w->out32.data();
+      const std::size_t block = n / kCostLights;
+      for (std::size_t j = 0; j < kCostLights; ++j) {
+        const float* s = states->data() + j * kLightStateFloats;
+        for (std::size_t i = j * block; i < (j + 1) * block; ++i) o[i] = eval(s, c[i]);
+      }
+      clobber(o);
+    });
+    out.back().evaluations = (n / kCostLights) * kCostLights;
+  }
 }
 
 void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v, const std::shared_ptr<CostWorkload>& w) {

@@ -1,35 +1,45 @@
 // validate/cost.hpp — how long each registered method takes per evaluation
 // (the "speed" half of speed against accuracy).
 //
-// Workload (fixed, reproducible): 4096 inputs, κ log-uniform in [1e−3, 1e4]
-// and c uniform in [−1, 1] (std::mt19937_64, seed kCostSeed); the erf
-// variants get x uniform in [0, 4]. Inputs are generated in double and
-// rounded to float for the float cases, so both precisions see the same
-// (rounded) values.
+// Workload (fixed, reproducible): kCostInputs = 2^20 (1,048,576) inputs,
+// κ log-uniform in [1e−3, 1e4] (log10 κ uniform in [−3, 4]) and c uniform in
+// [−1, 1] (std::mt19937_64, seed kCostSeed); the erf variants get x uniform in
+// [0, 4]. Inputs are generated in double and rounded to float for the float
+// cases, so both precisions see the same (rounded) values. So many distinct
+// inputs keep the branch predictor from learning a short repeated sequence
+// (which flatters branchy methods); cost_input_description() states this.
 //
 // Modes:
-//   scalar — a loop over the 4096 inputs calling the registry's f32/f64
+//   scalar — a loop over the inputs calling the registry's f32/f64
 //            function pointer once per element (so it includes an indirect
 //            call per evaluation and no cross-element vectorization: the cost
 //            of calling one method through the registry);
-//   batch  — one call of the registry's batch32/batch64 pointer over the 4096
-//            inputs (the inlined loop of sglab/batch.hpp, vectorizable). The
-//            erf variants have no batch pointer in the registry; their batch
-//            mode is the same inlined loop over the variant's functor
-//            (ErfListing5, ErfAS7125, ErfStd).
-// One thread. ns_per_eval = wall time of a pass / 4096, the median over the
-// repetitions.
+//   batch  — one call of the registry's batch32/batch64 pointer over the
+//            inputs (the inlined loop of sglab/batch.hpp or a method's own
+//            vectorizing kernel). The erf variants have no batch pointer in
+//            the registry; their batch mode is the same inlined loop over the
+//            variant's functor (ErfListing5, ErfAS7125, ErfStd).
+//   light_setup — float methods with the per-light split only: the registry's
+//            light_setup32 once per κ of the inputs (ns per light);
+//   light_eval  — light_eval32 as a renderer calls it: kCostLights lights
+//            (the first κ of the inputs) each evaluated at a contiguous
+//            1/kCostLights of the cosines (ns per shading point).
+// One thread. ns_per_eval = wall time of a pass / evaluations per pass, the
+// median over the repetitions.
 //
-// `sglab bench` times these same cases with Google Benchmark (app/cmd_bench.cpp);
-// `measure_costs` times them with std::chrono::steady_clock (no Google
-// Benchmark dependency, so the validate library and its tests stay free of it)
-// and is what `sglab pareto` and `sglab recommend` use.
+// `sglab bench` times these same cases with Google Benchmark (app/cmd_bench.cpp)
+// and writes the cost table (cost_table.hpp) that `sglab pareto` and
+// `sglab recommend` read; `measure_costs` times them with
+// std::chrono::steady_clock (no Google Benchmark dependency) for their
+// --live-timing option.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -38,13 +48,19 @@
 
 namespace sglab::validate {
 
-inline constexpr std::size_t kCostInputs = 4096;
+inline constexpr std::size_t kCostInputs = std::size_t{1} << 20;
+inline constexpr std::size_t kCostLights = 256;
+
+// The input distribution, as stated in the bench output and the cost table.
+std::string cost_input_description(std::size_t n = kCostInputs);
 inline constexpr std::uint64_t kCostSeed = 20261121;
 
 enum class CostKind { irradiance, hemispherical, erf };
-enum class CostMode { scalar, batch };
+enum class CostMode { scalar, batch, light_setup, light_eval };
 std::string_view to_string(CostKind k);  // "irradiance", "hemispherical", "erf"
-std::string_view to_string(CostMode m);  // "scalar", "batch"
+std::string_view to_string(CostMode m);  // "scalar", "batch", "light_setup", "light_eval"
+std::optional<CostKind> parse_cost_kind(std::string_view s);
+std::optional<CostMode> parse_cost_mode(std::string_view s);
 
 // The inputs and output buffers shared by every case.
 struct CostWorkload {
@@ -68,7 +84,8 @@ struct CostCase {
 };
 
 // Every case over the registry: irradiance_methods, hemispherical_methods,
-// erf_variants × {float, double} × {scalar, batch}, in registry order.
+// erf_variants × {float, double} × {scalar, batch}, plus float light_setup
+// and light_eval for methods with the per-light split, in registry order.
 std::vector<CostCase> cost_cases(const std::shared_ptr<CostWorkload>& workload);
 
 struct Cost {
@@ -85,7 +102,7 @@ struct CostOptions {
   double min_time = 0.01;  // seconds per repetition (5 × 0.01 s = the ~0.05 s quick mode)
   std::vector<CostKind> kinds{CostKind::irradiance, CostKind::hemispherical, CostKind::erf};
   std::vector<FloatFormat> precisions{FloatFormat::binary32, FloatFormat::binary64};
-  std::vector<CostMode> modes{CostMode::scalar, CostMode::batch};
+  std::vector<CostMode> modes{CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval};
   std::string filter;  // ECMAScript regex searched in CostCase::name(); empty = all
 };
 

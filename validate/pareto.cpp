@@ -119,6 +119,16 @@ void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions
   }
 }
 
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, FloatFormat f, const CostTable& table) {
+  std::vector<std::string> missing;
+  for (MethodPoint& p : points) {
+    const Cost* c = table.find(CostKind::irradiance, p.method, f, CostMode::batch);
+    p.ns_per_eval = c ? c->ns_per_eval : std::numeric_limits<double>::quiet_NaN();
+    if (!c) missing.push_back(p.method);
+  }
+  return missing;
+}
+
 Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double kappa_lo, double kappa_hi) {
   Table t(fmt::format("Speed against accuracy ({}): batch ns/eval against max peak_rel over κ in [{}, {}] "
                       "(29 κ × 41 c); frontier = not dominated",

@@ -7,7 +7,8 @@
 // `sglab sweep --kappa LO:HI:29 --cosines 41 --method ID` reports as
 // max_peak_rel — except that a method with any non-finite output on the grid
 // gets error +inf (it cannot meet any budget and is never on the frontier).
-// Cost: the median batch ns per evaluation from measure_costs (cost.hpp).
+// Cost: the batch ns per evaluation from the cost table that `sglab bench`
+// wrote (cost_table.hpp), or measured live (measure_costs, cost.hpp).
 #pragma once
 
 #include <optional>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "cost.hpp"
+#include "cost_table.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
 
@@ -60,8 +62,14 @@ SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
 std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, FloatFormat f);
 
 // Fills ns_per_eval with the median batch cost in precision `f`
-// (measure_costs, `repetitions` × `min_time` s per method).
+// (measure_costs, `repetitions` × `min_time` s per method): live timing,
+// which differs from run to run.
 void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions = 5, double min_time = 0.01);
+
+// Fills ns_per_eval from a cost table (cost_table.hpp): the irradiance batch
+// cost in precision `f`. A method without that row gets NaN (so it is neither
+// recommended nor on the frontier); returns the ids of those methods.
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, FloatFormat f, const CostTable& table);
 
 // method, origin, precision, kappa_lo, kappa_hi, ns_per_eval, max_peak_rel,
 // frontier (origin published/refit/sglab, frontier 0/1).

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 #include "math.hpp"
 #include "sg.hpp"
@@ -18,42 +19,63 @@ namespace sglab {
 namespace detail {
 
 // Coefficients of the Taylor series at κ = 0 used below, as exact rationals
-// evaluated at compile time.
+// rounded to double at compile time:
 //   (κ − 1 + e^{−κ})/κ²        = Σ_{m≥0} (−κ)^m / (m + 2)!
 //   (1 − e^{−κ}(1 + κ))/κ²     = Σ_{m≥0} (−κ)^m (m + 1) / (m + 2)!
-// With 18 terms the first omitted term is below 3e−17 of either sum for κ ≤ 1.
+// For κ < 1 the first omitted term is below 3e−17 of either sum with 18 terms
+// (double and wider) and below 3e−9 with 11 terms (float).
 inline constexpr std::size_t kSeriesTerms = 18;
+template <class T> inline constexpr std::size_t kPoleSeriesTerms = sizeof(T) <= sizeof(float) ? 11 : kSeriesTerms;
 
-constexpr long double factorial(std::size_t n) {
-  long double f = 1;
-  for (std::size_t i = 2; i <= n; ++i) f *= static_cast<long double>(i);
-  return f;
+template <bool kLower> constexpr double pole_series_coefficient(std::size_t m) {
+  long double f = 1;  // (m + 2)!
+  for (std::size_t i = 2; i <= m + 2; ++i) f *= static_cast<long double>(i);
+  const long double sign = (m % 2 == 0) ? 1.0L : -1.0L;
+  const long double num = kLower ? static_cast<long double>(m + 1) : 1.0L;
+  return static_cast<double>(sign * num / f);
 }
 
-template <bool kLower> struct PoleSeries {
-  long double c[kSeriesTerms];
-  constexpr PoleSeries() : c{} {
-    for (std::size_t m = 0; m < kSeriesTerms; ++m) {
-      const long double sign = (m % 2 == 0) ? 1.0L : -1.0L;
-      const long double num = kLower ? static_cast<long double>(m + 1) : 1.0L;
-      c[m] = sign * num / factorial(m + 2);
-    }
-  }
-};
-inline constexpr PoleSeries<false> kUpperSeries{};
-inline constexpr PoleSeries<true> kLowerSeries{};
+// Horner's rule unrolled at compile time, each coefficient a constant T(c):
+// no loop, no long double, and nothing that stops vectorization.
+template <bool kLower, class T, std::size_t... I> T pole_series(const T& kappa, std::index_sequence<I...>) {
+  constexpr std::size_t N = sizeof...(I) + 1;
+  T y = T(pole_series_coefficient<kLower>(N - 1));
+  ((y = y * kappa + T(pole_series_coefficient<kLower>(N - 2 - I))), ...);
+  return y;
+}
+
+// Σ (−κ)^m/(m + 2)! and Σ (−κ)^m (m + 1)/(m + 2)! (see above), for κ < 1.
+template <class T> T upper_pole_series(const T& kappa) {
+  return pole_series<false>(kappa, std::make_index_sequence<kPoleSeriesTerms<T> - 1>{});
+}
+template <class T> T lower_pole_series(const T& kappa) {
+  return pole_series<true>(kappa, std::make_index_sequence<kPoleSeriesTerms<T> - 1>{});
+}
 
 }  // namespace detail
 
+// Both poles at once, Ē(±1, κ) = E(±1, κ)/2π: one exp and one expm1 per κ.
+template <class T> struct PoleIrradiances {
+  T lower;  // Ē(−1, κ)
+  T upper;  // Ē(1, κ)
+};
+
+// Ē(1, κ) = (κ − 1 + e^{−κ})/κ², Ē(−1, κ) = e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ².
+// κ < 1: the Taylor series above (exact limits 1/2 and 1/2 at κ = 0).
+// κ ≥ 1: with q = (1 − e^{−κ})/κ, Ē(1) = (1 − q)/κ and Ē(−1) = e^{−κ}(q − e^{−κ})/κ:
+// no κ², so no overflow at κ = FLT_MAX; the difference q − e^{−κ} loses at
+// most a factor ~2 at κ = 1.
+template <class T> PoleIrradiances<T> irradiance_poles_over_two_pi(const T& kappa) {
+  using std::exp;
+  const T e = exp(-kappa);
+  if (kappa < T(1)) return {e * detail::lower_pole_series(kappa), detail::upper_pole_series(kappa)};
+  const T q = expm1_over_x(-kappa);
+  return {e * ((q - e) / kappa), (T(1) - q) / kappa};
+}
+
 // Ē(1, κ) = E(1, κ)/2π = (κ − 1 + e^{−κ})/κ² (upper pole; → 1/2 as κ → 0).
 template <class T> T irradiance_upper_over_two_pi(const T& kappa) {
-  if (kappa < T(1)) {
-    // Series in κ; only the first terms matter for float.
-    T y = T(detail::kUpperSeries.c[detail::kSeriesTerms - 1]);
-    for (std::size_t i = detail::kSeriesTerms - 1; i-- > 0;)
-      y = y * kappa + T(detail::kUpperSeries.c[i]);
-    return y;
-  }
+  if (kappa < T(1)) return detail::upper_pole_series(kappa);
   // (1 − (1 − e^{−κ})/κ)/κ: no κ², so no overflow at κ = FLT_MAX.
   return (T(1) - expm1_over_x(-kappa)) / kappa;
 }
@@ -61,16 +83,7 @@ template <class T> T irradiance_upper_over_two_pi(const T& kappa) {
 // Ē(−1, κ) = E(−1, κ)/2π = e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (lower pole; → 1/2 as κ → 0,
 // like Ē(1, κ): at κ = 0 the SG is constant and E = π at every cosine).
 template <class T> T irradiance_lower_over_two_pi(const T& kappa) {
-  using std::exp;
-  const T e = exp(-kappa);
-  if (kappa < T(1)) {
-    T y = T(detail::kLowerSeries.c[detail::kSeriesTerms - 1]);
-    for (std::size_t i = detail::kSeriesTerms - 1; i-- > 0;)
-      y = y * kappa + T(detail::kLowerSeries.c[i]);
-    return e * y;
-  }
-  // ((1 − e^{−κ})/κ − e^{−κ})/κ: the difference loses at most a factor ~2 at κ = 1.
-  return e * ((expm1_over_x(-kappa) - e) / kappa);
+  return irradiance_poles_over_two_pi(kappa).lower;
 }
 
 // E(1, κ) = 2π(κ − 1 + e^{−κ})/κ². From κ = 1 on, 2π(1 − (1 − e^{−κ})/κ) is

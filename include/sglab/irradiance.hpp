@@ -8,7 +8,9 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
+#include "branch_free.hpp"
 #include "closed_forms.hpp"
 #include "constants.hpp"
 #include "erf.hpp"
@@ -121,18 +123,51 @@ T irradiance_tokuyoshi2022(const T& cosine, const T& kappa,
   return max0(alpha * p - alpha * q);
 }
 
+namespace detail {
+// Elementary functions of a method's formula: the standard library's (scalar,
+// and Ceres Jets through argument-dependent lookup) ...
+struct LibmOps {
+  template <class T> static T exp(const T& x) {
+    using std::exp;
+    return exp(x);
+  }
+  template <class T> static T expm1(const T& x) {
+    using std::expm1;
+    return expm1(x);
+  }
+  template <class T> static T erfc(const T& x) {
+    using std::erfc;
+    return erfc(x);
+  }
+  // erfc(x) when e^{−x²} is at hand (unused here).
+  template <class T> static T erfc(const T& x, const T&) { return erfc(x); }
+  template <class T> static T select(bool m, const T& a, const T& b) { return m ? a : b; }
+  template <class T> static T clamp(const T& x, const T& lo, const T& hi) { return sglab::clamp(x, lo, hi); }
+};
+// ... or sglab's branch-free float approximations (branch_free.hpp), with
+// which a loop over the method vectorizes.
+struct BranchFreeOps {
+  static float exp(float x) { return branch_free::exp_bf(x); }
+  static float expm1(float x) { return branch_free::expm1_bf(x); }
+  static float erfc(float x) { return branch_free::erfc_bf(x); }
+  static float erfc(float x, float exp_minus_x2) { return branch_free::erfc_bf(x, exp_minus_x2); }
+  static float select(bool m, float a, float b) { return branch_free::select(m, a, b); }
+  static float clamp(float x, float lo, float hi) { return branch_free::clamp(x, lo, hi); }
+};
+}  // namespace detail
+
 // Interpolation factor of `tokuyoshi2024` as a function of the steepness t
 // (Tokuyoshi et al. 2024, supplementary Listing 7):
 // f = ½(c erfc(−tc) + erfc(t)) − e^{−t²c²} expm1(t²(c² − 1))/(2√π t),
 // saturated to [0, 1]. The last term → 0 as t → 0 (it is ~ t(c² − 1)).
-template <class T> T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, const T& t) {
-  using std::erfc;
-  using std::exp;
-  using std::expm1;
-  const T c = clamp(cosine, T(-1), T(1));
+template <class T, class Ops = detail::LibmOps>
+T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, const T& t, Ops = {}) {
+  const T c = Ops::clamp(cosine, T(-1), T(1));
   const T tz = t * c;
-  const T tail = t > T(0) ? exp(-tz * tz) * expm1(t * t * (c * c - T(1))) / t : T(0);
-  return saturate(T(0.5) * (c * erfc(-tz) + erfc(t)) - T(0.5) * inv_sqrt_pi_v<T>() * tail);
+  const T ez = Ops::exp(-tz * tz);  // e^{−t²c²}
+  const T tail = Ops::select(t > T(0), ez * Ops::expm1(t * t * (c * c - T(1))) / t, T(0));
+  return Ops::clamp(T(0.5) * (c * Ops::erfc(-tz, ez) + Ops::erfc(t)) - T(0.5) * inv_sqrt_pi_v<T>() * tail, T(0),
+                    T(1));
 }
 
 template <class T, class P = Steepness2024Params<double>>
@@ -140,13 +175,67 @@ T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = consta
   return lerp_factor_tokuyoshi2024_at_steepness(cosine, steepness(kappa, p));
 }
 
-// `tokuyoshi2024`: Ê = 2π lerp(Ē(−1), Ē(1), f) with the exact poles
-// Ē(±1) = E(±1, κ)/2π (closed_forms.hpp; Taylor series near κ = 0 as in the
-// paper's Listing 6). `p` may be any steepness form (Steepness2024Params by default).
+// `tokuyoshi2024` split into a per-light setup (everything that depends on κ
+// alone: the steepness t(κ) and the exact poles Ē(±1) = E(±1, κ)/2π,
+// closed_forms.hpp, Taylor series near κ = 0 as in the paper's Listing 6) and
+// a per-shading-point evaluation Ê = 2π lerp(Ē(−1), Ē(1), f(c, t)).
+template <class T> struct Tokuyoshi2024Light {
+  T t;      // steepness t(κ)
+  T lower;  // Ē(−1, κ)
+  T upper;  // Ē(1, κ)
+};
+
+template <class T, class P = Steepness2024Params<double>>
+Tokuyoshi2024Light<T> tokuyoshi2024_setup(const T& kappa, const P& p = constants::steepness2024_published) {
+  const PoleIrradiances<T> poles = irradiance_poles_over_two_pi(kappa);
+  return {steepness(kappa, p), poles.lower, poles.upper};
+}
+
+// The same setup in float without branches (both sides of κ < 1 computed and
+// selected; branch_free.hpp elementary functions), for the batch kernel.
+template <class S>
+SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_setup_branch_free(float kappa, const Steepness2024Params<S>& p) {
+  namespace bf = branch_free;
+  const float A = float(p.A), B = float(p.B), C = float(p.C), D = float(p.D), E = float(p.E);
+  const bool small = kappa < 1.0f;
+  const float r = 1.0f / bf::max(kappa, 1.0f);
+  // t² = κ² · 0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E), as steepness2024 (κ ≥ 1 in powers of 1/κ).
+  const float num = bf::select(small, kappa * kappa * (0.5f * ((kappa + A) * kappa + B)),
+                               kappa * (0.5f * (1.0f + (A + B * r) * r)));
+  const float den = bf::select(small, ((kappa + C) * kappa + D) * kappa + E, 1.0f + (C + (D + E * r) * r) * r);
+  const float t = bf::sqrt_bf(num / den);
+  // Poles as irradiance_poles_over_two_pi, with q = (1 − e^{−κ})/κ for κ ≥ 1.
+  const float e = bf::exp_bf(-kappa);
+  const float q = (1.0f - e) * r;
+  const float upper = bf::select(small, detail::upper_pole_series(kappa), (1.0f - q) * r);
+  const float lower = e * bf::select(small, detail::lower_pole_series(kappa), (q - e) * r);
+  return {t, lower, upper};
+}
+
+template <class T, class Ops = detail::LibmOps>
+T tokuyoshi2024_evaluate(const Tokuyoshi2024Light<T>& light, const T& cosine, Ops ops = {}) {
+  const T f = lerp_factor_tokuyoshi2024_at_steepness(cosine, light.t, ops);
+  return two_pi_v<T>() * lerp(light.lower, light.upper, f);
+}
+
+// `tokuyoshi2024`: Ê = 2π lerp(Ē(−1), Ē(1), f) (Tokuyoshi et al. 2024,
+// supplementary Listings 6-7). `p` may be any steepness form (Steepness2024Params by default).
 template <class T, class P = Steepness2024Params<double>>
 T irradiance_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constants::steepness2024_published) {
-  const T f = lerp_factor_tokuyoshi2024(cosine, kappa, p);
-  return two_pi_v<T>() * lerp(irradiance_lower_over_two_pi(kappa), irradiance_upper_over_two_pi(kappa), f);
+  return tokuyoshi2024_evaluate(tokuyoshi2024_setup(kappa, p), cosine);
+}
+
+// Float batch of `tokuyoshi2024` that vectorizes: the same setup and
+// evaluation with branch_free.hpp's exp, expm1, erfc and sqrt. Its distance
+// from the double path stays below 1e−6 of the peak E(1, κ) (an erfc error e
+// moves f by at most e; measured 3.3e−7 over 2^20 random inputs, as the scalar
+// float path), tests/test_branch_free.cpp.
+template <class S = double>
+void irradiance_tokuyoshi2024_batch(const float* __restrict cosine, const float* __restrict kappa,
+                                    float* __restrict out, std::size_t n,
+                                    const Steepness2024Params<S>& p = constants::steepness2024_published) {
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = tokuyoshi2024_evaluate(tokuyoshi2024_setup_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
 }
 
 }  // namespace sglab

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstring>
 #include <span>
 #include <string_view>
 
@@ -66,6 +67,28 @@ constexpr Method make_method(std::string_view id, std::string_view source, std::
       origin,
   };
 }
+
+// A method whose float batch is a dedicated kernel (e.g. one that vectorizes).
+constexpr Method with_batch32(Method m, void (*batch32)(const float*, const float*, float*, std::size_t)) {
+  m.batch32 = batch32;
+  return m;
+}
+
+// A method with the per-light split: Setup(κ) returns a Light (a struct of at
+// most kLightStateFloats floats), Eval(light, c) the value.
+template <class Light, class Setup, class Eval> constexpr Method with_light_split(Method m, Setup, Eval) {
+  static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float) && alignof(Light) <= alignof(float));
+  m.light_setup32 = [](float kappa, float* state) {
+    const Light light = Setup{}(kappa);
+    std::memcpy(state, &light, sizeof light);
+  };
+  m.light_eval32 = [](const float* state, float cosine) {
+    Light light;
+    std::memcpy(&light, state, sizeof light);
+    return Eval{}(light, cosine);
+  };
+  return m;
+}
 }  // namespace detail
 
 // Irradiance approximations Ê(c, κ) of SPEC §2, with published constants.
@@ -85,8 +108,15 @@ inline constexpr Method irradiance_methods[] = {
     detail::make_method("tokuyoshi2022", "Tokuyoshi 2022 Eq. 3-6, supplementary Listings 1-4 (seed 000), std::erf",
                         "clamped_cosine_published, steepness2022_published",
                         [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
-    detail::make_method("tokuyoshi2024", "Tokuyoshi et al. 2024 supplementary Listings 6-7 (author's VSGL code)",
-                        "steepness2024_published", [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
+    detail::with_light_split<Tokuyoshi2024Light<float>>(
+        detail::with_batch32(
+            detail::make_method("tokuyoshi2024",
+                                "Tokuyoshi et al. 2024 supplementary Listings 6-7 (author's VSGL code)",
+                                "steepness2024_published",
+                                [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
+            [](const float* c, const float* k, float* o, std::size_t n) { irradiance_tokuyoshi2024_batch(c, k, o, n); }),
+        [](float k) { return tokuyoshi2024_setup(k); },
+        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_evaluate(l, c); }),
     // The published formulas with sglab's refitted constants (`sglab fit all`)
     // and the shader path of the 2022 method (Listing 5 erf).
     detail::make_method("tokuyoshi2022_listing5", "tokuyoshi2022 with the Listing 5 erf (seed 000), as a shader runs it",
@@ -102,9 +132,17 @@ inline constexpr Method irradiance_methods[] = {
                                                           constants::steepness2022_irradiance);
                         },
                         Origin::refit),
-    detail::make_method("tokuyoshi2024_refit", "tokuyoshi2024 refitted: t(κ) on irradiance", "steepness2024_irradiance",
-                        [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k, constants::steepness2024_irradiance); },
-                        Origin::refit),
+    detail::with_light_split<Tokuyoshi2024Light<float>>(
+        detail::with_batch32(
+            detail::make_method(
+                "tokuyoshi2024_refit", "tokuyoshi2024 refitted: t(κ) on irradiance", "steepness2024_irradiance",
+                [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k, constants::steepness2024_irradiance); },
+                Origin::refit),
+            [](const float* c, const float* k, float* o, std::size_t n) {
+              irradiance_tokuyoshi2024_batch(c, k, o, n, constants::steepness2024_irradiance);
+            }),
+        [](float k) { return tokuyoshi2024_setup(k, constants::steepness2024_irradiance); },
+        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_evaluate(l, c); }),
     detail::make_method("vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
                         "lambda_d_diffuse_lobe_irradiance",
                         [](auto c, auto k) { return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance); },

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "batch.hpp"
+#include "branch_free.hpp"
 #include "closed_forms.hpp"
 #include "constants.hpp"
 #include "erf.hpp"

@@ -1,0 +1,72 @@
+// validate/cost_table.hpp — the cost table: what `sglab bench` measured, with
+// where and how, so that `sglab pareto` and `sglab recommend` answer the same
+// for the same inputs (they read it instead of timing on each call).
+//
+// JSON, one object:
+//   {"format": "sglab-costs", "version": 1,
+//    "date": "2026-12-01T05:40:00Z",              // UTC, when bench ran
+//    "command": "sglab bench --out data/results",
+//    "machine": {"cpu": "<model name of /proc/cpuinfo>", "cores": 2,
+//                "load_average_1min": [start, end]},
+//    "compiler": {"id": "GNU", "version": "12.2.0"}, "build_type": "Release",
+//    "timer": "...", "inputs": "<cost_input_description()>",
+//    "costs": [{"kind": "irradiance", "method": "hill", "precision": "float",
+//               "mode": "batch", "ns_per_eval": 4.2}, ...]}
+// kind ∈ {irradiance, hemispherical, erf}, precision ∈ {float, double},
+// mode ∈ {scalar, batch, light_setup, light_eval}; ns_per_eval finite and > 0.
+// The committed table is data/results/costs.json.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cost.hpp"
+
+namespace sglab::validate {
+
+// A missing, unreadable or malformed cost table; the message names the file
+// (and the key or entry that is wrong).
+struct CostTableError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct CostTableInfo {
+  std::string date;     // ISO 8601 UTC
+  std::string command;  // how it was produced
+  std::string cpu;      // model name from /proc/cpuinfo ("unknown" when absent)
+  unsigned cores = 0;   // std::thread::hardware_concurrency
+  double load_start = -1, load_end = -1;  // 1-minute load average (/proc/loadavg), −1 when unknown
+  std::string compiler_id, compiler_version, build_type;
+  std::string timer;
+  std::string inputs;
+};
+
+struct CostTable {
+  std::filesystem::path path;  // where it was read from (empty when built in memory)
+  CostTableInfo info;
+  std::vector<Cost> costs;
+  // The row for (kind, method, precision, mode), or nullptr.
+  const Cost* find(CostKind kind, std::string_view method, FloatFormat precision, CostMode mode) const;
+};
+
+// This machine, compiler and build (date = now); command, timer and inputs
+// left for the caller.
+CostTableInfo current_cost_table_info();
+double load_average_1min();  // −1 when /proc/loadavg is unreadable
+
+nlohmann::ordered_json to_json(const CostTable& table);
+// Writes the table atomically (temporary + rename).
+void write_cost_table(const CostTable& table, const std::filesystem::path& path);
+// Reads and validates; throws CostTableError naming `path` and what is wrong.
+CostTable read_cost_table(const std::filesystem::path& path);
+
+// data/results/costs.json of the project that holds the working directory
+// (the first folder upwards with data/results and include/sglab), or nullopt.
+std::optional<std::filesystem::path> default_cost_table_path();
+
+}  // namespace sglab::validate
