@@ -106,7 +106,7 @@ std::string write_sets(const fit::FitOutcome& outcome, const FitCliOptions& o) {
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
-  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | all")
+  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-fast | all")
       ->required();
   cmd->add_option("--precision", o->precision, "working precision: half | float | double")->capture_default_str();
   cmd->add_option("--objective", o->objective,
@@ -150,6 +150,7 @@ void add_fit_command(CLI::App& app) {
         for (const char* obj : {"optimal-t", "irradiance"}) add(t, obj, false, "float");
       add("erf", "", false, "float");
       add("lambda-d", "", false, "float");
+      add("sglab-fast", "", false, "float");
     } else {
       const auto& known = fit::fit_targets();
       if (std::find(known.begin(), known.end(), o->target) == known.end()) {

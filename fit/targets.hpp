@@ -55,6 +55,7 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec);
 FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
+FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab's cheap model (fit/sglab_cheap.cpp)
 
 // t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
 // s̃ − s (target "steepness2022") or the 2024 f − (E − E(−1))/(E(1) − E(−1))

@@ -270,4 +270,14 @@ inline constexpr Steepness2024Params<double> steepness2024_published{
     .D = 15.21915626314721,
     .E = 76.08789627236074};
 
+// sglab-fast / float: bootstrap placeholder, replaced by `sglab fit sglab-fast`
+//   objective: none
+inline constexpr SglabFastParams<double> sglab_fast_float{
+    .a = {1.0, 0.0, 0.0, 0.0, 0.0},
+    .b = {0.0, 0.0, 0.0, 0.0, 0.0},
+    .c = {0.0, 0.0, 0.0, 0.0, 0.0},
+    .v = {1.0, 0.0, 0.0, 0.0, 0.0},
+    .q = {1.0, 1.0, 1.0, 1.0},
+    .kappa_max = 10000.0};
+
 }  // namespace sglab::constants
