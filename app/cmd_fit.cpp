@@ -22,7 +22,7 @@ struct FitCliOptions {
   std::string objective;
   std::string kappa;
   double max_error = 0;
-  bool alpha_free = false, json = false, force = false, dry_run = false;
+  bool alpha_free = false, json = false, force = false, dry_run = false, cold_start = false;
   std::string out_dir = fit::default_constants_dir().string();
   std::string header = fit::default_header_path().string();
 };
@@ -48,6 +48,7 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
   spec.precision = *precision;
   spec.objective = o.objective;
   spec.alpha_free = o.alpha_free;
+  spec.cold_start = o.cold_start;
   spec.command = command;
   if (!o.kappa.empty()) {
     const auto colon = o.kappa.find(':');
@@ -115,6 +116,8 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--kappa", o->kappa, "κ range LO:HI of the fit (default 1e-3:1e4)");
   cmd->add_option("--max-error", o->max_error, "model order: smallest model meeting this error (erf: degrees and split; steepness: rational order of t)");
   cmd->add_flag("--alpha-free", o->alpha_free, "clamped-cosine: α free instead of tied by energy conservation");
+  cmd->add_flag("--cold-start", o->cold_start,
+                "sglab-fast: fit from scratch instead of polishing the committed constant set");
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
@@ -127,6 +130,7 @@ void add_fit_command(CLI::App& app) {
     if (!o->kappa.empty()) command += " --kappa " + o->kappa;
     if (o->max_error != 0) command += fmt::format(" --max-error {}", o->max_error);
     if (o->alpha_free) command += " --alpha-free";
+    if (o->cold_start) command += " --cold-start";
 
     std::vector<fit::FitSpec> specs;
     if (o->target == "all") {

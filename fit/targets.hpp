@@ -26,6 +26,7 @@ struct FitSpec {
   int kappa_count = 29, cosine_count = 41;
   bool kappa_range_given = false;       // --kappa was given: the variant name records the range
   std::optional<double> max_error;      // model order: the error budget
+  bool cold_start = false;              // sglab-fast: ignore the committed set as a warm start
   std::string command;                  // the command line, recorded in provenance
 };
 

@@ -192,6 +192,23 @@ inline constexpr Meder2018Params<double> meder2018_published{
     .sharpness = 0.0315,
     .offset = 31.7003};
 
+// sglab-fast / float: E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
+//   objective: minimax of the sglab_fast irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; warm start: per-kappa optimum, then rational least squares
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":56,"cosine_count":161}
+//   achieved: {"objective":0.0034486752121995535,"training_max_peak_rel_float":0.0034487195822013785,"per_kappa_floor":0.0013453413589298146,"held_out_grid":"211 log-spaced kappa x 401 uniform cosines over [0.001, 10000]","held_out_max_peak_rel_float":0.003521545846388246,"held_out_max_peak_rel_double":0.0035215726351566514,"held_out_worst":[10000.0,1.0],"standard_max_peak_rel_float":0.003521545846388246,"standard_max_peak_rel_double":0.0035215726351566514}
+//   command: sglab fit sglab-fast
+//   tool: sglab 0.1.0
+//   date: 2026-12-01
+inline constexpr SglabFastParams<double> sglab_fast_float{
+    .a = {11339.78646043687, 760.3092189172598, -76.99839243265306, 2.992914529388187, -0.003085288293387311},
+    .b = {551.3320379340573, 4382.535288154592, -394.21294764526243, 10.539707838990363, -0.006522925190956141},
+    .c = {53263.87934014397, 12729.188548239817, 6173.982458886861, 33.34979923619529, 0.046513599437821816},
+    .v = {-207.09449582200526, 3563.000981493434, 3906.505448906331, 373.84484016224116, 10.900051145472103},
+    .q = {21331.64576560435, 17016.635061783607, 6543.39152810947, 388.7798817859795},
+    .kappa_max = 10000.0};
+
 // steepness2022 / irradiance: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: minimax of the tokuyoshi2022 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
 //   precision: float
@@ -269,15 +286,5 @@ inline constexpr Steepness2024Params<double> steepness2024_published{
     .C = 4.010082672851042,
     .D = 15.21915626314721,
     .E = 76.08789627236074};
-
-// sglab-fast / float: bootstrap placeholder, replaced by `sglab fit sglab-fast`
-//   objective: none
-inline constexpr SglabFastParams<double> sglab_fast_float{
-    .a = {1.0, 0.0, 0.0, 0.0, 0.0},
-    .b = {0.0, 0.0, 0.0, 0.0, 0.0},
-    .c = {0.0, 0.0, 0.0, 0.0, 0.0},
-    .v = {1.0, 0.0, 0.0, 0.0, 0.0},
-    .q = {1.0, 1.0, 1.0, 1.0},
-    .kappa_max = 10000.0};
 
 }  // namespace sglab::constants
