@@ -58,14 +58,15 @@ TEST(SglabFast, MeetsItsBoundOnRandomHeldOutPointsFloatAndDouble) {
 
 TEST(SglabFast, UpperPoleWithinBoundAndSeriesMatchesClosedForm) {
   // At c = 1 the model is E(1, κ)·s(1) with s(1) fitted, not forced.
-  for (double kappa : {1e-3, 0.1, 0.49, 0.5, 0.51, 2.0, 80.0, 1e4}) {
+  for (double kappa : {1e-3, 0.1, 0.24, 0.25, 0.26, 2.0, 80.0, 1e4}) {
     const auto light = sglab::sglab_fast_light(kappa);
     const double s = sglab::sglab_fast_eval(light, 1.0);
     const double e1 = sglab::irradiance_upper(kappa);
     EXPECT_NEAR(s / e1, 1.0, kBound) << "kappa " << kappa;
   }
-  // The series and the closed form of E(1, κ)/2π agree at the switch κ = ½.
-  for (double kappa : {0.4999999, 0.5}) {
+  // The series and the closed form of E(1, κ)/2π agree with closed_forms.hpp
+  // on both sides of the switch κ = ¼.
+  for (double kappa : {1e-3, 0.2499999, 0.25, 0.5, 3.0}) {
     EXPECT_NEAR(sglab::detail::upper_over_two_pi_fast(kappa), sglab::irradiance_upper_over_two_pi(kappa), 1e-15);
     EXPECT_NEAR(sglab::detail::upper_over_two_pi_fast(float(kappa)), sglab::irradiance_upper_over_two_pi(kappa), 2e-7);
   }
