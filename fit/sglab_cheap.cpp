@@ -245,7 +245,13 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   if (!spec.cold_start) committed = committed_start(variant, lo, hi);
   params.values = committed ? *committed : rational_start(per, lo, hi);
   FitOptions options;
-  if (committed) options.lawson_iterations = 2, options.penalty_decades = 6;
+  if (committed) {
+    // A polish of a converged set: one reweighting round, then the penalty
+    // form for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short.
+    options.lawson_iterations = 1;
+    options.penalty_decades = 5;
+    options.solver_iterations = 50;
+  }
 
   // 3. Joint minimax on the runtime function.
   Residuals residuals;

@@ -16,9 +16,10 @@ namespace {
 
 using sglab::test::hex;
 
-// The bound the model is shipped with (max peak_rel over κ ∈ [1e−3, 1e4]),
-// data/results/sglab_models_cheap.md.
-constexpr double kBound = 4e-3;
+// The bound the model is shipped with (max peak_rel over κ ∈ [1e−3, 1e4];
+// measured 2.54e−3 on the held-out 211 × 401 grid, data/results/sglab_models_cheap.md;
+// the target is 4e−3).
+constexpr double kBound = 3e-3;
 
 // Random (κ, c): κ log-uniform over [1e−3, 1e4], c uniform over [−1, 1],
 // rounded to float so that the float and double paths see the same inputs.
