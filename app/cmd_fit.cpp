@@ -31,7 +31,7 @@ struct FitCliOptions {
   std::string objective;
   std::string kappa;
   double max_error = 0;
-  bool alpha_free = false, json = false, force = false, dry_run = false;
+  bool alpha_free = false, json = false, force = false, dry_run = false, cold_start = false;
   std::string out_dir;  // default: the project's data/constants
   std::string header;   // default: fit::default_header_for(out_dir)
 };
@@ -90,6 +90,7 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
   spec.precision = *precision;
   spec.objective = o.objective;
   spec.alpha_free = o.alpha_free;
+  spec.cold_start = o.cold_start;
   spec.command = command;
   if (!o.kappa.empty()) {
     // κ must survive the precision the constants are fitted for.
@@ -153,7 +154,7 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, 
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
-  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | all")
+  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-fast | all")
       ->required();
   auto* precision = cmd->add_option("--precision", o->precision,
                                     "working precision: half | float | double (clamped-cosine, erf)")
@@ -169,6 +170,8 @@ void add_fit_command(CLI::App& app) {
                                     "steepness: rational order of t)");
   auto* alpha_free = cmd->add_flag("--alpha-free", o->alpha_free,
                                    "clamped-cosine: α free instead of tied by energy conservation");
+  cmd->add_flag("--cold-start", o->cold_start,
+                "sglab-fast: fit from scratch instead of polishing the committed constant set");
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
@@ -191,6 +194,7 @@ void add_fit_command(CLI::App& app) {
     if (!o->kappa.empty()) command += " --kappa " + o->kappa;
     if (o->max_error != 0) command += fmt::format(" --max-error {}", o->max_error);
     if (o->alpha_free) command += " --alpha-free";
+    if (o->cold_start) command += " --cold-start";
 
     std::vector<fit::FitSpec> specs;
     if (o->target == "all") {
@@ -214,6 +218,7 @@ void add_fit_command(CLI::App& app) {
         for (const char* obj : {"optimal-t", "irradiance"}) add(t, obj, false, "float");
       add("erf", "", false, "float");
       add("lambda-d", "", false, "float");
+      add("sglab-fast", "", false, "float");
     } else {
       const auto& known = fit::fit_targets();
       if (std::find(known.begin(), known.end(), o->target) == known.end()) {

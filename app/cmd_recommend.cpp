@@ -8,6 +8,8 @@
 // candidate are ties, broken by the smaller error (validate/pareto.hpp).
 // When no method meets the budget, says so and names the most accurate (exit
 // 0: that is an answer). --json adds every candidate.
+// `sglab recommend --scene FILE --budget E` ranks the methods by their error on
+// a scene of SG lights instead (app/recommend_scene.cpp, validate/scene.hpp).
 #include <cmath>
 #include <memory>
 #include <string>
@@ -21,6 +23,7 @@
 #include "commands.hpp"
 #include "costs_option.hpp"
 #include "pareto.hpp"
+#include "recommend_scene.hpp"
 
 namespace sglab::app {
 
@@ -28,6 +31,8 @@ namespace {
 
 struct RecommendArgs {
   std::string kappa;
+  std::string scene;
+  std::size_t normals = 4096;
   std::string budget;
   std::string precision = "float";
   bool json = false;
@@ -58,27 +63,38 @@ std::string describe(const validate::MethodPoint& p) {
 void add_recommend_command(CLI::App& app) {
   auto args = std::make_shared<RecommendArgs>();
   auto* cmd = app.add_subcommand(
-      "recommend", "The cheapest irradiance method whose max peak_rel over a κ range meets an error budget");
+      "recommend", "The cheapest irradiance method whose max peak_rel over a κ range (or error on a scene) meets an error budget");
+  cmd->add_option("--kappa", args->kappa, "κ range LO:HI");
+  cmd->add_option("--scene", args->scene,
+                  "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": [r, g, b]}, …]}: "
+                  "rank the methods by their error on the scene's irradiance instead");
+  cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")->capture_default_str();
   cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
-  cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->required();
   cmd->add_option("--budget", args->budget, "max peak_rel allowed (> 0)")->required();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the answer as JSON on stdout");
   args->costs.add_to(cmd);
   cmd->callback([args] {
     double lo = 0, hi = 0, budget = 0;
-    {
-      const auto parsed = validate::parse_kappa_range(args->kappa, validate::KappaRangeRules{});  // LO:HI, float
-      if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
-      lo = std::get<validate::KappaRange>(parsed).lo;
-      hi = std::get<validate::KappaRange>(parsed).hi;
-    }
+    if (args->kappa.empty() == args->scene.empty()) throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
     if (!validate::parse_number(args->budget, budget))
       throw InputError(fmt::format("--budget: '{}' is not a finite number", args->budget));
     if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
     const auto precision = validate::parse_precision(args->precision);
     if (!precision)
       throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
+    if (!args->scene.empty()) {
+      if (args->normals < 1 || args->normals > 1000000)
+        throw InputError(fmt::format("--normals: expected 1 to 1000000, got {}", args->normals));
+      recommend_scene({args->scene, budget, *precision, args->normals, args->json, args->costs});
+      return;
+    }
+    {
+      const auto parsed = validate::parse_kappa_range(args->kappa, validate::KappaRangeRules{});  // LO:HI, float
+      if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
+      lo = std::get<validate::KappaRange>(parsed).lo;
+      hi = std::get<validate::KappaRange>(parsed).hi;
+    }
 
     std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
     const std::string source = args->costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);

@@ -26,6 +26,7 @@ struct FitSpec {
   int kappa_count = 29, cosine_count = 41;
   bool kappa_range_given = false;       // --kappa was given: the variant name records the range
   std::optional<double> max_error;      // model order: the error budget
+  bool cold_start = false;              // sglab-fast: ignore the committed set as a warm start
   std::string command;                  // the command line, recorded in provenance
 };
 
@@ -55,6 +56,7 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec);
 FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
+FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab's cheap model (fit/sglab_cheap.cpp)
 
 // t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
 // s̃ − s (target "steepness2022") or the 2024 f − (E − E(−1))/(E(1) − E(−1))

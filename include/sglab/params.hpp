@@ -83,4 +83,15 @@ template <class S> struct Meder2018Params {
   S amplitude, sharpness, offset;
 };
 
+// sglab's cheap irradiance model (include/sglab/sglab_cheap.hpp):
+// Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)) with
+// A = Pa(κ̃)/Q(κ̃), B = Pb/Q, C = Pc/Q, V = Pv/Q, κ̃ = min(κ, kappa_max),
+// numerators of degree 4 and one shared monic quartic Q = κ̃⁴ + q[3]κ̃³ + … + q[0]
+// (coefficients lowest order first).
+template <class S> struct SglabFastParams {
+  S a[5], b[5], c[5], v[5];
+  S q[4];
+  S kappa_max;
+};
+
 }  // namespace sglab

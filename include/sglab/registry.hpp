@@ -11,6 +11,7 @@
 #include "erf.hpp"
 #include "hemispherical.hpp"
 #include "irradiance.hpp"
+#include "sglab_cheap.hpp"
 
 namespace sglab {
 
@@ -89,6 +90,13 @@ template <class Light, class Setup, class Eval> constexpr Method with_light_spli
   };
   return m;
 }
+
+// `m` with its per-light split (light_setup32, light_eval32) filled in.
+constexpr Method with_light_split(Method m, void (*setup)(float, float*), float (*eval)(const float*, float)) {
+  m.light_setup32 = setup;
+  m.light_eval32 = eval;
+  return m;
+}
 }  // namespace detail
 
 // Irradiance approximations Ê(c, κ) of SPEC §2, with published constants.
@@ -151,6 +159,20 @@ inline constexpr Method irradiance_methods[] = {
                         "lambda_d_cosine_lobe_free_amplitude",
                         [](auto c, auto k) { return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude); },
                         Origin::refit),
+    // sglab's own models (fitted by `sglab fit`), with their per-light split.
+    detail::with_light_split(
+        detail::make_method("sglab_fast",
+                            "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational A, B, C, V in κ "
+                            "(sglab_cheap.hpp)",
+                            "sglab_fast_float", [](auto c, auto k) { return irradiance_sglab_fast(c, k); },
+                            Origin::sglab),
+        [](float kappa, float* state) {
+          const SglabFastLight<float> l = sglab_fast_light(kappa);
+          state[0] = l.a, state[1] = l.b, state[2] = l.c_ramp, state[3] = l.v;
+        },
+        [](const float* state, float cosine) {
+          return sglab_fast_eval(SglabFastLight<float>{state[0], state[1], state[2], state[3]}, cosine);
+        }),
 };
 
 // Approximate hemispherical integrals H̃(c, κ) (SPEC §2 `erf2022`, `meder2018`).

@@ -13,3 +13,4 @@
 #include "params.hpp"
 #include "registry.hpp"
 #include "sg.hpp"
+#include "sglab_cheap.hpp"

@@ -1,0 +1,148 @@
+// `sglab recommend --scene FILE --budget E`: the cheapest irradiance method
+// whose error on a scene of SG lights (validate/scene.hpp) is ≤ E. The scene's
+// total RGB irradiance is evaluated at --normals Fibonacci normals exactly
+// (reference engine) and with every registered irradiance method; error =
+// max over normals and channels of |Ê − E| / the scene's largest exact
+// irradiance. Ranking and cost as `sglab recommend --kappa` (validate/pareto.hpp).
+// Then the scene's κ range and, over that range, the error of each of sglab's
+// own models on the standard 29 κ × 41 c sub-grid: which of them suffices.
+#include "recommend_scene.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <sglab/registry.hpp>
+
+#include "commands.hpp"
+#include "io.hpp"
+#include "pareto.hpp"
+#include "scene.hpp"
+
+namespace sglab::app {
+
+namespace {
+
+nlohmann::ordered_json number(double x) {
+  if (!std::isfinite(x)) return nullptr;
+  return x;
+}
+
+// The one place the scene recommendation takes its costs from.
+
+}  // namespace
+
+void recommend_scene(const SceneRecommendArgs& args) {
+  std::string text;
+  try {
+    text = io::read_file(args.scene);
+  } catch (const std::exception& e) {
+    throw InputError(fmt::format("--scene: {}", e.what()));
+  }
+  validate::Scene scene;
+  try {
+    scene = validate::parse_scene(text, args.scene);
+  } catch (const validate::SceneError& e) {
+    throw InputError(e.what());
+  }
+
+  const auto normals = validate::fibonacci_normals(args.normals);
+  const auto exact = validate::scene_irradiance_reference(scene, normals);
+  std::vector<validate::MethodPoint> points;
+  std::vector<Origin> origins;
+  for (const Method& m : irradiance_methods) {
+    validate::MethodPoint p;
+    p.method = std::string(m.id);
+    p.refit = m.origin == Origin::refit;
+    p.max_peak_rel = validate::scene_relative_error(validate::scene_irradiance(scene, normals, m, args.precision), exact);
+    points.push_back(p);
+    origins.push_back(m.origin);
+  }
+  args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
+  const validate::Recommendation r = validate::recommend(points, args.budget);
+
+  // sglab's models over the scene's κ range (κ = 0 lights: the range starts at 1e-3).
+  const double lo = std::max(scene.kappa_min(), 1e-3), hi = std::max(scene.kappa_max(), lo);
+  const auto range_errors = validate::irradiance_errors(lo, hi, args.precision);
+  struct ModelOnRange {
+    std::string id;
+    double error, ns;
+  };
+  std::vector<ModelOnRange> models;
+  const ModelOnRange* sufficient = nullptr;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (origins[i] != Origin::sglab) continue;
+    for (const auto& e : range_errors)
+      if (e.method == points[i].method) models.push_back({e.method, e.max_peak_rel, points[i].ns_per_eval});
+  }
+  for (const auto& m : models)
+    if (m.error <= args.budget && (!sufficient || m.ns < sufficient->ns)) sufficient = &m;
+
+  if (args.json) {
+    nlohmann::ordered_json doc;
+    doc["scene"] = args.scene;
+    doc["lights"] = scene.lights.size();
+    doc["normals"] = normals.size();
+    doc["kappa_range"] = {scene.kappa_min(), scene.kappa_max()};
+    doc["budget"] = args.budget;
+    doc["precision"] = std::string(validate::to_string(args.precision));
+    doc["error"] = "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the scene";
+    auto point = [](const std::optional<validate::MethodPoint>& p) -> nlohmann::ordered_json {
+      if (!p) return nullptr;
+      return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"ns_per_eval", number(p->ns_per_eval)}};
+    };
+    doc["choice"] = point(r.choice);
+    doc["runner_up"] = point(r.runner_up);
+    doc["most_accurate"] = point(r.most_accurate);
+    nlohmann::ordered_json methods = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < points.size(); ++i)
+      methods.push_back({{"method", points[i].method},
+                         {"origin", std::string(to_string(origins[i]))},
+                         {"scene_error", number(points[i].max_peak_rel)},
+                         {"ns_per_eval", number(points[i].ns_per_eval)},
+                         {"qualifies", std::isfinite(points[i].max_peak_rel) && points[i].max_peak_rel <= args.budget}});
+    doc["methods"] = std::move(methods);
+    nlohmann::ordered_json sg = nlohmann::ordered_json::array();
+    for (const auto& m : models)
+      sg.push_back({{"method", m.id}, {"range_max_peak_rel", number(m.error)}, {"meets_budget", m.error <= args.budget}});
+    doc["sglab_models_on_range"] = {{"kappa_lo", lo}, {"kappa_hi", hi}, {"models", sg},
+                                    {"sufficient", sufficient ? nlohmann::ordered_json(sufficient->id) : nullptr}};
+    fmt::print("{}\n", doc.dump(2));
+    return;
+  }
+
+  fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n", args.scene,
+             scene.lights.size(), scene.kappa_min(), scene.kappa_max(), normals.size(),
+             validate::to_string(args.precision), args.budget);
+  fmt::print("error = max over normals and RGB channels of |Ê − E| / the scene's largest exact irradiance\n\n");
+  fmt::print("  {:<24} {:<10} {:>12} {:>10}  {}\n", "method", "origin", "scene error", "ns/eval", "meets budget");
+  for (std::size_t i = 0; i < points.size(); ++i)
+    fmt::print("  {:<24} {:<10} {:>12.4g} {:>10.3g}  {}\n", points[i].method, to_string(origins[i]),
+               points[i].max_peak_rel, points[i].ns_per_eval,
+               std::isfinite(points[i].max_peak_rel) && points[i].max_peak_rel <= args.budget ? "yes" : "no");
+  fmt::print("\n");
+  if (r.choice) {
+    fmt::print("  choice:    {} (scene error {:.4g}, {:.3g} ns/eval)\n", r.choice->method, r.choice->max_peak_rel,
+               r.choice->ns_per_eval);
+    if (r.runner_up)
+      fmt::print("  runner-up: {} (scene error {:.4g}, {:.3g} ns/eval)\n", r.runner_up->method,
+                 r.runner_up->max_peak_rel, r.runner_up->ns_per_eval);
+  } else {
+    fmt::print("  no method meets the budget on this scene.\n");
+    if (r.most_accurate)
+      fmt::print("  most accurate: {} (scene error {:.4g})\n", r.most_accurate->method, r.most_accurate->max_peak_rel);
+  }
+  fmt::print("\n  sglab models over the scene's κ range [{:.4g}, {:.4g}] (max peak_rel, 29 κ × 41 c):\n", lo, hi);
+  for (const auto& m : models)
+    fmt::print("    {:<22} {:.4g}{}\n", m.id, m.error, m.error <= args.budget ? "  meets the budget" : "");
+  if (sufficient)
+    fmt::print("  cheapest sglab model sufficient for the range: {}\n", sufficient->id);
+  else
+    fmt::print("  no registered sglab model meets the budget over this κ range.\n");
+  fmt::print("(cost: median batch ns/eval of 7 repetitions; costs within {}% are ties, broken by error)\n",
+             validate::kCostTieMargin * 100);
+}
+
+}  // namespace sglab::app

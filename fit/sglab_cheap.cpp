@@ -1,0 +1,335 @@
+// `sglab fit sglab-fast`: the coefficients of sglab's cheap model
+// (include/sglab/sglab_cheap.hpp)
+//   Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)),  A, B, C, V = P(κ)/Q(κ),
+// in three named stages, each warm-starting the next:
+//   1. per κ of the training grid, the four shape values (A, B, C, V) that
+//      minimax the peak_rel error over the training cosines — the family's
+//      floor, no model of the κ dependence can do better on those points;
+//   2. numerators of degree 4 over a shared monic quartic Q whose roots start
+//      log-spaced over the κ range (−Q's roots on the negative axis, so Q > 0),
+//      each numerator a linear least-squares fit to the stage-1 values;
+//   3. a joint minimax of every coefficient on the peak_rel error of the
+//      runtime function itself (Jets through irradiance_sglab_fast).
+// Unless --cold-start, when the committed constant set of the same variant
+// and κ range exists (data/constants/sglab-fast-<variant>.json), stages 2 and 3
+// start from it instead, with a short polish (a few reweighting rounds and
+// penalty decades): that keeps `sglab fit all` fast; a cold start takes about
+// 40 s of CPU.
+// Training grid: κ at the midpoints of 56 log-spaced cells of [lo, hi] and
+// 161 uniform cosines; it shares no (κ, c) point with the standard 29 × 41
+// grid or with the held-out 211 × 401 grid on which the result is measured
+// (float and double) and recorded in the constant set's provenance.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include <sglab/sglab.hpp>
+#include <sglab/sglab_cheap.hpp>
+
+#include "constants_io.hpp"
+#include "io.hpp"
+#include "minimax.hpp"
+#include "reference.hpp"
+#include "targets.hpp"
+
+namespace sglab::fit {
+
+namespace {
+
+constexpr int kTrainKappas = 56, kTrainCosines = 161;
+constexpr int kHeldOutKappas = 211, kHeldOutCosines = 401;
+constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
+constexpr std::size_t kNumParams = 4 * (kDegree + 1) + kDegree;
+
+// κ at the log-midpoints of `count` cells of [lo, hi].
+std::vector<double> midpoint_kappas(double lo, double hi, int count) {
+  std::vector<double> k;
+  const double a = std::log10(lo), b = std::log10(hi);
+  for (int i = 0; i < count; ++i) k.push_back(std::pow(10.0, a + (b - a) * (i + 0.5) / count));
+  return k;
+}
+
+std::vector<validate::ReferencePoint> reference_grid(const std::vector<double>& kappas,
+                                                     const std::vector<double>& cosines) {
+  std::vector<validate::Query> q;
+  for (double k : kappas)
+    for (double c : cosines) q.push_back({k, c});
+  return validate::reference_engine().evaluate(q);
+}
+
+// Stage 1 residual: peak_rel of E(1)·max(0, s) at one (κ, c), shape values as parameters.
+struct ShapeResidual {
+  double cosine, normalized;  // E(c, κ)/E(1, κ)
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    r[0] = max0(sglab_fast_shape(T(cosine), p[0][0], p[1][0], p[2][0], p[3][0])) - T(normalized);
+    return true;
+  }
+};
+
+// Stage 3 residual: peak_rel of the runtime function with all coefficients as parameters.
+struct ModelResidual {
+  double kappa, cosine, reference, peak, kappa_max;
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    SglabFastParams<T> params{};
+    std::size_t i = 0;
+    for (auto* poly : {params.a, params.b, params.c, params.v})
+      for (std::size_t j = 0; j <= kDegree; ++j) poly[j] = p[i++][0];
+    for (std::size_t j = 0; j < kDegree; ++j) params.q[j] = p[i++][0];
+    params.kappa_max = T(kappa_max);
+    r[0] = (irradiance_sglab_fast(T(cosine), T(kappa), params) - T(reference)) / T(peak);
+    return true;
+  }
+};
+
+SglabFastParams<double> to_params(const std::vector<double>& v, double kappa_max) {
+  SglabFastParams<double> p{};
+  std::size_t i = 0;
+  for (auto* poly : {p.a, p.b, p.c, p.v})
+    for (std::size_t j = 0; j <= kDegree; ++j) poly[j] = v[i++];
+  for (std::size_t j = 0; j < kDegree; ++j) p.q[j] = v[i++];
+  p.kappa_max = kappa_max;
+  return p;
+}
+
+// Max peak_rel over `ref` of the runtime function in precision T.
+template <class T> double max_peak_rel(const SglabFastParams<double>& p, const std::vector<validate::ReferencePoint>& ref,
+                                       double* where_kappa = nullptr, double* where_cosine = nullptr) {
+  double m = 0;
+  for (const auto& r : ref) {
+    const double e = irradiance_sglab_fast(T(r.cosine), T(r.kappa), p);
+    const double err = std::abs(e - r.irradiance) / irradiance_upper(r.kappa);
+    if (!(err <= m)) {
+      m = std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
+      if (where_kappa) *where_kappa = r.kappa, *where_cosine = r.cosine;
+    }
+  }
+  return m;
+}
+
+struct PerKappa {
+  double kappa;
+  double A, B, C, V;
+  double error;
+};
+
+// Stage 1, from the largest κ down, each start the previous optimum.
+std::vector<PerKappa> per_kappa_optimum(const std::vector<double>& kappas, const std::vector<double>& cosines,
+                                        const std::vector<validate::ReferencePoint>& ref) {
+  std::vector<PerKappa> out(kappas.size());
+  std::vector<double> start;
+  for (std::size_t ii = kappas.size(); ii-- > 0;) {
+    const double k = kappas[ii], e1 = irradiance_upper(k);
+    if (start.empty()) {
+      const double v = 0.5 * std::sqrt(k);
+      start = {0.0, 0.0, 0.5 / v, v};
+    }
+    Parameters params{{"A", "B", "C", "V"}, start, {}};
+    Residuals residuals;
+    for (std::size_t j = 0; j < cosines.size(); ++j) {
+      const auto& r = ref[ii * cosines.size() + j];
+      residuals.push_back(make_residual(ShapeResidual{r.cosine, r.irradiance / e1}, 4));
+    }
+    const FitResult f = fit(residuals, params);
+    out[ii] = {k, f.values[0], f.values[1], f.values[2], f.values[3], f.max_abs};
+    start = f.values;
+  }
+  return out;
+}
+
+// Stage 2: Q = Π(κ + r_i) with r log-spaced over the range, then each
+// numerator by linear least squares on the stage-1 values (V's residual
+// weighted by |C|, the sensitivity of the shape to V).
+std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, double hi) {
+  std::vector<double> q = {1.0};  // ascending, monic
+  const double a = std::log10(lo), b = std::log10(hi);
+  for (std::size_t i = 0; i < kDegree; ++i) {
+    const double root = std::pow(10.0, a + (b - a) * (i + 0.5) / kDegree);
+    std::vector<double> next(q.size() + 1, 0.0);
+    for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
+    q = next;
+  }
+  auto Q = [&](double k) {
+    double y = 0;
+    for (std::size_t j = q.size(); j-- > 0;) y = y * k + q[j];
+    return y;
+  };
+  std::vector<double> values;
+  for (int which = 0; which < 4; ++which) {
+    Eigen::MatrixXd M(per.size(), kDegree + 1);
+    Eigen::VectorXd y(per.size());
+    for (std::size_t i = 0; i < per.size(); ++i) {
+      const double k = per[i].kappa;
+      const double target = which == 0 ? per[i].A : which == 1 ? per[i].B : which == 2 ? per[i].C : per[i].V;
+      // s changes by about C·δV where V is off by δV: weight V's error by |C|.
+      const double w = which == 3 ? std::max(std::abs(per[i].C), 1e-6) : 1.0;
+      double kp = 1;
+      for (std::size_t j = 0; j <= kDegree; ++j, kp *= k) M(i, j) = w * kp / Q(k);
+      y(i) = w * target;
+    }
+    // Column scaling for conditioning (κ^4 spans 28 decades).
+    Eigen::VectorXd s = M.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < s.size(); ++j) s(j) = s(j) > 0 ? 1 / s(j) : 1;
+    const Eigen::VectorXd x = (M * s.asDiagonal()).colPivHouseholderQr().solve(y);
+    for (Eigen::Index j = 0; j < x.size(); ++j) values.push_back(x(j) * s(j));
+  }
+  for (std::size_t j = 0; j < kDegree; ++j) values.push_back(q[j]);
+  return values;
+}
+
+// The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
+std::optional<std::vector<double>> committed_start(const std::string& variant, double lo, double hi) {
+  const auto path = default_constants_dir() / fmt::format("sglab-fast-{}.json", variant);
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  try {
+    const auto set = ordered_json::parse(io::read_file(path));
+    const auto& range = set.at("provenance").at("kappa_range");
+    if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
+    const auto& c = set.at("coefficients");
+    std::vector<double> values;
+    for (const char* poly : {"a", "b", "c", "v"}) {
+      if (c.at(poly).size() != kDegree + 1) return std::nullopt;
+      for (const auto& x : c.at(poly)) values.push_back(x.get<double>());
+    }
+    if (c.at("q").size() != kDegree) return std::nullopt;
+    for (const auto& x : c.at("q")) values.push_back(x.get<double>());
+    return values;
+  } catch (const std::exception&) {
+    return std::nullopt;  // a placeholder or foreign file: fit from scratch
+  }
+}
+
+std::vector<std::string> parameter_names() {
+  std::vector<std::string> names;
+  for (const char* poly : {"a", "b", "c", "v"})
+    for (std::size_t j = 0; j <= kDegree; ++j) names.push_back(fmt::format("{}{}", poly, j));
+  for (std::size_t j = 0; j < kDegree; ++j) names.push_back(fmt::format("q{}", j));
+  return names;
+}
+
+}  // namespace
+
+FitOutcome fit_sglab_fast(const FitSpec& spec) {
+  if (!spec.objective.empty() && spec.objective != "irradiance")
+    throw std::invalid_argument(fmt::format("sglab-fast has the one objective 'irradiance'; got '{}'", spec.objective));
+  const double lo = spec.kappa_lo, hi = spec.kappa_hi;
+  ordered_json seconds;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* stage) {
+    const auto now = std::chrono::steady_clock::now();
+    seconds[stage] = std::chrono::duration<double>(now - clock).count();
+    clock = now;
+  };
+  const auto train_k = midpoint_kappas(lo, hi, kTrainKappas);
+  const auto train_c = cosine_grid(kTrainCosines);
+  const auto train = reference_grid(train_k, train_c);
+  lap("training_reference");
+
+  // 1. Per-κ floor.
+  const std::vector<PerKappa> per = per_kappa_optimum(train_k, train_c, train);
+  double floor = 0;
+  for (const auto& p : per) floor = std::max(floor, p.error);
+  lap("per_kappa");
+
+  // 2. Rational start (or the committed set).
+  const std::string variant =
+      precision_name(spec.precision) + (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
+  Parameters params;
+  params.names = parameter_names();
+  std::optional<std::vector<double>> committed;
+  if (!spec.cold_start) committed = committed_start(variant, lo, hi);
+  params.values = committed ? *committed : rational_start(per, lo, hi);
+  FitOptions options;
+  if (committed) {
+    // A polish of a converged set: one reweighting round, then the penalty
+    // form for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short.
+    options.lawson_iterations = 1;
+    options.penalty_decades = 5;
+    options.solver_iterations = 50;
+  }
+
+  // 3. Joint minimax on the runtime function.
+  Residuals residuals;
+  for (const auto& r : train)
+    residuals.push_back(
+        make_residual(ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi}, kNumParams));
+  double start_error = 0;
+  for (double r : evaluate_residuals(residuals, params.values)) start_error = std::max(start_error, std::abs(r));
+  const FitResult result = fit(residuals, params, options);
+  const SglabFastParams<double> fitted = to_params(result.values, hi);
+  lap("joint_minimax");
+
+  // Measurement on points never used in fitting.
+  const auto held_out = reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
+  const auto standard = reference_grid(kappa_grid(lo, hi, 29), cosine_grid(41));
+  double wk = 0, wc = 0;
+  const double held_float = max_peak_rel<float>(fitted, held_out, &wk, &wc);
+  const double held_double = max_peak_rel<double>(fitted, held_out);
+  const double std_float = max_peak_rel<float>(fitted, standard);
+  const double std_double = max_peak_rel<double>(fitted, standard);
+  const double train_float = max_peak_rel<float>(fitted, train);
+  lap("held_out");
+
+  ordered_json coefficients;
+  for (const char* poly : {"a", "b", "c", "v"}) coefficients[poly] = ordered_json::array();
+  {
+    std::size_t i = 0;
+    for (const char* poly : {"a", "b", "c", "v"})
+      for (std::size_t j = 0; j <= kDegree; ++j) coefficients[poly].push_back(result.values[i++]);
+    coefficients["q"] = ordered_json::array();
+    for (std::size_t j = 0; j < kDegree; ++j) coefficients["q"].push_back(result.values[i++]);
+  }
+  coefficients["kappa_max"] = hi;
+
+  FitSpec recorded = spec;
+  recorded.kappa_count = kTrainKappas;
+  recorded.cosine_count = kTrainCosines;
+  ordered_json achieved = {
+      {"objective", result.max_abs},
+      {"training_max_peak_rel_float", train_float},
+      {"per_kappa_floor", floor},
+      {"held_out_grid", fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]", kHeldOutKappas,
+                                    kHeldOutCosines, lo, hi)},
+      {"held_out_max_peak_rel_float", held_float},
+      {"held_out_max_peak_rel_double", held_double},
+      {"held_out_worst", {wk, wc}},
+      {"standard_max_peak_rel_float", std_float},
+      {"standard_max_peak_rel_double", std_double},
+  };
+  FitOutcome out;
+  out.converged = result.converged;
+  out.constant_sets.push_back(make_constant_set(
+      recorded, "sglab-fast", variant, "SglabFastParams<double>",
+      "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; "
+      "A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + "
+      "q[3]k^3 + ... + q[0] (coefficients lowest order first)",
+      coefficients,
+      fmt::format("minimax of the sglab_fast irradiance peak_rel error (double) over a training grid of {} kappa "
+                  "(log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; start: {}",
+                  kTrainKappas, kTrainKappas, lo, hi, kTrainCosines,
+                  committed ? "the committed set (polish)" : "per-kappa optimum, then rational least squares"),
+      achieved));
+  out.report = {{"target", "sglab-fast"}, {"variant", variant}, {"converged", result.converged},
+                {"start", committed ? "committed constant set" : "rational least squares"},
+                {"per_kappa_floor", floor}, {"start_error", start_error},
+                {"objective_error", result.max_abs}, {"achieved", achieved}, {"coefficients", coefficients}};
+  ordered_json table = ordered_json::array();
+  for (const auto& p : per) table.push_back({p.kappa, p.A, p.B, p.C, p.V, p.error});
+  out.report["per_kappa"] = table;
+  out.report["seconds"] = seconds;
+  out.text = fmt::format(
+      "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
+      "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: float {:.4e}, "
+      "double {:.4e}\n",
+      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs, kHeldOutKappas, kHeldOutCosines, held_float, wk, wc, held_double,
+      std_float, std_double);
+  out.text += fmt::format("  seconds: {}\n", seconds.dump());
+  return out;
+}
+
+}  // namespace sglab::fit

@@ -1,0 +1,230 @@
+// Scenes of SG lights (validate/scene.hpp) and `sglab recommend --scene`:
+// the scene sums against independent computations, and bad scene files.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sglab/sglab.hpp>
+
+#include "scene.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace sglab::validate;
+
+TEST(Scene, FibonacciNormalsAreUnitAndBalanced) {
+  const auto n = fibonacci_normals(1000);
+  ASSERT_EQ(n.size(), 1000u);
+  Vec3 sum{0, 0, 0};
+  for (const auto& v : n) {
+    EXPECT_NEAR(std::hypot(v[0], v[1], v[2]), 1.0, 1e-14);
+    for (int i = 0; i < 3; ++i) sum[i] += v[i];
+  }
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(sum[i] / 1000, 0.0, 1e-2);  // spread over the sphere
+}
+
+// A single light along +z: the normal's cosine is its z = 1 − (2i + 1)/n, so
+// the scene value is amplitude × the method's Ê(z, κ), computed here directly.
+TEST(Scene, SingleLightEqualsMethodTimesAmplitude) {
+  const Scene scene = parse_scene(R"({"lights": [{"axis": [0, 0, 2], "sharpness": 7.5, "amplitude": [1, 0.5, 2]}]})",
+                                  "test");
+  const std::size_t n = 257;
+  const auto normals = fibonacci_normals(n);
+  for (const char* id : {"tokuyoshi2024", "sglab_fast", "vsgl2015"}) {
+    const auto* m = sglab::find_method(sglab::irradiance_methods, id);
+    ASSERT_NE(m, nullptr) << id;
+    const auto v64 = scene_irradiance(scene, normals, *m, FloatFormat::binary64);
+    const auto v32 = scene_irradiance(scene, normals, *m, FloatFormat::binary32);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double z = 1 - (2.0 * double(i) + 1) / double(n);
+      const double e64 = m->f64(z, 7.5);
+      const double e32 = m->f32(float(z), 7.5f);
+      const double amp[3] = {1, 0.5, 2};
+      for (int ch = 0; ch < 3; ++ch) {
+        EXPECT_NEAR(v64[i][ch], amp[ch] * e64, 1e-13) << id << " normal " << i;
+        EXPECT_NEAR(v32[i][ch], amp[ch] * e32, 1e-6) << id << " normal " << i;
+      }
+    }
+  }
+}
+
+// E(n) = ∫_{ω·n>0} Σ_k a_k e^{κ_k(ω·v_k − 1)} (ω·n) dω by direct quadrature
+// over the hemisphere around n: Gauss–Legendre in u = ω·n, trapezoid in the
+// azimuth (periodic, so exponentially convergent). No closed form and no
+// reference-engine code is shared with scene_irradiance_reference.
+double direct_irradiance(const Scene& scene, const Vec3& n, std::size_t channel) {
+  // Tangent frame of n.
+  const Vec3 a = std::abs(n[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  Vec3 t1{a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
+  const double l = std::hypot(t1[0], t1[1], t1[2]);
+  for (double& x : t1) x /= l;
+  const Vec3 t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  // Gauss–Legendre nodes on [0, 1] by Newton's method on P_N.
+  const int N = 160, M = 512;
+  double total = 0;
+  for (int i = 1; i <= N; ++i) {
+    double x = std::cos(M_PI * (i - 0.25) / (N + 0.5)), dp = 0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= N; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1, p1 = p2;
+      }
+      dp = N * (x * p1 - p0) / (x * x - 1);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    const double w = 2 / ((1 - x * x) * dp * dp) / 2;  // on [0, 1]
+    const double u = (x + 1) / 2, r = std::sqrt(1 - u * u);
+    double ring = 0;
+    for (int j = 0; j < M; ++j) {
+      const double phi = 2 * M_PI * j / M;
+      Vec3 w3;
+      for (int d = 0; d < 3; ++d) w3[d] = u * n[d] + r * (std::cos(phi) * t1[d] + std::sin(phi) * t2[d]);
+      for (const auto& light : scene.lights) {
+        const double c = w3[0] * light.axis[0] + w3[1] * light.axis[1] + w3[2] * light.axis[2];
+        ring += light.amplitude[channel] * std::exp(light.sharpness * (c - 1));
+      }
+    }
+    total += w * u * ring * (2 * M_PI / M);
+  }
+  return total;
+}
+
+TEST(Scene, ExactSumMatchesDirectQuadratureOfTheSum) {
+  const Scene scene = parse_scene(R"({"lights": [
+      {"axis": [1, 1, 0], "sharpness": 3.0, "amplitude": [1, 0.2, 0.4]},
+      {"axis": [0, -0.3, 1], "sharpness": 20.0, "amplitude": [0.5, 1.5, 0.0]}]})",
+                                  "test");
+  const auto normals = fibonacci_normals(23);
+  const auto exact = scene_irradiance_reference(scene, normals);
+  double peak = 0;
+  for (const auto& e : exact) peak = std::max({peak, e[0], e[1], e[2]});
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    for (std::size_t ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(exact[i][ch], direct_irradiance(scene, normals[i], ch), 1e-10 * peak) << "normal " << i << " ch " << ch;
+}
+
+TEST(Scene, RelativeErrorIsScaledByTheLargestIrradiance) {
+  const std::vector<Vec3> exact = {{2, 1, 0}, {4, 0, 1}};
+  const std::vector<Vec3> approx = {{2, 1.2, 0}, {4, 0, 1}};
+  EXPECT_DOUBLE_EQ(scene_relative_error(approx, exact), 0.2 / 4);
+  const std::vector<Vec3> bad = {{2, NAN, 0}, {4, 0, 1}};
+  EXPECT_TRUE(std::isinf(scene_relative_error(bad, exact)));
+}
+
+TEST(Scene, ShippedExamplesParse) {
+  for (const char* name : {"studio.json", "sun_and_sky.json", "soft_room.json"}) {
+    const fs::path path = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "scenes" / name;
+    std::ifstream in(path);
+    ASSERT_TRUE(in) << path;
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Scene s = parse_scene(text, name);
+    EXPECT_GE(s.lights.size(), 3u) << name;
+    for (const auto& l : s.lights) EXPECT_NEAR(std::hypot(l.axis[0], l.axis[1], l.axis[2]), 1.0, 1e-15);
+  }
+}
+
+struct BadScene {
+  const char* text;
+  const char* expect;  // a substring of the message
+};
+
+TEST(Scene, BadFilesNameTheLineOrKey) {
+  const BadScene cases[] = {
+      {"{\"lights\": [\n  {\"axis\": [0, 0, 1], \"sharpness\": 1, \"amplitude\": [1, 1, 1]},\n]}", "line 3"},
+      {"", "malformed JSON"},
+      {"[1, 2]", "expected an object"},
+      {"{}", "lights: missing key"},
+      {"{\"lights\": {}}", "lights: expected an array"},
+      {"{\"lights\": []}", "lights: no lights"},
+      {"{\"lights\": [{\"sharpness\": 1, \"amplitude\": [1, 1, 1]}]}", "lights[0].axis: missing key"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"amplitude\": [1, 1, 1]}]}", "lights[0].sharpness: missing key"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": 1}]}", "lights[0].amplitude: missing key"},
+      {"{\"lights\": [{\"axis\": [0, 0, 0], \"sharpness\": 1, \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].axis: cannot be normalized"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": -2, \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].sharpness: must be >= 0"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": \"4\", \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].sharpness: expected a number, got string"},
+      {"{\"lights\": [{\"axis\": [0, 1], \"sharpness\": 4, \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].axis: expected 3 numbers"},
+      {"{\"lights\": [{\"axis\": [0, \"x\", 1], \"sharpness\": 4, \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].axis[1]: expected a number"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": 4, \"amplitude\": [1, -1, 1]}]}",
+       "lights[0].amplitude[1]: must be >= 0"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": 4, \"amplitude\": [0, 0, 0]}]}", "dark"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpnes\": 4, \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].sharpnes: unknown key"},
+  };
+  for (const auto& c : cases) {
+    try {
+      parse_scene(c.text, "s.json");
+      ADD_FAILURE() << "accepted: " << c.text;
+    } catch (const SceneError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(c.expect), std::string::npos) << "message '" << msg << "' lacks '" << c.expect << "'";
+      EXPECT_EQ(msg.rfind("s.json: ", 0), 0u) << msg;
+    }
+  }
+}
+
+fs::path write_temp(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "sglab_test_scene";
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+TEST(RecommendScene, BadFilesExitTwoWithTheKey) {
+  const auto negative = write_temp("negative.json", R"({"lights": [{"axis": [0, 0, 1], "sharpness": -1, "amplitude": [1, 1, 1]}]})");
+  auto r = sglab::test::run_sglab({"recommend", "--scene", negative.string(), "--budget", "1e-2"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("lights[0].sharpness"), std::string::npos) << r.output;
+  const auto malformed = write_temp("malformed.json", "{\"lights\": [\n");
+  r = sglab::test::run_sglab({"recommend", "--scene", malformed.string(), "--budget", "1e-2"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("line 2"), std::string::npos) << r.output;
+  r = sglab::test::run_sglab({"recommend", "--scene", (negative.parent_path() / "absent.json").string(), "--budget", "1"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = sglab::test::run_sglab({"recommend", "--budget", "1e-2"});  // neither --kappa nor --scene
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {
+  const auto scene = write_temp("two.json", R"({"lights": [
+      {"axis": [0, 0, 1], "sharpness": 30, "amplitude": [1, 1, 1]},
+      {"axis": [1, 0, 0], "sharpness": 0.5, "amplitude": [0.2, 0.3, 0.4]}]})");
+  const auto r = sglab::test::run_sglab(
+      {"recommend", "--scene", scene.string(), "--budget", "5e-3", "--normals", "512", "--json"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  ASSERT_TRUE(doc["choice"].is_object()) << r.output;
+  EXPECT_LE(doc["choice"]["scene_error"].get<double>(), 5e-3);
+  EXPECT_EQ(doc["normals"].get<int>(), 512);
+  // The reported error of one method, recomputed here in-process.
+  const Scene s = parse_scene(R"({"lights": [
+      {"axis": [0, 0, 1], "sharpness": 30, "amplitude": [1, 1, 1]},
+      {"axis": [1, 0, 0], "sharpness": 0.5, "amplitude": [0.2, 0.3, 0.4]}]})", "x");
+  const auto normals = fibonacci_normals(512);
+  const auto exact = scene_irradiance_reference(s, normals);
+  for (const auto& row : doc["methods"]) {
+    if (row["method"] != "vsgl2015") continue;
+    const auto* m = sglab::find_method(sglab::irradiance_methods, "vsgl2015");
+    const double want = scene_relative_error(scene_irradiance(s, normals, *m, FloatFormat::binary32), exact);
+    EXPECT_NEAR(row["scene_error"].get<double>(), want, 1e-12 * want);
+    EXPECT_GT(want, 5e-3);  // vsgl2015 is far off: it must not qualify
+    EXPECT_FALSE(row["qualifies"].get<bool>());
+  }
+  EXPECT_EQ(doc["kappa_range"][0].get<double>(), 0.5);
+  EXPECT_EQ(doc["kappa_range"][1].get<double>(), 30.0);
+}
+
+}  // namespace
