@@ -106,14 +106,14 @@ std::string write_sets(const fit::FitOutcome& outcome, const FitCliOptions& o) {
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
-  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | all")
+  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-accurate | all")
       ->required();
   cmd->add_option("--precision", o->precision, "working precision: half | float | double")->capture_default_str();
   cmd->add_option("--objective", o->objective,
                   "steepness: optimal-t | irradiance; lambda-d: sphere-ls | hemisphere-ls | free-amplitude | "
                   "irradiance; erf: listing5 | as7125");
   cmd->add_option("--kappa", o->kappa, "κ range LO:HI of the fit (default 1e-3:1e4)");
-  cmd->add_option("--max-error", o->max_error, "model order: smallest model meeting this error (erf: degrees and split; steepness: rational order of t)");
+  cmd->add_option("--max-error", o->max_error, "model order: smallest model meeting this error (erf: degrees and split; steepness: rational order of t; sglab-accurate: correction terms and rational degree)");
   cmd->add_flag("--alpha-free", o->alpha_free, "clamped-cosine: α free instead of tied by energy conservation");
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
@@ -150,6 +150,7 @@ void add_fit_command(CLI::App& app) {
         for (const char* obj : {"optimal-t", "irradiance"}) add(t, obj, false, "float");
       add("erf", "", false, "float");
       add("lambda-d", "", false, "float");
+      add("sglab-accurate", "", false, "float");
     } else {
       const auto& known = fit::fit_targets();
       if (std::find(known.begin(), known.end(), o->target) == known.end()) {

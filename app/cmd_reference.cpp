@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "points.hpp"
 #include "reference.hpp"
 
 namespace sglab::app {
@@ -43,6 +44,8 @@ std::vector<std::string_view> split(std::string_view line) {
   }
   return fields;
 }
+
+}  // namespace
 
 std::vector<validate::Query> read_points(const std::string& path) {
   std::error_code ec;
@@ -89,8 +92,6 @@ std::vector<validate::Query> read_points(const std::string& path) {
   if (!header_seen) throw InputError(fmt::format("{}: empty file, expected the header \"kappa,cosine\"", path));
   return points;
 }
-
-}  // namespace
 
 void add_reference_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(

@@ -29,5 +29,6 @@ void add_claims_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_pareto_command(CLI::App& app);
 void add_recommend_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
 
 }  // namespace sglab::app

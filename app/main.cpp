@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   sglab::app::add_bench_command(app);
   sglab::app::add_pareto_command(app);
   sglab::app::add_recommend_command(app);
+  sglab::app::add_eval_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -12,3 +12,4 @@
 #include "params.hpp"
 #include "registry.hpp"
 #include "sg.hpp"
+#include "sglab_models.hpp"
