@@ -18,7 +18,6 @@
 // width ~1/t near c = 0 at large κ is resolved.
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,7 +27,6 @@
 #include <random>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_models.hpp>
@@ -272,7 +270,6 @@ template <std::size_t N> std::vector<KappaOptimum> per_kappa_optima(const std::v
     const FitResult f = fit(residuals, params, options);
     b = f.values;
     out.push_back({k, t, f.max_abs, b});
-    if (std::getenv("SGLAB_DEBUG_FLOOR")) fmt::print(stderr, "N={} kappa={:.4g} t={:.5g} err={:.3e} b={}\n", N, k, out.back().t, f.max_abs, fmt::join(b, " "));
     i = end;
   }
   return out;
