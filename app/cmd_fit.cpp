@@ -47,6 +47,8 @@ constexpr TargetOptions kTargetOptions[] = {
     {"steepness2024", false, true, true, true, false},
     {"erf", true, true, false, true, false},
     {"lambda-d", false, true, true, false, false},  // --kappa only with --objective irradiance
+    {"sglab-fast", false, false, false, false, false},
+    {"sglab-accurate", false, false, true, true, false},  // --kappa with --max-error: the model order for a range
     {"all", false, false, true, false, false},
 };
 
@@ -154,7 +156,7 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, 
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
-  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-fast | all")
+  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-fast | sglab-accurate | all")
       ->required();
   auto* precision = cmd->add_option("--precision", o->precision,
                                     "working precision: half | float | double (clamped-cosine, erf)")
@@ -219,6 +221,7 @@ void add_fit_command(CLI::App& app) {
       add("erf", "", false, "float");
       add("lambda-d", "", false, "float");
       add("sglab-fast", "", false, "float");
+      add("sglab-accurate", "", false, "float");
     } else {
       const auto& known = fit::fit_targets();
       if (std::find(known.begin(), known.end(), o->target) == known.end()) {

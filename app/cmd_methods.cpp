@@ -1,10 +1,13 @@
 // `sglab methods` lists every registered method; `sglab table` prints every
 // irradiance method at one κ over a few cosines, beside the reference.
 #include <cmath>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <sglab/registry.hpp>
 
@@ -15,7 +18,45 @@ namespace sglab::app {
 
 void add_methods_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("methods", "List every method id with its source and constants");
-  cmd->callback([] {
+  auto json = std::make_shared<bool>(false);
+  cmd->add_flag("--json", *json, "print every method as JSON: id, origin, source, constant sets, per-light split");
+  cmd->callback([json] {
+    if (*json) {
+      // {"irradiance": [{id, origin, source, constants: [...], per_light_split}], "hemispherical": [...],
+      //  "normalized": [...], "erf": [{id, source}]}
+      auto constant_sets = [](std::string_view text) {
+        nlohmann::ordered_json sets = nlohmann::ordered_json::array();
+        std::size_t start = 0;
+        while (start < text.size()) {
+          std::size_t comma = text.find(',', start);
+          if (comma == std::string_view::npos) comma = text.size();
+          std::string_view name = text.substr(start, comma - start);
+          while (!name.empty() && name.front() == ' ') name.remove_prefix(1);
+          while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
+          if (!name.empty()) sets.push_back(std::string(name));
+          start = comma + 1;
+        }
+        return sets;
+      };
+      auto list = [&](std::span<const Method> methods) {
+        nlohmann::ordered_json a = nlohmann::ordered_json::array();
+        for (const Method& m : methods)
+          a.push_back({{"id", std::string(m.id)},
+                       {"origin", std::string(to_string(m.origin))},
+                       {"source", std::string(m.source)},
+                       {"constants", constant_sets(m.constants)},
+                       {"per_light_split", m.light_setup32 != nullptr && m.light_eval32 != nullptr}});
+        return a;
+      };
+      nlohmann::ordered_json out;
+      out["irradiance"] = list(irradiance_methods);
+      out["hemispherical"] = list(hemispherical_methods);
+      out["normalized"] = list(normalized_methods);
+      out["erf"] = nlohmann::ordered_json::array();
+      for (const ErfVariant& v : erf_variants) out["erf"].push_back({{"id", std::string(v.id)}, {"source", std::string(v.source)}});
+      fmt::print("{}\n", out.dump(2));
+      return;
+    }
     auto list = [](const char* title, std::span<const Method> methods) {
       fmt::print("{}:\n", title);
       for (const Method& m : methods)

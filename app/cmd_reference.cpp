@@ -25,6 +25,7 @@
 
 #include "commands.hpp"
 #include "io.hpp"
+#include "points.hpp"
 #include "reference.hpp"
 
 namespace sglab::app {
@@ -102,6 +103,12 @@ std::size_t for_each_point(const std::string& path, OnPoint&& on_point) {
 }
 
 }  // namespace
+
+std::vector<validate::Query> read_points(const std::string& path) {
+  std::vector<validate::Query> points;
+  for_each_point(path, [&points](const validate::Query& q) { points.push_back(q); });
+  return points;
+}
 
 void add_reference_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(

@@ -30,5 +30,6 @@ void add_bench_command(CLI::App& app);
 void add_pareto_command(CLI::App& app);
 void add_recommend_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
 
 }  // namespace sglab::app

@@ -57,6 +57,21 @@ FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
 FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab's cheap model (fit/sglab_cheap.cpp)
+FitOutcome fit_sglab_accurate(const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
+
+// The core of the sglab-accurate fit, exposed for tests: minimax of the
+// peak_rel error of SglabAccParams<double, terms, degree> on `samples`, from
+// `start` = steep[5], num[terms(degree+1)], den[degree] (den > 0).
+struct SglabAccSample {
+  double kappa, cosine, irradiance;
+};
+struct SglabAccFit {
+  std::vector<double> values;  // same layout as start
+  double max_abs = 0;          // max peak_rel on the samples
+  bool converged = false;
+};
+SglabAccFit fit_sglab_accurate_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
+                                            const std::vector<SglabAccSample>& samples);
 
 // t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
 // s̃ − s (target "steepness2022") or the 2024 f − (E − E(−1))/(E(1) − E(−1))

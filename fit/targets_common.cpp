@@ -75,6 +75,7 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target, c
 const std::vector<std::string>& fit_targets() {
   static const std::vector<std::string> targets = {"clamped-cosine", "steepness2022", "steepness2024", "erf",
                                                    "lambda-d",       "sglab-fast"};
+                                                   "lambda-d", "sglab-accurate"};
   return targets;
 }
 
@@ -84,6 +85,7 @@ FitOutcome run_fit(const FitSpec& spec) {
   if (spec.target == "lambda-d") return fit_lambda_d(spec);
   if (spec.target == "erf") return fit_erf(spec);
   if (spec.target == "sglab-fast") return fit_sglab_fast(spec);
+  if (spec.target == "sglab-accurate") return fit_sglab_accurate(spec);
   std::string known;
   for (const auto& t : fit_targets()) known += (known.empty() ? "" : ", ") + t;
   throw std::invalid_argument(fmt::format("unknown fit target '{}' (known: {}, all)", spec.target, known));

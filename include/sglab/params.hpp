@@ -94,4 +94,15 @@ template <class S> struct SglabFastParams {
   S kappa_max;
 };
 
+// sglab's accurate model `sglab_acc<N>` (sglab_models.hpp): the 2024
+// steepness t(κ) with coefficients steep = {A, B, C, D, E} (Steepness2024Params
+// order) and N correction coefficients b_j(κ) = num_j(κ)/den(κ), rational of
+// degree D: num_j(κ) = num[j(D+1)] + num[j(D+1)+1] κ + … + num[j(D+1)+D] κ^D,
+// den(κ) = den[0] + den[1] κ + … + den[D−1] κ^{D−1} + κ^D with den[i] > 0.
+template <class S, std::size_t N, std::size_t D> struct SglabAccParams {
+  S steep[5];
+  S num[N * (D + 1)];
+  S den[D > 0 ? D : 1];
+};
+
 }  // namespace sglab

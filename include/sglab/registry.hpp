@@ -12,6 +12,7 @@
 #include "hemispherical.hpp"
 #include "irradiance.hpp"
 #include "sglab_cheap.hpp"
+#include "sglab_models.hpp"
 
 namespace sglab {
 
@@ -97,6 +98,31 @@ constexpr Method with_light_split(Method m, void (*setup)(float, float*), float 
   m.light_eval32 = eval;
   return m;
 }
+
+// The per-light split of a method whose setup returns a trivially copyable
+// struct of floats (sglab_models.hpp): the struct is the state.
+template <const auto& P> struct SglabAccSplit {
+  using Light = decltype(sglab_acc_setup(0.0f, P));
+  static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float));
+  static void setup(float kappa, float* state) {
+    const Light l = sglab_acc_setup(kappa, P);
+    std::memcpy(state, &l, sizeof l);
+  }
+  static float eval(const float* state, float cosine) {
+    Light l;
+    std::memcpy(&l, state, sizeof l);
+    return sglab_acc_eval(l, cosine);
+  }
+};
+
+template <const auto& P> constexpr Method make_sglab_acc(std::string_view id, std::string_view source,
+                                                         std::string_view constants) {
+  Method m = make_method(id, source, constants, [](auto c, auto k) { return irradiance_sglab_acc(c, k, P); },
+                         Origin::sglab);
+  m.light_setup32 = &SglabAccSplit<P>::setup;
+  m.light_eval32 = &SglabAccSplit<P>::eval;
+  return m;
+}
 }  // namespace detail
 
 // Irradiance approximations Ê(c, κ) of SPEC §2, with published constants.
@@ -173,6 +199,18 @@ inline constexpr Method irradiance_methods[] = {
         [](const float* state, float cosine) {
           return sglab_fast_eval(SglabFastLight<float>{state[0], state[1], state[2], state[3]}, cosine);
         }),
+    // sglab's own models (sglab_models.hpp, `sglab fit sglab-accurate`): the
+    // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
+    // of 1, 2, 3 correction terms.
+    detail::make_sglab_acc<constants::sglab_accurate_acc1>(
+        "sglab_acc1", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 rational of degree 2",
+        "sglab_accurate_acc1"),
+    detail::make_sglab_acc<constants::sglab_accurate_acc2>(
+        "sglab_acc2", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j rational of degree 2",
+        "sglab_accurate_acc2"),
+    detail::make_sglab_acc<constants::sglab_accurate_acc3>(
+        "sglab_acc3", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j rational of degree 3",
+        "sglab_accurate_acc3"),
 };
 
 // Approximate hemispherical integrals H̃(c, κ) (SPEC §2 `erf2022`, `meder2018`).

@@ -14,3 +14,4 @@
 #include "registry.hpp"
 #include "sg.hpp"
 #include "sglab_cheap.hpp"
+#include "sglab_models.hpp"

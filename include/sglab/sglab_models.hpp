@@ -1,0 +1,134 @@
+// sglab/sglab_models.hpp — sglab's own irradiance models (origin "sglab").
+//
+// `sglab_acc<N>`: the [Tokuyoshi2024] interpolation form with a fitted
+// correction of its lerp factor,
+//
+//   Ê(c, κ) = 2π lerp(Ē(−1, κ), Ē(1, κ), f̂),
+//   f̂ = f₂₀₂₄(c, t) + (1 − c²) e^{−z²} (b₀(κ) + b₁(κ) z² + … + b_{N−1}(κ) z^{2(N−1)}),  z = t c,
+//
+// where f₂₀₂₄ = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t) is
+// the factor of [Tokuyoshi2024] supplementary Listing 7, t(κ) its steepness
+// (same rational form, coefficients refitted jointly with the correction),
+// and every b_j(κ) is a rational function of κ of degree D over one shared
+// monic denominator with positive coefficients (so it never vanishes for
+// κ ≥ 0). The residual of the 2024 form is even in c; the correction is even,
+// reuses the e^{−z²} the form already computes (no extra exp/erfc call),
+// and vanishes at c = ±1, so the poles E(±1, κ) stay exact.
+//
+// Everything that depends on κ alone (t, erfc(t), 1/t, the poles, the b_j)
+// is computed once per light by `sglab_acc_setup`; `sglab_acc_eval` is the
+// per-shading-point part. The plain function is exactly eval(setup(κ), c).
+// Fitted by `sglab fit sglab-accurate` (fit/sglab_accurate.cpp); the measured
+// errors of the shipped sets are in their provenance (sglab/constants.hpp)
+// and data/results/sglab_models.md. Max peak_rel |Ê − E|/E(1, κ), float,
+// κ ∈ [1e−3, 1e4], on a held-out 200 κ × 401 c grid never used in fitting:
+//   sglab_acc1 (N = 1, D = 2) 2.47e−4,  sglab_acc2 (N = 2, D = 2) 7.5e−5,
+//   sglab_acc3 (N = 3, D = 3) 3.15e−5  (tokuyoshi2024: 1.44e−3 refitted).
+// Cost (callgrind, float, instructions per call): 1.06×, 1.09×, 1.12× of
+// tokuyoshi2024; the same erfc/exp/expm1 calls, one extra division per light.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "closed_forms.hpp"
+#include "constants.hpp"
+#include "hemispherical.hpp"
+#include "math.hpp"
+#include "params.hpp"
+
+namespace sglab {
+
+// The κ-only part of `sglab_acc<N>` (the per-light state).
+template <class T, std::size_t N> struct SglabAccLight {
+  T t;             // steepness t(κ)
+  T half_erfc_t;   // ½ erfc(t)
+  T tail_scale;    // 1/(2√π t), 0 when t = 0 (the tail term's t → 0 limit is 0)
+  T t2;            // t²
+  T lower, upper;  // Ē(−1, κ), Ē(1, κ) (closed_forms.hpp)
+  T b[N];          // correction coefficients b_j(κ)
+};
+
+namespace detail {
+
+// b_j(κ) = (a_{j,0} + a_{j,1} κ + … + a_{j,D} κ^D)/(d_0 + d_1 κ + … + κ^D),
+// for κ ≥ 1 evaluated in powers of r = 1/κ (numerator and denominator divided
+// by κ^D) so that nothing overflows up to the largest finite κ. One division.
+template <class T, class S, std::size_t N, std::size_t D>
+void sglab_acc_rational(const T& kappa, const SglabAccParams<S, N, D>& p, T (&b)[N]) {
+  const bool small = kappa < T(1);
+  const T x = small ? kappa : T(1) / kappa;
+  // Horner in x; for κ ≥ 1 the coefficient order is reversed.
+  T den = T(1);
+  if (small) {
+    for (std::size_t i = D; i-- > 0;) den = den * x + T(p.den[i]);
+  } else {
+    T sum = T(0);
+    for (std::size_t i = 0; i < D; ++i) sum = (sum + T(p.den[i])) * x;
+    den = sum + T(1);
+  }
+  const T inv = T(1) / den;
+  for (std::size_t j = 0; j < N; ++j) {
+    const S* a = p.num + j * (D + 1);
+    T y;
+    if (small) {
+      y = T(a[D]);
+      for (std::size_t i = D; i-- > 0;) y = y * x + T(a[i]);
+    } else {
+      y = T(a[0]);
+      for (std::size_t i = 1; i <= D; ++i) y = y * x + T(a[i]);
+    }
+    b[j] = y * inv;
+  }
+}
+
+}  // namespace detail
+
+// Per-light setup of `sglab_acc<N>`: everything that depends on κ alone.
+template <class T, class S, std::size_t N, std::size_t D>
+SglabAccLight<T, N> sglab_acc_setup(const T& kappa, const SglabAccParams<S, N, D>& p) {
+  using std::erfc;
+  using std::sqrt;
+  SglabAccLight<T, N> l;
+  l.t = steepness2024(kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
+  l.half_erfc_t = T(0.5) * erfc(l.t);
+  l.tail_scale = l.t > T(0) ? T(0.5) * inv_sqrt_pi_v<T>() / l.t : T(0);
+  l.t2 = l.t * l.t;
+  l.lower = irradiance_lower_over_two_pi(kappa);
+  l.upper = irradiance_upper_over_two_pi(kappa);
+  detail::sglab_acc_rational(kappa, p, l.b);
+  return l;
+}
+
+// Per-shading-point evaluation of `sglab_acc<N>` from the light's state.
+template <class T, std::size_t N> T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosine) {
+  using std::erfc;
+  using std::exp;
+  using std::expm1;
+  const T c = clamp(cosine, T(-1), T(1));
+  const T z = l.t * c;
+  const T z2 = z * z;
+  const T one_minus_c2 = T(1) - c * c;
+  const T g = exp(-z2);  // e^{−z²}: shared by the [Tokuyoshi2024] tail and the correction
+  // [Tokuyoshi2024] Listing 7: f = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t).
+  const T f2024 = T(0.5) * c * erfc(-z) + l.half_erfc_t - g * expm1(-l.t2 * one_minus_c2) * l.tail_scale;
+  // sglab correction: (1 − c²) e^{−z²} Σ_j b_j z^{2j}. Where e^{−z²} has
+  // underflowed to 0 the correction is 0; the polynomial is not formed there,
+  // since z^{2j} overflows first for huge κ (0·inf would be NaN).
+  T corr = T(0);
+  if (g > T(0)) {
+    T poly = l.b[N - 1];
+    for (std::size_t j = N - 1; j-- > 0;) poly = poly * z2 + l.b[j];
+    corr = one_minus_c2 * g * poly;
+  }
+  const T f = saturate(f2024 + corr);
+  return two_pi_v<T>() * lerp(l.lower, l.upper, f);
+}
+
+// `sglab_acc<N>` in one call: eval(setup(κ), c).
+template <class T, class S, std::size_t N, std::size_t D>
+T irradiance_sglab_acc(const T& cosine, const T& kappa, const SglabAccParams<S, N, D>& p) {
+  return sglab_acc_eval(sglab_acc_setup(kappa, p), cosine);
+}
+
+}  // namespace sglab
