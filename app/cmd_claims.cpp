@@ -1,4 +1,4 @@
-// `sglab claims`: every quantitative claim of the seed documents checked
+// `sglab claims`: every quantitative claim of the cited sources (docs/references.md) checked
 // numerically (validate/claims). Writes claims.{md,json,csv} into --out and
 // prints the table as Markdown (or JSON with --json).
 #include <filesystem>
@@ -25,7 +25,7 @@ struct ClaimsArgs {
 
 void add_claims_command(CLI::App& app) {
   auto args = std::make_shared<ClaimsArgs>();
-  auto* cmd = app.add_subcommand("claims", "Check every quantitative claim of the seed documents numerically");
+  auto* cmd = app.add_subcommand("claims", "Check every quantitative claim of the cited sources (docs/references.md) numerically");
   auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
                          ->capture_default_str();
   cmd->add_flag("--json", args->json,

@@ -1,4 +1,4 @@
-// `sglab erf`: every erf variant (SPEC §2) against the correctly rounded erf,
+// `sglab erf`: every erf variant (docs/references.md) against the correctly rounded erf,
 // in float and in double — max abs / ulp error, where, RMS, non-finite count
 // and the ulp histogram, in the style of libm accuracy tables.
 #include <algorithm>

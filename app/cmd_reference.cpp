@@ -112,7 +112,7 @@ std::vector<validate::Query> read_points(const std::string& path) {
 
 void add_reference_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "reference", "Reference H(c,κ), E(c,κ), s(c,κ) (SPEC §1) by quadrature at the points of a CSV file");
+      "reference", "Reference H(c,κ), E(c,κ), s(c,κ) (docs/quantities.md) by quadrature at the points of a CSV file");
   auto points = std::make_shared<std::string>();
   auto precision = std::make_shared<std::string>("standard");
   cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")->required();

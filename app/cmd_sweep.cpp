@@ -1,5 +1,5 @@
-// `sglab sweep`: every method against the reference over the SPEC §4 grid (or
-// a custom one), in float and double, with the SPEC §3 metrics. Writes the
+// `sglab sweep`: every method against the reference over the standard grid of docs/quantities.md (or
+// a custom one), in float and double, with the metrics of docs/quantities.md. Writes the
 // summary, per-κ and per-point tables into --out and prints the summary.
 #include <algorithm>
 #include <charconv>
@@ -120,7 +120,7 @@ void add_sweep_command(CLI::App& app) {
       "sweep", "Accuracy of every method against the reference over a (κ, c) grid, in float and double");
   cmd->footer("peak_rel = |x̂ − x| / x(1, κ) for x = E, H or s: the error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa,
-                  "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: SPEC §4, 1e-3:1e4:29)");
+                  "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: the standard grid, 1e-3:1e4:29)");
   cmd->add_option("--cosines", args->cosines,
                   fmt::format("number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at "
                               "most {} points",
@@ -137,7 +137,7 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--lang", args->lang, "shader language(s) of the vulkan backend: glsl, hlsl or both")
       ->capture_default_str();
   cmd->callback([args, out_option] {
-    validate::SweepGrid grid;  // SPEC §4 standard grid
+    validate::SweepGrid grid;  // the standard grid (docs/quantities.md)
     if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
     if (!args->cosines.empty()) parse_cosines_option(args->cosines, grid);
     try {

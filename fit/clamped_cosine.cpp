@@ -1,7 +1,7 @@
 // `sglab fit clamped-cosine`: λ and α of max(cos θ, 0) ≈ α(e^{λ cos θ} − 1)
-// (Tokuyoshi 2022, seed 000 Listing 1).
+// ([Tokuyoshi2022] Listing 1).
 //
-// Objective (seed 000 §1.1: λ "balances the approximation error and
+// Objective ([Tokuyoshi2022] supplementary §1.1: λ "balances the approximation error and
 // numerical error"): J = max_{u∈[0,1]} |α(e^{λu} − 1) − u| + α ε, where ε is
 // the machine epsilon of the working precision: the 2022 irradiance takes
 // α(p − q) of two nearly equal integrals, so a rounding of relative size ε in

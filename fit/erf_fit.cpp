@@ -1,6 +1,6 @@
-// `sglab fit erf`: minimax refits of the two erf structures of SPEC §2,
-//   listing5  x·P(x²) on [0, b], 1 − 2^{−a·Q(a)} on (b, cutoff), ±1 beyond (seed 000 Listing 5)
-//   as7125    1 − t(a1 + a2 t + …)e^{−x²}, t = 1/(1 + p x)   (Abramowitz & Stegun 7.1.25; seed 002)
+// `sglab fit erf`: minimax refits of the two published erf structures,
+//   listing5  x·P(x²) on [0, b], 1 − 2^{−a·Q(a)} on (b, cutoff), ±1 beyond ([Tokuyoshi2022] Listing 5)
+//   as7125    1 − t(a1 + a2 t + …)e^{−x²}, t = 1/(1 + p x)   ([AS1964] 7.1.25)
 // on the absolute error against std::erf in double (accurate to < 1 ulp of
 // double, i.e. exact at the 1e−7 level fitted here). Minimax by Lawson's
 // reweighting (fit/minimax), then every coefficient is rounded to float one

@@ -1,5 +1,5 @@
 // `sglab fit lambda-d`: the sharpness of an SG standing in for the cosine.
-// Seed 004 says λd ≈ 2 "by the least squares method" without naming the
+// [Tokuyoshi2015] says λd ≈ 2 "by the least squares method" without naming the
 // objective, so each plausible objective is fitted and reported:
 //   sphere-ls        min_λ ∫_{S²} (cos⁺/π − G(λ)/S(λ))² dω   (normalized lobe, whole sphere)
 //   hemisphere-ls    the same over the upper hemisphere only
@@ -164,7 +164,7 @@ FitOutcome fit_lambda_d(const FitSpec& spec) {
     ordered_json row = {{"objective", objective}, {"variant", variant}};
     for (auto& [k, v] : coefficients.items()) row[k] = v;
     row[metric] = value_of(result.values);
-    // S(λd) beside π: seed 004 assumes A(λd) ≈ π.
+    // S(λd) beside π: [Tokuyoshi2015] assumes A(λd) ≈ π.
     if (coefficients.contains("lambda_d")) row["sphere_integral"] = sphere_integral(result.values[0]);
     row["published"] = pub;
     out.report["results"].push_back(row);

@@ -1,11 +1,11 @@
 // `sglab fit steepness2022|steepness2024`: the rational steepness t(κ) of
-//   2022: s̃(c, κ) = ½ + ½ erf(t c)/erf(t), t = κ√((0.5κ + A)/((κ + B)κ + C))  (seed 000 Eq. 5/6)
+//   2022: s̃(c, κ) = ½ + ½ erf(t c)/erf(t), t = κ√((0.5κ + A)/((κ + B)κ + C))  ([Tokuyoshi2022] Eq. 5/6)
 //   2024: Ê = lerp(E(−1), E(1), f(c, t)), t = κ√(0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E))
-// Two objectives (SPEC §2 "Facts worth knowing"):
+// Two objectives:
 //   optimal-t  — per κ the optimal steepness t*(κ) (minimax over c of the
 //                2022 s̃ − s, or of the 2024 f − (E − E(−1))/(E(1) − E(−1))),
 //                then the coefficients minimax the relative error t/t* − 1
-//                (the paper's route, seed 000 Fig. 2);
+//                (the paper's route, [Tokuyoshi2022] supplementary Fig. 2);
 //   irradiance — the coefficients minimax the peak_rel error of the
 //                tokuyoshi2022 / tokuyoshi2024 irradiance over the grid.
 #include <cmath>

@@ -75,7 +75,7 @@ SglabAccFit fit_sglab_accurate_coefficients(std::size_t terms, std::size_t degre
 
 // t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
 // s̃ − s (target "steepness2022") or the 2024 f − (E − E(−1))/(E(1) − E(−1))
-// ("steepness2024") — the dots of seed 000 Fig. 2.
+// ("steepness2024") — the dots of [Tokuyoshi2022] supplementary Fig. 2.
 std::vector<double> optimal_steepness(const std::string& target, const std::vector<double>& kappas);
 
 // Dispatch by spec.target; throws std::invalid_argument for an unknown target or objective.

@@ -26,7 +26,7 @@ TEST(Constants, HeaderMatchesJson) {
 }
 
 TEST(Constants, PublishedValuesAreThePublishedDigits) {
-  // seed 000 Listing 1 and 3; SPEC §2 (Tokuyoshi et al. 2024).
+  // [Tokuyoshi2022] Listings 1 and 3; [Tokuyoshi2024].
   EXPECT_EQ(sglab::constants::clamped_cosine_published.lambda, 0.00084560872241480124);
   EXPECT_EQ(sglab::constants::clamped_cosine_published.alpha, 1182.2467339678153);
   EXPECT_EQ(sglab::constants::steepness2022_published.A, 0.65173288269070562);

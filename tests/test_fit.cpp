@@ -86,10 +86,10 @@ TEST(ClampedCosine, FloatFitReproducesPublishedConstants) {
   const FitOutcome out = run_fit(spec);
   ASSERT_TRUE(out.converged);
   const double lambda = out.report["lambda"], alpha = out.report["alpha"];
-  // At least 6 significant digits of seed 000 Listing 1.
+  // At least 6 significant digits of [Tokuyoshi2022] Listing 1.
   EXPECT_GT(lre(lambda, 0.00084560872241480124), 6.0) << lambda;
   EXPECT_GT(lre(alpha, 1182.2467339678153), 6.0) << alpha;
-  // At the optimum the two error terms balance (seed 000 §1.1).
+  // At the optimum the two error terms balance ([Tokuyoshi2022] supplementary §1.1).
   EXPECT_NEAR(out.report["approximation_error"].get<double>() / out.report["rounding_error_model"].get<double>(), 1.0,
               0.01);
 }

@@ -1,4 +1,4 @@
-// Error metrics (SPEC §3) against hand-computed cases, including zero,
+// Error metrics (docs/quantities.md) against hand-computed cases, including zero,
 // infinite and NaN references and non-finite outputs; and the table writer:
 // CSV, Markdown and JSON that parse back to the cells written.
 #include <cmath>

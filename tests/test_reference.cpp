@@ -1,4 +1,4 @@
-// Reference engine (validate/reference.hpp): H, E, s of SPEC §1 against
+// Reference engine (validate/reference.hpp): H, E, s of docs/quantities.md against
 // independent truth — the closed forms evaluated here in 50-digit arithmetic,
 // the κ → 0 limits, the engine's own 50-digit mode on random points, and a
 // brute-force 2-D quadrature over the sphere that does not use the 1-D
@@ -47,7 +47,7 @@ constexpr double kSmallest = 1e-290;    // relative accuracy required above this
 double rel_err(double got, double want) { return want == 0 ? std::abs(got) : std::abs(got / want - 1); }
 
 // ---------------------------------------------------------------------------
-// SPEC §1 closed forms in 50-digit arithmetic, written naively on purpose:
+// closed forms of docs/quantities.md in 50-digit arithmetic, written naively on purpose:
 // with 50 digits the cancellations in 1 − e^{−κ} and 1 − e^{−κ} − κe^{−κ}
 // (≈ κ²/2 at κ = 1e−6) still leave ~38 correct digits. Nothing here comes
 // from the engine or from the runtime headers.
@@ -128,7 +128,7 @@ TEST(ReferenceClosedForms, ErrorEstimateBoundsActualError) {
   }
 }
 
-// κ → 0: H → 2π, E → π, s → (1+c)/2 (SPEC §1); κ = 0 itself exactly.
+// κ → 0: H → 2π, E → π, s → (1+c)/2 (docs/quantities.md); κ = 0 itself exactly.
 TEST(ReferenceLimits, KappaToZero) {
   ReferenceEngine engine;
   for (double c : {-1.0, -0.75, -1e-9, 0.0, 0.3, 0.999, 1.0}) {

@@ -51,7 +51,7 @@ TEST(ClosedForms, AgreeWithBruteForceSphereQuadrature) {
   }
 }
 
-// The naive SPEC §1 formulas in 50-digit arithmetic are exact enough to
+// The naive formulas of docs/quantities.md in 50-digit arithmetic are exact enough to
 // judge the double closed forms at every κ.
 TEST(ClosedForms, MatchFiftyDigitNaiveFormulasOverFullRange) {
   for (int i = -40; i <= 60; ++i) {
@@ -213,7 +213,7 @@ TEST(Hemispherical, Erf2022IsExactAtThePoles) {
 }
 
 TEST(Steepness, LargeKappaTendsToSqrtHalfKappa) {
-  // seed 000 §1.2: t(κ) → √(κ/2); the rearranged evaluation stays finite up to FLT_MAX.
+  // [Tokuyoshi2022] supplementary §1.2: t(κ) → √(κ/2); the rearranged evaluation stays finite up to FLT_MAX.
   for (double kappa : {1e8, 1e12, 1e300}) {
     EXPECT_LT(rel_err(sglab::steepness2022(kappa), std::sqrt(kappa / 2)), 1e-7);
     EXPECT_LT(rel_err(sglab::steepness2024(kappa), std::sqrt(kappa / 2)), 1e-7);
@@ -228,7 +228,7 @@ TEST(Steepness, LargeKappaTendsToSqrtHalfKappa) {
   }
 }
 
-// Hand-computed points from the published formulas (seed 001, 004, SPEC §2).
+// Hand-computed points from the published formulas ([Pettineo2016], [Tokuyoshi2015], docs/references.md).
 TEST(Transcriptions, MatchHandComputedValues) {
   const double k = 4, c = 0.5;
   // punctual: max(c,0)·2π/κ.
@@ -256,7 +256,7 @@ TEST(Transcriptions, MatchHandComputedValues) {
   EXPECT_NEAR(sglab::erf_listing5(0.5), std::erf(0.5), 1e-6);
 }
 
-// seed 000 Listing 1 transcribed naively (vector SG product as in Listing 2,
+// [Tokuyoshi2022] Listing 1 transcribed naively (vector SG product as in Listing 2,
 // the lerp of Listing 3): an independent implementation of tokuyoshi2022.
 double tokuyoshi2022_naive(double c, double kappa) {
   const double lambda = 0.00084560872241480124, alpha = 1182.2467339678153;
@@ -285,7 +285,7 @@ TEST(Transcriptions, Tokuyoshi2022MatchesNaiveListing) {
     }
 }
 
-// Every method over the SPEC §4 sweep, float and double.
+// Every method over the standard sweep (docs/quantities.md), float and double.
 TEST(Methods, FiniteOverStandardSweep) {
   for (const auto& m : sglab::irradiance_methods)
     for (double kappa : sglab::test::standard_kappas())
@@ -304,7 +304,7 @@ TEST(Methods, NonNegativeOverStandardSweepExceptKnownFindings) {
   // - meder2018 subtracts 31.7 H̃(c, κ) from 32.7 H̃(product), which goes
   //   negative on the lower hemisphere;
   // - Hill's curve (hill, hill_exact) has 1 − 1/κ + 2e^{−2κ} < 0 below κ ≈ 0.6,
-  //   and goes negative there (seed 001 notes it is fitted for larger κ).
+  //   and goes negative there ([Pettineo2016] notes it is fitted for larger κ).
   bool meder_negative = false, hill_negative_small_kappa = false;
   for (const auto& m : sglab::irradiance_methods)
     for (double kappa : sglab::test::standard_kappas())
@@ -326,7 +326,7 @@ TEST(Methods, NonNegativeOverStandardSweepExceptKnownFindings) {
 
 TEST(Methods, FloatAgreesWithDoubleWhereWellConditioned) {
   // Tolerances relative to the peak E(1, κ). tokuyoshi2022 takes the
-  // difference of two integrals scaled by α ≈ 1182 (seed 000 §1.1), so float
+  // difference of two integrals scaled by α ≈ 1182 ([Tokuyoshi2022] supplementary §1.1), so float
   // rounding is amplified ~1e3 there.
   for (const auto& m : sglab::irradiance_methods) {
     const double tol = m.id.starts_with("tokuyoshi2022") ? 2e-3 : m.id == "meder2018" ? 1e-4 : 2e-6;

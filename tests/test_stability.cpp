@@ -1,7 +1,7 @@
 // The stability table: it flags known failures of published methods
 // (punctual is infinite at κ = 0, Hill fails at small κ), splits valid from
 // invalid inputs, and finds no failure of sglab's own primitives on valid
-// inputs (SPEC §5). Plus the `sglab stability --json` contract.
+// inputs (docs/quantities.md). Plus the `sglab stability --json` contract.
 #include <algorithm>
 #include <cmath>
 #include <variant>

@@ -21,7 +21,7 @@ namespace sglab::test {
 // A value printed exactly (hex float) and in decimal, for failure messages.
 template <class T> std::string hex(T x) { return fmt::format("{:a} ({:.9g})", static_cast<double>(x), static_cast<double>(x)); }
 
-// SPEC §4 standard sweep.
+// The standard sweep (docs/quantities.md).
 inline std::vector<double> standard_kappas() {
   std::vector<double> k;
   for (int i = -12; i <= 16; ++i) k.push_back(std::pow(10.0, i / 4.0));

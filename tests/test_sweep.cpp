@@ -1,4 +1,4 @@
-// The accuracy sweep (SPEC §4): the grid, float-exact inputs, exact closed
+// The accuracy sweep (the standard grid of docs/quantities.md): the grid, float-exact inputs, exact closed
 // forms used as methods, a deliberately perturbed method; and the
 // `sglab sweep` command-line contract.
 #include <cmath>
@@ -37,7 +37,7 @@ sglab::Method method(std::string_view id, float (*f32)(float, float), double (*f
   return sglab::Method{id, "test", "", f32, f64, nullptr, nullptr};
 }
 
-// The exact closed forms at c = ±1 (and H at c = 0) "as methods" (SPEC §1).
+// The exact closed forms at c = ±1 (and H at c = 0) "as methods" (docs/quantities.md).
 template <class T> T exact_irradiance(T c, T k) {
   return c > T(0) ? sglab::irradiance_upper(k) : sglab::irradiance_lower(k);
 }

@@ -57,13 +57,13 @@ double circ_gauss(double phi, double mu, double lambda) {
   return std::exp(2.0 * (std::cos(phi - mu) - 1.0) / (lambda * lambda));
 }
 
-// ---- seed 002 ---------------------------------------------------------------
+// ---- [Xu2011] and [AS1964] --------------------------------------------------
 
 Claim claim_as7125() {
   const double err = as7125_max_abs_error();
   return {"as7125_bound",
           "A&S 7.1.25 erf approximation (p = 0.47047, a1..a3) has |error| <= 2.5e-5",
-          "seed 002 §3",
+          "[AS1964] 7.1.25, quoted in [Xu2011] supplemental §3",
           "max |erf_as7125(x) - erf(x)| in double over 2,000,001 evenly spaced x in [0, 6] (odd function; erf_as = 1 beyond)",
           fmt::format("max |error| = {:.4g}", err), verdict(err <= 2.5e-5)};
 }
@@ -101,7 +101,7 @@ std::vector<Claim> claims_circular() {
   out.push_back({"circular_gaussian_pointwise",
                  "circular Gaussian gc(φ;μ,λ) = exp(2(cos(φ-μ)-1)/λ²) ≈ Gaussian exp(-(φ-μ)²/λ²) with relative error < 1.3% "
                  "for φ in [-π, π], λ < π/6",
-                 "seed 002 §1 (definitions §2, §5)",
+                 "[Xu2011] supplemental §1 (definitions §2, §5)",
                  "2nd-order Taylor cos x - 1 ≈ -x²/2; 200 λ in [0.01, π/6] × 20,001 φ in [-π, π]; error relative to the "
                  "peak (= 1): max |gc - g|; also |g/gc - 1| where gc >= 1e-2 and everywhere",
                  fmt::format("max |gc - g| (peak-relative) = {:.3g} (at λ = {:.3f}); |g/gc - 1| where gc >= 1e-2: {:.3g} "
@@ -113,7 +113,7 @@ std::vector<Claim> claims_circular() {
                              : "";
   out.push_back({"circular_gaussian_integral",
                  "integral of a circular Gaussian over [-π, π] ≈ the Gaussian's integral, relative error < 1.9% for λ < π/6",
-                 "seed 002 §4",
+                 "[Xu2011] supplemental §4",
                  "exact ∫_{-π}^{π} gc dφ (= 2π e^{-a} I0(a), a = 2/λ², by periodic trapezoid, 40,000 nodes) vs √π·λ·erf(π/λ) "
                  "(= √π·λ to 1e-16 for λ <= π/6); 200 λ in [0.01, π/6]",
                  fmt::format("max relative error = {:.4g} (at λ = {:.4f})", max_int, max_int_lambda),
@@ -122,21 +122,21 @@ std::vector<Claim> claims_circular() {
   const double e1 = gaussian_product_max_rel_error(20000, 12345u, false);
   out.push_back({"gaussian_product",
                  "product of two 1D Gaussians is a Gaussian: g1·g2 = b·g3(x; μ3, λ3)",
-                 "seed 002 §2",
+                 "[Xu2011] supplemental §2",
                  "closed form λ3² = λ1²λ2²/(λ1²+λ2²), μ3 = (μ1λ2² + μ2λ1²)/(λ1²+λ2²), b = exp(-(μ1-μ2)²/(λ1²+λ2²)); "
                  "20,000 random (μi ∈ [-2,2], λi ∈ [0.1,2], x ∈ [-3,3])",
                  fmt::format("max |g1 g2 - b g3| / (g1 g2) = {:.3g}", e1), verdict(e1 < 1e-10)});
   const double e2 = gaussian_product_max_rel_error(20000, 54321u, true);
   out.push_back({"circular_gaussian_product",
                  "product of two circular Gaussians is a circular Gaussian: gc1·gc2 = b·gc3(φ; μ3, λ3)",
-                 "seed 002 §5",
+                 "[Xu2011] supplemental §5",
                  "with ai = 2/λi², A = |a1 e^{iμ1} + a2 e^{iμ2}|: μ3 = arg(a1 e^{iμ1} + a2 e^{iμ2}), λ3 = √(2/A), "
                  "b = exp(A - a1 - a2); 20,000 random (μi ∈ [-π,π], λi ∈ [0.1,2], φ ∈ [-π,π])",
                  fmt::format("max |gc1 gc2 - b gc3| / (gc1 gc2) = {:.3g}", e2), verdict(e2 < 1e-10)});
   return out;
 }
 
-// ---- seed 004 ---------------------------------------------------------------
+// ---- [Tokuyoshi2015] --------------------------------------------------------
 
 std::vector<Claim> claims_lambda_d() {
   // Least squares of max(u,0)/π − G(λ)/S(λ), over the sphere and over the upper hemisphere.
@@ -160,7 +160,7 @@ std::vector<Claim> claims_lambda_d() {
   std::vector<Claim> out;
   out.push_back({"lambda_d_least_squares",
                  "diffuse lobe max(cos,0)/π ≈ G(ω; n, λd)/A(λd) with λd ≈ 2 obtained by least squares",
-                 "seed 004 Eq. 1",
+                 "[Tokuyoshi2015] supplemental Eq. 1",
                  "least squares of max(u,0)/π - G(λd)/S(λd) (normalized lobe) over the sphere and over the upper hemisphere; "
                  "refitted constants (data/constants) and an independent Simpson + golden-section recomputation; "
                  "'≈ 2' read as within 5%",
@@ -169,14 +169,14 @@ std::vector<Claim> claims_lambda_d() {
                              c_sphere, ls_sphere, c_hemi, ls_hemi, obj2 / objls),
                  near ? "holds" : (rough ? "holds in part" : "does not hold")});
   const double a2 = sphere_integral(2.0);
-  out.push_back({"lambda_d_A_pi", "A(λd) ≈ π for λd = 2 (Iwasaki et al.'s approximation)", "seed 004 (after Eq. 7)",
+  out.push_back({"lambda_d_A_pi", "A(λd) ≈ π for λd = 2 (Iwasaki et al.'s approximation)", "[Tokuyoshi2015] supplemental §3.2 (after Eq. 7)",
                  "A(2) = S(2) = 2π(1 - e^{-4})/2 vs π",
                  fmt::format("A(2) = {:.6f}, π = {:.6f}, relative error {:.3g}", a2, kPi, a2 / kPi - 1),
                  verdict(std::abs(a2 / kPi - 1) < 0.02)});
   return out;
 }
 
-// ---- seed 001 ---------------------------------------------------------------
+// ---- [Pettineo2016] ---------------------------------------------------------
 
 std::vector<Claim> claims_mjp() {
   std::vector<Claim> out;
@@ -185,7 +185,7 @@ std::vector<Claim> claims_mjp() {
   out.push_back({"wang_lobe_energy",
                  "Wang et al.'s cosine-lobe SG (λ = 2.133, a = 1.17) keeps the area under the curve 'somewhat consistent' "
                  "with the clamped cosine",
-                 "seed 001 (Error Analysis)",
+                 "[Pettineo2016] (Error Analysis)",
                  "∫_{S²} 1.17·e^{2.133(cos-1)} dω = 1.17·2π(1-e^{-4.266})/2.133 vs ∫ max(cos,0) dω = π; "
                  "'somewhat consistent' read as within 10%",
                  fmt::format("lobe energy {:.4f} vs π = {:.4f}: {:+.2f}%", energy, kPi, 100 * (energy / kPi - 1)),
@@ -226,7 +226,7 @@ std::vector<Claim> claims_mjp() {
     out.push_back({"mjp_inner_product_back",
                    "κ = 4 chart: the SG inner product (wang2009) is not hugely off; its biggest difference is on the side facing "
                    "away from the light, where it has a stronger tail",
-                   "seed 001 (Error Analysis chart)",
+                   "[Pettineo2016] (Error Analysis chart)",
                    "Ê - E over θ ∈ [0, π] (361 points) at κ = 4: sign of Ê - E for θ > π/2 and where |Ê - E| is largest",
                    fmt::format("max |Ê-E| = {:.4f} ({:.2f}% of E(1)) at θ = {:.1f}°; max on back side {:.4f}, front side {:.4f}; "
                                "min (Ê-E) for θ > 90° = {:.3g}",
@@ -242,7 +242,7 @@ std::vector<Claim> claims_mjp() {
     }
     out.push_back({"mjp_punctual",
                    "κ = 4 chart: pulling the cosine out (punctual) introduces quite a bit of error, particularly where θ > π/2",
-                   "seed 001 (A Cheaper Approximation)",
+                   "[Pettineo2016] (A Cheaper Approximation)",
                    "max |Ê - E| / E(1) for θ > π/2 and θ <= π/2 at κ = 4; 'quite a bit' read as > 5% of the peak",
                    fmt::format("max peak_rel: θ > 90°: {:.2f}%, θ <= 90°: {:.2f}%", 100 * back_max / peak,
                                100 * front_max / peak),
@@ -260,7 +260,7 @@ std::vector<Claim> claims_mjp() {
     }
     out.push_back({"mjp_hill_close",
                    "κ = 4 chart: Stephen Hill's fitted curve is 'very close' to the ground truth (closer than the inner product)",
-                   "seed 001 (A More Accurate Approximation)",
+                   "[Pettineo2016] (A More Accurate Approximation)",
                    "max |Ê - E| / E(1) over θ ∈ [0, π] at κ = 4; 'very close' read as <= 1% of the peak (invisible on the chart)",
                    fmt::format("hill max peak_rel = {:.3f}% (wang2009: {:.3f}%)", 100 * hill_max / peak,
                                100 * wang_max / peak),
@@ -271,7 +271,7 @@ std::vector<Claim> claims_mjp() {
   return out;
 }
 
-// ---- seed 000 ---------------------------------------------------------------
+// ---- [Tokuyoshi2022] --------------------------------------------------------
 
 Claim claim_numerical_vs_approximation() {
   const auto p = constants::clamped_cosine_published;
@@ -291,7 +291,7 @@ Claim claim_numerical_vs_approximation() {
   return {"float_numerical_vs_approximation",
           "with the published λ, α the maximum numerical (float rounding) error of α(e^{λ cos}-1) is almost the same as the "
           "maximum approximation error",
-          "seed 000 §1.1, Fig. 1",
+          "[Tokuyoshi2022] supplementary §1.1, Fig. 1",
           "u ∈ [0, 1], 1,000,001 float points: approximation error |α·expm1(λu) - u| in double; numerical error "
           "|float α(expf(λu) - 1) - α·expm1(λu)| with glibc expf; 'almost the same' read as a ratio within [0.8, 1.25] "
           "(holds in part within [0.25, 4])",
@@ -306,7 +306,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
   std::vector<Claim> out;
   const std::vector<double> big = {1e2, 1e3, 1e4, 1e5};
   if (!optimal_steepness) {
-    out.push_back({"tstar_asymptote", "t*(κ) → √(κ/2) as κ → ∞", "seed 000 §1.2", "needs fit::optimal_steepness",
+    out.push_back({"tstar_asymptote", "t*(κ) → √(κ/2) as κ → ∞", "[Tokuyoshi2022] supplementary §1.2", "needs fit::optimal_steepness",
                    "not measured", "not checked"});
     return out;
   }
@@ -321,7 +321,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
   const bool decreasing = std::is_sorted(dev.rbegin(), dev.rend());
   out.push_back({"tstar_asymptote",
                  "the optimal steepness t*(κ) of the normalized hemispherical integral approaches √(κ/2) as κ → ∞",
-                 "seed 000 §1.2, Fig. 2",
+                 "[Tokuyoshi2022] supplementary §1.2, Fig. 2",
                  "fit::optimal_steepness (minimax of erf-model s̃ - s over 201 cosines) at κ = 1e2..1e5; holds if "
                  "|t*/√(κ/2) - 1| shrinks with κ and is < 2% at κ = 1e5",
                  m, decreasing && dev.back() < 0.02 ? "holds" : (dev.back() < 0.05 ? "holds in part" : "does not hold")});
@@ -340,7 +340,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
   out.push_back({"eq6_close_to_tstar",
                  "the fitted t(κ) (Eq. 6, published A, B, C) is close to the numerically optimal t*(κ) and also approaches "
                  "√(κ/2)",
-                 "seed 000 §1.2, Fig. 2",
+                 "[Tokuyoshi2022] supplementary §1.2, Fig. 2",
                  "max |t(κ)/t*(κ) - 1| over 21 log-spaced κ in [1e-2, 1e3]; t(1e8)/√(1e8/2); 'close' read as within 10%",
                  fmt::format("max |t/t* - 1| = {:.3g} at κ = {:.3g} ({:.3g} over κ >= 1); t(1e8)/√(5e7) = {:.6f}", worst, worst_k,
                              worst_ge1, t_asym),
@@ -348,7 +348,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
   return out;
 }
 
-// ---- seed 003 ---------------------------------------------------------------
+// ---- [TokuyoshiHarada2017] --------------------------------------------------
 
 std::vector<Claim> claims_fresnel() {
   std::vector<Claim> out;
@@ -375,7 +375,7 @@ std::vector<Claim> claims_fresnel() {
     out.push_back({"schlick_monotone",
                    "Schlick F(cos θh) is monotonically increasing in θh ∈ [0, π/2], so F_max = F(cos θh_max) with "
                    "cos θh_max = √((1 - √(1 - (ωi·n)²))/2)",
-                   "seed 003 §1 Eq. 1-2",
+                   "[TokuyoshiHarada2017] supplemental §1 Eq. 1-2",
                    "F0 ∈ {0, 0.05, …, 1} × 2001 θh; identity cos(½ arccos c + π/4) = √((1-√(1-c²))/2) at 2001 c ∈ [0, 1]",
                    fmt::format("monotone: {}; max identity difference {:.2g}", mono ? "yes" : "no", cos_identity),
                    verdict(mono && cos_identity < 1e-12)});
@@ -408,7 +408,7 @@ std::vector<Claim> claims_fresnel() {
   out.push_back({"fresnel_monotone_quasiconvex",
                  "unpolarized dielectric Fresnel F(cos θh) is monotonically increasing in θh ∈ [0, π/2] if 2-√3 <= η <= 2+√3, "
                  "otherwise quasiconvex",
-                 "seed 003 §1 Eq. 3-5",
+                 "[TokuyoshiHarada2017] supplemental §1 Eq. 3-5",
                  fmt::format("{} η log-spaced in [0.05, 20] plus η = (2±√3)(1, 0.99, 1.01); 2001 θh; monotone = non-decreasing, "
                              "quasiconvex = non-increasing then non-decreasing (tolerance 1e-12); complex sqrt for TIR",
                              etas.size()),
@@ -421,7 +421,7 @@ std::vector<Claim> claims_fresnel() {
                      : "does not hold"});
   out.push_back({"fresnel_eq6_max",
                  "the maximum Fresnel factor over half vectors is F_max(ωi) = max(F(1), F(cos θh_max(ωi))), θh_max = ½ arccos(ωi·n) + π/4",
-                 "seed 003 §1 Eq. 6",
+                 "[TokuyoshiHarada2017] supplemental §1 Eq. 6",
                  "for each η above and 91 θi ∈ [0, π/2]: brute-force max of F over 2001 θh ∈ [0, θh_max] vs Eq. 6",
                  fmt::format("max |Eq. 6 - brute force| = {:.3g}", eq6_err), verdict(eq6_err < 1e-12)});
   return out;

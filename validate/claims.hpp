@@ -1,4 +1,4 @@
-// validate/claims.hpp — every quantitative claim of the seed documents
+// validate/claims.hpp — every quantitative claim of the cited sources (docs/references.md)
 // (/work/shared/seeds) checked numerically: `sglab claims`.
 //
 // Each claim records what the seed says, how sglab tests it (the
@@ -6,7 +6,7 @@
 // the measured numbers and a verdict: "holds", "does not hold" or "holds in part".
 //
 // validate/ does not link fit/, so the one quantity that needs the fitter
-// (the per-κ optimal steepness t*(κ) of seed 000 Fig. 2) is passed in.
+// (the per-κ optimal steepness t*(κ) of [Tokuyoshi2022] supplementary Fig. 2) is passed in.
 #pragma once
 
 #include <functional>
@@ -41,7 +41,7 @@ Table claims_table(const std::vector<Claim>& claims);
 // max |erf_as7125(x) − erf(x)| over a dense grid of x ∈ [0, 6] in double.
 double as7125_max_abs_error(int points = 2'000'001);
 
-// Unpolarized dielectric Fresnel factor (seed 003 Eq. 3–5) at cos θh for the
+// Unpolarized dielectric Fresnel factor ([TokuyoshiHarada2017] supplemental Eq. 3–5) at cos θh for the
 // relative index η (complex square root: total internal reflection gives 1).
 double fresnel_dielectric(double cos_theta, double eta);
 
@@ -53,7 +53,7 @@ struct FresnelShape {
 FresnelShape fresnel_shape(double eta, int theta_points = 2001, int incidence_points = 401);
 
 // 1-D Gaussian g(x; μ, λ) = exp(−(x − μ)²/λ²) and circular Gaussian
-// gc(φ; μ, λ) = exp(2(cos(φ − μ) − 1)/λ²) (seed 002 §2, §5).
+// gc(φ; μ, λ) = exp(2(cos(φ − μ) − 1)/λ²) ([Xu2011] supplemental §2, §5).
 struct GaussianProduct {
   double b, mu, lambda;  // g1·g2 = b·g(·; μ, λ)
 };

@@ -1,4 +1,4 @@
-// validate/metrics.hpp — the error metrics of SPEC §3, in one place.
+// validate/metrics.hpp — the error metrics of docs/quantities.md, in one place.
 //
 // For a method value x̂ and a reference x at (κ, c), with the lobe's peak
 // value x(1, κ):
@@ -31,7 +31,7 @@
 
 namespace sglab::validate {
 
-// "Significant" threshold of `rel` relative to the peak value (SPEC §3).
+// "Significant" threshold of `rel` relative to the peak value (docs/quantities.md).
 inline constexpr double kSignificantFraction = 1e-2;
 
 // |x̂ − x| with the special-value rules above.
@@ -141,7 +141,7 @@ enum class PointStatus : std::uint8_t {
   invalid_reference,  // x or x(1, κ) is NaN or ±inf: counted, excluded
 };
 
-// All SPEC §3 metrics at one point; NaN where a metric does not apply
+// All metrics of docs/quantities.md at one point; NaN where a metric does not apply
 // (rel outside the significant region, every metric unless status == ok).
 struct PointErrors {
   PointStatus status = PointStatus::ok;
@@ -184,7 +184,7 @@ class ErrorAccumulator {
   std::size_t skipped_ = 0;
 };
 
-// Every SPEC §3 summary of a method against a reference over a table:
+// Every summary (docs/quantities.md) of a method against a reference over a table:
 // peak_rel, rel (significant points only) and abs, plus the counts.
 struct MetricSummary {
   ErrorStats peak_rel;

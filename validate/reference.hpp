@@ -1,5 +1,5 @@
 // validate/reference.hpp — the reference engine: H(c, κ), E(c, κ) and s(c, κ)
-// of SPEC §1 by Boost.Math quadrature. Shared by validate/ and fit/: there is
+// of docs/quantities.md by Boost.Math quadrature. Shared by validate/ and fit/: there is
 // exactly one reference engine in sglab.
 #pragma once
 

@@ -4,10 +4,10 @@
 // boost::multiprecision::cpp_bin_float for Precision::high
 // (reference_high.cpp). Internal to validate/; include reference.hpp instead.
 //
-// Everything here follows SPEC §1 and deliberately uses nothing from the
+// Everything here follows docs/quantities.md and deliberately uses nothing from the
 // runtime headers (include/sglab/): this is the independent truth.
 //
-// The 1-D forms (SPEC §1), u = ω·n, r = √(1−c²), ρ = √(1−u²):
+// The 1-D forms (docs/quantities.md), u = ω·n, r = √(1−c²), ρ = √(1−u²):
 //   H = 2π ∫₀¹ e^{κ(cu−1)} I0(κrρ) du,   E = 2π ∫₀¹ u e^{κ(cu−1)} I0(κrρ) du.
 // With the scaled Bessel function I0e(x) = I0(x)e^{−x} the integrand is
 //   e^{κ(cu + rρ − 1)} I0e(κrρ),
@@ -17,7 +17,7 @@
 // the peak of the exponent, rather than in u: the integrand is then a
 // Gaussian-like bump of width 1/√κ in every case (in u the width collapses to
 // ~1/κ as c → 1, next to the square-root behaviour of ρ at u = 1), and the
-// exponents of SPEC §1 become exact trigonometric identities:
+// exponents of docs/quantities.md become exact trigonometric identities:
 //   c ≥ 0, offset t = θ − θc:   cu + rρ − 1 = cos t − 1 = −2 sin²(t/2)
 //         (the same quantity as −½((u−c)² + (ρ−r)²)),
 //   c < 0, ψ = π/2 − θ (so u = sin ψ, ρ = cos ψ), β = asin|c|, m = r = cos β:
@@ -238,7 +238,7 @@ template <class Real> struct RawPoint {
   std::size_t segments = 0;  // Kronrod segments used (a diagnostic)
 };
 
-// H(−1, κ) and H(1,κ) − H(−1,κ) for κ > 0 (SPEC §1 closed forms), with
+// H(−1, κ) and H(1,κ) − H(−1,κ) for κ > 0 (closed forms of docs/quantities.md), with
 // 1 − e^{−κ} = −expm1(−κ) so that nothing cancels:
 //   H(1) = 2π(1−e^{−κ})/κ, H(−1) = e^{−κ}H(1), H(1) − H(−1) = 2π(1−e^{−κ})²/κ.
 // Used only to normalise s; H and E themselves always come from quadrature.
@@ -323,7 +323,7 @@ template <class Real> typename Wide<Real>::type normalized_by_difference(const R
   return exp(-kw) * kw * W(quad.value()) / (m * m);
 }
 
-// H, E, s at one point, SPEC §1. Requires finite κ ≥ 0 and c ∈ [−1, 1]
+// H, E, s at one point, docs/quantities.md. Requires finite κ ≥ 0 and c ∈ [−1, 1]
 // (checked by the caller). Never NaN: where H underflows double the result is
 // 0 or a denormal.
 template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) {
@@ -340,7 +340,7 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   const Real kappa = kappa_in, c = cosine_in;
   RawPoint<Real> out;
 
-  // κ = 0: G ≡ 1, so H = 2π, E = π and s = (1 + c)/2 (SPEC §1 limits), exactly.
+  // κ = 0: G ≡ 1, so H = 2π, E = π and s = (1 + c)/2 (the limits of docs/quantities.md), exactly.
   if (kappa == 0) {
     out.hemispherical = 2 * boost::math::constants::pi<W>();
     out.irradiance = boost::math::constants::pi<W>();
@@ -442,7 +442,7 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   out.hemispherical_error = scale * W(q_error) / kscale_w;
   out.irradiance_error = scale * W(q_error / gamma) / kscale_w;
 
-  // s = (H − H(−1)) / (H(1) − H(−1)), SPEC §1.
+  // s = (H − H(−1)) / (H(1) − H(−1)), docs/quantities.md.
   if (kappa < std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon()) {
     // s = (1+c)/2 + O(κ): exact to far below ε, and no denormal κ below.
     out.normalized = (1 + W(cosine_in)) / 2;

@@ -323,7 +323,7 @@ template <class T> std::vector<AxisPair<T>> probe_axes() {
   };
 }
 
-// Exact product quantities in long double (SPEC §1 / seed 000 Eq. 1-2):
+// Exact product quantities in long double (docs/quantities.md; [Tokuyoshi2022] Eq. 1-2):
 // κ3 = |κ1 v1 + κ2 v2|, log-amplitude κ3 − κ1 − κ2 = −κ1κ2|v1 − v2|²/(κ3 + κ1 + κ2).
 // |κ1v1 + κ2v2|² = (κ1 − κ2)(κ1|v1|² − κ2|v2|²) + κ1κ2|v1 + v2|², an identity
 // that does not cancel for nearly opposite axes and nearly equal κ.
@@ -351,7 +351,7 @@ template <class T> long double exact_normal_product_log_amplitude(T c, T k, T l)
   return den > 0 ? -2 * (1 - L(c)) * L(k) * L(l) / den : L(0);
 }
 
-// Exact closed forms of SPEC §1 in long double, for κ ≥ 0 (series near 0,
+// Exact closed forms of docs/quantities.md in long double, for κ ≥ 0 (series near 0,
 // where long double would cancel too).
 using L = long double;
 constexpr L kPiL = 3.141592653589793238462643383279502884L;

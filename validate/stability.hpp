@@ -6,7 +6,7 @@
 //
 // Published methods are faithful transcriptions: their failures are findings
 // this table reports. sglab's own primitives must be finite, non-negative and
-// in range for every valid input (SPEC §5); `own_failures_on_valid_inputs`
+// in range for every valid input (docs/quantities.md); `own_failures_on_valid_inputs`
 // lists the rows where they are not.
 #pragma once
 
@@ -108,7 +108,7 @@ std::vector<double> method_sharpness_constants();
 template <class T> long double inaccuracy(T y, long double exact);
 template <class T> bool is_inaccurate(T y, long double exact);
 
-// Rows of sglab's own primitives with any failure on valid inputs (SPEC §5:
+// Rows of sglab's own primitives with any failure on valid inputs (docs/quantities.md:
 // finite, non-negative and in range for finite κ ≥ 0, c ∈ [−1, 1]).
 std::vector<const StabilityRow*> own_failures_on_valid_inputs(const StabilityReport& report);
 

@@ -84,7 +84,7 @@ std::vector<double> SweepGrid::cosines() const {
   if (cosine_count < 2) return c;
   c.reserve(static_cast<std::size_t>(cosine_count));
   const int last = cosine_count - 1;
-  for (int i = 0; i <= last; ++i) c.push_back(-1.0 + 2.0 * i / last);  // SPEC §4's expression; ends exact
+  for (int i = 0; i <= last; ++i) c.push_back(-1.0 + 2.0 * i / last);  // the standard grid's expression (docs/quantities.md); ends exact
   return c;
 }
 

@@ -1,6 +1,6 @@
-// validate/sweep.hpp — the accuracy sweep of SPEC §4: every method against
+// validate/sweep.hpp — the accuracy sweep of docs/quantities.md (standard grid): every method against
 // the reference engine over a (κ, c) grid, in float and in double, with the
-// SPEC §3 metrics.
+// metrics of docs/quantities.md.
 //
 // Inputs are rounded to float first and the reference is evaluated at those
 // float-exact inputs, so the float and the double evaluation of a method see
@@ -25,7 +25,7 @@
 namespace sglab::validate {
 
 // What a method approximates, and therefore which reference it is held to:
-// E(c, κ), H(c, κ) or s(c, κ) (SPEC §1).
+// E(c, κ), H(c, κ) or s(c, κ) (docs/quantities.md).
 enum class Quantity { irradiance, hemispherical, normalized };
 std::string_view to_string(Quantity q);
 
@@ -37,7 +37,7 @@ std::string_view to_string(FloatFormat f);  // "float", "double", "vulkan", "vul
 
 // κ: kappa_count values log-spaced over [kappa_lo, kappa_hi] inclusive;
 // c: cosine_count values evenly spaced over [−1, 1] inclusive. The default is
-// SPEC §4's standard grid: κ = 10^(i/4), i = −12…16, and c = −1 + 2i/40.
+// The standard grid of docs/quantities.md: κ = 10^(i/4), i = −12…16, and c = −1 + 2i/40.
 struct SweepGrid {
   double kappa_lo = 1e-3;
   double kappa_hi = 1e4;

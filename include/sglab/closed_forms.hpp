@@ -1,4 +1,4 @@
-// sglab/closed_forms.hpp — exact closed forms of SPEC §1.
+// sglab/closed_forms.hpp — exact closed forms of docs/quantities.md.
 //
 // H(c, κ) = ∫_{ω·n>0} G dω and E(c, κ) = ∫ G max(ω·n, 0) dω for a unit
 // amplitude SG at the poles c = ±1 (and H at c = 0), and the sphere integral.
@@ -94,7 +94,7 @@ template <class T> T irradiance_upper(const T& kappa) {
   return two_pi_v<T>() * (T(1) - expm1_over_x(-kappa)) / kappa;
 }
 
-// E(−1, κ) = 2π e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (SPEC §1).
+// E(−1, κ) = 2π e^{−κ}(1 − e^{−κ} − κe^{−κ})/κ² (docs/quantities.md).
 template <class T> T irradiance_lower(const T& kappa) {
   return two_pi_v<T>() * irradiance_lower_over_two_pi(kappa);
 }
@@ -108,7 +108,7 @@ template <class T> T hemispherical_upper(const T& kappa) {
   return two_pi_v<T>() * -expm1(-kappa) / kappa;
 }
 
-// H(−1, κ) = e^{−κ} H(1, κ) (SPEC §1; seed 000 §2.2 "B(κ)").
+// H(−1, κ) = e^{−κ} H(1, κ) (docs/quantities.md; [Tokuyoshi2022] supplementary §2.2 "B(κ)").
 template <class T> T hemispherical_lower(const T& kappa) {
   using std::exp;
   return exp(-kappa) * hemispherical_upper(kappa);

@@ -62,21 +62,21 @@ inline constexpr ClampedCosineParams<double> clamped_cosine_half{
 
 // clamped-cosine / published: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
 //   objective: published
-//   source: Tokuyoshi 2022, Accurate Diffuse Lighting from Spherical Gaussian Lights, supplementary Listing 1 (seed 000)
+//   source: [Tokuyoshi2022] Accurate Diffuse Lighting from Spherical Gaussian Lights, supplementary Listing 1
 inline constexpr ClampedCosineParams<double> clamped_cosine_published{
     .lambda = 0.0008456087224148012,
     .alpha = 1182.2467339678153};
 
 // lambda-d / cosine-lobe-published: max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere
 //   objective: published
-//   source: Wang et al. 2009, All-Frequency Rendering of Dynamic, Spatially-Varying Reflectance (quoted in seed 001)
+//   source: [Wang2009] All-Frequency Rendering of Dynamic, Spatially-Varying Reflectance (quoted in [Pettineo2016])
 inline constexpr CosineLobeParams<double> cosine_lobe_published{
     .lambda = 2.133,
     .amplitude = 1.17};
 
 // lambda-d / diffuse-lobe-published: max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A(lambda_d) ≈ pi
 //   objective: published
-//   source: Tokuyoshi 2015, Fast Indirect Illumination Using Two Virtual Spherical Gaussians, supplementary Eq. 1 (seed 004)
+//   source: [Tokuyoshi2015] Fast Indirect Illumination Using Two Virtual Spherical Gaussian Lights, supplemental Eq. 1
 inline constexpr DiffuseLobeParams<double> diffuse_lobe_published{
     .lambda_d = 2.0};
 
@@ -96,7 +96,7 @@ inline constexpr AbramowitzStegunParams<double, 3> erf_as7125_float{
 // erf / as7125-published: erf(x) ≈ 1 - (a1 t + a2 t^2 + a3 t^3) exp(-x^2), t = 1/(1 + p x), x >= 0; odd
 //   objective: published
 //   claimed_max_abs_error: 2.5e-05
-//   source: Abramowitz & Stegun 1964, Eq. 7.1.25 (quoted in seed 002 §3)
+//   source: [AS1964] Eq. 7.1.25 (quoted in [Xu2011] supplemental §3)
 inline constexpr AbramowitzStegunParams<double, 3> erf_as7125_published{
     .p = 0.47047,
     .a = {0.3480242, -0.0958798, 0.7478556}};
@@ -118,7 +118,7 @@ inline constexpr Listing5Params<double, 6, 7> erf_listing5_float{
 
 // erf / listing5-published: erf(x) ≈ x*P(x^2) for |x| <= split; 1 - 2^(-a*Q(a)) for split < a=|x| < cutoff; sign(x) beyond
 //   objective: published
-//   source: Tokuyoshi 2022 supplementary Listing 5 (seed 000), after an NVIDIA developer-forum erff
+//   source: [Tokuyoshi2022] supplementary Listing 5, after an NVIDIA developer-forum erff [NVForumErff]
 inline constexpr Listing5Params<double, 6, 7> erf_listing5_published{
     .split = 1.0,
     .cutoff = 4.0,
@@ -127,7 +127,7 @@ inline constexpr Listing5Params<double, 6, 7> erf_listing5_published{
 
 // hill / published: Stephen Hill's fitted irradiance curve, c1 = 1/(4 c0)
 //   objective: published
-//   source: Stephen Hill, unpublished; quoted in MJP, SG Series Part 3 (seed 001)
+//   source: Stephen Hill, unpublished; quoted in [Pettineo2016]
 inline constexpr HillParams<double> hill_published{
     .c0 = 0.36};
 
@@ -281,7 +281,7 @@ inline constexpr Steepness2022Params<double> steepness2022_optimal_t{
 
 // steepness2022 / published: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: published
-//   source: Tokuyoshi 2022, Eq. 6; supplementary Listing 3 (seed 000)
+//   source: [Tokuyoshi2022] Eq. 6; supplementary Listing 3
 inline constexpr Steepness2022Params<double> steepness2022_published{
     .A = 0.6517328826907056,
     .B = 1.3418280033141288,

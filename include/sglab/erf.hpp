@@ -1,4 +1,4 @@
-// sglab/erf.hpp — error function variants (SPEC §2 "erf variants").
+// sglab/erf.hpp — error function variants (docs/references.md).
 //
 // Each variant is a function template over the scalar type and its
 // coefficients, plus a small functor type so that methods can be
@@ -15,7 +15,7 @@
 
 namespace sglab {
 
-// Seed 000 Listing 5 (after an NVIDIA forum erff): odd polynomial x·P(x²)
+// [Tokuyoshi2022] Listing 5 (after an NVIDIA forum erff, [NVForumErff]): odd polynomial x·P(x²)
 // on |x| ≤ split, 1 − 2^{−a·Q(a)} on split < a < cutoff, ±1 beyond.
 // Published error: not stated; measured by `sglab erf`.
 template <class T, class S, std::size_t NS, std::size_t NL>
@@ -31,7 +31,7 @@ T erf_listing5(const T& x, const Listing5Params<S, NS, NL>& p) {
   return x * horner(x * x, p.small);  // NaN propagates here, as in Listing 5
 }
 
-// Abramowitz & Stegun 7.1.25 (3 terms, claimed |error| ≤ 2.5e−5; seed 002 §3)
+// [AS1964] 7.1.25 (3 terms, claimed |error| ≤ 2.5e−5; quoted in [Xu2011] supplemental §3)
 // and 7.1.26 (5 terms): 1 − t(a1 + a2 t + …)e^{−x²}, t = 1/(1 + p|x|), odd.
 template <class T, class S, std::size_t N>
 T erf_abramowitz_stegun(const T& x, const AbramowitzStegunParams<S, N>& p) {

@@ -1,7 +1,7 @@
 // sglab/hemispherical.hpp — approximate hemispherical integrals of an SG.
 //
 // H̃(c, κ) = lerp(H(−1, κ), H(1, κ), s̃(c, κ)) with the exact poles
-// H(1, κ) = 2π(1 − e^{−κ})/κ, H(−1, κ) = e^{−κ} H(1, κ) (seed 000 §2.2) and an
+// H(1, κ) = 2π(1 − e^{−κ})/κ, H(−1, κ) = e^{−κ} H(1, κ) ([Tokuyoshi2022] supplementary §2.2) and an
 // approximate normalized hemispherical integral s̃.
 #pragma once
 
@@ -89,7 +89,7 @@ T normalized_erf2022(const T& cosine, const T& kappa, const P& p = constants::st
   return T(0.5) + T(0.5) * erf_ratio(t, clamp(cosine, T(-1), T(1)), erf);
 }
 
-// H̃(c, κ) = 2π lerp(e^{−κ}, 1, s̃) (1 − e^{−κ})/κ  (seed 000 Listing 3, SPEC `erf2022`).
+// H̃(c, κ) = 2π lerp(e^{−κ}, 1, s̃) (1 − e^{−κ})/κ  ([Tokuyoshi2022] Listing 3, `erf2022`).
 template <class T, class Erf = ErfStd, class P = Steepness2022Params<double>>
 T hemispherical_erf2022(const T& cosine, const T& kappa, const P& p = constants::steepness2022_published,
                         Erf erf = {}) {

@@ -1,6 +1,6 @@
 // sglab/irradiance.hpp — approximations Ê(c, κ) of the irradiance
 // E(c, κ) = ∫ G(ω; v, κ) max(ω·n, 0) dω from a unit-amplitude SG light,
-// c = v·n (SPEC §1, §2). One function per method id of SPEC §2.
+// c = v·n (docs/quantities.md). One function per method id (docs/references.md).
 //
 // Published methods are faithful transcriptions of their formulas: where they
 // fail (division by κ = 0, overflow, cancellation) that is a finding of
@@ -38,7 +38,7 @@ T irradiance_wang2009(const T& cosine, const T& kappa,
 }
 
 // `punctual`: the cosine pulled out of the integral, Ê = max(c, 0)·2π/κ
-// (seed 001 "SGIrradiancePunctual"). Infinite at κ = 0.
+// ([Pettineo2016] "SGIrradiancePunctual"). Infinite at κ = 0.
 template <class T> T irradiance_punctual(const T& cosine, const T& kappa) {
   return saturate(cosine) * sphere_integral_approx(kappa);
 }
@@ -71,7 +71,7 @@ template <class T, class S> T hill_normalized(const T& cosine, const T& kappa, c
 }
 }  // namespace detail
 
-// `hill`: Hill's curve times the approximate SG integral 2π/κ (seed 001).
+// `hill`: Hill's curve times the approximate SG integral 2π/κ ([Pettineo2016]).
 // Below κ ≈ 0.6, 1 − 1/κ + 2e^{−2κ} < 0 and sqrt(1 − scale) is taken of a
 // number > 1; at κ = 0 the result is NaN.
 template <class T, class S = double>
@@ -86,7 +86,7 @@ T irradiance_hill_exact(const T& cosine, const T& kappa, const HillParams<S>& p 
 }
 
 // `vsgl2015`: cos⁺/π ≈ G(ω; n, λd)/A(λd) with A(λd) ≈ π and Iwasaki's
-// approximate product integral (seed 004 §3.2):
+// approximate product integral ([Tokuyoshi2015] supplemental §3.2):
 // Ê = 2π exp(λ'(c − 1))/(κ + λd), λ' = κλd/(κ + λd).
 template <class T, class S = double>
 T irradiance_vsgl2015(const T& cosine, const T& kappa,
@@ -108,7 +108,7 @@ T irradiance_meder2018(const T& cosine, const T& kappa,
 }
 
 // `tokuyoshi2022`: cos⁺ ≈ α(e^{λ cos θ} − 1) = α(e^{λ} G(ω; n, λ) − 1) on the
-// upper hemisphere (seed 000 Listing 1):
+// upper hemisphere ([Tokuyoshi2022] Listing 1):
 // Ê = max(α(H̃(c3, κ3) e^{λ + logAmp} − H̃(c, κ)), 0) with the erf-based H̃.
 // `st` may be any steepness form (Steepness2022Params by default).
 template <class T, class Erf = ErfStd, class S = double, class P = Steepness2022Params<double>>

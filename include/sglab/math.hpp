@@ -46,7 +46,7 @@ template <class T> constexpr T saturate(const T& x) { return clamp(x, T(0), T(1)
 
 template <class T> constexpr T max0(const T& x) { return x < T(0) ? T(0) : x; }
 
-// (e^x − 1)/x without cancellation (seed 000 Listing 4 cites Higham 2002 for
+// (e^x − 1)/x without cancellation ([Tokuyoshi2022] Listing 4 cites [Higham2002] for
 // the same purpose). With a correctly rounded-ish expm1 from the standard
 // library the quotient is accurate to a few ulp for every x; the x = 0 limit
 // is 1. x = −inf gives 0, x = +inf gives +inf.

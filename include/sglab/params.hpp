@@ -12,14 +12,14 @@
 namespace sglab {
 
 // max(cos θ, 0) ≈ α (e^{λ cos θ} − 1) on the upper hemisphere
-// (Tokuyoshi 2022, seed 000 Listing 1).
+// ([Tokuyoshi2022] Listing 1).
 template <class S> struct ClampedCosineParams {
   S lambda;
   S alpha;
 };
 
 // Steepness of the erf-based normalized hemispherical integral,
-// t(κ) = κ √((0.5κ + A) / ((κ + B)κ + C))  (Tokuyoshi 2022, Eq. 6; seed 000 Listing 3).
+// t(κ) = κ √((0.5κ + A) / ((κ + B)κ + C))  ([Tokuyoshi2022] Eq. 6, Listing 3).
 template <class S> struct Steepness2022Params {
   S A, B, C;
 };
@@ -34,7 +34,7 @@ template <class S> struct Steepness2024Params {
 // General rational steepness of sglab's model-order search:
 // t(κ) = κ √(0.5 P(κ)/Q(κ)) with monic P = κ^M + p[M−1]κ^{M−1} + … + p[0] and
 // Q = κ^{M+1} + q[M]κ^M + … + q[0], so that t → √(κ/2) as κ → ∞ for every
-// order M (seed 000 §1.2). M = 1 is the 2022 form (p0 = 2A, q1 = B, q0 = C),
+// order M ([Tokuyoshi2022] supplementary §1.2). M = 1 is the 2022 form (p0 = 2A, q1 = B, q0 = C),
 // M = 2 the 2024 form (p1 = A, p0 = B, q2 = C, q1 = D, q0 = E). For M = 0, P = 1
 // and p is unused.
 template <class S, std::size_t M> struct SteepnessRationalParams {
@@ -42,7 +42,7 @@ template <class S, std::size_t M> struct SteepnessRationalParams {
   S q[M + 1];
 };
 
-// Seed 000 Listing 5 erf structure: x·P(x²) on |x| ≤ split (P has NS
+// [Tokuyoshi2022] Listing 5 erf structure: x·P(x²) on |x| ≤ split (P has NS
 // coefficients, lowest order first), 1 − 2^{−a·Q(a)} on split < a < cutoff
 // (Q has NL coefficients, lowest order first), ±1 beyond.
 template <class S, std::size_t NS, std::size_t NL> struct Listing5Params {
@@ -65,12 +65,12 @@ template <class S> struct CosineLobeParams {
   S amplitude;
 };
 
-// Normalized SG standing in for cos⁺/π: G(ω; n, λd)/A(λd) (Tokuyoshi 2015, seed 004 Eq. 1).
+// Normalized SG standing in for cos⁺/π: G(ω; n, λd)/A(λd) ([Tokuyoshi2015] supplemental Eq. 1).
 template <class S> struct DiffuseLobeParams {
   S lambda_d;
 };
 
-// Stephen Hill's fitted irradiance curve (seed 001): c1 = 1/(4 c0).
+// Stephen Hill's fitted irradiance curve ([Pettineo2016]): c1 = 1/(4 c0).
 template <class S> struct HillParams {
   S c0;
 };

@@ -125,27 +125,27 @@ template <const auto& P> constexpr Method make_sglab_acc(std::string_view id, st
 }
 }  // namespace detail
 
-// Irradiance approximations Ê(c, κ) of SPEC §2, with published constants.
+// Irradiance approximations Ê(c, κ) (docs/references.md), with published constants.
 inline constexpr Method irradiance_methods[] = {
-    detail::make_method("wang2009", "Wang et al. 2009 cosine-lobe SG (λ=2.133, a=1.17) inner product; seed 001",
+    detail::make_method("wang2009", "[Wang2009] cosine-lobe SG (λ=2.133, a=1.17) inner product, via [Pettineo2016]",
                         "cosine_lobe_published", [](auto c, auto k) { return irradiance_wang2009(c, k); }),
-    detail::make_method("punctual", "cosine pulled out, approximate integral 2π/κ; seed 001",
+    detail::make_method("punctual", "cosine pulled out, approximate integral 2π/κ [Pettineo2016]",
                         "", [](auto c, auto k) { return irradiance_punctual(c, k); }),
-    detail::make_method("hill", "Stephen Hill's fitted curve × 2π/κ; seed 001", "hill_published",
+    detail::make_method("hill", "Stephen Hill's fitted curve × 2π/κ [Pettineo2016]", "hill_published",
                         [](auto c, auto k) { return irradiance_hill(c, k); }),
     detail::make_method("hill_exact", "Hill's fitted curve × exact S(κ) (as Probulator)", "hill_published",
                         [](auto c, auto k) { return irradiance_hill_exact(c, k); }),
-    detail::make_method("vsgl2015", "Tokuyoshi 2015 diffuse SG λd=2, Iwasaki 2012 product integral; seed 004",
+    detail::make_method("vsgl2015", "[Tokuyoshi2015] diffuse SG λd=2, [Iwasaki2012] product integral",
                         "diffuse_lobe_published", [](auto c, auto k) { return irradiance_vsgl2015(c, k); }),
     detail::make_method("meder2018", "Meder & Brüderlin 2018 logistic hemispherical integral + SG cosine fit",
                         "meder2018_published", [](auto c, auto k) { return irradiance_meder2018(c, k); }),
-    detail::make_method("tokuyoshi2022", "Tokuyoshi 2022 Eq. 3-6, supplementary Listings 1-4 (seed 000), std::erf",
+    detail::make_method("tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, supplementary Listings 1-4, std::erf",
                         "clamped_cosine_published, steepness2022_published",
                         [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
     detail::with_light_split<Tokuyoshi2024Light<float>>(
         detail::with_batch32(
             detail::make_method("tokuyoshi2024",
-                                "Tokuyoshi et al. 2024 supplementary Listings 6-7 (author's VSGL code)",
+                                "[Tokuyoshi2024] supplementary Listings 6-7 (author's VSGL code)",
                                 "steepness2024_published",
                                 [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
             [](const float* c, const float* k, float* o, std::size_t n) { irradiance_tokuyoshi2024_batch(c, k, o, n); }),
@@ -153,7 +153,7 @@ inline constexpr Method irradiance_methods[] = {
         [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_evaluate(l, c); }),
     // The published formulas with sglab's refitted constants (`sglab fit all`)
     // and the shader path of the 2022 method (Listing 5 erf).
-    detail::make_method("tokuyoshi2022_listing5", "tokuyoshi2022 with the Listing 5 erf (seed 000), as a shader runs it",
+    detail::make_method("tokuyoshi2022_listing5", "tokuyoshi2022 with the [Tokuyoshi2022] Listing 5 erf, as a shader runs it",
                         "clamped_cosine_published, steepness2022_published, erf_listing5_published",
                         [](auto c, auto k) {
                           return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_published,
@@ -213,31 +213,31 @@ inline constexpr Method irradiance_methods[] = {
         "sglab_accurate_acc3"),
 };
 
-// Approximate hemispherical integrals H̃(c, κ) (SPEC §2 `erf2022`, `meder2018`).
+// Approximate hemispherical integrals H̃(c, κ) (`erf2022` [Tokuyoshi2022], `meder2018` [Meder2018]).
 inline constexpr Method hemispherical_methods[] = {
-    detail::make_method("erf2022", "Tokuyoshi 2022 Eq. 5/6, Listing 3 (seed 000), std::erf", "steepness2022_published",
+    detail::make_method("erf2022", "[Tokuyoshi2022] Eq. 5/6, Listing 3, std::erf", "steepness2022_published",
                         [](auto c, auto k) { return hemispherical_erf2022(c, k); }),
-    detail::make_method("erf2022_listing5", "Tokuyoshi 2022 Eq. 5/6 with the Listing 5 erf (seed 000)",
+    detail::make_method("erf2022_listing5", "[Tokuyoshi2022] Eq. 5/6 with the Listing 5 erf",
                         "steepness2022_published, erf_listing5_published",
                         [](auto c, auto k) { return hemispherical_erf2022(c, k, constants::steepness2022_published,
                                                                           ErfListing5{}); }),
-    detail::make_method("meder2018", "Meder & Brüderlin 2018 logistic normalized hemispherical integral",
+    detail::make_method("meder2018", "[Meder2018] logistic normalized hemispherical integral",
                         "meder2018_published", [](auto c, auto k) { return hemispherical_meder2018(c, k); }),
 };
 
 // Normalized hemispherical integrals s̃(c, κ) matching hemispherical_methods.
 inline constexpr Method normalized_methods[] = {
-    detail::make_method("erf2022", "Tokuyoshi 2022 Eq. 5/6 (seed 000), std::erf", "steepness2022_published",
+    detail::make_method("erf2022", "[Tokuyoshi2022] Eq. 5/6, std::erf", "steepness2022_published",
                         [](auto c, auto k) { return normalized_erf2022(c, k); }),
-    detail::make_method("erf2022_listing5", "Tokuyoshi 2022 Eq. 5/6 with the Listing 5 erf (seed 000)",
+    detail::make_method("erf2022_listing5", "[Tokuyoshi2022] Eq. 5/6 with the Listing 5 erf",
                         "steepness2022_published, erf_listing5_published",
                         [](auto c, auto k) { return normalized_erf2022(c, k, constants::steepness2022_published,
                                                                        ErfListing5{}); }),
-    detail::make_method("meder2018", "Meder & Brüderlin 2018 logistic normalized hemispherical integral",
+    detail::make_method("meder2018", "[Meder2018] logistic normalized hemispherical integral",
                         "meder2018_published", [](auto c, auto k) { return normalized_meder2018(c, k); }),
 };
 
-// erf variants (SPEC §2).
+// erf variants (docs/references.md).
 struct ErfVariant {
   std::string_view id;
   std::string_view source;
@@ -245,9 +245,9 @@ struct ErfVariant {
   double (*f64)(double x);
 };
 inline constexpr ErfVariant erf_variants[] = {
-    {"listing5", "Tokuyoshi 2022 supplementary Listing 5 (seed 000)", [](float x) { return erf_listing5(x); },
+    {"listing5", "[Tokuyoshi2022] supplementary Listing 5", [](float x) { return erf_listing5(x); },
      [](double x) { return erf_listing5(x); }},
-    {"as7125", "Abramowitz & Stegun 7.1.25, claimed |error| <= 2.5e-5 (seed 002)",
+    {"as7125", "[AS1964] 7.1.25, claimed |error| <= 2.5e-5",
      [](float x) { return erf_abramowitz_stegun(x); }, [](double x) { return erf_abramowitz_stegun(x); }},
     {"std", "platform std::erf", [](float x) { return std::erf(x); }, [](double x) { return std::erf(x); }},
 };

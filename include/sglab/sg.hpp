@@ -1,6 +1,6 @@
 // sglab/sg.hpp — spherical Gaussian primitives.
 //
-// G(ω; v, κ) = exp(κ(ω·v − 1)), κ ≥ 0, |v| = 1 (unit amplitude; SPEC §1).
+// G(ω; v, κ) = exp(κ(ω·v − 1)), κ ≥ 0, |v| = 1 (unit amplitude; docs/quantities.md).
 // Every function here is sglab's own and is finite and non-negative for all
 // finite κ ≥ 0 and cosines in [−1, 1].
 #pragma once
@@ -65,12 +65,12 @@ template <class T> T sphere_integral_scaled(const T& m, const T& x) {
 // through the largest finite κ (where 2π/κ is still a normal number).
 template <class T> T sphere_integral(const T& kappa) { return detail::sphere_integral_scaled(T(1), kappa); }
 
-// The large-κ approximation 2π/κ of S(κ) (seed 001 "ApproximateSGIntegral").
+// The large-κ approximation 2π/κ of S(κ) ([Pettineo2016] "ApproximateSGIntegral").
 // Infinite at κ = 0: callers that need κ → 0 use sphere_integral.
 template <class T> T sphere_integral_approx(const T& kappa) { return two_pi_v<T>() / kappa; }
 
 // Product of two SGs: G(ω; v1, κ1) G(ω; v2, κ2) = e^{logAmp} G(ω; v3, κ3)
-// with κ3 = |κ1 v1 + κ2 v2| (seed 000 Eq. 1).
+// with κ3 = |κ1 v1 + κ2 v2| ([Tokuyoshi2022] Eq. 1).
 template <class T> struct SGLobe {
   Vec3<T> axis;
   T sharpness;
@@ -80,7 +80,7 @@ template <class T> struct SGLobe {
 // The log-amplitude κ3 − κ1 − κ2 cancels catastrophically when κ1 or κ2 is
 // large. Since κ3² = (κ1 + κ2)² − κ1κ2|v1 − v2|²,
 //   κ3 − κ1 − κ2 = −κ1κ2|v1 − v2|² / (κ3 + κ1 + κ2),
-// a sum of non-negative terms (equivalent to seed 000 Eq. 2). The axis of a
+// a sum of non-negative terms (equivalent to [Tokuyoshi2022] Eq. 2). The axis of a
 // zero-sharpness product (opposite axes, equal κ) is taken as v1.
 template <class T>
 SGLobe<T> sg_product(const Vec3<T>& v1, const T& kappa1, const Vec3<T>& v2, const T& kappa2) {
@@ -167,7 +167,7 @@ template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T&
   return exp(p.log_amplitude) * detail::sphere_integral_scaled(p.scale, p.sharpness_scaled);
 }
 
-// Iwasaki et al. 2012 approximate product integral (seed 004 §3.2):
+// Iwasaki et al. 2012 approximate product integral ([Tokuyoshi2015] supplemental §3.2):
 // ∫ G1 G2 dω ≈ 2π G(c; κ1κ2/(κ1 + κ2)) / (κ1 + κ2). Both κ = 0 gives 0/0;
 // the approximation is meant for κ1 + κ2 ≫ 1 and returns +inf there.
 template <class T> T sg_inner_product_iwasaki(const T& cosine, const T& kappa1, const T& kappa2) {
