@@ -33,6 +33,7 @@
 
 #include "minimax.hpp"
 #include "reference.hpp"
+#include "constants_io.hpp"
 #include "targets.hpp"
 
 namespace sglab::fit {
@@ -449,8 +450,10 @@ ordered_json coefficients_json(const MemberFit& f) {
 
 // The committed set `variant` as start values, if it exists with the member's shape.
 std::optional<std::vector<double>> committed(const std::string& variant, Member m) {
-  const auto path = std::filesystem::path(SGLAB_SOURCE_DIR) / "data" / "constants" /
-                    fmt::format("sglab-accurate-{}.json", variant);
+  // Warm start from the project around the working directory, if any.
+  const auto root = find_project_root(std::filesystem::current_path());
+  if (!root) return std::nullopt;
+  const auto path = *root / "data" / "constants" / fmt::format("sglab-accurate-{}.json", variant);
   std::ifstream in(path);
   if (!in) return std::nullopt;
   try {

@@ -184,7 +184,10 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
 
 // The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
 std::optional<std::vector<double>> committed_start(const std::string& variant, double lo, double hi) {
-  const auto path = default_constants_dir() / fmt::format("sglab-fast-{}.json", variant);
+  // Warm start from the project around the working directory, if any.
+  const auto root = find_project_root(std::filesystem::current_path());
+  if (!root) return std::nullopt;
+  const auto path = *root / "data" / "constants" / fmt::format("sglab-fast-{}.json", variant);
   if (!std::filesystem::exists(path)) return std::nullopt;
   try {
     const auto set = ordered_json::parse(io::read_file(path));

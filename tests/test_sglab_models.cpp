@@ -268,7 +268,7 @@ TEST(MethodsCommand, JsonListsEveryRegisteredMethod) {
     for (const auto& set : e["constants"]) {
       // Every constant set named is one that the generated header defines (its JSON exists).
       bool found = false;
-      for (const auto& file : std::filesystem::directory_iterator(std::filesystem::path(SGLAB_SOURCE_DIR) / "data" / "constants"))
+      for (const auto& file : std::filesystem::directory_iterator(std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants"))
         found = found || nlohmann::json::parse(std::ifstream(file.path()))["cpp_name"] == set;
       EXPECT_TRUE(found) << m.id << ": constant set " << set << " not in data/constants";
     }

@@ -51,10 +51,9 @@ template <class T> T max_of(const T& a, const T& b) { return a < b ? b : a; }
 template <class T> T upper_over_two_pi_fast(const T& kappa) {
   using std::exp;
   constexpr std::size_t terms = std::is_same_v<T, float> ? 6 : 12;
-  const auto& c = kUpperSeries.c;  // closed_forms.hpp: (−1)^m/(m + 2)!
   const T ks = min_of(kappa, T(0.25)), kc = max_of(kappa, T(0.25));
-  T series = T(c[terms - 1]);
-  for (std::size_t m = terms - 1; m-- > 0;) series = series * ks + T(c[m]);
+  // closed_forms.hpp: Σ_{m<terms} (−κ)^m/(m + 2)!, Horner unrolled at compile time.
+  const T series = sglab::detail::pole_series<false>(ks, std::make_index_sequence<terms - 1>{});
   const T r = T(1) / kc;
   // e^{−κ} < 2e−35 beyond κ = 80, far below the precision of 1 − e^{−κ}: the
   // argument stops there, so exp never underflows to a denormal or takes its
