@@ -79,7 +79,8 @@ std::string q(std::string_view s) { return validate::quote_escaped(s); }
 }
 
 // Member lengths as params.hpp writes them: cond := sum ['>' sum '?' cond ':' cond],
-// sum := atom {('+' | '-') atom}, atom := integer | size parameter.
+// sum := product {('+' | '-') product}, product := primary {'*' primary},
+// primary := atom | '(' cond ')', atom := integer | size parameter.
 class LengthExpression {
  public:
   LengthExpression(std::string_view text, const std::map<std::string, long long, std::less<>>& vars)
@@ -116,15 +117,30 @@ class LengthExpression {
     if (it == vars_.end()) return std::nullopt;
     return it->second;
   }
+  std::optional<long long> primary() {
+    if (!eat('(')) return atom();
+    auto v = cond();
+    if (!v || !eat(')')) return std::nullopt;
+    return v;
+  }
+  std::optional<long long> product() {
+    auto v = primary();
+    while (v && eat('*')) {
+      auto r = primary();
+      if (!r) return std::nullopt;
+      *v *= *r;
+    }
+    return v;
+  }
   std::optional<long long> sum() {
-    auto v = atom();
+    auto v = product();
     while (v) {
       if (eat('+')) {
-        auto r = atom();
+        auto r = product();
         if (!r) return std::nullopt;
         *v += *r;
       } else if (eat('-')) {
-        auto r = atom();
+        auto r = product();
         if (!r) return std::nullopt;
         *v -= *r;
       } else {

@@ -192,23 +192,6 @@ inline constexpr Meder2018Params<double> meder2018_published{
     .sharpness = 0.0315,
     .offset = 31.7003};
 
-// sglab-fast / float: E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
-//   objective: minimax of the sglab_fast irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; start: the committed set (polish)
-//   precision: float
-//   kappa_range: [0.001,10000.0]
-//   grid: {"kappa_count":56,"cosine_count":161}
-//   achieved: {"objective":0.002413371443434366,"training_max_peak_rel_float":0.0024134465702215736,"per_kappa_floor":0.0013453413589298423,"held_out_grid":"211 log-spaced kappa x 401 uniform cosines over [0.001, 10000]","held_out_max_peak_rel_float":0.0025410964246690595,"held_out_max_peak_rel_double":0.002541164308530491,"held_out_worst":[0.7356422544596414,-1.0],"standard_max_peak_rel_float":0.0025206787972312304,"standard_max_peak_rel_double":0.002520679034431741}
-//   command: sglab fit sglab-fast
-//   tool: sglab 0.1.0
-//   date: 2026-12-01
-inline constexpr SglabFastParams<double> sglab_fast_float{
-    .a = {11339.644848432306, 757.3676839393171, -90.29049456780528, 3.2842345263239556, -0.0031654732598818216},
-    .b = {540.7840065476308, 4363.174531270498, -399.9444629510631, 9.61190775041535, -0.006414011472768718},
-    .c = {53278.20653365882, 12753.53014431459, 6188.721349594042, 33.47805625981652, 0.04650715457848442},
-    .v = {-209.4749786563194, 3556.6413262507676, 3908.9211933921056, 372.1395417530533, 10.888404463482445},
-    .q = {21324.63102351751, 16992.16644563528, 6535.45152016298, 388.8635128491773},
-    .kappa_max = 10000.0};
-
 // sglab-accurate / acc1: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
 //   objective: minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) on a training grid of 72 kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 offset cosines, c = +-z_k/t, z_k = 0.1..3.1), 3020 points in all, kappa in [0.001, 10000]
 //   precision: float
@@ -250,6 +233,23 @@ inline constexpr SglabAccParams<double, 3, 3> sglab_accurate_acc3{
     .steep = {1.5117525513611225, 9.12198552583342, 3.5163587942726533, 10.36875620331705, 40.837773965786475},
     .num = {0.05220013687927748, -0.23538099011859298, -0.01771641002276978, 3.1491971268957345e-05, -0.5286668839824281, -0.3155389845367718, -0.006093462052665905, -7.376426455453398e-05, -0.48325863032797717, -0.19820669753676298, 0.007287674810501263, -6.295198446268567e-06},
     .den = {141.54344012644268, 4.2032333575114684e-17, 6.838630454515482e-18}};
+
+// sglab-fast / float: E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
+//   objective: minimax of the sglab_fast irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; start: the committed set (polish)
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":56,"cosine_count":161}
+//   achieved: {"objective":0.002413371443434366,"training_max_peak_rel_float":0.0024134465702215736,"per_kappa_floor":0.0013453413589298423,"held_out_grid":"211 log-spaced kappa x 401 uniform cosines over [0.001, 10000]","held_out_max_peak_rel_float":0.0025410964246690595,"held_out_max_peak_rel_double":0.002541164308530491,"held_out_worst":[0.7356422544596414,-1.0],"standard_max_peak_rel_float":0.0025206787972312304,"standard_max_peak_rel_double":0.002520679034431741}
+//   command: sglab fit sglab-fast
+//   tool: sglab 0.1.0
+//   date: 2026-12-01
+inline constexpr SglabFastParams<double> sglab_fast_float{
+    .a = {11339.644848432306, 757.3676839393171, -90.29049456780528, 3.2842345263239556, -0.0031654732598818216},
+    .b = {540.7840065476308, 4363.174531270498, -399.9444629510631, 9.61190775041535, -0.006414011472768718},
+    .c = {53278.20653365882, 12753.53014431459, 6188.721349594042, 33.47805625981652, 0.04650715457848442},
+    .v = {-209.4749786563194, 3556.6413262507676, 3908.9211933921056, 372.1395417530533, 10.888404463482445},
+    .q = {21324.63102351751, 16992.16644563528, 6535.45152016298, 388.8635128491773},
+    .kappa_max = 10000.0};
 
 // steepness2022 / irradiance: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: minimax of the tokuyoshi2022 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
