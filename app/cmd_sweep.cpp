@@ -44,6 +44,9 @@ bool parse_int(std::string_view s, int& out) {
 void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
   validate::KappaRangeRules rules;
   rules.with_count = true;
+  // N is bounded by the grid's size limit (SweepGrid::validate, which says the
+  // memory a refused grid would need), not by the parser's default cap.
+  rules.max_count = std::numeric_limits<int>::max();
   const auto parsed = validate::parse_kappa_range(text, rules);
   if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
   const auto& r = std::get<validate::KappaRange>(parsed);
