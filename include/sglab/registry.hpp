@@ -187,11 +187,13 @@ inline constexpr Method irradiance_methods[] = {
                         Origin::refit),
     // sglab's own models (fitted by `sglab fit`), with their per-light split.
     detail::with_light_split(
-        detail::make_method("sglab_fast",
-                            "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational A, B, C, V in κ "
-                            "(sglab_cheap.hpp)",
-                            "sglab_fast_float", [](auto c, auto k) { return irradiance_sglab_fast(c, k); },
-                            Origin::sglab),
+        detail::with_batch32(
+            detail::make_method("sglab_fast",
+                                "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational A, B, C, V in κ "
+                                "(sglab_cheap.hpp)",
+                                "sglab_fast_float", [](auto c, auto k) { return irradiance_sglab_fast(c, k); },
+                                Origin::sglab),
+            [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_fast_batch(c, k, o, n); }),
         [](float kappa, float* state) {
           const SglabFastLight<float> l = sglab_fast_light(kappa);
           state[0] = l.a, state[1] = l.b, state[2] = l.c_ramp, state[3] = l.v;

@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "branch_free.hpp"
 #include "closed_forms.hpp"
 #include "constants.hpp"
 #include "math.hpp"
@@ -99,14 +100,43 @@ template <class T, class S = double>
 SglabFastLight<T> sglab_fast_light(const T& kappa, const SglabFastParams<S>& p = constants::sglab_fast_float) {
   const T k = detail::min_of(kappa, T(p.kappa_max));
   const T inv_q = T(1) / (horner(k, p.q) + k * k * k * k);
-  const T scale = two_pi_v<T>() * detail::upper_over_two_pi_fast(kappa) * inv_q;
-  return {horner(k, p.a) * scale, horner(k, p.b) * scale, horner(k, p.c) * scale, horner(k, p.v) * inv_q};
+  // A, B, C are O(1) after the division; E(1, κ) ≈ 2π/κ is applied last, so
+  // nothing underflows before it even at κ near the largest float.
+  const T e1 = two_pi_v<T>() * detail::upper_over_two_pi_fast(kappa);
+  return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.c) * inv_q * e1,
+          horner(k, p.v) * inv_q};
 }
 
 // Per-shading-point evaluation.
 template <class T> T sglab_fast_eval(const SglabFastLight<T>& light, const T& cosine) {
   return detail::max0_branchless(light.a + light.b * cosine +
                                  light.c_ramp * detail::sglab_ramp(light.v * cosine + T(0.5)));
+}
+
+// The same setup in float without branches or library calls (branch_free.hpp:
+// exp_bf within 2 ulp of expf, selects instead of comparisons), so that a batch
+// loop vectorizes. Identical algebra to sglab_fast_light.
+template <class S>
+SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kappa, const SglabFastParams<S>& p) {
+  namespace bf = branch_free;
+  const float k = bf::min(kappa, float(p.kappa_max));
+  const float inv_q = 1.0f / (horner(k, p.q) + k * k * k * k);
+  // Ē(1, κ): the series below ¼, (1 − (1 − e^{−κ})/κ)/κ above (upper_over_two_pi_fast).
+  const float ks = bf::min(kappa, 0.25f), kc = bf::max(kappa, 0.25f);
+  const float series = sglab::detail::pole_series<false>(ks, std::make_index_sequence<5>{});
+  const float r = 1.0f / kc;
+  const float closed = (1.0f - (1.0f - bf::exp_bf(-bf::min(kc, 80.0f))) * r) * r;
+  const float e1 = two_pi_v<float>() * bf::select(kappa < 0.25f, series, closed);
+  return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.c) * inv_q * e1,
+          horner(k, p.v) * inv_q};
+}
+
+// Float batch of `sglab_fast` that vectorizes (tests/test_sglab_cheap.cpp
+// compares it with the scalar path).
+template <class S = double>
+void irradiance_sglab_fast_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
+                                 std::size_t n, const SglabFastParams<S>& p = constants::sglab_fast_float) {
+  for (std::size_t i = 0; i < n; ++i) out[i] = sglab_fast_eval(sglab_fast_light_branch_free(kappa[i], p), cosine[i]);
 }
 
 // `sglab_fast`: Ê(c, κ), the two steps above in one call.
