@@ -74,8 +74,7 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target, c
 
 const std::vector<std::string>& fit_targets() {
   static const std::vector<std::string> targets = {"clamped-cosine", "steepness2022", "steepness2024", "erf",
-                                                   "lambda-d",       "sglab-fast"};
-                                                   "lambda-d", "sglab-accurate"};
+                                                   "lambda-d",       "sglab-fast",    "sglab-accurate"};
   return targets;
 }
 
