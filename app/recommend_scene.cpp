@@ -55,7 +55,7 @@ void recommend_scene(const SceneRecommendArgs& args) {
   for (const Method& m : irradiance_methods) {
     validate::MethodPoint p;
     p.method = std::string(m.id);
-    p.refit = m.origin == Origin::refit;
+    p.origin = m.origin;
     p.max_peak_rel = validate::scene_relative_error(validate::scene_irradiance(scene, normals, m, args.precision), exact);
     points.push_back(p);
     origins.push_back(m.origin);
