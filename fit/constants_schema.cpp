@@ -102,6 +102,11 @@ class LengthExpression {
   }
   std::optional<long long> atom() {
     skip();
+    if (eat('(')) {
+      auto v = cond();
+      if (!v || !eat(')')) return std::nullopt;
+      return v;
+    }
     const std::size_t start = pos_;
     while (pos_ < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_')) ++pos_;
     const std::string_view token = text_.substr(start, pos_ - start);
@@ -116,15 +121,25 @@ class LengthExpression {
     if (it == vars_.end()) return std::nullopt;
     return it->second;
   }
-  std::optional<long long> sum() {
+  // a * b * …: sizes such as N * (D + 1).
+  std::optional<long long> product() {
     auto v = atom();
+    while (v && eat('*')) {
+      auto r = atom();
+      if (!r) return std::nullopt;
+      *v *= *r;
+    }
+    return v;
+  }
+  std::optional<long long> sum() {
+    auto v = product();
     while (v) {
       if (eat('+')) {
-        auto r = atom();
+        auto r = product();
         if (!r) return std::nullopt;
         *v += *r;
       } else if (eat('-')) {
-        auto r = atom();
+        auto r = product();
         if (!r) return std::nullopt;
         *v -= *r;
       } else {
