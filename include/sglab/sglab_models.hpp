@@ -145,7 +145,7 @@ SGLAB_FORCE_INLINE T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosin
 // by at most that, i.e. ≤ 6e−7 of the peak E(1, κ), plus float rounding;
 // tests/test_branch_free.cpp holds it to 1e−6 of the peak.
 template <class S, std::size_t N, std::size_t D>
-void irradiance_sglab_acc_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
+SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
                                 std::size_t n, const SglabAccParams<S, N, D>& p) {
   for (std::size_t i = 0; i < n; ++i)
     out[i] = sglab_acc_eval(sglab_acc_setup_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
