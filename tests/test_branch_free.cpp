@@ -190,6 +190,53 @@ TEST(Tokuyoshi2024Batch, PeakRelAgainstReferenceUnchanged) {
   EXPECT_LE(std::abs(worst_batch - worst_scalar), 1e-6);
 }
 
+// sglab's accurate models: the same vectorizing kernel (one implementation of
+// the model, sglab_acc_eval, with branch_free.hpp's exp/expm1/erfc). erfc_bf
+// is within 6e−7 absolute and an erfc error e moves the lerp factor by at most
+// e, so the batch stays within 1e−6 of the peak of the scalar double path.
+TEST(SglabAccBatch, MatchesDoubleWithinOneMillionthOfPeak) {
+  for (const char* id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"}) {
+    const sglab::Method* m = sglab::find_method(sglab::irradiance_methods, id);
+    ASSERT_TRUE(m && m->batch32);
+    check_batch_against_double(*m);
+  }
+}
+
+// Against the reference engine: sglab_acc3's float batch keeps its accuracy
+// target 3.5e−5 of the peak over the standard grid and 8192 random points
+// (κ log-uniform in [1e−3, 1e4]), and its max error is the scalar float
+// path's to within 1e−6.
+TEST(SglabAccBatch, Acc3KeepsItsAccuracyAgainstTheReference) {
+  const auto& engine = sglab::validate::reference_engine();
+  std::vector<sglab::validate::Query> q;
+  for (double kappa : sglab::test::standard_kappas())
+    for (double cosine : sglab::test::standard_cosines())
+      q.push_back({static_cast<double>(static_cast<float>(kappa)), static_cast<double>(static_cast<float>(cosine))});
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 8192; ++i)
+    q.push_back({static_cast<double>(static_cast<float>(std::pow(10.0, -3 + 7 * u(rng)))),
+                 static_cast<double>(static_cast<float>(-1 + 2 * u(rng)))});
+  const auto ref = engine.evaluate(q);
+  std::vector<float> c, k, out(q.size());
+  for (const auto& p : q) {
+    c.push_back(static_cast<float>(p.cosine));
+    k.push_back(static_cast<float>(p.kappa));
+  }
+  const auto* m = sglab::find_method(sglab::irradiance_methods, "sglab_acc3");
+  ASSERT_TRUE(m);
+  m->batch32(c.data(), k.data(), out.data(), q.size());
+  double worst_batch = 0, worst_scalar = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const double peak = sglab::irradiance_upper(q[i].kappa);
+    worst_batch = std::max(worst_batch, std::abs(out[i] - ref[i].irradiance) / peak);
+    worst_scalar = std::max(worst_scalar, std::abs(m->f32(c[i], k[i]) - ref[i].irradiance) / peak);
+  }
+  std::printf("sglab_acc3 vs reference: batch %.4g, scalar float %.4g\n", worst_batch, worst_scalar);
+  EXPECT_LE(worst_batch, 3.5e-5);
+  EXPECT_LE(std::abs(worst_batch - worst_scalar), 1e-6);
+}
+
 // The per-light split equals the plain float evaluation (the same operations
 // in the same order) for every method that has it.
 TEST(LightSplit, EvalOfSetupEqualsPlainFloat) {

@@ -374,3 +374,90 @@ TEST(ShaderExport, SweepWithoutAVulkanDriver) {
   EXPECT_EQ(precisions, (std::vector<std::string>{"float", "double"}));
   fs::remove_all(dir);
 }
+
+// ---------------------------------------------------------------------------
+// sglab's own models.
+
+// sglab_acc3 is accurate to ~3e-5 of the peak, so its export must carry an
+// erfc good to 1/100 of that: the exporter picks the `listing5` tier, whose
+// measured float erfc error is below 3e-7 (an erfc error e moves the lerp
+// factor by at most e, i.e. the result by at most e of the peak).
+TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
+  const sh::ErrorBudget b = sh::runtime_budget("sglab_acc3");
+  ASSERT_TRUE(b.model.has_value());
+  EXPECT_NEAR(*b.model, 3.05e-5, 0.05e-5);
+  const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::glsl, "sglab_acc3"));
+  EXPECT_EQ(ex.tier.id, "listing5");
+  EXPECT_LE(ex.budget.elementary.erfc_abs, *b.model / 100);
+  EXPECT_LE(ex.budget.elementary.erfc_abs, 3e-7);
+}
+
+// --constants for the sglab parameter types: a set of the method's type
+// replaces the compiled-in one. With every correction numerator 0 the model
+// is [Tokuyoshi2024] with the set's steepness, computed here by the runtime.
+TEST(ShaderExport, SglabAccConstantsOverride) {
+  const fs::path dir = temp_dir("sglab_acc_override");
+  const fs::path src = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-accurate-acc3.json";
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(std::ifstream(src));
+  for (auto& x : j["coefficients"]["num"]) x = 0.0;
+  j["cpp_name"] = "sglab_acc3_no_correction";
+  const fs::path file = dir / "no_correction.json";
+  std::ofstream(file) << j.dump(2);
+  const auto r = run_sglab({"export", "--lang", "cpp", "--method", "sglab_acc3", "--constants", file.string()}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("sglab_acc3_no_correction"), std::string::npos);
+  const Grid g = standard_grid();
+  const auto values = run_cpp_export(r.output, "sglab_irradiance_sglab_acc3", g, dir);
+  ASSERT_EQ(values.size(), g.kappa.size());
+  std::vector<double> steep;
+  for (const auto& x : j["coefficients"]["steep"]) steep.push_back(x.get<double>());
+  const sglab::Steepness2024Params<double> p{steep[0], steep[1], steep[2], steep[3], steep[4]};
+  double worst = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double k = g.kappa[i], c = g.cosine[i];
+    const double want = sglab::irradiance_tokuyoshi2024(c, k, p);
+    worst = std::max(worst, std::fabs(values[i] - want) / sglab::irradiance_upper(k));
+  }
+  EXPECT_LE(worst, 2e-6);
+  // …and the compiled-in acc3 (with its correction) is measurably different.
+  const sglab::Method* acc3 = sglab::find_method(sglab::irradiance_methods, "sglab_acc3");
+  ASSERT_TRUE(acc3);
+  EXPECT_GT(deviation(*acc3, g, values).exported, 1e-4);
+  // A set of another SglabAccParams shape is refused, naming its type.
+  const fs::path acc1 = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-accurate-acc1.json";
+  const auto bad = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--constants", acc1.string()});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 2>"), std::string::npos) << bad.output;
+  // sglab_fast reads its own committed set.
+  const fs::path fast = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-fast-float.json";
+  const auto rf = run_sglab({"export", "--lang", "cpp", "--method", "sglab_fast", "--constants", fast.string()}, false);
+  ASSERT_EQ(rf.exit_code, 0) << rf.output;
+  const auto fv = run_cpp_export(rf.output, "sglab_irradiance_sglab_fast", g, dir);
+  const sglab::Method* fm = sglab::find_method(sglab::irradiance_methods, "sglab_fast");
+  ASSERT_TRUE(fm);
+  const Deviation d = deviation(*fm, g, fv);
+  EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance);
+  fs::remove_all(dir);
+}
+
+// `sglab sweep --backend vulkan`: sglab_acc3 on the device within a few
+// percent of its C++ float error (3.05e-5 on the standard grid), and within
+// float noise of the C++ float runtime at every point.
+TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
+  const fs::path dir = temp_dir("sweep_acc3");
+  const auto r = run_sglab(
+      {"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--out", dir.string(), "--json"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  double cpu_float = NAN, glsl = NAN, hlsl = NAN;
+  for (const auto& rec : doc.at("results")) {
+    if (rec.at("method") != "sglab_acc3") continue;
+    if (rec.at("precision") == "float") cpu_float = rec.at("max_peak_rel");
+    if (rec.at("precision") == "vulkan") glsl = rec.at("max_peak_rel");
+    if (rec.at("precision") == "vulkan_hlsl") hlsl = rec.at("max_peak_rel");
+  }
+  EXPECT_NEAR(cpu_float, 3.05e-5, 0.05e-5);
+  EXPECT_NEAR(glsl, cpu_float, 0.03 * cpu_float);
+  EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
+  fs::remove_all(dir);
+}

@@ -98,6 +98,24 @@ ConstantSet named(std::string cpp_name, const AbramowitzStegunParams<double, N>&
           {}};
 }
 
+ConstantSet named(std::string cpp_name, const SglabFastParams<double>& p) {
+  const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
+  return {"SglabFastParams<double>",
+          std::move(cpp_name),
+          {{"a", vec(p.a)}, {"b", vec(p.b)}, {"c", vec(p.c)}, {"v", vec(p.v)}, {"q", vec(p.q)}, {"kappa_max", {p.kappa_max}}},
+          {},
+          {}};
+}
+template <std::size_t N, std::size_t D>
+ConstantSet named(std::string cpp_name, const SglabAccParams<double, N, D>& p) {
+  const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
+  return {fmt::format("SglabAccParams<double, {}, {}>", N, D),
+          std::move(cpp_name),
+          {{"steep", vec(p.steep)}, {"num", vec(p.num)}, {"den", vec(p.den)}},
+          {},
+          {}};
+}
+
 #define SGLAB_SET(name) named(#name, constants::name)
 
 const std::vector<double>& member(const ConstantSet& set, std::string_view name) {
@@ -359,7 +377,7 @@ std::string helper_product(const Ctx& c, const Slots&) {
   if (!(m > 0.0f)) return {VEC3}(0.0f, 0.0f, 1.0f);
   float ks = kappa / m;
   float ls = lambda / m;
-  float diff = ks - ls;
+  float diff = (kappa - lambda) / m;  // exact where kappa - lambda cancels (Sterbenz)
   float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
   float kmin = min(kappa, lambda);
   float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
@@ -445,14 +463,20 @@ std::string helper_lerp2024(const Ctx& c, const Slots&) {
 }
 
 std::string helper_meder2018(const Ctx& c, const Slots&) {
-  return subst(R"(// [Meder2018] logistic normalized hemispherical integral s = 1/(1 + e^(-t(kappa) c)),
-// t(kappa) = sqrt(kappa) (a2 kappa^2 + a1 kappa)/(kappa^2 + b1 kappa + b0), as published.
-{INLINE}float {P}hemispherical(float c, float kappa) {
+  return subst(R"(// [Meder2018] normalized logistic hemispherical integral, t(kappa) = sqrt(kappa) (a2 kappa^2 + a1 kappa)/
+// (kappa^2 + b1 kappa + b0) as published, s = sigma(t c) (1 - e^(-t(1+c)))/(1 - e^(-t)), evaluated as
+// sglab/hemispherical.hpp normalized_meder2018: sigma from e^(-t|c|), the ratio as
+// (1 + c) E(-t(1+c))/E(-t) with E(x) = (e^x - 1)/x (no 0/0 at t = 0).
+{INLINE}float {P}hemispherical(float cosine, float kappa) {
   float t = sqrt(kappa) * ({P}meder_a2 * kappa * kappa + {P}meder_a1 * kappa) /
             (kappa * kappa + {P}meder_b1 * kappa + {P}meder_b0);
-  float s = 1.0f / (1.0f + exp(-t * c));
-  float e = exp(-kappa);
-  return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float e = exp(-(t * abs(c)));
+  float sigma = c < 0.0f ? e / (1.0f + e) : 1.0f / (1.0f + e);
+  float u = 1.0f + c;
+  float s = clamp(sigma * (u * ({P}expm1_over_x(-(t * u)) / {P}expm1_over_x(-t))), 0.0f, 1.0f);
+  float em = exp(-kappa);
+  return 6.28318548f * (em + s * (1.0f - em)) * {P}expm1_over_x(-kappa);
 }
 )",
                c);
@@ -476,6 +500,115 @@ std::string helper_hill(const Ctx& c, const Slots&) {
   return scale * y + bias;
 }
 )",
+               c);
+}
+
+// The number of correction terms N and the degree D of an SglabAccParams set
+// (from its member sizes: steep 5, num N (D + 1), den D).
+std::pair<std::size_t, std::size_t> sglab_acc_shape(const ConstantSet& s) {
+  const std::size_t d = member(s, "den").size(), n = member(s, "num").size() / (d + 1);
+  if (d == 0 || n == 0 || member(s, "num").size() != n * (d + 1) || member(s, "steep").size() != 5)
+    throw std::invalid_argument(fmt::format("constant set {}: member sizes do not form SglabAccParams", s.cpp_name));
+  return {n, d};
+}
+
+std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
+  const auto s = names(c, "model", slot(slots, "model"), "steep");
+  return subst(fmt::format(R"(// t(kappa) = kappa sqrt(0.5((kappa + s0) kappa + s1)/(((kappa + s2) kappa + s3) kappa + s4))
+// ([Tokuyoshi2024] Listing 7 form, sglab's coefficients), in powers of 1/kappa for kappa >= 1.
+{{INLINE}}float {{P}}steepness(float kappa) {{
+  if (kappa < 1.0f)
+    return kappa * sqrt(0.5f * ((kappa + {0}) * kappa + {1}) / (((kappa + {2}) * kappa + {3}) * kappa + {4}));
+  float r = 1.0f / kappa;
+  return sqrt(kappa) * sqrt(0.5f * (1.0f + ({0} + {1} * r) * r) / (1.0f + ({2} + ({3} + {4} * r) * r) * r));
+}}
+)",
+                           s[0], s[1], s[2], s[3], s[4]),
+               c);
+}
+
+// sglab_acc<N>: b_j(kappa) = num_j(kappa)/den(kappa), for kappa >= 1 in powers of
+// 1/kappa (sglab_models.hpp sglab_acc_rational), and sum_j b_j z2^j.
+std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto [n, d] = sglab_acc_shape(set);
+  const auto num = names(c, "model", set, "num"), den = names(c, "model", set, "den");
+  std::vector<std::string> den_small(den.begin(), den.end()), den_large{"1.0f"};
+  den_small.push_back("1.0f");
+  for (std::size_t i = d; i-- > 0;) den_large.push_back(den[i]);
+  std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
+// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
+{{INLINE}}float {{P}}correction(float kappa, float z2) {{
+  float x = kappa < 1.0f ? kappa : 1.0f / kappa;
+  float inv = 1.0f / (kappa < 1.0f ? {} : {});
+)",
+                                 d, horner_text("x", den_small), horner_text("x", den_large));
+  std::vector<std::string> b;
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<std::string> small(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
+    std::vector<std::string> large(small.rbegin(), small.rend());
+    text += fmt::format("  float b{} = (kappa < 1.0f ? {} : {}) * inv;\n", j, horner_text("x", small),
+                        horner_text("x", large));
+    b.push_back(fmt::format("b{}", j));
+  }
+  text += fmt::format("  return {};\n}}\n", horner_text("z2", b));
+  return subst(text, c);
+}
+
+std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
+  return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
+// Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
+// with sglab's fitted even correction (sglab/sglab_models.hpp). Where e^(-z^2) has underflowed
+// the correction is 0 (its polynomial would overflow first for huge kappa).
+{INLINE}float {P}lerp_factor(float cosine, float kappa, float t) {
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float tz = t * c;
+  float z2 = tz * tz;
+  float x = t * t * (c * c - 1.0f);
+  float g = exp(-z2);
+  float tail = t > 0.0f ? g * (x * {P}expm1_over_x(x)) / t : 0.0f;
+  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail;
+  float corr = g > 0.0f ? (1.0f - c * c) * g * {P}correction(kappa, z2) : 0.0f;
+  return clamp(f + corr, 0.0f, 1.0f);
+}
+)",
+               c);
+}
+
+std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_cheap.hpp
+  {
+    const auto all = pole_series(false);
+    series.assign(all.begin(), all.begin() + 6);
+  }
+  return subst(fmt::format(R"(// E(1, kappa)/2 pi = (kappa - 1 + e^-kappa)/kappa^2: Taylor series below kappa = 1/4,
+// (1 - (1 - e^-kappa)/kappa)/kappa from there on, e^-kappa's argument stopped at 80
+// (sglab/sglab_cheap.hpp upper_over_two_pi_fast).
+{{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
+  if (kappa < 0.25f) return {0};
+  float r = 1.0f / kappa;
+  return (1.0f - (1.0f - exp(-min(kappa, 80.0f))) * r) * r;
+}}
+// The C2 ramp rho(u) = 0 | u^3 (2 - u) | 2u - 1 on u <= 0 | (0, 1) | u >= 1, branch-free.
+{{INLINE}}float {{P}}ramp(float u) {{
+  float over = abs(u - 1.0f);
+  float v = 0.5f * (abs(u) - over + 1.0f);
+  return v * v * v * (2.0f - v) + (u - 1.0f + over);
+}}
+// sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
+// k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_cheap.hpp).
+{{INLINE}}float {{P}}fast(float cosine, float kappa) {{
+  float k = min(kappa, {1});
+  float inv_q = 1.0f / ({2} + k * k * k * k);
+  float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
+  float s = {3} * scale + {4} * scale * cosine + {5} * scale * {{P}}ramp({6} * inv_q * cosine + 0.5f);
+  return 0.5f * (s + abs(s));
+}}
+)",
+                           horner_text("kappa", literals(series)), names(c, "model", set, "kappa_max")[0],
+                           poly("q"), poly("a"), poly("b"), poly("c"), poly("v")),
                c);
 }
 
@@ -511,12 +644,14 @@ constexpr std::string_view kBodyTokuyoshi2024 = R"(  float f = {P}lerp_factor(co
   float up = {P}upper_over_two_pi(kappa);
   return 6.28318548f * (lo + f * (up - lo));
 )";
-constexpr std::string_view kBodyWang2009 = R"(  float lambda = {P}cosine_lobe_lambda;
-  float d = sqrt(kappa * kappa + lambda * lambda + 2.0f * kappa * lambda * cosine);
-  float expo = exp(d - kappa - lambda) * {P}cosine_lobe_amplitude;
-  float other = 1.0f - exp(-2.0f * d);
-  return max(6.28318548f * expo * other / d, 0.0f);
+// [Wang2009] a e^{d - kappa - lambda} 2 pi (1 - e^{-2d})/d, d = |kappa v + lambda n|, through the
+// stable product (sglab/sg.hpp sg_inner_product): d - kappa - lambda without cancellation and
+// S(d) = 4 pi (e^{-2d} - 1)/(-2d) with its d -> 0 limit.
+constexpr std::string_view kBodyWang2009 = R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}cosine_lobe_lambda);
+  float s = 12.566371f * {P}expm1_over_x(-2.0f * prod.x);
+  return max({P}cosine_lobe_amplitude * (exp(prod.y) * s), 0.0f);
 )";
+const std::vector<Helper> kHelpersWang2009 = {helper_expm1, helper_product};
 constexpr std::string_view kBodyVsgl2015 = R"(  float sum = kappa + {P}diffuse_lobe_lambda_d;
   float lam = sum > 0.0f ? kappa * {P}diffuse_lobe_lambda_d / sum : 0.0f;
   return 6.28318548f * exp(lam * (cosine - 1.0f)) / sum;
@@ -526,6 +661,15 @@ const std::vector<Helper> kHelpers2022 = {helper_expm1, helper_erf, helper_steep
                                           helper_hemispherical2022};
 const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steepness2024, helper_poles2024,
                                           helper_lerp2024};
+
+constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, kappa, {P}steepness(kappa));
+  float lo = {P}lower_over_two_pi(kappa);
+  float up = {P}upper_over_two_pi(kappa);
+  return 6.28318548f * (lo + f * (up - lo));
+)";
+const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
+                                              helper_sglab_acc_steepness, helper_poles2024,
+                                              helper_sglab_acc_correction, helper_sglab_acc_lerp};
 
 // THE table: one entry per exportable method. To add a method (e.g. one of
 // sglab's own models): append {id, citation, its constant slots as
@@ -539,7 +683,7 @@ const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steep
 const std::vector<ShaderMethod>& shader_methods() {
   static const std::vector<ShaderMethod> table = {
       {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
-       [] { return Slots{{"cosine_lobe", SGLAB_SET(cosine_lobe_published)}}; }, ErfUse::none, {}, kBodyWang2009},
+       [] { return Slots{{"cosine_lobe", SGLAB_SET(cosine_lobe_published)}}; }, ErfUse::none, kHelpersWang2009, kBodyWang2009},
       {"punctual", "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa", [] { return Slots{}; },
        ErfUse::none, {}, "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
       {"hill", "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
@@ -586,8 +730,20 @@ const std::vector<ShaderMethod>& shader_methods() {
        [] { return Slots{{"diffuse_lobe", SGLAB_SET(lambda_d_diffuse_lobe_irradiance)}}; }, ErfUse::none, {},
        kBodyVsgl2015},
       {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
-       [] { return Slots{{"cosine_lobe", SGLAB_SET(lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, {},
+       [] { return Slots{{"cosine_lobe", SGLAB_SET(lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
        kBodyWang2009},
+      {"sglab_fast", "sglab's cheap model: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_cheap.hpp)",
+       [] { return Slots{{"model", SGLAB_SET(sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
+       "  return {P}fast(cosine, kappa);\n"},
+      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_models.hpp)",
+       [] { return Slots{{"model", SGLAB_SET(sglab_accurate_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       kBodySglabAcc},
+      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_models.hpp)",
+       [] { return Slots{{"model", SGLAB_SET(sglab_accurate_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       kBodySglabAcc},
+      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_models.hpp)",
+       [] { return Slots{{"model", SGLAB_SET(sglab_accurate_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       kBodySglabAcc},
   };
   return table;
 }

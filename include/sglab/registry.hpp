@@ -121,6 +121,8 @@ template <const auto& P> constexpr Method make_sglab_acc(std::string_view id, st
                          Origin::sglab);
   m.light_setup32 = &SglabAccSplit<P>::setup;
   m.light_eval32 = &SglabAccSplit<P>::eval;
+  // Float batch that vectorizes (sglab_models.hpp irradiance_sglab_acc_batch).
+  m.batch32 = [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_acc_batch(c, k, o, n, P); };
   return m;
 }
 }  // namespace detail

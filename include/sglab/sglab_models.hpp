@@ -26,6 +26,9 @@
 //   sglab_acc3 (N = 3, D = 3) 3.15e−5  (tokuyoshi2024: 1.44e−3 refitted).
 // Cost (callgrind, float, instructions per call): 1.06×, 1.09×, 1.12× of
 // tokuyoshi2024; the same erfc/exp/expm1 calls, one extra division per light.
+// The float batch (irradiance_sglab_acc_batch) vectorizes: callgrind, 2^16
+// random inputs, sglab_acc3 ≈ 156 instructions per evaluation against ≈ 572 for
+// the scalar float loop (tokuyoshi2024's batch ≈ 116).
 #pragma once
 
 #include <cmath>
@@ -34,6 +37,7 @@
 #include "closed_forms.hpp"
 #include "constants.hpp"
 #include "hemispherical.hpp"
+#include "irradiance.hpp"
 #include "math.hpp"
 #include "params.hpp"
 
@@ -54,31 +58,25 @@ namespace detail {
 // b_j(κ) = (a_{j,0} + a_{j,1} κ + … + a_{j,D} κ^D)/(d_0 + d_1 κ + … + κ^D),
 // for κ ≥ 1 evaluated in powers of r = 1/κ (numerator and denominator divided
 // by κ^D) so that nothing overflows up to the largest finite κ. One division.
-template <class T, class S, std::size_t N, std::size_t D>
-void sglab_acc_rational(const T& kappa, const SglabAccParams<S, N, D>& p, T (&b)[N]) {
+// One Horner recurrence serves both sides: x = κ or r, and each step's
+// coefficient is selected (Ops::select, no branch in the float batch); the
+// arithmetic of either side is that of its own Horner scheme.
+template <class T, class S, std::size_t N, std::size_t D, class Ops = LibmOps>
+SGLAB_FORCE_INLINE void sglab_acc_rational(const T& kappa, const SglabAccParams<S, N, D>& p, T (&b)[N], Ops = {}) {
   const bool small = kappa < T(1);
-  const T x = small ? kappa : T(1) / kappa;
-  // Horner in x; for κ ≥ 1 the coefficient order is reversed.
-  T den = T(1);
-  if (small) {
-    for (std::size_t i = D; i-- > 0;) den = den * x + T(p.den[i]);
-  } else {
-    T sum = T(0);
-    for (std::size_t i = 0; i < D; ++i) sum = (sum + T(p.den[i])) * x;
-    den = sum + T(1);
-  }
+  const T x = Ops::select(small, kappa, T(1) / Ops::select(small, T(1), kappa));
+  // Denominator: κ < 1: κ^D + d_{D−1}κ^{D−1} + … + d_0 (Horner from the monic
+  // term); κ ≥ 1: d_0 r^D + … + d_{D−1} r + 1 (Horner from d_0).
+  T den = Ops::select(small, T(1), D > 0 ? T(p.den[0]) : T(1));
+  for (std::size_t j = 1; j <= D; ++j)
+    den = den * x + Ops::select(small, T(p.den[D - j]), j < D ? T(p.den[j]) : T(1));
   const T inv = T(1) / den;
-  for (std::size_t j = 0; j < N; ++j) {
-    const S* a = p.num + j * (D + 1);
-    T y;
-    if (small) {
-      y = T(a[D]);
-      for (std::size_t i = D; i-- > 0;) y = y * x + T(a[i]);
-    } else {
-      y = T(a[0]);
-      for (std::size_t i = 1; i <= D; ++i) y = y * x + T(a[i]);
-    }
-    b[j] = y * inv;
+  for (std::size_t i = 0; i < N; ++i) {
+    const S* a = p.num + i * (D + 1);
+    // κ < 1: from a_D down to a_0; κ ≥ 1: from a_0 up to a_D.
+    T y = Ops::select(small, T(a[D]), T(a[0]));
+    for (std::size_t j = 1; j <= D; ++j) y = y * x + Ops::select(small, T(a[D - j]), T(a[j]));
+    b[i] = y * inv;
   }
 }
 
@@ -100,29 +98,57 @@ SglabAccLight<T, N> sglab_acc_setup(const T& kappa, const SglabAccParams<S, N, D
   return l;
 }
 
-// Per-shading-point evaluation of `sglab_acc<N>` from the light's state.
-template <class T, std::size_t N> T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosine) {
-  using std::erfc;
-  using std::exp;
-  using std::expm1;
-  const T c = clamp(cosine, T(-1), T(1));
+// The same setup in float without branches, for the batch kernel: t and the
+// poles as the vectorizing setup of `tokuyoshi2024` (irradiance.hpp), erfc(t)
+// by branch_free.hpp's erfc_bf (absolute error ≤ 6e−7).
+template <class S, std::size_t N, std::size_t D>
+SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_setup_branch_free(float kappa, const SglabAccParams<S, N, D>& p) {
+  const Tokuyoshi2024Light<float> base = tokuyoshi2024_setup_branch_free(
+      kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
+  SglabAccLight<float, N> l;
+  l.t = base.t;
+  l.half_erfc_t = 0.5f * branch_free::erfc_bf(base.t);
+  // 1/t is formed from max(t, 1): finite, and selected away at t = 0.
+  l.tail_scale = branch_free::select(base.t > 0.0f, 0.5f * inv_sqrt_pi_v<float>() / branch_free::select(base.t > 0.0f, base.t, 1.0f), 0.0f);
+  l.t2 = base.t * base.t;
+  l.lower = base.lower;
+  l.upper = base.upper;
+  detail::sglab_acc_rational(kappa, p, l.b, detail::BranchFreeOps{});
+  return l;
+}
+
+// Per-shading-point evaluation of `sglab_acc<N>` from the light's state, with
+// the elementary functions of `Ops` (the standard library's, or the
+// branch-free ones of the batch kernel). The one implementation of the model.
+template <class T, std::size_t N, class Ops = detail::LibmOps>
+SGLAB_FORCE_INLINE T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosine, Ops = {}) {
+  const T c = Ops::clamp(cosine, T(-1), T(1));
   const T z = l.t * c;
   const T z2 = z * z;
   const T one_minus_c2 = T(1) - c * c;
-  const T g = exp(-z2);  // e^{−z²}: shared by the [Tokuyoshi2024] tail and the correction
+  const T g = Ops::exp(-z2);  // e^{−z²}: shared by the [Tokuyoshi2024] tail, erfc(−z) and the correction
   // [Tokuyoshi2024] Listing 7: f = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t).
-  const T f2024 = T(0.5) * c * erfc(-z) + l.half_erfc_t - g * expm1(-l.t2 * one_minus_c2) * l.tail_scale;
+  const T f2024 = T(0.5) * c * Ops::erfc(-z, g) + l.half_erfc_t - g * Ops::expm1(-l.t2 * one_minus_c2) * l.tail_scale;
   // sglab correction: (1 − c²) e^{−z²} Σ_j b_j z^{2j}. Where e^{−z²} has
-  // underflowed to 0 the correction is 0; the polynomial is not formed there,
-  // since z^{2j} overflows first for huge κ (0·inf would be NaN).
-  T corr = T(0);
-  if (g > T(0)) {
-    T poly = l.b[N - 1];
-    for (std::size_t j = N - 1; j-- > 0;) poly = poly * z2 + l.b[j];
-    corr = one_minus_c2 * g * poly;
-  }
-  const T f = saturate(f2024 + corr);
+  // underflowed to 0 the correction is 0 (selected: z^{2j} may overflow there
+  // for huge κ, and 0·inf would be NaN).
+  T poly = l.b[N - 1];
+  for (std::size_t j = N - 1; j-- > 0;) poly = poly * z2 + l.b[j];
+  const T corr = Ops::select(g > T(0), one_minus_c2 * g * poly, T(0));
+  const T f = Ops::clamp(f2024 + corr, T(0), T(1));
   return two_pi_v<T>() * lerp(l.lower, l.upper, f);
+}
+
+// Float batch of `sglab_acc<N>` that vectorizes: the branch-free setup and
+// the evaluation above with branch_free.hpp's exp, expm1, erfc and sqrt.
+// Distance from the double path: the erfc_bf error (≤ 6e−7 absolute) moves f
+// by at most that, i.e. ≤ 6e−7 of the peak E(1, κ), plus float rounding;
+// tests/test_branch_free.cpp holds it to 1e−6 of the peak.
+template <class S, std::size_t N, std::size_t D>
+SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
+                                std::size_t n, const SglabAccParams<S, N, D>& p) {
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = sglab_acc_eval(sglab_acc_setup_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
 }
 
 // `sglab_acc<N>` in one call: eval(setup(κ), c).
