@@ -45,6 +45,11 @@ std::span<const ParamStruct> param_structs() {
 std::span<const RequiredSet> required_sets() {
   static const std::vector<RequiredSet> table = {
       {"clamped_cosine_published", "ClampedCosineParams<double>"},
+      {"clamped_cosine_double", "ClampedCosineParams<double>"},
+      {"clamped_cosine_float_alpha_free", "ClampedCosineParams<double>"},
+      {"clamped_cosine_half", "ClampedCosineParams<double>"},
+      {"erf_as7125_float", "AbramowitzStegunParams<double, 3>"},
+      {"erf_listing5_float", "Listing5Params<double, 6, 7>"},
       {"clamped_cosine_float", "ClampedCosineParams<double>"},
       {"cosine_lobe_published", "CosineLobeParams<double>"},
       {"diffuse_lobe_published", "DiffuseLobeParams<double>"},

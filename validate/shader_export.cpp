@@ -116,7 +116,6 @@ ConstantSet named(std::string cpp_name, const SglabAccParams<double, N, D>& p) {
           {}};
 }
 
-#define SGLAB_SET(name) named(#name, constants::name)
 
 const std::vector<double>& member(const ConstantSet& set, std::string_view name) {
   for (const auto& [n, v] : set.members)
@@ -136,11 +135,11 @@ struct Tier {
 };
 const Tier kTiers[] = {
     {"as7125", "[AS1964] 7.1.25 form with sglab's float refit erf_as7125_float (erfc = t P(t) e^{-x^2})",
-     [] { return SGLAB_SET(erf_as7125_float); }},
+     [] { return named("erf_as7125_float", constants::erf_as7125_float); }},
     {"listing5",
      "[Tokuyoshi2022] Listing 5 form with sglab's float refit erf_listing5_float "
      "(erf = x P(x^2) for |x| <= split, erfc = 2^{-|x| Q(|x|)} beyond, no 1 - erf cancellation)",
-     [] { return SGLAB_SET(erf_listing5_float); }},
+     [] { return named("erf_listing5_float", constants::erf_listing5_float); }},
 };
 
 bool is_listing5(const ConstantSet& s) { return s.cpp_type.rfind("Listing5Params", 0) == 0; }
@@ -673,7 +672,7 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
 
 // THE table: one entry per exportable method. To add a method (e.g. one of
 // sglab's own models): append {id, citation, its constant slots as
-// Slots{{"role", SGLAB_SET(name_in_constants_hpp)}}, how it uses erf, the
+// Slots{{"role", named("NAME", the set NAME of constants.hpp)}}, how it uses erf, the
 // helpers it calls, and the body in the shading-language subset used here
 // (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?:, {VEC3}; constants as
 // {P}<role>_<member>)}. A constant set of a parameter type not yet listed
@@ -683,19 +682,19 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
 const std::vector<ShaderMethod>& shader_methods() {
   static const std::vector<ShaderMethod> table = {
       {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
-       [] { return Slots{{"cosine_lobe", SGLAB_SET(cosine_lobe_published)}}; }, ErfUse::none, kHelpersWang2009, kBodyWang2009},
+       [] { return Slots{{"cosine_lobe", named("cosine_lobe_published", constants::cosine_lobe_published)}}; }, ErfUse::none, kHelpersWang2009, kBodyWang2009},
       {"punctual", "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa", [] { return Slots{}; },
        ErfUse::none, {}, "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
       {"hill", "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
-       [] { return Slots{{"hill", SGLAB_SET(hill_published)}}; }, ErfUse::none, {helper_hill},
+       [] { return Slots{{"hill", named("hill_published", constants::hill_published)}}; }, ErfUse::none, {helper_hill},
        "  return {P}hill_normalized(cosine, kappa) * (6.28318548f / kappa);\n"},
       {"hill_exact", "[Pettineo2016] Hill's fitted curve times the exact SG integral",
-       [] { return Slots{{"hill", SGLAB_SET(hill_published)}}; }, ErfUse::none, {helper_expm1, helper_hill},
+       [] { return Slots{{"hill", named("hill_published", constants::hill_published)}}; }, ErfUse::none, {helper_expm1, helper_hill},
        "  return {P}hill_normalized(cosine, kappa) * (12.566371f * {P}expm1_over_x(-2.0f * kappa));\n"},
       {"vsgl2015", "[Tokuyoshi2015] diffuse SG lambda_d = 2 with the [Iwasaki2012] product integral",
-       [] { return Slots{{"diffuse_lobe", SGLAB_SET(diffuse_lobe_published)}}; }, ErfUse::none, {}, kBodyVsgl2015},
+       [] { return Slots{{"diffuse_lobe", named("diffuse_lobe_published", constants::diffuse_lobe_published)}}; }, ErfUse::none, {}, kBodyVsgl2015},
       {"meder2018", "[Meder2018] logistic hemispherical integral with an SG cosine fit",
-       [] { return Slots{{"meder", SGLAB_SET(meder2018_published)}}; }, ErfUse::none,
+       [] { return Slots{{"meder", named("meder2018_published", constants::meder2018_published)}}; }, ErfUse::none,
        {helper_expm1, helper_product, helper_meder2018},
        R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}meder_sharpness);
   float upper = exp(prod.y) * {P}hemispherical(prod.z, prod.x);
@@ -703,46 +702,46 @@ const std::vector<ShaderMethod>& shader_methods() {
 )"},
       {"tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, Listings 1-4",
        [] {
-         return Slots{{"clamped_cosine", SGLAB_SET(clamped_cosine_published)},
-                      {"steepness", SGLAB_SET(steepness2022_published)}};
+         return Slots{{"clamped_cosine", named("clamped_cosine_published", constants::clamped_cosine_published)},
+                      {"steepness", named("steepness2022_published", constants::steepness2022_published)}};
        },
        ErfUse::tiered, kHelpers2022, kBodyTokuyoshi2022},
       {"tokuyoshi2024", "[Tokuyoshi2024] supplementary Listings 6-7",
-       [] { return Slots{{"steepness", SGLAB_SET(steepness2024_published)}}; }, ErfUse::tiered, kHelpers2024,
+       [] { return Slots{{"steepness", named("steepness2024_published", constants::steepness2024_published)}}; }, ErfUse::tiered, kHelpers2024,
        kBodyTokuyoshi2024},
       {"tokuyoshi2022_listing5", "[Tokuyoshi2022] Eq. 3-6, Listings 1-5 (its own Listing 5 erf)",
        [] {
-         return Slots{{"clamped_cosine", SGLAB_SET(clamped_cosine_published)},
-                      {"steepness", SGLAB_SET(steepness2022_published)},
-                      {"erf", SGLAB_SET(erf_listing5_published)}};
+         return Slots{{"clamped_cosine", named("clamped_cosine_published", constants::clamped_cosine_published)},
+                      {"steepness", named("steepness2022_published", constants::steepness2022_published)},
+                      {"erf", named("erf_listing5_published", constants::erf_listing5_published)}};
        },
        ErfUse::own, kHelpers2022, kBodyTokuyoshi2022},
       {"tokuyoshi2022_refit", "[Tokuyoshi2022] Eq. 3-6 with sglab's refitted constants",
        [] {
-         return Slots{{"clamped_cosine", SGLAB_SET(clamped_cosine_float)},
-                      {"steepness", SGLAB_SET(steepness2022_irradiance)}};
+         return Slots{{"clamped_cosine", named("clamped_cosine_float", constants::clamped_cosine_float)},
+                      {"steepness", named("steepness2022_irradiance", constants::steepness2022_irradiance)}};
        },
        ErfUse::tiered, kHelpers2022, kBodyTokuyoshi2022},
       {"tokuyoshi2024_refit", "[Tokuyoshi2024] Listings 6-7 with sglab's refitted t(kappa)",
-       [] { return Slots{{"steepness", SGLAB_SET(steepness2024_irradiance)}}; }, ErfUse::tiered, kHelpers2024,
+       [] { return Slots{{"steepness", named("steepness2024_irradiance", constants::steepness2024_irradiance)}}; }, ErfUse::tiered, kHelpers2024,
        kBodyTokuyoshi2024},
       {"vsgl2015_refit", "[Tokuyoshi2015] with sglab's refitted lambda_d",
-       [] { return Slots{{"diffuse_lobe", SGLAB_SET(lambda_d_diffuse_lobe_irradiance)}}; }, ErfUse::none, {},
+       [] { return Slots{{"diffuse_lobe", named("lambda_d_diffuse_lobe_irradiance", constants::lambda_d_diffuse_lobe_irradiance)}}; }, ErfUse::none, {},
        kBodyVsgl2015},
       {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
-       [] { return Slots{{"cosine_lobe", SGLAB_SET(lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
+       [] { return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude", constants::lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
        kBodyWang2009},
       {"sglab_fast", "sglab's cheap model: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_cheap.hpp)",
-       [] { return Slots{{"model", SGLAB_SET(sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
+       [] { return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
       {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_models.hpp)",
-       [] { return Slots{{"model", SGLAB_SET(sglab_accurate_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       [] { return Slots{{"model", named("sglab_accurate_acc1", constants::sglab_accurate_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
       {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_models.hpp)",
-       [] { return Slots{{"model", SGLAB_SET(sglab_accurate_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       [] { return Slots{{"model", named("sglab_accurate_acc2", constants::sglab_accurate_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
       {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_models.hpp)",
-       [] { return Slots{{"model", SGLAB_SET(sglab_accurate_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       [] { return Slots{{"model", named("sglab_accurate_acc3", constants::sglab_accurate_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
   };
   return table;

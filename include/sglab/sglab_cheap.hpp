@@ -134,7 +134,7 @@ SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kapp
 // Float batch of `sglab_fast` that vectorizes (tests/test_sglab_cheap.cpp
 // compares it with the scalar path).
 template <class S = double>
-void irradiance_sglab_fast_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
+SGLAB_FLATTEN void irradiance_sglab_fast_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
                                  std::size_t n, const SglabFastParams<S>& p = constants::sglab_fast_float) {
   for (std::size_t i = 0; i < n; ++i) out[i] = sglab_fast_eval(sglab_fast_light_branch_free(kappa[i], p), cosine[i]);
 }
