@@ -48,9 +48,10 @@ struct SweepGrid {
   // points (the standard grid has 1,189). A sweep keeps, per point and per
   // method and precision, the value and its error and a row of points.csv:
   // about kSweepBytesPerPointEntry bytes per point and entry, so the full
-  // registry in float and double needs about 1.1 GB of memory at the limit
-  // (and writes a 230 MB points.csv).
-  static constexpr std::uint64_t kMaxPoints = 50'000;
+  // registry in float and double needs about 2.4 GB of memory at the limit
+  // (and writes a 500 MB points.csv). The limit admits a held-out grid of
+  // 200 κ × 401 cosines (80,200 points).
+  static constexpr std::uint64_t kMaxPoints = 100'000;
 
   // κ count × cosine count (0 when either is not positive).
   std::uint64_t point_count() const;
