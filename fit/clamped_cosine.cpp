@@ -150,7 +150,7 @@ template <class P> double measured_cosine_rounding(double lambda, double alpha) 
 }
 
 // Max peak_rel error of the 2022 irradiance evaluated in precision P with
-// (λ, α) and the published steepness, over the spec's κ and cosine grid.
+// (λ, α) and the published steepness, over the fit's κ and cosine grid.
 template <class P>
 double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
   const ClampedCosineParams<double> cc{lambda, alpha};
