@@ -117,18 +117,7 @@ int run_step(const std::vector<std::string>& arguments) {
   add_pareto_command(app);
   add_figures_command(app);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
-  try {
-    app.parse(reversed);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const InputError& e) {
-    fmt::print(stderr, "sglab: error: {}\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "sglab: error: {}\n", e.what());
-    return 1;
-  }
-  return 0;
+  return run_and_map_exit_code(app, [&] { app.parse(reversed); });
 }
 
 bool is_relative_target(std::string_view t) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 namespace sglab::app {
 
@@ -14,6 +15,25 @@ namespace sglab::app {
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// Parses with `parse()` (which runs the chosen subcommand's callback) and
+// maps the outcome to the documented exit codes: 0 success (also --help,
+// --version), 1 failure, 2 bad input (InputError, or any command-line error
+// CLI11 finds). The one place where sglab's exit codes are decided.
+template <class Parse> int run_and_map_exit_code(CLI::App& app, Parse&& parse) {
+  try {
+    parse();
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "sglab: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "sglab: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}
 
 void add_methods_command(CLI::App& app);
 void add_table_command(CLI::App& app);

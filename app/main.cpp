@@ -80,16 +80,5 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "sglab: error: {}\n", *typo);
     return 2;
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help, --version: 0; every command-line error: bad input
-  } catch (const sglab::app::InputError& e) {
-    fmt::print(stderr, "sglab: error: {}\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "sglab: error: {}\n", e.what());
-    return 1;
-  }
-  return 0;
+  return sglab::app::run_and_map_exit_code(app, [&] { app.parse(argc, argv); });
 }

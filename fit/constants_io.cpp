@@ -11,22 +11,13 @@
 #include <fmt/format.h>
 
 #include "atomic_files.hpp"
+#include "io.hpp"
 
 namespace sglab::fit {
 
 namespace fs = std::filesystem;
 
-std::optional<fs::path> find_project_root(const fs::path& start) {
-  std::error_code ec;
-  fs::path dir = fs::absolute(start, ec);
-  if (ec) return std::nullopt;
-  for (;;) {
-    if (fs::is_directory(dir / "data" / "constants", ec) && fs::is_directory(dir / "include" / "sglab", ec))
-      return dir;
-    if (!dir.has_parent_path() || dir.parent_path() == dir) return std::nullopt;
-    dir = dir.parent_path();
-  }
-}
+std::optional<fs::path> find_project_root(const fs::path& start) { return io::find_project_root(start); }
 
 fs::path project_root() {
   std::error_code ec;

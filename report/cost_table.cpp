@@ -195,14 +195,11 @@ CostTable read_cost_table(const fs::path& path) {
 
 std::optional<fs::path> default_cost_table_path() {
   std::error_code ec;
-  fs::path dir = fs::current_path(ec);
+  const fs::path cwd = fs::current_path(ec);
   if (ec) return std::nullopt;
-  for (;;) {
-    if (fs::is_directory(dir / "data" / "results", ec) && fs::is_directory(dir / "include" / "sglab", ec))
-      return dir / "data" / "results" / "costs.json";
-    if (!dir.has_parent_path() || dir.parent_path() == dir) return std::nullopt;
-    dir = dir.parent_path();
-  }
+  const auto root = io::find_project_root(cwd);
+  if (!root) return std::nullopt;
+  return *root / "data" / "results" / "costs.json";
 }
 
 }  // namespace sglab::validate

@@ -55,6 +55,19 @@ std::string read_file(const std::filesystem::path& path) {
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
 
+std::optional<std::filesystem::path> find_project_root(const std::filesystem::path& start) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path dir = fs::absolute(start, ec);
+  if (ec) return std::nullopt;
+  for (;;) {
+    if (fs::is_directory(dir / "data" / "constants", ec) && fs::is_directory(dir / "include" / "sglab", ec))
+      return dir;
+    if (!dir.has_parent_path() || dir.parent_path() == dir) return std::nullopt;
+    dir = dir.parent_path();
+  }
+}
+
 int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
                 const std::filesystem::path& output) {
   if (argv.empty()) return -1;

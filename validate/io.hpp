@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -52,6 +53,12 @@ class Progress {
 };
 
 bool stderr_is_terminal();
+
+// The sglab checkout holding `start` (made absolute): the nearest folder at or
+// above it with both data/constants and include/sglab; nullopt when none.
+// Every default path of the tools (constants, header, cost table, results)
+// is found from the working directory this way, never compiled in.
+std::optional<std::filesystem::path> find_project_root(const std::filesystem::path& start);
 
 // Runs `argv[0]` (looked up in PATH) with the argument vector `argv`: no
 // shell, so arguments are passed exactly as given. Standard input is

@@ -92,12 +92,6 @@ template <class Light, class Setup, class Eval> constexpr Method with_light_spli
   return m;
 }
 
-// `m` with its per-light split (light_setup32, light_eval32) filled in.
-constexpr Method with_light_split(Method m, void (*setup)(float, float*), float (*eval)(const float*, float)) {
-  m.light_setup32 = setup;
-  m.light_eval32 = eval;
-  return m;
-}
 
 // The per-light split of a method whose setup returns a trivially copyable
 // struct of floats (sglab_models.hpp): the struct is the state.
@@ -188,7 +182,7 @@ inline constexpr Method irradiance_methods[] = {
                         [](auto c, auto k) { return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude); },
                         Origin::refit),
     // sglab's own models (fitted by `sglab fit`), with their per-light split.
-    detail::with_light_split(
+    detail::with_light_split<SglabFastLight<float>>(
         detail::with_batch32(
             detail::make_method("sglab_fast",
                                 "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational A, B, C, V in κ "
@@ -196,13 +190,8 @@ inline constexpr Method irradiance_methods[] = {
                                 "sglab_fast_float", [](auto c, auto k) { return irradiance_sglab_fast(c, k); },
                                 Origin::sglab),
             [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_fast_batch(c, k, o, n); }),
-        [](float kappa, float* state) {
-          const SglabFastLight<float> l = sglab_fast_light(kappa);
-          state[0] = l.a, state[1] = l.b, state[2] = l.c_ramp, state[3] = l.v;
-        },
-        [](const float* state, float cosine) {
-          return sglab_fast_eval(SglabFastLight<float>{state[0], state[1], state[2], state[3]}, cosine);
-        }),
+        [](float k) { return sglab_fast_light(k); },
+        [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
     // sglab's own models (sglab_models.hpp, `sglab fit sglab-accurate`): the
     // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
     // of 1, 2, 3 correction terms.
