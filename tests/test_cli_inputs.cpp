@@ -202,6 +202,11 @@ TEST(ReferenceStreaming, OutputKeepsEveryRowInOrderAcrossChunks) {
 }
 
 TEST(ReferenceStreaming, MemoryDoesNotGrowWithTheFile) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer keeps freed memory in quarantine, so peak RSS grows with
+  // the work done whatever the program holds; the plain build measures it.
+  GTEST_SKIP() << "peak RSS is not a measure of what sglab holds under AddressSanitizer";
+#endif
   TempDir dir("ref-memory");
   write_points(dir.path / "small.csv", 1'000);
   write_points(dir.path / "large.csv", 200'000);
