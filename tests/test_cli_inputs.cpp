@@ -32,14 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const char* tag) : path(fs::temp_directory_path() / fmt::format("sglab-test-{}-{}", tag, ::getpid())) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using sglab::test::TempDir;
 
 // ---- sweep grid limit ------------------------------------------------------
 

@@ -24,15 +24,7 @@ const fs::path kHeader = kRoot / "include" / "sglab" / "constants.hpp";
 
 std::string slurp(const fs::path& p) { return sglab::io::read_file(p); }
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name) {
-    path = fs::temp_directory_path() / fmt::format("sglab_test_{}_{}", name, ::getpid());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using sglab::test::TempDir;
 
 // Inside the checkout (wherever the build folder is), so that the project is found.
 struct InCheckout {

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -53,6 +54,23 @@ inline std::vector<std::string> words(std::string_view text) {
   }
   return out;
 }
+
+// A fresh folder under the system's temporary directory, named after `name`
+// and the process id, removed with everything in it when the object goes.
+struct TempDir {
+  std::filesystem::path path;
+  explicit TempDir(const std::string& name)
+      : path(std::filesystem::temp_directory_path() / fmt::format("sglab-test-{}-{}", name, ::getpid())) {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
 
 // Runs a program with an argument vector (no shell: paths with spaces, quotes
 // or semicolons are passed as they are), capturing stdout and, unless
