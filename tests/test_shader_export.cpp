@@ -263,6 +263,118 @@ TEST(ShaderExport, BadInputExitsWithCode2) {
   fs::remove_all(dir);
 }
 
+// ---------------------------------------------------------------------------
+// A constants file is untrusted input: its text reaches the export only inside
+// comments, it is read by the strict loader of `sglab constants`, and a
+// coefficient the float code cannot hold is refused.
+
+namespace {
+
+const fs::path kConstantsDir = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants";
+
+nlohmann::ordered_json read_json(const fs::path& file) { return nlohmann::ordered_json::parse(std::ifstream(file)); }
+
+// The lines of `source` that contain `marker` outside a // comment.
+std::vector<std::string> code_lines_with(const std::string& source, const std::string& marker) {
+  std::vector<std::string> out;
+  std::istringstream lines(source);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find(marker) != std::string::npos && line.rfind("//", 0) != 0) out.push_back(line);
+  return out;
+}
+
+// Compiles a C++ export on its own (-fsyntax-only), with the system compiler.
+sglab::test::CommandResult compile_cpp(const std::string& source, const fs::path& dir) {
+  std::ofstream(dir / "export.cpp") << source;
+  return run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-fsyntax-only", "-Wall", "-Werror",
+                      (dir / "export.cpp").string()});
+}
+
+}  // namespace
+
+// Issue 14 §1: each provenance text field and the --constants file name carry
+// a line break followed by code; in every language the export keeps them in
+// its comments (no line outside a comment carries the payload) and compiles.
+TEST(ShaderExport, ConstantsTextCannotLeaveTheComments) {
+  sglab::test::TempDir dir("export_injection");
+  nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-accurate-acc1.json");
+  j["provenance"]["objective"] = "x\n#error INJECTED_OBJECTIVE\n//";
+  j["provenance"]["command"] = "x\nfloat INJECTED_COMMAND = 1.0;\n//";
+  j["provenance"]["date"] = "x\r\n#error INJECTED_DATE\r\n//";
+  j["provenance"]["source"] = "x\n#define INJECTED_SOURCE 1\n//";
+  const fs::path file = dir.path / "acc1\n#define INJECTED_PATH 1\nx.json";
+  std::ofstream(file) << j.dump(2);
+  for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl, sh::Language::cpp}) {
+    const std::string l(sh::to_string(lang));
+    const auto r = run_sglab({"export", "--lang", l, "--method", "sglab_acc1", "--constants", file.string()}, false);
+    ASSERT_EQ(r.exit_code, 0) << l;
+    for (const char* marker : {"INJECTED_OBJECTIVE", "INJECTED_COMMAND", "INJECTED_DATE", "INJECTED_SOURCE",
+                               "INJECTED_PATH"}) {
+      EXPECT_NE(r.output.find(marker), std::string::npos) << l << ": the text is kept, escaped: " << marker;
+      for (const std::string& line : code_lines_with(r.output, marker)) ADD_FAILURE() << l << ": injected: " << line;
+    }
+    if (lang == sh::Language::cpp) {
+      const auto build = compile_cpp(r.output, dir.path);
+      EXPECT_EQ(build.exit_code, 0) << build.output;
+    } else {
+      try {
+        vk::check_compiles(lang, r.output);
+      } catch (const vk::CompileError& e) {
+        ADD_FAILURE() << l << ": " << e.what();
+      }
+    }
+  }
+}
+
+// --constants is read by the strict loader of `sglab constants` and fit: a
+// duplicated key is refused (it is not "last one wins"), naming the file.
+TEST(ShaderExport, ConstantsWithADuplicateKeyAreRefused) {
+  sglab::test::TempDir dir("export_duplicate");
+  const std::string text = read_json(kConstantsDir / "sglab-accurate-acc1.json").dump(2);
+  const fs::path file = dir.path / "duplicate.json";
+  std::ofstream(file) << "{\n  \"cpp_name\": \"first_of_two\"," << text.substr(1);
+  const auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc1", "--constants", file.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("duplicate.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("duplicate key"), std::string::npos) << r.output;
+  // `sglab constants` refuses the same file the same way.
+  const auto c = run_sglab({"constants", "--dir", dir.path.string()});
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  EXPECT_NE(c.output.find("duplicate key"), std::string::npos) << c.output;
+}
+
+// A coefficient beyond the largest float is refused (exit 2, file and key
+// named): the export is float code, and inf is no literal. The boundary is
+// where binary32 rounding overflows, FLT_MAX + half an ulp = (2 - 2^-24) 2^127:
+// just below it rounds to FLT_MAX and is accepted, just above it is refused.
+TEST(ShaderExport, CoefficientNotFiniteInFloatIsRefused) {
+  sglab::test::TempDir dir("export_overflow");
+  const double overflow = std::ldexp(2.0 - std::ldexp(1.0, -24), 127);
+  struct Case {
+    double value;
+    int exit_code;
+  };
+  for (const Case& c : {Case{1e308, 2}, Case{-1e308, 2}, Case{std::nextafter(overflow, 0.0), 0},
+                        Case{std::nextafter(overflow, INFINITY), 2}})
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::cpp}) {
+      nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-accurate-acc1.json");
+      j["coefficients"]["num"][1] = c.value;
+      const fs::path file = dir.path / "overflow.json";
+      std::ofstream(file) << j.dump(2);
+      const auto r = run_sglab(
+          {"export", "--lang", std::string(sh::to_string(lang)), "--method", "sglab_acc1", "--constants", file.string()});
+      EXPECT_EQ(r.exit_code, c.exit_code) << sglab::test::hex(c.value) << ": " << r.output;
+      if (c.exit_code == 2) {
+        EXPECT_NE(r.output.find("overflow.json"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("coefficients.num[1]"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("not finite in float"), std::string::npos) << r.output;
+      } else {
+        EXPECT_EQ(r.output.find("inf"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("3.40282347e+38f"), std::string::npos) << "FLT_MAX, written exactly";
+      }
+    }
+}
+
 // The tiers: the measured erf/erfc errors of each, and the choice by model error.
 TEST(ShaderExport, ElementaryTiersAreChosenByTheModelError) {
   const auto listing5 = sh::measure_elementary("listing5");
