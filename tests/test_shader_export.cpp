@@ -400,8 +400,8 @@ struct Literal {
 
 // The numeric literals of `code` (comments stripped): every token that starts
 // with a digit (or '.' and a digit) outside an identifier, with a unary minus
-// in front of it (at the start, or after '(', ',', '=', '?' or ':'). A token that is not a
-// decimal float literal with an 'f' suffix is reported with a NaN value.
+// in front of it (at the start, or after '(', ',', '=', '?' or ':'). A token
+// that is not a decimal float literal with an 'f' suffix has a NaN value.
 std::vector<Literal> numeric_literals(const std::string& code) {
   std::vector<Literal> out;
   const auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
@@ -437,10 +437,10 @@ std::vector<Literal> numeric_literals(const std::string& code) {
   return out;
 }
 
-// Fixed constants of the export's snippets, each exactly as a float: a row per
-// value with where it is used.
-// The simple ones (exact, or pi's multiples) occur with either sign
-// (clamp(x, -1.0f, 1.0f), e^(-2.0f kappa)); the series coefficients carry theirs.
+// Fixed constants of the export's snippets, each exactly as a float, a row per
+// value with where it is used. The simple ones (exact, or pi's multiples) occur
+// with either sign (clamp(x, -1.0f, 1.0f), e^(-2.0f kappa)); the series
+// coefficients carry theirs.
 std::vector<std::pair<float, std::string>> fixed_constants() {
   std::vector<std::pair<float, std::string>> t = {
       {0.0f, "zero"},
@@ -474,7 +474,7 @@ std::vector<std::pair<float, std::string>> fixed_constants() {
 
 std::uint32_t bits(float x) { return std::bit_cast<std::uint32_t>(x); }
 
-// Every sets' coefficients by cpp_name, from data/constants/*.json.
+// Every set's coefficients by cpp_name, from data/constants/*.json.
 std::map<std::string, nlohmann::ordered_json> json_sets() {
   std::map<std::string, nlohmann::ordered_json> sets;
   for (const auto& entry : fs::directory_iterator(kConstantsDir))
