@@ -37,15 +37,14 @@ std::string provenance_line(const fit::ordered_json& j) {
   return std::regex_replace(prov, std::regex(R"( ?\(?(quoted in )?seed \d{3}\)?)"), "");
 }
 
-// A constant-set JSON (data/constants/*.json, or one `sglab fit … --out DIR` wrote).
+// A constant-set JSON (data/constants/*.json, or one `sglab fit … --out DIR`
+// wrote), read by the same strict loader as `sglab constants` and fit (size and
+// depth limits, duplicate keys refused, schema-validated).
 shader::ConstantSet read_constant_set(const std::string& path) {
   fit::ordered_json j;
   try {
-    j = fit::ordered_json::parse(io::read_file(path));
-    fit::check_constant_set(j, path);
-  } catch (const fit::ordered_json::parse_error& e) {
-    throw InputError(fmt::format("--constants: {}: malformed JSON: {}", path, e.what()));
-  } catch (const std::runtime_error& e) {
+    j = fit::load_constant_set(path);
+  } catch (const fit::ConstantsError& e) {
     throw InputError(fmt::format("--constants: {}", e.what()));
   }
   shader::ConstantSet s;
@@ -141,7 +140,9 @@ void add_export_command(CLI::App& app) {
     try {
       result = shader::export_source(req);
     } catch (const std::invalid_argument& e) {
-      throw InputError(e.what());
+      // The method was checked above: what remains is about the --constants set.
+      throw InputError(args->constants.empty() ? std::string(e.what())
+                                               : fmt::format("--constants: {}: {}", args->constants, e.what()));
     }
     fmt::print("{}", result.source);
   });

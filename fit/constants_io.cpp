@@ -66,8 +66,6 @@ fs::path default_header_for(const fs::path& dir) {
   return dir / "constants.hpp";
 }
 
-void check_constant_set(const ordered_json& set, const std::string& where) { validate_constant_set(set, where); }
-
 ordered_json load_constant_set(const fs::path& file) {
   const std::string name = file.string();
   ordered_json set = parse_untrusted_json(read_text(file), name);

@@ -52,9 +52,6 @@ ordered_json load_constant_set(const std::filesystem::path& file);
 std::vector<ConstantSetFile> load_constant_set_files(const std::filesystem::path& dir);
 std::vector<ordered_json> load_constant_sets(const std::filesystem::path& dir);
 
-// Checks one set's fields (validate_constant_set); throws ConstantsError naming `where`.
-void check_constant_set(const ordered_json& set, const std::string& where);
-
 // The text of include/sglab/constants.hpp for these (valid) sets; members in
 // the declaration order of their struct; text fields escaped into comments.
 std::string render_constants_header(const std::vector<ordered_json>& sets);

@@ -28,6 +28,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "comment_text.hpp"
+
 namespace sglab::fit {
 
 using ordered_json = nlohmann::ordered_json;
@@ -86,12 +88,9 @@ void validate_constant_set(const ordered_json& set, const std::string& file);
 // `files[i]` names where sets[i] came from. Throws ConstantsError.
 void validate_header_sets(const std::vector<ordered_json>& sets, const std::vector<std::string>& files);
 
-// `text` made safe for one line of a // comment: no control character, no
-// NUL, no line or paragraph separator, no bidirectional override, never a
-// trailing '\' (which would splice the next line into the comment); those and
-// every '\' become \xNN or \u{NNNN} escapes, ill-formed UTF-8 bytes become \xNN.
-// Other UTF-8 text is kept as is.
-std::string comment_text(std::string_view text);
+// Text fields are escaped into the header's comments by the one escaping
+// function that the shader exports use too (validate/comment_text.hpp).
+using validate::comment_text;
 
 // [A-Za-z_][A-Za-z0-9_]* and not a C++ keyword.
 bool is_cpp_identifier(std::string_view s);

@@ -160,6 +160,8 @@ TEST(CommentText, NothingLeavesTheComment) {
   EXPECT_EQ(comment_text("a\nb\r#error x"), "a\\x0ab\\x0d#error x");
   EXPECT_EQ(comment_text(std::string("nul\0here", 8)), "nul\\x00here");
   EXPECT_EQ(comment_text("ends with \\"), "ends with \\x5c");  // never a line splice
+  EXPECT_EQ(comment_text("ends with ?\?/"), "ends with ?\\x3f/");  // nor a trigraph splice (C++ before 17)
+  EXPECT_EQ(comment_text("what???"), "what?\\x3f\\x3f");
   EXPECT_EQ(comment_text("\x1b[31m"), "\\x1b[31m");
   EXPECT_EQ(comment_text("bidi \u202e override"), "bidi \\u{202e} override");
   EXPECT_EQ(comment_text("line\u2028sep"), "line\\u{2028}sep");

@@ -4,10 +4,16 @@
 // exports run on a Vulkan device (lavapipe on CI) agree with the runtime; the
 // elementary tiers are chosen by the model's accuracy; bad input exits 2.
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <numbers>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -261,6 +267,374 @@ TEST(ShaderExport, BadInputExitsWithCode2) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bad.json"), std::string::npos);
   fs::remove_all(dir);
+}
+
+// ---------------------------------------------------------------------------
+// A constants file is untrusted input: its text reaches the export only inside
+// comments, it is read by the strict loader of `sglab constants`, and a
+// coefficient the float code cannot hold is refused.
+
+namespace {
+
+const fs::path kConstantsDir = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants";
+
+nlohmann::ordered_json read_json(const fs::path& file) { return nlohmann::ordered_json::parse(std::ifstream(file)); }
+
+// The lines of `source` that contain `marker` outside a // comment.
+std::vector<std::string> code_lines_with(const std::string& source, const std::string& marker) {
+  std::vector<std::string> out;
+  std::istringstream lines(source);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find(marker) != std::string::npos && line.rfind("//", 0) != 0) out.push_back(line);
+  return out;
+}
+
+// Compiles a C++ export on its own (-fsyntax-only), with the system compiler.
+sglab::test::CommandResult compile_cpp(const std::string& source, const fs::path& dir) {
+  std::ofstream(dir / "export.cpp") << source;
+  return run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-fsyntax-only", "-Wall", "-Werror",
+                      (dir / "export.cpp").string()});
+}
+
+}  // namespace
+
+// Issue 14 §1: each provenance text field and the --constants file name carry
+// a line break followed by code; in every language the export keeps them in
+// its comments (no line outside a comment carries the payload) and compiles.
+TEST(ShaderExport, ConstantsTextCannotLeaveTheComments) {
+  sglab::test::TempDir dir("export_injection");
+  nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-accurate-acc1.json");
+  j["provenance"]["objective"] = "x\n#error INJECTED_OBJECTIVE\n//";
+  j["provenance"]["command"] = "x\nfloat INJECTED_COMMAND = 1.0;\n//";
+  j["provenance"]["date"] = "x\r\n#error INJECTED_DATE\r\n//";
+  j["provenance"]["source"] = "x\n#define INJECTED_SOURCE 1\n//";
+  const fs::path file = dir.path / "acc1\n#define INJECTED_PATH 1\nx.json";
+  std::ofstream(file) << j.dump(2);
+  for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl, sh::Language::cpp}) {
+    const std::string l(sh::to_string(lang));
+    const auto r = run_sglab({"export", "--lang", l, "--method", "sglab_acc1", "--constants", file.string()}, false);
+    ASSERT_EQ(r.exit_code, 0) << l;
+    for (const char* marker : {"INJECTED_OBJECTIVE", "INJECTED_COMMAND", "INJECTED_DATE", "INJECTED_SOURCE",
+                               "INJECTED_PATH"}) {
+      EXPECT_NE(r.output.find(marker), std::string::npos) << l << ": the text is kept, escaped: " << marker;
+      for (const std::string& line : code_lines_with(r.output, marker)) ADD_FAILURE() << l << ": injected: " << line;
+    }
+    if (lang == sh::Language::cpp) {
+      const auto build = compile_cpp(r.output, dir.path);
+      EXPECT_EQ(build.exit_code, 0) << build.output;
+    } else {
+      try {
+        vk::check_compiles(lang, r.output);
+      } catch (const vk::CompileError& e) {
+        ADD_FAILURE() << l << ": " << e.what();
+      }
+    }
+  }
+}
+
+// --constants is read by the strict loader of `sglab constants` and fit: a
+// duplicated key is refused (it is not "last one wins"), naming the file.
+TEST(ShaderExport, ConstantsWithADuplicateKeyAreRefused) {
+  sglab::test::TempDir dir("export_duplicate");
+  const std::string text = read_json(kConstantsDir / "sglab-accurate-acc1.json").dump(2);
+  const fs::path file = dir.path / "duplicate.json";
+  std::ofstream(file) << "{\n  \"cpp_name\": \"first_of_two\"," << text.substr(1);
+  const auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc1", "--constants", file.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("duplicate.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("duplicate key"), std::string::npos) << r.output;
+  // `sglab constants` refuses the same file the same way.
+  const auto c = run_sglab({"constants", "--dir", dir.path.string()});
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  EXPECT_NE(c.output.find("duplicate key"), std::string::npos) << c.output;
+}
+
+// A coefficient beyond the largest float is refused (exit 2, file and key
+// named): the export is float code, and inf is no literal. The boundary is
+// where binary32 rounding overflows, FLT_MAX + half an ulp = (2 - 2^-24) 2^127:
+// just below it rounds to FLT_MAX and is accepted, just above it is refused.
+TEST(ShaderExport, CoefficientNotFiniteInFloatIsRefused) {
+  sglab::test::TempDir dir("export_overflow");
+  const double overflow = std::ldexp(2.0 - std::ldexp(1.0, -24), 127);
+  struct Case {
+    double value;
+    int exit_code;
+    sh::Language lang;
+  };
+  for (const Case& c : {Case{1e308, 2, sh::Language::glsl}, Case{1e308, 2, sh::Language::cpp},
+                        Case{-1e308, 2, sh::Language::hlsl}, Case{std::nextafter(overflow, 0.0), 0, sh::Language::glsl},
+                        Case{std::nextafter(overflow, INFINITY), 2, sh::Language::glsl}}) {
+    nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-accurate-acc1.json");
+    j["coefficients"]["num"][1] = c.value;
+    const fs::path file = dir.path / "overflow.json";
+    std::ofstream(file) << j.dump(2);
+    const auto r = run_sglab(
+        {"export", "--lang", std::string(sh::to_string(c.lang)), "--method", "sglab_acc1", "--constants", file.string()});
+    EXPECT_EQ(r.exit_code, c.exit_code) << sglab::test::hex(c.value) << ": " << r.output;
+    if (c.exit_code == 2) {
+      EXPECT_NE(r.output.find("overflow.json"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("coefficients.num[1]"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("not finite in float"), std::string::npos) << r.output;
+    } else {
+      EXPECT_EQ(r.output.find("inf"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("3.40282347e+38f"), std::string::npos) << "FLT_MAX, written exactly";
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Issue 21: every float literal of every export is exactly the float the
+// runtime uses. The expected values do not come from the exporter: a declared
+// constant `{P}<role>_<member>[i]` of the set named in the comment above it
+// must equal float(coefficients.<member>[i]) of that set's JSON in
+// data/constants (which the compiled-in header is generated from,
+// Constants.HeaderMatchesJson), the sets must be the ones the registry lists
+// for the method (plus the erf of the export's tier), and every other literal
+// must be one of the fixed constants of the snippets below, computed here.
+
+namespace {
+
+struct Literal {
+  std::string text;  // as written, sign included
+  float value;       // as a compiler reads it (correctly rounded)
+};
+
+// The numeric literals of `code` (comments stripped): every token that starts
+// with a digit (or '.' and a digit) outside an identifier, with a unary minus
+// in front of it (at the start, or after '(', ',', '=', '?' or ':'). A token
+// that is not a decimal float literal with an 'f' suffix has a NaN value.
+std::vector<Literal> numeric_literals(const std::string& code) {
+  std::vector<Literal> out;
+  const auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t i = 0; i < code.size();) {
+    const bool starts = std::isdigit(static_cast<unsigned char>(code[i])) ||
+                        (code[i] == '.' && i + 1 < code.size() && std::isdigit(static_cast<unsigned char>(code[i + 1])));
+    if (ident(code[i]) && !starts) {
+      while (i < code.size() && ident(code[i])) ++i;
+      continue;
+    }
+    if (!starts) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < code.size() && (ident(code[end]) || code[end] == '.' ||
+                                 ((code[end] == '+' || code[end] == '-') && (code[end - 1] == 'e' || code[end - 1] == 'E'))))
+      ++end;
+    std::string text = code.substr(i, end - i);
+    std::size_t before = i;
+    while (before > 0 && code[before - 1] == ' ') --before;
+    if (before > 0 && code[before - 1] == '-') {
+      std::size_t op = before - 1;
+      while (op > 0 && code[op - 1] == ' ') --op;
+      if (op == 0 || std::string_view("(,=?:").find(code[op - 1]) != std::string_view::npos) text = "-" + text;
+    }
+    static const std::regex float_literal(R"(-?(\d+\.\d*|\.\d+|\d+(?=[eE]))([eE][+-]?\d+)?f)");
+    float value = NAN;
+    if (std::regex_match(text, float_literal)) value = std::strtof(text.c_str(), nullptr);
+    out.push_back({text, value});
+    i = end;
+  }
+  return out;
+}
+
+// Fixed constants of the export's snippets, each exactly as a float, a row per
+// value with where it is used. The simple ones (exact, or pi's multiples) occur
+// with either sign (clamp(x, -1.0f, 1.0f), e^(-2.0f kappa)); the series
+// coefficients carry theirs.
+std::vector<std::pair<float, std::string>> fixed_constants() {
+  std::vector<std::pair<float, std::string>> t = {
+      {0.0f, "zero"},
+      {0.25f, "sglab_fast: series below kappa = 1/4"},
+      {0.5f, "halves (lerp factors, ramp, steepness)"},
+      {1.0f, "one"},
+      {2.0f, "two (erfc(-x) = 2 - erfc(x), product of SGs)"},
+      {4.0f, "Hill: c1 = 1/(4 c0)"},
+      {80.0f, "sglab_fast: e^-kappa argument stop"},
+      {0x1p-13f, "[Tokuyoshi2022] Listing 3: erf ratio is c below t = 2^-13"},
+      {static_cast<float>(2 * std::numbers::pi), "2 pi"},
+      {static_cast<float>(4 * std::numbers::pi), "4 pi, S(d) of [Wang2009]"},
+      {static_cast<float>(std::numbers::inv_sqrtpi), "1/sqrt(pi), [Tokuyoshi2024] Listing 7"},
+  };
+  for (std::size_t i = 0, n = t.size(); i < n; ++i) t.emplace_back(-t[i].first, "-" + t[i].second);
+  // Taylor coefficients in long double: (e^x - 1)/x = sum x^n/(n+1)!, and the
+  // poles of [Tokuyoshi2024] at small kappa, sum (-kappa)^m/(m+2)! and
+  // sum (-kappa)^m (m+1)/(m+2)! (sglab/closed_forms.hpp).
+  long double factorial = 1;
+  for (int n = 1; n <= 12; ++n) {
+    factorial *= n;  // n!
+    t.emplace_back(static_cast<float>(1 / factorial), fmt::format("1/{}!", n));
+    if (n >= 2) {
+      const long double sign = (n % 2 ? -1 : 1);
+      t.emplace_back(static_cast<float>(sign / factorial), fmt::format("(-1)^{}/{}!", n - 2, n));
+      t.emplace_back(static_cast<float>(sign * (n - 1) / factorial), fmt::format("(-1)^{} {}/{}!", n - 2, n - 1, n));
+    }
+  }
+  return t;
+}
+
+std::uint32_t bits(float x) { return std::bit_cast<std::uint32_t>(x); }
+
+// Every set's coefficients by cpp_name, from data/constants/*.json.
+std::map<std::string, nlohmann::ordered_json> json_sets() {
+  std::map<std::string, nlohmann::ordered_json> sets;
+  for (const auto& entry : fs::directory_iterator(kConstantsDir))
+    if (entry.path().extension() == ".json") {
+      auto j = read_json(entry.path());
+      sets[j.at("cpp_name").get<std::string>()] = j.at("coefficients");
+    }
+  return sets;
+}
+
+// Checks every literal of one export (see above); returns the cpp_names of the
+// sets it declares constants of, in order.
+std::vector<std::string> check_export_literals(const std::string& source, const std::string& method,
+                                               const std::map<std::string, nlohmann::ordered_json>& sets) {
+  const std::string what = method + " " + source.substr(0, source.find('\n'));
+  const std::string prefix = "sglab_" + sh::entry_point_name(method).substr(17) + "_";
+  static const std::regex set_line(R"(// (\w+): \w+<[^>]*> (\w+))");
+  static const std::regex decl(R"((?:const float|static const float|inline constexpr float) (\w+) = ([^;]+);)");
+  static const auto fixed = fixed_constants();
+  std::vector<std::string> declared_sets;
+  std::string role, set_name, code;
+  std::set<std::string> seen;  // "set.member[i]" declared
+  std::istringstream lines(source);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (std::regex_match(line, m, set_line)) {
+      role = m[1];
+      set_name = m[2];
+      declared_sets.push_back(set_name);
+      EXPECT_TRUE(sets.count(set_name)) << what << ": no data/constants set named " << set_name;
+      continue;
+    }
+    if (!std::regex_match(line, m, decl)) {
+      code += line.substr(0, line.find("//")) + "\n";
+      continue;
+    }
+    // A declared constant: {P}<role>_<member> (scalar) or {P}<role>_<member><i>.
+    const std::string name = m[1], text = m[2];
+    const auto lits = numeric_literals(text);
+    const bool one_literal = lits.size() == 1 && lits[0].text == text && name.rfind(prefix + role + "_", 0) == 0;
+    EXPECT_TRUE(one_literal) << what << ": not {P}<role>_<member> = <float literal>: " << line;
+    if (!one_literal || !sets.count(set_name)) continue;
+    const std::string rest = name.substr(prefix.size() + role.size() + 1);
+    bool matched = false;
+    for (const auto& [member, value] : sets.at(set_name).items()) {
+      const std::size_t n = value.is_array() ? value.size() : 1;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (rest != (value.is_array() ? member + std::to_string(i) : member)) continue;
+        const double want = value.is_array() ? value[i].get<double>() : value.get<double>();
+        EXPECT_EQ(bits(lits[0].value), bits(static_cast<float>(want)))
+            << what << ": " << line << " reads as " << sglab::test::hex(lits[0].value) << ", the runtime's float is "
+            << sglab::test::hex(static_cast<float>(want)) << " (" << set_name << "." << member << ")";
+        EXPECT_TRUE(seen.insert(fmt::format("{}.{}[{}]", set_name, member, i)).second) << what << ": twice: " << line;
+        matched = true;
+      }
+    }
+    EXPECT_TRUE(matched) << what << ": " << line << " is no coefficient of " << set_name;
+  }
+  // Every coefficient of every declared set is declared.
+  for (const std::string& name : declared_sets) {
+    if (!sets.count(name)) continue;
+    for (const auto& [member, value] : sets.at(name).items())
+      for (std::size_t i = 0; i < (value.is_array() ? value.size() : 1); ++i)
+        EXPECT_TRUE(seen.count(fmt::format("{}.{}[{}]", name, member, i))) << what << ": " << name << "." << member
+                                                                             << "[" << i << "] is not declared";
+  }
+  // Every other literal is a fixed constant of the snippets.
+  const std::vector<Literal> inline_literals = numeric_literals(code);
+  EXPECT_FALSE(inline_literals.empty()) << what;
+  for (const Literal& l : inline_literals) {
+    const bool known = std::any_of(fixed.begin(), fixed.end(), [&](const auto& f) { return bits(f.first) == bits(l.value); });
+    EXPECT_TRUE(known) << what << ": literal " << l.text << " (" << sglab::test::hex(l.value)
+                       << ") is neither a coefficient nor a fixed constant of the export";
+  }
+  return declared_sets;
+}
+
+std::vector<std::string> split_names(std::string_view list) {
+  std::vector<std::string> out;
+  for (const auto& w : sglab::test::words(std::string(list))) {
+    std::string name = w;
+    if (!name.empty() && name.back() == ',') name.pop_back();
+    if (!name.empty()) out.push_back(name);
+  }
+  return out;
+}
+
+}  // namespace
+
+// Every method in every language, with the constant sets of its standard
+// export: exactly the runtime's floats, no digit lost.
+TEST(ShaderExport, EveryLiteralIsTheRuntimesFloat) {
+  const auto sets = json_sets();
+  const std::set<std::string> tier_sets = {"erf_as7125_float", "erf_listing5_float"};
+  std::set<std::string> covered;
+  for (const sglab::Method& m : sglab::irradiance_methods) {
+    if (!exportable(m.id)) continue;
+    sh::ExportRequest req = sh::standard_request(sh::Language::glsl, std::string(m.id));
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl, sh::Language::cpp}) {
+      req.lang = lang;
+      const std::string source = sh::export_source(req).source;
+      std::vector<std::string> declared = check_export_literals(source, std::string(m.id), sets);
+      covered.insert(declared.begin(), declared.end());
+      // The sets are the registry's, plus at most one erf of a tier.
+      std::vector<std::string> expected = split_names(m.constants), extra;
+      for (const std::string& d : declared)
+        if (std::find(expected.begin(), expected.end(), d) == expected.end()) extra.push_back(d);
+      for (const std::string& e : expected)
+        EXPECT_NE(std::find(declared.begin(), declared.end(), e), declared.end()) << m.id << " does not bake in " << e;
+      EXPECT_LE(extra.size(), 1u) << m.id;
+      for (const std::string& e : extra) EXPECT_TRUE(tier_sets.count(e)) << m.id << " bakes in " << e;
+    }
+  }
+  EXPECT_TRUE(covered.count("erf_listing5_float"));
+}
+
+// Every constant set of data/constants, baked in as a --constants override of
+// the first export that has a slot of its type (the AbramowitzStegunParams
+// erf sets: the cheap erf tier, taken for a coarse model): its literals are
+// exactly its floats.
+TEST(ShaderExport, EveryConstantSetOverrideKeepsItsFloats) {
+  const auto sets = json_sets();
+  std::vector<sh::ExportRequest> candidates;
+  for (const std::string& method : sh::exportable_methods()) {
+    candidates.emplace_back();
+    candidates.back().method = method;
+  }
+  candidates.emplace_back();
+  candidates.back().method = "tokuyoshi2024";
+  const sh::ElementaryError as7125 = sh::measure_elementary("as7125");
+  candidates.back().budget.model = 100 * std::max(as7125.max_abs(), as7125.erf_rel_small) * 1.01;  // takes as7125
+  for (const auto& entry : fs::directory_iterator(kConstantsDir)) {
+    if (entry.path().extension() != ".json") continue;
+    const auto j = read_json(entry.path());
+    sh::ConstantSet o;
+    o.cpp_type = j.at("cpp_type").get<std::string>();
+    o.cpp_name = j.at("cpp_name").get<std::string>();
+    for (const auto& [member, value] : j.at("coefficients").items())
+      o.members.emplace_back(member, value.is_array() ? value.get<std::vector<double>>()
+                                                      : std::vector<double>{value.get<double>()});
+    bool exported = false;
+    for (sh::ExportRequest req : candidates) {
+      req.overrides = {o};
+      for (sh::Language lang : {sh::Language::glsl}) {  // one lit() for all: every language in the test above
+        req.lang = lang;
+        sh::ExportResult ex;
+        try {
+          ex = sh::export_source(req);
+        } catch (const std::invalid_argument&) {
+          break;  // no slot of this type
+        }
+        const auto declared = check_export_literals(ex.source, req.method, sets);
+        EXPECT_NE(std::find(declared.begin(), declared.end(), o.cpp_name), declared.end()) << req.method << " " << o.cpp_name;
+        exported = true;
+      }
+      if (exported) break;
+    }
+    EXPECT_TRUE(exported) << o.cpp_name << " (" << o.cpp_type << "): no export takes it";
+  }
 }
 
 // The tiers: the measured erf/erfc errors of each, and the choice by model error.

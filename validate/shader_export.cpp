@@ -12,6 +12,7 @@
 #include <sglab/constants.hpp>
 #include <sglab/registry.hpp>
 
+#include "comment_text.hpp"
 #include "sweep.hpp"
 
 namespace sglab::validate::shader {
@@ -294,7 +295,7 @@ std::vector<std::string> names(const Ctx& c, std::string_view role, const Consta
 std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSet& s) {
   const char* kw = c.lang == Language::glsl ? "const float" : c.lang == Language::hlsl ? "static const float"
                                                                                        : "inline constexpr float";
-  std::string out = fmt::format("// {}: {} {}\n", role, s.cpp_type, s.cpp_name);
+  std::string out = fmt::format("// {}: {} {}\n", role, comment_text(s.cpp_type), comment_text(s.cpp_name));
   for (const auto& [m, v] : s.members) {
     const auto n = names(c, role, s, m);
     for (std::size_t i = 0; i < v.size(); ++i) out += fmt::format("{} {} = {};\n", kw, n[i], lit(v[i]));
@@ -775,6 +776,18 @@ inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z;
                c);
 }
 
+// The exported code is float: a coefficient beyond the largest float would be
+// written as inf, which is no literal. Throws std::invalid_argument naming the
+// set and the key (coefficients.NAME, or coefficients.NAME[i] in an array).
+void check_finite_in_float(const ConstantSet& set) {
+  for (const auto& [name, values] : set.members)
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(static_cast<float>(values[i])))
+        throw std::invalid_argument(fmt::format(
+            "constant set {}: key '{}': {} is not finite in float, the precision of the exported code", set.cpp_name,
+            values.size() == 1 ? "coefficients." + name : fmt::format("coefficients.{}[{}]", name, i), values[i]));
+}
+
 std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }
 
 }  // namespace
@@ -890,8 +903,10 @@ ExportResult export_source(const ExportRequest& request) {
     }
   }
   const ConstantSet* erf_set = nullptr;
-  for (const auto& [role, set] : slots)
+  for (const auto& [role, set] : slots) {
+    check_finite_in_float(set);
     if (role == "erf") erf_set = &set;
+  }
   if (erf_set) {
     result.budget.elementary = measure(erf_set);
   } else {
@@ -919,7 +934,7 @@ ExportResult export_source(const ExportRequest& request) {
       prov = "compiled in from include/sglab/constants.hpp";
       if (auto it = request.provenance.find(set.cpp_name); it != request.provenance.end()) prov += "; " + it->second;
     }
-    h += fmt::format("//   {}: {} ({})\n", role, set.cpp_name, prov);
+    h += fmt::format("//   {}: {} ({})\n", role, comment_text(set.cpp_name), comment_text(prov));
   }
   if (!result.tier.id.empty()) h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
   h += request.overrides.empty()
@@ -939,8 +954,8 @@ ExportResult export_source(const ExportRequest& request) {
   else
     h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n", b.elementary.expm1_over_x_rel);
   if (b.vulkan)
-    h += fmt::format("//   measured on Vulkan ({}): {}\n", b.vulkan_device, fmt_error(b.vulkan));
-  h += fmt::format("// Produced by: {}\n", request.command);
+    h += fmt::format("//   measured on Vulkan ({}): {}\n", comment_text(b.vulkan_device), fmt_error(b.vulkan));
+  h += fmt::format("// Produced by: {}\n", comment_text(request.command));
 
   std::string body;
   body += h + "\n" + prelude(c);

@@ -96,8 +96,11 @@ std::string entry_point_name(std::string_view method);
 // The compiled-in constant sets a method uses (before overrides).
 std::vector<ConstantSet> method_constants(std::string_view method);
 
-// The source. Throws std::invalid_argument for an unknown method or an
-// override no constant slot of the method accepts.
+// The source. Every text of the request (provenance, command, device) enters
+// it only through comment_text (validate/comment_text.hpp), inside // comments.
+// Throws std::invalid_argument for an unknown method, an override no constant
+// slot of the method accepts, or a coefficient that is not finite in float (the
+// precision of the exported code), naming the set and the key.
 ExportResult export_source(const ExportRequest& request);
 
 // The model error (double) and the C++ float error of a registered
