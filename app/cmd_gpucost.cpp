@@ -30,6 +30,7 @@ struct GpucostArgs {
   std::vector<std::string> methods;
   std::string lang = "glsl";
   bool json = false;
+  bool disasm = false;
   std::string out;
   std::string worker_family, worker_dir;  // the per-family process (internal)
 };
@@ -106,13 +107,15 @@ void add_gpucost_command(CLI::App& app) {
   auto args = std::make_shared<GpucostArgs>();
   auto* cmd = app.add_subcommand(
       "gpucost", "GPU cost of every exported method from AMD's shader compiler (ACO on Mesa's RADV null devices)");
-  cmd->add_option("--families", args->families,
+  cmd->add_option("--families,--family", args->families,
                   "comma-separated AMD chips (RADV_FORCE_FAMILY names; default polaris10,vega10,navi10,navi21,gfx1100)")
       ->delimiter(',');
   cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
   cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json");
+  cmd->add_flag("--disasm", args->disasm,
+                "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl]) instead of the table");
   cmd->add_option("--worker-family", args->worker_family)->group("");
   cmd->add_option("--worker-dir", args->worker_dir)->group("");
   cmd->callback([args, cmd] {
@@ -129,6 +132,21 @@ void add_gpucost_command(CLI::App& app) {
       throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
                              "mesa-vulkan-drivers");
 
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
+    if (args->disasm) {
+      if (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 || args->json ||
+          !args->out.empty())
+        throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
+                         "or --out");
+      const gpu::Shader s = gpu::method_shader(methods[0], languages[0]);
+      fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
+                 "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
+                 methods[0], families[0], shader::to_string(languages[0]),
+                 gpu::disassemble(self, *manifest, families[0], s));
+      return;
+    }
     io::Progress progress("gpucost", families.size() + methods.size() * languages.size());
     std::vector<gpu::Shader> shaders;
     for (shader::Language lang : languages) {
@@ -139,9 +157,6 @@ void add_gpucost_command(CLI::App& app) {
         progress.advance();
       }
     }
-    std::error_code ec;
-    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
     gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
       progress.note(fmt::format("ACO, {}", family));
       progress.advance();

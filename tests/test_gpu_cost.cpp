@@ -145,6 +145,20 @@ TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
   EXPECT_EQ(sglab::io::read_file(dir.path / "costs.json"), first);
 }
 
+// --disasm prints the final assembly: the wrapper's load and store, and for
+// tokuyoshi2024 the hardware exp its erfc and e^{-κ} need.
+TEST_F(OnRadv, DisasmPrintsTheAssembly) {
+  const auto r = run_sglab({"gpucost", "--disasm", "--method", "tokuyoshi2024", "--family", "navi21"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("buffer_load_dwordx2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("buffer_store_dword"), std::string::npos);
+  EXPECT_NE(r.output.find("v_exp_f32"), std::string::npos);
+  EXPECT_NE(r.output.find("s_endpgm"), std::string::npos);
+  const auto two = run_sglab({"gpucost", "--disasm", "--method", "hill", "--method", "vsgl2015", "--family", "navi21"});
+  EXPECT_EQ(two.exit_code, 2) << two.output;
+  EXPECT_NE(two.output.find("--disasm"), std::string::npos) << two.output;
+}
+
 TEST_F(OnRadv, AFamilyRadvDoesNotKnowIsReported) {
   const auto r = run_sglab({"gpucost", "--families", "nosuchchip", "--method", "hill"});
   EXPECT_EQ(r.exit_code, 1) << r.output;

@@ -216,9 +216,10 @@ Measured measure_here(std::string_view family, const std::vector<Shader>& shader
 
 void run_worker(std::string_view family, const fs::path& dir) {
   const json manifest = json::parse(io::read_file(dir / "shaders.json"));
+  const bool disassemble = manifest.at("disassemble").get<bool>();
   std::vector<Shader> shaders;
-  for (std::size_t i = 0; i < manifest.size(); ++i)
-    shaders.push_back({manifest[i].at("method").get<std::string>(), shader::Language::glsl,
+  for (std::size_t i = 0; i < manifest.at("shaders").size(); ++i)
+    shaders.push_back({manifest.at("shaders")[i].at("method").get<std::string>(), shader::Language::glsl,
                        read_spirv(dir / shader_file(i))});
   json out;
   try {
@@ -226,40 +227,63 @@ void run_worker(std::string_view family, const fs::path& dir) {
     out["driver"] = m.driver;
     out["stats"] = json::array();
     for (const Statistics& s : m.stats) out["stats"].push_back(stats_json(s));
+    if (disassemble) {
+      vulkan::Device device;  // the one measure_here checked is RADV's for this family
+      out["assembly"] = json::array();
+      for (const Shader& s : shaders) {
+        std::string text;
+        for (auto& [name, representation] : device.pipeline_representations(s.spirv))
+          if (name == "Assembly") text = std::move(representation);
+        out["assembly"].push_back(text);
+      }
+    }
   } catch (const Unavailable& e) {
     out["unavailable"] = e.what();
   }
   io::write_file_atomic(dir / fmt::format("result-{}.json", family), out.dump() + "\n");
 }
 
-Report measure(const fs::path& self, const fs::path& manifest, const std::vector<std::string>& families,
-               const std::vector<Shader>& shaders, const std::function<void(std::string_view)>& progress) {
+namespace {
+
+// Runs the worker for one family over `shaders` in a scratch folder and
+// returns its result (driver, stats, and with `disassemble` the assembly).
+json run_family(const fs::path& self, const fs::path& manifest, const std::string& family,
+                const std::vector<Shader>& shaders, bool disassemble) {
   ScratchDir scratch;
   json list = json::array();
   for (std::size_t i = 0; i < shaders.size(); ++i) {
     write_spirv(scratch.path() / shader_file(i), shaders[i].spirv);
     list.push_back({{"method", shaders[i].method}, {"lang", std::string(shader::to_string(shaders[i].lang))}});
   }
-  io::write_file_atomic(scratch.path() / "shaders.json", list.dump() + "\n");
+  io::write_file_atomic(scratch.path() / "shaders.json",
+                        json{{"shaders", list}, {"disassemble", disassemble}}.dump() + "\n");
+  const fs::path log = scratch.path() / fmt::format("log-{}.txt", family);
+  const fs::path result = scratch.path() / fmt::format("result-{}.json", family);
+  const int rc = io::run_program(
+      {self.string(), "gpucost", "--worker-family", family, "--worker-dir", scratch.path().string()}, {}, log,
+      family_environment(manifest, family));
+  std::error_code ec;
+  if (rc != 0 || !fs::is_regular_file(result, ec))
+    throw std::runtime_error(
+        fmt::format("gpucost: the process measuring family '{}' failed (exit {}){}", family, rc, log_tail(log)));
+  json r = json::parse(io::read_file(result));
+  if (r.contains("unavailable")) throw Unavailable(r.at("unavailable").get<std::string>());
+  if (!r.contains("stats") || r.at("stats").size() != shaders.size() ||
+      (disassemble && (!r.contains("assembly") || r.at("assembly").size() != shaders.size())))
+    throw std::runtime_error(fmt::format("gpucost worker for '{}': wrong number of results", family));
+  return r;
+}
 
+}  // namespace
+
+Report measure(const fs::path& self, const fs::path& manifest, const std::vector<std::string>& families,
+               const std::vector<Shader>& shaders, const std::function<void(std::string_view)>& progress) {
   Report report;
   for (const std::string& family : families) {
     if (progress) progress(family);
-    const fs::path log = scratch.path() / fmt::format("log-{}.txt", family);
-    const fs::path result = scratch.path() / fmt::format("result-{}.json", family);
-    const int rc = io::run_program({self.string(), "gpucost", "--worker-family", family, "--worker-dir",
-                                    scratch.path().string()},
-                                   {}, log, family_environment(manifest, family));
-    std::error_code ec;
-    if (rc != 0 || !fs::is_regular_file(result, ec))
-      throw std::runtime_error(
-          fmt::format("gpucost: the process measuring family '{}' failed (exit {}){}", family, rc, log_tail(log)));
-    const json r = json::parse(io::read_file(result));
-    if (r.contains("unavailable")) throw Unavailable(r.at("unavailable").get<std::string>());
-    const std::string where = fmt::format("gpucost worker for '{}'", family);
-    if (!r.contains("stats") || r.at("stats").size() != shaders.size())
-      throw std::runtime_error(where + ": wrong number of results");
+    const json r = run_family(self, manifest, family, shaders, false);
     if (report.driver.empty()) report.driver = r.at("driver").get<std::string>();
+    const std::string where = fmt::format("gpucost worker for '{}'", family);
     std::map<shader::Language, Statistics> baseline;
     for (std::size_t i = 0; i < shaders.size(); ++i) {
       const Statistics s = stats_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
@@ -274,6 +298,14 @@ Report measure(const fs::path& self, const fs::path& manifest, const std::vector
     }
   }
   return report;
+}
+
+std::string disassemble(const fs::path& self, const fs::path& manifest, std::string_view family,
+                        const Shader& shader) {
+  const json r = run_family(self, manifest, std::string(family), {shader}, true);
+  const std::string text = r.at("assembly")[0].get<std::string>();
+  if (text.empty()) throw Unavailable("the driver returned no \"Assembly\" representation");
+  return text;
 }
 
 json to_json(const Report& report) {

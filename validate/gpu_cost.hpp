@@ -125,8 +125,14 @@ Report measure(const std::filesystem::path& self, const std::filesystem::path& m
                const std::vector<std::string>& families, const std::vector<Shader>& shaders,
                const std::function<void(std::string_view family)>& progress = {});
 
-// The worker's side of measure(): reads the shaders measure() left in `dir`,
-// measures them here and writes the result next to them.
+// The compiled code of one shader on one family: ACO's final assembly of the
+// whole pipeline (the wrapper around the method), as the driver prints it, in
+// a process of its own as measure() does.
+std::string disassemble(const std::filesystem::path& self, const std::filesystem::path& manifest,
+                        std::string_view family, const Shader& shader);
+
+// The worker's side of measure() and disassemble(): reads the shaders left in
+// `dir`, measures (or disassembles) them here and writes the result next to them.
 void run_worker(std::string_view family, const std::filesystem::path& dir);
 
 // {"driver", "command", "wrapper", "rows": [{"method", "family", "lang",

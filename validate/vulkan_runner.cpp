@@ -160,6 +160,7 @@ struct Device::Impl {
   bool statistics = false;  // VK_KHR_pipeline_executable_properties enabled
   PFN_vkGetPipelineExecutablePropertiesKHR get_executable_properties = nullptr;
   PFN_vkGetPipelineExecutableStatisticsKHR get_executable_statistics = nullptr;
+  PFN_vkGetPipelineExecutableInternalRepresentationsKHR get_executable_representations = nullptr;
   VkPhysicalDeviceMemoryProperties memory_properties{};
 
   ~Impl() {
@@ -266,7 +267,9 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
         vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutablePropertiesKHR"));
     d.get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
         vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableStatisticsKHR"));
-    d.statistics = d.get_executable_properties && d.get_executable_statistics;
+    d.get_executable_representations = reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
+        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
+    d.statistics = d.get_executable_properties && d.get_executable_statistics && d.get_executable_representations;
   }
 }
 
@@ -365,20 +368,31 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   return result;
 }
 
+namespace {
+
+// The one compute executable of a pipeline built with `flags`.
+VkPipelineExecutableInfoKHR compute_executable(VkDevice device, VkPipeline pipeline,
+                                               PFN_vkGetPipelineExecutablePropertiesKHR get_properties) {
+  auto info = make<VkPipelineInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR);
+  info.pipeline = pipeline;
+  std::uint32_t executables = 0;
+  check(get_properties(device, &info, &executables, nullptr), "vkGetPipelineExecutablePropertiesKHR");
+  if (executables != 1)
+    throw std::runtime_error(fmt::format("Vulkan: expected one compute executable, the driver reports {}", executables));
+  auto executable = make<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
+  executable.pipeline = pipeline;
+  executable.executableIndex = 0;
+  return executable;
+}
+
+}  // namespace
+
 std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std::uint32_t>& spirv) {
   Impl& d = *impl_;
   if (!d.statistics)
     throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
   ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR);
-  auto info = make<VkPipelineInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR);
-  info.pipeline = p.pipeline;
-  std::uint32_t executables = 0;
-  check(d.get_executable_properties(d.device, &info, &executables, nullptr), "vkGetPipelineExecutablePropertiesKHR");
-  if (executables != 1)
-    throw std::runtime_error(fmt::format("Vulkan: expected one compute executable, the driver reports {}", executables));
-  auto executable = make<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
-  executable.pipeline = p.pipeline;
-  executable.executableIndex = 0;
+  const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
   std::uint32_t count = 0;
   check(d.get_executable_statistics(d.device, &executable, &count, nullptr), "vkGetPipelineExecutableStatisticsKHR");
   std::vector<VkPipelineExecutableStatisticKHR> raw(
@@ -390,6 +404,38 @@ std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std
       out.push_back({st.name, st.value.u64});
     else if (st.format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR && st.value.i64 >= 0)
       out.push_back({st.name, static_cast<std::uint64_t>(st.value.i64)});
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> Device::pipeline_representations(
+    const std::vector<std::uint32_t>& spirv) {
+  Impl& d = *impl_;
+  if (!d.statistics)
+    throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
+  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR);
+  const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
+  std::uint32_t count = 0;
+  check(d.get_executable_representations(d.device, &executable, &count, nullptr),
+        "vkGetPipelineExecutableInternalRepresentationsKHR");
+  std::vector<VkPipelineExecutableInternalRepresentationKHR> raw(
+      count, make<VkPipelineExecutableInternalRepresentationKHR>(
+                 VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR));
+  // First the sizes, then the text into buffers of those sizes.
+  check(d.get_executable_representations(d.device, &executable, &count, raw.data()),
+        "vkGetPipelineExecutableInternalRepresentationsKHR");
+  std::vector<std::string> text(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    text[i].resize(raw[i].dataSize);
+    raw[i].pData = text[i].data();
+  }
+  check(d.get_executable_representations(d.device, &executable, &count, raw.data()),
+        "vkGetPipelineExecutableInternalRepresentationsKHR");
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (!raw[i].isText) continue;
+    text[i].resize(std::strlen(text[i].c_str()));  // the driver's text ends with a NUL
+    out.emplace_back(raw[i].name, std::move(text[i]));
   }
   return out;
 }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "shader_export.hpp"
@@ -67,6 +68,9 @@ class Device {
   // Throws Unavailable when the device does not offer them, std::runtime_error
   // naming the failed call otherwise.
   std::vector<PipelineStatistic> pipeline_statistics(const std::vector<std::uint32_t>& spirv);
+  // The same pipeline's internal representations as text, by the driver's
+  // name for each (RADV: "NIR Shader(s)", "ACO IR", "Assembly").
+  std::vector<std::pair<std::string, std::string>> pipeline_representations(const std::vector<std::uint32_t>& spirv);
 
   // Runs a compute shader built by shader::compute_shader over the points:
   // binding 0 holds (cosine, kappa) pairs as float2, binding 1 receives one
