@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -143,6 +144,15 @@ void add_bench_command(CLI::App& app) {
       throw InputError(fmt::format("--repetitions: must be >= 1, got {}", args->repetitions));
     if (!(args->min_time > 0) || !(args->min_time <= 10))
       throw InputError(fmt::format("--min-time: must be in (0, 10] seconds, got {}", args->min_time));
+    const std::filesystem::path dir(args->out);
+    // What `sglab gpucost` wrote into the same table stays (read before the
+    // measurement, so a malformed table is reported at once).
+    std::optional<validate::gpu::Report> kept_gpu_costs;
+    try {
+      if (const auto existing = validate::read_existing_cost_table(dir / "costs.json")) kept_gpu_costs = existing->gpu;
+    } catch (const validate::CostTableError& e) {
+      throw InputError(e.what());
+    }
     std::regex filter;
     try {
       if (!args->filter.empty()) filter = std::regex(args->filter);
@@ -203,7 +213,7 @@ void add_bench_command(CLI::App& app) {
     cost_table.info.load_end = load_end;
     cost_table.costs = costs;
 
-    const std::filesystem::path dir(args->out);
+    cost_table.gpu = kept_gpu_costs;
     using validate::TableFormat;
     validate::write_table(table, dir, "bench", {TableFormat::csv, TableFormat::markdown});
     validate::write_table(summary, dir, "bench_summary", {TableFormat::csv, TableFormat::markdown});

@@ -51,5 +51,6 @@ void add_pareto_command(CLI::App& app);
 void add_recommend_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_gpucost_command(CLI::App& app);
 
 }  // namespace sglab::app

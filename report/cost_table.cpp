@@ -93,6 +93,7 @@ json to_json(const CostTable& t) {
                     {"mode", std::string(to_string(c.mode))},
                     {"ns_per_eval", c.ns_per_eval}});
   doc["costs"] = std::move(rows);
+  if (t.gpu) doc["gpu"] = gpu::to_json(*t.gpu);
   return doc;
 }
 
@@ -190,7 +191,20 @@ CostTable read_cost_table(const fs::path& path) {
                              precision, mode));
     t.costs.push_back(std::move(c));
   }
+  if (doc.contains("gpu")) {
+    try {
+      t.gpu = gpu::report_from_json(doc.at("gpu"), "gpu");
+    } catch (const std::runtime_error& e) {
+      fail(path, e.what());
+    }
+  }
   return t;
+}
+
+std::optional<CostTable> read_existing_cost_table(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return std::nullopt;
+  return read_cost_table(path);
 }
 
 std::optional<fs::path> default_cost_table_path() {

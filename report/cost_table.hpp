@@ -14,7 +14,10 @@
 //               "mode": "batch", "ns_per_eval": 4.2}, ...]}
 // kind ∈ {irradiance, hemispherical, erf}, precision ∈ {float, double},
 // mode ∈ {scalar, batch, light_setup, light_eval}; ns_per_eval finite and > 0.
-// The committed table is data/results/costs.json.
+// Optionally "gpu": what `sglab gpucost --out DIR` measured with AMD's shader
+// compiler (validate/gpu_cost.hpp, gpu::to_json): driver, command and a row
+// per (method, family, lang). `sglab bench` keeps it, `sglab gpucost` keeps the
+// rest. The committed table is data/results/costs.json.
 #pragma once
 
 #include <filesystem>
@@ -26,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cost.hpp"
+#include "gpu_cost.hpp"
 
 namespace sglab::validate {
 
@@ -50,6 +54,7 @@ struct CostTable {
   std::filesystem::path path;  // where it was read from (empty when built in memory)
   CostTableInfo info;
   std::vector<Cost> costs;
+  std::optional<gpu::Report> gpu;
   // The row for (kind, method, precision, mode), or nullptr.
   const Cost* find(CostKind kind, std::string_view method, FloatFormat precision, CostMode mode) const;
 };
@@ -64,6 +69,9 @@ nlohmann::ordered_json to_json(const CostTable& table);
 void write_cost_table(const CostTable& table, const std::filesystem::path& path);
 // Reads and validates; throws CostTableError naming `path` and what is wrong.
 CostTable read_cost_table(const std::filesystem::path& path);
+// The table at `path` when it exists (validated), for a writer that replaces
+// one part of it; nullopt when there is no file.
+std::optional<CostTable> read_existing_cost_table(const std::filesystem::path& path);
 
 // data/results/costs.json of the project that holds the working directory
 // (the first folder upwards with data/results and include/sglab), or nullopt.

@@ -69,7 +69,7 @@ std::optional<std::filesystem::path> find_project_root(const std::filesystem::pa
 }
 
 int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
-                const std::filesystem::path& output) {
+                const std::filesystem::path& output, const std::optional<std::vector<std::string>>& environment) {
   if (argv.empty()) return -1;
   posix_spawn_file_actions_t actions;
   if (posix_spawn_file_actions_init(&actions) != 0) return -1;
@@ -87,8 +87,13 @@ int run_program(const std::vector<std::string>& argv, const std::filesystem::pat
   args.push_back(program.data());
   for (std::size_t i = 1; i < argv.size(); ++i) args.push_back(const_cast<char*>(argv[i].c_str()));
   args.push_back(nullptr);
+  std::vector<char*> env;
+  if (environment) {
+    for (const std::string& entry : *environment) env.push_back(const_cast<char*>(entry.c_str()));
+    env.push_back(nullptr);
+  }
   pid_t pid = 0;
-  const int rc = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  const int rc = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environment ? env.data() : environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
   int status = 0;

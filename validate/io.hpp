@@ -64,10 +64,13 @@ std::optional<std::filesystem::path> find_project_root(const std::filesystem::pa
 // shell, so arguments are passed exactly as given. Standard input is
 // /dev/null; standard output and error go to `output` (created or truncated,
 // relative to `cwd` if relative) or are discarded when it is empty; `cwd`,
-// when not empty, is the child's working directory. Returns the exit code,
-// 128 + the signal number if it was killed, or -1 if it could not be started.
+// when not empty, is the child's working directory; `environment`, when
+// given, is the child's whole environment ("NAME=value" entries) instead of
+// this process's. Returns the exit code, 128 + the signal number if it was
+// killed, or -1 if it could not be started.
 int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
-                const std::filesystem::path& output = {});
+                const std::filesystem::path& output = {},
+                const std::optional<std::vector<std::string>>& environment = std::nullopt);
 
 // `text` without a leading UTF-8 byte-order mark (EF BB BF), which some
 // editors and spreadsheet programs write at the start of a CSV file.

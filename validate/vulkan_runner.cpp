@@ -97,6 +97,56 @@ struct Buffer {
   }
 };
 
+// The compute pipeline of the sweep wrapper: one shader module, storage
+// buffers at bindings 0 and 1 of set 0, entry point `main`. `flags` asks the
+// driver to keep its statistics (VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR).
+struct ComputePipeline {
+  VkDevice dev;
+  VkShaderModule module = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+
+  ComputePipeline(VkDevice device, const std::vector<std::uint32_t>& spirv, VkPipelineCreateFlags flags = 0)
+      : dev(device) {
+    auto smci = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+    smci.codeSize = spirv.size() * sizeof(std::uint32_t);
+    smci.pCode = spirv.data();
+    check(vkCreateShaderModule(dev, &smci, nullptr, &module), "vkCreateShaderModule");
+    VkDescriptorSetLayoutBinding bindings[2]{};
+    for (std::uint32_t i = 0; i < 2; ++i) {
+      bindings[i].binding = i;
+      bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      bindings[i].descriptorCount = 1;
+      bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    auto dslci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    dslci.bindingCount = 2;
+    dslci.pBindings = bindings;
+    check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
+    auto plci = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    plci.setLayoutCount = 1;
+    plci.pSetLayouts = &set_layout;
+    check(vkCreatePipelineLayout(dev, &plci, nullptr, &pipeline_layout), "vkCreatePipelineLayout");
+    auto cpci = make<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    cpci.flags = flags;
+    cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cpci.stage.module = module;
+    cpci.stage.pName = "main";
+    cpci.layout = pipeline_layout;
+    check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpci, nullptr, &pipeline), "vkCreateComputePipelines");
+  }
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+  ~ComputePipeline() {
+    if (pipeline) vkDestroyPipeline(dev, pipeline, nullptr);
+    if (pipeline_layout) vkDestroyPipelineLayout(dev, pipeline_layout, nullptr);
+    if (set_layout) vkDestroyDescriptorSetLayout(dev, set_layout, nullptr);
+    if (module) vkDestroyShaderModule(dev, module, nullptr);
+  }
+};
+
 }  // namespace
 
 struct Device::Impl {
@@ -106,6 +156,11 @@ struct Device::Impl {
   VkQueue queue = VK_NULL_HANDLE;
   std::uint32_t queue_family = 0;
   std::string name;
+  std::string driver_name, driver_info;
+  bool statistics = false;  // VK_KHR_pipeline_executable_properties enabled
+  PFN_vkGetPipelineExecutablePropertiesKHR get_executable_properties = nullptr;
+  PFN_vkGetPipelineExecutableStatisticsKHR get_executable_statistics = nullptr;
+  PFN_vkGetPipelineExecutableInternalRepresentationsKHR get_executable_representations = nullptr;
   VkPhysicalDeviceMemoryProperties memory_properties{};
 
   ~Impl() {
@@ -143,7 +198,8 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
   auto app = make<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
   app.pApplicationName = "sglab";
-  app.apiVersion = VK_API_VERSION_1_0;
+  // 1.1 for vkGetPhysicalDeviceProperties2 (the driver's name and version).
+  app.apiVersion = VK_API_VERSION_1_1;
   auto ici = make<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
   ici.pApplicationInfo = &app;
   if (VkResult r = vkCreateInstance(&ici, nullptr, &d.instance); r != VK_SUCCESS)
@@ -171,23 +227,58 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(d.physical, &props);
   d.name = props.deviceName;
+  if (props.apiVersion >= VK_API_VERSION_1_2) {
+    auto driver = make<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
+    auto props2 = make<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
+    props2.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(d.physical, &props2);
+    d.driver_name = driver.driverName;
+    d.driver_info = driver.driverInfo;
+  }
   vkGetPhysicalDeviceMemoryProperties(d.physical, &d.memory_properties);
+  std::uint32_t extension_count = 0;
+  vkEnumerateDeviceExtensionProperties(d.physical, nullptr, &extension_count, nullptr);
+  std::vector<VkExtensionProperties> extensions(extension_count);
+  if (extension_count) vkEnumerateDeviceExtensionProperties(d.physical, nullptr, &extension_count, extensions.data());
+  constexpr const char* kStatistics = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
+  d.statistics = std::any_of(extensions.begin(), extensions.end(),
+                             [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, kStatistics) == 0; });
   const float priority = 1.0f;
   auto qci = make<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
   qci.queueFamilyIndex = d.queue_family;
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
+  auto statistics_feature = make<VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR);
+  statistics_feature.pipelineExecutableInfo = VK_TRUE;
   auto dci = make<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
+  if (d.statistics) {
+    dci.pNext = &statistics_feature;
+    dci.enabledExtensionCount = 1;
+    dci.ppEnabledExtensionNames = &kStatistics;
+  }
   if (VkResult r = vkCreateDevice(d.physical, &dci, nullptr, &d.device); r != VK_SUCCESS)
     throw Unavailable(fmt::format("vkCreateDevice on {} returned {}", d.name, static_cast<int>(r)));
   vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
+  if (d.statistics) {
+    d.get_executable_properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutablePropertiesKHR"));
+    d.get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableStatisticsKHR"));
+    d.get_executable_representations = reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
+        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
+    d.statistics = d.get_executable_properties && d.get_executable_statistics && d.get_executable_representations;
+  }
 }
 
 Device::~Device() = default;
 
 std::string Device::name() const { return impl_->name; }
+std::string Device::driver_name() const { return impl_->driver_name; }
+std::string Device::driver_info() const { return impl_->driver_info; }
+bool Device::has_pipeline_statistics() const { return impl_->statistics; }
 
 std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& pairs) {
   Impl& d = *impl_;
@@ -203,13 +294,10 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   std::memcpy(mapped, pairs.data(), in.size);
   vkUnmapMemory(dev, in.memory);
 
+  ComputePipeline p(dev, spirv);
   // Every object below is destroyed by one guard, in reverse order.
   struct Objects {
     VkDevice dev;
-    VkShaderModule module = VK_NULL_HANDLE;
-    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-    VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkCommandPool command_pool = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
@@ -217,40 +305,8 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
       if (fence) vkDestroyFence(dev, fence, nullptr);
       if (command_pool) vkDestroyCommandPool(dev, command_pool, nullptr);
       if (pool) vkDestroyDescriptorPool(dev, pool, nullptr);
-      if (pipeline) vkDestroyPipeline(dev, pipeline, nullptr);
-      if (pipeline_layout) vkDestroyPipelineLayout(dev, pipeline_layout, nullptr);
-      if (set_layout) vkDestroyDescriptorSetLayout(dev, set_layout, nullptr);
-      if (module) vkDestroyShaderModule(dev, module, nullptr);
     }
   } o{dev};
-
-  auto smci = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
-  smci.codeSize = spirv.size() * sizeof(std::uint32_t);
-  smci.pCode = spirv.data();
-  check(vkCreateShaderModule(dev, &smci, nullptr, &o.module), "vkCreateShaderModule");
-
-  VkDescriptorSetLayoutBinding bindings[2]{};
-  for (std::uint32_t i = 0; i < 2; ++i) {
-    bindings[i].binding = i;
-    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    bindings[i].descriptorCount = 1;
-    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-  }
-  auto dslci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  dslci.bindingCount = 2;
-  dslci.pBindings = bindings;
-  check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &o.set_layout), "vkCreateDescriptorSetLayout");
-  auto plci = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-  plci.setLayoutCount = 1;
-  plci.pSetLayouts = &o.set_layout;
-  check(vkCreatePipelineLayout(dev, &plci, nullptr, &o.pipeline_layout), "vkCreatePipelineLayout");
-  auto cpci = make<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
-  cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  cpci.stage.module = o.module;
-  cpci.stage.pName = "main";
-  cpci.layout = o.pipeline_layout;
-  check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpci, nullptr, &o.pipeline), "vkCreateComputePipelines");
 
   VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
   auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
@@ -261,7 +317,7 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   auto dsai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
   dsai.descriptorPool = o.pool;
   dsai.descriptorSetCount = 1;
-  dsai.pSetLayouts = &o.set_layout;
+  dsai.pSetLayouts = &p.set_layout;
   VkDescriptorSet set;
   check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
   VkDescriptorBufferInfo infos[2] = {{in.buffer, 0, VK_WHOLE_SIZE}, {out.buffer, 0, VK_WHOLE_SIZE}};
@@ -288,8 +344,8 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline);
-  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline_layout, 0, 1, &set, 0, nullptr);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline_layout, 0, 1, &set, 0, nullptr);
   vkCmdDispatch(cb, static_cast<std::uint32_t>((n + 63) / 64), 1, 1);
   auto barrier = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -310,6 +366,78 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   std::memcpy(result.data(), mapped, out.size);
   vkUnmapMemory(dev, out.memory);
   return result;
+}
+
+namespace {
+
+// The one compute executable of a pipeline built with `flags`.
+VkPipelineExecutableInfoKHR compute_executable(VkDevice device, VkPipeline pipeline,
+                                               PFN_vkGetPipelineExecutablePropertiesKHR get_properties) {
+  auto info = make<VkPipelineInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR);
+  info.pipeline = pipeline;
+  std::uint32_t executables = 0;
+  check(get_properties(device, &info, &executables, nullptr), "vkGetPipelineExecutablePropertiesKHR");
+  if (executables != 1)
+    throw std::runtime_error(fmt::format("Vulkan: expected one compute executable, the driver reports {}", executables));
+  auto executable = make<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
+  executable.pipeline = pipeline;
+  executable.executableIndex = 0;
+  return executable;
+}
+
+}  // namespace
+
+std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std::uint32_t>& spirv) {
+  Impl& d = *impl_;
+  if (!d.statistics)
+    throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
+  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR);
+  const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
+  std::uint32_t count = 0;
+  check(d.get_executable_statistics(d.device, &executable, &count, nullptr), "vkGetPipelineExecutableStatisticsKHR");
+  std::vector<VkPipelineExecutableStatisticKHR> raw(
+      count, make<VkPipelineExecutableStatisticKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR));
+  check(d.get_executable_statistics(d.device, &executable, &count, raw.data()), "vkGetPipelineExecutableStatisticsKHR");
+  std::vector<PipelineStatistic> out;
+  for (const auto& st : raw) {
+    if (st.format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR)
+      out.push_back({st.name, st.value.u64});
+    else if (st.format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR && st.value.i64 >= 0)
+      out.push_back({st.name, static_cast<std::uint64_t>(st.value.i64)});
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> Device::pipeline_representations(
+    const std::vector<std::uint32_t>& spirv) {
+  Impl& d = *impl_;
+  if (!d.statistics)
+    throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
+  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR);
+  const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
+  std::uint32_t count = 0;
+  check(d.get_executable_representations(d.device, &executable, &count, nullptr),
+        "vkGetPipelineExecutableInternalRepresentationsKHR");
+  std::vector<VkPipelineExecutableInternalRepresentationKHR> raw(
+      count, make<VkPipelineExecutableInternalRepresentationKHR>(
+                 VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR));
+  // First the sizes, then the text into buffers of those sizes.
+  check(d.get_executable_representations(d.device, &executable, &count, raw.data()),
+        "vkGetPipelineExecutableInternalRepresentationsKHR");
+  std::vector<std::string> text(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    text[i].resize(raw[i].dataSize);
+    raw[i].pData = text[i].data();
+  }
+  check(d.get_executable_representations(d.device, &executable, &count, raw.data()),
+        "vkGetPipelineExecutableInternalRepresentationsKHR");
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (!raw[i].isText) continue;
+    text[i].resize(std::strlen(text[i].c_str()));  // the driver's text ends with a NUL
+    out.emplace_back(raw[i].name, std::move(text[i]));
+  }
+  return out;
 }
 
 std::vector<std::string> add_device_entries(SweepResult& r, std::span<const SweepMethod> methods,

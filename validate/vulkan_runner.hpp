@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "shader_export.hpp"
@@ -36,6 +37,14 @@ std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_vi
 // likewise through the HLSL front end. Throws CompileError with the log.
 void check_compiles(shader::Language lang, std::string_view exported_source);
 
+// One statistic the driver's shader compiler reports for a pipeline
+// (VK_KHR_pipeline_executable_properties), e.g. RADV/ACO's "Instructions",
+// "Inverse Throughput", "VGPRs". Only integer statistics are kept.
+struct PipelineStatistic {
+  std::string name;
+  std::uint64_t value = 0;
+};
+
 // The first Vulkan device with a compute queue, and a compute dispatch on it.
 class Device {
  public:
@@ -46,6 +55,22 @@ class Device {
   Device& operator=(const Device&) = delete;
 
   std::string name() const;
+  // The driver's name and version as it reports them (VkPhysicalDeviceDriverProperties,
+  // e.g. "radv" and "Mesa 22.3.6"); empty when the device predates Vulkan 1.2.
+  std::string driver_name() const;
+  std::string driver_info() const;
+  // Whether pipeline_statistics() is available (the device offers
+  // VK_KHR_pipeline_executable_properties).
+  bool has_pipeline_statistics() const;
+
+  // Builds the compute pipeline of `spirv` (the layout run() uses) and returns
+  // the integer statistics of its compute executable, in the driver's order.
+  // Throws Unavailable when the device does not offer them, std::runtime_error
+  // naming the failed call otherwise.
+  std::vector<PipelineStatistic> pipeline_statistics(const std::vector<std::uint32_t>& spirv);
+  // The same pipeline's internal representations as text, by the driver's
+  // name for each (RADV: "NIR Shader(s)", "ACO IR", "Assembly").
+  std::vector<std::pair<std::string, std::string>> pipeline_representations(const std::vector<std::uint32_t>& spirv);
 
   // Runs a compute shader built by shader::compute_shader over the points:
   // binding 0 holds (cosine, kappa) pairs as float2, binding 1 receives one

@@ -1,0 +1,175 @@
+// `sglab gpucost`: what each exported method costs on AMD GPUs, from the
+// statistics of AMD's shader compiler (ACO) on Mesa's RADV null devices
+// (validate/gpu_cost.hpp). Deterministic: the same driver gives the same
+// numbers on every run and machine.
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "commands.hpp"
+#include "cost_table.hpp"
+#include "gpu_cost.hpp"
+#include "io.hpp"
+
+namespace sglab::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace gpu = validate::gpu;
+namespace shader = validate::shader;
+
+struct GpucostArgs {
+  std::vector<std::string> families;
+  std::vector<std::string> methods;
+  std::string lang = "glsl";
+  bool json = false;
+  bool disasm = false;
+  std::string out;
+  std::string worker_family, worker_dir;  // the per-family process (internal)
+};
+
+std::vector<std::string> checked_families(const std::vector<std::string>& asked) {
+  std::vector<std::string> families;
+  if (asked.empty())
+    for (const gpu::Family& f : gpu::kDefaultFamilies) families.emplace_back(f.name);
+  for (const std::string& f : asked) {
+    const bool name_like = !f.empty() && f.size() <= 32 &&
+                           f.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") == std::string::npos;
+    if (!name_like)
+      throw InputError(fmt::format("--families: '{}' is not a chip name (lower-case letters and digits, e.g. navi21)",
+                                   f.substr(0, 40)));
+    if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);
+  }
+  return families;
+}
+
+std::vector<shader::Language> checked_languages(const std::string& lang) {
+  if (lang == "glsl") return {shader::Language::glsl};
+  if (lang == "hlsl") return {shader::Language::hlsl};
+  if (lang == "both") return {shader::Language::glsl, shader::Language::hlsl};
+  throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", lang));
+}
+
+std::vector<std::string> checked_methods(const std::vector<std::string>& asked) {
+  const auto known = shader::exportable_methods();
+  if (asked.empty()) return known;
+  for (const std::string& m : asked)
+    if (std::find(known.begin(), known.end(), m) == known.end())
+      throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", m,
+                                   fmt::join(known, ", ")));
+  return asked;
+}
+
+std::string command_line(const GpucostArgs& a) {
+  std::string c = "sglab gpucost";
+  if (!a.families.empty()) c += " --families " + fmt::format("{}", fmt::join(a.families, ","));
+  for (const std::string& m : a.methods) c += " --method " + m;
+  if (a.lang != "glsl") c += " --lang " + a.lang;
+  if (!a.out.empty()) c += " --out " + a.out;
+  return c;
+}
+
+void write_outputs(const gpu::Report& report, const fs::path& dir) {
+  const fs::path table_path = dir / "costs.json";
+  std::optional<validate::CostTable> table;
+  try {
+    table = validate::read_existing_cost_table(table_path);
+  } catch (const validate::CostTableError& e) {
+    throw InputError(e.what());
+  }
+  if (!table) {
+    // No CPU measurements yet: a table holding only the GPU section.
+    table.emplace();
+    table->info = validate::current_cost_table_info();
+    table->info.command = "(no CPU costs: run `sglab bench --out DIR`)";
+  }
+  table->gpu = report;
+  validate::write_cost_table(*table, table_path);
+  io::write_file_atomic(dir / "gpu_costs.md",
+                        fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
+                                    "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
+                                    "the sweep's compute wrapper minus the same wrapper around a trivial body "
+                                    "(VGPRs and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate "
+                                    "of the cycles one wave keeps a SIMD busy, not a timing.\n\n{}",
+                                    report.driver, report.command, gpu::to_markdown(report)));
+}
+
+}  // namespace
+
+void add_gpucost_command(CLI::App& app) {
+  auto args = std::make_shared<GpucostArgs>();
+  auto* cmd = app.add_subcommand(
+      "gpucost", "GPU cost of every exported method from AMD's shader compiler (ACO on Mesa's RADV null devices)");
+  cmd->add_option("--families,--family", args->families,
+                  "comma-separated AMD chips (RADV_FORCE_FAMILY names; default polaris10,vega10,navi10,navi21,gfx1100)")
+      ->delimiter(',');
+  cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
+  cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
+  cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json");
+  cmd->add_flag("--disasm", args->disasm,
+                "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl]) instead of the table");
+  cmd->add_option("--worker-family", args->worker_family)->group("");
+  cmd->add_option("--worker-dir", args->worker_dir)->group("");
+  cmd->callback([args, cmd] {
+    if (!args->worker_family.empty()) {
+      gpu::run_worker(args->worker_family, args->worker_dir);
+      return;
+    }
+    const auto families = checked_families(args->families);
+    const auto languages = checked_languages(args->lang);
+    const auto methods = checked_methods(args->methods);
+    if (cmd->count("--out") && args->out.empty()) throw InputError("--out: the path is empty");
+    const auto manifest = gpu::find_radv_manifest();
+    if (!manifest)
+      throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
+                             "mesa-vulkan-drivers");
+
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
+    if (args->disasm) {
+      if (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 || args->json ||
+          !args->out.empty())
+        throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
+                         "or --out");
+      const gpu::Shader s = gpu::method_shader(methods[0], languages[0]);
+      fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
+                 "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
+                 methods[0], families[0], shader::to_string(languages[0]),
+                 gpu::disassemble(self, *manifest, families[0], s));
+      return;
+    }
+    io::Progress progress("gpucost", families.size() + methods.size() * languages.size());
+    std::vector<gpu::Shader> shaders;
+    for (shader::Language lang : languages) {
+      shaders.push_back(gpu::baseline_shader(lang));
+      for (const std::string& m : methods) {
+        progress.note(fmt::format("export {} ({})", m, shader::to_string(lang)));
+        shaders.push_back(gpu::method_shader(m, lang));
+        progress.advance();
+      }
+    }
+    gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
+      progress.note(fmt::format("ACO, {}", family));
+      progress.advance();
+    });
+    progress.finish();
+    report.command = command_line(*args);
+    if (!args->out.empty()) write_outputs(report, args->out);
+    if (args->json)
+      fmt::print("{}\n", gpu::to_json(report).dump(2));
+    else
+      fmt::print("GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler estimate)\n\n{}",
+                 report.driver, gpu::to_markdown(report));
+  });
+}
+
+}  // namespace sglab::app

@@ -1,0 +1,208 @@
+// tests/test_gpu_cost.cpp — `sglab gpucost`: ACO statistics on RADV null
+// devices. The tests that need a null device skip, with the reason, when RADV
+// cannot create one.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "cost_table.hpp"
+#include "gpu_cost.hpp"
+#include "io.hpp"
+#include "test_support.hpp"
+#include "vulkan_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace gpu = sglab::validate::gpu;
+namespace shader = sglab::validate::shader;
+using sglab::test::run_sglab;
+using sglab::test::TempDir;
+
+// The wrapper around `body` (a function float NAME(float cosine, float kappa)).
+gpu::Shader synthetic(const std::string& name, const std::string& body) {
+  const std::string src = fmt::format("float {}(float cosine, float kappa) {{ {} }}\n", name, body);
+  return {name, shader::Language::glsl,
+          sglab::validate::vulkan::compile_compute(shader::Language::glsl,
+                                                   shader::compute_shader(shader::Language::glsl, src, name))};
+}
+
+class OnRadv : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    manifest_ = gpu::find_radv_manifest();
+    if (!manifest_) {
+      skip_reason_ = "no radeon_icd.*.json (mesa-vulkan-drivers) in the Vulkan loader's folders";
+      return;
+    }
+    try {
+      gpu::measure(SGLAB_BINARY, *manifest_, {"navi21"}, {gpu::baseline_shader(shader::Language::glsl)});
+    } catch (const gpu::Unavailable& e) {
+      skip_reason_ = e.what();
+    }
+  }
+  void SetUp() override {
+    if (!skip_reason_.empty()) GTEST_SKIP() << "no RADV null device: " << skip_reason_;
+  }
+  static gpu::Report measure(const std::vector<std::string>& families, const std::vector<gpu::Shader>& shaders) {
+    return gpu::measure(SGLAB_BINARY, *manifest_, families, shaders);
+  }
+  static std::optional<fs::path> manifest_;
+  static std::string skip_reason_;
+};
+std::optional<fs::path> OnRadv::manifest_;
+std::string OnRadv::skip_reason_;
+
+// The wrapper measured as if it were a method costs nothing: what is
+// subtracted is exactly the wrapper's own code.
+TEST_F(OnRadv, TheWrapperAloneCostsNothing) {
+  const gpu::Shader baseline = gpu::baseline_shader(shader::Language::glsl);
+  gpu::Shader same = baseline;
+  same.method = "same";
+  const gpu::Report r = measure({"navi21", "gfx1100"}, {baseline, same});
+  ASSERT_EQ(r.rows.size(), 2u);
+  for (const gpu::Row& row : r.rows) {
+    SCOPED_TRACE(row.family);
+    EXPECT_EQ(row.stats.instructions, 0);
+    EXPECT_EQ(row.stats.inverse_throughput, 0);
+    EXPECT_EQ(row.stats.latency, 0);
+    EXPECT_EQ(row.stats.code_size, 0);
+    EXPECT_EQ(row.stats.branches, 0);
+    EXPECT_GT(row.stats.vgprs, 0);  // the pipeline's registers, not a difference
+  }
+}
+
+// More work costs more: one exp, then two exps, then a chain of eight
+// dependent exps and divisions, then a loop; instructions grow with the work,
+// the estimated inverse throughput with the chain, branches with the loop.
+TEST_F(OnRadv, MoreWorkCostsMore) {
+  const gpu::Report r = measure(
+      {"navi21"},
+      {gpu::baseline_shader(shader::Language::glsl), synthetic("one_exp", "return exp(-kappa) * cosine;"),
+       synthetic("two_exp", "return exp(-kappa) * cosine + exp(kappa * cosine);"),
+       synthetic("chain", "float x = cosine; for (int i = 0; i < 8; ++i) x = exp(-x) / (kappa + x); return x;"),
+       synthetic("loop", "float s = 0.0; for (int i = 0; i < int(kappa); ++i) s += exp(s * cosine); return s;")});
+  ASSERT_EQ(r.rows.size(), 4u);
+  const gpu::Statistics &one = r.rows[0].stats, &two = r.rows[1].stats, &chain = r.rows[2].stats,
+                        &loop = r.rows[3].stats;
+  EXPECT_GT(one.instructions, 0);
+  EXPECT_GT(two.instructions, one.instructions);
+  EXPECT_GT(chain.instructions, two.instructions);
+  EXPECT_GE(two.inverse_throughput, one.inverse_throughput);
+  EXPECT_GT(chain.inverse_throughput, 4 * one.inverse_throughput);
+  EXPECT_GT(chain.latency, two.latency);
+  EXPECT_EQ(one.branches, 0);
+  EXPECT_EQ(chain.branches, 0);  // unrolled
+  EXPECT_GT(loop.branches, 0);
+  EXPECT_NE(r.rows[0].spirv_hash, r.rows[1].spirv_hash);
+}
+
+// Two runs print the same bytes; the JSON carries every field the cost table
+// needs, for every method asked on every family asked.
+TEST_F(OnRadv, TwoRunsGiveTheSameBytes) {
+  const std::vector<std::string> args = {"gpucost", "--families", "navi21,gfx1100", "--method", "hill",
+                                         "--lang", "both", "--json"};
+  const auto a = run_sglab(args, false);
+  const auto b = run_sglab(args, false);
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  EXPECT_EQ(a.output, b.output);
+  const auto doc = nlohmann::json::parse(a.output);
+  EXPECT_NE(doc.at("driver").get<std::string>().find("Mesa"), std::string::npos);
+  ASSERT_EQ(doc.at("rows").size(), 4u);  // 2 families × 1 method × 2 languages
+  for (const auto& row : doc.at("rows")) {
+    for (const char* key : {"method", "family", "lang", "split", "precision", "instructions", "inverse_throughput",
+                            "latency", "vgprs", "sgprs", "code_size", "branches", "spirv_hash"})
+      EXPECT_TRUE(row.contains(key)) << key;
+    EXPECT_GT(row.at("instructions").get<long long>(), 0) << row.dump();
+  }
+}
+
+// --out fills the "gpu" section of DIR/costs.json and keeps the CPU rows;
+// a re-run leaves the file byte for byte as it was.
+TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
+  TempDir dir("gpucost-out");
+  const fs::path committed = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
+  fs::copy_file(committed, dir.path / "costs.json");
+  const auto before = sglab::validate::read_cost_table(dir.path / "costs.json");
+  const std::vector<std::string> args = {"gpucost", "--families", "navi21", "--method", "hill", "--out",
+                                         dir.path.string()};
+  const auto run = run_sglab(args);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto after = sglab::validate::read_cost_table(dir.path / "costs.json");
+  ASSERT_EQ(after.costs.size(), before.costs.size());
+  for (std::size_t i = 0; i < before.costs.size(); ++i) EXPECT_EQ(after.costs[i].ns_per_eval, before.costs[i].ns_per_eval);
+  ASSERT_TRUE(after.gpu.has_value());
+  ASSERT_EQ(after.gpu->rows.size(), 1u);
+  EXPECT_EQ(after.gpu->rows[0].method, "hill");
+  EXPECT_EQ(after.gpu->rows[0].family, "navi21");
+  EXPECT_TRUE(fs::is_regular_file(dir.path / "gpu_costs.md"));
+  const std::string first = sglab::io::read_file(dir.path / "costs.json");
+  ASSERT_EQ(run_sglab(args).exit_code, 0);
+  EXPECT_EQ(sglab::io::read_file(dir.path / "costs.json"), first);
+}
+
+// --disasm prints the final assembly: the wrapper's load and store, and for
+// tokuyoshi2024 the hardware exp its erfc and e^{-κ} need.
+TEST_F(OnRadv, DisasmPrintsTheAssembly) {
+  const auto r = run_sglab({"gpucost", "--disasm", "--method", "tokuyoshi2024", "--family", "navi21"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("buffer_load_dwordx2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("buffer_store_dword"), std::string::npos);
+  EXPECT_NE(r.output.find("v_exp_f32"), std::string::npos);
+  EXPECT_NE(r.output.find("s_endpgm"), std::string::npos);
+  const auto two = run_sglab({"gpucost", "--disasm", "--method", "hill", "--method", "vsgl2015", "--family", "navi21"});
+  EXPECT_EQ(two.exit_code, 2) << two.output;
+  EXPECT_NE(two.output.find("--disasm"), std::string::npos) << two.output;
+}
+
+TEST_F(OnRadv, AFamilyRadvDoesNotKnowIsReported) {
+  const auto r = run_sglab({"gpucost", "--families", "nosuchchip", "--method", "hill"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("nosuchchip"), std::string::npos) << r.output;
+}
+
+TEST(GpuCostCli, BadInputExitsTwoNamingIt) {
+  struct Case {
+    std::vector<std::string> args;
+    const char* names;
+  };
+  const Case cases[] = {
+      {{"gpucost", "--families", "NAVI21"}, "--families"},
+      {{"gpucost", "--families", "navi21;rm"}, "--families"},
+      {{"gpucost", "--method", "nope"}, "--method"},
+      {{"gpucost", "--lang", "cpp"}, "--lang"},
+      {{"gpucost", "--out", ""}, "--out"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_sglab(c.args);
+    EXPECT_EQ(r.exit_code, 2) << fmt::format("{}", fmt::join(c.args, " ")) << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
+  }
+}
+
+// The cost table reader refuses a malformed "gpu" section, naming the key.
+TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
+  TempDir dir("gpucost-table");
+  const fs::path committed = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
+  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(committed));
+  doc["gpu"] = {{"driver", "radv Mesa"}, {"command", "x"}, {"rows", {{{"method", "hill"}, {"family", "navi21"}}}}};
+  sglab::io::write_file_atomic(dir.path / "costs.json", doc.dump());
+  try {
+    sglab::validate::read_cost_table(dir.path / "costs.json");
+    FAIL() << "accepted a row without lang";
+  } catch (const sglab::validate::CostTableError& e) {
+    EXPECT_NE(std::string(e.what()).find("rows[0].lang"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GpuCost, SpirvHashIsFnv1aOfTheBytes) {
+  EXPECT_EQ(gpu::spirv_hash({}), "cbf29ce484222325");  // FNV-1a 64 offset basis: no bytes hashed
+  // The bytes in memory order: one word and its byte-swapped twin differ.
+  EXPECT_NE(gpu::spirv_hash({0x07230203u}), gpu::spirv_hash({0x03022307u}));
+}
+
+}  // namespace
