@@ -73,11 +73,12 @@ void add_stability_command(CLI::App& app) {
     fmt::print("{}\n", validate::to_markdown(findings));
     const auto own_failures = validate::own_failures_on_valid_inputs(report);
     if (own_failures.empty())
-      fmt::print("sglab's own primitives: no NaN / Inf / negative / out-of-range output on valid inputs.\n");
+      fmt::print("sglab's own primitives and methods (origin sglab or refit): no NaN / Inf / negative / out-of-range "
+                 "output on valid inputs.\n");
     else
       for (const validate::StabilityRow* r : own_failures)
-        fmt::print("WARNING: sglab primitive {} ({}) fails on valid inputs, e.g. {}\n", r->function,
-                   validate::to_string(r->precision),
+        fmt::print("WARNING: {} ({}, origin {}) fails on valid inputs, e.g. {}\n", r->function,
+                   validate::to_string(r->precision), to_string(r->origin),
                    [&] {
                      for (std::size_t k = 0; k < validate::kFailureKinds; ++k)
                        if (r->failures[k].count && r->is_failure(static_cast<validate::FailureKind>(k)))

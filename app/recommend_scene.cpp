@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iterator>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -48,15 +50,22 @@ void recommend_scene(const SceneRecommendArgs& args) {
     throw InputError(e.what());
   }
 
+  // Limits (validate/scene.hpp, README) before anything is allocated for the normals.
+  try {
+    validate::check_scene_limits(scene.lights.size(), args.normals);
+  } catch (const validate::SceneError& e) {
+    throw InputError(fmt::format("--scene {}: {}", args.scene, e.what()));
+  }
   const auto normals = validate::fibonacci_normals(args.normals);
-  const auto exact = validate::scene_irradiance_reference(scene, normals);
+  const std::vector<double> errors = validate::scene_errors(scene, normals, irradiance_methods, args.precision);
   std::vector<validate::MethodPoint> points;
   std::vector<Origin> origins;
-  for (const Method& m : irradiance_methods) {
+  for (std::size_t i = 0; i < std::size(irradiance_methods); ++i) {
+    const Method& m = irradiance_methods[i];
     validate::MethodPoint p;
     p.method = std::string(m.id);
     p.origin = m.origin;
-    p.max_peak_rel = validate::scene_relative_error(validate::scene_irradiance(scene, normals, m, args.precision), exact);
+    p.max_peak_rel = errors[i];
     points.push_back(p);
     origins.push_back(m.origin);
   }

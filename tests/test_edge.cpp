@@ -6,6 +6,8 @@
 // 50-digit arithmetic, an analytic limit, or a first-order expansion.
 #include <cmath>
 #include <limits>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -190,6 +192,111 @@ TYPED_TEST(RuntimeEdge, Meder2018IsTheNormalizedLogistic) {
       EXPECT_NEAR(sglab::normalized_meder2018(c, k), (1 + c) / 2, 1e-5) << hex(c);
       EXPECT_NEAR(sglab::irradiance_meder2018(c, k) / T(kPiL), 1.0, 1e-2) << "c = " << hex(c) << ", κ = " << hex(k);
     }
+}
+
+// ---------------------------------------------------------------------------
+// Every registered irradiance method across the subnormal κ range.
+//
+// For κ → 0 the SG is constant and E(c, κ) → π at every cosine; at a subnormal
+// κ the exact E (the reference engine) is π to within O(κ), far below
+// rounding. Each method's allowed distance from it is one row of this table:
+// the κ → 0 limit of its formula, or rounding (0 = 4ε of the precision), or
+// "diverges" for published formulas that fail at κ → 0 by construction (the
+// stability table reports those).
+constexpr double kRounding = 0, kDiverges = -1;
+struct SubnormalLimit {
+  std::string_view id;
+  double bound;  // max |Ê − E| / E(1, κ), E(1, κ) → π
+  const char* reason;
+};
+constexpr SubnormalLimit kSubnormalLimits[] = {
+    {"wang2009", 0.085, "[Wang2009] cosine lobe: Ê → a·2π(1 − e^{−2λ})/λ = 1.0816π"},
+    {"punctual", kDiverges, "2π/κ [Pettineo2016]: infinite at κ = 0 by construction"},
+    {"hill", kDiverges, "Hill's curve [Pettineo2016]: 1/κ and √(1 − scale) of a number > 1 at small κ"},
+    {"hill_exact", kDiverges, "Hill's curve [Pettineo2016]: as hill"},
+    {"vsgl2015", kRounding, "2π e^{λ'(c − 1)}/(κ + λd) → 2π/λd = π (λd = 2)"},
+    {"meder2018", 0.005, "[Meder2018] cosine fit a·G(λm) − b: 0.42% at κ → 0"},
+    {"tokuyoshi2022", 2e-4, "α(p − q) with α ≈ 1182 [Tokuyoshi2022]: float cancellation (1e−13 in double)"},
+    {"tokuyoshi2024", kRounding, "exact poles Ē(±1) → ½: Ê → 2π·½ for any lerp factor"},
+    {"tokuyoshi2022_listing5", 2e-4, "as tokuyoshi2022"},
+    {"tokuyoshi2022_refit", 2e-4, "as tokuyoshi2022"},
+    {"tokuyoshi2024_refit", kRounding, "as tokuyoshi2024"},
+    {"vsgl2015_refit", 0.037, "2π/λd with the refitted λd: 3.6% above π"},
+    {"wang2009_refit", 0.085, "as wang2009 with the refitted (λ, a): 8.3% above π"},
+    {"sglab_fast", 2.6e-3, "exact E(1, κ) × fitted shape: its max peak_rel 2.52e−3 (sglab_cheap.hpp)"},
+    {"sglab_acc1", kRounding, "exact poles, as tokuyoshi2024"},
+    {"sglab_acc2", kRounding, "exact poles, as tokuyoshi2024"},
+    {"sglab_acc3", kRounding, "exact poles, as tokuyoshi2024"},
+};
+
+// κ in every subnormal binade of T: 2^e, 1.5·2^e and the binade's largest
+// value, from the smallest subnormal through the smallest normal.
+template <class T> std::vector<T> subnormal_kappas() {
+  std::vector<T> out;
+  for (T k = std::numeric_limits<T>::denorm_min(); k < std::numeric_limits<T>::min(); k *= T(2)) {
+    out.push_back(k);
+    if (k > std::numeric_limits<T>::denorm_min()) out.push_back(k + k / T(2));
+    out.push_back(T(2) * k - std::numeric_limits<T>::denorm_min());
+  }
+  out.push_back(std::numeric_limits<T>::min());
+  return out;
+}
+
+// One method's value at (c, κ) by every path the registry offers in T: scalar,
+// batch, and (float) the per-light split.
+template <class T> std::vector<std::pair<const char*, T>> method_paths(const sglab::Method& m, T c, T k) {
+  std::vector<std::pair<const char*, T>> v;
+  T batch;
+  if constexpr (sizeof(T) == sizeof(float)) {
+    v.push_back({"scalar", m.f32(c, k)});
+    m.batch32(&c, &k, &batch, 1);
+    v.push_back({"batch", batch});
+    if (m.light_setup32) {
+      float state[sglab::kLightStateFloats];
+      m.light_setup32(k, state);
+      v.push_back({"light split", m.light_eval32(state, c)});
+    }
+  } else {
+    v.push_back({"scalar", m.f64(c, k)});
+    m.batch64(&c, &k, &batch, 1);
+    v.push_back({"batch", batch});
+  }
+  return v;
+}
+
+TYPED_TEST(RuntimeEdge, EveryMethodAtSubnormalKappaMeetsTheReferenceLimit) {
+  using T = TypeParam;
+  const T one(1);
+  const T cosines[] = {T(-1), std::nextafter(-one, T(0)), T(-0.5), T(0), T(0.5), std::nextafter(one, T(0)), one};
+  const auto kappas = subnormal_kappas<T>();
+  // The reference limit: E(c, κ) at these κ, exactly π up to double rounding.
+  for (T k : {kappas.front(), kappas.back()})
+    for (T c : cosines)
+      EXPECT_NEAR(sglab::validate::reference_engine().evaluate(double(k), double(c)).irradiance, double(kPiL), 1e-15 * double(kPiL))
+          << "c = " << hex(c) << ", κ = " << hex(k);
+  for (const sglab::Method& m : sglab::irradiance_methods) {
+    const SubnormalLimit* row = nullptr;
+    for (const SubnormalLimit& r : kSubnormalLimits)
+      if (r.id == m.id) row = &r;
+    ASSERT_NE(row, nullptr) << m.id << ": no row in kSubnormalLimits";
+    SCOPED_TRACE(fmt::format("{} ({})", m.id, row->reason));
+    const double bound = row->bound == kRounding ? 4 * double(std::numeric_limits<T>::epsilon()) : row->bound;
+    std::size_t failures = 0;
+    for (T k : kappas)
+      for (T c : cosines)
+        for (const auto& [path, v] : method_paths(m, c, k)) {
+          const bool fails = !std::isfinite(v) || v < T(0);
+          failures += fails;
+          if (row->bound == kDiverges) continue;
+          ASSERT_FALSE(fails) << path << ": c = " << hex(c) << ", κ = " << hex(k) << " -> " << hex(v);
+          EXPECT_LE(std::abs(double(v) - double(kPiL)) / double(kPiL), bound)
+              << path << ": c = " << hex(c) << ", κ = " << hex(k) << " -> " << hex(v);
+        }
+    // A published formula listed as diverging does fail here (else its row is stale).
+    if (row->bound == kDiverges) {
+      EXPECT_GT(failures, 0u);
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------

@@ -226,6 +226,21 @@ void check_recommend(const std::string& kappa, double budget) {
 TEST(RecommendCli, Kappa1To100Budget1e3) { check_recommend("1:100", 1e-3); }
 TEST(RecommendCli, StandardRangeBudget2e3) { check_recommend("1e-3:1e4", 2e-3); }
 
+// Down to the smallest float subnormal (1e−45 rounds to 2^−149): every model
+// of origin sglab or refit has a finite error (sglab_acc2/3 were NaN there).
+TEST(RecommendCli, SubnormalRangeGivesEverySglabModelAnError) {
+  const Output r = run_stdout("recommend --kappa 1e-45:1 --budget 1e-2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  std::size_t own = 0;
+  for (const auto& c : doc.at("candidates"))
+    if (c.at("origin") != "published") {
+      ++own;
+      EXPECT_TRUE(c.at("max_peak_rel").is_number()) << c.dump();
+    }
+  EXPECT_GE(own, 4u);
+}
+
 TEST(RecommendCli, NoneQualifyingExitsZero) {
   const Output r = run_stdout("recommend --kappa 1:100 --budget 1e-300 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;

@@ -3,6 +3,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <span>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -44,7 +50,8 @@ TEST(Scene, SingleLightEqualsMethodTimesAmplitude) {
       const double z = 1 - (2.0 * double(i) + 1) / double(n);
       const double e64 = m->f64(z, 7.5);
       const double e32 = m->f32(float(z), 7.5f);
-      const double amp[3] = {1, 0.5, 2};
+      // In units of the scene's largest amplitude (2).
+      const double amp[3] = {0.5, 0.25, 1};
       for (int ch = 0; ch < 3; ++ch) {
         EXPECT_NEAR(v64[i][ch], amp[ch] * e64, 1e-13) << id << " normal " << i;
         EXPECT_NEAR(v32[i][ch], amp[ch] * e32, 1e-6) << id << " normal " << i;
@@ -106,9 +113,12 @@ TEST(Scene, ExactSumMatchesDirectQuadratureOfTheSum) {
   const auto exact = scene_irradiance_reference(scene, normals);
   double peak = 0;
   for (const auto& e : exact) peak = std::max({peak, e[0], e[1], e[2]});
+  const double largest_amplitude = 1.5;  // the sums are in its units
   for (std::size_t i = 0; i < normals.size(); ++i)
     for (std::size_t ch = 0; ch < 3; ++ch)
-      EXPECT_NEAR(exact[i][ch], direct_irradiance(scene, normals[i], ch), 1e-10 * peak) << "normal " << i << " ch " << ch;
+      EXPECT_NEAR(exact[i][ch] * largest_amplitude, direct_irradiance(scene, normals[i], ch),
+                  1e-10 * peak * largest_amplitude)
+          << "normal " << i << " ch " << ch;
 }
 
 TEST(Scene, RelativeErrorIsScaledByTheLargestIrradiance) {
@@ -175,6 +185,139 @@ TEST(Scene, BadFilesNameTheLineOrKey) {
   }
 }
 
+// A sharpness beyond the largest float is refused at its light, whatever the
+// precision the methods are then run in.
+TEST(Scene, SharpnessAboveFloatMaxIsRefusedAtItsLight) {
+  const std::string light = R"({"axis": [0, 0, 1], "sharpness": 2, "amplitude": [1, 1, 1]})";
+  for (const char* kappa : {"3.5e38", "1e300", "1.7976931348623157e308"}) {
+    const std::string bad = fmt::format(R"({{"axis": [1, 0, 0], "sharpness": {}, "amplitude": [1, 1, 1]}})", kappa);
+    const std::string text = fmt::format(R"({{"lights": [{0}, {0}, {0}, {1}]}})", light, bad);
+    try {
+      parse_scene(text, "s.json");
+      ADD_FAILURE() << "accepted κ = " << kappa;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("s.json: lights[3].sharpness: must be at most"), std::string::npos)
+          << e.what();
+    }
+  }
+  // The largest float itself is a valid κ.
+  const Scene s = parse_scene(
+      fmt::format(R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": {:.17g}, "amplitude": [1, 1, 1]}}]}})",
+                  double(std::numeric_limits<float>::max())),
+      "s.json");
+  EXPECT_EQ(s.lights[0].sharpness, double(std::numeric_limits<float>::max()));
+}
+
+// The scene error is a ratio of irradiances: scaling every amplitude by s
+// must not change it, from s = 1e−300 to 1e300 (with κ up to 1e30, whose
+// irradiance 2π/κ times 1e−300 is below the smallest double).
+Scene scaled(const Scene& base, double s) {
+  Scene out = base;
+  for (auto& l : out.lights)
+    for (double& a : l.amplitude) a *= s;
+  return out;
+}
+
+TEST(Scene, ErrorIsIndependentOfTheAmplitudeUnit) {
+  const Scene base = parse_scene(R"({"lights": [
+      {"axis": [0.2, 0.3, 0.9], "sharpness": 1e30, "amplitude": [1, 0.5, 0.25]},
+      {"axis": [0, -0.3, 1], "sharpness": 20.0, "amplitude": [0.5, 1, 0]},
+      {"axis": [1, 1, 0], "sharpness": 0.5, "amplitude": [0.1, 0.2, 0.4]}]})",
+                                 "test");
+  const auto normals = fibonacci_normals(97);
+  const std::span<const sglab::Method> methods = sglab::irradiance_methods;
+  const auto want = scene_errors(base, normals, methods, FloatFormat::binary32);
+  for (double s : {1e-300, 1e-200, 1e-100, 1e-10, 1e10, 1e100, 1e200, 1e300}) {
+    const Scene scene = scaled(base, s);
+    const auto got = scene_errors(scene, normals, methods, FloatFormat::binary32);
+    const auto exact = scene_irradiance_reference(scene, normals);
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      SCOPED_TRACE(fmt::format("{} at amplitude scale {:g}", methods[m].id, s));
+      const double one = scene_relative_error(scene_irradiance(scene, normals, methods[m], FloatFormat::binary32), exact);
+      if (std::isinf(want[m])) {  // a published method failing at κ = 1e30 (meder2018's t(κ)) fails at every scale
+        EXPECT_TRUE(std::isinf(got[m]));
+        EXPECT_TRUE(std::isinf(one));
+        continue;
+      }
+      EXPECT_NEAR(got[m], want[m], 1e-9 * want[m]);
+      EXPECT_NEAR(one, want[m], 1e-9 * want[m]);
+    }
+  }
+}
+
+// The repros of issue 14 §6: one dim sharp light, two 1e308-bright lights,
+// and a 1e−323 (subnormal) amplitude, each against the same scene in unit amplitudes.
+TEST(Scene, ErrorOfExtremeAmplitudesEqualsUnitAmplitudes) {
+  const auto normals = fibonacci_normals(128);
+  const auto* m = sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024");
+  ASSERT_NE(m, nullptr);
+  const auto error = [&](const std::string& text) {
+    const Scene s = parse_scene(text, "test");
+    return scene_relative_error(scene_irradiance(s, normals, *m, FloatFormat::binary32),
+                                scene_irradiance_reference(s, normals));
+  };
+  const auto one_light = [](const char* kappa, const char* a) {
+    return fmt::format(R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": {0}, "amplitude": [{1}, {1}, {1}]}}]}})",
+                       kappa, a);
+  };
+  EXPECT_NEAR(error(one_light("1e30", "1e-300")), error(one_light("1e30", "1")), 1e-12);
+  EXPECT_NEAR(error(one_light("4", "1e-323")), error(one_light("4", "1")), 1e-12);
+  const auto two_lights = [](const char* a) {
+    return fmt::format(R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": 4, "amplitude": [{0}, {0}, {0}]}},
+                                      {{"axis": [0, 0.6, 0.8], "sharpness": 4, "amplitude": [{0}, {0}, {0}]}}]}})",
+                       a);
+  };
+  const double bright = error(two_lights("1e308"));
+  EXPECT_TRUE(std::isfinite(bright));
+  EXPECT_NEAR(bright, error(two_lights("1")), 1e-12);
+}
+
+// The streamed, all-methods pass equals the per-method sums, across more than
+// one chunk of (light, normal) pairs; lights with the same sharpness and axis
+// are one lobe (two half-amplitude copies give the same errors exactly).
+TEST(Scene, StreamedErrorsEqualPerMethodSumsAcrossChunks) {
+  const Scene scene = parse_scene(R"({"lights": [
+      {"axis": [0, 0, 1], "sharpness": 6, "amplitude": [0.5, 0.5, 0.5]},
+      {"axis": [1, 0, 1], "sharpness": 60, "amplitude": [1, 0.25, 0]},
+      {"axis": [0, 0, 1], "sharpness": 6, "amplitude": [0.5, 0.5, 0.5]}]})",
+                                  "test");
+  const Scene merged = parse_scene(R"({"lights": [
+      {"axis": [1, 0, 1], "sharpness": 60, "amplitude": [1, 0.25, 0]},
+      {"axis": [0, 0, 1], "sharpness": 6, "amplitude": [1, 1, 1]}]})",
+                                   "test");
+  const std::size_t n = kSceneChunkQueries / 2 + 7;  // two lobes: two chunks
+  const auto normals = fibonacci_normals(n);
+  const std::span<const sglab::Method> methods = sglab::irradiance_methods;
+  const auto errors = scene_errors(scene, normals, methods, FloatFormat::binary32);
+  EXPECT_EQ(errors, scene_errors(merged, normals, methods, FloatFormat::binary32));
+  const auto exact = scene_irradiance_reference(scene, normals);
+  for (const char* id : {"tokuyoshi2024", "sglab_acc3", "punctual"}) {
+    const auto* m = sglab::find_method(sglab::irradiance_methods, id);
+    ASSERT_NE(m, nullptr) << id;
+    const std::size_t i = static_cast<std::size_t>(m - sglab::irradiance_methods);
+    EXPECT_DOUBLE_EQ(errors[i], scene_relative_error(scene_irradiance(scene, normals, *m, FloatFormat::binary32), exact))
+        << id;
+  }
+}
+
+TEST(Scene, LimitsAreRefusedWithTheMemory) {
+  EXPECT_NO_THROW(check_scene_limits(1000, 4096));
+  EXPECT_NO_THROW(check_scene_limits(1, kMaxSceneNormals));
+  for (auto [lights, normals] : {std::pair<std::size_t, std::size_t>{1000, 1000000}, {1, kMaxSceneNormals + 1},
+                                 {kMaxSceneLights + 1, 1}}) {
+    try {
+      check_scene_limits(lights, normals);
+      ADD_FAILURE() << lights << " lights x " << normals << " normals accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("MB"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("at most"), std::string::npos) << e.what();
+    }
+  }
+  // Bounded: the memory does not grow with the (light, normal) pairs beyond
+  // the lights and normals themselves.
+  EXPECT_LT(scene_memory_bytes(1000, 4096), std::size_t{16} << 20);
+}
+
 fs::path write_temp(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / "sglab_test_scene";
   fs::create_directories(dir);
@@ -196,6 +339,44 @@ TEST(RecommendScene, BadFilesExitTwoWithTheKey) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   r = sglab::test::run_sglab({"recommend", "--budget", "1e-2"});  // neither --kappa nor --scene
   EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+TEST(RecommendScene, LimitsAndHugeSharpnessExitTwo) {
+  std::string lights;
+  for (int i = 0; i < 1000; ++i)
+    lights += fmt::format(R"({}{{"axis": [{}, 1, 0.5], "sharpness": {}, "amplitude": [1, 1, 1]}})", i ? "," : "",
+                          std::cos(i), 1 + i % 50);
+  const auto many = write_temp("many.json", R"({"lights": [)" + lights + "]}");
+  auto r = sglab::test::run_sglab({"recommend", "--scene", many.string(), "--budget", "1e-2", "--normals", "1000000"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("MB"), std::string::npos) << r.output;
+  const auto huge = write_temp("huge.json", R"({"lights": [
+      {"axis": [0, 0, 1], "sharpness": 2, "amplitude": [1, 1, 1]},
+      {"axis": [0, 1, 1], "sharpness": 3, "amplitude": [1, 1, 1]},
+      {"axis": [1, 0, 1], "sharpness": 4, "amplitude": [1, 1, 1]},
+      {"axis": [1, 1, 1], "sharpness": 1e300, "amplitude": [1, 1, 1]}]})");
+  for (const char* precision : {"float", "double"}) {
+    r = sglab::test::run_sglab(
+        {"recommend", "--scene", huge.string(), "--budget", "1e-2", "--normals", "16", "--precision", precision});
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("lights[3].sharpness: must be at most"), std::string::npos) << r.output;
+  }
+}
+
+// A light of subnormal κ (2e−39: a subnormal float) is a valid light: every
+// sglab model gets a finite scene error.
+TEST(RecommendScene, SubnormalSharpnessGivesFiniteErrors) {
+  const auto scene = write_temp("subnormal.json", R"({"lights": [
+      {"axis": [0, 0, 1], "sharpness": 2e-39, "amplitude": [1, 1, 1]},
+      {"axis": [1, 0, 0], "sharpness": 5, "amplitude": [0.5, 0.5, 0.5]}]})");
+  const auto r = sglab::test::run_sglab(
+      {"recommend", "--scene", scene.string(), "--budget", "1e-2", "--normals", "64", "--json"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  for (const auto& row : doc["methods"])
+    if (row["origin"] != "published") {
+      EXPECT_TRUE(row["scene_error"].is_number()) << row.dump();
+    }
 }
 
 TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {

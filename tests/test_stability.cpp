@@ -6,7 +6,11 @@
 #include <cmath>
 #include <variant>
 #include <filesystem>
+#include <limits>
+#include <span>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <unistd.h>
 
@@ -109,15 +113,50 @@ TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
                             r->failures[k].example);
     ADD_FAILURE() << r->function << " (" << sv::to_string(r->precision) << ") on valid inputs:" << what;
   }
-  // The list is drawn from the sglab rows only.
+  // The list is drawn from the sglab and refit rows only.
   for (const sv::StabilityRow& r : report().rows) {
-    if (r.function == "irradiance/tokuyoshi2024" || r.function == "sg_product_with_normal.sharpness") {
-      EXPECT_EQ(r.origin, sv::Origin::sglab);
+    if (r.function == "sg_product_with_normal.sharpness") {
+      EXPECT_EQ(r.origin, sglab::Origin::sglab);
     }
     if (r.function == "irradiance/punctual" || r.function == "irradiance/hill") {
-      EXPECT_EQ(r.origin, sv::Origin::published);
+      EXPECT_EQ(r.origin, sglab::Origin::published);
     }
   }
+}
+
+// A registered method's rows carry the registry's origin (Method::origin), so
+// that sglab's models and the refits are held to "no failure on valid inputs".
+TEST(Stability, MethodRowsCarryTheRegistryOrigin) {
+  const auto check = [](std::string_view kind, std::span<const sglab::Method> methods) {
+    for (const sglab::Method& m : methods)
+      for (sv::FloatFormat f : kFormats)
+        for (bool valid : {true, false}) {
+          const std::string name = fmt::format("{}/{}", kind, m.id);
+          EXPECT_EQ(row(name, f, valid).origin, m.origin) << name << " " << sv::to_string(f);
+        }
+  };
+  check("irradiance", sglab::irradiance_methods);
+  check("hemispherical", sglab::hemispherical_methods);
+  check("normalized", sglab::normalized_methods);
+  EXPECT_EQ(row("irradiance/sglab_acc3", sv::FloatFormat::binary32, true).origin, sglab::Origin::sglab);
+  EXPECT_EQ(row("irradiance/tokuyoshi2024_refit", sv::FloatFormat::binary64, true).origin, sglab::Origin::refit);
+}
+
+// Every binade of the subnormals is probed, in both precisions: 2^e from the
+// smallest subnormal to the smallest normal, and the largest subnormal.
+template <class T> void expect_subnormal_binades(const std::vector<double>& probed) {
+  const auto has = [&](T v) { return std::find(probed.begin(), probed.end(), static_cast<double>(v)) != probed.end(); };
+  int binades = 0;
+  for (T k = std::numeric_limits<T>::denorm_min(); k < std::numeric_limits<T>::min(); k *= T(2), ++binades)
+    EXPECT_TRUE(has(k)) << sglab::test::hex(k);
+  EXPECT_EQ(binades, std::numeric_limits<T>::digits - 1);
+  EXPECT_TRUE(has(std::numeric_limits<T>::min()));
+  EXPECT_TRUE(has(std::numeric_limits<T>::min() - std::numeric_limits<T>::denorm_min()));
+}
+
+TEST(Stability, ProbesCoverEverySubnormalBinade) {
+  expect_subnormal_binades<float>(report().kappas_float);
+  expect_subnormal_binades<double>(report().kappas_double);
 }
 
 // The κ probes include every method's own lobe sharpness (κ = λ gives κ3 = 0 at

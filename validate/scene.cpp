@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
 
+#include "args.hpp"
 #include "reference.hpp"
 
 namespace sglab::validate {
@@ -70,6 +74,11 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   const json& lights = doc["lights"];
   if (!lights.is_array()) fail(source, "lights", fmt::format("expected an array, got {}", type_name(lights)));
   if (lights.empty()) fail(source, "lights", "no lights");
+  try {
+    check_scene_limits(lights.size(), 0);  // before the lights are copied
+  } catch (const SceneError& e) {
+    fail(source, "lights", e.what());
+  }
   Scene scene;
   double total_amplitude = 0;
   for (std::size_t i = 0; i < lights.size(); ++i) {
@@ -89,6 +98,12 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     for (double& x : light.axis) x /= length;
     light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]);
     if (light.sharpness < 0) fail(source, at + ".sharpness", fmt::format("must be >= 0, got {}", light.sharpness));
+    // Every method is ranked in float (and sglab's models over the κ range):
+    // κ must be a finite float in both precisions.
+    if (light.sharpness > kFloatFormat.max_finite)
+      fail(source, at + ".sharpness",
+           fmt::format("must be at most the largest finite float ({:.9g}), got {}", kFloatFormat.max_finite,
+                       light.sharpness));
     light.amplitude = vector3(source, at + ".amplitude", l["amplitude"]);
     for (std::size_t ch = 0; ch < 3; ++ch) {
       if (light.amplitude[ch] < 0)
@@ -114,33 +129,145 @@ std::vector<Vec3> fibonacci_normals(std::size_t n) {
   return out;
 }
 
-std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals) {
-  std::vector<Query> queries;
-  queries.reserve(scene.lights.size() * normals.size());
-  for (const auto& n : normals)
-    for (const auto& l : scene.lights) queries.push_back({l.sharpness, cosine(l.axis, n)});
-  const auto ref = reference_engine().evaluate(queries);
-  std::vector<Vec3> out(normals.size(), Vec3{0, 0, 0});
-  std::size_t q = 0;
-  for (std::size_t i = 0; i < normals.size(); ++i)
-    for (const auto& l : scene.lights) {
-      const double e = ref[q++].irradiance;
-      for (std::size_t ch = 0; ch < 3; ++ch) out[i][ch] += l.amplitude[ch] * e;
+std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals) {
+  return lights * 2 * sizeof(SceneLight) + normals * sizeof(Vec3) +
+         std::max(kSceneChunkQueries, lights) * (sizeof(Query) + sizeof(ReferencePoint));
+}
+
+void check_scene_limits(std::size_t lights, std::size_t normals) {
+  const double mb = static_cast<double>(scene_memory_bytes(lights, normals)) / 1e6;
+  if (normals > kMaxSceneNormals)
+    throw SceneError(fmt::format("{} normals, at most {} (it would hold {:.0f} MB)", normals, kMaxSceneNormals, mb));
+  if (lights > kMaxSceneLights)
+    throw SceneError(fmt::format("{} lights, at most {} (it would hold {:.0f} MB)", lights, kMaxSceneLights, mb));
+  if (lights > kMaxScenePairs / std::max<std::size_t>(normals, 1))
+    throw SceneError(fmt::format("{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} "
+                                 "MB); use fewer normals",
+                                 lights, normals, static_cast<double>(lights) * static_cast<double>(normals),
+                                 kMaxScenePairs, mb));
+}
+
+namespace {
+
+// A light in units of the scene's largest amplitude; lights with the same
+// sharpness and axis merged into one lobe (their amplitudes summed).
+struct Lobe {
+  double kappa;
+  Vec3 axis;
+  Vec3 amplitude;
+};
+
+std::vector<Lobe> lobes_of(const Scene& scene) {
+  double largest = 0;
+  for (const auto& l : scene.lights)
+    for (double a : l.amplitude) largest = std::max(largest, a);
+  if (!(largest > 0)) largest = 1;  // a dark scene (refused by parse_scene)
+  std::vector<Lobe> lobes;
+  lobes.reserve(scene.lights.size());
+  for (const auto& l : scene.lights)
+    lobes.push_back({l.sharpness, l.axis, {l.amplitude[0] / largest, l.amplitude[1] / largest, l.amplitude[2] / largest}});
+  const auto key = [](const Lobe& x) { return std::tie(x.kappa, x.axis[0], x.axis[1], x.axis[2]); };
+  std::sort(lobes.begin(), lobes.end(), [&](const Lobe& a, const Lobe& b) { return key(a) < key(b); });
+  std::vector<Lobe> merged;
+  for (const Lobe& l : lobes) {
+    if (!merged.empty() && key(merged.back()) == key(l)) {
+      for (std::size_t ch = 0; ch < 3; ++ch) merged.back().amplitude[ch] += l.amplitude[ch];
+      continue;
     }
+    merged.push_back(l);
+  }
+  return merged;
+}
+
+double method_value(const Method& m, FloatFormat precision, double cosine, double kappa) {
+  return precision == FloatFormat::binary32
+             ? static_cast<double>(m.f32(static_cast<float>(cosine), static_cast<float>(kappa)))
+             : m.f64(cosine, kappa);
+}
+
+// The scene's RGB sums at every normal, exact (when `with_exact`) and with
+// each method, in units of the largest amplitude: visit(j, exact, approx) is
+// called once per normal j, from parallel tasks. The normals are taken in
+// chunks of at most kSceneChunkQueries (lobe, normal) pairs (one normal at
+// least); each chunk's reference points are evaluated in parallel, then its
+// normals summed in parallel.
+template <class Visit>
+void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals, std::span<const Method> methods,
+                      FloatFormat precision, bool with_exact, Visit&& visit) {
+  const std::vector<Lobe> lobes = lobes_of(scene);
+  const std::size_t nl = lobes.size();
+  const std::size_t per_chunk = std::max<std::size_t>(1, kSceneChunkQueries / std::max<std::size_t>(nl, 1));
+  std::vector<Query> queries;
+  std::vector<ReferencePoint> ref;
+  for (std::size_t j0 = 0; j0 < normals.size(); j0 += per_chunk) {
+    const std::size_t j1 = std::min(normals.size(), j0 + per_chunk);
+    queries.clear();
+    for (std::size_t j = j0; j < j1; ++j)
+      for (const Lobe& l : lobes) queries.push_back({l.kappa, cosine(l.axis, normals[j])});
+    if (with_exact) {
+      ref = reference_engine().evaluate(queries);
+      // The engine caches every point; a scene's points are met once, so keep
+      // the cache from growing with the scene (as `sglab reference` does).
+      if (reference_engine().cache_size() > 4 * kSceneChunkQueries) reference_engine().clear_cache();
+    }
+    tbb::parallel_for(j0, j1, [&](std::size_t j) {
+      Vec3 exact{0, 0, 0};
+      std::vector<Vec3> approx(methods.size(), Vec3{0, 0, 0});
+      const std::size_t q0 = (j - j0) * nl;
+      for (std::size_t i = 0; i < nl; ++i) {
+        const Query& q = queries[q0 + i];
+        const Vec3& a = lobes[i].amplitude;
+        const double e = with_exact ? ref[q0 + i].irradiance : 0.0;
+        for (std::size_t ch = 0; ch < 3; ++ch) exact[ch] += a[ch] * e;
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+          const double v = method_value(methods[m], precision, q.cosine, q.kappa);
+          for (std::size_t ch = 0; ch < 3; ++ch) approx[m][ch] += a[ch] * v;
+        }
+      }
+      visit(j, exact, approx);
+    });
+  }
+}
+
+}  // namespace
+
+std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals) {
+  std::vector<Vec3> out(normals.size());
+  sum_over_normals(scene, normals, {}, FloatFormat::binary64, true,
+                   [&](std::size_t j, const Vec3& exact, const std::vector<Vec3>&) { out[j] = exact; });
   return out;
 }
 
 std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals, const Method& method,
                                    FloatFormat precision) {
-  std::vector<Vec3> out(normals.size(), Vec3{0, 0, 0});
-  for (std::size_t i = 0; i < normals.size(); ++i)
-    for (const auto& l : scene.lights) {
-      const double c = cosine(l.axis, normals[i]);
-      const double e = precision == FloatFormat::binary32
-                           ? static_cast<double>(method.f32(static_cast<float>(c), static_cast<float>(l.sharpness)))
-                           : method.f64(c, l.sharpness);
-      for (std::size_t ch = 0; ch < 3; ++ch) out[i][ch] += l.amplitude[ch] * e;
-    }
+  std::vector<Vec3> out(normals.size());
+  sum_over_normals(scene, normals, std::span<const Method>(&method, 1), precision, false,
+                   [&](std::size_t j, const Vec3&, const std::vector<Vec3>& approx) { out[j] = approx[0]; });
+  return out;
+}
+
+std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals, std::span<const Method> methods,
+                                 FloatFormat precision) {
+  // Per thread: the largest |Ê − E| of each method, then the largest exact value.
+  const std::size_t peak = methods.size();
+  tbb::combinable<std::vector<double>> partial([&] { return std::vector<double>(methods.size() + 1, 0.0); });
+  sum_over_normals(scene, normals, methods, precision, true,
+                   [&](std::size_t, const Vec3& exact, const std::vector<Vec3>& approx) {
+                     std::vector<double>& w = partial.local();
+                     for (std::size_t ch = 0; ch < 3; ++ch) {
+                       w[peak] = std::max(w[peak], exact[ch]);
+                       for (std::size_t m = 0; m < methods.size(); ++m) {
+                         const double d = std::abs(approx[m][ch] - exact[ch]);
+                         w[m] = std::isfinite(d) ? std::max(w[m], d) : std::numeric_limits<double>::infinity();
+                       }
+                     }
+                   });
+  std::vector<double> worst(methods.size() + 1, 0.0);
+  partial.combine_each([&](const std::vector<double>& w) {
+    for (std::size_t i = 0; i < worst.size(); ++i) worst[i] = std::max(worst[i], w[i]);
+  });
+  std::vector<double> out(methods.size());
+  for (std::size_t m = 0; m < methods.size(); ++m) out[m] = worst[m] / worst[peak];
   return out;
 }
 

@@ -14,11 +14,22 @@
 // Error of a method: max over the normals and the three channels of
 // |Ê_ch(n) − E_ch(n)| divided by the scene's largest exact irradiance
 // max_{n, ch} E_ch(n) — per channel, relative to one scene-wide scale, so a
-// dim channel is not judged by its own tiny peak.
+// dim channel is not judged by its own tiny peak. The error is a ratio, so it
+// does not depend on the amplitudes' unit: every sum is formed in units of the
+// scene's largest amplitude (amplitude / max amplitude ∈ [0, 1]), which
+// neither overflows (1e308-bright lights) nor underflows (1e−300-dim ones).
+//
+// Work and memory: one reference quadrature per (distinct light, normal).
+// Lights with the same sharpness and axis are one lobe (their amplitudes
+// summed: the exact and the approximate per-light values depend on κ and c
+// only). The normals are walked in chunks of at most kSceneChunkQueries
+// (light, normal) pairs, each evaluated in parallel (TBB), so memory does not
+// grow with the light or normal count beyond the scene and normals themselves.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -50,14 +61,33 @@ struct SceneError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Parses scene JSON; `source` (a file name) prefixes every message.
+// Limits of a scene evaluation (README "Choosing a method for a scene"),
+// refused before any work: lights per scene, normals, and (light, normal)
+// pairs, each pair one reference quadrature (about 10 µs of one core).
+inline constexpr std::size_t kMaxSceneLights = 100000;
+inline constexpr std::size_t kMaxSceneNormals = 1000000;
+inline constexpr std::size_t kMaxScenePairs = 50000000;
+inline constexpr std::size_t kSceneChunkQueries = std::size_t{1} << 16;
+
+// Parses scene JSON; `source` (a file name) prefixes every message. A
+// sharpness must be at most the largest float (every method is ranked in
+// float), and a scene has at most kMaxSceneLights lights.
 Scene parse_scene(std::string_view text, std::string_view source);
+
+// Bytes a scene evaluation of `lights` lights at `normals` normals holds at
+// most (the lights, the normals and one chunk of queries and results).
+std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals);
+
+// Throws SceneError (naming the limit, the pair count and the memory) when
+// `lights` × `normals` is beyond the limits above.
+void check_scene_limits(std::size_t lights, std::size_t normals);
 
 // n unit vectors spread over the sphere (Fibonacci lattice:
 // z_i = 1 − (2i + 1)/n, azimuth i·π(3 − √5)).
 std::vector<Vec3> fibonacci_normals(std::size_t n);
 
-// Per-normal RGB irradiance of the scene, exact (reference engine, in parallel).
+// Per-normal RGB irradiance of the scene in units of its largest amplitude,
+// exact (reference engine, in parallel).
 std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals);
 // The same with a method's f32 (binary32: cosine and κ rounded to float, the
 // per-light value in float, summed in double) or f64.
@@ -66,5 +96,11 @@ std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& 
 
 // max_{n,ch} |approx − exact| / max_{n,ch} exact (+inf on a non-finite value).
 double scene_relative_error(const std::vector<Vec3>& approx, const std::vector<Vec3>& exact);
+
+// The scene error of each method (as scene_relative_error of scene_irradiance
+// against scene_irradiance_reference), in one streamed pass: memory bounded
+// as stated above, whatever the light and normal counts.
+std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals, std::span<const Method> methods,
+                                 FloatFormat precision);
 
 }  // namespace sglab::validate

@@ -23,8 +23,6 @@
 
 namespace sglab::validate {
 
-std::string_view to_string(Origin o) { return o == Origin::sglab ? "sglab" : "published"; }
-
 std::string_view to_string(FailureKind k) {
   switch (k) {
     case FailureKind::nan:
@@ -265,7 +263,12 @@ template <class T> std::vector<T> probe_kappas() {
                          0.8,  1,    2,     5,    10,   20,   50,   88,   89,   100,  700,  710,  1e3,
                          1e4,  1e5,  1e6,   1e10, 1e15, 1e20, 1e30, 1e38, 1e100, 1e200, 1e300};
   std::vector<T> out;
-  out.push_back(std::numeric_limits<T>::denorm_min());
+  // Every binade of the subnormals, 2^e from the smallest subnormal up to the
+  // smallest normal, and the largest subnormal.
+  for (int e = std::numeric_limits<T>::min_exponent - std::numeric_limits<T>::digits;
+       e < std::numeric_limits<T>::min_exponent; ++e)
+    out.push_back(std::ldexp(T(1), e));
+  out.push_back(std::numeric_limits<T>::min() - std::numeric_limits<T>::denorm_min());
   for (double v : list) {
     const T t = static_cast<T>(v);
     if (std::isfinite(t)) out.push_back(t);
@@ -656,19 +659,17 @@ template <class T> std::vector<StabilityRow> run_all(std::vector<double>& kappas
         return m.f64(c, k);
     };
   };
-  const auto own_method = [](std::string_view id) {
-    return id == "tokuyoshi2022" || id == "tokuyoshi2024" || id == "erf2022" || id == "erf2022_listing5";
-  };
+  // Each labelled with the registry's origin (Method::origin).
   for (const Method& m : normalized_methods) {
-    r.cosine_kappa(fmt::format("normalized/{}", m.id), own_method(m.id) ? own : pub, kUnit, call(m));
+    r.cosine_kappa(fmt::format("normalized/{}", m.id), m.origin, kUnit, call(m));
     r.approximation();
   }
   for (const Method& m : hemispherical_methods) {
-    r.cosine_kappa(fmt::format("hemispherical/{}", m.id), own_method(m.id) ? own : pub, kTwoPi, call(m));
+    r.cosine_kappa(fmt::format("hemispherical/{}", m.id), m.origin, kTwoPi, call(m));
     r.approximation();
   }
   for (const Method& m : irradiance_methods) {
-    r.cosine_kappa(fmt::format("irradiance/{}", m.id), own_method(m.id) ? own : pub, kPi, call(m));
+    r.cosine_kappa(fmt::format("irradiance/{}", m.id), m.origin, kPi, call(m));
     r.approximation();
   }
   return std::move(r.rows);
@@ -718,12 +719,13 @@ std::string why(const StabilityRow& row) {
                                        "or an approximation exceeding the exact range by its error)";
   const std::string_view f = row.function;
   const auto is = [&](std::string_view id) { return f == id || f.ends_with("/" + std::string(id)); };
-  if (row.origin == Origin::sglab) return "sglab primitive failing on valid input: a bug";
+  if (row.origin == Origin::sglab) return "sglab primitive or model failing on valid input: a bug";
+  if (row.origin == Origin::refit) return "sglab refit of a published formula failing on valid input: a bug";
   if (f == "sphere_integral_approx" || is("punctual"))
     return "published approximation 2π/κ [Pettineo2016]: infinite at κ = 0 (and NaN where 0·inf) by construction";
   if (f == "sg_inner_product_iwasaki" || is("vsgl2015") || is("vsgl2015_refit"))
-    return "published approximate product integral [Iwasaki2012]: κ1κ2/(κ1 + κ2) overflows (inf/inf) at the largest "
-           "κ and 2π/(κ1 + κ2) is infinite at κ1 = κ2 = 0; transcribed as published";
+    return "published approximate product integral [Iwasaki2012]: 2π/(κ1 + κ2) is infinite at κ1 = κ2 = 0; "
+           "transcribed as published (κ1κ2/(κ1 + κ2) formed without overflow)";
   if (f == "steepness_meder2018" || is("meder2018"))
     return "published t(κ) = √κ(a2κ² + a1κ)/(κ² + b1κ + b0) forms κ² (inf/inf for κ ≳ 1.8e19 in float, 1.3e154 in "
            "double); the published cosine fit a·G(λm) − b makes Ê a difference that goes negative; both kept as published";
@@ -759,7 +761,7 @@ StabilityReport stability() {
 std::vector<const StabilityRow*> own_failures_on_valid_inputs(const StabilityReport& report) {
   std::vector<const StabilityRow*> out;
   for (const StabilityRow& r : report.rows)
-    if (r.origin == Origin::sglab && r.valid_inputs && r.failure_count() > 0) out.push_back(&r);
+    if (r.origin != Origin::published && r.valid_inputs && r.failure_count() > 0) out.push_back(&r);
   return out;
 }
 

@@ -5,9 +5,10 @@
 // NaN / Inf / negative / out-of-range outputs.
 //
 // Published methods are faithful transcriptions: their failures are findings
-// this table reports. sglab's own primitives must be finite, non-negative and
-// in range for every valid input (docs/quantities.md); `own_failures_on_valid_inputs`
-// lists the rows where they are not.
+// this table reports. sglab's own primitives, and every registered method whose
+// origin (sglab/registry.hpp) is sglab or refit, must be finite, non-negative
+// and in range for every valid input (docs/quantities.md);
+// `own_failures_on_valid_inputs` lists the rows where they are not.
 #pragma once
 
 #include <array>
@@ -17,14 +18,17 @@
 #include <string_view>
 #include <vector>
 
+#include <sglab/registry.hpp>
+
 #include "sweep.hpp"
 #include "table.hpp"
 
 namespace sglab::validate {
 
-// sglab's own primitive, or a transcription of a published formula.
-enum class Origin { sglab, published };
-std::string_view to_string(Origin o);
+// A row's origin is the registry's (sglab::Origin): a registered method's own
+// Method::origin; a runtime primitive is `sglab` (sglab's own code) or
+// `published` (a transcription of a published formula).
+using sglab::Origin;
 
 // What an output can be besides fine:
 //   nan          NaN
@@ -108,8 +112,10 @@ std::vector<double> method_sharpness_constants();
 template <class T> long double inaccuracy(T y, long double exact);
 template <class T> bool is_inaccurate(T y, long double exact);
 
-// Rows of sglab's own primitives with any failure on valid inputs (docs/quantities.md:
-// finite, non-negative and in range for finite κ ≥ 0, c ∈ [−1, 1]).
+// Rows of origin sglab or refit (sglab's own primitives and models, and the
+// published formulas with sglab's refitted constants) with any failure on
+// valid inputs (docs/quantities.md: finite, non-negative and in range for
+// finite κ ≥ 0, c ∈ [−1, 1]).
 std::vector<const StabilityRow*> own_failures_on_valid_inputs(const StabilityReport& report);
 
 // Full table: function, origin, precision, inputs, evaluations, then for each

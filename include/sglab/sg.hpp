@@ -170,9 +170,12 @@ template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T&
 // Iwasaki et al. 2012 approximate product integral ([Tokuyoshi2015] supplemental §3.2):
 // ∫ G1 G2 dω ≈ 2π G(c; κ1κ2/(κ1 + κ2)) / (κ1 + κ2). Both κ = 0 gives 0/0;
 // the approximation is meant for κ1 + κ2 ≫ 1 and returns +inf there.
+// κ1κ2/(κ1 + κ2) is formed as b/(1 + b/a), a = max(κ1, κ2), b = min(κ1, κ2)
+// (the same value): κ1κ2 overflows at the largest κ, and inf·(c − 1) was NaN at c = 1.
 template <class T> T sg_inner_product_iwasaki(const T& cosine, const T& kappa1, const T& kappa2) {
   const T sum = kappa1 + kappa2;
-  const T lambda = sum > T(0) ? kappa1 * kappa2 / sum : T(0);
+  const T a = kappa1 < kappa2 ? kappa2 : kappa1, b = kappa1 < kappa2 ? kappa1 : kappa2;
+  const T lambda = sum > T(0) ? b / (T(1) + b / a) : T(0);
   return two_pi_v<T>() * sg_evaluate(cosine, lambda) / sum;
 }
 

@@ -33,6 +33,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "closed_forms.hpp"
 #include "constants.hpp"
@@ -47,7 +48,7 @@ namespace sglab {
 template <class T, std::size_t N> struct SglabAccLight {
   T t;             // steepness t(κ)
   T half_erfc_t;   // ½ erfc(t)
-  T tail_scale;    // 1/(2√π t), 0 when t = 0 (the tail term's t → 0 limit is 0)
+  T tail_scale;    // 1/(2√π t), 0 when t ≤ ε (detail::sglab_acc_tail_scale)
   T t2;            // t²
   T lower, upper;  // Ē(−1, κ), Ē(1, κ) (closed_forms.hpp)
   T b[N];          // correction coefficients b_j(κ)
@@ -80,6 +81,19 @@ SGLAB_FORCE_INLINE void sglab_acc_rational(const T& kappa, const SglabAccParams<
   }
 }
 
+// The scale 1/(2√π t) of the [Tokuyoshi2024] tail term
+// e^{−z²} expm1(−t²(1 − c²))/(2√π t), or 0 where t ≤ ε (the epsilon of T).
+// 1/t overflows for a subnormal t (t < 1/max: κ ≲ 1e−38 in float, 1e−308 in
+// double), where t² is 0 and the tail became 0·inf = NaN. Dropping the term
+// there is below rounding: |expm1(−x)| ≤ x bounds it by t(1 − c²)/(2√π) <
+// 0.29ε in f, and Ê = 2π lerp(Ē(−1), Ē(1), f) moves by that times
+// 2π(Ē(1) − Ē(−1)) = O(κ), far below an ulp of Ê ≈ π (κ ≲ 3t there).
+// `Ops::select` keeps the float batch branch-free (1/t of a selected 1 is finite).
+template <class T, class Ops = LibmOps> SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
+  const bool keep = t > std::numeric_limits<T>::epsilon();
+  return Ops::select(keep, T(0.5) * inv_sqrt_pi_v<T>() / Ops::select(keep, t, T(1)), T(0));
+}
+
 }  // namespace detail
 
 // Per-light setup of `sglab_acc<N>`: everything that depends on κ alone.
@@ -90,7 +104,7 @@ SglabAccLight<T, N> sglab_acc_setup(const T& kappa, const SglabAccParams<S, N, D
   SglabAccLight<T, N> l;
   l.t = steepness2024(kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
   l.half_erfc_t = T(0.5) * erfc(l.t);
-  l.tail_scale = l.t > T(0) ? T(0.5) * inv_sqrt_pi_v<T>() / l.t : T(0);
+  l.tail_scale = detail::sglab_acc_tail_scale(l.t);
   l.t2 = l.t * l.t;
   l.lower = irradiance_lower_over_two_pi(kappa);
   l.upper = irradiance_upper_over_two_pi(kappa);
@@ -108,8 +122,7 @@ SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_setup_branch_free(float kap
   SglabAccLight<float, N> l;
   l.t = base.t;
   l.half_erfc_t = 0.5f * branch_free::erfc_bf(base.t);
-  // 1/t is formed from max(t, 1): finite, and selected away at t = 0.
-  l.tail_scale = branch_free::select(base.t > 0.0f, 0.5f * inv_sqrt_pi_v<float>() / branch_free::select(base.t > 0.0f, base.t, 1.0f), 0.0f);
+  l.tail_scale = detail::sglab_acc_tail_scale(base.t, detail::BranchFreeOps{});
   l.t2 = base.t * base.t;
   l.lower = base.lower;
   l.upper = base.upper;
