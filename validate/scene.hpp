@@ -50,7 +50,10 @@ struct SceneError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Parses scene JSON; `source` (a file name) prefixes every message.
+// The largest scene file read (io::read_input_file), about 100,000 lights.
+inline constexpr std::size_t kMaxSceneFileBytes = 16 << 20;
+
+// Parses scene JSON (io::parse_json_strict); `source` (a file name) prefixes every message.
 Scene parse_scene(std::string_view text, std::string_view source);
 
 // n unit vectors spread over the sphere (Fibonacci lattice:
