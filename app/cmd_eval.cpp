@@ -56,7 +56,9 @@ void add_eval_command(CLI::App& app) {
       std::fwrite(out.data(), 1, out.size(), stdout);
       out.clear();
     };
+    std::size_t rows = 0;
     const auto row = [&](const validate::Query& q) {
+      ++rows;
       if (in_float)
         out += fmt::format("{:.17g},{:.17g},{:.9g}\n", q.kappa, q.cosine,
                            m->f32(static_cast<float>(q.cosine), static_cast<float>(q.kappa)));
@@ -67,7 +69,7 @@ void add_eval_command(CLI::App& app) {
     try {
       for_each_point(*points, row, in_float ? std::optional(validate::kFloatFormat) : std::nullopt);
     } catch (const InputError&) {
-      write();  // every row before the bad one
+      if (rows > 0) write();  // every row before the bad one (nothing when the file itself is refused)
       std::fflush(stdout);
       throw;
     }

@@ -136,7 +136,7 @@ void add_reference_command(CLI::App& app) {
     constexpr std::size_t kChunk = 4096;  // rows per engine call (each call runs in parallel)
     std::vector<validate::Query> chunk;
     chunk.reserve(kChunk);
-    std::string out;
+    std::string out = "kappa,cosine,hemispherical,irradiance,normalized\n";  // printed with the first rows
     const auto flush = [&] {
       const auto results = validate::reference_engine().evaluate(chunk, mode);
       for (const auto& r : results)
@@ -150,7 +150,6 @@ void add_reference_command(CLI::App& app) {
       // once, so keep the cache from growing with the file.
       if (validate::reference_engine().cache_size() > 8 * kChunk) validate::reference_engine().clear_cache();
     };
-    fmt::print("kappa,cosine,hemispherical,irradiance,normalized\n");
     try {
       for_each_point(*points, [&](const validate::Query& q) {
         chunk.push_back(q);
@@ -162,7 +161,7 @@ void add_reference_command(CLI::App& app) {
       std::fflush(stdout);
       throw;
     }
-    if (!chunk.empty()) flush();
+    flush();  // the last rows, or the header of a file without rows
     progress.finish();
     std::fflush(stdout);
   });

@@ -354,6 +354,16 @@ TEST(PointsInput, RowsBeforeABadRowArePrintedThenExitTwo) {
     EXPECT_TRUE(contains(all.output, fmt::format("{}:{}: cosine must be in [-1, 1]", file.string(), good + 2)))
         << all.output.substr(all.output.size() > 300 ? all.output.size() - 300 : 0);
   }
+  // A refused file, or a bad first row: nothing at all on stdout.
+  write_text(dir.path / "first.csv", "kappa,cosine\n1,2\n");
+  for (const fs::path& f : {dir.path / "absent.csv", dir.path / "first.csv", dir.path})
+    for (const char* command : {"reference", "eval"}) {
+      std::vector<std::string> args = {command, "--points", f.string()};
+      if (std::string(command) == "eval") args.insert(args.end(), {"--method", "tokuyoshi2024"});
+      const auto out = run_sglab(args, /*merge_stderr=*/false);
+      EXPECT_EQ(out.exit_code, 2) << command << " " << f;
+      EXPECT_EQ(out.output, "") << command << " " << f;
+    }
 }
 
 TEST(PointsInput, EvalInFloatRefusesKappaThatFloatCannotHold) {
