@@ -127,8 +127,9 @@ void add_bench_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench", "ns per evaluation of every method and erf variant (float/double, scalar/batch), Google Benchmark");
   cmd->add_flag("--json", args->json, "print the table as JSON on stdout");
-  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
+  cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
   cmd->add_option("--repetitions", args->repetitions, "repetitions per case; the median is reported")
+      ->check(count_in(1, std::numeric_limits<int>::max()))
       ->capture_default_str();
   cmd->add_option("--filter", args->filter, "ECMAScript regex searched in kind/method/precision/mode");
   cmd->add_option("--min-time", args->min_time, "seconds per repetition")->capture_default_str();

@@ -2,7 +2,9 @@
 // in float and in double — max abs / ulp error, where, RMS, non-finite count
 // and the ulp histogram, in the style of libm accuracy tables.
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -108,13 +110,18 @@ void add_erf_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print the results as JSON on stdout instead of tables");
   cmd->add_option("--out", args->out,
                   "directory for per-variant CSV series of the ulp error over x, the summary (CSV, Markdown) and "
-                  "the histogram (CSV)");
+                  "the histogram (CSV)")
+      ->check(non_empty_path());
   cmd->add_option("--tail-stride", args->tail_stride,
                   "with --exhaustive: check every N-th float bit pattern in [64, FLT_MAX] (every float in [4, 64) "
                   "always; 1 = every float)")
+      ->check(count_in(1, std::numeric_limits<std::uint32_t>::max()))
       ->capture_default_str();
-  cmd->add_option("--bins", args->bins, "bins of x in the CSV series")->capture_default_str();
+  cmd->add_option("--bins", args->bins, "bins of x in the CSV series")
+      ->check(count_in(1, 1'000'000))
+      ->capture_default_str();
   cmd->add_option("--double-points", args->double_points, "uniform grid points of the double check over [0, 6)")
+      ->check(count_in(1024, std::numeric_limits<std::uint32_t>::max()))
       ->capture_default_str();
   cmd->callback([args] { run_erf(*args); });
 }

@@ -2,9 +2,14 @@
 // any registered method at the `kappa,cosine` rows of FILE (the reader and
 // validation of `sglab reference`, app/points.hpp). Output (stdout): CSV
 // `kappa,cosine,value`, κ and c as read (%.17g), the value with %.9g in float
-// (evaluated at the float-rounded κ and c) or %.17g in double. An unknown
-// method or a bad row is an InputError (exit 2) and prints nothing on stdout.
+// (evaluated at the float-rounded κ and c) or %.17g in double. The file is
+// streamed (memory does not grow with it). An unknown method is an
+// InputError (exit 2) before anything is printed; a bad row (also a κ that
+// does not survive rounding to float under --precision float) is one after
+// the rows before it were printed.
+#include <cstdio>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -45,16 +50,31 @@ void add_eval_command(CLI::App& app) {
       for (const Method& each : list) known += (known.empty() ? "" : ", ") + std::string(each.id);
       throw InputError(fmt::format("unknown {} method '{}' (known: {})", *quantity, *method, known));
     }
-    const auto queries = read_points(*points);
+    const bool in_float = *precision == "float";
     std::string out = "kappa,cosine,value\n";
-    for (const auto& q : queries) {
-      if (*precision == "float")
+    const auto write = [&out] {
+      std::fwrite(out.data(), 1, out.size(), stdout);
+      out.clear();
+    };
+    std::size_t rows = 0;
+    const auto row = [&](const validate::Query& q) {
+      ++rows;
+      if (in_float)
         out += fmt::format("{:.17g},{:.17g},{:.9g}\n", q.kappa, q.cosine,
                            m->f32(static_cast<float>(q.cosine), static_cast<float>(q.kappa)));
       else
         out += fmt::format("{:.17g},{:.17g},{:.17g}\n", q.kappa, q.cosine, m->f64(q.cosine, q.kappa));
+      if (out.size() >= (1 << 16)) write();
+    };
+    try {
+      for_each_point(*points, row, in_float ? std::optional(validate::kFloatFormat) : std::nullopt);
+    } catch (const InputError&) {
+      if (rows > 0) write();  // every row before the bad one (nothing when the file itself is refused)
+      std::fflush(stdout);
+      throw;
     }
-    fmt::print("{}", out);
+    write();
+    std::fflush(stdout);
   });
 }
 

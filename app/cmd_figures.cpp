@@ -25,7 +25,7 @@ struct FiguresArgs {
 void add_figures_command(CLI::App& app) {
   auto args = std::make_shared<FiguresArgs>();
   auto* cmd = app.add_subcommand("figures", "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
-  cmd->add_option("--out", args->out, "output directory")->capture_default_str();
+  cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
   cmd->add_option("--pareto", args->pareto, "Pareto CSV written by `sglab pareto` (figure e; skipped when absent)")
       ->capture_default_str();
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();

@@ -179,11 +179,13 @@ void add_fit_command(CLI::App& app) {
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--out", o->out_dir,
                   "directory of constant-set JSON files (default: data/constants of the sglab project found at or "
-                  "above the working directory)");
+                  "above the working directory)")
+      ->check(non_empty_path());
   cmd->add_option("--header", o->header,
                   "runtime header to regenerate (default: the project's include/sglab/constants.hpp when --out is "
                   "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
-                  "checkout). The header holds the project's sets with those of --out in their place");
+                  "checkout). The header holds the project's sets with those of --out in their place")
+      ->check(non_empty_path());
   cmd->callback([o, precision, objective, kappa, max_error, alpha_free] {
     namespace fs = std::filesystem;
     const GivenOptions given{precision->count() > 0, objective->count() > 0, kappa->count() > 0,

@@ -1,6 +1,7 @@
 // `sglab methods` lists every registered method; `sglab table` prints every
 // irradiance method at one κ over a few cosines, beside the reference.
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -74,10 +75,11 @@ void add_table_command(CLI::App& app) {
   auto kappa = std::make_shared<double>(4.0);
   auto count = std::make_shared<int>(9);
   cmd->add_option("--kappa", *kappa, "SG sharpness κ (≥ 0)")->capture_default_str();
-  cmd->add_option("--cosines", *count, "number of cosines, evenly spaced over [-1, 1] (≥ 2)")->capture_default_str();
+  cmd->add_option("--cosines", *count, "number of cosines, evenly spaced over [-1, 1] (≥ 2)")
+      ->check(count_in(2, std::numeric_limits<int>::max()))
+      ->capture_default_str();
   cmd->callback([kappa, count] {
     if (!(std::isfinite(*kappa) && *kappa >= 0)) throw InputError(fmt::format("--kappa must be finite and >= 0, got {}", *kappa));
-    if (*count < 2) throw InputError(fmt::format("--cosines must be >= 2, got {}", *count));
     std::vector<validate::Query> queries;
     for (int i = 0; i < *count; ++i) queries.push_back({*kappa, -1.0 + 2.0 * i / (*count - 1)});
     const auto ref = validate::reference_engine().evaluate(queries);

@@ -68,7 +68,9 @@ void add_recommend_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene,
                   "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": [r, g, b]}, …]}: "
                   "rank the methods by their error on the scene's irradiance instead");
-  cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")->capture_default_str();
+  cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")
+      ->check(count_in(1, 1000000))
+      ->capture_default_str();
   cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--budget", args->budget, "max peak_rel allowed (> 0)")->required();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
@@ -84,8 +86,6 @@ void add_recommend_command(CLI::App& app) {
     if (!precision)
       throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
     if (!args->scene.empty()) {
-      if (args->normals < 1 || args->normals > 1000000)
-        throw InputError(fmt::format("--normals: expected 1 to 1000000, got {}", args->normals));
       recommend_scene({args->scene, budget, *precision, args->normals, args->json, args->costs});
       return;
     }

@@ -6,15 +6,17 @@
 // empty lines are skipped. Output (stdout): CSV with the header
 // `kappa,cosine,hemispherical,irradiance,normalized`, every value printed
 // with 17 significant digits (%.17g), so doubles round-trip exactly.
-// Any bad line is an InputError naming the file and the line number, raised
-// before any output. A UTF-8 byte-order mark before the header is skipped.
-// Rows are streamed (memory does not grow with the file); progress on stderr
-// when it is a terminal.
+// The file is read once: each row is checked before it is evaluated and
+// printed, so a bad line is an InputError (exit 2) naming the file and the
+// line number after the rows before it were printed. A UTF-8 byte-order
+// mark before the header is skipped. Rows are streamed (memory does not grow
+// with the file); progress on stderr when it is a terminal.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -24,6 +26,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "args.hpp"
 #include "io.hpp"
 #include "points.hpp"
 #include "reference.hpp"
@@ -50,30 +53,38 @@ std::vector<std::string_view> split(std::string_view line) {
   return fields;
 }
 
-// Reads the points file line by line, calling on_point(query) for every data
-// row; returns the number of rows. Nothing is held but the current line.
-template <class OnPoint>
-std::size_t for_each_point(const std::string& path, OnPoint&& on_point) {
+}  // namespace
+
+std::size_t for_each_point(const std::string& path, const std::function<void(const validate::Query&)>& on_point,
+                           std::optional<validate::NumberFormat> kappa_format) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("{}: no such points file (or not a regular file)", path));
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open points file", path));
 
   std::size_t count = 0;
-  std::string line;
+  std::vector<char> buffer(kMaxPointsLineBytes + 2);  // one byte more than a line may have, and the NUL
   std::size_t line_number = 0;
   bool header_seen = false;
-  while (std::getline(in, line)) {
+  while (true) {
+    // Bounded: istream::getline stores at most buffer.size() - 1 bytes.
+    in.getline(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    if (in.bad()) throw InputError(fmt::format("{}: read error", path));
+    const bool ended_by_newline = !in.eof() && !in.fail();
+    const auto extracted = static_cast<std::size_t>(in.gcount());
+    if (extracted == 0 && in.eof()) break;
     ++line_number;
-    std::string_view text = line;
+    std::string_view text(buffer.data(), extracted - (ended_by_newline ? 1 : 0));
+    auto fail = [&](std::string_view why) {
+      return InputError(fmt::format("{}:{}: {} (line: {})", path, line_number, why, validate::quote_escaped(text)));
+    };
+    if (text.size() > kMaxPointsLineBytes)
+      throw fail(fmt::format("line longer than {} bytes", kMaxPointsLineBytes));
     if (line_number == 1) text = io::strip_utf8_bom(text);  // a byte-order mark some editors write
     text = trim(text);
     if (text.empty()) continue;
     const auto fields = split(text);
-    auto fail = [&](std::string_view why) {
-      return InputError(fmt::format("{}:{}: {} (line: \"{}\")", path, line_number, why, text));
-    };
     if (!header_seen) {
       if (fields.size() != 2 || fields[0] != "kappa" || fields[1] != "cosine")
         throw fail("expected the header \"kappa,cosine\"");
@@ -89,25 +100,22 @@ std::size_t for_each_point(const std::string& path, OnPoint&& on_point) {
       if (f.empty()) throw fail(fmt::format("missing {}", name));
       const auto [end, err] = std::from_chars(f.data(), f.data() + f.size(), value[i]);
       if (err != std::errc() || end != f.data() + f.size())
-        throw fail(fmt::format("{} is not a number: \"{}\"", name, f));
+        throw fail(fmt::format("{} is not a number: {}", name, validate::quote_escaped(f)));
     }
     const double kappa = value[0], cosine = value[1];
     if (!(std::isfinite(kappa) && kappa >= 0)) throw fail(fmt::format("kappa must be finite and >= 0, got {}", kappa));
     if (!(cosine >= -1 && cosine <= 1)) throw fail(fmt::format("cosine must be in [-1, 1], got {}", cosine));
+    if (kappa_format && validate::exceeds_max_finite(kappa, *kappa_format))
+      throw fail(fmt::format("kappa {} exceeds the largest finite {} ({:g}), the precision it is evaluated in", kappa,
+                             kappa_format->name, kappa_format->max_finite));
+    if (kappa_format && validate::rounds_to_zero(kappa, *kappa_format))
+      throw fail(fmt::format("kappa {} rounds to 0 in {}, the precision it is evaluated in (smallest positive {}: {:g})",
+                             kappa, kappa_format->name, kappa_format->name, kappa_format->denorm_min));
     on_point(validate::Query{kappa, cosine});
     ++count;
   }
-  if (in.bad()) throw InputError(fmt::format("{}: read error", path));
   if (!header_seen) throw InputError(fmt::format("{}: empty file, expected the header \"kappa,cosine\"", path));
   return count;
-}
-
-}  // namespace
-
-std::vector<validate::Query> read_points(const std::string& path) {
-  std::vector<validate::Query> points;
-  for_each_point(path, [&points](const validate::Query& q) { points.push_back(q); });
-  return points;
 }
 
 void add_reference_command(CLI::App& app) {
@@ -120,17 +128,15 @@ void add_reference_command(CLI::App& app) {
       ->check(CLI::IsMember({"standard", "high"}))
       ->capture_default_str();
   cmd->callback([points, precision] {
-    // Two passes over the file: the first checks every line (so bad input is
-    // refused before anything is printed) and counts the rows; the second
-    // evaluates and prints them a chunk at a time, so memory does not grow
-    // with the file.
-    const std::size_t total = for_each_point(*points, [](const validate::Query&) {});
+    // One pass: rows are evaluated and printed a chunk at a time, so memory
+    // does not grow with the file; a bad row stops the command after the
+    // rows before it are printed.
     const auto mode = *precision == "high" ? validate::Precision::high : validate::Precision::standard;
-    io::Progress progress("reference", total);
+    io::Progress progress("reference", 0);
     constexpr std::size_t kChunk = 4096;  // rows per engine call (each call runs in parallel)
     std::vector<validate::Query> chunk;
     chunk.reserve(kChunk);
-    std::string out;
+    std::string out = "kappa,cosine,hemispherical,irradiance,normalized\n";  // printed with the first rows
     const auto flush = [&] {
       const auto results = validate::reference_engine().evaluate(chunk, mode);
       for (const auto& r : results)
@@ -144,12 +150,18 @@ void add_reference_command(CLI::App& app) {
       // once, so keep the cache from growing with the file.
       if (validate::reference_engine().cache_size() > 8 * kChunk) validate::reference_engine().clear_cache();
     };
-    fmt::print("kappa,cosine,hemispherical,irradiance,normalized\n");
-    for_each_point(*points, [&](const validate::Query& q) {
-      chunk.push_back(q);
-      if (chunk.size() == kChunk) flush();
-    });
-    if (!chunk.empty()) flush();
+    try {
+      for_each_point(*points, [&](const validate::Query& q) {
+        chunk.push_back(q);
+        if (chunk.size() == kChunk) flush();
+      });
+    } catch (const InputError&) {
+      if (!chunk.empty()) flush();  // every row before the bad one is printed
+      progress.finish();
+      std::fflush(stdout);
+      throw;
+    }
+    flush();  // the last rows, or the header of a file without rows
     progress.finish();
     std::fflush(stdout);
   });

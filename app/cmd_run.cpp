@@ -5,12 +5,20 @@
 // figure. Constants are refitted into OUT/constants so that the main job never
 // rewrites the committed data/.
 //
+// Everything is written into a fresh staging folder beside OUT
+// (OUT.staging-PID), which replaces OUT only when the run has finished (an
+// atomic exchange of the two folders where the file system allows it): an
+// interrupted run leaves the previous OUT as it was, never an index.md whose
+// steps and logs disagree. Each log is written beside its final name and
+// renamed when its step ends.
+//
 // OUT/index.md: one H1, one H2 per step, one H3 per Markdown file a step
 // wrote. A short Markdown file is inlined with its headings moved below that
 // H3 and its relative links rewritten to resolve from OUT; a long one (more
 // than kInlineLines lines, e.g. the per-κ sweep table) is linked instead.
 // Every figure is shown once.
 #include <fcntl.h>
+#include <stdio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,6 +37,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "atomic_files.hpp"
 #include "io.hpp"
 
 namespace sglab::app {
@@ -274,6 +283,73 @@ std::string section(const fs::path& out, const Step& step, int status, double se
   return md;
 }
 
+// The steps of the main job writing under `root`. pareto reads the costs the
+// bench step measured, or the committed table when bench is skipped.
+std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped) {
+  const auto in = [&root](const char* sub) { return (root / sub).string(); };
+  std::vector<std::string> pareto = {"pareto", "--out", in("pareto")};
+  if (!bench_skipped) pareto.insert(pareto.end(), {"--costs", in("bench/costs.json")});
+  std::vector<std::string> erf = {"erf"};
+  if (!quick) erf.emplace_back("--exhaustive");
+  erf.insert(erf.end(), {"--out", in("erf")});
+  return {
+      {"fit", {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")}, "constants"},
+      {"sweep", {"sweep", "--backend", "auto", "--out", in("sweep")}, "sweep"},
+      {"erf", erf, "erf"},
+      {"stability", {"stability", "--out", in("stability")}, "stability"},
+      {"claims", {"claims", "--out", in("claims")}, "claims"},
+      {"bench", {"bench", "--out", in("bench")}, "bench"},
+      {"pareto", pareto, "pareto"},
+      {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
+  };
+}
+
+// A fresh folder beside `out` (beside the folder it links to, if it is a
+// symbolic link), on the same file system so that it can be renamed over it.
+fs::path staging_folder(const fs::path& out) {
+  std::error_code ec;
+  const fs::path target = fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
+  const fs::path name = target.has_filename() ? target.filename() : target.parent_path().filename();
+  const fs::path parent = target.has_filename() ? target.parent_path() : target.parent_path().parent_path();
+  const fs::path staging = parent / fmt::format("{}.staging-{}", name.string(), ::getpid());
+  fs::remove_all(staging);  // a leftover of a killed run with the same process id
+  fs::create_directories(staging);
+  return staging;
+}
+
+// Puts the finished `staging` folder in the place of `out` (which may not
+// exist): one atomic exchange of the two, then the previous output is
+// removed. Where the file system cannot exchange, two renames.
+void replace_folder(const fs::path& staging, const fs::path& out) {
+  std::error_code ec;
+  const fs::path target = fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
+  if (!fs::exists(target, ec)) {
+    fs::rename(staging, target);
+    return;
+  }
+  if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
+    fs::remove_all(staging);  // now the previous output
+    return;
+  }
+  const fs::path previous = staging.string() + ".previous";
+  fs::rename(target, previous);
+  fs::rename(staging, target);
+  fs::remove_all(previous);
+}
+
+// Runs one step with its output in `log`, written beside it and renamed when
+// the step ends (so that a log is never seen half-written).
+int run_logged(const Step& step, const fs::path& log) {
+  const fs::path partial = log.parent_path() / ("." + log.filename().string() + ".partial");
+  int status = 1;
+  {
+    RedirectOutput redirect(partial);
+    status = run_step(step.arguments);
+  }
+  fs::rename(partial, log);
+  return status;
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app) {
@@ -282,58 +358,44 @@ void add_run_command(CLI::App& app) {
   auto out = std::make_shared<std::string>("out");
   auto quick = std::make_shared<bool>(false);
   auto skip = std::make_shared<std::vector<std::string>>();
-  cmd->add_option("--out", *out, "output directory")->capture_default_str();
+  cmd->add_option("--out", *out, "output directory")->check(non_empty_path())->capture_default_str();
   cmd->add_flag("--quick", *quick, "sample the erf check instead of every float");
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
   cmd->callback([out, quick, skip] {
     const fs::path root = *out;
-    const auto in = [&root](const char* sub) { return (root / sub).string(); };
-    const auto skipped = [&skip](const char* name) { return std::find(skip->begin(), skip->end(), name) != skip->end(); };
-    // pareto reads the costs the bench step measured, or the committed table when bench is skipped.
-    std::vector<std::string> pareto = {"pareto", "--out", in("pareto")};
-    if (!skipped("bench")) pareto.insert(pareto.end(), {"--costs", in("bench/costs.json")});
-    std::vector<std::string> erf = {"erf"};
-    if (!*quick) erf.emplace_back("--exhaustive");
-    erf.insert(erf.end(), {"--out", in("erf")});
-    const std::vector<Step> steps = {
-        {"fit", {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")}, "constants"},
-        {"sweep", {"sweep", "--backend", "auto", "--out", in("sweep")}, "sweep"},
-        {"erf", erf, "erf"},
-        {"stability", {"stability", "--out", in("stability")}, "stability"},
-        {"claims", {"claims", "--out", in("claims")}, "claims"},
-        {"bench", {"bench", "--out", in("bench")}, "bench"},
-        {"pareto", pareto, "pareto"},
-        {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
+    io::check_output_folder(root);
+    const auto skipped = [&skip](const std::string& name) {
+      return std::find(skip->begin(), skip->end(), name) != skip->end();
     };
+    const std::vector<Step> shown = run_steps(root, *quick, skipped("bench"));
     for (const auto& s : *skip) {
-      if (std::none_of(steps.begin(), steps.end(), [&](const Step& st) { return st.name == s; }))
+      if (std::none_of(shown.begin(), shown.end(), [&](const Step& st) { return st.name == s; }))
         throw InputError(fmt::format("--skip: unknown step '{}'", s));
     }
-    fs::create_directories(root / "logs");
+    const fs::path staging = staging_folder(root);
+    const std::vector<Step> steps = run_steps(staging, *quick, skipped("bench"));
+    fs::create_directories(staging / "logs");
     std::string index = "# sglab results\n\nProduced by `sglab run`; every section names the command that made it.\n\n";
     Seen seen;
     int failures = 0;
     const auto t0 = std::chrono::steady_clock::now();
-    for (const Step& step : steps) {
-      if (std::find(skip->begin(), skip->end(), step.name) != skip->end()) continue;
-      const fs::path log = root / "logs" / (step.name + ".log");
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      const Step& step = steps[i];
+      if (skipped(step.name)) continue;
       if (io::stderr_is_terminal()) fmt::print(stderr, "sglab run: {} ...\n", step.name);
       const auto start = std::chrono::steady_clock::now();
-      int status = 1;
-      {
-        RedirectOutput redirect(log);
-        status = run_step(step.arguments);
-      }
+      const int status = run_logged(step, staging / "logs" / (step.name + ".log"));
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print("{:<10} {:>7.1f} s  {}\n", step.name, secs,
-                 status == 0 ? "ok" : fmt::format("FAILED, see {}", log.string()));
+                 status == 0 ? "ok" : fmt::format("FAILED, see {}", (root / "logs" / (step.name + ".log")).string()));
       std::fflush(stdout);
       if (status != 0) ++failures;
-      index += section(root, step, status, secs, seen);
+      index += section(staging, shown[i], status, secs, seen);
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     index += fmt::format("Total: {:.1f} s.\n", total);
-    io::write_file_atomic(root / "index.md", index);
+    io::write_file_atomic(staging / "index.md", index);
+    replace_folder(staging, root);
     fmt::print("total {:.1f} s; wrote {}\n", total, (root / "index.md").string());
     if (failures) throw std::runtime_error(fmt::format("{} step(s) failed", failures));
   });

@@ -31,15 +31,6 @@ namespace sglab::app {
 
 namespace {
 
-bool parse_int(std::string_view s, int& out) {
-  if (s.empty()) return false;
-  const char* begin = s.data();
-  if (*begin == '+') ++begin;  // from_chars rejects a leading '+'
-  const char* end = s.data() + s.size();
-  auto [ptr, ec] = std::from_chars(begin, end, out);
-  return ec == std::errc() && ptr == end;
-}
-
 // --kappa LO:HI:N (validate/args.hpp; float: the sweep rounds its inputs to float)
 void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
   validate::KappaRangeRules rules;
@@ -55,11 +46,11 @@ void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
   grid.kappa_count = r.count;
 }
 
+// --cosines N: at least 2 (the grid includes c = -1 and c = 1); the grid limit (SweepGrid::validate) bounds it.
 void parse_cosines_option(const std::string& text, validate::SweepGrid& grid) {
-  int n = 0;
-  if (!parse_int(text, n)) throw InputError(fmt::format("--cosines: '{}' is not an integer", text));
-  if (n < 2) throw InputError(fmt::format("--cosines: must be >= 2 (the grid includes c = -1 and c = 1), got {}", n));
-  grid.cosine_count = n;
+  const auto n = validate::parse_count(text, 2, std::numeric_limits<int>::max());
+  if (const auto* why = std::get_if<std::string>(&n)) throw InputError("--cosines: " + *why);
+  grid.cosine_count = static_cast<int>(std::get<long long>(n));
 }
 
 std::vector<validate::SweepMethod> select_methods(const std::vector<std::string>& ids) {
@@ -129,6 +120,7 @@ void add_sweep_command(CLI::App& app) {
                               "most {} points",
                               validate::SweepGrid::kMaxPoints));
   auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+                         ->check(non_empty_path())
                          ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the summary as JSON on stdout; writes no file unless --out is given");
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");

@@ -4,17 +4,29 @@
 
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "args.hpp"
+#include "io.hpp"
+
 namespace sglab::app {
 
 // Bad input from the user (a malformed file, an out-of-range value): the
-// message names what was wrong; the process exits with code 2.
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// message names what was wrong; the process exits with code 2. Defined in
+// validate/io.hpp, so that the readers and writers below app/ raise it too.
+using InputError = io::InputError;
+
+// The check of every output path option (--out, --header, --dir): an empty
+// name is refused (exit 2) rather than taken as the working directory or the
+// checkout's default files.
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& value) { return value.empty() ? std::string("an empty path is not allowed") : std::string(); },
+      "PATH", "non-empty path");
+}
 
 // Parses with `parse()` (which runs the chosen subcommand's callback) and
 // maps the outcome to the documented exit codes: 0 success (also --help,
@@ -33,6 +45,20 @@ template <class Parse> int run_and_map_exit_code(CLI::App& app, Parse&& parse) {
     return 1;
   }
   return 0;
+}
+
+// The check of every whole-number option: validate::parse_count's rules
+// (digits only, min ≤ value ≤ max), applied to the text before CLI11
+// converts it, so "-1" is not wrapped to 18446744073709551615 and a value
+// beyond the type says "out of range", not "not an integer".
+inline CLI::Validator count_in(long long min, long long max) {
+  return CLI::Validator(
+      [min, max](std::string& value) {
+        const auto parsed = validate::parse_count(value, min, max);
+        const auto* why = std::get_if<std::string>(&parsed);
+        return why ? *why : std::string();
+      },
+      fmt::format("INT in [{} - {}]", min, max), "count");
 }
 
 void add_methods_command(CLI::App& app);

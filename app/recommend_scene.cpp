@@ -39,8 +39,8 @@ nlohmann::ordered_json number(double x) {
 void recommend_scene(const SceneRecommendArgs& args) {
   std::string text;
   try {
-    text = io::read_file(args.scene);
-  } catch (const std::exception& e) {
+    text = io::read_input_file(args.scene, validate::kMaxSceneFileBytes, "a scene file");
+  } catch (const InputError& e) {
     throw InputError(fmt::format("--scene: {}", e.what()));
   }
   validate::Scene scene;

@@ -41,17 +41,13 @@ bool same_folder(const fs::path& a, const fs::path& b) {
   return !ea && !eb && ca == cb;
 }
 
+// A constants file, bounded (io::read_input_file: a regular file of at most kMaxConstantsFileBytes).
 std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    throw ConstantsError(
-        fmt::format("{}: cannot read: {}", file.string(), std::error_code(errno, std::generic_category()).message()));
-  // Read at most one byte past the limit: parse_untrusted_json refuses larger files.
-  std::string text(kMaxConstantsFileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (in.bad()) throw ConstantsError(fmt::format("{}: cannot read", file.string()));
-  return text;
+  try {
+    return io::read_input_file(file, kMaxConstantsFileBytes, "a constants file");
+  } catch (const io::InputError& e) {
+    throw ConstantsError(e.what());
+  }
 }
 
 }  // namespace

@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "comment_text.hpp"
+#include "json_input.hpp"
 
 namespace sglab::fit {
 
@@ -42,7 +43,7 @@ struct ConstantsError : std::runtime_error {
 
 // Limits on a constants file.
 inline constexpr std::size_t kMaxConstantsFileBytes = 1 << 20;  // 1 MiB (a set is a few KB)
-inline constexpr int kMaxJsonDepth = 64;                        // nesting of objects and arrays
+inline constexpr int kMaxJsonDepth = io::kMaxJsonDepth;         // nesting of objects and arrays
 inline constexpr std::size_t kMaxArrayLength = 64;              // size parameters and array members
 inline constexpr std::size_t kMaxIdentifierLength = 128;        // cpp_name, target, variant, coefficient names
 
@@ -70,10 +71,9 @@ struct ResolvedType {
 // [1, kMaxArrayLength].
 ResolvedType resolve_cpp_type(std::string_view text, const std::string& where);
 
-// Parses untrusted JSON text: at most kMaxJsonDepth levels (checked while
-// parsing, so a 100000-deep file is refused, not a stack overflow), numbers
-// finite and not silently 0 (a nonzero decimal below the smallest double is
-// refused), valid UTF-8. Throws ConstantsError naming `file` and the key path.
+// Parses untrusted JSON text (at most kMaxConstantsFileBytes) with the one
+// strict JSON parser, io::parse_json_strict (validate/json_input.hpp).
+// Throws ConstantsError naming `file` and the key path.
 ordered_json parse_untrusted_json(std::string_view text, const std::string& file);
 
 // Checks one set against the schema: known top-level fields of the right

@@ -454,10 +454,9 @@ std::optional<std::vector<double>> committed(const std::string& variant, Member 
   const auto root = find_project_root(std::filesystem::current_path());
   if (!root) return std::nullopt;
   const auto path = *root / "data" / "constants" / fmt::format("sglab-accurate-{}.json", variant);
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
+  if (!std::filesystem::exists(path)) return std::nullopt;
   try {
-    const ordered_json set = ordered_json::parse(in);
+    const ordered_json set = load_constant_set(path);  // bounded and strict, as every constants file
     const auto& c = set.at("coefficients");
     std::vector<double> v = c.at("steep").get<std::vector<double>>();
     const auto num = c.at("num").get<std::vector<double>>();

@@ -190,7 +190,7 @@ std::optional<std::vector<double>> committed_start(const std::string& variant, d
   const auto path = *root / "data" / "constants" / fmt::format("sglab-fast-{}.json", variant);
   if (!std::filesystem::exists(path)) return std::nullopt;
   try {
-    const auto set = ordered_json::parse(io::read_file(path));
+    const auto set = load_constant_set(path);  // bounded and strict, as every constants file
     const auto& range = set.at("provenance").at("kappa_range");
     if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
     const auto& c = set.at("coefficients");

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "io.hpp"
+#include "json_input.hpp"
 
 #ifndef SGLAB_BUILD_TYPE
 #define SGLAB_BUILD_TYPE "unknown"
@@ -117,18 +118,11 @@ std::string text_field(const fs::path& path, const json& obj, const char* key, c
 CostTable read_cost_table(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
-  if (fs::is_directory(path, ec)) fail(path, "is a directory, not a JSON file");
-  std::string content;
-  try {
-    content = io::read_file(path);
-  } catch (const std::exception& e) {
-    fail(path, e.what());
-  }
   json doc;
   try {
-    doc = json::parse(content);
-  } catch (const json::exception& e) {
-    fail(path, fmt::format("not valid JSON ({})", e.what()));
+    doc = io::read_json_file(path, kMaxCostTableBytes, "a cost table");
+  } catch (const io::InputError& e) {
+    throw CostTableError(fmt::format("cost table {}", e.what()));
   }
   if (!doc.is_object()) fail(path, "expected a JSON object");
   if (!doc.contains("format") || doc.at("format") != "sglab-costs")

@@ -67,6 +67,8 @@ double load_average_1min();  // −1 when /proc/loadavg is unreadable
 nlohmann::ordered_json to_json(const CostTable& table);
 // Writes the table atomically (temporary + rename).
 void write_cost_table(const CostTable& table, const std::filesystem::path& path);
+// The largest cost table read (io::read_json_file); one written by `sglab bench` is about 20 KB.
+inline constexpr std::size_t kMaxCostTableBytes = 1 << 20;
 // Reads and validates; throws CostTableError naming `path` and what is wrong.
 CostTable read_cost_table(const std::filesystem::path& path);
 // The table at `path` when it exists (validated), for a writer that replaces

@@ -23,6 +23,7 @@
 #include <sglab/hemispherical.hpp>
 #include <sglab/registry.hpp>
 
+#include "atomic_files.hpp"
 #include "erf_check.hpp"
 #include "io.hpp"
 #include "reference.hpp"
@@ -87,8 +88,10 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
   const std::string script = fmt::format("# gnuplot script written by `sglab figures`; run in this directory.\n{}\n{}",
                                          block("pngcairo", "png"), block("svg", "svg"));
   const fs::path gp = dir / (stem + ".gp");
-  io::write_file_atomic(gp, script);
   const fs::path log = dir / (stem + ".gp.log");
+  // gnuplot opens its outputs itself: refuse first what is not a regular file there.
+  for (const fs::path& p : {log, dir / (stem + ".png"), dir / (stem + ".svg")}) io::check_output_path(p);
+  io::write_file_atomic(gp, script);
   // No shell: gnuplot runs in `dir` with an argument vector.
   const int status = io::run_program({opt.gnuplot, stem + ".gp"}, dir, stem + ".gp.log");
   if (status != 0) {
@@ -759,7 +762,7 @@ double parse_number(const std::string& s, const fs::path& path, std::size_t line
 }  // namespace
 
 std::vector<ParetoRow> read_pareto_csv(const fs::path& path) {
-  const std::string text = io::read_file(path);
+  const std::string text = io::read_input_file(path, kMaxParetoCsvBytes, "a Pareto CSV");
   std::istringstream in(std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
   std::string line;
   std::size_t lineno = 0;
@@ -819,6 +822,9 @@ std::vector<Figure> make_figures(const FiguresOptions& options) {
     throw GnuplotMissing(fmt::format(
         "gnuplot ('{}') is not installed or does not run; install it (e.g. apt-get install gnuplot-nox) to render figures",
         options.gnuplot));
+  // Bad input and a bad output folder are refused before any figure is computed or written.
+  io::check_output_folder(options.out);
+  if (std::error_code ec; fs::exists(options.pareto, ec)) read_pareto_csv(options.pareto);
   fs::create_directories(options.out);
   std::vector<Figure> figs;
   figs.push_back(figure_a(options));

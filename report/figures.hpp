@@ -6,6 +6,7 @@
 // (figure b) is passed in.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -56,6 +57,8 @@ struct ParetoRow {
   double kappa_lo = 0, kappa_hi = 0, ns_per_eval = 0, max_peak_rel = 0;
   bool frontier = false;
 };
+// The largest Pareto CSV read (io::read_input_file); `sglab pareto` writes a few KB.
+inline constexpr std::size_t kMaxParetoCsvBytes = 16 << 20;
 std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path);
 
 }  // namespace sglab::validate

@@ -190,7 +190,7 @@ TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
       {"missing coefficient", "steepness2022-published.json", {{",\n    \"C\": 7.2216687798956709", ""}}, "coefficients.C", "missing"},
       {"array too short", "erf-listing5-published.json", {{"\"small\": [1.128379121, ", "\"small\": ["}}, "coefficients.small", "needs 6"},
       {"array element not a number", "erf-listing5-published.json", {{"\"small\": [1.128379121, ", "\"small\": [null, "}}, "coefficients.small[0]", "must be a number"},
-      {"overflow", "steepness2022-published.json", {{A, "\"A\": 1e400"}}, "coefficients.A", "overflow"},
+      {"overflow", "steepness2022-published.json", {{A, "\"A\": 1e400"}}, "coefficients.A", "out of range (larger than any double)"},
       {"underflow", "steepness2022-published.json", {{A, "\"A\": 1e-400"}}, "coefficients.A", "out of range"},
       {"string coefficient", "steepness2022-published.json", {{A, "\"A\": \"0.6\""}}, "coefficients.A", "must be a number"},
       {"objective not a string", "hill-published.json", {{objective, "\"objective\": 3"}}, "provenance.objective", "must be a string"},
@@ -267,7 +267,7 @@ TEST(UntrustedConstants, OversizedFileIsRefused) {
                            "\"objective\": \"published\", \"x\": \"" + std::string(2 << 20, 'a') + "\""));
   const auto r = run_sglab({"constants", "--dir", dir.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output.substr(0, 1000);
-  EXPECT_NE(r.output.find("more than the 1048576 a constants file may have"), std::string::npos) << r.output.substr(0, 1000);
+  EXPECT_NE(r.output.find("more than the 1048576 bytes a constants file may have"), std::string::npos) << r.output.substr(0, 1000);
 }
 
 TEST(UntrustedConstants, IncompleteCollectionsWriteNoHeader) {
@@ -326,18 +326,17 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
 
 // ---- writing -----------------------------------------------------------------
 
-TEST(AtomicFiles, AFailedRenameRestoresEveryFileAlreadyReplaced) {
+TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   TempDir tmp("atomic");
   const fs::path a = tmp.path / "a.json", b = tmp.path / "b.json", blocked = tmp.path / "header.hpp";
   write(a, "old a");
-  fs::create_directories(blocked);  // renaming a file over a directory fails (also for root)
+  fs::create_directories(blocked);  // refused before any file is written (a rename over it would fail)
   try {
     sglab::io::write_files_atomic({{a, "new a"}, {b, "new b"}, {blocked, "header"}});
     FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
+  } catch (const sglab::io::InputError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find(blocked.string()), std::string::npos) << m;
-    EXPECT_NE(m.find("Is a directory"), std::string::npos) << m;
+    EXPECT_NE(m.find(blocked.string() + ": is a directory"), std::string::npos) << m;
   }
   EXPECT_EQ(slurp(a), "old a");
   EXPECT_FALSE(fs::exists(b));

@@ -77,8 +77,8 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   const fs::path blocked = tmp.path / "header.hpp";
   fs::create_directories(blocked);
   auto r = run_sglab(quick_fit({"--out", out.string(), "--header", blocked.string(), "--force"}));
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("cannot write " + blocked.string() + ": Is a directory"), std::string::npos) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;  // an output that is not a regular file is bad input
+  EXPECT_NE(r.output.find(blocked.string() + ": is a directory, not a regular file"), std::string::npos) << r.output;
   EXPECT_EQ(slurp(json), before);
   // An invalid set already in --out: refused before anything is written.
   std::ofstream(out / "zz-bad.json") << "{\"target\": 1}";

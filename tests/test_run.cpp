@@ -2,6 +2,10 @@
 // quotes and a semicolon works and runs nothing), and OUT/index.md is a
 // clean report: every relative link resolves to a file, no image is shown
 // twice, heading levels never skip, and no long table is inlined.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -182,6 +186,70 @@ TEST(RunCommand, UnknownSkipIsBadInput) {
   const auto r = sglab::test::run_sglab({"run", "--out", dir.out.string(), "--skip", "nonsense"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("nonsense"), std::string::npos) << r.output;
+}
+
+// ---- an interrupted run leaves the previous output as it was ------------------
+
+// Every regular file under `dir` with its content, by path relative to it.
+std::map<std::string, std::string> files_under(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).generic_string()] = sglab::io::read_file(e.path());
+  return files;
+}
+
+// Starts `sglab ARGS` (argument vector, no shell; output discarded); returns its pid.
+pid_t spawn_sglab(const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {SGLAB_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> cargs;
+  for (const std::string& a : argv) cargs.push_back(const_cast<char*>(a.c_str()));
+  cargs.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = -1;
+  if (::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
+  sglab::test::TempDir base("run-interrupted");
+  const fs::path out = base.path / "out";
+  // A complete earlier output: its index says the sweep step was ok, with its log.
+  fs::create_directories(out / "logs");
+  fs::create_directories(out / "sweep");
+  sglab::io::write_file_atomic(out / "index.md", "# sglab results\n\n## sweep\n\n`sglab sweep` — ok\n");
+  sglab::io::write_file_atomic(out / "logs" / "sweep.log", "the previous sweep's log\n");
+  sglab::io::write_file_atomic(out / "sweep" / "summary.csv", "previous\n");
+  const auto before = files_under(out);
+  const std::vector<std::string> args = {"run", "--quick", "--out", out.string(), "--skip", "fit", "--skip", "erf",
+                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures"};
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const pid_t pid = spawn_sglab(args);
+    ASSERT_GT(pid, 0);
+    // Interrupt it while its first step (sweep) is writing its log.
+    const fs::path partial_log = base.path / fmt::format("out.staging-{}", pid) / "logs" / ".sweep.log.partial";
+    for (int i = 0; i < 2000 && !fs::exists(partial_log); ++i) ::usleep(10'000);
+    ASSERT_TRUE(fs::exists(partial_log)) << "the run did not start its first step within 20 s";
+    ::kill(pid, signal);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before the signal; status " << status;
+    EXPECT_EQ(files_under(out), before) << "signal " << signal << " changed the previous output";
+  }
+  // A run that finishes replaces it as a whole.
+  const auto r = sglab::test::run_sglab(args);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const auto after = files_under(out);
+  EXPECT_NE(after.at("logs/sweep.log"), before.at("logs/sweep.log"));
+  EXPECT_TRUE(after.count("stability/stability.csv"));
+  EXPECT_NE(after.at("sweep/summary.csv"), "previous\n");
+  EXPECT_NE(after.at("index.md").find("## stability"), std::string::npos);
+  for (const auto& [name, text] : after) EXPECT_EQ(name.find(".partial"), std::string::npos) << name;
 }
 
 // ---- `sglab table` prints every value with 5 significant digits --------------

@@ -133,12 +133,10 @@ std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, c
   if (!(r.lo > 0)) return fmt::format("LO must be > 0 (κ values are log-spaced); got {}", quote_escaped(fields[0]));
   if (!(r.hi >= r.lo))
     return fmt::format("HI must be >= LO; got HI = {} < LO = {}", quote_escaped(fields[1]), quote_escaped(fields[0]));
-  // A nonzero value rounds to 0 in format f iff it is at most half the
-  // smallest subnormal (the halfway case rounds to even, i.e. to 0).
-  if (r.lo <= f.denorm_min / 2)
+  if (rounds_to_zero(r.lo, f))
     return fmt::format("LO = {} rounds to 0 in {}, the precision κ is used in (smallest positive {}: {:g})",
                        quote_escaped(fields[0]), f.name, f.name, f.denorm_min);
-  if (r.hi > f.max_finite)
+  if (exceeds_max_finite(r.hi, f))
     return fmt::format("HI = {} exceeds the largest finite {} ({:g}), the precision κ is used in",
                        quote_escaped(fields[1]), f.name, f.max_finite);
   if (rules.with_count) {
@@ -156,6 +154,20 @@ std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, c
     r.count = count;
   }
   return r;
+}
+
+std::variant<long long, std::string> parse_count(std::string_view text, long long min, long long max) {
+  const bool digits =
+      !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!digits) return fmt::format("{} is not a whole number (digits only)", quote_escaped(text));
+  long long value = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && value > max))
+    return fmt::format("{} is out of range (at most {})", quote_escaped(text), max);
+  if (ec != std::errc() || ptr != text.data() + text.size())
+    return fmt::format("{} is not a whole number (digits only)", quote_escaped(text));
+  if (value < min) return fmt::format("must be at least {}, got {}", min, quote_escaped(text));
+  return value;
 }
 
 std::vector<double> log_spaced(double lo, double hi, int count) {

@@ -26,8 +26,11 @@ fs::path temporary_for(const fs::path& path) {
 }
 
 // Writes `content` to a new file `tmp`; on failure removes it and returns the errno.
-int write_new_file(const fs::path& tmp, const std::string& content) {
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+// A leftover of the same name (a killed run with the same pid) is removed
+// first, and the file is created, never opened through a link someone left there.
+int write_new_file(const fs::path& tmp, std::string_view content) {
+  ::unlink(tmp.c_str());
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
   if (fd < 0) return errno;
   const char* p = content.data();
   std::size_t left = content.size();
@@ -56,14 +59,40 @@ struct Pending {
 
 }  // namespace
 
-void write_files_atomic(const std::vector<FileContent>& files) {
+void check_output_folder(const fs::path& dir) {
+  if (dir.empty()) throw InputError("an empty output folder name (give a folder, e.g. --out out)");
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);  // follows symbolic links: a link to a folder is fine
+  if (st.type() == fs::file_type::not_found || st.type() == fs::file_type::directory) return;
+  const std::string type = file_type_name(dir);
+  throw InputError(fmt::format("{}: is {}, not a folder; refusing to write into it", dir.string(),
+                               type == "a symbolic link" ? "a symbolic link to something that is not a folder" : type));
+}
+
+void check_output_path(const fs::path& path) {
+  if (path.empty()) throw InputError("an empty output file name");
+  const std::string type = file_type_name(path);
+  if (!type.empty() && type != "a regular file")
+    throw InputError(fmt::format("{}: is {}, not a regular file; refusing to replace it", path.string(), type));
+  if (path.has_parent_path()) check_output_folder(path.parent_path());
+}
+
+namespace {
+
+struct FileView {
+  const fs::path& path;
+  std::string_view content;
+};
+
+void write_all(const std::vector<FileView>& files) {
+  for (const FileView& f : files) check_output_path(f.path);
   std::vector<Pending> pending;
   const auto discard_temporaries = [&] {
     for (const Pending& p : pending)
       if (!p.replaced) ::unlink(p.tmp.c_str());
   };
   // 1. Every temporary, before any destination changes.
-  for (const FileContent& f : files) {
+  for (const FileView& f : files) {
     const fs::path parent = f.path.has_parent_path() ? f.path.parent_path() : fs::path(".");
     std::error_code ec;
     fs::create_directories(parent, ec);
@@ -120,5 +149,15 @@ void write_files_atomic(const std::vector<FileContent>& files) {
     throw std::runtime_error(message);
   }
 }
+
+}  // namespace
+
+void write_files_atomic(const std::vector<FileContent>& files) {
+  std::vector<FileView> views;
+  for (const FileContent& f : files) views.push_back({f.path, f.content});
+  write_all(views);
+}
+
+void write_file_atomic(const fs::path& path, std::string_view content) { write_all({{path, content}}); }
 
 }  // namespace sglab::io

@@ -2,11 +2,13 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -15,35 +17,11 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include <fmt/format.h>
 
 namespace sglab::io {
-
-void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
-  namespace fs = std::filesystem;
-  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw std::runtime_error(fmt::format("cannot create directory {}: {}", parent.string(), ec.message()));
-  const fs::path tmp = parent / fmt::format(".{}.{}.tmp", path.filename().string(), ::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-    }
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ec2;
-    fs::remove(tmp, ec2);
-    throw std::runtime_error(fmt::format("cannot replace {}: {}", path.string(), ec.message()));
-  }
-}
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -51,6 +29,82 @@ std::string read_file(const std::filesystem::path& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+std::string file_type_name(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  switch (fs::symlink_status(path, ec).type()) {
+    case fs::file_type::not_found:
+    case fs::file_type::none: return "";
+    case fs::file_type::regular: return "a regular file";
+    case fs::file_type::directory: return "a directory";
+    case fs::file_type::symlink: return "a symbolic link";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    default: return "an unknown file type";
+  }
+}
+
+namespace {
+
+std::string os_reason(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+// Appends what `fd` holds to `out`, at most `limit` bytes; returns 0 or the errno.
+int read_at_most(int fd, std::size_t limit, std::string& out) {
+  char buffer[65536];
+  while (out.size() < limit) {
+    const ssize_t n = ::read(fd, buffer, std::min(sizeof buffer, limit - out.size()));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno;
+    if (n == 0) break;
+    out.append(buffer, static_cast<std::size_t>(n));
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what) {
+  namespace fs = std::filesystem;
+  const std::string name = path.string();
+  if (path.empty()) throw InputError(fmt::format("an empty file name for {}", what));
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);  // follows symbolic links: a link to a file is fine
+  if (st.type() == fs::file_type::not_found) throw InputError(fmt::format("{}: no such file ({})", name, what));
+  if (ec) throw InputError(fmt::format("{}: cannot read: {}", name, ec.message()));
+  const auto refuse_type = [&](const std::string& type) {
+    return InputError(fmt::format("{}: is {}, not a regular file ({} must be one)", name, type, what));
+  };
+  if (st.type() != fs::file_type::regular) {
+    const std::string type = file_type_name(path);
+    throw refuse_type(type == "a symbolic link" ? "a symbolic link to " + file_type_name(fs::canonical(path, ec))
+                                                : type);
+  }
+  // O_NONBLOCK: should a FIFO replace the file after the check, opening it does not wait for a writer.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) throw InputError(fmt::format("{}: cannot read: {}", name, os_reason(errno)));
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd);
+    throw refuse_type("no longer a regular file");
+  }
+  const auto too_large = [&](std::uintmax_t size) {
+    return InputError(fmt::format("{}: {} bytes, more than the {} bytes {} may have", name, size, max_bytes, what));
+  };
+  if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
+    ::close(fd);
+    throw too_large(static_cast<std::uintmax_t>(info.st_size));
+  }
+  std::string text;
+  text.reserve(static_cast<std::size_t>(info.st_size));
+  const int err = read_at_most(fd, max_bytes + 1, text);  // one byte more: the file may have grown since fstat
+  ::close(fd);
+  if (err != 0) throw InputError(fmt::format("{}: cannot read: {}", name, os_reason(err)));
+  if (text.size() > max_bytes) throw too_large(text.size());
+  return text;
 }
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }

@@ -1,25 +1,52 @@
-// validate/io.hpp — file output shared by every command: atomic writes
-// (temporary + rename, so no half-written file is ever left) and terminal
+// validate/io.hpp — file input and output shared by every command: bounded
+// reads of input files, atomic writes (temporary + rename, so no half-written
+// file is ever left, never over anything but a regular file) and terminal
 // progress that is quiet when stderr is not a terminal.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
-#include <optional>
 #include <functional>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace sglab::io {
 
-// Writes `content` to `path` via a temporary in the same directory and an
-// atomic rename. Creates parent directories. Throws std::runtime_error naming
-// the path on failure.
+// Bad input from the user (a malformed or refused file, an out-of-range
+// value): the message names what was wrong. `sglab` exits with code 2
+// (app/commands.hpp, run_and_map_exit_code; app::InputError is this type).
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Writes `content` to `path` as io::write_files_atomic (validate/atomic_files.hpp)
+// writes one file: a temporary in the same directory renamed over `path`;
+// parent directories created; an empty path or one that exists and is not a
+// regular file refused (InputError). Throws std::runtime_error naming the
+// path on failure.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
-// Reads a whole file; throws std::runtime_error naming the path on failure.
+// Reads a whole file that sglab wrote itself (a log, a step's Markdown);
+// throws std::runtime_error naming the path on failure. Input from the user
+// goes through read_input_file.
 std::string read_file(const std::filesystem::path& path);
+
+// What is at `path`, not following a final symbolic link, for messages: "a
+// regular file", "a directory", "a FIFO", "a symbolic link", "a character
+// device", "a block device", "a socket" (or "an unknown file type"); empty
+// when nothing is there.
+std::string file_type_name(const std::filesystem::path& path);
+
+// The whole of the user's input file `path` (`what` names it in messages,
+// e.g. "a scene file"), which must be a regular file (a symbolic link to one
+// is fine) of at most `max_bytes`: never more than max_bytes + 1 bytes are
+// read, so /dev/zero, a FIFO or a huge file cannot exhaust memory or block.
+// Throws InputError naming the path and what is wrong (missing, unreadable,
+// not a regular file and what it is, too large).
+std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what);
 
 // Where a Progress line goes: `terminal` says whether anything is drawn at
 // all, `write` receives every redraw. standard_error() is stderr, drawn only

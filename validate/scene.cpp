@@ -11,13 +11,15 @@
 #include <tbb/parallel_for.h>
 
 #include "args.hpp"
+#include "io.hpp"
+#include "json_input.hpp"
 #include "reference.hpp"
 
 namespace sglab::validate {
 
 namespace {
 
-using json = nlohmann::json;
+using json = nlohmann::ordered_json;
 
 std::string type_name(const json& v) { return v.type_name(); }
 
@@ -62,10 +64,9 @@ double Scene::kappa_max() const {
 Scene parse_scene(std::string_view text, std::string_view source) {
   json doc;
   try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.what() names the line and column: "parse error at line L, column C: …".
-    throw SceneError(fmt::format("{}: malformed JSON: {}", source, e.what()));
+    doc = io::parse_json_strict(text, source);  // names the key or the line and column
+  } catch (const io::InputError& e) {
+    throw SceneError(e.what());
   }
   if (!doc.is_object()) fail(source, "(top level)", fmt::format("expected an object, got {}", type_name(doc)));
   for (const auto& [key, value] : doc.items())
@@ -96,7 +97,7 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (!(length > 1e-12) || !std::isfinite(length))
       fail(source, at + ".axis", fmt::format("cannot be normalized (length {})", length));
     for (double& x : light.axis) x /= length;
-    light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]);
+    light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]) + 0.0;  // -0 is 0 (κ in [0, 0], not [-0, 0])
     if (light.sharpness < 0) fail(source, at + ".sharpness", fmt::format("must be >= 0, got {}", light.sharpness));
     // Every method is ranked in float (and sglab's models over the κ range):
     // κ must be a finite float in both precisions.

@@ -69,9 +69,12 @@ inline constexpr std::size_t kMaxSceneNormals = 1000000;
 inline constexpr std::size_t kMaxScenePairs = 50000000;
 inline constexpr std::size_t kSceneChunkQueries = std::size_t{1} << 16;
 
-// Parses scene JSON; `source` (a file name) prefixes every message. A
-// sharpness must be at most the largest float (every method is ranked in
-// float), and a scene has at most kMaxSceneLights lights.
+// The largest scene file read (io::read_input_file), about 100,000 lights.
+inline constexpr std::size_t kMaxSceneFileBytes = 16 << 20;
+
+// Parses scene JSON (io::parse_json_strict); `source` (a file name) prefixes
+// every message. A sharpness must be at most the largest float (every method
+// is ranked in float), and a scene has at most kMaxSceneLights lights.
 Scene parse_scene(std::string_view text, std::string_view source);
 
 // Bytes a scene evaluation of `lights` lights at `normals` normals holds at
