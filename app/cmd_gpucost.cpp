@@ -31,6 +31,7 @@ struct GpucostArgs {
   std::string lang = "glsl";
   bool json = false;
   bool disasm = false;
+  bool skip_unavailable = false;
   std::string out;
   std::string worker_family, worker_dir;  // the per-family process (internal)
 };
@@ -101,6 +102,50 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
                                     report.driver, report.command, gpu::to_markdown(report)));
 }
 
+// Measures (or with --disasm disassembles) and prints / writes the results.
+// Throws gpu::Unavailable when RADV cannot create a null device.
+void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& families,
+                        const std::vector<shader::Language>& languages, const std::vector<std::string>& methods) {
+  const auto manifest = gpu::find_radv_manifest();
+  if (!manifest)
+    throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
+                           "mesa-vulkan-drivers");
+
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
+  if (a.disasm) {
+    const gpu::Shader s = gpu::method_shader(methods[0], languages[0]);
+    fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
+               "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
+               methods[0], families[0], shader::to_string(languages[0]),
+               gpu::disassemble(self, *manifest, families[0], s));
+    return;
+  }
+  io::Progress progress("gpucost", families.size() + methods.size() * languages.size());
+  std::vector<gpu::Shader> shaders;
+  for (shader::Language lang : languages) {
+    shaders.push_back(gpu::baseline_shader(lang));
+    for (const std::string& m : methods) {
+      progress.note(fmt::format("export {} ({})", m, shader::to_string(lang)));
+      shaders.push_back(gpu::method_shader(m, lang));
+      progress.advance();
+    }
+  }
+  gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
+    progress.note(fmt::format("ACO, {}", family));
+    progress.advance();
+  });
+  progress.finish();
+  report.command = command_line(a);
+  if (!a.out.empty()) write_outputs(report, a.out);
+  if (a.json)
+    fmt::print("{}\n", gpu::to_json(report).dump(2));
+  else
+    fmt::print("GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler estimate)\n\n{}",
+               report.driver, gpu::to_markdown(report));
+}
+
 }  // namespace
 
 void add_gpucost_command(CLI::App& app) {
@@ -113,12 +158,15 @@ void add_gpucost_command(CLI::App& app) {
   cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
-  cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json");
+  cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
+      ->check(non_empty_path());
+  cmd->add_flag("--skip-unavailable", args->skip_unavailable,
+                "when RADV cannot create a null device, say why and exit 0 without writing anything (sglab run)");
   cmd->add_flag("--disasm", args->disasm,
                 "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl]) instead of the table");
   cmd->add_option("--worker-family", args->worker_family)->group("");
   cmd->add_option("--worker-dir", args->worker_dir)->group("");
-  cmd->callback([args, cmd] {
+  cmd->callback([args] {
     if (!args->worker_family.empty()) {
       gpu::run_worker(args->worker_family, args->worker_dir);
       return;
@@ -126,49 +174,16 @@ void add_gpucost_command(CLI::App& app) {
     const auto families = checked_families(args->families);
     const auto languages = checked_languages(args->lang);
     const auto methods = checked_methods(args->methods);
-    if (cmd->count("--out") && args->out.empty()) throw InputError("--out: the path is empty");
-    const auto manifest = gpu::find_radv_manifest();
-    if (!manifest)
-      throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
-                             "mesa-vulkan-drivers");
-
-    std::error_code ec;
-    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
-    if (args->disasm) {
-      if (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 || args->json ||
-          !args->out.empty())
-        throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
-                         "or --out");
-      const gpu::Shader s = gpu::method_shader(methods[0], languages[0]);
-      fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
-                 "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
-                 methods[0], families[0], shader::to_string(languages[0]),
-                 gpu::disassemble(self, *manifest, families[0], s));
-      return;
+    if (args->disasm && (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
+                         args->json || !args->out.empty()))
+      throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
+                       "or --out");
+    try {
+      measure_and_report(*args, families, languages, methods);
+    } catch (const gpu::Unavailable& e) {
+      if (!args->skip_unavailable) throw;
+      fmt::print(stderr, "sglab: gpucost skipped: {}\n", e.what());
     }
-    io::Progress progress("gpucost", families.size() + methods.size() * languages.size());
-    std::vector<gpu::Shader> shaders;
-    for (shader::Language lang : languages) {
-      shaders.push_back(gpu::baseline_shader(lang));
-      for (const std::string& m : methods) {
-        progress.note(fmt::format("export {} ({})", m, shader::to_string(lang)));
-        shaders.push_back(gpu::method_shader(m, lang));
-        progress.advance();
-      }
-    }
-    gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
-      progress.note(fmt::format("ACO, {}", family));
-      progress.advance();
-    });
-    progress.finish();
-    report.command = command_line(*args);
-    if (!args->out.empty()) write_outputs(report, args->out);
-    if (args->json)
-      fmt::print("{}\n", gpu::to_json(report).dump(2));
-    else
-      fmt::print("GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler estimate)\n\n{}",
-                 report.driver, gpu::to_markdown(report));
   });
 }
 

@@ -123,6 +123,7 @@ int run_step(const std::vector<std::string>& arguments) {
   add_stability_command(app);
   add_claims_command(app);
   add_bench_command(app);
+  add_gpucost_command(app);
   add_pareto_command(app);
   add_figures_command(app);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
@@ -299,6 +300,8 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       {"stability", {"stability", "--out", in("stability")}, "stability"},
       {"claims", {"claims", "--out", in("claims")}, "claims"},
       {"bench", {"bench", "--out", in("bench")}, "bench"},
+      // GPU cost into the same cost table (skipped, with the reason, where RADV has no null device).
+      {"gpucost", {"gpucost", "--skip-unavailable", "--out", in("bench")}, "bench"},
       {"pareto", pareto, "pareto"},
       {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
   };

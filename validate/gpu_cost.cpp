@@ -369,7 +369,7 @@ std::string to_markdown(const Report& report) {
       std::string generation;
       for (const Family& f : kDefaultFamilies)
         if (family == f.name) generation = fmt::format(" ({})", f.generation);
-      out += fmt::format("{}### {}{}\n\n", out.empty() ? "" : "\n", family, generation);
+      out += fmt::format("{}## {}{}\n\n", out.empty() ? "" : "\n", family, generation);
       out += "| method | lang | instructions | inverse throughput | latency | VGPRs | SGPRs | code size | branches |\n";
       out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     }
