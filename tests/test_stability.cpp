@@ -218,12 +218,15 @@ TEST(Stability, FixedTranscriptionDefectsStayFixed) {
     }
     for (const char* id : {"irradiance/hill", "irradiance/hill_exact"}) {
       const auto& nan = row(id, f, true)[sv::FailureKind::nan];
-      if (nan.count) EXPECT_LT(nan.kappa_max, 1e-30) << id << ": " << nan.example;
+      if (nan.count) {
+        EXPECT_LT(nan.kappa_max, 1e-30) << id << ": " << nan.example;
+      }
     }
     // Meder's s: NaN only where the published t(κ) overflows (κ² beyond max).
     const auto& meder = row("normalized/meder2018", f, true);
-    if (meder[sv::FailureKind::nan].count)
+    if (meder[sv::FailureKind::nan].count) {
       EXPECT_GE(meder[sv::FailureKind::nan].kappa_min, 1e19) << meder[sv::FailureKind::nan].example;
+    }
     EXPECT_EQ(meder[sv::FailureKind::out_of_range].count, 0u);
   }
 }
@@ -243,8 +246,9 @@ TEST(Stability, FindingsSayWhyPublishedFailuresRemain) {
   }
   EXPECT_GT(published_valid, 0u);
   for (const auto& r : t.rows())
-    if (std::get<std::string>(r[function]) == "irradiance/punctual" && std::get<std::string>(r[inputs]) == "valid")
+    if (std::get<std::string>(r[function]) == "irradiance/punctual" && std::get<std::string>(r[inputs]) == "valid") {
       EXPECT_NE(std::get<std::string>(r[why]).find("2π/κ"), std::string::npos);
+    }
 }
 
 TEST(Stability, TableHasCountsAndKappaSpans) {
