@@ -10,7 +10,7 @@
 //                   error on a training grid, then measured on the standard grid
 //                   and on a held-out dense grid that the fit never sees.
 //   --max-error E   the cheapest member of the family whose held-out max peak_rel
-//                   (float) on --kappa LO:HI meets E, with its measured cost.
+//                   (float) on --kappa LO:HI meets E, with its cost from the cost table.
 //
 // Training grid (never a grid that is used for measuring): κ log-spaced at
 // half-step offsets plus the range ends; per κ, cosines at half-step offsets of
