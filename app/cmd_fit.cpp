@@ -5,6 +5,7 @@
 // `sglab fit all` runs every target at its standard settings.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -17,8 +18,10 @@
 #include "args.hpp"
 #include "commands.hpp"
 #include "constants_io.hpp"
+#include "cost_table.hpp"
 #include "io.hpp"
 #include "minimax.hpp"
+#include "solver_log.hpp"
 #include "targets.hpp"
 
 namespace sglab::app {
@@ -34,6 +37,7 @@ struct FitCliOptions {
   bool alpha_free = false, json = false, force = false, dry_run = false, cold_start = false;
   std::string out_dir;  // default: the project's data/constants
   std::string header;   // default: fit::default_header_for(out_dir)
+  std::string costs;    // default: the project's data/results/costs.json, if any
 };
 
 // Which options each target uses; any other is refused (never silently ignored).
@@ -114,6 +118,33 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
   return spec;
 }
 
+// The float scalar costs of the cost table (`sglab bench`): --costs FILE, else
+// the project's data/results/costs.json when there is one, else none (the
+// report then says so). A malformed table is bad input.
+fit::MethodCosts read_method_costs(const std::string& option) {
+  std::filesystem::path path = option;
+  if (option.empty()) {
+    const auto found = validate::default_cost_table_path();
+    std::error_code ec;
+    if (!found || !std::filesystem::exists(*found, ec)) return {};
+    path = *found;
+  }
+  validate::CostTable table;
+  try {
+    table = validate::read_cost_table(path);
+  } catch (const validate::CostTableError& e) {
+    throw InputError(e.what());
+  }
+  fit::MethodCosts costs;
+  costs.source = fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(), table.info.date, table.info.cpu,
+                             table.info.cores);
+  for (const auto& c : table.costs)
+    if (c.kind == validate::CostKind::irradiance && c.precision == validate::FloatFormat::binary32 &&
+        c.mode == validate::CostMode::scalar)
+      costs.float_scalar_ns[c.method] = c.ns_per_eval;
+  return costs;
+}
+
 double achieved_objective(const fit::ordered_json& set) {
   const auto& prov = set["provenance"];
   if (!prov.contains("achieved") || !prov["achieved"].contains("objective")) return std::numeric_limits<double>::infinity();
@@ -151,6 +182,20 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, 
   return out;
 }
 
+// What the solver saw during one fit: residual evaluations that were not
+// finite (fit::nonfinite_residual_evaluations) and messages Ceres logged
+// (fit::solver_messages). Both 0 in a sound fit; otherwise a line is added to
+// the fit's text.
+fit::ordered_json diagnostics(std::size_t nonfinite, std::size_t messages, std::string& text) {
+  if (nonfinite > 0)
+    text += fmt::format("  warning: {} residual evaluations were NaN or inf (a defect of the model on the search "
+                        "space)\n", nonfinite);
+  if (messages > 0)
+    text += fmt::format("  warning: the solver logged {} messages; the latest: {}\n", messages,
+                        fit::solver_messages().last);
+  return {{"nonfinite_residual_evaluations", nonfinite}, {"solver_messages", messages}};
+}
+
 }  // namespace
 
 void add_fit_command(CLI::App& app) {
@@ -175,6 +220,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_flag("--cold-start", o->cold_start,
                 "sglab-fast: fit from scratch instead of polishing the committed constant set");
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
+  cmd->add_option("--costs", o->costs,
+                  "sglab-accurate: cost table written by `sglab bench` for the cost column (default: "
+                  "data/results/costs.json of the project holding the working directory, if any)");
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--out", o->out_dir,
@@ -233,11 +281,19 @@ void add_fit_command(CLI::App& app) {
       }
       specs.push_back(make_spec(*o, o->target, command));
     }
+    const bool needs_costs = std::any_of(specs.begin(), specs.end(),
+                                         [](const fit::FitSpec& s) { return s.target == "sglab-accurate"; });
+    if (!needs_costs && !o->costs.empty()) throw InputError(fmt::format("--costs does not apply to `fit {}`", o->target));
+    if (needs_costs) {
+      const fit::MethodCosts costs = read_method_costs(o->costs);
+      for (auto& s : specs) s.costs = costs;
+    }
 
     // Where the results go, resolved before the (long) fits so that a missing
     // project is reported at once. A dry run writes nothing and needs none.
     fs::path out_dir, header;
     std::optional<fs::path> base_dir;
+    std::vector<fit::SkippedFile> skipped;  // files of the folders read that are not constant sets
     try {
       if (!o->dry_run || !o->out_dir.empty()) {
         out_dir = o->out_dir.empty() ? fit::default_constants_dir() : fs::path(o->out_dir);
@@ -252,7 +308,7 @@ void add_fit_command(CLI::App& app) {
         std::vector<fit::ordered_json> sets;
         std::vector<std::string> files;
         if (fs::exists(out_dir, ec))
-          for (auto& f : fit::load_constant_set_files(out_dir)) {
+          for (auto& f : fit::load_constant_set_files(out_dir, &skipped)) {
             files.push_back(f.file.string());
             sets.push_back(std::move(f.set));
           }
@@ -277,6 +333,8 @@ void add_fit_command(CLI::App& app) {
     io::Progress progress("fit", specs.size());
     for (const auto& spec : specs) {
       fit::FitOutcome outcome;
+      const std::size_t nonfinite_before = fit::nonfinite_residual_evaluations();
+      const std::size_t messages_before = fit::solver_messages().count;
       try {
         io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);  // open-ended: counts Ceres solves
         fit::FitProgressScope scope(solves);
@@ -284,6 +342,8 @@ void add_fit_command(CLI::App& app) {
       } catch (const std::invalid_argument& e) {
         throw InputError(e.what());
       }
+      outcome.report["diagnostics"] = diagnostics(fit::nonfinite_residual_evaluations() - nonfinite_before,
+                                                  fit::solver_messages().count - messages_before, outcome.text);
       all_converged = all_converged && outcome.converged;
       progress.advance();
       if (!o->json) fmt::print("{}", outcome.text);
@@ -300,10 +360,13 @@ void add_fit_command(CLI::App& app) {
     fit::ordered_json written = fit::ordered_json::array();
     if (!o->dry_run) {
       try {
-        fit::write_sets_and_header(to_write, out_dir, base_dir, header);
+        skipped.clear();  // read again, with the sets written
+        fit::write_sets_and_header(to_write, out_dir, base_dir, header, &skipped);
       } catch (const fit::ConstantsError& e) {
         throw InputError(fmt::format("nothing was written: {}", e.what()));
       }
+      for (const auto& f : skipped)
+        log += fmt::format("  skipped {}: not a constant set: {}\n", f.file.string(), f.reason);
       for (const auto& f : to_write) {
         log += fmt::format("  wrote {}\n", f.file.string());
         written.push_back(f.file.string());
@@ -311,18 +374,22 @@ void add_fit_command(CLI::App& app) {
       log += fmt::format("regenerated {}\n", header.string());
       written.push_back(header.string());
     }
+    // The report (stdout) is the same for the same inputs: no timing in it.
+    // The time taken is a terminal's progress information.
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o->json) {
       fit::ordered_json out = reports.size() == 1 ? reports[0] : fit::ordered_json{{"fits", reports}};
       out["dry_run"] = o->dry_run;
       out["written"] = written;
-      out["seconds"] = secs;
+      out["skipped"] = fit::ordered_json::array();
+      for (const auto& f : skipped) out["skipped"].push_back({{"file", f.file.string()}, {"reason", f.reason}});
       fmt::print("{}\n", out.dump(2));
     } else {
       fmt::print("{}", log);
       if (o->dry_run) fmt::print("dry run: nothing was written\n");
-      fmt::print("fit took {:.1f} s\n", secs);
     }
+    std::fflush(stdout);
+    if (io::stderr_is_terminal()) fmt::print(stderr, "fit took {:.1f} s\n", secs);
     if (!all_converged) throw std::runtime_error("a fit did not converge (see above); nothing was written for it");
   });
 }

@@ -13,7 +13,6 @@
 // The sum max|r| + αε is itself a minimax problem: max(|r + αε|, |r − αε|) =
 // |r| + αε, so each grid point contributes the two residuals r ± αε.
 #include <cmath>
-#include <limits>
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
@@ -212,9 +211,16 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec) {
   // Start at the leading-order balance: the error ≈ λ/6 at u = 1 and α ≈ 1/λ,
   // so λ/6 + ε/λ is smallest at λ = √(6ε).
   const double lambda0 = std::sqrt(6 * eps);
+  // The search space: log λ in [−200, 5] (the fits land at λ ∈ [4e−8, 0.08]).
+  // On it the residual and its derivative are finite: λ ≤ e^5 keeps e^{λu}
+  // far from overflow (u ≤ 1), and λ ≥ e^−200 keeps α(λ) ≈ 1/λ finite.
+  // Unbounded, trust-region steps reached λ = 0 or e^{λ} = inf, where the
+  // residual is NaN (α·0·inf), thousands of times per fit.
   Parameters params;
   params.names = {"log_lambda"};
   params.values = {std::log(lambda0)};
+  params.lower = {-200.0};  // (α, when free, is unbounded: the residual is linear in it)
+  params.upper = {5.0};
   if (spec.alpha_free) {
     params.names.push_back("alpha");
     params.values.push_back(energy_alpha(lambda0));

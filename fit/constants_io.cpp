@@ -69,7 +69,27 @@ ordered_json load_constant_set(const fs::path& file) {
   return set;
 }
 
-std::vector<ConstantSetFile> load_constant_set_files(const fs::path& dir) {
+namespace {
+
+// The constant set in `file`, or nullopt (and `file` noted in `skipped`, or
+// on stderr) when the file is not one by its format tag.
+std::optional<ordered_json> load_if_constant_set(const fs::path& file, std::vector<SkippedFile>* skipped) {
+  const std::string text = read_text(file);
+  if (const auto why = why_not_a_constant_set(text)) {
+    if (skipped)
+      skipped->push_back({file, *why});
+    else
+      fmt::print(stderr, "sglab: note: skipped {}: not a constant set: {}\n", file.string(), *why);
+    return std::nullopt;
+  }
+  ordered_json set = parse_untrusted_json(text, file.string());
+  validate_constant_set(set, file.string());
+  return set;
+}
+
+}  // namespace
+
+std::vector<ConstantSetFile> load_constant_set_files(const fs::path& dir, std::vector<SkippedFile>* skipped) {
   std::vector<fs::path> files;
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -80,7 +100,8 @@ std::vector<ConstantSetFile> load_constant_set_files(const fs::path& dir) {
   if (ec) throw ConstantsError(fmt::format("cannot list {}: {}", dir.string(), ec.message()));
   std::sort(files.begin(), files.end());
   std::vector<ConstantSetFile> sets;
-  for (const auto& file : files) sets.push_back({file, load_constant_set(file)});
+  for (const auto& file : files)
+    if (auto set = load_if_constant_set(file, skipped)) sets.push_back({file, std::move(*set)});
   return sets;
 }
 
@@ -160,11 +181,12 @@ std::size_t write_constants_header(const fs::path& dir, const fs::path& header) 
 }
 
 std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, const fs::path& out_dir,
-                                  const std::optional<fs::path>& base_dir, const fs::path& header) {
+                                  const std::optional<fs::path>& base_dir, const fs::path& header,
+                                  std::vector<SkippedFile>* skipped) {
   // By file name: base, then what out_dir already has, then the new sets.
   std::map<std::string, ConstantSetFile> merged;
   if (base_dir && !same_folder(*base_dir, out_dir))
-    for (auto& f : load_constant_set_files(*base_dir)) merged[f.file.filename().string()] = std::move(f);
+    for (auto& f : load_constant_set_files(*base_dir, skipped)) merged[f.file.filename().string()] = std::move(f);
   std::error_code ec;
   if (fs::exists(out_dir, ec)) {
     // Files the new sets replace are not loaded: a malformed one may be overwritten.
@@ -174,7 +196,7 @@ std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, 
       const fs::path& p = it->path();
       if (p.extension() != ".json" || std::find(replaced.begin(), replaced.end(), p.filename()) != replaced.end())
         continue;
-      merged[p.filename().string()] = {p, load_constant_set(p)};
+      if (auto set = load_if_constant_set(p, skipped)) merged[p.filename().string()] = {p, std::move(*set)};
     }
     if (ec) throw ConstantsError(fmt::format("cannot list {}: {}", out_dir.string(), ec.message()));
   }

@@ -1,7 +1,8 @@
 // fit/constants_io.hpp — the constant sets in data/constants/*.json and the
 // runtime header include/sglab/constants.hpp generated from them.
 //
-// Each JSON file holds one constant set: target, variant, the C++ name and
+// Each JSON file holds one constant set: its format tag ("format":
+// "sglab-constants", "version": 1; files without it are not read), target, variant, the C++ name and
 // parameter type it becomes in the header, the functional form, the
 // coefficients (at full double precision, named by the members of the
 // parameter struct of include/sglab/params.hpp) and its provenance. What a set
@@ -45,11 +46,21 @@ struct ConstantSetFile {
   ordered_json set;
 };
 
+// A file of a folder of constant sets that is not one (why_not_a_constant_set).
+struct SkippedFile {
+  std::filesystem::path file;
+  std::string reason;
+};
+
 // One constants file, parsed as untrusted input and validated. Throws ConstantsError.
 ordered_json load_constant_set(const std::filesystem::path& file);
-// All *.json files of `dir`, sorted by file name, each validated. Throws
-// ConstantsError naming the file and the key (or the folder and the OS reason).
-std::vector<ConstantSetFile> load_constant_set_files(const std::filesystem::path& dir);
+// The constant sets among the *.json files of `dir` (by their format tag,
+// why_not_a_constant_set), sorted by file name, each validated. Every other
+// file is appended to `skipped`, or, when `skipped` is null, named on stderr
+// ("sglab: note: skipped FILE: reason"). Throws ConstantsError naming the file
+// and the key (or the folder and the OS reason).
+std::vector<ConstantSetFile> load_constant_set_files(const std::filesystem::path& dir,
+                                                     std::vector<SkippedFile>* skipped = nullptr);
 std::vector<ordered_json> load_constant_sets(const std::filesystem::path& dir);
 
 // The text of include/sglab/constants.hpp for these (valid) sets; members in
@@ -67,8 +78,10 @@ std::size_t write_constants_header(const std::filesystem::path& dir, const std::
 // Everything is validated first and then written as one unit
 // (io::write_files_atomic): all files or none. Returns the number of sets in
 // the header.
+// Files of base_dir and out_dir that are not constant sets are left alone and
+// reported as load_constant_set_files does.
 std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, const std::filesystem::path& out_dir,
                                   const std::optional<std::filesystem::path>& base_dir,
-                                  const std::filesystem::path& header);
+                                  const std::filesystem::path& header, std::vector<SkippedFile>* skipped = nullptr);
 
 }  // namespace sglab::fit

@@ -284,8 +284,33 @@ ordered_json parse_untrusted_json(std::string_view text, const std::string& file
   }
 }
 
+std::optional<std::string> why_not_a_constant_set(std::string_view text) {
+  const std::string tag = fmt::format("\"{}\"", kConstantSetFormat);
+  std::string why;
+  try {
+    const ordered_json v = parse_untrusted_json(text, "");
+    if (const ordered_json* format = v.is_object() ? find(v, "format") : nullptr) {
+      if (format->is_string() && format->get<std::string>() == kConstantSetFormat) return std::nullopt;
+      return fmt::format("its \"format\" is {}, not {}", format->dump(), tag);
+    }
+    why = v.is_object() ? "a JSON object without \"format\"" : fmt::format("a JSON {}, not an object", v.type_name());
+  } catch (const ConstantsError&) {
+    why = text.empty() ? "empty, not JSON" : "not JSON";
+  }
+  if (text.find(tag) != std::string_view::npos) return std::nullopt;  // a damaged set: validated, then refused
+  return fmt::format("{} (a constant set has \"format\": {})", why, tag);
+}
+
 void validate_constant_set(const ordered_json& set, const std::string& file) {
   if (!set.is_object()) fail(file, "", "not a JSON object");
+  const ordered_json* format = find(set, "format");
+  if (!format) fail(file, "format", fmt::format("missing: a constant set has \"format\": \"{}\"", kConstantSetFormat));
+  if (!format->is_string() || format->get<std::string>() != kConstantSetFormat)
+    fail(file, "format", fmt::format("must be \"{}\", got {}", kConstantSetFormat, format->dump()));
+  const ordered_json* version = find(set, "version");
+  if (!version || !version->is_number_integer() || version->get<long long>() != kConstantSetVersion)
+    fail(file, "version", fmt::format("must be {} (the version of the format this sglab reads){}", kConstantSetVersion,
+                                      version ? ", got " + version->dump() : std::string(", missing")));
   const auto string_field = [&](const char* key) -> std::string {
     const ordered_json* v = find(set, key);
     if (!v) fail(file, key, "missing");

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -46,6 +47,20 @@ inline constexpr std::size_t kMaxConstantsFileBytes = 1 << 20;  // 1 MiB (a set 
 inline constexpr int kMaxJsonDepth = io::kMaxJsonDepth;         // nesting of objects and arrays
 inline constexpr std::size_t kMaxArrayLength = 64;              // size parameters and array members
 inline constexpr std::size_t kMaxIdentifierLength = 128;        // cpp_name, target, variant, coefficient names
+
+// The format tag of a constant set: its top-level members "format" and
+// "version" (written first by the fits).
+inline constexpr std::string_view kConstantSetFormat = "sglab-constants";
+inline constexpr int kConstantSetVersion = 1;
+
+// Whether the text of a file in a folder of constant sets is a constant set,
+// by its format tag: nullopt when it is (it is then parsed and validated as
+// one, and refused when malformed), else a short reason for the message that
+// names the skipped file. A JSON object with a "format" member is a constant
+// set when that member is kConstantSetFormat; any other text (not JSON, not
+// an object, no "format") is one only when it carries the tag string
+// "sglab-constants", so that a damaged set is refused, never skipped.
+std::optional<std::string> why_not_a_constant_set(std::string_view text);
 
 struct ParamStruct {
   std::string_view name;                      // e.g. "Listing5Params"
@@ -76,8 +91,8 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where);
 // Throws ConstantsError naming `file` and the key path.
 ordered_json parse_untrusted_json(std::string_view text, const std::string& file);
 
-// Checks one set against the schema: known top-level fields of the right
-// types; target, variant and cpp_name identifiers; cpp_type known; every
+// Checks one set against the schema: the format tag (kConstantSetFormat,
+// kConstantSetVersion); known top-level fields of the right types; target, variant and cpp_name identifiers; cpp_type known; every
 // member of the struct given, no other coefficient, array lengths right,
 // values finite; provenance an object whose well-known fields have the right
 // type. Throws ConstantsError naming `file` and the key.

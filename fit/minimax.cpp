@@ -21,10 +21,46 @@ std::vector<double> evaluate_residuals(const Residuals& residuals, const std::ve
 
 namespace {
 
+std::atomic<std::size_t> g_nonfinite_evaluations{0};
+
+class CheckedResidual final : public ceres::CostFunction {
+ public:
+  CheckedResidual(std::unique_ptr<ceres::CostFunction> inner, std::atomic<std::size_t>& counter)
+      : inner_(std::move(inner)), counter_(counter) {
+    set_num_residuals(inner_->num_residuals());
+    *mutable_parameter_block_sizes() = inner_->parameter_block_sizes();
+  }
+  bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
+    if (!inner_->Evaluate(p, residuals, jacobians)) return false;
+    const std::size_t m = static_cast<std::size_t>(num_residuals());
+    bool finite = true;
+    for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(residuals[i]);
+    const auto& sizes = parameter_block_sizes();
+    for (std::size_t b = 0; jacobians && b < sizes.size(); ++b)
+      for (std::size_t k = 0; jacobians[b] && k < m * static_cast<std::size_t>(sizes[b]); ++k)
+        finite = finite && std::isfinite(jacobians[b][k]);
+    if (!finite) counter_.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
+
+ private:
+  std::unique_ptr<ceres::CostFunction> inner_;
+  std::atomic<std::size_t>& counter_;
+};
+
 std::atomic<io::Progress*> g_fit_progress{nullptr};
 
 void count_solve() {
   if (io::Progress* p = g_fit_progress.load()) p->advance();
+}
+
+// The box of `params` on the free parameter blocks of `problem`.
+void set_bounds(ceres::Problem& problem, const Parameters& params, const std::vector<double*>& blocks) {
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    if (params.is_fixed(i) || !problem.HasParameterBlock(blocks[i])) continue;
+    if (i < params.lower.size()) problem.SetParameterLowerBound(blocks[i], 0, params.lower[i]);
+    if (i < params.upper.size()) problem.SetParameterUpperBound(blocks[i], 0, params.upper[i]);
+  }
 }
 
 void summarize(const std::vector<double>& r, FitResult& result) {
@@ -58,6 +94,7 @@ bool solve_weighted(const Residuals& residuals, const Parameters& params, const 
   }
   for (std::size_t i = 0; i < values.size(); ++i)
     if (params.is_fixed(i) && problem.HasParameterBlock(blocks[i])) problem.SetParameterBlockConstant(blocks[i]);
+  set_bounds(problem, params, blocks);
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::DENSE_QR;
   solver_options.max_num_iterations = options.solver_iterations;
@@ -130,6 +167,7 @@ bool solve_penalty(const Residuals& residuals, const Parameters& params, std::ve
                            &bound);
   for (std::size_t i = 0; i < values.size(); ++i)
     if (params.is_fixed(i)) problem.SetParameterBlockConstant(blocks[i]);
+  set_bounds(problem, params, blocks);
   problem.SetParameterLowerBound(&bound, 0, 0.0);
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::DENSE_QR;
@@ -146,6 +184,13 @@ bool solve_penalty(const Residuals& residuals, const Parameters& params, std::ve
 }
 
 }  // namespace
+
+std::unique_ptr<ceres::CostFunction> make_checked_residual(std::unique_ptr<ceres::CostFunction> inner,
+                                                           std::atomic<std::size_t>* counter) {
+  return std::make_unique<CheckedResidual>(std::move(inner), counter ? *counter : g_nonfinite_evaluations);
+}
+
+std::size_t nonfinite_residual_evaluations() { return g_nonfinite_evaluations.load(); }
 
 FitProgressScope::FitProgressScope(io::Progress& progress) : previous_(g_fit_progress.exchange(&progress)) {}
 FitProgressScope::~FitProgressScope() { g_fit_progress.store(previous_); }

@@ -10,6 +10,7 @@
 // runtime code itself (STYLE.md, Ceres examples).
 #pragma once
 
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <memory>
@@ -26,6 +27,8 @@ struct Parameters {
   std::vector<std::string> names;
   std::vector<double> values;
   std::vector<bool> fixed;  // empty = none fixed
+  // Box of the search space (Ceres keeps every trial point inside it): empty = unbounded.
+  std::vector<double> lower = {}, upper = {};
 
   std::size_t size() const { return values.size(); }
   bool is_fixed(std::size_t i) const { return i < fixed.size() && fixed[i]; }
@@ -50,13 +53,29 @@ struct FitResult {
   int rounds = 0;
 };
 
+// `inner` with the same parameter blocks and residuals, counting each
+// evaluation whose residual or Jacobian entry is NaN or ±inf in `counter`
+// (null: the process-wide count below).
+std::unique_ptr<ceres::CostFunction> make_checked_residual(std::unique_ptr<ceres::CostFunction> inner,
+                                                           std::atomic<std::size_t>* counter = nullptr);
+
+// Residual evaluations in this process so far (every fit, every solve, the
+// trial steps Ceres rejects included) that gave a NaN or ±inf residual or
+// derivative. A residual must stay finite over the whole search space: such
+// an evaluation is a defect of the model or of its parameterization (Ceres
+// rejects the step and logs "Error in evaluating the ResidualBlock"). `sglab
+// fit` reports the count of each fit; tests require it to stay 0.
+std::size_t nonfinite_residual_evaluations();
+
 // A residual functor F has `template <class T> bool operator()(T const* const* p, T* r) const`
 // writing one residual from the N scalar parameters p[0][0] … p[N−1][0].
+// Every residual is wrapped so that an evaluation giving a non-finite value
+// or derivative is counted (nonfinite_residual_evaluations below).
 template <class F> std::unique_ptr<ceres::CostFunction> make_residual(F functor, std::size_t num_parameters) {
-  auto* cost = new ceres::DynamicAutoDiffCostFunction<F, 4>(new F(std::move(functor)));
+  auto cost = std::make_unique<ceres::DynamicAutoDiffCostFunction<F, 4>>(new F(std::move(functor)));
   for (std::size_t i = 0; i < num_parameters; ++i) cost->AddParameterBlock(1);
   cost->SetNumResiduals(1);
-  return std::unique_ptr<ceres::CostFunction>(cost);
+  return make_checked_residual(std::move(cost));
 }
 
 using Residuals = std::vector<std::unique_ptr<ceres::CostFunction>>;

@@ -10,21 +10,19 @@
 //                   error on a training grid, then measured on the standard grid
 //                   and on a held-out dense grid that the fit never sees.
 //   --max-error E   the cheapest member of the family whose held-out max peak_rel
-//                   (float) on --kappa LO:HI meets E, with its measured cost.
+//                   (float) on --kappa LO:HI meets E, with its cost from the cost table.
 //
 // Training grid (never a grid that is used for measuring): κ log-spaced at
 // half-step offsets plus the range ends; per κ, cosines at half-step offsets of
 // a uniform grid and at c = ±z_k/t(κ) for a uniform z grid, so the structure of
 // width ~1/t near c = 0 at large κ is resolved.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
-#include <random>
 
 #include <fmt/format.h>
 
@@ -53,6 +51,25 @@ struct Rung {
 };
 constexpr Rung kLadder[] = {{"acc1", {1, 2}}, {"acc2", {2, 2}}, {"acc3", {3, 3}}};
 
+// The cost of a member: float scalar ns/eval of the runtime method of the
+// same form (N, D), the shipped sglab_acc<k> (its cost does not depend on
+// the coefficients), over tokuyoshi2024's, both from the cost table
+// (spec.costs, `sglab bench`). Never timed here: a report is the same for the
+// same inputs. None for a form no shipped method has, or without a table.
+std::optional<double> member_cost(Member m, const MethodCosts& costs) {
+  const auto row = [&](const std::string& method) -> std::optional<double> {
+    const auto it = costs.float_scalar_ns.find(method);
+    return it == costs.float_scalar_ns.end() ? std::nullopt : std::optional<double>(it->second);
+  };
+  const auto base = row("tokuyoshi2024");
+  for (const Rung& r : kLadder)
+    if (r.member.n == m.n && r.member.d == m.d) {
+      const auto own = row(std::string("sglab_") + r.variant);
+      if (own && base) return *own / *base;
+    }
+  return std::nullopt;
+}
+
 // Extra operations over tokuyoshi2024 (float): per light (setup) the rational
 // b_j: N(D + 1) + D multiply-adds and one division (none for D = 0); per
 // shading point (eval) N − 1 multiply-adds of the polynomial in z² and 4 for
@@ -63,6 +80,28 @@ struct Operations {
 Operations operations(Member m) {
   const int setup = m.d == 0 ? 0 : int(m.n * (m.d + 1) + m.d) + 1;
   return {setup, int(m.n) - 1 + 4};
+}
+
+// The search space of every solve below, a box (Ceres keeps each trial point
+// inside it): log coefficients (names starting with "log") in [−200, 50],
+// linear ones in [−1e6, 1e6]; the fits land far inside (|log| ≤ 46, |num| < 1).
+// On the box the model and its derivatives are finite for every κ > 0 and
+// c ∈ [−1, 1]: every coefficient is ≤ e^50 ≈ 5e21, and every denominator of
+// t(κ) and b_j(κ) is ≥ min(κ³, 1) (κ < 1: the monic κ^k term plus positive
+// ones; κ ≥ 1: 1 plus positive terms in 1/κ), so no intermediate overflows.
+// Unbounded, a trust-region step once reached log B = 1024: e^1024 = inf, and
+// the residual was NaN (Ceres rejected the step and logged it).
+constexpr double kLogLower = -200, kLogUpper = 50, kLinearBound = 1e6;
+
+void bound(Parameters& p) {
+  p.lower.clear();
+  p.upper.clear();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool log = p.names[i].rfind("log", 0) == 0;
+    p.lower.push_back(log ? kLogLower : -kLinearBound);
+    p.upper.push_back(log ? kLogUpper : kLinearBound);
+    p.values[i] = std::clamp(p.values[i], p.lower[i], p.upper[i]);
+  }
 }
 
 // Parameters: log steep[5], num[N(D+1)], then log den[D]: the steepness
@@ -148,36 +187,12 @@ Measured measure(const SglabAccParams<double, N, D>& p, const std::vector<valida
   return m;
 }
 
-// Quick timing of the float path against tokuyoshi2024 on the same random inputs
-// (best of 5 runs each, interleaved): a ratio, not an absolute cost.
-template <std::size_t N, std::size_t D> double cost_ratio(const SglabAccParams<double, N, D>& p) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> lk(std::log(1e-3f), std::log(1e4f)), uc(-1.f, 1.f);
-  const std::size_t n = 1 << 16;
-  std::vector<float> k(n), c(n);
-  for (std::size_t i = 0; i < n; ++i) k[i] = std::exp(lk(rng)), c[i] = uc(rng);
-  volatile float sink = 0;
-  auto run = [&](auto&& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    float s = 0;
-    for (std::size_t i = 0; i < n; ++i) s += f(c[i], k[i]);
-    sink = sink + s;
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  double best_ref = 1e30, best = 1e30;
-  for (int rep = 0; rep < 5; ++rep) {
-    best_ref = std::min(best_ref, run([](float cc, float kk) { return irradiance_tokuyoshi2024(cc, kk); }));
-    best = std::min(best, run([&](float cc, float kk) { return irradiance_sglab_acc(cc, kk, p); }));
-  }
-  return best / best_ref;
-}
-
 struct MemberFit {
   Member member;
   std::vector<double> values;  // steep[5], num, den (den itself, not its log)
   double train = 0;            // max peak_rel on the training grid (double, fit objective)
   Measured standard, held_out;
-  double cost = 0;             // float time / tokuyoshi2024 float time
+  std::optional<double> cost;  // float scalar ns/eval over tokuyoshi2024's, from the cost table (member_cost)
   double floor = 0;            // max over κ of the per-κ optimum at the refitted 2024 t(κ) (0: not computed)
   bool converged = false;
 };
@@ -201,6 +216,7 @@ SglabAccFit fit_coefficients(const std::vector<double>& start, const std::vector
   for (std::size_t i = 0; i < 5; ++i) params.values.push_back(std::log(start[i]));
   params.values.insert(params.values.end(), start.begin() + 5, start.begin() + 5 + N * (D + 1));
   for (std::size_t i = 0; i < D; ++i) params.values.push_back(std::log(start[5 + N * (D + 1) + i]));
+  bound(params);
   Residuals residuals;
   for (const auto& r : samples)
     residuals.push_back(make_residual(PeakRelResidual<N, D>{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)},
@@ -258,6 +274,7 @@ template <std::size_t N> std::vector<KappaOptimum> per_kappa_optima(const std::v
     const double t = steepness2024(k, constants::steepness2024_irradiance);
     Parameters params;
     for (std::size_t j = 0; j < N; ++j) params.names.push_back(fmt::format("b{}", j)), params.values.push_back(0.0);
+    bound(params);
     Residuals residuals;
     for (std::size_t s = i; s < end; ++s)
       residuals.push_back(make_residual(PerKappaResidual<N>{t, samples[s].cosine, samples[s].irradiance,
@@ -316,6 +333,7 @@ template <std::size_t N, std::size_t D> std::vector<double> staged_start(const s
   const auto& s0 = constants::steepness2024_irradiance;
   steep.names = {"logA", "logB", "logC", "logD", "logE"};
   steep.values = {std::log(s0.A), std::log(s0.B), std::log(s0.C), std::log(s0.D), std::log(s0.E)};
+  bound(steep);
   Residuals rs;
   for (const auto& o : optima) {
     const double w = 1 - irradiance_lower_over_two_pi(o.kappa) / irradiance_upper_over_two_pi(o.kappa);
@@ -333,6 +351,7 @@ template <std::size_t N, std::size_t D> std::vector<double> staged_start(const s
     den = next;
   }
   for (std::size_t i = 0; i < D; ++i) rat.names.push_back(fmt::format("log_den{}", i)), rat.values.push_back(std::log(den[i]));
+  bound(rat);
   Residuals rr;
   for (const auto& o : optima) {
     const double w = 1 - irradiance_lower_over_two_pi(o.kappa) / irradiance_upper_over_two_pi(o.kappa);
@@ -378,7 +397,6 @@ MemberFit measure_member(const SglabAccFit& f, const std::vector<validate::Refer
   const auto p = params_of<N, D>(out.values);
   out.standard = measure(p, standard);
   out.held_out = measure(p, held_out);
-  out.cost = cost_ratio(p);
   return out;
 }
 
@@ -470,16 +488,25 @@ std::optional<std::vector<double>> committed(const std::string& variant, Member 
   }
 }
 
+// What the cost column is and where it comes from (the report says which).
+std::string cost_source(const MethodCosts& costs) {
+  if (costs.source.empty())
+    return "none (no cost table; `sglab bench` writes data/results/costs.json): operation counts only";
+  return "float scalar ns/eval of the shipped method of the same form over tokuyoshi2024's (CPU), from the cost "
+         "table " + costs.source + "; '-' where no shipped method has the form";
+}
+
 std::string member_name(Member m) { return fmt::format("N={} D={}", m.n, m.d); }
 
 ordered_json member_report(const MemberFit& f) {
   const Operations ops = operations(f.member);
+  const ordered_json cost = f.cost ? ordered_json(*f.cost) : ordered_json(nullptr);
   return {{"terms", f.member.n},
           {"degree", f.member.d},
           {"coefficients", f.values.size()},
           {"extra_setup_operations", ops.setup},
           {"extra_eval_operations", ops.eval},
-          {"cost_ratio_float_vs_tokuyoshi2024", f.cost},
+          {"cost_ratio_float_vs_tokuyoshi2024", cost},
           {"train_max_peak_rel_double", f.train},
           {"floor_at_2024_steepness", f.floor},
           {"standard_max_peak_rel_float", f.standard.float_max},
@@ -491,8 +518,9 @@ ordered_json member_report(const MemberFit& f) {
 
 std::string member_line(const MemberFit& f, const char* mark) {
   const Operations ops = operations(f.member);
-  return fmt::format("  {:<9} {:>6} {:>5}+{:<4} {:>6.3f}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}{}\n",
-                     member_name(f.member), f.values.size(), ops.setup, ops.eval, f.cost,
+  return fmt::format("  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}{}\n",
+                     member_name(f.member), f.values.size(), ops.setup, ops.eval,
+                     f.cost ? fmt::format("{:.3f}", *f.cost) : "-",
                      f.floor > 0 ? fmt::format("{:.2e}", f.floor) : "-", f.train, f.standard.float_max,
                      f.held_out.float_max, f.held_out.double_max, mark);
 }
@@ -554,6 +582,7 @@ FitOutcome fit_sglab_accurate(const FitSpec& spec) {
     for (const Member m : kFamily) {
       // Stage-wise start (per-κ optima, then rational fits), then the joint minimax.
       fits.push_back(fit_any(m, staged_start_any(m, floors, train), train, standard, held_out));
+      fits.back().cost = member_cost(m, spec.costs);
       fits.back().floor = floors.floor(m.n, train);
       if (fits.back().converged && fits.back().held_out.float_max <= budget) {
         chosen = &fits.back();
@@ -561,9 +590,11 @@ FitOutcome fit_sglab_accurate(const FitSpec& spec) {
       }
     }
     out.report = {{"target", spec.target}, {"objective", "model-order"}, {"max_error", budget},
-                  {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"members", ordered_json::array()}};
+                  {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"cost_source", cost_source(spec.costs)},
+                  {"members", ordered_json::array()}};
     out.text = fmt::format("sglab-accurate model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
                            spec.kappa_lo, spec.kappa_hi, budget);
+    out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
     out.text += kHeader;
     for (const auto& f : fits) {
       out.report["members"].push_back(member_report(f));
@@ -585,9 +616,10 @@ FitOutcome fit_sglab_accurate(const FitSpec& spec) {
 
   // The shipped ladder.
   out.report = {{"target", spec.target}, {"objective", "peak-rel"}, {"kappa_range", {spec.kappa_lo, spec.kappa_hi}},
-                {"ladder", ordered_json::array()}};
+                {"cost_source", cost_source(spec.costs)}, {"ladder", ordered_json::array()}};
   out.text = fmt::format("sglab-accurate ladder, kappa in [{}, {}] (float = float runtime vs double reference):\n",
                          spec.kappa_lo, spec.kappa_hi);
+  out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
   out.text += kHeader;
   Floors floors;
   for (const Rung& rung : kLadder) {
@@ -596,6 +628,7 @@ FitOutcome fit_sglab_accurate(const FitSpec& spec) {
     const auto warm = committed(variant, rung.member);
     MemberFit f = fit_any(rung.member, warm ? *warm : staged_start_any(rung.member, floors, train), train, standard,
                           held_out, warm.has_value());
+    f.cost = member_cost(rung.member, spec.costs);
     if (!warm) f.floor = floors.floor(rung.member.n, train);
     out.converged = out.converged && f.converged;
     out.constant_sets.push_back(constant_set(spec, f, variant, held_k, held_c));

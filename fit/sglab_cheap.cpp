@@ -20,7 +20,6 @@
 // grid or with the held-out 211 × 401 grid on which the result is measured
 // (float and double) and recorded in the constant set's provenance.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -221,23 +220,14 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   if (!spec.objective.empty() && spec.objective != "irradiance")
     throw std::invalid_argument(fmt::format("sglab-fast has the one objective 'irradiance'; got '{}'", spec.objective));
   const double lo = spec.kappa_lo, hi = spec.kappa_hi;
-  ordered_json seconds;
-  auto clock = std::chrono::steady_clock::now();
-  auto lap = [&](const char* stage) {
-    const auto now = std::chrono::steady_clock::now();
-    seconds[stage] = std::chrono::duration<double>(now - clock).count();
-    clock = now;
-  };
   const auto train_k = midpoint_kappas(lo, hi, kTrainKappas);
   const auto train_c = cosine_grid(kTrainCosines);
   const auto train = reference_grid(train_k, train_c);
-  lap("training_reference");
 
   // 1. Per-κ floor.
   const std::vector<PerKappa> per = per_kappa_optimum(train_k, train_c, train);
   double floor = 0;
   for (const auto& p : per) floor = std::max(floor, p.error);
-  lap("per_kappa");
 
   // 2. Rational start (or the committed set).
   const std::string variant =
@@ -265,7 +255,6 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   for (double r : evaluate_residuals(residuals, params.values)) start_error = std::max(start_error, std::abs(r));
   const FitResult result = fit(residuals, params, options);
   const SglabFastParams<double> fitted = to_params(result.values, hi);
-  lap("joint_minimax");
 
   // Measurement on points never used in fitting.
   const auto held_out = reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
@@ -276,7 +265,6 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   const double std_float = max_peak_rel<float>(fitted, standard);
   const double std_double = max_peak_rel<double>(fitted, standard);
   const double train_float = max_peak_rel<float>(fitted, train);
-  lap("held_out");
 
   ordered_json coefficients;
   for (const char* poly : {"a", "b", "c", "v"}) coefficients[poly] = ordered_json::array();
@@ -324,14 +312,12 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   ordered_json table = ordered_json::array();
   for (const auto& p : per) table.push_back({p.kappa, p.A, p.B, p.C, p.V, p.error});
   out.report["per_kappa"] = table;
-  out.report["seconds"] = seconds;
   out.text = fmt::format(
       "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
       "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: float {:.4e}, "
       "double {:.4e}\n",
       variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs, kHeldOutKappas, kHeldOutCosines, held_float, wk, wc, held_double,
       std_float, std_double);
-  out.text += fmt::format("  seconds: {}\n", seconds.dump());
   return out;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,15 @@ using ordered_json = nlohmann::ordered_json;
 
 enum class WorkingPrecision { half, single, dbl };
 
+// Float scalar costs of runtime methods (ns per evaluation) from the cost
+// table that `sglab bench` wrote (report/cost_table.hpp), read by the caller:
+// a fit that compares costs takes them from here and never times anything,
+// so that its report is the same for the same inputs.
+struct MethodCosts {
+  std::string source;                             // the table's file, date and machine; empty: no table
+  std::map<std::string, double> float_scalar_ns;  // method id → ns/eval
+};
+
 struct FitSpec {
   std::string target;                   // clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d
   WorkingPrecision precision = WorkingPrecision::single;
@@ -28,6 +38,7 @@ struct FitSpec {
   std::optional<double> max_error;      // model order: the error budget
   bool cold_start = false;              // sglab-fast: ignore the committed set as a warm start
   std::string command;                  // the command line, recorded in provenance
+  MethodCosts costs;                    // sglab-accurate: the cost column of its report
 };
 
 struct FitOutcome {

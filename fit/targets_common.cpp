@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "args.hpp"
+#include "constants_schema.hpp"
 #include "targets.hpp"
 
 namespace sglab::fit {
@@ -53,6 +54,8 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target, c
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
   ordered_json set;
+  set["format"] = std::string(kConstantSetFormat);
+  set["version"] = kConstantSetVersion;
   set["target"] = target;
   set["variant"] = variant;
   set["cpp_name"] = cpp_name;

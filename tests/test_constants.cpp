@@ -43,7 +43,8 @@ TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
   const fs::path dir = fs::temp_directory_path() / "sglab_constants_test";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  sglab::io::write_file_atomic(dir / "bad.json", "{\"target\": \"x\",");
+  // Both carry the format tag: damaged constant sets, refused (not skipped as foreign files).
+  sglab::io::write_file_atomic(dir / "bad.json", "{\"format\": \"sglab-constants\", \"target\": \"x\",");
   try {
     sglab::fit::load_constant_sets(dir);
     FAIL() << "malformed JSON accepted";
@@ -51,7 +52,7 @@ TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
   }
   sglab::io::write_file_atomic(dir / "bad.json",
-                               R"({"target":"t","variant":"v","cpp_name":"1x","cpp_type":"T","form":"f",
+                               R"({"format":"sglab-constants","version":1,"target":"t","variant":"v","cpp_name":"1x","cpp_type":"T","form":"f",
                                   "coefficients":{"a":1},"provenance":{}})");
   EXPECT_THROW(sglab::fit::load_constant_sets(dir), std::runtime_error);
   const auto r = sglab::test::run_sglab({"constants", "--dir", dir.string()});

@@ -8,10 +8,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "atomic_files.hpp"
@@ -204,7 +206,8 @@ TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
       {"ill-formed UTF-8", "hill-published.json", {{objective, "\"objective\": \"p\xff\""}}, "", "UTF-8"},
       {"provenance not an object", "hill-published.json", {{"\"provenance\": {", "\"provenance\": 1, \"x\": {"}}, "provenance", "must be an object"},
       {"kappa_range wrong", "steepness2022-irradiance.json", {{"\"kappa_range\": [", "\"kappa_range\": [\"a\", "}}, "provenance.kappa_range", "two numbers"},
-      {"not an object", "hill-published.json", {{"{\n  \"target\"", "[{\"target\""}, {"\n}", "}]"}}, "", "not a JSON object"},
+      {"not an object", "hill-published.json", {{"{\n  \"format\"", "[{\"format\""}, {"\n}", "}]"}}, "", "not a JSON object"},
+      {"version wrong", "hill-published.json", {{"\"version\": 1", "\"version\": 2"}}, "version", "must be 1"},
       {"duplicate cpp_name", "steepness2022-optimal-t.json",
        {{"\"cpp_name\": \"steepness2022_optimal_t\"", "\"cpp_name\": \"steepness2022_published\""}}, "cpp_name", "also the cpp_name", true},
       {"required set with another type", "erf-as7125-published.json",
@@ -234,6 +237,62 @@ TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
       EXPECT_NE(r.output.find(c.reason), std::string::npos) << r.output;
       EXPECT_FALSE(fs::exists(header)) << "a header was written";
     }
+  }
+}
+
+// A fit can produce NaN or ±inf, which no file reaches (the parser refuses
+// overflow first): the schema refuses each in memory, in a scalar member and
+// in an element of an array member, naming the key.
+TEST(Schema, NonFiniteCoefficientsAreRefused) {
+  const ordered_json good = sglab::fit::load_constant_set(kConstants / "erf-listing5-published.json");
+  ASSERT_NO_THROW(sglab::fit::validate_constant_set(good, "good"));
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), inf, -inf}) {
+    for (const std::string key : {"split", "small[2]", "large[0]"}) {
+      SCOPED_TRACE(fmt::format("{} = {}", key, bad));
+      ordered_json set = good;
+      const auto bracket = key.find('[');
+      if (bracket == std::string::npos)
+        set["coefficients"][key] = bad;
+      else
+        set["coefficients"][key.substr(0, bracket)][std::stoul(key.substr(bracket + 1))] = bad;
+      try {
+        sglab::fit::validate_constant_set(set, "in-memory set");
+        ADD_FAILURE() << "accepted";
+      } catch (const sglab::fit::ConstantsError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("key 'coefficients." + key + "'"), std::string::npos) << what;
+        EXPECT_NE(what.find("must be finite"), std::string::npos) << what;
+      }
+    }
+  }
+}
+
+// The fit path: every fit writes through write_sets_and_header, which refuses
+// a set with a non-finite coefficient before anything is written — neither
+// that set, nor a good set of the same batch, nor the header.
+TEST(UntrustedConstants, AFitWithANonFiniteCoefficientWritesNothing) {
+  TempDir tmp("constants_nonfinite");
+  const fs::path out = tmp.path / "out", header = out / "constants.hpp";
+  const ordered_json good = sglab::fit::load_constant_set(kConstants / "steepness2024-irradiance.json");
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), inf, -inf}) {
+    SCOPED_TRACE(fmt::format("A = {}", bad));
+    ordered_json set = good;
+    set["coefficients"]["A"] = bad;
+    const std::vector<sglab::fit::ConstantSetFile> batch = {{out / "hill-published.json", sglab::fit::load_constant_set(kConstants / "hill-published.json")},
+                                                           {out / "steepness2024-irradiance.json", set}};
+    try {
+      sglab::fit::write_sets_and_header(batch, out, kConstants, header);
+      ADD_FAILURE() << "written";
+    } catch (const sglab::fit::ConstantsError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("steepness2024-irradiance.json"), std::string::npos) << what;
+      EXPECT_NE(what.find("key 'coefficients.A': must be finite"), std::string::npos) << what;
+    }
+    EXPECT_FALSE(fs::exists(out / "hill-published.json"));
+    EXPECT_FALSE(fs::exists(out / "steepness2024-irradiance.json"));
+    EXPECT_FALSE(fs::exists(header));
   }
 }
 

@@ -2,7 +2,9 @@
 // answers (nist.cc style: digits recovered), closed-form minimax, an
 // independent 1-D minimization, the published clamped-cosine constants, and
 // the command's contract.
+#include <atomic>
 #include <cmath>
+#include <memory>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/minima.hpp>
@@ -11,6 +13,7 @@
 
 #include <sglab/sglab.hpp>
 
+#include "fit_guard.hpp"
 #include "minimax.hpp"
 #include "targets.hpp"
 #include "test_support.hpp"
@@ -55,6 +58,36 @@ struct LineResidual {
     return true;
   }
 };
+
+// The guard behind fit_guard.hpp counts what it should: a residual √(p − 1)
+// is NaN for p < 1 (its value and its derivative), finite for p > 1.
+struct SqrtBelowOne {
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    using std::sqrt;
+    r[0] = sqrt(p[0][0] - T(1));
+    return true;
+  }
+};
+TEST(Engine, CountsNonFiniteResidualEvaluations) {
+  std::atomic<std::size_t> count{0};
+  auto inner = std::make_unique<ceres::DynamicAutoDiffCostFunction<SqrtBelowOne, 4>>(new SqrtBelowOne);
+  inner->AddParameterBlock(1);
+  inner->SetNumResiduals(1);
+  const auto checked = make_checked_residual(std::move(inner), &count);
+  double r = 0, j = 0, p = 2.0;
+  const double* block = &p;
+  double* jacobian = &j;
+  ASSERT_TRUE(checked->Evaluate(&block, &r, &jacobian));
+  EXPECT_EQ(r, 1.0);
+  EXPECT_EQ(count.load(), 0u);
+  p = 0.5;
+  checked->Evaluate(&block, &r, nullptr);  // NaN value
+  EXPECT_EQ(count.load(), 1u);
+  p = 1.0;
+  checked->Evaluate(&block, &r, &jacobian);  // value 0, derivative 1/(2√0) = inf
+  EXPECT_EQ(r, 0.0);
+  EXPECT_EQ(count.load(), 2u);
+}
 
 TEST(Engine, MinimaxMatchesChebyshevEquioscillation) {
   // Best uniform line for e^x on [0, 1]: slope e − 1, error (1 + b ln b − b)/2.

@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -80,8 +82,8 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   EXPECT_EQ(r.exit_code, 2) << r.output;  // an output that is not a regular file is bad input
   EXPECT_NE(r.output.find(blocked.string() + ": is a directory, not a regular file"), std::string::npos) << r.output;
   EXPECT_EQ(slurp(json), before);
-  // An invalid set already in --out: refused before anything is written.
-  std::ofstream(out / "zz-bad.json") << "{\"target\": 1}";
+  // An invalid set already in --out (tagged as a constant set): refused before anything is written.
+  std::ofstream(out / "zz-bad.json") << "{\"format\": \"sglab-constants\", \"version\": 1, \"target\": 1}";
   const fs::path header = tmp.path / "h.hpp";
   r = run_sglab(quick_fit({"--out", out.string(), "--header", header.string(), "--force"}));
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -131,6 +133,40 @@ TEST(FitCli, DryRunSaysNothingWasWritten) {
   EXPECT_EQ(j["dry_run"], true);
   EXPECT_TRUE(j["written"].empty());
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The output folder may hold other files: the report of `sglab fit … --out D
+// > D/r.json` (empty while the fit runs), a cost table, any JSON. Only files
+// tagged "format": "sglab-constants" are read as constant sets; every other
+// file is named in the report as skipped and left as it is.
+TEST(FitCli, ForeignFilesInTheOutputFolderAreSkippedAndNamed) {
+  InCheckout cwd;
+  TempDir tmp("fit_foreign");
+  const fs::path out = tmp.path / "D";
+  fs::create_directories(out);
+  const std::vector<std::pair<std::string, std::string>> foreign = {
+      {"r.json", ""},
+      {"costs.json", slurp(kRoot / "data" / "results" / "costs.json")},
+      {"notes.json", "[1, 2]"},
+      {"partial.json", "sglab-accurate model order, kappa in [2, 50]\n"}};
+  for (const auto& [name, text] : foreign) std::ofstream(out / name, std::ios::binary) << text;
+  const auto r = run_sglab(quick_fit({"--out", out.string(), "--force", "--json"}), false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  ASSERT_TRUE(fs::exists(out / "lambda-d-diffuse-lobe-sphere-ls.json")) << r.output;
+  ASSERT_TRUE(fs::exists(out / "constants.hpp")) << r.output;
+  std::set<std::string> skipped;
+  for (const auto& s : j["skipped"]) {
+    skipped.insert(fs::path(s["file"].get<std::string>()).filename().string());
+    EXPECT_NE(s["reason"].get<std::string>().find("\"sglab-constants\""), std::string::npos) << s;
+  }
+  EXPECT_EQ(skipped, (std::set<std::string>{"r.json", "costs.json", "notes.json", "partial.json"})) << r.output;
+  for (const auto& [name, text] : foreign) EXPECT_EQ(slurp(out / name), text) << name;
+  // The text report names them too.
+  const auto t = run_sglab(quick_fit({"--out", out.string(), "--force"}));
+  ASSERT_EQ(t.exit_code, 0) << t.output;
+  EXPECT_NE(t.output.find("skipped " + (out / "r.json").string() + ": not a constant set"), std::string::npos)
+      << t.output;
 }
 
 }  // namespace
