@@ -257,9 +257,11 @@ std::string section(const fs::path& out, const Step& step, int status, double se
     const std::string rel = fs::relative(f, out).generic_string();
     if (f.filename().string().front() == '.') continue;  // temporaries
     if (f.extension() == ".md") {
+      // A step writing into an earlier step's folder (gpucost into bench/)
+      // shows only what that step's section did not.
+      if (!seen.links.insert(rel).second) continue;
       const std::string text = io::read_file(f);
       const std::size_t lines = count_lines(text);
-      seen.links.insert(rel);
       if (lines > kInlineLines)
         md += fmt::format("### {}\n\n[{}]({}) ({} lines, linked rather than inlined)\n\n", rel, rel, rel, lines);
       else
