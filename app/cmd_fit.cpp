@@ -129,12 +129,7 @@ fit::MethodCosts read_method_costs(const std::string& option) {
     if (!found || !std::filesystem::exists(*found, ec)) return {};
     path = *found;
   }
-  validate::CostTable table;
-  try {
-    table = validate::read_cost_table(path);
-  } catch (const validate::CostTableError& e) {
-    throw InputError(e.what());
-  }
+  const validate::CostTable table = validate::read_cost_table(path);
   fit::MethodCosts costs;
   costs.source = fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(), table.info.date, table.info.cpu,
                              table.info.cores);

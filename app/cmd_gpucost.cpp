@@ -79,12 +79,7 @@ std::string command_line(const GpucostArgs& a) {
 
 void write_outputs(const gpu::Report& report, const fs::path& dir) {
   const fs::path table_path = dir / "costs.json";
-  std::optional<validate::CostTable> table;
-  try {
-    table = validate::read_existing_cost_table(table_path);
-  } catch (const validate::CostTableError& e) {
-    throw InputError(e.what());
-  }
+  std::optional<validate::CostTable> table = validate::read_existing_cost_table(table_path);
   if (!table) {
     // No CPU measurements yet: a table holding only the GPU section.
     table.emplace();

@@ -49,12 +49,7 @@ struct CostsOption {
             "pass --costs FILE (written by `sglab bench`) or --live-timing");
       path = *found;
     }
-    validate::CostTable table;
-    try {
-      table = validate::read_cost_table(path);
-    } catch (const validate::CostTableError& e) {
-      throw InputError(e.what());
-    }
+    const validate::CostTable table = validate::read_cost_table(path);
     const std::vector<std::string> missing = validate::fill_costs(points, f, table);
     for (const std::string& m : missing)
       fmt::print(stderr,

@@ -30,13 +30,14 @@
 
 #include "cost.hpp"
 #include "gpu_cost.hpp"
+#include "io.hpp"
 
 namespace sglab::validate {
 
 // A missing, unreadable or malformed cost table; the message names the file
-// (and the key or entry that is wrong).
-struct CostTableError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// (and the key or entry that is wrong). Bad input: `sglab` exits with 2.
+struct CostTableError : io::InputError {
+  using io::InputError::InputError;
 };
 
 struct CostTableInfo {
