@@ -101,6 +101,7 @@ bool solve_weighted(const Residuals& residuals, const Parameters& params, const 
   solver_options.function_tolerance = options.relative_tolerance;
   solver_options.parameter_tolerance = 1e-15;
   solver_options.gradient_tolerance = 1e-16;
+  if (!options.projected_line_search) solver_options.max_num_line_search_step_size_iterations = 0;
   solver_options.num_threads = 1;  // deterministic
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -175,6 +176,7 @@ bool solve_penalty(const Residuals& residuals, const Parameters& params, std::ve
   solver_options.function_tolerance = 1e-15;
   solver_options.parameter_tolerance = 1e-16;
   solver_options.gradient_tolerance = 1e-20;
+  if (!options.projected_line_search) solver_options.max_num_line_search_step_size_iterations = 0;
   solver_options.num_threads = 1;
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;

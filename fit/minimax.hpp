@@ -42,6 +42,13 @@ struct FitOptions {
   int penalty_decades = 12;           // then penalty weights 10^2 … 10^this (relative)
   int solver_iterations = 200;        // Ceres iterations per round
   double relative_tolerance = 1e-12;  // Ceres function tolerance
+  // On a problem with bounds Ceres follows every trust-region step with a
+  // projected line search (Solver::Options::max_num_line_search_step_size_iterations),
+  // several residual and Jacobian evaluations per iteration. Where the box only
+  // keeps trial points finite and the optimum lies far inside it, that search
+  // changes nothing but the time: turn it off (the steps are still clamped to
+  // the box).
+  bool projected_line_search = true;
 };
 
 struct FitResult {

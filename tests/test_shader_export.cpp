@@ -96,28 +96,41 @@ std::string export_text(sh::Language lang, const std::string& method) {
   return sh::export_source(sh::standard_request(lang, method)).source;
 }
 
-// Compiles the C++ export of `method` with a driver that evaluates it at
-// every grid point, with the system compiler (argument vector, no shell).
-std::vector<double> run_cpp_export(const std::string& source, const std::string& entry, const Grid& g,
-                                   const fs::path& dir, bool vector_form = false) {
+// Compiles C++ exports (each `source` defines `entry`) into one program with a
+// driver that evaluates every entry at every grid point, with the system
+// compiler (argument vector, no shell; one compile for all, each export in its
+// own namespace). Returns one column of values per export.
+struct CppExport {
+  std::string source, entry;
+};
+std::vector<std::vector<double>> run_cpp_exports(const std::vector<CppExport>& exports, const Grid& g,
+                                                 const fs::path& dir, bool vector_form = false) {
   {
-    std::ofstream(dir / "export.hpp") << source;
     std::ofstream in(dir / "points.txt");
     for (std::size_t i = 0; i < g.kappa.size(); ++i) in << fmt::format("{:a} {:a}\n", g.cosine[i], g.kappa[i]);
     std::ofstream main(dir / "main.cpp");
-    main << "#include <cstdio>\n#include <cstdlib>\n#include <cmath>\n#include \"export.hpp\"\n"
-         << "int main(int, char** argv) {\n"
+    main << "#include <cstdio>\n#include <cstdlib>\n#include <cmath>\n";
+    for (std::size_t e = 0; e < exports.size(); ++e) {
+      const std::string header = fmt::format("export{}.hpp", e);
+      std::ofstream(dir / header) << exports[e].source;
+      main << "#include \"" << header << "\"\n";
+    }
+    main << "int main(int, char** argv) {\n"
          << "  std::FILE* f = std::fopen(argv[1], \"r\");\n"
          << "  char a[64], b[64];\n"
          << "  while (std::fscanf(f, \"%63s %63s\", a, b) == 2) {\n"
-         << "    float c = std::strtof(a, nullptr), k = std::strtof(b, nullptr);\n";
-    if (vector_form)
-      main << "    float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));\n"
-           << "    float r = " << entry << "(sglab_export_" << entry.substr(17) << "::float3(s, 0.0f, c), k, "
-           << "sglab_export_" << entry.substr(17) << "::float3(0.0f, 0.0f, 1.0f));\n";
-    else
-      main << "    float r = " << entry << "(c, k);\n";
-    main << "    std::printf(\"%a\\n\", (double)r);\n  }\n  return 0;\n}\n";
+         << "    float c = std::strtof(a, nullptr), k = std::strtof(b, nullptr);\n"
+         << "    float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));\n"
+         << "    (void)s;\n";
+    for (const CppExport& ex : exports) {
+      const std::string ns = "sglab_export_" + ex.entry.substr(17);
+      if (vector_form)
+        main << "    std::printf(\"%a \", (double)" << ex.entry << "(" << ns << "::float3(s, 0.0f, c), k, " << ns
+             << "::float3(0.0f, 0.0f, 1.0f)));\n";
+      else
+        main << "    std::printf(\"%a \", (double)" << ex.entry << "(c, k));\n";
+    }
+    main << "    std::printf(\"\\n\");\n  }\n  return 0;\n}\n";
   }
   const auto build = run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
                                   (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
@@ -125,11 +138,22 @@ std::vector<double> run_cpp_export(const std::string& source, const std::string&
   if (build.exit_code != 0) return {};
   const auto run = run_program({(dir / "prog").string(), (dir / "points.txt").string()}, false);
   EXPECT_EQ(run.exit_code, 0);
-  std::vector<double> out;
+  std::vector<std::vector<double>> out(exports.size());
   std::istringstream lines(run.output);
   std::string line;
-  while (std::getline(lines, line)) out.push_back(std::strtod(line.c_str(), nullptr));
+  while (std::getline(lines, line)) {
+    std::istringstream row(line);
+    std::string field;
+    for (auto& column : out)
+      if (row >> field) column.push_back(std::strtod(field.c_str(), nullptr));
+  }
   return out;
+}
+
+std::vector<double> run_cpp_export(const std::string& source, const std::string& entry, const Grid& g,
+                                   const fs::path& dir, bool vector_form = false) {
+  auto columns = run_cpp_exports({{source, entry}}, g, dir, vector_form);
+  return columns.empty() ? std::vector<double>{} : std::move(columns[0]);
 }
 
 }  // namespace
@@ -194,18 +218,27 @@ TEST(ShaderExport, BrokenSourceDoesNotCompile) {
 // The C++ export, compiled by the system compiler, against the runtime.
 TEST(ShaderExport, CppExportMatchesRuntime) {
   const Grid g = standard_grid();
+  std::vector<const sglab::Method*> methods;
+  std::vector<CppExport> exports;
   for (const sglab::Method& m : sglab::irradiance_methods) {
     if (!exportable(m.id)) continue;
-    const fs::path dir = temp_dir(std::string(m.id));
     const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, std::string(m.id)));
-    const auto values = run_cpp_export(ex.source, ex.entry_point, g, dir);
+    methods.push_back(&m);
+    exports.push_back({ex.source, ex.entry_point});
+  }
+  const fs::path dir = temp_dir("cpp_all");
+  const auto columns = run_cpp_exports(exports, g, dir);
+  ASSERT_EQ(columns.size(), methods.size());
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    const sglab::Method& m = *methods[i];
+    const auto& values = columns[i];
     ASSERT_EQ(values.size(), g.kappa.size()) << m.id;
     const Deviation d = deviation(m, g, values);
     EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance)
         << m.id << ": worst at kappa = " << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst]
         << ": exported " << values[d.worst] << ", runtime double " << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
-    fs::remove_all(dir);
   }
+  fs::remove_all(dir);
 }
 
 // The vector form equals the scalar form at c = v·n.
