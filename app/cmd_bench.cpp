@@ -28,11 +28,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "cost.hpp"
-#include "cost_table.hpp"
-#include "io.hpp"
-#include "table.hpp"
+#include "app/commands.hpp"
+#include "report/cost.hpp"
+#include "report/cost_table.hpp"
+#include "common/io.hpp"
+#include "validate/table.hpp"
 
 namespace sglab::app {
 
@@ -47,9 +47,9 @@ struct BenchArgs {
   std::string command_line;  // as recorded in costs.json
 };
 
-double find_ns(const std::vector<validate::Cost>& costs, validate::CostKind kind, const std::string& method,
-               validate::FloatFormat f, validate::CostMode mode) {
-  for (const validate::Cost& c : costs)
+double find_ns(const std::vector<report::Cost>& costs, report::CostKind kind, const std::string& method,
+               validate::FloatFormat f, report::CostMode mode) {
+  for (const report::Cost& c : costs)
     if (c.kind == kind && c.method == method && c.precision == f && c.mode == mode) return c.ns_per_eval;
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -57,7 +57,7 @@ double find_ns(const std::vector<validate::Cost>& costs, validate::CostKind kind
 // One row per (kind, method, precision): scalar and batch ns/eval, their
 // ratio, and for methods with the per-light split the float setup ns per
 // light and eval ns per shading point (empty otherwise).
-validate::Table summary_table(const std::vector<validate::Cost>& costs) {
+validate::Table summary_table(const std::vector<report::Cost>& costs) {
   validate::Table t("Per method: ns/eval scalar and batch, batch speed-up, per-light setup ns/light and eval "
                     "ns/point (methods with the split)",
                     {{"kind"},
@@ -68,18 +68,18 @@ validate::Table summary_table(const std::vector<validate::Cost>& costs) {
                      {"batch_speedup", 3},
                      {"setup_ns_per_light", 3},
                      {"eval_ns_per_point", 3}});
-  std::vector<std::tuple<validate::CostKind, std::string, validate::FloatFormat>> keys;
-  for (const validate::Cost& c : costs) {
+  std::vector<std::tuple<report::CostKind, std::string, validate::FloatFormat>> keys;
+  for (const report::Cost& c : costs) {
     const auto key = std::make_tuple(c.kind, c.method, c.precision);
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
   }
-  using validate::CostMode;
+  using report::CostMode;
   using validate::Table;
   const auto cell = [](double x) { return std::isnan(x) ? validate::Cell{} : Table::real(x); };
   for (const auto& [kind, method, f] : keys) {
     const double scalar = find_ns(costs, kind, method, f, CostMode::scalar);
     const double batch = find_ns(costs, kind, method, f, CostMode::batch);
-    t.add_row({Table::text(validate::to_string(kind)), Table::text(method), Table::text(validate::to_string(f)),
+    t.add_row({Table::text(report::to_string(kind)), Table::text(method), Table::text(validate::to_string(f)),
                cell(scalar), cell(batch), cell(scalar / batch),
                cell(find_ns(costs, kind, method, f, CostMode::light_setup)),
                cell(find_ns(costs, kind, method, f, CostMode::light_eval))});
@@ -148,8 +148,8 @@ void add_bench_command(CLI::App& app) {
     const std::filesystem::path dir(args->out);
     // What `sglab gpucost` wrote into the same table stays (read before the
     // measurement, so a malformed table is reported at once).
-    std::optional<validate::gpu::Report> kept_gpu_costs;
-    if (const auto existing = validate::read_existing_cost_table(dir / "costs.json")) kept_gpu_costs = existing->gpu;
+    std::optional<shader::gpu::Report> kept_gpu_costs;
+    if (const auto existing = report::read_existing_cost_table(dir / "costs.json")) kept_gpu_costs = existing->gpu;
     std::regex filter;
     try {
       if (!args->filter.empty()) filter = std::regex(args->filter);
@@ -157,15 +157,15 @@ void add_bench_command(CLI::App& app) {
       throw InputError(fmt::format("--filter: '{}' is not a valid regex ({})", args->filter, e.what()));
     }
 
-    const auto workload = validate::make_cost_workload();
-    std::vector<validate::CostCase> cases;
-    for (auto& c : validate::cost_cases(workload))
+    const auto workload = report::make_cost_workload();
+    std::vector<report::CostCase> cases;
+    for (auto& c : report::cost_cases(workload))
       if (args->filter.empty() || std::regex_search(c.name(), filter)) cases.push_back(std::move(c));
     if (cases.empty()) throw InputError(fmt::format("--filter: '{}' matches no case", args->filter));
 
     benchmark::ClearRegisteredBenchmarks();
-    for (const validate::CostCase& c : cases) {
-      const validate::CostCase* pc = &c;
+    for (const report::CostCase& c : cases) {
+      const report::CostCase* pc = &c;
       benchmark::RegisterBenchmark(c.name().c_str(),
                                    [pc](benchmark::State& state) {
                                      for (auto _ : state) pc->run();
@@ -180,16 +180,16 @@ void add_bench_command(CLI::App& app) {
           ->ReportAggregatesOnly(true);
     }
     CollectingReporter reporter(cases.size());
-    const double load_start = validate::load_average_1min();
+    const double load_start = report::load_average_1min();
     benchmark::RunSpecifiedBenchmarks(&reporter);
-    const double load_end = validate::load_average_1min();
+    const double load_end = report::load_average_1min();
     benchmark::ClearRegisteredBenchmarks();
 
-    std::vector<validate::Cost> costs;
-    for (const validate::CostCase& c : cases) {
+    std::vector<report::Cost> costs;
+    for (const report::CostCase& c : cases) {
       const double ns = reporter.ns_per_iteration(c.name());
       if (ns < 0) throw std::runtime_error(fmt::format("bench: no result for {}", c.name()));
-      costs.push_back(validate::Cost{c.kind, c.method, c.refit, c.precision, c.mode,
+      costs.push_back(report::Cost{c.kind, c.method, c.refit, c.precision, c.mode,
                                      ns / static_cast<double>(c.evaluations)});
     }
     const std::string timer = fmt::format(
@@ -198,14 +198,14 @@ void add_bench_command(CLI::App& app) {
         "per shading point",
         args->repetitions, args->min_time);
     const validate::Table table =
-        validate::cost_table(costs, fmt::format("ns per evaluation ({}; {})", timer, validate::cost_input_description()));
+        report::cost_table(costs, fmt::format("ns per evaluation ({}; {})", timer, report::cost_input_description()));
     const validate::Table summary = summary_table(costs);
 
-    validate::CostTable cost_table;
-    cost_table.info = validate::current_cost_table_info();
+    report::CostTable cost_table;
+    cost_table.info = report::current_cost_table_info();
     cost_table.info.command = args->command_line;
     cost_table.info.timer = timer;
-    cost_table.info.inputs = validate::cost_input_description();
+    cost_table.info.inputs = report::cost_input_description();
     cost_table.info.load_start = load_start;
     cost_table.info.load_end = load_end;
     cost_table.costs = costs;
@@ -214,7 +214,7 @@ void add_bench_command(CLI::App& app) {
     using validate::TableFormat;
     validate::write_table(table, dir, "bench", {TableFormat::csv, TableFormat::markdown});
     validate::write_table(summary, dir, "bench_summary", {TableFormat::csv, TableFormat::markdown});
-    validate::write_cost_table(cost_table, dir / "costs.json");
+    report::write_cost_table(cost_table, dir / "costs.json");
     if (args->json) {
       fmt::print("{}\n", validate::to_json(table).dump(2));
     } else {

@@ -8,11 +8,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "claims.hpp"
-#include "commands.hpp"
-#include "io.hpp"
-#include "table.hpp"
-#include "targets.hpp"
+#include "validate/claims.hpp"
+#include "app/commands.hpp"
+#include "common/io.hpp"
+#include "validate/table.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::app {
 

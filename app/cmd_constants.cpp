@@ -4,8 +4,8 @@
 // only written from a complete, valid collection.
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "constants_io.hpp"
+#include "app/commands.hpp"
+#include "fit/constants_io.hpp"
 
 namespace sglab::app {
 

@@ -13,9 +13,9 @@
 
 #include <sglab/registry.hpp>
 
-#include "commands.hpp"
-#include "erf_report.hpp"
-#include "io.hpp"
+#include "app/commands.hpp"
+#include "report/erf_report.hpp"
+#include "common/io.hpp"
 
 namespace sglab::app {
 
@@ -81,17 +81,17 @@ void run_erf(const ErfArgs& args) {
   }
 
   if (args.json)
-    fmt::print("{}", validate::erf_reports_json(reports, args.exhaustive));
+    fmt::print("{}", report::erf_reports_json(reports, args.exhaustive));
   else
-    fmt::print("{}", validate::erf_reports_markdown(reports, args.exhaustive));
+    fmt::print("{}", report::erf_reports_markdown(reports, args.exhaustive));
 
   if (!args.out.empty()) {
     const std::filesystem::path dir(args.out);
     for (const validate::ErfReport& r : reports)
-      io::write_file_atomic(dir / fmt::format("erf_{}_{}.csv", r.variant, r.precision), validate::erf_series_csv(r));
-    io::write_file_atomic(dir / "erf_summary.csv", validate::erf_summary_csv(reports));
-    io::write_file_atomic(dir / "erf_histogram.csv", validate::erf_histogram_csv(reports));
-    io::write_file_atomic(dir / "erf_summary.md", validate::erf_reports_markdown(reports, args.exhaustive));
+      io::write_file_atomic(dir / fmt::format("erf_{}_{}.csv", r.variant, r.precision), report::erf_series_csv(r));
+    io::write_file_atomic(dir / "erf_summary.csv", report::erf_summary_csv(reports));
+    io::write_file_atomic(dir / "erf_histogram.csv", report::erf_histogram_csv(reports));
+    io::write_file_atomic(dir / "erf_summary.md", report::erf_reports_markdown(reports, args.exhaustive));
     if (!args.json) fmt::print("\nwrote {} series CSVs, erf_summary.csv, erf_histogram.csv, erf_summary.md to {}\n",
                                reports.size(), dir.string());
   }

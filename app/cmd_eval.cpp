@@ -17,8 +17,8 @@
 
 #include <sglab/registry.hpp>
 
-#include "commands.hpp"
-#include "points.hpp"
+#include "app/commands.hpp"
+#include "app/points.hpp"
 
 namespace sglab::app {
 
@@ -67,7 +67,7 @@ void add_eval_command(CLI::App& app) {
       if (out.size() >= (1 << 16)) write();
     };
     try {
-      for_each_point(*points, row, in_float ? std::optional(validate::kFloatFormat) : std::nullopt);
+      for_each_point(*points, row, in_float ? std::optional(io::kFloatFormat) : std::nullopt);
     } catch (const InputError&) {
       if (rows > 0) write();  // every row before the bad one (nothing when the file itself is refused)
       std::fflush(stdout);

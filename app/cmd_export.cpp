@@ -12,16 +12,15 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "constants_io.hpp"
-#include "io.hpp"
-#include "shader_export.hpp"
+#include "app/commands.hpp"
+#include "fit/constants_io.hpp"
+#include "common/io.hpp"
+#include "export/shader_export.hpp"
 
 namespace sglab::app {
 
 namespace {
 
-namespace shader = validate::shader;
 
 // Objective, fit command, date and source of a constant set, on one line.
 std::string provenance_line(const fit::ordered_json& j) {

@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "figures.hpp"
-#include "targets.hpp"
+#include "app/commands.hpp"
+#include "report/figures.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::app {
 
@@ -31,17 +31,17 @@ void add_figures_command(CLI::App& app) {
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
   cmd->callback([args] {
     const auto start = std::chrono::steady_clock::now();
-    validate::FiguresOptions opt;
+    report::FiguresOptions opt;
     opt.out = args->out;
     opt.pareto = args->pareto;
     opt.gnuplot = args->gnuplot;
     opt.optimal_steepness = [](const std::vector<double>& kappas) {
       return fit::optimal_steepness("steepness2022", kappas);
     };
-    std::vector<validate::Figure> figs;
+    std::vector<report::Figure> figs;
     try {
-      figs = validate::make_figures(opt);
-    } catch (const validate::GnuplotMissing& e) {
+      figs = report::make_figures(opt);
+    } catch (const report::GnuplotMissing& e) {
       throw std::runtime_error(e.what());
     } catch (const std::invalid_argument& e) {
       throw InputError(e.what());

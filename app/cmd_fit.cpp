@@ -15,14 +15,14 @@
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "commands.hpp"
-#include "constants_io.hpp"
-#include "cost_table.hpp"
-#include "io.hpp"
-#include "minimax.hpp"
-#include "solver_log.hpp"
-#include "targets.hpp"
+#include "common/args.hpp"
+#include "app/commands.hpp"
+#include "fit/constants_io.hpp"
+#include "report/cost_table.hpp"
+#include "common/io.hpp"
+#include "fit/minimax.hpp"
+#include "fit/solver_log.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::app {
 
@@ -100,14 +100,14 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
   spec.command = command;
   if (!o.kappa.empty()) {
     // κ must survive the precision the constants are fitted for.
-    validate::KappaRangeRules rules;
-    rules.format = spec.precision == fit::WorkingPrecision::half     ? validate::kHalfFormat
-                   : spec.precision == fit::WorkingPrecision::single ? validate::kFloatFormat
-                                                                     : validate::kDoubleFormat;
-    const auto parsed = validate::parse_kappa_range(o.kappa, rules);
+    io::KappaRangeRules rules;
+    rules.format = spec.precision == fit::WorkingPrecision::half     ? io::kHalfFormat
+                   : spec.precision == fit::WorkingPrecision::single ? io::kFloatFormat
+                                                                     : io::kDoubleFormat;
+    const auto parsed = io::parse_kappa_range(o.kappa, rules);
     if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
-    spec.kappa_lo = std::get<validate::KappaRange>(parsed).lo;
-    spec.kappa_hi = std::get<validate::KappaRange>(parsed).hi;
+    spec.kappa_lo = std::get<io::KappaRange>(parsed).lo;
+    spec.kappa_hi = std::get<io::KappaRange>(parsed).hi;
     spec.kappa_range_given = true;
   }
   if (o.max_error != 0) {
@@ -124,18 +124,18 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const 
 fit::MethodCosts read_method_costs(const std::string& option) {
   std::filesystem::path path = option;
   if (option.empty()) {
-    const auto found = validate::default_cost_table_path();
+    const auto found = report::default_cost_table_path();
     std::error_code ec;
     if (!found || !std::filesystem::exists(*found, ec)) return {};
     path = *found;
   }
-  const validate::CostTable table = validate::read_cost_table(path);
+  const report::CostTable table = report::read_cost_table(path);
   fit::MethodCosts costs;
   costs.source = fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(), table.info.date, table.info.cpu,
                              table.info.cores);
   for (const auto& c : table.costs)
-    if (c.kind == validate::CostKind::irradiance && c.precision == validate::FloatFormat::binary32 &&
-        c.mode == validate::CostMode::scalar)
+    if (c.kind == report::CostKind::irradiance && c.precision == validate::FloatFormat::binary32 &&
+        c.mode == report::CostMode::scalar)
       costs.float_scalar_ns[c.method] = c.ns_per_eval;
   return costs;
 }

@@ -1,6 +1,6 @@
 // `sglab gpucost`: what each exported method costs on AMD GPUs, from the
 // statistics of AMD's shader compiler (ACO) on Mesa's RADV null devices
-// (validate/gpu_cost.hpp). Deterministic: the same driver gives the same
+// (export/gpu_cost.hpp). Deterministic: the same driver gives the same
 // numbers on every run and machine.
 #include <algorithm>
 #include <filesystem>
@@ -12,18 +12,17 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "commands.hpp"
-#include "cost_table.hpp"
-#include "gpu_cost.hpp"
-#include "io.hpp"
+#include "app/commands.hpp"
+#include "report/cost_table.hpp"
+#include "export/gpu_cost.hpp"
+#include "common/io.hpp"
 
 namespace sglab::app {
 
 namespace {
 
 namespace fs = std::filesystem;
-namespace gpu = validate::gpu;
-namespace shader = validate::shader;
+namespace gpu = shader::gpu;
 
 struct GpucostArgs {
   std::vector<std::string> families;
@@ -79,15 +78,15 @@ std::string command_line(const GpucostArgs& a) {
 
 void write_outputs(const gpu::Report& report, const fs::path& dir) {
   const fs::path table_path = dir / "costs.json";
-  std::optional<validate::CostTable> table = validate::read_existing_cost_table(table_path);
+  std::optional<report::CostTable> table = report::read_existing_cost_table(table_path);
   if (!table) {
     // No CPU measurements yet: a table holding only the GPU section.
     table.emplace();
-    table->info = validate::current_cost_table_info();
+    table->info = report::current_cost_table_info();
     table->info.command = "(no CPU costs: run `sglab bench --out DIR`)";
   }
   table->gpu = report;
-  validate::write_cost_table(*table, table_path);
+  report::write_cost_table(*table, table_path);
   io::write_file_atomic(dir / "gpu_costs.md",
                         fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
                                     "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "

@@ -12,8 +12,8 @@
 
 #include <sglab/registry.hpp>
 
-#include "commands.hpp"
-#include "reference.hpp"
+#include "app/commands.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::app {
 

@@ -14,11 +14,11 @@
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "commands.hpp"
-#include "costs_option.hpp"
-#include "pareto.hpp"
-#include "table.hpp"
+#include "common/args.hpp"
+#include "app/commands.hpp"
+#include "app/costs_option.hpp"
+#include "report/pareto.hpp"
+#include "validate/table.hpp"
 
 namespace sglab::app {
 
@@ -45,22 +45,22 @@ void add_pareto_command(CLI::App& app) {
   cmd->callback([args] {
     double lo = 0, hi = 0;
     {
-      const auto parsed = validate::parse_kappa_range(args->kappa, validate::KappaRangeRules{});  // LO:HI, float
+      const auto parsed = io::parse_kappa_range(args->kappa, io::KappaRangeRules{});  // LO:HI, float
       if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
-      lo = std::get<validate::KappaRange>(parsed).lo;
-      hi = std::get<validate::KappaRange>(parsed).hi;
+      lo = std::get<io::KappaRange>(parsed).lo;
+      hi = std::get<io::KappaRange>(parsed).hi;
     }
-    const auto precision = validate::parse_precision(args->precision);
+    const auto precision = report::parse_precision(args->precision);
     if (!precision)
       throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
 
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
-    std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
+    std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
     const std::string source = args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
-    validate::mark_frontier(points);
+    report::mark_frontier(points);
 
-    const validate::Table table = validate::pareto_table(points, *precision, lo, hi);
+    const validate::Table table = report::pareto_table(points, *precision, lo, hi);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
     validate::write_table(table, dir, "pareto", {TableFormat::csv, TableFormat::markdown});

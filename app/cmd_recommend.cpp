@@ -19,11 +19,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
-#include "commands.hpp"
-#include "costs_option.hpp"
-#include "pareto.hpp"
-#include "recommend_scene.hpp"
+#include "common/args.hpp"
+#include "app/commands.hpp"
+#include "app/costs_option.hpp"
+#include "report/pareto.hpp"
+#include "app/recommend_scene.hpp"
 
 namespace sglab::app {
 
@@ -44,7 +44,7 @@ nlohmann::ordered_json number(double x) {
   return x;
 }
 
-nlohmann::ordered_json point_json(const std::optional<validate::MethodPoint>& p) {
+nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
   if (!p) return nullptr;
   return {{"method", p->method},
           {"origin", std::string(to_string(p->origin))},
@@ -52,7 +52,7 @@ nlohmann::ordered_json point_json(const std::optional<validate::MethodPoint>& p)
           {"ns_per_eval", number(p->ns_per_eval)}};
 }
 
-std::string describe(const validate::MethodPoint& p) {
+std::string describe(const report::MethodPoint& p) {
   return fmt::format("{}{} (max peak_rel {:.4g}, {:.3g} ns/eval)", p.method,
                      p.origin == Origin::published ? std::string() : fmt::format(" [{}]", to_string(p.origin)),
                      p.max_peak_rel, p.ns_per_eval);
@@ -79,10 +79,10 @@ void add_recommend_command(CLI::App& app) {
   cmd->callback([args] {
     double lo = 0, hi = 0, budget = 0;
     if (args->kappa.empty() == args->scene.empty()) throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
-    if (!validate::parse_number(args->budget, budget))
+    if (!report::parse_number(args->budget, budget))
       throw InputError(fmt::format("--budget: '{}' is not a finite number", args->budget));
     if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
-    const auto precision = validate::parse_precision(args->precision);
+    const auto precision = report::parse_precision(args->precision);
     if (!precision)
       throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
     if (!args->scene.empty()) {
@@ -90,15 +90,15 @@ void add_recommend_command(CLI::App& app) {
       return;
     }
     {
-      const auto parsed = validate::parse_kappa_range(args->kappa, validate::KappaRangeRules{});  // LO:HI, float
+      const auto parsed = io::parse_kappa_range(args->kappa, io::KappaRangeRules{});  // LO:HI, float
       if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
-      lo = std::get<validate::KappaRange>(parsed).lo;
-      hi = std::get<validate::KappaRange>(parsed).hi;
+      lo = std::get<io::KappaRange>(parsed).lo;
+      hi = std::get<io::KappaRange>(parsed).hi;
     }
 
-    std::vector<validate::MethodPoint> points = validate::irradiance_errors(lo, hi, *precision);
+    std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
     const std::string source = args->costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
-    const validate::Recommendation r = validate::recommend(points, budget);
+    const report::Recommendation r = report::recommend(points, budget);
 
     if (args->json) {
       nlohmann::ordered_json doc;
@@ -109,7 +109,7 @@ void add_recommend_command(CLI::App& app) {
       doc["choice"] = point_json(r.choice);
       doc["runner_up"] = point_json(r.runner_up);
       doc["most_accurate"] = point_json(r.most_accurate);
-      doc["tie_margin"] = validate::kCostTieMargin;
+      doc["tie_margin"] = report::kCostTieMargin;
       doc["cost_source"] = source;
       nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
       for (const auto& p : points) {
@@ -136,7 +136,7 @@ void add_recommend_command(CLI::App& app) {
         fmt::print("  no method has a finite error over this range.\n");
     }
     fmt::print("(cost: batch ns/eval from {}; costs within {}% are ties, broken by error)\n", source,
-               validate::kCostTieMargin * 100);
+               report::kCostTieMargin * 100);
   });
 }
 

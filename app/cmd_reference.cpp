@@ -25,11 +25,11 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "args.hpp"
-#include "io.hpp"
-#include "points.hpp"
-#include "reference.hpp"
+#include "app/commands.hpp"
+#include "common/args.hpp"
+#include "common/io.hpp"
+#include "app/points.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::app {
 namespace {
@@ -56,7 +56,7 @@ std::vector<std::string_view> split(std::string_view line) {
 }  // namespace
 
 std::size_t for_each_point(const std::string& path, const std::function<void(const validate::Query&)>& on_point,
-                           std::optional<validate::NumberFormat> kappa_format) {
+                           std::optional<io::NumberFormat> kappa_format) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("{}: no such points file (or not a regular file)", path));
@@ -77,7 +77,7 @@ std::size_t for_each_point(const std::string& path, const std::function<void(con
     ++line_number;
     std::string_view text(buffer.data(), extracted - (ended_by_newline ? 1 : 0));
     auto fail = [&](std::string_view why) {
-      return InputError(fmt::format("{}:{}: {} (line: {})", path, line_number, why, validate::quote_escaped(text)));
+      return InputError(fmt::format("{}:{}: {} (line: {})", path, line_number, why, io::quote_escaped(text)));
     };
     if (text.size() > kMaxPointsLineBytes)
       throw fail(fmt::format("line longer than {} bytes", kMaxPointsLineBytes));
@@ -100,15 +100,15 @@ std::size_t for_each_point(const std::string& path, const std::function<void(con
       if (f.empty()) throw fail(fmt::format("missing {}", name));
       const auto [end, err] = std::from_chars(f.data(), f.data() + f.size(), value[i]);
       if (err != std::errc() || end != f.data() + f.size())
-        throw fail(fmt::format("{} is not a number: {}", name, validate::quote_escaped(f)));
+        throw fail(fmt::format("{} is not a number: {}", name, io::quote_escaped(f)));
     }
     const double kappa = value[0], cosine = value[1];
     if (!(std::isfinite(kappa) && kappa >= 0)) throw fail(fmt::format("kappa must be finite and >= 0, got {}", kappa));
     if (!(cosine >= -1 && cosine <= 1)) throw fail(fmt::format("cosine must be in [-1, 1], got {}", cosine));
-    if (kappa_format && validate::exceeds_max_finite(kappa, *kappa_format))
+    if (kappa_format && io::exceeds_max_finite(kappa, *kappa_format))
       throw fail(fmt::format("kappa {} exceeds the largest finite {} ({:g}), the precision it is evaluated in", kappa,
                              kappa_format->name, kappa_format->max_finite));
-    if (kappa_format && validate::rounds_to_zero(kappa, *kappa_format))
+    if (kappa_format && io::rounds_to_zero(kappa, *kappa_format))
       throw fail(fmt::format("kappa {} rounds to 0 in {}, the precision it is evaluated in (smallest positive {}: {:g})",
                              kappa, kappa_format->name, kappa_format->name, kappa_format->denorm_min));
     on_point(validate::Query{kappa, cosine});

@@ -36,9 +36,9 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "atomic_files.hpp"
-#include "io.hpp"
+#include "app/commands.hpp"
+#include "common/atomic_files.hpp"
+#include "common/io.hpp"
 
 namespace sglab::app {
 

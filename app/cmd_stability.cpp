@@ -11,10 +11,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "io.hpp"
-#include "stability.hpp"
-#include "table.hpp"
+#include "app/commands.hpp"
+#include "common/io.hpp"
+#include "validate/stability.hpp"
+#include "validate/table.hpp"
 
 namespace sglab::app {
 

@@ -20,27 +20,27 @@
 
 #include <sglab/registry.hpp>
 
-#include "args.hpp"
-#include "commands.hpp"
-#include "io.hpp"
-#include "sweep.hpp"
-#include "table.hpp"
-#include "vulkan_runner.hpp"
+#include "common/args.hpp"
+#include "app/commands.hpp"
+#include "common/io.hpp"
+#include "validate/sweep.hpp"
+#include "validate/table.hpp"
+#include "export/vulkan_runner.hpp"
 
 namespace sglab::app {
 
 namespace {
 
-// --kappa LO:HI:N (validate/args.hpp; float: the sweep rounds its inputs to float)
+// --kappa LO:HI:N (common/args.hpp; float: the sweep rounds its inputs to float)
 void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
-  validate::KappaRangeRules rules;
+  io::KappaRangeRules rules;
   rules.with_count = true;
   // N is bounded by the grid's size limit (SweepGrid::validate, which says the
   // memory a refused grid would need), not by the parser's default cap.
   rules.max_count = std::numeric_limits<int>::max();
-  const auto parsed = validate::parse_kappa_range(text, rules);
+  const auto parsed = io::parse_kappa_range(text, rules);
   if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
-  const auto& r = std::get<validate::KappaRange>(parsed);
+  const auto& r = std::get<io::KappaRange>(parsed);
   grid.kappa_lo = r.lo;
   grid.kappa_hi = r.hi;
   grid.kappa_count = r.count;
@@ -48,7 +48,7 @@ void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
 
 // --cosines N: at least 2 (the grid includes c = -1 and c = 1); the grid limit (SweepGrid::validate) bounds it.
 void parse_cosines_option(const std::string& text, validate::SweepGrid& grid) {
-  const auto n = validate::parse_count(text, 2, std::numeric_limits<int>::max());
+  const auto n = io::parse_count(text, 2, std::numeric_limits<int>::max());
   if (const auto* why = std::get_if<std::string>(&n)) throw InputError("--cosines: " + *why);
   grid.cosine_count = static_cast<int>(std::get<long long>(n));
 }
@@ -152,9 +152,9 @@ void add_sweep_command(CLI::App& app) {
       else
         throw InputError(fmt::format("--backend: expected cpu, vulkan or auto, got '{}'", b));
     }
-    std::vector<validate::shader::Language> langs;
-    if (args->lang == "glsl" || args->lang == "both") langs.push_back(validate::shader::Language::glsl);
-    if (args->lang == "hlsl" || args->lang == "both") langs.push_back(validate::shader::Language::hlsl);
+    std::vector<shader::Language> langs;
+    if (args->lang == "glsl" || args->lang == "both") langs.push_back(shader::Language::glsl);
+    if (args->lang == "hlsl" || args->lang == "both") langs.push_back(shader::Language::hlsl);
     if (langs.empty()) throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", args->lang));
 
     validate::SweepOptions options;
@@ -162,21 +162,21 @@ void add_sweep_command(CLI::App& app) {
     options.progress = io::stderr_is_terminal();
     validate::SweepResult result = validate::sweep(grid, methods, options);
     std::string device_name;
-    std::unique_ptr<validate::vulkan::Device> device;
+    std::unique_ptr<shader::vulkan::Device> device;
     if (vulkan) {
-      device = std::make_unique<validate::vulkan::Device>();  // throws vulkan::Unavailable with the reason
+      device = std::make_unique<shader::vulkan::Device>();  // throws vulkan::Unavailable with the reason
     } else if (vulkan_if_available) {
       try {
-        device = std::make_unique<validate::vulkan::Device>();
+        device = std::make_unique<shader::vulkan::Device>();
         vulkan = true;
-      } catch (const validate::vulkan::Unavailable& e) {
+      } catch (const shader::vulkan::Unavailable& e) {
         fmt::print(stderr, "sglab sweep: --backend auto: no Vulkan rows: {}\n", e.what());
       }
     }
     if (vulkan) {
       device_name = device->name();
       std::vector<std::string> skipped;
-      for (auto lang : langs) skipped = validate::vulkan::add_device_entries(result, methods, lang, *device);
+      for (auto lang : langs) skipped = shader::vulkan::add_device_entries(result, methods, lang, *device);
       if (!skipped.empty() && !args->json)
         fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
       // Method-major order, as the CPU entries.

@@ -9,14 +9,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "io.hpp"
+#include "common/args.hpp"
+#include "common/io.hpp"
 
 namespace sglab::app {
 
 // Bad input from the user (a malformed file, an out-of-range value): the
 // message names what was wrong; the process exits with code 2. Defined in
-// validate/io.hpp, so that the readers and writers below app/ raise it too.
+// common/io.hpp, so that the readers and writers below app/ raise it too.
 using InputError = io::InputError;
 
 // The check of every output path option (--out, --header, --dir): an empty
@@ -47,14 +47,14 @@ template <class Parse> int run_and_map_exit_code(CLI::App& app, Parse&& parse) {
   return 0;
 }
 
-// The check of every whole-number option: validate::parse_count's rules
+// The check of every whole-number option: io::parse_count's rules
 // (digits only, min ≤ value ≤ max), applied to the text before CLI11
 // converts it, so "-1" is not wrapped to 18446744073709551615 and a value
 // beyond the type says "out of range", not "not an integer".
 inline CLI::Validator count_in(long long min, long long max) {
   return CLI::Validator(
       [min, max](std::string& value) {
-        const auto parsed = validate::parse_count(value, min, max);
+        const auto parsed = io::parse_count(value, min, max);
         const auto* why = std::get_if<std::string>(&parsed);
         return why ? *why : std::string();
       },

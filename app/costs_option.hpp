@@ -11,9 +11,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "cost_table.hpp"
-#include "pareto.hpp"
+#include "app/commands.hpp"
+#include "report/cost_table.hpp"
+#include "report/pareto.hpp"
 
 namespace sglab::app {
 
@@ -32,25 +32,25 @@ struct CostsOption {
   // Fills ns_per_eval of `points`; returns a one-line description of the
   // source for the output. Missing methods are named on stderr. Throws
   // InputError (exit 2) for a missing or malformed table.
-  std::string fill(std::vector<validate::MethodPoint>& points, validate::FloatFormat f, int repetitions,
+  std::string fill(std::vector<report::MethodPoint>& points, validate::FloatFormat f, int repetitions,
                    double min_time) const {
     if (live_timing) {
       if (!costs.empty()) throw InputError("--costs and --live-timing exclude each other");
-      validate::fill_costs(points, f, repetitions, min_time);
+      report::fill_costs(points, f, repetitions, min_time);
       return fmt::format("live timing now: median batch ns/eval of {} repetitions (varies from run to run)",
                          repetitions);
     }
     std::filesystem::path path = costs;
     if (costs.empty()) {
-      const auto found = validate::default_cost_table_path();
+      const auto found = report::default_cost_table_path();
       if (!found)
         throw InputError(
             "no cost table: no project folder (with data/results and include/sglab) above the working directory; "
             "pass --costs FILE (written by `sglab bench`) or --live-timing");
       path = *found;
     }
-    const validate::CostTable table = validate::read_cost_table(path);
-    const std::vector<std::string> missing = validate::fill_costs(points, f, table);
+    const report::CostTable table = report::read_cost_table(path);
+    const std::vector<std::string> missing = report::fill_costs(points, f, table);
     for (const std::string& m : missing)
       fmt::print(stderr,
                  "sglab: warning: cost table {} has no irradiance/{}/batch cost for method '{}'; it is left out "

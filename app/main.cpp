@@ -10,8 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "solver_log.hpp"
+#include "app/commands.hpp"
+#include "fit/solver_log.hpp"
 
 namespace {
 

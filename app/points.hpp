@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "args.hpp"
-#include "reference.hpp"
+#include "common/args.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::app {
 
@@ -21,13 +21,13 @@ inline constexpr std::size_t kMaxPointsLineBytes = 1024;
 // and checked; returns the number of rows. Nothing is held but the current
 // line (at most kMaxPointsLineBytes), so memory does not grow with the file.
 // A bad line is an InputError naming the file and the line number and
-// quoting the line escaped and shortened (validate::quote_escaped), thrown
+// quoting the line escaped and shortened (io::quote_escaped), thrown
 // after on_point saw every row before it. With `kappa_format` (the precision
 // the rows are evaluated in, e.g. float for `eval --precision float`), a κ
 // that does not survive rounding to it is refused as the κ-range parser
-// refuses one (validate/args.hpp): above its largest finite value, or nonzero
+// refuses one (common/args.hpp): above its largest finite value, or nonzero
 // and rounding to 0.
 std::size_t for_each_point(const std::string& path, const std::function<void(const validate::Query&)>& on_point,
-                           std::optional<validate::NumberFormat> kappa_format = std::nullopt);
+                           std::optional<io::NumberFormat> kappa_format = std::nullopt);
 
 }  // namespace sglab::app

@@ -6,7 +6,7 @@
 // irradiance. Ranking and cost as `sglab recommend --kappa` (validate/pareto.hpp).
 // Then the scene's κ range and, over that range, the error of each of sglab's
 // own models on the standard 29 κ × 41 c sub-grid: which of them suffices.
-#include "recommend_scene.hpp"
+#include "app/recommend_scene.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -18,10 +18,10 @@
 
 #include <sglab/registry.hpp>
 
-#include "commands.hpp"
-#include "io.hpp"
-#include "pareto.hpp"
-#include "scene.hpp"
+#include "app/commands.hpp"
+#include "common/io.hpp"
+#include "report/pareto.hpp"
+#include "validate/scene.hpp"
 
 namespace sglab::app {
 
@@ -58,11 +58,11 @@ void recommend_scene(const SceneRecommendArgs& args) {
   }
   const auto normals = validate::fibonacci_normals(args.normals);
   const std::vector<double> errors = validate::scene_errors(scene, normals, irradiance_methods, args.precision);
-  std::vector<validate::MethodPoint> points;
+  std::vector<report::MethodPoint> points;
   std::vector<Origin> origins;
   for (std::size_t i = 0; i < std::size(irradiance_methods); ++i) {
     const Method& m = irradiance_methods[i];
-    validate::MethodPoint p;
+    report::MethodPoint p;
     p.method = std::string(m.id);
     p.origin = m.origin;
     p.max_peak_rel = errors[i];
@@ -70,11 +70,11 @@ void recommend_scene(const SceneRecommendArgs& args) {
     origins.push_back(m.origin);
   }
   args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
-  const validate::Recommendation r = validate::recommend(points, args.budget);
+  const report::Recommendation r = report::recommend(points, args.budget);
 
   // sglab's models over the scene's κ range (κ = 0 lights: the range starts at 1e-3).
   const double lo = std::max(scene.kappa_min(), 1e-3), hi = std::max(scene.kappa_max(), lo);
-  const auto range_errors = validate::irradiance_errors(lo, hi, args.precision);
+  const auto range_errors = report::irradiance_errors(lo, hi, args.precision);
   struct ModelOnRange {
     std::string id;
     double error, ns;
@@ -98,7 +98,7 @@ void recommend_scene(const SceneRecommendArgs& args) {
     doc["budget"] = args.budget;
     doc["precision"] = std::string(validate::to_string(args.precision));
     doc["error"] = "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the scene";
-    auto point = [](const std::optional<validate::MethodPoint>& p) -> nlohmann::ordered_json {
+    auto point = [](const std::optional<report::MethodPoint>& p) -> nlohmann::ordered_json {
       if (!p) return nullptr;
       return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"ns_per_eval", number(p->ns_per_eval)}};
     };
@@ -151,7 +151,7 @@ void recommend_scene(const SceneRecommendArgs& args) {
   else
     fmt::print("  no registered sglab model meets the budget over this κ range.\n");
   fmt::print("(cost: median batch ns/eval of 7 repetitions; costs within {}% are ties, broken by error)\n",
-             validate::kCostTieMargin * 100);
+             report::kCostTieMargin * 100);
 }
 
 }  // namespace sglab::app

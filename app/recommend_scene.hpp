@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <string>
 
-#include "costs_option.hpp"
-#include "sweep.hpp"
+#include "app/costs_option.hpp"
+#include "validate/sweep.hpp"
 
 namespace sglab::app {
 

@@ -9,7 +9,7 @@
 #include <sglab/erf.hpp>
 #include <sglab/registry.hpp>
 
-#include "erf_check.hpp"
+#include "validate/erf_check.hpp"
 
 namespace {
 

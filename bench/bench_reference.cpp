@@ -12,7 +12,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "reference.hpp"
+#include "validate/reference.hpp"
 
 namespace {
 

@@ -22,11 +22,11 @@
 
 #include <sglab/sglab.hpp>
 
-#include "half.hpp"
-#include "metrics.hpp"
-#include "minimax.hpp"
-#include "reference.hpp"
-#include "targets.hpp"
+#include "fit/half.hpp"
+#include "validate/metrics.hpp"
+#include "fit/minimax.hpp"
+#include "validate/reference.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::fit {
 

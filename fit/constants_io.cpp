@@ -1,4 +1,4 @@
-#include "constants_io.hpp"
+#include "fit/constants_io.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "atomic_files.hpp"
-#include "io.hpp"
+#include "common/atomic_files.hpp"
+#include "common/io.hpp"
 
 namespace sglab::fit {
 

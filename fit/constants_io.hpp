@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "constants_schema.hpp"
+#include "fit/constants_schema.hpp"
 
 namespace sglab::fit {
 

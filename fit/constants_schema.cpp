@@ -1,4 +1,4 @@
-#include "constants_schema.hpp"
+#include "fit/constants_schema.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,9 +11,9 @@
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "io.hpp"
-#include "json_input.hpp"
+#include "common/args.hpp"
+#include "common/io.hpp"
+#include "common/json_input.hpp"
 
 namespace sglab::fit {
 
@@ -78,7 +78,7 @@ std::span<const RequiredSet> required_sets() {
 
 namespace {
 
-std::string q(std::string_view s) { return validate::quote_escaped(s); }
+std::string q(std::string_view s) { return io::quote_escaped(s); }
 
 [[noreturn]] void fail(const std::string& file, std::string_view key, const std::string& what) {
   if (key.empty()) throw ConstantsError(fmt::format("{}: {}", file, what));

@@ -29,8 +29,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "comment_text.hpp"
-#include "json_input.hpp"
+#include "common/comment_text.hpp"
+#include "common/json_input.hpp"
 
 namespace sglab::fit {
 
@@ -87,7 +87,7 @@ struct ResolvedType {
 ResolvedType resolve_cpp_type(std::string_view text, const std::string& where);
 
 // Parses untrusted JSON text (at most kMaxConstantsFileBytes) with the one
-// strict JSON parser, io::parse_json_strict (validate/json_input.hpp).
+// strict JSON parser, io::parse_json_strict (common/json_input.hpp).
 // Throws ConstantsError naming `file` and the key path.
 ordered_json parse_untrusted_json(std::string_view text, const std::string& file);
 
@@ -104,8 +104,8 @@ void validate_constant_set(const ordered_json& set, const std::string& file);
 void validate_header_sets(const std::vector<ordered_json>& sets, const std::vector<std::string>& files);
 
 // Text fields are escaped into the header's comments by the one escaping
-// function that the shader exports use too (validate/comment_text.hpp).
-using validate::comment_text;
+// function that the shader exports use too (common/comment_text.hpp).
+using io::comment_text;
 
 // [A-Za-z_][A-Za-z0-9_]* and not a C++ keyword.
 bool is_cpp_identifier(std::string_view s);

@@ -17,8 +17,8 @@
 
 #include <sglab/sglab.hpp>
 
-#include "minimax.hpp"
-#include "targets.hpp"
+#include "fit/minimax.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::fit {
 

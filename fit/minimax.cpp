@@ -1,4 +1,4 @@
-#include "minimax.hpp"
+#include "fit/minimax.hpp"
 
 #include <algorithm>
 #include <atomic>

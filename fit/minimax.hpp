@@ -19,7 +19,7 @@
 
 #include <ceres/ceres.h>
 
-#include "io.hpp"
+#include "common/io.hpp"
 
 namespace sglab::fit {
 

@@ -29,10 +29,10 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_models.hpp>
 
-#include "minimax.hpp"
-#include "reference.hpp"
-#include "constants_io.hpp"
-#include "targets.hpp"
+#include "fit/minimax.hpp"
+#include "validate/reference.hpp"
+#include "fit/constants_io.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::fit {
 

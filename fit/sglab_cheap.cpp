@@ -31,11 +31,11 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_cheap.hpp>
 
-#include "constants_io.hpp"
-#include "io.hpp"
-#include "minimax.hpp"
-#include "reference.hpp"
-#include "targets.hpp"
+#include "fit/constants_io.hpp"
+#include "common/io.hpp"
+#include "fit/minimax.hpp"
+#include "validate/reference.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::fit {
 

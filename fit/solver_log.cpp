@@ -1,11 +1,11 @@
-#include "solver_log.hpp"
+#include "fit/solver_log.hpp"
 
 #include <algorithm>
 #include <mutex>
 
 #include <glog/logging.h>
 
-#include "minimax.hpp"
+#include "fit/minimax.hpp"
 
 namespace sglab::fit {
 

@@ -16,9 +16,9 @@
 
 #include <sglab/sglab.hpp>
 
-#include "minimax.hpp"
-#include "reference.hpp"
-#include "targets.hpp"
+#include "fit/minimax.hpp"
+#include "validate/reference.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::fit {
 

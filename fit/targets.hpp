@@ -53,7 +53,7 @@ double machine_epsilon(WorkingPrecision p);
 std::string precision_name(WorkingPrecision p);
 std::optional<WorkingPrecision> parse_precision(const std::string& name);
 
-// Log-spaced κ grid of `count` values over [lo, hi] (validate::log_spaced; count 1: lo) and
+// Log-spaced κ grid of `count` values over [lo, hi] (io::log_spaced; count 1: lo) and
 // cosine grid c_i = −1 + 2i/(count − 1).
 std::vector<double> kappa_grid(double lo, double hi, int count);
 std::vector<double> cosine_grid(int count);

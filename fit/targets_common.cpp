@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "constants_schema.hpp"
-#include "targets.hpp"
+#include "common/args.hpp"
+#include "fit/constants_schema.hpp"
+#include "fit/targets.hpp"
 
 namespace sglab::fit {
 
@@ -36,7 +36,7 @@ std::optional<WorkingPrecision> parse_precision(const std::string& name) {
   return std::nullopt;
 }
 
-std::vector<double> kappa_grid(double lo, double hi, int count) { return validate::log_spaced(lo, hi, count); }
+std::vector<double> kappa_grid(double lo, double hi, int count) { return io::log_spaced(lo, hi, count); }
 
 std::vector<double> cosine_grid(int count) {
   std::vector<double> c;

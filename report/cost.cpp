@@ -1,5 +1,5 @@
-// validate/cost.cpp — see cost.hpp.
-#include "cost.hpp"
+// report/cost.cpp — see cost.hpp.
+#include "report/cost.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 #include <sglab/erf.hpp>
 #include <sglab/registry.hpp>
 
-namespace sglab::validate {
+namespace sglab::report {
 
 std::string_view to_string(CostKind k) {
   switch (k) {
@@ -105,7 +105,7 @@ std::pair<ErfBatch32, ErfBatch64> erf_batch_for(std::string_view id) {
 void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m,
                       const std::shared_ptr<CostWorkload>& w) {
   const std::size_t n = w->cosine32.size();
-  const auto make = [&](FloatFormat f, CostMode mode, std::function<void()> run) {
+  const auto make = [&](validate::FloatFormat f, CostMode mode, std::function<void()> run) {
     CostCase c;
     c.kind = kind;
     c.method = std::string(m.id);
@@ -121,25 +121,25 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
   double (*f64)(double, double) = m.f64;
   auto b32 = m.batch32;
   auto b64 = m.batch64;
-  make(FloatFormat::binary32, CostMode::scalar, [w, f32, n] {
+  make(validate::FloatFormat::binary32, CostMode::scalar, [w, f32, n] {
     const float* c = w->cosine32.data();
     const float* k = w->kappa32.data();
     float* o = w->out32.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f32(c[i], k[i]);
     clobber(o);
   });
-  make(FloatFormat::binary32, CostMode::batch, [w, b32, n] {
+  make(validate::FloatFormat::binary32, CostMode::batch, [w, b32, n] {
     b32(w->cosine32.data(), w->kappa32.data(), w->out32.data(), n);
     clobber(w->out32.data());
   });
-  make(FloatFormat::binary64, CostMode::scalar, [w, f64, n] {
+  make(validate::FloatFormat::binary64, CostMode::scalar, [w, f64, n] {
     const double* c = w->cosine64.data();
     const double* k = w->kappa64.data();
     double* o = w->out64.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f64(c[i], k[i]);
     clobber(o);
   });
-  make(FloatFormat::binary64, CostMode::batch, [w, b64, n] {
+  make(validate::FloatFormat::binary64, CostMode::batch, [w, b64, n] {
     b64(w->cosine64.data(), w->kappa64.data(), w->out64.data(), n);
     clobber(w->out64.data());
   });
@@ -148,7 +148,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     auto eval = m.light_eval32;
     // Setup: once per κ of the inputs, into a small ring of states.
     auto ring = std::make_shared<std::vector<float>>(64 * kLightStateFloats);
-    make(FloatFormat::binary32, CostMode::light_setup, [w, setup, ring, n] {
+    make(validate::FloatFormat::binary32, CostMode::light_setup, [w, setup, ring, n] {
       const float* k = w->kappa32.data();
       float* s = ring->data();
       for (std::size_t i = 0; i < n; ++i) setup(k[i], s + (i % 64) * kLightStateFloats);
@@ -157,7 +157,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     // Eval: kCostLights lights, each at a contiguous block of the cosines.
     auto states = std::make_shared<std::vector<float>>(kCostLights * kLightStateFloats);
     for (std::size_t j = 0; j < kCostLights; ++j) setup(w->kappa32[j], states->data() + j * kLightStateFloats);
-    make(FloatFormat::binary32, CostMode::light_eval, [w, eval, states, n] {
+    make(validate::FloatFormat::binary32, CostMode::light_eval, [w, eval, states, n] {
       const float* c = w->cosine32.data();
       float* o = w->out32.data();
       const std::size_t block = n / kCostLights;
@@ -173,7 +173,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
 
 void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v, const std::shared_ptr<CostWorkload>& w) {
   const std::size_t n = w->x32.size();
-  const auto make = [&](FloatFormat f, CostMode mode, std::function<void()> run) {
+  const auto make = [&](validate::FloatFormat f, CostMode mode, std::function<void()> run) {
     CostCase c;
     c.kind = CostKind::erf;
     c.method = std::string(v.id);
@@ -186,25 +186,25 @@ void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v, const std::s
   float (*f32)(float) = v.f32;
   double (*f64)(double) = v.f64;
   const auto [b32, b64] = erf_batch_for(v.id);
-  make(FloatFormat::binary32, CostMode::scalar, [w, f32, n] {
+  make(validate::FloatFormat::binary32, CostMode::scalar, [w, f32, n] {
     const float* x = w->x32.data();
     float* o = w->out32.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f32(x[i]);
     clobber(o);
   });
   if (b32)
-    make(FloatFormat::binary32, CostMode::batch, [w, b32 = b32, n] {
+    make(validate::FloatFormat::binary32, CostMode::batch, [w, b32 = b32, n] {
       b32(w->x32.data(), w->out32.data(), n);
       clobber(w->out32.data());
     });
-  make(FloatFormat::binary64, CostMode::scalar, [w, f64, n] {
+  make(validate::FloatFormat::binary64, CostMode::scalar, [w, f64, n] {
     const double* x = w->x64.data();
     double* o = w->out64.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f64(x[i]);
     clobber(o);
   });
   if (b64)
-    make(FloatFormat::binary64, CostMode::batch, [w, b64 = b64, n] {
+    make(validate::FloatFormat::binary64, CostMode::batch, [w, b64 = b64, n] {
       b64(w->x64.data(), w->out64.data(), n);
       clobber(w->out64.data());
     });
@@ -272,12 +272,12 @@ std::vector<Cost> measure_costs(const CostOptions& options) {
   return out;
 }
 
-Table cost_table(const std::vector<Cost>& costs, std::string title) {
-  Table t(std::move(title), {{"kind"}, {"method"}, {"precision"}, {"mode"}, {"ns_per_eval", 3}});
+validate::Table cost_table(const std::vector<Cost>& costs, std::string title) {
+  validate::Table t(std::move(title), {{"kind"}, {"method"}, {"precision"}, {"mode"}, {"ns_per_eval", 3}});
   for (const Cost& c : costs)
-    t.add_row({Table::text(to_string(c.kind)), Table::text(c.method), Table::text(to_string(c.precision)),
-               Table::text(to_string(c.mode)), Table::real(c.ns_per_eval)});
+    t.add_row({validate::Table::text(to_string(c.kind)), validate::Table::text(c.method), validate::Table::text(to_string(c.precision)),
+               validate::Table::text(to_string(c.mode)), validate::Table::real(c.ns_per_eval)});
   return t;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

@@ -1,4 +1,4 @@
-// validate/cost.hpp — how long each registered method takes per evaluation
+// report/cost.hpp — how long each registered method takes per evaluation
 // (the "speed" half of speed against accuracy).
 //
 // Workload (fixed, reproducible): kCostInputs = 2^20 (1,048,576) inputs,
@@ -43,10 +43,10 @@
 #include <string>
 #include <vector>
 
-#include "sweep.hpp"
-#include "table.hpp"
+#include "validate/sweep.hpp"
+#include "validate/table.hpp"
 
-namespace sglab::validate {
+namespace sglab::report {
 
 inline constexpr std::size_t kCostInputs = std::size_t{1} << 20;
 inline constexpr std::size_t kCostLights = 256;
@@ -75,7 +75,7 @@ struct CostCase {
   CostKind kind = CostKind::irradiance;
   std::string method;
   bool refit = false;
-  FloatFormat precision = FloatFormat::binary32;
+  validate::FloatFormat precision = validate::FloatFormat::binary32;
   CostMode mode = CostMode::scalar;
   std::size_t evaluations = kCostInputs;
   std::function<void()> run;
@@ -92,7 +92,7 @@ struct Cost {
   CostKind kind = CostKind::irradiance;
   std::string method;
   bool refit = false;
-  FloatFormat precision = FloatFormat::binary32;
+  validate::FloatFormat precision = validate::FloatFormat::binary32;
   CostMode mode = CostMode::scalar;
   double ns_per_eval = 0;  // median over the repetitions
 };
@@ -101,7 +101,7 @@ struct CostOptions {
   int repetitions = 5;
   double min_time = 0.01;  // seconds per repetition (5 × 0.01 s = the ~0.05 s quick mode)
   std::vector<CostKind> kinds{CostKind::irradiance, CostKind::hemispherical, CostKind::erf};
-  std::vector<FloatFormat> precisions{FloatFormat::binary32, FloatFormat::binary64};
+  std::vector<validate::FloatFormat> precisions{validate::FloatFormat::binary32, validate::FloatFormat::binary64};
   std::vector<CostMode> modes{CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval};
   std::string filter;  // ECMAScript regex searched in CostCase::name(); empty = all
 };
@@ -116,6 +116,6 @@ double time_case(const CostCase& c, int repetitions, double min_time);
 std::vector<Cost> measure_costs(const CostOptions& options = {});
 
 // kind, method, precision, mode, ns_per_eval.
-Table cost_table(const std::vector<Cost>& costs, std::string title = "Cost per evaluation (median of repetitions)");
+validate::Table cost_table(const std::vector<Cost>& costs, std::string title = "Cost per evaluation (median of repetitions)");
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

@@ -1,5 +1,5 @@
-// validate/cost_table.cpp — see cost_table.hpp.
-#include "cost_table.hpp"
+// report/cost_table.cpp — see cost_table.hpp.
+#include "report/cost_table.hpp"
 
 #include <cerrno>
 #include <chrono>
@@ -13,19 +13,19 @@
 
 #include <fmt/format.h>
 
-#include "io.hpp"
-#include "json_input.hpp"
+#include "common/io.hpp"
+#include "common/json_input.hpp"
 
 #ifndef SGLAB_BUILD_TYPE
 #define SGLAB_BUILD_TYPE "unknown"
 #endif
 
-namespace sglab::validate {
+namespace sglab::report {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
-const Cost* CostTable::find(CostKind kind, std::string_view method, FloatFormat precision, CostMode mode) const {
+const Cost* CostTable::find(CostKind kind, std::string_view method, validate::FloatFormat precision, CostMode mode) const {
   for (const Cost& c : costs)
     if (c.kind == kind && c.method == method && c.precision == precision && c.mode == mode) return &c;
   return nullptr;
@@ -94,7 +94,7 @@ json to_json(const CostTable& t) {
                     {"mode", std::string(to_string(c.mode))},
                     {"ns_per_eval", c.ns_per_eval}});
   doc["costs"] = std::move(rows);
-  if (t.gpu) doc["gpu"] = gpu::to_json(*t.gpu);
+  if (t.gpu) doc["gpu"] = shader::gpu::to_json(*t.gpu);
   return doc;
 }
 
@@ -167,9 +167,9 @@ CostTable read_cost_table(const fs::path& path) {
     if (!k) fail(path, fmt::format("{}\"kind\": unknown kind '{}' (irradiance, hemispherical, erf)", where, kind));
     c.kind = *k;
     if (precision == "float")
-      c.precision = FloatFormat::binary32;
+      c.precision = validate::FloatFormat::binary32;
     else if (precision == "double")
-      c.precision = FloatFormat::binary64;
+      c.precision = validate::FloatFormat::binary64;
     else
       fail(path, fmt::format("{}\"precision\": expected float or double, got '{}'", where, precision));
     const auto m = parse_cost_mode(mode);
@@ -187,7 +187,7 @@ CostTable read_cost_table(const fs::path& path) {
   }
   if (doc.contains("gpu")) {
     try {
-      t.gpu = gpu::report_from_json(doc.at("gpu"), "gpu");
+      t.gpu = shader::gpu::report_from_json(doc.at("gpu"), "gpu");
     } catch (const std::runtime_error& e) {
       fail(path, e.what());
     }
@@ -210,4 +210,4 @@ std::optional<fs::path> default_cost_table_path() {
   return *root / "data" / "results" / "costs.json";
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

@@ -1,4 +1,4 @@
-// validate/cost_table.hpp — the cost table: what `sglab bench` measured, with
+// report/cost_table.hpp — the cost table: what `sglab bench` measured, with
 // where and how, so that `sglab pareto` and `sglab recommend` answer the same
 // for the same inputs (they read it instead of timing on each call).
 //
@@ -15,7 +15,7 @@
 // kind ∈ {irradiance, hemispherical, erf}, precision ∈ {float, double},
 // mode ∈ {scalar, batch, light_setup, light_eval}; ns_per_eval finite and > 0.
 // Optionally "gpu": what `sglab gpucost --out DIR` measured with AMD's shader
-// compiler (validate/gpu_cost.hpp, gpu::to_json): driver, command and a row
+// compiler (export/gpu_cost.hpp, shader::gpu::to_json): driver, command and a row
 // per (method, family, lang). `sglab bench` keeps it, `sglab gpucost` keeps the
 // rest. The committed table is data/results/costs.json.
 #pragma once
@@ -28,11 +28,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cost.hpp"
-#include "gpu_cost.hpp"
-#include "io.hpp"
+#include "report/cost.hpp"
+#include "export/gpu_cost.hpp"
+#include "common/io.hpp"
 
-namespace sglab::validate {
+namespace sglab::report {
 
 // A missing, unreadable or malformed cost table; the message names the file
 // (and the key or entry that is wrong). Bad input: `sglab` exits with 2.
@@ -55,9 +55,9 @@ struct CostTable {
   std::filesystem::path path;  // where it was read from (empty when built in memory)
   CostTableInfo info;
   std::vector<Cost> costs;
-  std::optional<gpu::Report> gpu;
+  std::optional<shader::gpu::Report> gpu;
   // The row for (kind, method, precision, mode), or nullptr.
-  const Cost* find(CostKind kind, std::string_view method, FloatFormat precision, CostMode mode) const;
+  const Cost* find(CostKind kind, std::string_view method, validate::FloatFormat precision, CostMode mode) const;
 };
 
 // This machine, compiler and build (date = now); command, timer and inputs
@@ -80,4 +80,4 @@ std::optional<CostTable> read_existing_cost_table(const std::filesystem::path& p
 // (the first folder upwards with data/results and include/sglab), or nullopt.
 std::optional<std::filesystem::path> default_cost_table_path();
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

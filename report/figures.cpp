@@ -1,4 +1,4 @@
-#include "figures.hpp"
+#include "report/figures.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -23,14 +23,14 @@
 #include <sglab/hemispherical.hpp>
 #include <sglab/registry.hpp>
 
-#include "atomic_files.hpp"
-#include "erf_check.hpp"
-#include "io.hpp"
-#include "reference.hpp"
-#include "sweep.hpp"
-#include "table.hpp"
+#include "common/atomic_files.hpp"
+#include "validate/erf_check.hpp"
+#include "common/io.hpp"
+#include "validate/reference.hpp"
+#include "validate/sweep.hpp"
+#include "validate/table.hpp"
 
-namespace sglab::validate {
+namespace sglab::report {
 
 namespace fs = std::filesystem;
 
@@ -290,9 +290,9 @@ Figure figure_c(const FiguresOptions& opt) {
            {}, false, ""};
   const double kappa = 4;
   const int n = 181;
-  std::vector<Query> q;
+  std::vector<validate::Query> q;
   for (int i = 0; i < n; ++i) q.push_back({kappa, std::clamp(std::cos(kPi * i / (n - 1)), -1.0, 1.0)});
-  const auto ref = reference_engine().evaluate(q);
+  const auto ref = validate::reference_engine().evaluate(q);
   const double peak = ref[0].irradiance;  // θ = 0: E(1, κ)
   std::vector<std::string> header = {"theta_deg", "reference"}, eheader = {"theta_deg"};
   for (const Method& m : irradiance_methods) {
@@ -343,18 +343,18 @@ Figure figure_c(const FiguresOptions& opt) {
 }
 
 // The float and double sweep over the standard grid that figures (d) and (g) share.
-SweepResult irradiance_sweep(std::vector<SweepMethod>& methods) {
-  for (const SweepMethod& m : registered_sweep_methods())
-    if (m.quantity == Quantity::irradiance) methods.push_back(m);
-  SweepOptions so;
-  so.precisions = {FloatFormat::binary32, FloatFormat::binary64};
+validate::SweepResult irradiance_sweep(std::vector<validate::SweepMethod>& methods) {
+  for (const validate::SweepMethod& m : validate::registered_sweep_methods())
+    if (m.quantity == validate::Quantity::irradiance) methods.push_back(m);
+  validate::SweepOptions so;
+  so.precisions = {validate::FloatFormat::binary32, validate::FloatFormat::binary64};
   so.progress = false;
   so.keep_points = true;
-  return sweep(SweepGrid{}, methods, so);
+  return sweep(validate::SweepGrid{}, methods, so);
 }
 
 // ---- (d) heat maps ---------------------------------------------------------------
-Figure figure_d(const FiguresOptions& opt, const std::vector<SweepMethod>& methods, const SweepResult& res) {
+Figure figure_d(const FiguresOptions& opt, const std::vector<validate::SweepMethod>& methods, const validate::SweepResult& res) {
   Figure f{"d_peak_rel_heatmaps", "peak_rel error heat maps over (κ, c), float",
            "peak_rel = |Ê − E|/E(1, κ) of every registered irradiance method evaluated in float on the standard grid "
            "(29 κ log-spaced in [1e-3, 1e4] × 41 c, docs/quantities.md), one panel per method, one shared log colour "
@@ -362,16 +362,16 @@ Figure figure_d(const FiguresOptions& opt, const std::vector<SweepMethod>& metho
            "the method's max.",
            {}, false, ""};
   std::vector<std::string> header = {"log10_kappa", "cosine"};
-  std::vector<const SweepEntry*> entries;
-  for (const SweepMethod& m : methods) {
+  std::vector<const validate::SweepEntry*> entries;
+  for (const validate::SweepMethod& m : methods) {
     header.emplace_back(m.method.id);
-    entries.push_back(res.find(m.method.id, Quantity::irradiance, FloatFormat::binary32));
+    entries.push_back(res.find(m.method.id, validate::Quantity::irradiance, validate::FloatFormat::binary32));
   }
   std::vector<std::vector<double>> rows;
   for (std::size_t k = 0; k < res.kappas.size(); ++k)
     for (std::size_t j = 0; j < res.cosines.size(); ++j) {
       std::vector<double> r = {std::log10(res.kappas[k]), res.cosines[j]};
-      for (const SweepEntry* e : entries) r.push_back(e ? e->peak_rel[res.index(k, j)] : std::nan(""));
+      for (const validate::SweepEntry* e : entries) r.push_back(e ? e->peak_rel[res.index(k, j)] : std::nan(""));
       rows.push_back(std::move(r));
     }
   const std::string csv = f.id + ".csv";
@@ -410,7 +410,7 @@ Figure figure_d(const FiguresOptions& opt, const std::vector<SweepMethod>& metho
 }
 
 // ---- (g) max peak_rel against κ ------------------------------------------------------
-Figure figure_g(const FiguresOptions& opt, const std::vector<SweepMethod>& methods, const SweepResult& res) {
+Figure figure_g(const FiguresOptions& opt, const std::vector<validate::SweepMethod>& methods, const validate::SweepResult& res) {
   Figure f{"g_peak_rel_vs_kappa", "Max peak_rel over c against κ, every method, float and double",
            "For each of the 29 κ of the standard grid, the max over the 41 cosines of peak_rel = |Ê − E|/E(1, κ), one "
            "line per registered irradiance method (log-log), in float (left) and double (right). A gap: the method "
@@ -419,17 +419,17 @@ Figure figure_g(const FiguresOptions& opt, const std::vector<SweepMethod>& metho
            {}, false, ""};
   std::vector<std::string> header = {"kappa"};
   for (const char* prec : {"float", "double"})
-    for (const SweepMethod& m : methods) header.push_back(fmt::format("{}_{}", m.method.id, prec));
+    for (const validate::SweepMethod& m : methods) header.push_back(fmt::format("{}_{}", m.method.id, prec));
   std::vector<std::vector<double>> rows;
   std::size_t gaps = 0;
   for (std::size_t k = 0; k < res.kappas.size(); ++k) {
     std::vector<double> r = {res.kappas[k]};
-    for (FloatFormat fm : {FloatFormat::binary32, FloatFormat::binary64})
-      for (const SweepMethod& m : methods) {
-        const SweepEntry* e = res.find(m.method.id, Quantity::irradiance, fm);
+    for (validate::FloatFormat fm : {validate::FloatFormat::binary32, validate::FloatFormat::binary64})
+      for (const validate::SweepMethod& m : methods) {
+        const validate::SweepEntry* e = res.find(m.method.id, validate::Quantity::irradiance, fm);
         double v = std::nan("");
         if (e && k < e->per_kappa.size()) {
-          const MetricSummary& s = e->per_kappa[k];
+          const validate::MetricSummary& s = e->per_kappa[k];
           if (s.nonfinite == 0) v = s.peak_rel.max;
           else ++gaps;
         }
@@ -442,7 +442,7 @@ Figure figure_g(const FiguresOptions& opt, const std::vector<SweepMethod>& metho
   io::write_file_atomic(opt.out / csv, numeric_csv(header, rows));
   const std::size_t nm = methods.size();
   std::vector<std::string_view> ids;
-  for (const SweepMethod& m : methods) ids.push_back(m.method.id);
+  for (const validate::SweepMethod& m : methods) ids.push_back(m.method.id);
   const std::vector<std::size_t> fam = family_indices(ids);
   auto panel = [&](std::size_t offset, bool titles) {
     std::string s = "plot 1 w l lw 1.5 dt 3 lc rgb '#000000' notitle";
@@ -676,26 +676,26 @@ Figure figure_f(const FiguresOptions& opt) {
            "as7125 ([AS1964] 7.1.25) and std evaluated in float, against the correctly rounded float erf "
            "(validate/erf_check, sample mode: every 257th float pattern plus a uniform grid of 2^20 points).",
            {}, false, ""};
-  ErfFloatOptions eo;
+  validate::ErfFloatOptions eo;
   eo.bins = 400;
   std::vector<std::string> header = {"x_mid"};
-  std::vector<ErfReport> reports;
+  std::vector<validate::ErfReport> reports;
   for (const char* id : {"listing5", "as7125", "std"}) {
     const ErfVariant* v = find_erf_variant(id);
     if (!v) continue;
-    reports.push_back(check_erf_float(v->f32, eo, v->id));
+    reports.push_back(validate::check_erf_float(v->f32, eo, v->id));
     header.emplace_back(v->id);
   }
   std::vector<std::vector<double>> rows;
   const std::size_t nb = reports.empty() ? 0 : reports.front().series.size();
   for (std::size_t b = 0; b < nb; ++b) {
     std::vector<double> r = {0.5 * (reports.front().series[b].x_lo + reports.front().series[b].x_hi)};
-    for (const ErfReport& rep : reports)
+    for (const validate::ErfReport& rep : reports)
       r.push_back(b < rep.series.size() && rep.series[b].count ? rep.series[b].max_ulp : std::nan(""));
     rows.push_back(std::move(r));
   }
   std::string maxes;
-  for (const ErfReport& rep : reports) maxes += fmt::format("{}{} max {:.3g} ulp", maxes.empty() ? "" : ", ", rep.variant, rep.stats.max_ulp);
+  for (const validate::ErfReport& rep : reports) maxes += fmt::format("{}{} max {:.3g} ulp", maxes.empty() ? "" : ", ", rep.variant, rep.stats.max_ulp);
   f.note = maxes;
   const std::string csv = f.id + ".csv";
   io::write_file_atomic(opt.out / csv, numeric_csv(header, rows));
@@ -830,8 +830,8 @@ std::vector<Figure> make_figures(const FiguresOptions& options) {
   figs.push_back(figure_a(options));
   figs.push_back(figure_b(options));
   figs.push_back(figure_c(options));
-  std::vector<SweepMethod> methods;
-  const SweepResult sweep_result = irradiance_sweep(methods);
+  std::vector<validate::SweepMethod> methods;
+  const validate::SweepResult sweep_result = irradiance_sweep(methods);
   figs.push_back(figure_d(options, methods, sweep_result));
   figs.push_back(figure_e(options));
   figs.push_back(figure_f(options));
@@ -857,4 +857,4 @@ std::vector<Figure> make_figures(const FiguresOptions& options) {
   return figs;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

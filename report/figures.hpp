@@ -1,4 +1,4 @@
-// validate/figures.hpp — the figures of `sglab figures`: for each figure the
+// report/figures.hpp — the figures of `sglab figures`: for each figure the
 // data CSV is written first (io::write_file_atomic), then a gnuplot script
 // next to it, then gnuplot renders a PNG and an SVG. An index.md lists them.
 //
@@ -15,7 +15,7 @@
 
 #include <sglab/registry.hpp>
 
-namespace sglab::validate {
+namespace sglab::report {
 
 // gnuplot is not installed (or not runnable).
 struct GnuplotMissing : std::runtime_error {
@@ -61,4 +61,4 @@ struct ParetoRow {
 inline constexpr std::size_t kMaxParetoCsvBytes = 16 << 20;
 std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path);
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

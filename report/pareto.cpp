@@ -1,5 +1,5 @@
-// validate/pareto.cpp — see pareto.hpp.
-#include "pareto.hpp"
+// report/pareto.cpp — see pareto.hpp.
+#include "report/pareto.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -12,7 +12,7 @@
 
 #include <sglab/registry.hpp>
 
-namespace sglab::validate {
+namespace sglab::report {
 
 namespace {
 
@@ -69,8 +69,8 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget, 
   return r;
 }
 
-SweepGrid pareto_grid(double kappa_lo, double kappa_hi) {
-  SweepGrid g;
+validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi) {
+  validate::SweepGrid g;
   g.kappa_lo = kappa_lo;
   g.kappa_hi = kappa_hi;
   g.kappa_count = 29;
@@ -78,18 +78,18 @@ SweepGrid pareto_grid(double kappa_lo, double kappa_hi) {
   return g;
 }
 
-std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, FloatFormat f) {
-  const SweepGrid grid = pareto_grid(kappa_lo, kappa_hi);
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, validate::FloatFormat f) {
+  const validate::SweepGrid grid = pareto_grid(kappa_lo, kappa_hi);
   grid.validate();
-  std::vector<SweepMethod> methods;
-  for (const Method& m : irradiance_methods) methods.push_back({Quantity::irradiance, m});
-  SweepOptions options;
+  std::vector<validate::SweepMethod> methods;
+  for (const Method& m : irradiance_methods) methods.push_back({validate::Quantity::irradiance, m});
+  validate::SweepOptions options;
   options.precisions = {f};
   options.keep_points = false;
-  const SweepResult result = sweep(grid, methods, options);
+  const validate::SweepResult result = sweep(grid, methods, options);
   std::vector<MethodPoint> out;
   for (const Method& m : irradiance_methods) {
-    const SweepEntry* e = result.find(m.id, Quantity::irradiance, f);
+    const validate::SweepEntry* e = result.find(m.id, validate::Quantity::irradiance, f);
     MethodPoint p;
     p.method = std::string(m.id);
     p.origin = m.origin;
@@ -104,7 +104,7 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, Flo
   return out;
 }
 
-void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions, double min_time) {
+void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, int repetitions, double min_time) {
   CostOptions options;
   options.repetitions = repetitions;
   options.min_time = min_time;
@@ -119,7 +119,7 @@ void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions
   }
 }
 
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, FloatFormat f, const CostTable& table) {
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table) {
   std::vector<std::string> missing;
   for (MethodPoint& p : points) {
     const Cost* c = table.find(CostKind::irradiance, p.method, f, CostMode::batch);
@@ -129,8 +129,8 @@ std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, FloatForma
   return missing;
 }
 
-Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double kappa_lo, double kappa_hi) {
-  Table t(fmt::format("Speed against accuracy ({}): batch ns/eval against max peak_rel over κ in [{}, {}] "
+validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi) {
+  validate::Table t(fmt::format("Speed against accuracy ({}): batch ns/eval against max peak_rel over κ in [{}, {}] "
                       "(29 κ × 41 c); frontier = not dominated",
                       to_string(f), kappa_lo, kappa_hi),
           {{"method"},
@@ -142,9 +142,9 @@ Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double
            {"max_peak_rel", 3},
            {"frontier"}});
   for (const MethodPoint& p : points)
-    t.add_row({Table::text(p.method), Table::text(std::string(to_string(p.origin))), Table::text(to_string(f)),
-               Table::real(kappa_lo), Table::real(kappa_hi), Table::real(p.ns_per_eval),
-               Table::real(p.max_peak_rel), Table::integer(p.frontier ? 1 : 0)});
+    t.add_row({validate::Table::text(p.method), validate::Table::text(std::string(to_string(p.origin))), validate::Table::text(to_string(f)),
+               validate::Table::real(kappa_lo), validate::Table::real(kappa_hi), validate::Table::real(p.ns_per_eval),
+               validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0)});
   return t;
 }
 
@@ -158,10 +158,10 @@ bool parse_number(std::string_view s, double& out) {
   return true;
 }
 
-std::optional<FloatFormat> parse_precision(std::string_view text) {
-  if (text == "float") return FloatFormat::binary32;
-  if (text == "double") return FloatFormat::binary64;
+std::optional<validate::FloatFormat> parse_precision(std::string_view text) {
+  if (text == "float") return validate::FloatFormat::binary32;
+  if (text == "double") return validate::FloatFormat::binary64;
   return std::nullopt;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

@@ -1,4 +1,4 @@
-// validate/pareto.hpp — speed against accuracy: the Pareto frontier of the
+// report/pareto.hpp — speed against accuracy: the Pareto frontier of the
 // irradiance methods (`sglab pareto`) and the cheapest method meeting an
 // error budget (`sglab recommend`).
 //
@@ -16,12 +16,12 @@
 #include <string_view>
 #include <vector>
 
-#include "cost.hpp"
-#include "cost_table.hpp"
-#include "sweep.hpp"
-#include "table.hpp"
+#include "report/cost.hpp"
+#include "report/cost_table.hpp"
+#include "validate/sweep.hpp"
+#include "validate/table.hpp"
 
-namespace sglab::validate {
+namespace sglab::report {
 
 // Costs within this fraction of each other are ties, broken by error.
 inline constexpr double kCostTieMargin = 0.05;
@@ -58,26 +58,26 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget,
 // Max peak_rel of every irradiance method in precision `f` over the grid
 // {lo, hi, 29, 41} (see above). In registry order; ns_per_eval left 0.
 // Throws std::invalid_argument on an invalid range.
-SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
-std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, FloatFormat f);
+validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, validate::FloatFormat f);
 
 // Fills ns_per_eval with the median batch cost in precision `f`
 // (measure_costs, `repetitions` × `min_time` s per method): live timing,
 // which differs from run to run.
-void fill_costs(std::vector<MethodPoint>& points, FloatFormat f, int repetitions = 5, double min_time = 0.01);
+void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, int repetitions = 5, double min_time = 0.01);
 
 // Fills ns_per_eval from a cost table (cost_table.hpp): the irradiance batch
 // cost in precision `f`. A method without that row gets NaN (so it is neither
 // recommended nor on the frontier); returns the ids of those methods.
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, FloatFormat f, const CostTable& table);
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table);
 
 // method, origin, precision, kappa_lo, kappa_hi, ns_per_eval, max_peak_rel,
 // frontier (origin published/refit/sglab, frontier 0/1).
-Table pareto_table(const std::vector<MethodPoint>& points, FloatFormat f, double kappa_lo, double kappa_hi);
+validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi);
 
 // Whole-string finite number.
 bool parse_number(std::string_view text, double& out);
 // "float" / "double".
-std::optional<FloatFormat> parse_precision(std::string_view text);
+std::optional<validate::FloatFormat> parse_precision(std::string_view text);
 
-}  // namespace sglab::validate
+}  // namespace sglab::report

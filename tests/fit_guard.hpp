@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "minimax.hpp"
+#include "fit/minimax.hpp"
 
 namespace sglab::test {
 

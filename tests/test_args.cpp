@@ -1,4 +1,4 @@
-// The one κ-range parser (validate/args.hpp) and the commands that use it:
+// The one κ-range parser (common/args.hpp) and the commands that use it:
 // fit, sweep, pareto and recommend give the same answer for the same text.
 #include <cmath>
 #include <filesystem>
@@ -9,22 +9,22 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
-#include "sweep.hpp"
-#include "test_support.hpp"
+#include "common/args.hpp"
+#include "validate/sweep.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
-using sglab::validate::KappaRange;
-using sglab::validate::KappaRangeRules;
-using sglab::validate::parse_kappa_range;
+using sglab::io::KappaRange;
+using sglab::io::KappaRangeRules;
+using sglab::io::parse_kappa_range;
 
-KappaRangeRules range(sglab::validate::NumberFormat f = sglab::validate::kFloatFormat) {
+KappaRangeRules range(sglab::io::NumberFormat f = sglab::io::kFloatFormat) {
   KappaRangeRules r;
   r.format = f;
   return r;
 }
-KappaRangeRules grid(sglab::validate::NumberFormat f = sglab::validate::kFloatFormat) {
+KappaRangeRules grid(sglab::io::NumberFormat f = sglab::io::kFloatFormat) {
   KappaRangeRules r = range(f);
   r.with_count = true;
   return r;
@@ -71,7 +71,7 @@ TEST(KappaRange, OverflowAndUnderflowSayOutOfRange) {
                                                   "000000000000000000000000000000000000000000000000000000000000000000000"
                                                   "000000000000000000000000000000000000000000000000000000000000000000000"
                                                   "0000000000000000000000000000000000000000000000"}) {
-    const std::string e = error_of(bad, range(sglab::validate::kDoubleFormat));
+    const std::string e = error_of(bad, range(sglab::io::kDoubleFormat));
     EXPECT_NE(e.find("out of range"), std::string::npos) << e;
     EXPECT_EQ(e.find("not a number"), std::string::npos) << e;
   }
@@ -79,7 +79,7 @@ TEST(KappaRange, OverflowAndUnderflowSayOutOfRange) {
                      "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
                      "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
                      "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000001:1",
-                     range(sglab::validate::kDoubleFormat))
+                     range(sglab::io::kDoubleFormat))
                 .find("nonzero but smaller"),
             std::string::npos);
   EXPECT_NE(error_of("1:2:99999999999999999999", grid()).find("out of range"), std::string::npos);
@@ -87,17 +87,17 @@ TEST(KappaRange, OverflowAndUnderflowSayOutOfRange) {
 
 TEST(KappaRange, PrecisionOfUseDecidesTinyAndHugeBounds) {
   // 1e-310 is a subnormal double: valid where κ is used in double, 0 in float.
-  EXPECT_EQ(accepted("1e-310:1", range(sglab::validate::kDoubleFormat)).lo, 1e-310);
+  EXPECT_EQ(accepted("1e-310:1", range(sglab::io::kDoubleFormat)).lo, 1e-310);
   EXPECT_NE(error_of("1e-310:1", range()).find("rounds to 0 in float"), std::string::npos);
   // 1e-46 is below half the smallest float subnormal (2^-150 ≈ 7.0e-46): 0 in float.
   EXPECT_NE(error_of("1e-46:1", range()).find("rounds to 0 in float"), std::string::npos);
   // 1e-45 rounds to the smallest float subnormal 2^-149: accepted.
   EXPECT_EQ(accepted("1e-45:1", range()).lo, 1e-45);
   // Half: the smallest subnormal is 2^-24 ≈ 5.96e-8, the largest finite 65504.
-  EXPECT_NE(error_of("2e-8:1", range(sglab::validate::kHalfFormat)).find("rounds to 0 in half"), std::string::npos);
-  EXPECT_NE(error_of("1:1e5", range(sglab::validate::kHalfFormat)).find("largest finite half"), std::string::npos);
+  EXPECT_NE(error_of("2e-8:1", range(sglab::io::kHalfFormat)).find("rounds to 0 in half"), std::string::npos);
+  EXPECT_NE(error_of("1:1e5", range(sglab::io::kHalfFormat)).find("largest finite half"), std::string::npos);
   EXPECT_NE(error_of("1:1e39", range()).find("largest finite float"), std::string::npos);
-  EXPECT_EQ(accepted("1:1e39", range(sglab::validate::kDoubleFormat)).hi, 1e39);
+  EXPECT_EQ(accepted("1:1e39", range(sglab::io::kDoubleFormat)).hi, 1e39);
 }
 
 TEST(KappaRange, BoundsAndCount) {
@@ -108,7 +108,7 @@ TEST(KappaRange, BoundsAndCount) {
     EXPECT_FALSE(error_of(bad, grid()).empty()) << bad;
   EXPECT_NE(error_of("1:2:1", grid()).find("N = 1 needs LO = HI"), std::string::npos);
   EXPECT_EQ(accepted("3:3:1", grid()).count, 1);
-  EXPECT_EQ(accepted("1:2:100000", grid()).count, sglab::validate::kMaxKappaCount);
+  EXPECT_EQ(accepted("1:2:100000", grid()).count, sglab::io::kMaxKappaCount);
   EXPECT_NE(error_of("1:2:100001", grid()).find("out of range (at most 100000)"), std::string::npos);
 }
 
@@ -125,13 +125,13 @@ TEST(KappaRange, MessagesEscapeTheTextAndStayShort) {
   EXPECT_LT(h.size(), 300u) << h.substr(0, 300);
   EXPECT_NE(h.find(std::to_string(huge.size() - 2) + " bytes"), std::string::npos) << h;
   // Control characters and non-ASCII bytes are escaped.
-  EXPECT_EQ(sglab::validate::quote_escaped("a\nb\xc3\xa9\\"), "'a\\x0ab\\xc3\\xa9\\x5c'");
+  EXPECT_EQ(sglab::io::quote_escaped("a\nb\xc3\xa9\\"), "'a\\x0ab\\xc3\\xa9\\x5c'");
 }
 
 TEST(LogSpaced, SortedAndExactAtTheEnds) {
   for (const auto& [lo, hi, n] : {std::tuple{5.0, 5.0, 4}, std::tuple{1e-3, 1e4, 29}, std::tuple{0.1, 0.3, 7},
                                    std::tuple{1e-310, 1e300, 1000}, std::tuple{3.0, 3.0000000000000004, 50}}) {
-    const auto v = sglab::validate::log_spaced(lo, hi, n);
+    const auto v = sglab::io::log_spaced(lo, hi, n);
     ASSERT_EQ(v.size(), static_cast<std::size_t>(n));
     EXPECT_EQ(v.front(), lo);
     EXPECT_EQ(v.back(), hi);
@@ -142,9 +142,9 @@ TEST(LogSpaced, SortedAndExactAtTheEnds) {
     }
   }
   // LO = HI: N copies of LO (pow(10, log10(5)) is not 5).
-  EXPECT_EQ(sglab::validate::log_spaced(5, 5, 4), (std::vector<double>{5, 5, 5, 5}));
+  EXPECT_EQ(sglab::io::log_spaced(5, 5, 4), (std::vector<double>{5, 5, 5, 5}));
   // The standard grid is the correctly rounded 10^(i/4).
-  const auto s = sglab::validate::log_spaced(1e-3, 1e4, 29);
+  const auto s = sglab::io::log_spaced(1e-3, 1e4, 29);
   const auto want = sglab::test::standard_kappas();
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_NEAR(s[i], want[i], 1e-15 * want[i]);
   // The sweep grid uses it.

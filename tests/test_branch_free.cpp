@@ -13,8 +13,8 @@
 
 #include <sglab/sglab.hpp>
 
-#include "reference.hpp"
-#include "test_support.hpp"
+#include "validate/reference.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

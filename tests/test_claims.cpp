@@ -10,13 +10,14 @@
 
 #include <gtest/gtest.h>
 
-#include "claims.hpp"
-#include "figures.hpp"
-#include "io.hpp"
-#include "test_support.hpp"
+#include "validate/claims.hpp"
+#include "report/figures.hpp"
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace sglab::validate;
+using namespace sglab::report;
 
 TEST(Claims, AbramowitzStegunBoundHolds) {
   const double err = as7125_max_abs_error(200'001);

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

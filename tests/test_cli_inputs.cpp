@@ -24,10 +24,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "figures.hpp"
-#include "io.hpp"
-#include "sweep.hpp"
-#include "test_support.hpp"
+#include "report/figures.hpp"
+#include "common/io.hpp"
+#include "validate/sweep.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -137,7 +137,7 @@ TEST(ByteOrderMark, ParetoCsvWithAMarkIsRead) {
       "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
       "punctual,published,float,0.001,10000,0.8,0.9,true\n";
   sglab::io::write_file_atomic(dir.path / "p.csv", "\xEF\xBB\xBF" + body);
-  const auto rows = sglab::validate::read_pareto_csv(dir.path / "p.csv");
+  const auto rows = sglab::report::read_pareto_csv(dir.path / "p.csv");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].method, "punctual");
 }

@@ -8,9 +8,9 @@
 
 #include <sglab/constants.hpp>
 
-#include "constants_io.hpp"
-#include "io.hpp"
-#include "test_support.hpp"
+#include "fit/constants_io.hpp"
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

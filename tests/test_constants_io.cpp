@@ -16,10 +16,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "atomic_files.hpp"
-#include "constants_io.hpp"
-#include "io.hpp"
-#include "test_support.hpp"
+#include "common/atomic_files.hpp"
+#include "fit/constants_io.hpp"
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -19,8 +19,8 @@
 
 #include <sglab/registry.hpp>
 
-#include "cost_table.hpp"
-#include "test_support.hpp"
+#include "report/cost_table.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -189,9 +189,9 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
   EXPECT_EQ(both.exit_code, 2) << both.output;
   // read_cost_table names the key.
   try {
-    sglab::validate::read_cost_table(dir / "negative.json");
+    sglab::report::read_cost_table(dir / "negative.json");
     ADD_FAILURE() << "no error";
-  } catch (const sglab::validate::CostTableError& e) {
+  } catch (const sglab::report::CostTableError& e) {
     EXPECT_NE(std::string(e.what()).find("costs[0].\"ns_per_eval\""), std::string::npos) << e.what();
   }
 }
@@ -201,9 +201,9 @@ TEST(CostTable, BenchWritesATableThatReadsBack) {
   const auto r = run_sglab({"bench", "--filter", "^irradiance/(hill|tokuyoshi2024)/float/", "--repetitions", "1",
                             "--min-time", "0.01", "--out", dir.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto t = sglab::validate::read_cost_table(dir / "costs.json");
-  using sglab::validate::CostKind;
-  using sglab::validate::CostMode;
+  const auto t = sglab::report::read_cost_table(dir / "costs.json");
+  using sglab::report::CostKind;
+  using sglab::report::CostMode;
   using sglab::validate::FloatFormat;
   for (CostMode mode : {CostMode::scalar, CostMode::batch}) {
     EXPECT_TRUE(t.find(CostKind::irradiance, "hill", FloatFormat::binary32, mode));

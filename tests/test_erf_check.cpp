@@ -16,9 +16,9 @@
 #include <sglab/erf.hpp>
 #include <sglab/registry.hpp>
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
-#include "erf_check.hpp"
+#include "validate/erf_check.hpp"
 
 namespace {
 

@@ -13,10 +13,10 @@
 
 #include <sglab/sglab.hpp>
 
-#include "fit_guard.hpp"
-#include "minimax.hpp"
-#include "targets.hpp"
-#include "test_support.hpp"
+#include "tests/fit_guard.hpp"
+#include "fit/minimax.hpp"
+#include "fit/targets.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

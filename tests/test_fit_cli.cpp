@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "constants_io.hpp"
-#include "io.hpp"
-#include "test_support.hpp"
+#include "fit/constants_io.hpp"
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -9,17 +9,17 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "cost_table.hpp"
-#include "gpu_cost.hpp"
-#include "io.hpp"
-#include "test_support.hpp"
-#include "vulkan_runner.hpp"
+#include "report/cost_table.hpp"
+#include "export/gpu_cost.hpp"
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
+#include "export/vulkan_runner.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-namespace gpu = sglab::validate::gpu;
-namespace shader = sglab::validate::shader;
+namespace gpu = sglab::shader::gpu;
+namespace shader = sglab::shader;
 using sglab::test::run_sglab;
 using sglab::test::TempDir;
 
@@ -27,7 +27,7 @@ using sglab::test::TempDir;
 gpu::Shader synthetic(const std::string& name, const std::string& body) {
   const std::string src = fmt::format("float {}(float cosine, float kappa) {{ {} }}\n", name, body);
   return {name, shader::Language::glsl,
-          sglab::validate::vulkan::compile_compute(shader::Language::glsl,
+          sglab::shader::vulkan::compile_compute(shader::Language::glsl,
                                                    shader::compute_shader(shader::Language::glsl, src, name))};
 }
 
@@ -127,12 +127,12 @@ TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
   TempDir dir("gpucost-out");
   const fs::path committed = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
   fs::copy_file(committed, dir.path / "costs.json");
-  const auto before = sglab::validate::read_cost_table(dir.path / "costs.json");
+  const auto before = sglab::report::read_cost_table(dir.path / "costs.json");
   const std::vector<std::string> args = {"gpucost", "--families", "navi21", "--method", "hill", "--out",
                                          dir.path.string()};
   const auto run = run_sglab(args);
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto after = sglab::validate::read_cost_table(dir.path / "costs.json");
+  const auto after = sglab::report::read_cost_table(dir.path / "costs.json");
   ASSERT_EQ(after.costs.size(), before.costs.size());
   for (std::size_t i = 0; i < before.costs.size(); ++i) EXPECT_EQ(after.costs[i].ns_per_eval, before.costs[i].ns_per_eval);
   ASSERT_TRUE(after.gpu.has_value());
@@ -192,9 +192,9 @@ TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
   doc["gpu"] = {{"driver", "radv Mesa"}, {"command", "x"}, {"rows", {{{"method", "hill"}, {"family", "navi21"}}}}};
   sglab::io::write_file_atomic(dir.path / "costs.json", doc.dump());
   try {
-    sglab::validate::read_cost_table(dir.path / "costs.json");
+    sglab::report::read_cost_table(dir.path / "costs.json");
     FAIL() << "accepted a row without lang";
-  } catch (const sglab::validate::CostTableError& e) {
+  } catch (const sglab::report::CostTableError& e) {
     EXPECT_NE(std::string(e.what()).find("rows[0].lang"), std::string::npos) << e.what();
   }
 }

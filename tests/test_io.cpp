@@ -1,5 +1,5 @@
-// File input and output (validate/io.hpp, validate/atomic_files.hpp,
-// validate/json_input.hpp) and the commands' use of them: an output never
+// File input and output (common/io.hpp, common/atomic_files.hpp,
+// common/json_input.hpp) and the commands' use of them: an output never
 // replaces what is not a regular file, an empty output path is refused, every
 // input file is read bounded and only when it is a regular file, and bad JSON
 // or CSV input is named (file and key or line) in a short, escaped message.
@@ -18,11 +18,11 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "args.hpp"
-#include "atomic_files.hpp"
-#include "io.hpp"
-#include "json_input.hpp"
-#include "test_support.hpp"
+#include "common/args.hpp"
+#include "common/atomic_files.hpp"
+#include "common/io.hpp"
+#include "common/json_input.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -263,7 +263,7 @@ TEST(JsonInput, SceneAndConstantsFilesWithHugeNumbersExitTwoNamingFileAndKey) {
 // ---- whole-number options, one parser ------------------------------------------------
 
 TEST(CountOption, ParsesDigitsOnlyWithinTheRange) {
-  using sglab::validate::parse_count;
+  using sglab::io::parse_count;
   EXPECT_EQ(std::get<long long>(parse_count("4096", 1, 1000000)), 4096);
   EXPECT_EQ(std::get<long long>(parse_count("2", 2, 2)), 2);
   const std::pair<const char*, const char*> bad[] = {

@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io.hpp"
-#include "metrics.hpp"
-#include "table.hpp"
+#include "common/io.hpp"
+#include "validate/metrics.hpp"
+#include "validate/table.hpp"
 
 namespace sv = sglab::validate;
 

@@ -17,14 +17,14 @@
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "pareto.hpp"
-#include "test_support.hpp"
+#include "common/args.hpp"
+#include "report/pareto.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
-using sglab::validate::MethodPoint;
-using sglab::validate::recommend;
+using sglab::report::MethodPoint;
+using sglab::report::recommend;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -47,7 +47,7 @@ bool on_frontier(const std::vector<MethodPoint>& v, const std::string& id) {
 // The origin of each point comes from the registry (Method::origin) and the
 // table writes it as text: published, refit or sglab.
 TEST(Pareto, OriginFromRegistryInTable) {
-  const auto points = sglab::validate::irradiance_errors(1, 10, sglab::validate::FloatFormat::binary64);
+  const auto points = sglab::report::irradiance_errors(1, 10, sglab::validate::FloatFormat::binary64);
   ASSERT_EQ(points.size(), std::size(sglab::irradiance_methods));
   bool published = false, refit = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -58,7 +58,7 @@ TEST(Pareto, OriginFromRegistryInTable) {
   }
   EXPECT_TRUE(published && refit);  // both kinds exist in the registry today
   const std::string csv = sglab::validate::to_csv(
-      sglab::validate::pareto_table(points, sglab::validate::FloatFormat::binary64, 1, 10));
+      sglab::report::pareto_table(points, sglab::validate::FloatFormat::binary64, 1, 10));
   for (const auto& m : sglab::irradiance_methods) {
     const std::string row = fmt::format("\n{},{},double,", m.id, sglab::to_string(m.origin));
     EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;
@@ -76,7 +76,7 @@ TEST(Frontier, SyntheticPoints) {
       pt("same_cost", 2.0, 2e-2),    // equal cost to mid, worse error: dominated
       pt("same_err", 12.0, 1e-4),    // equal error to slow_good, dearer: dominated
   };
-  sglab::validate::mark_frontier(v);
+  sglab::report::mark_frontier(v);
   EXPECT_TRUE(on_frontier(v, "fast_bad"));
   EXPECT_TRUE(on_frontier(v, "mid"));
   EXPECT_FALSE(on_frontier(v, "dominated"));
@@ -89,7 +89,7 @@ TEST(Frontier, SyntheticPoints) {
 
 TEST(Frontier, AllNaNHasNoFrontier) {
   std::vector<MethodPoint> v{pt("a", 1, kNaN), pt("b", 2, kNaN)};
-  sglab::validate::mark_frontier(v);
+  sglab::report::mark_frontier(v);
   EXPECT_FALSE(v[0].frontier);
   EXPECT_FALSE(v[1].frontier);
 }
@@ -134,15 +134,15 @@ TEST(Recommend, NoneQualifiesNamesMostAccurate) {
 }
 
 TEST(Recommend, ParseKappaRange) {
-  // The shared parser (validate/args.hpp; tests/test_args.cpp has the rules).
-  using sglab::validate::KappaRange;
-  const sglab::validate::KappaRangeRules rules;  // LO:HI, used in float
-  const auto ok = sglab::validate::parse_kappa_range("1e-3:1e4", rules);
+  // The shared parser (common/args.hpp; tests/test_args.cpp has the rules).
+  using sglab::io::KappaRange;
+  const sglab::io::KappaRangeRules rules;  // LO:HI, used in float
+  const auto ok = sglab::io::parse_kappa_range("1e-3:1e4", rules);
   ASSERT_TRUE(std::holds_alternative<KappaRange>(ok));
   EXPECT_EQ(std::get<KappaRange>(ok).lo, 1e-3);
   EXPECT_EQ(std::get<KappaRange>(ok).hi, 1e4);
   for (const char* bad : {"0:1", "2:1", "a:1", "1:2:3", "1"})
-    EXPECT_TRUE(std::holds_alternative<std::string>(sglab::validate::parse_kappa_range(bad, rules))) << bad;
+    EXPECT_TRUE(std::holds_alternative<std::string>(sglab::io::parse_kappa_range(bad, rules))) << bad;
 }
 
 // ---- CLI -------------------------------------------------------------------

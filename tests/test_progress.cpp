@@ -1,4 +1,4 @@
-// Progress on stderr (validate/io.hpp): drawn only on a terminal. The helper
+// Progress on stderr (common/io.hpp): drawn only on a terminal. The helper
 // with an injected "is a terminal" flag and a string sink; the commands with
 // long work (`sglab erf`, `sglab fit`) print nothing extra when stderr is not
 // a terminal (a pipe, as under ctest) and draw their line when it is a
@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "io.hpp"
-#include "test_support.hpp"
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -27,9 +27,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "reference.hpp"
-#include "reference_detail.hpp"
-#include "test_support.hpp"
+#include "validate/reference.hpp"
+#include "validate/reference_detail.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -22,9 +22,9 @@
 
 #include <sglab/registry.hpp>
 
-#include "io.hpp"
-#include "reference.hpp"
-#include "test_support.hpp"
+#include "common/io.hpp"
+#include "validate/reference.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include <sglab/sglab.hpp>
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

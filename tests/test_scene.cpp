@@ -15,8 +15,8 @@
 
 #include <sglab/sglab.hpp>
 
-#include "scene.hpp"
-#include "test_support.hpp"
+#include "validate/scene.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

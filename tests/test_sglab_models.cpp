@@ -17,10 +17,10 @@
 
 #include <sglab/sglab.hpp>
 
-#include "fit_guard.hpp"
-#include "reference.hpp"
-#include "targets.hpp"
-#include "test_support.hpp"
+#include "tests/fit_guard.hpp"
+#include "validate/reference.hpp"
+#include "fit/targets.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

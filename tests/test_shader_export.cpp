@@ -27,14 +27,14 @@
 #include <sglab/closed_forms.hpp>
 #include <sglab/registry.hpp>
 
-#include "shader_export.hpp"
-#include "sweep.hpp"
-#include "test_support.hpp"
-#include "vulkan_runner.hpp"
+#include "export/shader_export.hpp"
+#include "validate/sweep.hpp"
+#include "tests/test_support.hpp"
+#include "export/vulkan_runner.hpp"
 
 namespace fs = std::filesystem;
-namespace sh = sglab::validate::shader;
-namespace vk = sglab::validate::vulkan;
+namespace sh = sglab::shader;
+namespace vk = sglab::shader::vulkan;
 using sglab::test::run_program;
 using sglab::test::run_sglab;
 

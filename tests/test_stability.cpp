@@ -21,8 +21,8 @@
 #include <sglab/constants.hpp>
 #include <sglab/registry.hpp>
 
-#include "stability.hpp"
-#include "test_support.hpp"
+#include "validate/stability.hpp"
+#include "tests/test_support.hpp"
 
 namespace sv = sglab::validate;
 

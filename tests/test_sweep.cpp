@@ -16,9 +16,9 @@
 #include <sglab/closed_forms.hpp>
 #include <sglab/registry.hpp>
 
-#include "reference.hpp"
-#include "sweep.hpp"
-#include "test_support.hpp"
+#include "validate/reference.hpp"
+#include "validate/sweep.hpp"
+#include "tests/test_support.hpp"
 
 namespace sv = sglab::validate;
 using sglab::test::hex;

@@ -1,4 +1,4 @@
-#include "claims.hpp"
+#include "validate/claims.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,7 @@
 #include <sglab/registry.hpp>
 #include <sglab/sg.hpp>
 
-#include "reference.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::validate {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "table.hpp"
+#include "validate/table.hpp"
 
 namespace sglab::validate {
 

@@ -1,6 +1,6 @@
 // validate/erf_check.cpp — the per-run accumulation and reduction of the erf
 // checker (validate/erf_check.hpp has the definitions).
-#include "erf_check.hpp"
+#include "validate/erf_check.hpp"
 
 #include <cfloat>
 #include <stdexcept>

@@ -39,8 +39,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "erf_reference.hpp"
-#include "io.hpp"
+#include "validate/erf_reference.hpp"
+#include "common/io.hpp"
 
 namespace sglab::validate {
 

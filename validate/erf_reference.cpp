@@ -1,6 +1,6 @@
 // validate/erf_reference.cpp — the correctly rounded erf references (see
 // validate/erf_reference.hpp).
-#include "erf_reference.hpp"
+#include "validate/erf_reference.hpp"
 
 #include <algorithm>
 #include <array>

@@ -30,7 +30,7 @@
 
 #include <sglab/math.hpp>
 
-#include "metrics.hpp"
+#include "validate/metrics.hpp"
 
 namespace sglab::validate {
 

@@ -1,4 +1,4 @@
-#include "metrics.hpp"
+#include "validate/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

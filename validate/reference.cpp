@@ -3,7 +3,7 @@
 // quadrature in reference_detail.hpp. The high-precision instantiation lives
 // in reference_high.cpp (it is slow to compile; a separate unit builds in
 // parallel).
-#include "reference.hpp"
+#include "validate/reference.hpp"
 
 #include <bit>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "reference_detail.hpp"
+#include "validate/reference_detail.hpp"
 
 namespace sglab::validate {
 

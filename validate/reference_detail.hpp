@@ -40,7 +40,7 @@
 #include <boost/math/special_functions/bessel.hpp>
 #include <boost/math/special_functions/expm1.hpp>
 
-#include "reference.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::validate::detail {
 

@@ -7,7 +7,7 @@
 // in the strict ISO mode this project builds in: CMAKE_CXX_EXTENSIONS OFF.)
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
-#include "reference_detail.hpp"
+#include "validate/reference_detail.hpp"
 
 namespace sglab::validate::detail {
 

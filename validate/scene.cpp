@@ -1,4 +1,4 @@
-#include "scene.hpp"
+#include "validate/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
-#include "args.hpp"
-#include "io.hpp"
-#include "json_input.hpp"
-#include "reference.hpp"
+#include "common/args.hpp"
+#include "common/io.hpp"
+#include "common/json_input.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::validate {
 
@@ -101,9 +101,9 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (light.sharpness < 0) fail(source, at + ".sharpness", fmt::format("must be >= 0, got {}", light.sharpness));
     // Every method is ranked in float (and sglab's models over the κ range):
     // κ must be a finite float in both precisions.
-    if (light.sharpness > kFloatFormat.max_finite)
+    if (light.sharpness > io::kFloatFormat.max_finite)
       fail(source, at + ".sharpness",
-           fmt::format("must be at most the largest finite float ({:.9g}), got {}", kFloatFormat.max_finite,
+           fmt::format("must be at most the largest finite float ({:.9g}), got {}", io::kFloatFormat.max_finite,
                        light.sharpness));
     light.amplitude = vector3(source, at + ".amplitude", l["amplitude"]);
     for (std::size_t ch = 0; ch < 3; ++ch) {

@@ -37,7 +37,7 @@
 
 #include <sglab/registry.hpp>
 
-#include "sweep.hpp"
+#include "validate/sweep.hpp"
 
 namespace sglab::validate {
 

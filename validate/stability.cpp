@@ -1,4 +1,4 @@
-#include "stability.hpp"
+#include "validate/stability.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +19,7 @@
 #include <sglab/registry.hpp>
 #include <sglab/sg.hpp>
 
-#include "reference.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::validate {
 

@@ -20,8 +20,8 @@
 
 #include <sglab/registry.hpp>
 
-#include "sweep.hpp"
-#include "table.hpp"
+#include "validate/sweep.hpp"
+#include "validate/table.hpp"
 
 namespace sglab::validate {
 

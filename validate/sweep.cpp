@@ -1,4 +1,4 @@
-#include "sweep.hpp"
+#include "validate/sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "io.hpp"
+#include "common/args.hpp"
+#include "common/io.hpp"
 
 namespace sglab::validate {
 
@@ -77,7 +77,7 @@ std::uint64_t sweep_memory_estimate(const SweepGrid& grid, std::size_t entries) 
   return points * per_point;
 }
 
-std::vector<double> SweepGrid::kappas() const { return log_spaced(kappa_lo, kappa_hi, kappa_count); }
+std::vector<double> SweepGrid::kappas() const { return io::log_spaced(kappa_lo, kappa_hi, kappa_count); }
 
 std::vector<double> SweepGrid::cosines() const {
   std::vector<double> c;

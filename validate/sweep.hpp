@@ -18,9 +18,9 @@
 
 #include <sglab/registry.hpp>
 
-#include "metrics.hpp"
-#include "reference.hpp"
-#include "table.hpp"
+#include "validate/metrics.hpp"
+#include "validate/reference.hpp"
+#include "validate/table.hpp"
 
 namespace sglab::validate {
 
@@ -65,7 +65,7 @@ struct SweepGrid {
   // Nominal values in double. κ_j = 10^(e_lo + (e_hi − e_lo)·j/(N − 1)) with
   // e = log10 (the exponent step is exact for the standard grid, so each κ is
   // the correctly rounded 10^(i/4) and the end points are lo and hi exactly;
-  // validate::log_spaced, which also keeps them sorted within [lo, hi]);
+  // io::log_spaced, which also keeps them sorted within [lo, hi]);
   // c_i = −1 + 2i/(M − 1) evaluated as written (so c_0 = −1 and c_{M−1} = 1 exactly).
   std::vector<double> kappas() const;
   std::vector<double> cosines() const;

@@ -1,11 +1,11 @@
-#include "table.hpp"
+#include "validate/table.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
-#include "io.hpp"
+#include "common/io.hpp"
 
 namespace sglab::validate {
 

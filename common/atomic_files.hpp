@@ -1,4 +1,4 @@
-// validate/atomic_files.hpp — several files written as one unit: either every
+// common/atomic_files.hpp — several files written as one unit: either every
 // file gets its new content or none changes (the constant-set JSON files and
 // the runtime header generated from them, for example).
 #pragma once
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io.hpp"  // InputError
+#include "common/io.hpp"  // InputError
 
 namespace sglab::io {
 

@@ -1,5 +1,5 @@
-// validate/gpu_cost.cpp — see gpu_cost.hpp.
-#include "gpu_cost.hpp"
+// export/gpu_cost.cpp — see gpu_cost.hpp.
+#include "export/gpu_cost.hpp"
 
 #include <stdlib.h>
 #include <sys/utsname.h>
@@ -12,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "io.hpp"
-#include "vulkan_runner.hpp"
+#include "common/io.hpp"
+#include "export/vulkan_runner.hpp"
 
-namespace sglab::validate::gpu {
+namespace sglab::shader::gpu {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
@@ -380,4 +380,4 @@ std::string to_markdown(const Report& report) {
   return out;
 }
 
-}  // namespace sglab::validate::gpu
+}  // namespace sglab::shader::gpu

@@ -1,4 +1,4 @@
-// validate/vulkan_runner.hpp — shader source to SPIR-V with the glslang
+// export/vulkan_runner.hpp — shader source to SPIR-V with the glslang
 // library (GLSL and HLSL front ends, in-process), and one compute dispatch on
 // the first Vulkan device (the Vulkan loader; Mesa's lavapipe on a CPU-only
 // machine).
@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "shader_export.hpp"
-#include "sweep.hpp"
+#include "export/shader_export.hpp"
+#include "validate/sweep.hpp"
 
-namespace sglab::validate::vulkan {
+namespace sglab::shader::vulkan {
 
 // No Vulkan instance or device could be created (no loader ICD, no device
 // with a compute queue): callers report and skip rather than fail.
@@ -87,7 +87,7 @@ class Device {
 // with its compiled-in constants (exactly what `sglab export --lang L --method
 // ID` prints), compiled with glslang and run on `device` over r's grid.
 // Returns the ids that were skipped because they cannot be exported.
-std::vector<std::string> add_device_entries(SweepResult& r, std::span<const SweepMethod> methods,
+std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
                                             shader::Language lang, Device& device, bool keep_points = true);
 
-}  // namespace sglab::validate::vulkan
+}  // namespace sglab::shader::vulkan

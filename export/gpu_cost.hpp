@@ -1,4 +1,4 @@
-// validate/gpu_cost.hpp — `sglab gpucost`: what an exported method costs on a
+// export/gpu_cost.hpp — `sglab gpucost`: what an exported method costs on a
 // GPU, from AMD's shader compiler, without a GPU.
 //
 // Mesa's radeon Vulkan driver (RADV) exposes a "Null hardware" device when
@@ -34,9 +34,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "shader_export.hpp"
+#include "export/shader_export.hpp"
 
-namespace sglab::validate::gpu {
+namespace sglab::shader::gpu {
 
 // RADV cannot create a null device here (no radeon driver, or it refused the
 // family): callers report and skip, as with vulkan::Unavailable.
@@ -144,4 +144,4 @@ Report report_from_json(const nlohmann::ordered_json& j, std::string_view where)
 // A Markdown table per family.
 std::string to_markdown(const Report& report);
 
-}  // namespace sglab::validate::gpu
+}  // namespace sglab::shader::gpu

@@ -1,4 +1,4 @@
-// validate/shader_export.hpp — `sglab export`: one irradiance method as
+// export/shader_export.hpp — `sglab export`: one irradiance method as
 // self-contained GLSL 4.50, HLSL (Shader Model 6) or C++ source with its
 // constants baked in.
 //
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-namespace sglab::validate::shader {
+namespace sglab::shader {
 
 enum class Language { glsl, hlsl, cpp };
 std::string_view to_string(Language lang);
@@ -97,7 +97,7 @@ std::string entry_point_name(std::string_view method);
 std::vector<ConstantSet> method_constants(std::string_view method);
 
 // The source. Every text of the request (provenance, command, device) enters
-// it only through comment_text (validate/comment_text.hpp), inside // comments.
+// it only through comment_text (common/comment_text.hpp), inside // comments.
 // Throws std::invalid_argument for an unknown method, an override no constant
 // slot of the method accepts, or a coefficient that is not finite in float (the
 // precision of the exported code), naming the set and the key.
@@ -125,4 +125,4 @@ ElementaryTier choose_tier(std::optional<double> model_error);
 // group. Used by the Vulkan backend of `sglab sweep`.
 std::string compute_shader(Language lang, std::string_view exported_source, std::string_view entry_point);
 
-}  // namespace sglab::validate::shader
+}  // namespace sglab::shader

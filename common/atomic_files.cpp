@@ -1,4 +1,4 @@
-#include "atomic_files.hpp"
+#include "common/atomic_files.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "io.hpp"
+#include "common/io.hpp"
 
 namespace sglab::io {
 

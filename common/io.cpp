@@ -1,4 +1,4 @@
-#include "io.hpp"
+#include "common/io.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>

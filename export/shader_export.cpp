@@ -1,4 +1,4 @@
-#include "shader_export.hpp"
+#include "export/shader_export.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,10 +12,10 @@
 #include <sglab/constants.hpp>
 #include <sglab/registry.hpp>
 
-#include "comment_text.hpp"
-#include "sweep.hpp"
+#include "common/comment_text.hpp"
+#include "validate/sweep.hpp"
 
-namespace sglab::validate::shader {
+namespace sglab::shader {
 
 std::string_view to_string(Language lang) {
   switch (lang) {
@@ -295,7 +295,7 @@ std::vector<std::string> names(const Ctx& c, std::string_view role, const Consta
 std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSet& s) {
   const char* kw = c.lang == Language::glsl ? "const float" : c.lang == Language::hlsl ? "static const float"
                                                                                        : "inline constexpr float";
-  std::string out = fmt::format("// {}: {} {}\n", role, comment_text(s.cpp_type), comment_text(s.cpp_name));
+  std::string out = fmt::format("// {}: {} {}\n", role, io::comment_text(s.cpp_type), io::comment_text(s.cpp_name));
   for (const auto& [m, v] : s.members) {
     const auto n = names(c, role, s, m);
     for (std::size_t i = 0; i < v.size(); ++i) out += fmt::format("{} {} = {};\n", kw, n[i], lit(v[i]));
@@ -830,13 +830,13 @@ ErrorBudget runtime_budget(std::string_view method) {
   ErrorBudget b;
   const Method* m = find_method(irradiance_methods, method);
   if (!m) return b;
-  SweepOptions options;
+  validate::SweepOptions options;
   options.keep_points = false;
   options.progress = false;
-  const std::vector<SweepMethod> one{{Quantity::irradiance, *m}};
-  const SweepResult r = sweep(SweepGrid{}, one, options);
-  if (const SweepEntry* e = r.find(method, Quantity::irradiance, FloatFormat::binary64)) b.model = e->summary.peak_rel.max;
-  if (const SweepEntry* e = r.find(method, Quantity::irradiance, FloatFormat::binary32))
+  const std::vector<validate::SweepMethod> one{{validate::Quantity::irradiance, *m}};
+  const validate::SweepResult r = sweep(validate::SweepGrid{}, one, options);
+  if (const validate::SweepEntry* e = r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary64)) b.model = e->summary.peak_rel.max;
+  if (const validate::SweepEntry* e = r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary32))
     b.float_cpp = e->summary.peak_rel.max;
   return b;
 }
@@ -934,7 +934,7 @@ ExportResult export_source(const ExportRequest& request) {
       prov = "compiled in from include/sglab/constants.hpp";
       if (auto it = request.provenance.find(set.cpp_name); it != request.provenance.end()) prov += "; " + it->second;
     }
-    h += fmt::format("//   {}: {} ({})\n", role, comment_text(set.cpp_name), comment_text(prov));
+    h += fmt::format("//   {}: {} ({})\n", role, io::comment_text(set.cpp_name), io::comment_text(prov));
   }
   if (!result.tier.id.empty()) h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
   h += request.overrides.empty()
@@ -954,8 +954,8 @@ ExportResult export_source(const ExportRequest& request) {
   else
     h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n", b.elementary.expm1_over_x_rel);
   if (b.vulkan)
-    h += fmt::format("//   measured on Vulkan ({}): {}\n", comment_text(b.vulkan_device), fmt_error(b.vulkan));
-  h += fmt::format("// Produced by: {}\n", comment_text(request.command));
+    h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device), fmt_error(b.vulkan));
+  h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));
 
   std::string body;
   body += h + "\n" + prelude(c);
@@ -1008,4 +1008,4 @@ void main(uint3 id : SV_DispatchThreadID) {{
   throw std::invalid_argument("compute_shader: C++ is not a shader language");
 }
 
-}  // namespace sglab::validate::shader
+}  // namespace sglab::shader

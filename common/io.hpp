@@ -1,4 +1,4 @@
-// validate/io.hpp — file input and output shared by every command: bounded
+// common/io.hpp — file input and output shared by every command: bounded
 // reads of input files, atomic writes (temporary + rename, so no half-written
 // file is ever left, never over anything but a regular file) and terminal
 // progress that is quiet when stderr is not a terminal.
@@ -22,7 +22,7 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Writes `content` to `path` as io::write_files_atomic (validate/atomic_files.hpp)
+// Writes `content` to `path` as io::write_files_atomic (common/atomic_files.hpp)
 // writes one file: a temporary in the same directory renamed over `path`;
 // parent directories created; an empty path or one that exists and is not a
 // regular file refused (InputError). Throws std::runtime_error naming the

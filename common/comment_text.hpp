@@ -1,4 +1,4 @@
-// validate/comment_text.hpp — untrusted text made safe for a `//` comment of
+// common/comment_text.hpp — untrusted text made safe for a `//` comment of
 // generated source: the one escaping function for every generated file that
 // carries text from input (the constants header include/sglab/constants.hpp,
 // and every GLSL, HLSL and C++ export of `sglab export`).
@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace sglab::validate {
+namespace sglab::io {
 
 // `text` made safe for one line of a // comment: no control character, no
 // NUL, no line or paragraph separator, no bidirectional override, never a
@@ -17,4 +17,4 @@ namespace sglab::validate {
 // \xNN. Other UTF-8 text is kept as is.
 std::string comment_text(std::string_view text);
 
-}  // namespace sglab::validate
+}  // namespace sglab::io

@@ -1,4 +1,4 @@
-#include "vulkan_runner.hpp"
+#include "export/vulkan_runner.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -11,7 +11,7 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <vulkan/vulkan.h>
 
-namespace sglab::validate::vulkan {
+namespace sglab::shader::vulkan {
 
 namespace {
 
@@ -440,7 +440,7 @@ std::vector<std::pair<std::string, std::string>> Device::pipeline_representation
   return out;
 }
 
-std::vector<std::string> add_device_entries(SweepResult& r, std::span<const SweepMethod> methods,
+std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
                                             shader::Language lang, Device& device, bool keep_points) {
   const auto exportable = shader::exportable_methods();
   std::vector<float> pairs;
@@ -451,9 +451,9 @@ std::vector<std::string> add_device_entries(SweepResult& r, std::span<const Swee
       pairs.push_back(static_cast<float>(r.kappas[k]));
     }
   std::vector<std::string> skipped;
-  for (const SweepMethod& sm : methods) {
+  for (const validate::SweepMethod& sm : methods) {
     const std::string id(sm.method.id);
-    if (sm.quantity != Quantity::irradiance ||
+    if (sm.quantity != validate::Quantity::irradiance ||
         std::find(exportable.begin(), exportable.end(), id) == exportable.end()) {
       skipped.push_back(fmt::format("{} ({})", id, to_string(sm.quantity)));
       continue;
@@ -462,10 +462,10 @@ std::vector<std::string> add_device_entries(SweepResult& r, std::span<const Swee
     const auto spirv = compile_compute(lang, shader::compute_shader(lang, ex.source, ex.entry_point));
     const std::vector<float> out = device.run(spirv, pairs);
     const std::vector<double> values(out.begin(), out.end());
-    r.entries.push_back(sweep_entry(r, sm, lang == shader::Language::hlsl ? FloatFormat::vulkan_hlsl : FloatFormat::vulkan,
+    r.entries.push_back(sweep_entry(r, sm, lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_hlsl : validate::FloatFormat::vulkan,
                                     values, keep_points));
   }
   return skipped;
 }
 
-}  // namespace sglab::validate::vulkan
+}  // namespace sglab::shader::vulkan

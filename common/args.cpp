@@ -1,4 +1,4 @@
-#include "args.hpp"
+#include "common/args.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-namespace sglab::validate {
+namespace sglab::io {
 
 std::string quote_escaped(std::string_view text, std::size_t max_chars) {
   std::string out = "'";
@@ -192,4 +192,4 @@ std::vector<double> log_spaced(double lo, double hi, int count) {
   return v;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::io

@@ -1,12 +1,12 @@
-#include "json_input.hpp"
+#include "common/json_input.hpp"
 
 #include <variant>
 #include <vector>
 
 #include <fmt/format.h>
 
-#include "args.hpp"
-#include "io.hpp"
+#include "common/args.hpp"
+#include "common/io.hpp"
 
 namespace sglab::io {
 
@@ -29,7 +29,7 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
   bool number_integer(number_integer_t v) override { return put(v); }
   bool number_unsigned(number_unsigned_t v) override { return put(v); }
   bool number_float(number_float_t v, const string_t& text) override {
-    const auto checked = validate::parse_decimal(text);
+    const auto checked = io::parse_decimal(text);
     if (const auto* why = std::get_if<std::string>(&checked)) return stop(*why);
     return put(v);
   }
@@ -49,7 +49,7 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
   bool end_array() override { return close(); }
   bool parse_error(std::size_t, const std::string& last_token, const nlohmann::detail::exception& e) override {
     if (e.id == 406) {  // out_of_range.406: a number beyond the largest double, said as parse_decimal says it
-      const auto checked = validate::parse_decimal(last_token);
+      const auto checked = io::parse_decimal(last_token);
       if (const auto* why = std::get_if<std::string>(&checked)) return stop(*why);
     }
     std::string what = e.what();
@@ -58,8 +58,8 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
     // as <U+0001>): quote it escaped and shortened instead.
     const std::string quoted = "last read: '" + last_token + "'";
     if (const auto pos = what.find(quoted); pos != std::string::npos)
-      what.replace(pos, quoted.size(), "last read: " + validate::quote_escaped(last_token));
-    return stop(what.substr(0, 4 * validate::kMaxQuotedChars + 200));
+      what.replace(pos, quoted.size(), "last read: " + io::quote_escaped(last_token));
+    return stop(what.substr(0, 4 * io::kMaxQuotedChars + 200));
   }
 
   // The key path of the current position, e.g. provenance.achieved.objective or coefficients.small[3].
@@ -80,7 +80,7 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
   bool stop(const std::string& why) {
     if (error.empty()) {
       const std::string where = path();
-      error = where.empty() ? why : fmt::format("key {}: {}", validate::quote_escaped(where), why);
+      error = where.empty() ? why : fmt::format("key {}: {}", io::quote_escaped(where), why);
     }
     return false;
   }

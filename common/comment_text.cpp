@@ -1,10 +1,10 @@
-#include "comment_text.hpp"
+#include "common/comment_text.hpp"
 
 #include <cstdint>
 
 #include <fmt/format.h>
 
-namespace sglab::validate {
+namespace sglab::io {
 
 std::string comment_text(std::string_view s) {
   std::string out;
@@ -48,4 +48,4 @@ std::string comment_text(std::string_view s) {
   return out;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::io

@@ -1,4 +1,4 @@
-// validate/args.hpp — the one parser of κ ranges (`--kappa LO:HI` and
+// common/args.hpp — the one parser of κ ranges (`--kappa LO:HI` and
 // `--kappa LO:HI:N`) shared by `sglab fit`, `sweep`, `pareto` and
 // `recommend`, its number syntax, and the log-spaced points of a range.
 //
@@ -31,7 +31,7 @@
 #include <variant>
 #include <vector>
 
-namespace sglab::validate {
+namespace sglab::io {
 
 // The largest N of LO:HI:N.
 inline constexpr int kMaxKappaCount = 100000;
@@ -98,4 +98,4 @@ std::vector<double> log_spaced(double lo, double hi, int count);
 // "... (N bytes)" when longer.
 std::string quote_escaped(std::string_view text, std::size_t max_chars = kMaxQuotedChars);
 
-}  // namespace sglab::validate
+}  // namespace sglab::io
