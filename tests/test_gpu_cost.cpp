@@ -3,7 +3,9 @@
 // cannot create one.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <fmt/ranges.h>
@@ -157,6 +159,31 @@ TEST_F(OnRadv, DisasmPrintsTheAssembly) {
   const auto two = run_sglab({"gpucost", "--disasm", "--method", "hill", "--method", "vsgl2015", "--family", "navi21"});
   EXPECT_EQ(two.exit_code, 2) << two.output;
   EXPECT_NE(two.output.find("--disasm"), std::string::npos) << two.output;
+}
+
+// An HLSL user pays what a GLSL user pays: for every export, ACO's inverse
+// throughput of the HLSL form is within 5% of the GLSL form's on RDNA2 and
+// RDNA3 (both are the same function, so the compiler should see the same
+// control flow; glslang's HLSL front end evaluates both arms of ?:).
+TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
+  const std::vector<std::string> methods = shader::exportable_methods();
+  std::vector<gpu::Shader> shaders;
+  for (shader::Language lang : {shader::Language::glsl, shader::Language::hlsl}) {
+    shaders.push_back(gpu::baseline_shader(lang));
+    for (const std::string& m : methods) shaders.push_back(gpu::method_shader(m, lang));
+  }
+  const gpu::Report r = measure({"navi21", "gfx1100"}, shaders);
+  ASSERT_EQ(r.rows.size(), 2 * 2 * methods.size());
+  std::map<std::pair<std::string, std::string>, std::int64_t> glsl;
+  for (const gpu::Row& row : r.rows)
+    if (row.lang == shader::Language::glsl) glsl[{row.family, row.method}] = row.stats.inverse_throughput;
+  for (const gpu::Row& row : r.rows) {
+    if (row.lang != shader::Language::hlsl) continue;
+    const std::int64_t g = glsl.at({row.family, row.method}), h = row.stats.inverse_throughput;
+    EXPECT_GT(g, 0) << row.family << " " << row.method;
+    EXPECT_LE(std::abs(h - g), 0.05 * g) << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h
+                                         << " cycles";
+  }
 }
 
 TEST_F(OnRadv, AFamilyRadvDoesNotKnowIsReported) {

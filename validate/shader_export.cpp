@@ -339,7 +339,13 @@ std::string helper_erf(const Ctx& c, const Slots& slots) {
 }}
 {{INLINE}}float {{P}}erf(float x) {{
   float a = abs(x);
-  float y = a >= {1} ? 1.0f : (a > {0} ? 1.0f - exp2(-a * {3}) : a * {2});
+  float y;
+  if (a >= {1})
+    y = 1.0f;
+  else if (a > {0})
+    y = 1.0f - exp2(-a * {3});
+  else
+    y = a * {2};
   return x < 0.0f ? -y : y;
 }}
 )",
@@ -381,7 +387,8 @@ std::string helper_product(const Ctx& c, const Slots&) {
   float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
   float kmin = min(kappa, lambda);
   float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
-  float c3 = k3s > 0.0f ? clamp((ks * c + ls) / k3s, -1.0f, 1.0f) : 1.0f;
+  float c3 = 1.0f;
+  if (k3s > 0.0f) c3 = clamp((ks * c + ls) / k3s, -1.0f, 1.0f);
   return {VEC3}(m * k3s, log_amp, c3);
 }
 )",
@@ -422,7 +429,11 @@ std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
 {INLINE}float {P}hemispherical(float cosine, float kappa) {
   float t = {P}steepness(kappa);
   float c = clamp(cosine, -1.0f, 1.0f);
-  float ratio = t < 0.0001220703125f ? c : clamp({P}erf(t * c) / {P}erf(t), -1.0f, 1.0f);
+  float ratio;
+  if (t < 0.0001220703125f)
+    ratio = c;
+  else
+    ratio = clamp({P}erf(t * c) / {P}erf(t), -1.0f, 1.0f);
   float s = 0.5f + 0.5f * ratio;
   float e = exp(-kappa);
   return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
@@ -455,7 +466,8 @@ std::string helper_lerp2024(const Ctx& c, const Slots&) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
   float x = t * t * (c * c - 1.0f);
-  float tail = t > 0.0f ? exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t : 0.0f;
+  float tail = 0.0f;
+  if (t > 0.0f) tail = exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t;
   return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
 }
 )",
@@ -536,22 +548,34 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   std::vector<std::string> den_small(den.begin(), den.end()), den_large{"1.0f"};
   den_small.push_back("1.0f");
   for (std::size_t i = d; i-- > 0;) den_large.push_back(den[i]);
-  std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
-// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
-{{INLINE}}float {{P}}correction(float kappa, float z2) {{
-  float x = kappa < 1.0f ? kappa : 1.0f / kappa;
-  float inv = 1.0f / (kappa < 1.0f ? {} : {});
-)",
-                                 d, horner_text("x", den_small), horner_text("x", den_large));
+  // One if/else for both forms: GLSL and HLSL front ends then branch alike
+  // (HLSL's ?: evaluates both arms).
+  std::string decl = "  float x, den", small_arm = "    x = kappa;\n", large_arm = "    x = 1.0f / kappa;\n";
+  small_arm += fmt::format("    den = {};\n", horner_text("x", den_small));
+  large_arm += fmt::format("    den = {};\n", horner_text("x", den_large));
+  std::string products;
   std::vector<std::string> b;
   for (std::size_t j = 0; j < n; ++j) {
     std::vector<std::string> small(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
     std::vector<std::string> large(small.rbegin(), small.rend());
-    text += fmt::format("  float b{} = (kappa < 1.0f ? {} : {}) * inv;\n", j, horner_text("x", small),
-                        horner_text("x", large));
+    decl += fmt::format(", n{}", j);
+    small_arm += fmt::format("    n{} = {};\n", j, horner_text("x", small));
+    large_arm += fmt::format("    n{} = {};\n", j, horner_text("x", large));
+    products += fmt::format("  float b{0} = n{0} * inv;\n", j);
     b.push_back(fmt::format("b{}", j));
   }
-  text += fmt::format("  return {};\n}}\n", horner_text("z2", b));
+  const std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
+// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
+{{INLINE}}float {{P}}correction(float kappa, float z2) {{
+{};
+  if (kappa < 1.0f) {{
+{}  }} else {{
+{}  }}
+  float inv = 1.0f / den;
+{}  return {};
+}}
+)",
+                                       d, decl, small_arm, large_arm, products, horner_text("z2", b));
   return subst(text, c);
 }
 
@@ -566,9 +590,11 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   float z2 = tz * tz;
   float x = t * t * (c * c - 1.0f);
   float g = exp(-z2);
-  float tail = t > 0.0f ? g * (x * {P}expm1_over_x(x)) / t : 0.0f;
+  float tail = 0.0f;
+  if (t > 0.0f) tail = g * (x * {P}expm1_over_x(x)) / t;
   float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail;
-  float corr = g > 0.0f ? (1.0f - c * c) * g * {P}correction(kappa, z2) : 0.0f;
+  float corr = 0.0f;
+  if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(kappa, z2);
   return clamp(f + corr, 0.0f, 1.0f);
 }
 )",
