@@ -226,6 +226,66 @@ TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
   }
 }
 
+// Runs in `dir` for the lifetime of the object (run_sglab spawns with our cwd).
+struct WorkingDirectory {
+  fs::path old = fs::current_path();
+  explicit WorkingDirectory(const fs::path& dir) { fs::current_path(dir); }
+  ~WorkingDirectory() { fs::current_path(old); }
+};
+
+// `sglab export`'s header states the GPU cost that the project's cost table
+// holds for exactly the exported code: the rows of the method and language
+// whose SPIR-V hash is that of the export in gpucost's wrapper (the header's
+// other comments, provenance and Vulkan error, do not change the code). A row
+// of other code is not this export's cost: "not measured". No device needed.
+TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
+  TempDir dir("gpucost-export");
+  const fs::path checkout = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
+  fs::create_directories(dir.path / "include" / "sglab");
+  fs::create_directories(dir.path / "data" / "results");
+  fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
+  fs::copy_file(checkout / "data" / "results" / "vulkan_sweep.json", dir.path / "data" / "results" / "vulkan_sweep.json");
+  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  const auto row = [](const std::string& family, shader::Language lang, std::int64_t cycles, std::string hash) {
+    gpu::Statistics s;
+    s.instructions = s.inverse_throughput = s.latency = cycles;
+    return gpu::Row{"hill", family, lang, false, "float", s, std::move(hash)};
+  };
+  const std::string glsl_hash = gpu::spirv_hash(gpu::method_shader("hill", shader::Language::glsl).spirv);
+  const std::string hlsl_hash = gpu::spirv_hash(gpu::method_shader("hill", shader::Language::hlsl).spirv);
+  ASSERT_NE(glsl_hash, hlsl_hash);
+  report.rows = {row("navi21", shader::Language::glsl, 1234, glsl_hash),
+                 row("gfx1100", shader::Language::glsl, 2345, glsl_hash),
+                 row("navi21", shader::Language::hlsl, 3456, glsl_hash)};  // another code's hash
+  doc["gpu"] = gpu::to_json(report);
+  sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
+
+  WorkingDirectory cwd(dir.path);
+  const auto glsl = run_sglab({"export", "--lang", "glsl", "--method", "hill"}, false);
+  ASSERT_EQ(glsl.exit_code, 0) << glsl.output;
+  EXPECT_NE(glsl.output.find("measured on Vulkan"), std::string::npos) << glsl.output;
+  EXPECT_NE(glsl.output.find("radv Mesa (test rows), data/results/costs.json): navi21 1234, gfx1100 2345\n"),
+            std::string::npos)
+      << glsl.output;
+  const auto hlsl = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
+  ASSERT_EQ(hlsl.exit_code, 0) << hlsl.output;
+  EXPECT_EQ(hlsl.output.find("3456"), std::string::npos) << hlsl.output;
+  EXPECT_NE(hlsl.output.find("`sglab gpucost`): not measured for this code in radv Mesa (test rows)"),
+            std::string::npos)
+      << hlsl.output;
+  // The right hash for HLSL: its row is read.
+  report.rows[2].spirv_hash = hlsl_hash;
+  doc["gpu"] = gpu::to_json(report);
+  sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
+  const auto hlsl2 = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
+  EXPECT_NE(hlsl2.output.find("costs.json): navi21 3456, gfx1100 not measured\n"), std::string::npos) << hlsl2.output;
+  // C++ is costed by `sglab bench`, not here.
+  const auto cpp = run_sglab({"export", "--lang", "cpp", "--method", "hill"}, false);
+  ASSERT_EQ(cpp.exit_code, 0) << cpp.output;
+  EXPECT_EQ(cpp.output.find("GPU cost"), std::string::npos);
+}
+
 TEST(GpuCost, SpirvHashIsFnv1aOfTheBytes) {
   EXPECT_EQ(gpu::spirv_hash({}), "cbf29ce484222325");  // FNV-1a 64 offset basis: no bytes hashed
   // The bytes in memory order: one word and its byte-swapped twin differ.

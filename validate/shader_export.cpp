@@ -816,6 +816,24 @@ void check_finite_in_float(const ConstantSet& set) {
 
 std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }
 
+// The header line of the GPU cost: each family's figure, or "not measured".
+std::string gpu_cost_line(const ExportRequest& request) {
+  std::string costs;
+  bool measured = false;
+  for (const GpuCost& g : request.gpu_cost) {
+    costs += fmt::format("{}{} {}", costs.empty() ? "" : ", ", g.family,
+                         g.inverse_throughput ? fmt::format("{}", *g.inverse_throughput) : "not measured");
+    measured = measured || g.inverse_throughput.has_value();
+  }
+  if (!measured)
+    return fmt::format("// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`): not measured{}\n",
+                       request.gpu_cost_source.empty()
+                           ? std::string()
+                           : fmt::format(" for this code in {}", comment_text(request.gpu_cost_source)));
+  return fmt::format("// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`; {}): {}\n",
+                     comment_text(request.gpu_cost_source), comment_text(costs));
+}
+
 }  // namespace
 
 std::vector<std::string> exportable_methods() {
@@ -981,6 +999,7 @@ ExportResult export_source(const ExportRequest& request) {
     h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n", b.elementary.expm1_over_x_rel);
   if (b.vulkan)
     h += fmt::format("//   measured on Vulkan ({}): {}\n", comment_text(b.vulkan_device), fmt_error(b.vulkan));
+  if (request.lang != Language::cpp) h += gpu_cost_line(request);
   h += fmt::format("// Produced by: {}\n", comment_text(request.command));
 
   std::string body;
