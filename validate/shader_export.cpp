@@ -270,11 +270,12 @@ std::string replace_all(std::string s, std::string_view from, std::string_view t
   return s;
 }
 
-// {P}: the method's prefix; {VEC3}: the vector type; {INLINE}: `inline ` in C++.
+// {P}: the method's prefix; {VEC3}, {VEC2}: the vector types; {INLINE}: `inline ` in C++.
 std::string subst(std::string_view tmpl, const Ctx& c) {
   std::string s(tmpl);
   s = replace_all(s, "{P}", c.prefix);
   s = replace_all(s, "{VEC3}", c.lang == Language::glsl ? "vec3" : "float3");
+  s = replace_all(s, "{VEC2}", c.lang == Language::glsl ? "vec2" : "float2");
   s = replace_all(s, "{INLINE}", c.lang == Language::cpp ? "inline " : "");
   s = replace_all(s, "{ENTRY}", "sglab_irradiance_" + c.id);
   return s;
@@ -443,19 +444,18 @@ std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
 }
 
 std::string helper_poles2024(const Ctx& c, const Slots&) {
-  return subst(fmt::format(R"(// Exact poles E(+-1, kappa)/2 pi, series at kappa < 1 (sglab/closed_forms.hpp).
-{{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
-  if (kappa < 1.0f) return {};
-  return (1.0f - {{P}}expm1_over_x(-kappa)) / kappa;
-}}
-{{INLINE}}float {{P}}lower_over_two_pi(float kappa) {{
+  return subst(fmt::format(R"(// Exact poles (E(-1, kappa), E(+1, kappa))/2 pi (sglab/closed_forms.hpp), series at kappa < 1;
+// beyond, upper = (1 - m)/kappa and lower = e (m - e)/kappa share e = e^-kappa and
+// m = (1 - e)/kappa (one branch, one exp for both).
+{{INLINE}}{{VEC2}} {{P}}poles_over_two_pi(float kappa) {{
   float e = exp(-kappa);
-  if (kappa < 1.0f) return e * {};
-  return e * (({{P}}expm1_over_x(-kappa) - e) / kappa);
+  if (kappa < 1.0f) return {{VEC2}}(e * {}, {});
+  float m = (1.0f - e) / kappa;
+  return {{VEC2}}(e * ((m - e) / kappa), (1.0f - m) / kappa);
 }}
 )",
-                           horner_text("kappa", literals(pole_series(false))),
-                           horner_text("kappa", literals(pole_series(true)))),
+                           horner_text("kappa", literals(pole_series(true))),
+                           horner_text("kappa", literals(pole_series(false)))),
                c);
 }
 
@@ -666,9 +666,8 @@ constexpr std::string_view kBodyTokuyoshi2022 = R"(  float lambda = {P}clamped_c
   return max(alpha * p - alpha * q, 0.0f);
 )";
 constexpr std::string_view kBodyTokuyoshi2024 = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
-  float lo = {P}lower_over_two_pi(kappa);
-  float up = {P}upper_over_two_pi(kappa);
-  return 6.28318548f * (lo + f * (up - lo));
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
 // [Wang2009] a e^{d - kappa - lambda} 2 pi (1 - e^{-2d})/d, d = |kappa v + lambda n|, through the
 // stable product (sglab/sg.hpp sg_inner_product): d - kappa - lambda without cancellation and
@@ -689,9 +688,8 @@ const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steep
                                           helper_lerp2024};
 
 constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, kappa, {P}steepness(kappa));
-  float lo = {P}lower_over_two_pi(kappa);
-  float up = {P}upper_over_two_pi(kappa);
-  return 6.28318548f * (lo + f * (up - lo));
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
 const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
                                               helper_sglab_acc_steepness, helper_poles2024,
@@ -701,8 +699,9 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
 // sglab's own models): append {id, citation, its constant slots as
 // Slots{{"role", named("NAME", the set NAME of constants.hpp)}}, how it uses erf, the
 // helpers it calls, and the body in the shading-language subset used here
-// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?:, {VEC3}; constants as
-// {P}<role>_<member>)}. A constant set of a parameter type not yet listed
+// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?: with cheap arms and if/else
+// where an arm costs (glslang's HLSL front end evaluates both arms of ?:),
+// {VEC3}, {VEC2}; constants as {P}<role>_<member>)}. A constant set of a parameter type not yet listed
 // above also needs a named() overload. tests/test_shader_export.cpp then
 // compiles it to SPIR-V (GLSL and HLSL), compiles the C++ form and runs the
 // shader forms on Vulkan against the runtime.
@@ -795,6 +794,10 @@ inline float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
 struct float3 {
   float x, y, z;
   float3(float a, float b, float c) : x(a), y(b), z(c) {}
+};
+struct float2 {
+  float x, y;
+  float2(float a, float b) : x(a), y(b) {}
 };
 inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
