@@ -461,14 +461,14 @@ std::string helper_poles2024(const Ctx& c, const Slots&) {
 
 std::string helper_lerp2024(const Ctx& c, const Slots&) {
   return subst(R"(// f = 1/2 (c erfc(-t c) + erfc(t)) - e^(-t^2 c^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t),
-// saturated ([Tokuyoshi2024] Listing 7).
+// saturated ([Tokuyoshi2024] Listing 7); t = t(kappa) >= 0, so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
   float x = t * t * (c * c - 1.0f);
   float tail = 0.0f;
   if (t > 0.0f) tail = exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t;
-  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
+  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
 }
 )",
                c);
@@ -583,7 +583,8 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
 // Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
 // with sglab's fitted even correction (sglab/sglab_models.hpp). Where e^(-z^2) has underflowed
-// the correction is 0 (its polynomial would overflow first for huge kappa).
+// the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
+// so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float kappa, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
@@ -592,7 +593,7 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   float g = exp(-z2);
   float tail = 0.0f;
   if (t > 0.0f) tail = g * (x * {P}expm1_over_x(x)) / t;
-  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail;
+  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail;
   float corr = 0.0f;
   if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(kappa, z2);
   return clamp(f + corr, 0.0f, 1.0f);
