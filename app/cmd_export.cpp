@@ -1,7 +1,8 @@
 // `sglab export`: one irradiance method as self-contained GLSL, HLSL or C++
 // source with its constants baked in (compiled-in, or from a constants JSON),
 // its own erf/erfc/expm1 approximations, and a header comment carrying the
-// source paper, the constants' provenance, the error budget and the command.
+// source paper, the constants' provenance, the error budget, the GPU cost
+// (GLSL and HLSL, from the cost table) and the command.
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -14,6 +15,8 @@
 
 #include "app/commands.hpp"
 #include "fit/constants_io.hpp"
+#include "report/cost_table.hpp"
+#include "export/gpu_cost.hpp"
 #include "common/io.hpp"
 #include "export/shader_export.hpp"
 
@@ -90,6 +93,29 @@ void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader:
   }
 }
 
+// The families whose GPU cost an export's header states: RDNA2 and RDNA3.
+constexpr const char* kHeaderFamilies[] = {"navi21", "gfx1100"};
+
+// The GPU cost of exactly this code in the committed cost table
+// (data/results/costs.json, "gpu" section, written by `sglab gpucost --out`):
+// the rows of the method and language whose SPIR-V hash is that of `exported`
+// in the gpucost wrapper (comments do not reach the SPIR-V, so the header
+// itself does not change it). Other code (--constants, a stale table): not measured.
+void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& exported) {
+  for (const char* family : kHeaderFamilies) req.gpu_cost.push_back({family, std::nullopt});
+  const auto path = report::default_cost_table_path();
+  if (!path) return;
+  const auto table = report::read_existing_cost_table(*path);
+  if (!table || !table->gpu) return;
+  const std::string hash = shader::gpu::spirv_hash(shader::gpu::export_shader(req.method, req.lang, exported).spirv);
+  for (shader::GpuCost& cost : req.gpu_cost)
+    for (const shader::gpu::Row& row : table->gpu->rows)
+      if (row.family == cost.family && row.method == req.method && row.lang == req.lang && !row.split &&
+          row.precision == "float" && row.spirv_hash == hash)
+        cost.inverse_throughput = row.stats.inverse_throughput;
+  req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
+}
+
 struct ExportArgs {
   std::string lang;
   std::string method;
@@ -138,6 +164,10 @@ void add_export_command(CLI::App& app) {
     shader::ExportResult result;
     try {
       result = shader::export_source(req);
+      if (req.lang != shader::Language::cpp) {
+        add_gpu_cost(req, result);
+        result = shader::export_source(req);
+      }
     } catch (const std::invalid_argument& e) {
       // The method was checked above: what remains is about the --constants set.
       throw InputError(args->constants.empty() ? std::string(e.what())

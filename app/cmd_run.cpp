@@ -302,8 +302,9 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       {"stability", {"stability", "--out", in("stability")}, "stability"},
       {"claims", {"claims", "--out", in("claims")}, "claims"},
       {"bench", {"bench", "--out", in("bench")}, "bench"},
-      // GPU cost into the same cost table (skipped, with the reason, where RADV has no null device).
-      {"gpucost", {"gpucost", "--skip-unavailable", "--out", in("bench")}, "bench"},
+      // GPU cost into the same cost table (skipped, with the reason, where RADV has no null device),
+      // both languages: each export's header states its own (sglab export).
+      {"gpucost", {"gpucost", "--skip-unavailable", "--lang", "both", "--out", in("bench")}, "bench"},
       {"pareto", pareto, "pareto"},
       {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
   };

@@ -145,9 +145,12 @@ Shader baseline_shader(shader::Language lang) {
 }
 
 Shader method_shader(std::string_view method, shader::Language lang) {
-  const shader::ExportResult ex = shader::export_source(shader::standard_request(lang, method));
+  return export_shader(method, lang, shader::export_source(shader::standard_request(lang, method)));
+}
+
+Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported) {
   return {std::string(method), lang,
-          vulkan::compile_compute(lang, shader::compute_shader(lang, ex.source, ex.entry_point))};
+          vulkan::compile_compute(lang, shader::compute_shader(lang, exported.source, exported.entry_point))};
 }
 
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {

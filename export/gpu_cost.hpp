@@ -78,6 +78,9 @@ inline constexpr std::string_view kBaseline = "(wrapper)";
 Shader baseline_shader(shader::Language lang);
 // The standard export of `method` in the wrapper, compiled to SPIR-V.
 Shader method_shader(std::string_view method, shader::Language lang);
+// An export (its source and entry point; comments do not reach the SPIR-V) in
+// the wrapper, compiled to SPIR-V: what `gpucost` costs for it.
+Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported);
 
 // 64-bit FNV-1a of the SPIR-V words, as 16 hex digits: which code was costed.
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv);

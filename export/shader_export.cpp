@@ -270,11 +270,12 @@ std::string replace_all(std::string s, std::string_view from, std::string_view t
   return s;
 }
 
-// {P}: the method's prefix; {VEC3}: the vector type; {INLINE}: `inline ` in C++.
+// {P}: the method's prefix; {VEC3}, {VEC2}: the vector types; {INLINE}: `inline ` in C++.
 std::string subst(std::string_view tmpl, const Ctx& c) {
   std::string s(tmpl);
   s = replace_all(s, "{P}", c.prefix);
   s = replace_all(s, "{VEC3}", c.lang == Language::glsl ? "vec3" : "float3");
+  s = replace_all(s, "{VEC2}", c.lang == Language::glsl ? "vec2" : "float2");
   s = replace_all(s, "{INLINE}", c.lang == Language::cpp ? "inline " : "");
   s = replace_all(s, "{ENTRY}", "sglab_irradiance_" + c.id);
   return s;
@@ -339,7 +340,13 @@ std::string helper_erf(const Ctx& c, const Slots& slots) {
 }}
 {{INLINE}}float {{P}}erf(float x) {{
   float a = abs(x);
-  float y = a >= {1} ? 1.0f : (a > {0} ? 1.0f - exp2(-a * {3}) : a * {2});
+  float y;
+  if (a >= {1})
+    y = 1.0f;
+  else if (a > {0})
+    y = 1.0f - exp2(-a * {3});
+  else
+    y = a * {2};
   return x < 0.0f ? -y : y;
 }}
 )",
@@ -381,7 +388,8 @@ std::string helper_product(const Ctx& c, const Slots&) {
   float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
   float kmin = min(kappa, lambda);
   float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
-  float c3 = k3s > 0.0f ? clamp((ks * c + ls) / k3s, -1.0f, 1.0f) : 1.0f;
+  float c3 = 1.0f;
+  if (k3s > 0.0f) c3 = clamp((ks * c + ls) / k3s, -1.0f, 1.0f);
   return {VEC3}(m * k3s, log_amp, c3);
 }
 )",
@@ -422,7 +430,11 @@ std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
 {INLINE}float {P}hemispherical(float cosine, float kappa) {
   float t = {P}steepness(kappa);
   float c = clamp(cosine, -1.0f, 1.0f);
-  float ratio = t < 0.0001220703125f ? c : clamp({P}erf(t * c) / {P}erf(t), -1.0f, 1.0f);
+  float ratio;
+  if (t < 0.0001220703125f)
+    ratio = c;
+  else
+    ratio = clamp({P}erf(t * c) / {P}erf(t), -1.0f, 1.0f);
   float s = 0.5f + 0.5f * ratio;
   float e = exp(-kappa);
   return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
@@ -432,31 +444,31 @@ std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
 }
 
 std::string helper_poles2024(const Ctx& c, const Slots&) {
-  return subst(fmt::format(R"(// Exact poles E(+-1, kappa)/2 pi, series at kappa < 1 (sglab/closed_forms.hpp).
-{{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
-  if (kappa < 1.0f) return {};
-  return (1.0f - {{P}}expm1_over_x(-kappa)) / kappa;
-}}
-{{INLINE}}float {{P}}lower_over_two_pi(float kappa) {{
+  return subst(fmt::format(R"(// Exact poles (E(-1, kappa), E(+1, kappa))/2 pi (sglab/closed_forms.hpp), series at kappa < 1;
+// beyond, upper = (1 - m)/kappa and lower = e (m - e)/kappa share e = e^-kappa and
+// m = (1 - e)/kappa (one branch, one exp for both).
+{{INLINE}}{{VEC2}} {{P}}poles_over_two_pi(float kappa) {{
   float e = exp(-kappa);
-  if (kappa < 1.0f) return e * {};
-  return e * (({{P}}expm1_over_x(-kappa) - e) / kappa);
+  if (kappa < 1.0f) return {{VEC2}}(e * {}, {});
+  float m = (1.0f - e) / kappa;
+  return {{VEC2}}(e * ((m - e) / kappa), (1.0f - m) / kappa);
 }}
 )",
-                           horner_text("kappa", literals(pole_series(false))),
-                           horner_text("kappa", literals(pole_series(true)))),
+                           horner_text("kappa", literals(pole_series(true))),
+                           horner_text("kappa", literals(pole_series(false)))),
                c);
 }
 
 std::string helper_lerp2024(const Ctx& c, const Slots&) {
   return subst(R"(// f = 1/2 (c erfc(-t c) + erfc(t)) - e^(-t^2 c^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t),
-// saturated ([Tokuyoshi2024] Listing 7).
+// saturated ([Tokuyoshi2024] Listing 7); t = t(kappa) >= 0, so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
   float x = t * t * (c * c - 1.0f);
-  float tail = t > 0.0f ? exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t : 0.0f;
-  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
+  float tail = 0.0f;
+  if (t > 0.0f) tail = exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t;
+  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
 }
 )",
                c);
@@ -536,22 +548,34 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   std::vector<std::string> den_small(den.begin(), den.end()), den_large{"1.0f"};
   den_small.push_back("1.0f");
   for (std::size_t i = d; i-- > 0;) den_large.push_back(den[i]);
-  std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
-// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
-{{INLINE}}float {{P}}correction(float kappa, float z2) {{
-  float x = kappa < 1.0f ? kappa : 1.0f / kappa;
-  float inv = 1.0f / (kappa < 1.0f ? {} : {});
-)",
-                                 d, horner_text("x", den_small), horner_text("x", den_large));
+  // One if/else for both forms: GLSL and HLSL front ends then branch alike
+  // (HLSL's ?: evaluates both arms).
+  std::string decl = "  float x, den", small_arm = "    x = kappa;\n", large_arm = "    x = 1.0f / kappa;\n";
+  small_arm += fmt::format("    den = {};\n", horner_text("x", den_small));
+  large_arm += fmt::format("    den = {};\n", horner_text("x", den_large));
+  std::string products;
   std::vector<std::string> b;
   for (std::size_t j = 0; j < n; ++j) {
     std::vector<std::string> small(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
     std::vector<std::string> large(small.rbegin(), small.rend());
-    text += fmt::format("  float b{} = (kappa < 1.0f ? {} : {}) * inv;\n", j, horner_text("x", small),
-                        horner_text("x", large));
+    decl += fmt::format(", n{}", j);
+    small_arm += fmt::format("    n{} = {};\n", j, horner_text("x", small));
+    large_arm += fmt::format("    n{} = {};\n", j, horner_text("x", large));
+    products += fmt::format("  float b{0} = n{0} * inv;\n", j);
     b.push_back(fmt::format("b{}", j));
   }
-  text += fmt::format("  return {};\n}}\n", horner_text("z2", b));
+  const std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
+// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
+{{INLINE}}float {{P}}correction(float kappa, float z2) {{
+{};
+  if (kappa < 1.0f) {{
+{}  }} else {{
+{}  }}
+  float inv = 1.0f / den;
+{}  return {};
+}}
+)",
+                                       d, decl, small_arm, large_arm, products, horner_text("z2", b));
   return subst(text, c);
 }
 
@@ -559,16 +583,19 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
 // Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
 // with sglab's fitted even correction (sglab/sglab_models.hpp). Where e^(-z^2) has underflowed
-// the correction is 0 (its polynomial would overflow first for huge kappa).
+// the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
+// so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float kappa, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
   float z2 = tz * tz;
   float x = t * t * (c * c - 1.0f);
   float g = exp(-z2);
-  float tail = t > 0.0f ? g * (x * {P}expm1_over_x(x)) / t : 0.0f;
-  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc(t)) - 0.5f * 0.564189584f * tail;
-  float corr = g > 0.0f ? (1.0f - c * c) * g * {P}correction(kappa, z2) : 0.0f;
+  float tail = 0.0f;
+  if (t > 0.0f) tail = g * (x * {P}expm1_over_x(x)) / t;
+  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail;
+  float corr = 0.0f;
+  if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(kappa, z2);
   return clamp(f + corr, 0.0f, 1.0f);
 }
 )",
@@ -640,9 +667,8 @@ constexpr std::string_view kBodyTokuyoshi2022 = R"(  float lambda = {P}clamped_c
   return max(alpha * p - alpha * q, 0.0f);
 )";
 constexpr std::string_view kBodyTokuyoshi2024 = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
-  float lo = {P}lower_over_two_pi(kappa);
-  float up = {P}upper_over_two_pi(kappa);
-  return 6.28318548f * (lo + f * (up - lo));
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
 // [Wang2009] a e^{d - kappa - lambda} 2 pi (1 - e^{-2d})/d, d = |kappa v + lambda n|, through the
 // stable product (sglab/sg.hpp sg_inner_product): d - kappa - lambda without cancellation and
@@ -663,9 +689,8 @@ const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steep
                                           helper_lerp2024};
 
 constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, kappa, {P}steepness(kappa));
-  float lo = {P}lower_over_two_pi(kappa);
-  float up = {P}upper_over_two_pi(kappa);
-  return 6.28318548f * (lo + f * (up - lo));
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
 const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
                                               helper_sglab_acc_steepness, helper_poles2024,
@@ -675,8 +700,9 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
 // sglab's own models): append {id, citation, its constant slots as
 // Slots{{"role", named("NAME", the set NAME of constants.hpp)}}, how it uses erf, the
 // helpers it calls, and the body in the shading-language subset used here
-// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?:, {VEC3}; constants as
-// {P}<role>_<member>)}. A constant set of a parameter type not yet listed
+// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?: with cheap arms and if/else
+// where an arm costs (glslang's HLSL front end evaluates both arms of ?:),
+// {VEC3}, {VEC2}; constants as {P}<role>_<member>)}. A constant set of a parameter type not yet listed
 // above also needs a named() overload. tests/test_shader_export.cpp then
 // compiles it to SPIR-V (GLSL and HLSL), compiles the C++ form and runs the
 // shader forms on Vulkan against the runtime.
@@ -770,6 +796,10 @@ struct float3 {
   float x, y, z;
   float3(float a, float b, float c) : x(a), y(b), z(c) {}
 };
+struct float2 {
+  float x, y;
+  float2(float a, float b) : x(a), y(b) {}
+};
 inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 )",
@@ -789,6 +819,24 @@ void check_finite_in_float(const ConstantSet& set) {
 }
 
 std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }
+
+// The header line of the GPU cost: each family's figure, or "not measured".
+std::string gpu_cost_line(const ExportRequest& request) {
+  std::string costs;
+  bool measured = false;
+  for (const GpuCost& g : request.gpu_cost) {
+    costs += fmt::format("{}{} {}", costs.empty() ? "" : ", ", g.family,
+                         g.inverse_throughput ? fmt::format("{}", *g.inverse_throughput) : "not measured");
+    measured = measured || g.inverse_throughput.has_value();
+  }
+  if (!measured)
+    return fmt::format("// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`): not measured{}\n",
+                       request.gpu_cost_source.empty()
+                           ? std::string()
+                           : fmt::format(" for this code in {}", io::comment_text(request.gpu_cost_source)));
+  return fmt::format("// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`; {}): {}\n",
+                     io::comment_text(request.gpu_cost_source), io::comment_text(costs));
+}
 
 }  // namespace
 
@@ -955,6 +1003,7 @@ ExportResult export_source(const ExportRequest& request) {
     h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n", b.elementary.expm1_over_x_rel);
   if (b.vulkan)
     h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device), fmt_error(b.vulkan));
+  if (request.lang != Language::cpp) h += gpu_cost_line(request);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));
 
   std::string body;

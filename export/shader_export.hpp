@@ -12,6 +12,7 @@
 // the exporter independently of any GPU.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -65,6 +66,14 @@ struct ErrorBudget {
   std::string vulkan_device;
 };
 
+// The GPU cost of the exported code on one AMD family: ACO's inverse
+// throughput (cycles one wave keeps a SIMD busy, `sglab gpucost`), nullopt
+// when it was not measured for this very code.
+struct GpuCost {
+  std::string family;  // e.g. "navi21"
+  std::optional<std::int64_t> inverse_throughput;
+};
+
 struct ExportRequest {
   Language lang = Language::glsl;
   std::string method;
@@ -78,6 +87,10 @@ struct ExportRequest {
   // Budget entries measured elsewhere (model and float errors from a sweep,
   // the Vulkan error from a results file); the elementary error is filled in.
   ErrorBudget budget;
+  // The GPU cost by family, for the header of GLSL and HLSL exports (none
+  // measured: the header says so), and where it was read (driver, file).
+  std::vector<GpuCost> gpu_cost;
+  std::string gpu_cost_source;
 };
 
 struct ExportResult {

@@ -3,7 +3,9 @@
 // cannot create one.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <fmt/ranges.h>
@@ -159,6 +161,31 @@ TEST_F(OnRadv, DisasmPrintsTheAssembly) {
   EXPECT_NE(two.output.find("--disasm"), std::string::npos) << two.output;
 }
 
+// An HLSL user pays what a GLSL user pays: for every export, ACO's inverse
+// throughput of the HLSL form is within 5% of the GLSL form's on RDNA2 and
+// RDNA3 (both are the same function, so the compiler should see the same
+// control flow; glslang's HLSL front end evaluates both arms of ?:).
+TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
+  const std::vector<std::string> methods = shader::exportable_methods();
+  std::vector<gpu::Shader> shaders;
+  for (shader::Language lang : {shader::Language::glsl, shader::Language::hlsl}) {
+    shaders.push_back(gpu::baseline_shader(lang));
+    for (const std::string& m : methods) shaders.push_back(gpu::method_shader(m, lang));
+  }
+  const gpu::Report r = measure({"navi21", "gfx1100"}, shaders);
+  ASSERT_EQ(r.rows.size(), 2 * 2 * methods.size());
+  std::map<std::pair<std::string, std::string>, std::int64_t> glsl;
+  for (const gpu::Row& row : r.rows)
+    if (row.lang == shader::Language::glsl) glsl[{row.family, row.method}] = row.stats.inverse_throughput;
+  for (const gpu::Row& row : r.rows) {
+    if (row.lang != shader::Language::hlsl) continue;
+    const std::int64_t g = glsl.at({row.family, row.method}), h = row.stats.inverse_throughput;
+    EXPECT_GT(g, 0) << row.family << " " << row.method;
+    EXPECT_LE(std::abs(h - g), 0.05 * g) << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h
+                                         << " cycles";
+  }
+}
+
 TEST_F(OnRadv, AFamilyRadvDoesNotKnowIsReported) {
   const auto r = run_sglab({"gpucost", "--families", "nosuchchip", "--method", "hill"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
@@ -197,6 +224,66 @@ TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
   } catch (const sglab::report::CostTableError& e) {
     EXPECT_NE(std::string(e.what()).find("rows[0].lang"), std::string::npos) << e.what();
   }
+}
+
+// Runs in `dir` for the lifetime of the object (run_sglab spawns with our cwd).
+struct WorkingDirectory {
+  fs::path old = fs::current_path();
+  explicit WorkingDirectory(const fs::path& dir) { fs::current_path(dir); }
+  ~WorkingDirectory() { fs::current_path(old); }
+};
+
+// `sglab export`'s header states the GPU cost that the project's cost table
+// holds for exactly the exported code: the rows of the method and language
+// whose SPIR-V hash is that of the export in gpucost's wrapper (the header's
+// other comments, provenance and Vulkan error, do not change the code). A row
+// of other code is not this export's cost: "not measured". No device needed.
+TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
+  TempDir dir("gpucost-export");
+  const fs::path checkout = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
+  fs::create_directories(dir.path / "include" / "sglab");
+  fs::create_directories(dir.path / "data" / "results");
+  fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
+  fs::copy_file(checkout / "data" / "results" / "vulkan_sweep.json", dir.path / "data" / "results" / "vulkan_sweep.json");
+  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  const auto row = [](const std::string& family, shader::Language lang, std::int64_t cycles, std::string hash) {
+    gpu::Statistics s;
+    s.instructions = s.inverse_throughput = s.latency = cycles;
+    return gpu::Row{"hill", family, lang, false, "float", s, std::move(hash)};
+  };
+  const std::string glsl_hash = gpu::spirv_hash(gpu::method_shader("hill", shader::Language::glsl).spirv);
+  const std::string hlsl_hash = gpu::spirv_hash(gpu::method_shader("hill", shader::Language::hlsl).spirv);
+  ASSERT_NE(glsl_hash, hlsl_hash);
+  report.rows = {row("navi21", shader::Language::glsl, 1234, glsl_hash),
+                 row("gfx1100", shader::Language::glsl, 2345, glsl_hash),
+                 row("navi21", shader::Language::hlsl, 3456, glsl_hash)};  // another code's hash
+  doc["gpu"] = gpu::to_json(report);
+  sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
+
+  WorkingDirectory cwd(dir.path);
+  const auto glsl = run_sglab({"export", "--lang", "glsl", "--method", "hill"}, false);
+  ASSERT_EQ(glsl.exit_code, 0) << glsl.output;
+  EXPECT_NE(glsl.output.find("measured on Vulkan"), std::string::npos) << glsl.output;
+  EXPECT_NE(glsl.output.find("radv Mesa (test rows), data/results/costs.json): navi21 1234, gfx1100 2345\n"),
+            std::string::npos)
+      << glsl.output;
+  const auto hlsl = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
+  ASSERT_EQ(hlsl.exit_code, 0) << hlsl.output;
+  EXPECT_EQ(hlsl.output.find("3456"), std::string::npos) << hlsl.output;
+  EXPECT_NE(hlsl.output.find("`sglab gpucost`): not measured for this code in radv Mesa (test rows)"),
+            std::string::npos)
+      << hlsl.output;
+  // The right hash for HLSL: its row is read.
+  report.rows[2].spirv_hash = hlsl_hash;
+  doc["gpu"] = gpu::to_json(report);
+  sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
+  const auto hlsl2 = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
+  EXPECT_NE(hlsl2.output.find("costs.json): navi21 3456, gfx1100 not measured\n"), std::string::npos) << hlsl2.output;
+  // C++ is costed by `sglab bench`, not here.
+  const auto cpp = run_sglab({"export", "--lang", "cpp", "--method", "hill"}, false);
+  ASSERT_EQ(cpp.exit_code, 0) << cpp.output;
+  EXPECT_EQ(cpp.output.find("GPU cost"), std::string::npos);
 }
 
 TEST(GpuCost, SpirvHashIsFnv1aOfTheBytes) {
