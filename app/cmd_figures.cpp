@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -17,7 +18,7 @@ namespace sglab::app {
 namespace {
 struct FiguresArgs {
   std::string out = "out/figures";
-  std::string pareto = "out/pareto/pareto.csv";
+  std::vector<std::string> pareto = {"out/pareto/pareto.csv"};
   std::string gnuplot = "gnuplot";
 };
 }  // namespace
@@ -26,14 +27,16 @@ void add_figures_command(CLI::App& app) {
   auto args = std::make_shared<FiguresArgs>();
   auto* cmd = app.add_subcommand("figures", "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
   cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
-  cmd->add_option("--pareto", args->pareto, "Pareto CSV written by `sglab pareto` (figure e; skipped when absent)")
+  cmd->add_option("--pareto", args->pareto,
+                  "Pareto CSV written by `sglab pareto`, repeatable: figure e draws one panel per cost source "
+                  "(--cost) in them, side by side (e.g. the GPU cost and the CPU batch one; skipped when absent)")
       ->capture_default_str();
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
   cmd->callback([args] {
     const auto start = std::chrono::steady_clock::now();
     validate::FiguresOptions opt;
     opt.out = args->out;
-    opt.pareto = args->pareto;
+    opt.pareto.assign(args->pareto.begin(), args->pareto.end());
     opt.gnuplot = args->gnuplot;
     opt.optimal_steepness = [](const std::vector<double>& kappas) {
       return fit::optimal_steepness("steepness2022", kappas);

@@ -159,6 +159,43 @@ TEST(Figures, CommandWritesPngAndSvg) {
   fs::remove_all(dir);
 }
 
+// Figure (e) draws one panel per cost source of the Pareto CSVs it is given
+// (`sglab pareto --cost …`), in their order, each with its own points file and
+// axis label; an older CSV (ns_per_eval) is CPU batch ns.
+TEST(Figures, OnePanelPerCostSource) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  sglab::test::TempDir dir("figures-panels");
+  const std::string header = "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n";
+  sglab::io::write_file_atomic(dir.path / "gpu.csv", header +
+                                                         "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,0.15,1\n"
+                                                         "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,3e-5,1\n");
+  sglab::io::write_file_atomic(dir.path / "cpu.csv",
+                               "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+                               "vsgl2015,published,float,0.001,10000,3.7,0.15,1\n"
+                               "sglab_acc3,sglab,float,0.001,10000,18.3,3e-5,1\n");
+  const fs::path out = dir.path / "figs";
+  const auto r = sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", (dir.path / "gpu.csv").string(),
+                                         "--pareto", (dir.path / "cpu.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string gpu = sglab::io::read_file(out / "e_pareto_1_points.csv");
+  const std::string cpu = sglab::io::read_file(out / "e_pareto_2_points.csv");
+  EXPECT_NE(gpu.find("169,3e-05,3e-05,sglab_acc3,sglab,float,1,"), std::string::npos) << gpu;
+  EXPECT_NE(cpu.find("18.3,3e-05,3e-05,sglab_acc3,sglab,float,1,"), std::string::npos) << cpu;
+  EXPECT_EQ(gpu.find("18.3"), std::string::npos) << gpu;
+  const std::string script = sglab::io::read_file(out / "e_pareto.gp");
+  EXPECT_NE(script.find("set title '--cost gpu:navi21'"), std::string::npos);
+  EXPECT_NE(script.find("set xlabel 'GPU inverse throughput on navi21 (cycles per wave, ACO estimate)'"),
+            std::string::npos);
+  EXPECT_NE(script.find("set title '--cost cpu-batch'"), std::string::npos);
+  EXPECT_NE(script.find("set xlabel 'CPU batch ns/eval'"), std::string::npos);
+  EXPECT_GT(fs::file_size(out / "e_pareto.png"), 1000u);
+  // A header with cost but not its unit and source is refused.
+  sglab::io::write_file_atomic(dir.path / "half.csv",
+                               "method,origin,precision,kappa_lo,kappa_hi,cost,max_peak_rel,frontier\n"
+                               "a,published,float,1,10,1,0.1,1\n");
+  EXPECT_THROW(read_pareto_csv(dir.path / "half.csv"), std::invalid_argument);
+}
+
 // gnuplot is started with an argument vector, not through a shell: the
 // program path is taken literally, whatever characters it holds.
 TEST(Figures, GnuplotPathTakenLiterally) {
