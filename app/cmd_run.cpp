@@ -415,8 +415,8 @@ void add_run_command(CLI::App& app) {
       const Step& step = steps[i];
       if (skipped(step.name)) continue;
       if (step.name == "pareto" && !has_gpu_costs(step)) {
-        const std::string why = "skipped: the cost table has no GPU costs (gpucost found no RADV null device); "
-                                "pareto-cpu has the CPU cost";
+        const std::string why = "skipped: the cost table has no GPU costs (no RADV null device for gpucost, or its "
+                                "step skipped); pareto-cpu has the CPU cost";
         fmt::print("{:<10} {}\n", step.name, why);
         index += fmt::format("## {}\n\n`{}` — {}\n\n", step.name, display_command(shown[i].arguments), why);
         continue;

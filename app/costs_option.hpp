@@ -84,7 +84,7 @@ struct CostsOption {
       const auto found = validate::default_cost_table_path();
       if (!found)
         throw InputError(
-            "no cost table: no project folder (with data/results and include/sglab) above the working directory; "
+            "no cost table: no project folder (with data/constants and include/sglab) above the working directory; "
             "pass --costs FILE (written by `sglab bench` and `sglab gpucost`) or --live-timing");
       path = *found;
     }
