@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "cost_table.hpp"
 #include "figures.hpp"
 #include "targets.hpp"
 
@@ -19,6 +20,7 @@ namespace {
 struct FiguresArgs {
   std::string out = "out/figures";
   std::vector<std::string> pareto = {"out/pareto/pareto.csv"};
+  std::string costs;  // empty: the project's data/results/costs.json when there is one
   std::string gnuplot = "gnuplot";
 };
 }  // namespace
@@ -31,6 +33,9 @@ void add_figures_command(CLI::App& app) {
                   "Pareto CSV written by `sglab pareto`, repeatable: figure e draws one panel per cost source "
                   "(--cost) in them, side by side (e.g. the GPU cost and the CPU batch one; skipped when absent)")
       ->capture_default_str();
+  cmd->add_option("--costs", args->costs,
+                  "cost table whose \"gpu\" section figure e tables beside a GPU panel (the other families' inverse "
+                  "throughput; default: data/results/costs.json of the project holding the working directory, if any)");
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
   cmd->callback([args] {
     const auto start = std::chrono::steady_clock::now();
@@ -38,6 +43,10 @@ void add_figures_command(CLI::App& app) {
     opt.out = args->out;
     opt.pareto.assign(args->pareto.begin(), args->pareto.end());
     opt.gnuplot = args->gnuplot;
+    if (!args->costs.empty())
+      opt.gpu = validate::read_cost_table(args->costs).gpu;
+    else if (const auto found = validate::default_cost_table_path())
+      if (const auto table = validate::read_existing_cost_table(*found)) opt.gpu = table->gpu;
     opt.optimal_steepness = [](const std::vector<double>& kappas) {
       return fit::optimal_steepness("steepness2022", kappas);
     };

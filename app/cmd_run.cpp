@@ -296,10 +296,10 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
   const auto in = [&root](const char* sub) { return (root / sub).string(); };
   std::vector<std::string> pareto = {"pareto", "--out", in("pareto")};
   std::vector<std::string> pareto_cpu = {"pareto", "--cost", "cpu-batch", "--out", in("pareto-cpu")};
-  if (!bench_skipped) {
-    pareto.insert(pareto.end(), {"--costs", in("bench/costs.json")});
-    pareto_cpu.insert(pareto_cpu.end(), {"--costs", in("bench/costs.json")});
-  }
+  std::vector<std::string> figures = {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv"),
+                                      "--pareto", in("pareto-cpu/pareto.csv")};
+  if (!bench_skipped)
+    for (auto* step : {&pareto, &pareto_cpu, &figures}) step->insert(step->end(), {"--costs", in("bench/costs.json")});
   std::vector<std::string> erf = {"erf"};
   if (!quick) erf.emplace_back("--exhaustive");
   erf.insert(erf.end(), {"--out", in("erf")});
@@ -314,9 +314,7 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       {"gpucost", {"gpucost", "--skip-unavailable", "--out", in("bench")}, "bench"},
       {"pareto", pareto, "pareto"},
       {"pareto-cpu", pareto_cpu, "pareto-cpu"},
-      {"figures",
-       {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv"), "--pareto", in("pareto-cpu/pareto.csv")},
-       "figures"},
+      {"figures", figures, "figures"},
   };
 }
 

@@ -26,6 +26,7 @@
 
 #include "atomic_files.hpp"
 #include "cost_source.hpp"
+#include "gpu_cost.hpp"
 #include "erf_check.hpp"
 #include "io.hpp"
 #include "reference.hpp"
@@ -629,6 +630,46 @@ std::string pareto_plot(const FiguresOptions& opt, const std::string& stem, cons
   return plot;
 }
 
+// The GPU panel's companion: the inverse throughput (cycles) of its methods on
+// every other family of the cost table's "gpu" section (unsplit float GLSL
+// rows), written as <stem>_families.csv and drawn as a monospaced table at
+// screen position (x, y) downwards. Empty when there is no other family.
+std::string gpu_family_table(const FiguresOptions& opt, const ParetoPanel& p, const std::string& stem, double x,
+                             double y, double line, std::vector<fs::path>& files) {
+  const auto parsed = parse_cost_source(p.source);
+  const auto* source = std::get_if<CostSource>(&parsed);
+  if (!opt.gpu || !source || source->kind != CostSourceKind::gpu) return "";
+  std::vector<std::string> others;
+  std::map<std::pair<std::string, std::string>, std::int64_t> cycles;  // (method, family)
+  for (const gpu::Row& r : opt.gpu->rows) {
+    if (r.lang != shader::Language::glsl || r.split || r.precision != "float" || r.family == source->family) continue;
+    if (std::find(others.begin(), others.end(), r.family) == others.end()) others.push_back(r.family);
+    cycles[{r.method, r.family}] = r.stats.inverse_throughput;
+  }
+  if (others.empty()) return "";
+  std::string csv = "method," + fmt::format("{}", fmt::join(others, ",")) + "\n";
+  std::vector<std::string> lines = {fmt::format("{} on the other families ({}):", source->describe(), opt.gpu->driver),
+                                    fmt::format("{:<22}", "method")};
+  for (const std::string& family : others) lines.back() += fmt::format("{:>10}", family);
+  for (const ParetoRow& r : p.rows) {
+    csv += csv_field(r.method);
+    lines.push_back(fmt::format("{:<22}", r.method));
+    for (const std::string& family : others) {
+      const auto it = cycles.find({r.method, family});
+      csv += it == cycles.end() ? "," : fmt::format(",{}", it->second);
+      lines.back() += it == cycles.end() ? fmt::format("{:>10}", "-") : fmt::format("{:>10}", it->second);
+    }
+    csv += "\n";
+  }
+  io::write_file_atomic(opt.out / (stem + "_families.csv"), csv);
+  files.push_back(stem + "_families.csv");
+  std::string labels;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    labels += fmt::format("set label {} {} at screen {:.5f}, screen {:.5f} left font 'DejaVu Sans Mono,8'\n", 1000 + i,
+                          gp_quote(lines[i]), x, y - line * static_cast<double>(i));
+  return labels;
+}
+
 // The plottable rows of the Pareto CSVs, one panel per cost source in order of
 // first appearance; `note` says what was left out.
 std::vector<ParetoPanel> pareto_panels(const FiguresOptions& opt, std::string& note, std::vector<std::string>& read) {
@@ -675,8 +716,9 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
   const double y_lo = std::pow(10.0, std::floor(std::log10(ymin)) - 0.5);
   const double band_lo = kParetoFail * 1.8, band_hi = kParetoFail * 60, band_y = kParetoFail * 10;
   const double y_hi = any_fail ? band_hi : kParetoFail * 3;
-  // Layout in pixels: a 640-pixel slot per panel (80 of margin on its left), the legend after them.
-  const double slot = 640, plot_w = 540, legend_w = 330, H = 800, top = 0.1 * H, bottom = 0.91 * H;
+  // Layout in pixels: a 640-pixel slot per panel (80 of margin on its left), the legend after them
+  // (wider when the GPU families' table goes under it).
+  const double slot = 640, plot_w = 540, legend_w = opt.gpu ? 450 : 330, H = 800, top = 0.1 * H, bottom = 0.91 * H;
   const double W = slot * static_cast<double>(panels.size()) + legend_w;
   std::string body = fmt::format(
       "set multiplot title 'Cost vs accuracy of the irradiance methods: {}, {} (29 κ × 41 c)' font ',14'\n"
@@ -692,6 +734,7 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
                              "0.01, first {} left font ',9' tc rgb '#a50f15'\n",
                              kParetoFail, band_hi / 1.6);
   }
+  const auto stem_of = [&](std::size_t i) { return panels.size() == 1 ? f.id : fmt::format("{}_{}", f.id, i + 1); };
   for (std::size_t i = 0; i < panels.size(); ++i) {
     const ParetoPanel& p = panels[i];
     double xmin = INFINITY, xmax = 0;
@@ -700,7 +743,7 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
     const PanelFrame g{W, H, left, left + plot_w, top, bottom, std::log10(xmin / 2), std::log10(xmax * 3),
                        std::log10(y_lo), std::log10(y_hi)};
     const bool last = i + 1 == panels.size();
-    const std::string stem = panels.size() == 1 ? f.id : fmt::format("{}_{}", f.id, i + 1);
+    const std::string stem = stem_of(i);
     body += fmt::format(
         "set title {} font ',12'\nset xlabel {}\nset xrange [{}:{}]\n"
         "set lmargin at screen {}\nset rmargin at screen {}\n{}\nunset label\n{}{}",
@@ -709,6 +752,12 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
                            1 - top / H)
              : std::string("unset key"),
         band_label, pareto_labels(p.rows, g, band_y));
+    // The other GPU families of the first GPU panel under the legend (screen positions: set with the last panel).
+    for (std::size_t k = 0; last && k < panels.size(); ++k) {
+      const std::string table = gpu_family_table(opt, panels[k], stem_of(k), (g.right + 30) / W, 0.43, 13 / H, f.files);
+      body += table;
+      if (!table.empty()) break;
+    }
     body += pareto_plot(opt, stem, p.rows, families, band_y, last, f.files);
   }
   for (auto& x : render(opt, f.id, body, static_cast<int>(W), static_cast<int>(H))) f.files.push_back(x);

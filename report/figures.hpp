@@ -9,11 +9,14 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <sglab/registry.hpp>
+
+#include "gpu_cost.hpp"
 
 namespace sglab::validate {
 
@@ -27,6 +30,9 @@ struct FiguresOptions {
   // Figure (e): `sglab pareto` CSVs, one panel per cost source in them (absent files are skipped;
   // the figure is skipped when none exists).
   std::vector<std::filesystem::path> pareto = {"out/pareto/pareto.csv"};
+  // The "gpu" section of the cost table (validate/gpu_cost.hpp): figure (e)
+  // tables the other families' inverse throughput beside a GPU panel.
+  std::optional<gpu::Report> gpu;
   std::string gnuplot = "gnuplot";
   // t*(κ) of the 2022 normalized hemispherical integral (fit::optimal_steepness).
   std::function<std::vector<double>(const std::vector<double>&)> optimal_steepness;
