@@ -36,6 +36,7 @@ nlohmann::ordered_json number(double x) {
 }  // namespace
 
 void recommend_scene(const SceneRecommendArgs& args) {
+  const validate::CostSource cost = args.costs.source(args.precision);  // a bad --cost before any work
   std::string text;
   try {
     text = io::read_input_file(args.scene, validate::kMaxSceneFileBytes, "a scene file");
@@ -68,7 +69,6 @@ void recommend_scene(const SceneRecommendArgs& args) {
     points.push_back(p);
     origins.push_back(m.origin);
   }
-  const validate::CostSource cost = args.costs.source(args.precision);
   const CostsOption::From source = args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
   const validate::Recommendation r = validate::recommend(points, args.budget);
 
