@@ -29,10 +29,11 @@ struct CostsOption {
   CLI::Option* cost_option = nullptr;  // whether --cost was given (an empty value is refused, not the default)
 
   void add_to(CLI::App* cmd) {
-    cost_option = cmd->add_option("--cost", cost,
-                    "speed axis: gpu:FAMILY (ACO's inverse throughput of the GLSL export on that RADV family, "
-                    "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab bench`). "
-                    "Default gpu:navi21; cpu-batch under --precision double or --live-timing");
+    cost_option = cmd->add_option(
+        "--cost", cost,
+        "speed axis: gpu:FAMILY (ACO's inverse throughput of the GLSL export on that RADV family, "
+        "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab bench`). "
+        "Default gpu:navi21; cpu-batch under --precision double or --live-timing");
     cmd->add_option("--costs", costs,
                     "cost table written by `sglab bench` and `sglab gpucost` (default: data/results/costs.json of "
                     "the project holding the working directory)");
@@ -70,7 +71,7 @@ struct CostsOption {
   // malformed table, or a table without the source (no gpu section, family
   // absent).
   From fill(std::vector<validate::MethodPoint>& points, validate::FloatFormat f, int repetitions,
-              double min_time) const {
+            double min_time) const {
     const validate::CostSource s = source(f);
     if (live_timing) {
       if (!costs.empty()) throw InputError("--costs and --live-timing exclude each other");
