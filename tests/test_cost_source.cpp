@@ -234,6 +234,18 @@ TEST(CostSourceCli, DefaultIsNavi21FromTheCostTable) {
   EXPECT_EQ(rows, std::size(sglab::irradiance_methods));
 }
 
+// README names the driver that measured the committed GPU costs: the one the
+// cost table records (it must follow the table when the table is regenerated).
+TEST(CostSourceCli, ReadmeNamesTheDriverOfTheCommittedTable) {
+  const fs::path root = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
+  std::ifstream table(root / "data" / "results" / "costs.json"), readme(root / "README.md");
+  std::stringstream t, r;
+  t << table.rdbuf();
+  r << readme.rdbuf();
+  const std::string driver = nlohmann::json::parse(t.str()).at("gpu").at("driver");
+  EXPECT_NE(r.str().find("table's `gpu.driver` is `" + driver + "`"), std::string::npos) << driver;
+}
+
 // The choice is the cheapest method meeting the budget by the table's cycles:
 // no qualifying candidate costs less than the choice by more than the tie
 // margin, and every candidate cheaper than that misses the budget.
