@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -536,15 +537,21 @@ std::string pareto_labels(const std::vector<ParetoRow>& rows, const PanelFrame& 
     const double cand[][2] = {{11, -h / 2},      {-11 - w, -h / 2}, {-w / 2, -11 - h}, {-w / 2, 11},
                               {9, -9 - h},       {9, 9},            {-9 - w, -9 - h},  {-9 - w, 9},
                               {11, -h / 2 - 14}, {11, -h / 2 + 14}, {-w / 2, -25 - h}, {-w / 2, 25}};
-    Box chosen{cx + cand[0][0], cy + cand[0][1], cx + cand[0][0] + w, cy + cand[0][1] + h};
+    // The first free spot inside the panel; else the first inside it (panels sit side by side: a
+    // label past the frame would run into the next one); else the right of the point.
+    std::optional<Box> free, inside;
     for (const auto& c : cand) {
       const Box bx{cx + c[0], cy + c[1], cx + c[0] + w, cy + c[1] + h};
       if (bx.x0 < g.left || bx.x1 > g.right || bx.y0 < g.top || bx.y1 > g.bottom) continue;
+      if (!inside) inside = bx;
       if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.hits(bx); })) {
-        chosen = bx;
+        free = bx;
         break;
       }
     }
+    const Box chosen = free    ? *free
+                       : inside ? *inside
+                                : Box{cx + cand[0][0], cy + cand[0][1], cx + cand[0][0] + w, cy + cand[0][1] + h};
     taken.push_back(chosen);
     // Back to data coordinates: the label's left end, vertically centred.
     const double ax = std::pow(10.0, g.lx0 + (chosen.x0 + 2 - g.left) / (g.right - g.left) * (g.lx1 - g.lx0));
@@ -648,8 +655,8 @@ std::string gpu_family_table(const FiguresOptions& opt, const ParetoPanel& p, co
   }
   if (others.empty()) return "";
   std::string csv = "method," + fmt::format("{}", fmt::join(others, ",")) + "\n";
-  std::vector<std::string> lines = {fmt::format("{} on the other families ({}):", source->describe(), opt.gpu->driver),
-                                    fmt::format("{:<22}", "method")};
+  std::vector<std::string> lines = {"ACO inverse throughput (cycles per wave)",
+                                    fmt::format("on the other families, {}:", opt.gpu->driver), fmt::format("{:<22}", "method")};
   for (const std::string& family : others) lines.back() += fmt::format("{:>10}", family);
   for (const ParetoRow& r : p.rows) {
     csv += csv_field(r.method);
