@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "report/cost_table.hpp"
 #include "report/figures.hpp"
 #include "fit/targets.hpp"
 
@@ -17,7 +19,8 @@ namespace sglab::app {
 namespace {
 struct FiguresArgs {
   std::string out = "out/figures";
-  std::string pareto = "out/pareto/pareto.csv";
+  std::vector<std::string> pareto = {"out/pareto/pareto.csv"};
+  std::string costs;  // empty: the project's data/results/costs.json when there is one
   std::string gnuplot = "gnuplot";
 };
 }  // namespace
@@ -26,15 +29,24 @@ void add_figures_command(CLI::App& app) {
   auto args = std::make_shared<FiguresArgs>();
   auto* cmd = app.add_subcommand("figures", "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
   cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
-  cmd->add_option("--pareto", args->pareto, "Pareto CSV written by `sglab pareto` (figure e; skipped when absent)")
+  cmd->add_option("--pareto", args->pareto,
+                  "Pareto CSV written by `sglab pareto`, repeatable: figure e draws one panel per cost source "
+                  "(--cost) in them, side by side (e.g. the GPU cost and the CPU batch one; skipped when absent)")
       ->capture_default_str();
+  cmd->add_option("--costs", args->costs,
+                  "cost table whose \"gpu\" section figure e tables beside a GPU panel (the other families' inverse "
+                  "throughput; default: data/results/costs.json of the project holding the working directory, if any)");
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
   cmd->callback([args] {
     const auto start = std::chrono::steady_clock::now();
     report::FiguresOptions opt;
     opt.out = args->out;
-    opt.pareto = args->pareto;
+    opt.pareto.assign(args->pareto.begin(), args->pareto.end());
     opt.gnuplot = args->gnuplot;
+    if (!args->costs.empty())
+      opt.gpu = report::read_cost_table(args->costs).gpu;
+    else if (const auto found = report::default_cost_table_path())
+      if (const auto table = report::read_existing_cost_table(*found)) opt.gpu = table->gpu;
     opt.optimal_steepness = [](const std::vector<double>& kappas) {
       return fit::optimal_steepness("steepness2022", kappas);
     };

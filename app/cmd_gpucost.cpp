@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 
 #include "app/commands.hpp"
+#include "report/cost_source.hpp"
 #include "report/cost_table.hpp"
 #include "export/gpu_cost.hpp"
 #include "common/io.hpp"
@@ -40,9 +41,7 @@ std::vector<std::string> checked_families(const std::vector<std::string>& asked)
   if (asked.empty())
     for (const gpu::Family& f : gpu::kDefaultFamilies) families.emplace_back(f.name);
   for (const std::string& f : asked) {
-    const bool name_like = !f.empty() && f.size() <= 32 &&
-                           f.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") == std::string::npos;
-    if (!name_like)
+    if (!report::is_gpu_family_name(f))
       throw InputError(fmt::format("--families: '{}' is not a chip name (lower-case letters and digits, e.g. navi21)",
                                    f.substr(0, 40)));
     if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);

@@ -1,7 +1,8 @@
 // `sglab pareto`: speed against accuracy of every irradiance method (published
-// and refit ids alike) in one precision over a κ range. Cost: batch ns per
-// evaluation from the cost table `sglab bench` wrote (--costs; data/results/
-// costs.json by default), or timed now with --live-timing; error:
+// and refit ids alike) in one precision over a κ range. Cost: --cost
+// gpu:FAMILY (ACO's inverse throughput, cycles; default gpu:navi21), cpu-batch
+// or cpu-scalar (ns/eval) from the cost table (--costs; data/results/costs.json
+// by default), or CPU ns timed now with --live-timing (app/costs_option.hpp); error:
 // max peak_rel over 29 log-spaced κ × 41 cosines on [LO, HI] (the sweep, so it
 // equals `sglab sweep --kappa LO:HI:29 --cosines 41`; +inf when the method
 // has non-finite outputs there). Marks the Pareto frontier and writes
@@ -35,8 +36,8 @@ struct ParetoArgs {
 
 void add_pareto_command(CLI::App& app) {
   auto args = std::make_shared<ParetoArgs>();
-  auto* cmd = app.add_subcommand("pareto", "Cost (batch ns/eval) against max peak_rel of every irradiance method, "
-                                           "with the Pareto frontier");
+  auto* cmd = app.add_subcommand("pareto", "Cost (GPU cycles or CPU ns/eval, --cost) against max peak_rel of every "
+                                           "irradiance method, with the Pareto frontier");
   cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->capture_default_str();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
@@ -56,16 +57,17 @@ void add_pareto_command(CLI::App& app) {
 
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
+    const report::CostSource cost = args->costs.source(*precision);  // a bad --cost before the sweep
     std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
-    const std::string source = args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
+    const CostsOption::From source = args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
     report::mark_frontier(points);
 
-    const validate::Table table = report::pareto_table(points, *precision, lo, hi);
+    const validate::Table table = report::pareto_table(points, *precision, lo, hi, cost, source.provenance);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
     validate::write_table(table, dir, "pareto", {TableFormat::csv, TableFormat::markdown});
-    fmt::print("{}\nCost: {}\nWritten to {}: pareto.{{csv,md}}\n", validate::to_markdown(table), source,
-               dir.string());
+    fmt::print("{}\nCost (--cost {}, in {}): {}\nWritten to {}: pareto.{{csv,md}}\n", validate::to_markdown(table),
+               cost.name(), cost.unit(), source.text, dir.string());
   });
 }
 

@@ -1,9 +1,10 @@
 // `sglab recommend --kappa LO:HI --budget E`: the cheapest irradiance method
 // whose max peak_rel over [LO, HI] (29 log-spaced κ × 41 cosines, the same
 // grid as `sglab pareto` and `sglab sweep --kappa LO:HI:29 --cosines 41`) is
-// ≤ E, and the runner-up. Cost: the batch ns per evaluation from the cost
-// table `sglab bench` wrote (--costs; data/results/costs.json by default), or
-// with --live-timing the median of 7 repetitions timed now (validate/cost.hpp);
+// ≤ E, and the runner-up. Cost: --cost gpu:FAMILY (ACO's inverse throughput,
+// cycles; default gpu:navi21), cpu-batch or cpu-scalar (ns/eval) from the cost
+// table (--costs; data/results/costs.json by default), or with --live-timing
+// CPU ns, the median of 7 repetitions timed now (app/costs_option.hpp);
 // costs within 5% of the cheapest remaining
 // candidate are ties, broken by the smaller error (validate/pareto.hpp).
 // When no method meets the budget, says so and names the most accurate (exit
@@ -49,13 +50,14 @@ nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
   return {{"method", p->method},
           {"origin", std::string(to_string(p->origin))},
           {"max_peak_rel", number(p->max_peak_rel)},
-          {"ns_per_eval", number(p->ns_per_eval)}};
+          {"cost", number(p->cost)},
+          {"cost_unit", p->cost_unit}};
 }
 
 std::string describe(const report::MethodPoint& p) {
-  return fmt::format("{}{} (max peak_rel {:.4g}, {:.3g} ns/eval)", p.method,
+  return fmt::format("{}{} (max peak_rel {:.4g}, {})", p.method,
                      p.origin == Origin::published ? std::string() : fmt::format(" [{}]", to_string(p.origin)),
-                     p.max_peak_rel, p.ns_per_eval);
+                     p.max_peak_rel, report::cost_text(p));
 }
 
 }  // namespace
@@ -96,8 +98,9 @@ void add_recommend_command(CLI::App& app) {
       hi = std::get<io::KappaRange>(parsed).hi;
     }
 
+    const report::CostSource cost = args->costs.source(*precision);  // a bad --cost before the sweep
     std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
-    const std::string source = args->costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
+    const CostsOption::From source = args->costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
     const report::Recommendation r = report::recommend(points, budget);
 
     if (args->json) {
@@ -110,11 +113,13 @@ void add_recommend_command(CLI::App& app) {
       doc["runner_up"] = point_json(r.runner_up);
       doc["most_accurate"] = point_json(r.most_accurate);
       doc["tie_margin"] = report::kCostTieMargin;
-      doc["cost_source"] = source;
+      doc["cost_source"] = cost.name();
+      doc["cost_unit"] = std::string(cost.unit());
+      doc["cost_from"] = source.text;
       nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
       for (const auto& p : points) {
         auto j = point_json(p);
-        j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.ns_per_eval) && p.max_peak_rel <= budget;
+        j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) && p.max_peak_rel <= budget;
         candidates.push_back(std::move(j));
       }
       doc["candidates"] = std::move(candidates);
@@ -135,7 +140,7 @@ void add_recommend_command(CLI::App& app) {
       else
         fmt::print("  no method has a finite error over this range.\n");
     }
-    fmt::print("(cost: batch ns/eval from {}; costs within {}% are ties, broken by error)\n", source,
+    fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(), source.text,
                report::kCostTieMargin * 100);
   });
 }

@@ -29,6 +29,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -38,6 +39,7 @@
 
 #include "app/commands.hpp"
 #include "common/atomic_files.hpp"
+#include "report/cost_table.hpp"
 #include "common/io.hpp"
 
 namespace sglab::app {
@@ -287,11 +289,17 @@ std::string section(const fs::path& out, const Step& step, int status, double se
 }
 
 // The steps of the main job writing under `root`. pareto reads the costs the
-// bench step measured, or the committed table when bench is skipped.
+// bench and gpucost steps measured, or the committed table when bench is
+// skipped: GPU cost (its default, gpu:navi21) into pareto/, CPU batch ns into
+// pareto-cpu/; the figure shows both side by side.
 std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped) {
   const auto in = [&root](const char* sub) { return (root / sub).string(); };
   std::vector<std::string> pareto = {"pareto", "--out", in("pareto")};
-  if (!bench_skipped) pareto.insert(pareto.end(), {"--costs", in("bench/costs.json")});
+  std::vector<std::string> pareto_cpu = {"pareto", "--cost", "cpu-batch", "--out", in("pareto-cpu")};
+  std::vector<std::string> figures = {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv"),
+                                      "--pareto", in("pareto-cpu/pareto.csv")};
+  if (!bench_skipped)
+    for (auto* step : {&pareto, &pareto_cpu, &figures}) step->insert(step->end(), {"--costs", in("bench/costs.json")});
   std::vector<std::string> erf = {"erf"};
   if (!quick) erf.emplace_back("--exhaustive");
   erf.insert(erf.end(), {"--out", in("erf")});
@@ -306,8 +314,25 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       // both languages: each export's header states its own (sglab export).
       {"gpucost", {"gpucost", "--skip-unavailable", "--lang", "both", "--out", in("bench")}, "bench"},
       {"pareto", pareto, "pareto"},
-      {"figures", {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv")}, "figures"},
+      {"pareto-cpu", pareto_cpu, "pareto-cpu"},
+      {"figures", figures, "figures"},
   };
+}
+
+// Whether the cost table a pareto step reads (its --costs, else the project's)
+// has the GPU costs that its default --cost needs: gpucost writes none where
+// RADV has no null device. A missing or malformed table counts as having them,
+// so that the step itself reports it.
+bool has_gpu_costs(const Step& step) {
+  const auto it = std::find(step.arguments.begin(), step.arguments.end(), "--costs");
+  std::optional<fs::path> path = report::default_cost_table_path();
+  if (it != step.arguments.end() && it + 1 != step.arguments.end()) path = *(it + 1);
+  try {
+    const auto table = path ? report::read_existing_cost_table(*path) : std::nullopt;
+    return !table || table->gpu.has_value();
+  } catch (const std::exception&) {
+    return true;
+  }
 }
 
 // A fresh folder beside `out` (beside the folder it links to, if it is a
@@ -388,6 +413,13 @@ void add_run_command(CLI::App& app) {
     for (std::size_t i = 0; i < steps.size(); ++i) {
       const Step& step = steps[i];
       if (skipped(step.name)) continue;
+      if (step.name == "pareto" && !has_gpu_costs(step)) {
+        const std::string why = "skipped: the cost table has no GPU costs (no RADV null device for gpucost, or its "
+                                "step skipped); pareto-cpu has the CPU cost";
+        fmt::print("{:<10} {}\n", step.name, why);
+        index += fmt::format("## {}\n\n`{}` — {}\n\n", step.name, display_command(shown[i].arguments), why);
+        continue;
+      }
       if (io::stderr_is_terminal()) fmt::print(stderr, "sglab run: {} ...\n", step.name);
       const auto start = std::chrono::steady_clock::now();
       const int status = run_logged(step, staging / "logs" / (step.name + ".log"));

@@ -1,17 +1,22 @@
 // app/costs_option.hpp — where `sglab pareto` and `sglab recommend` take
-// their costs from: the cost table `sglab bench` wrote (--costs FILE, by
-// default data/results/costs.json of the project holding the working
-// directory), or, only when asked with --live-timing, a fresh measurement.
+// their costs from: a cost source (--cost gpu:FAMILY | cpu-batch | cpu-scalar,
+// report/cost_source.hpp; default gpu:navi21, cpu-batch under --precision
+// double) of the cost table that `sglab bench` and `sglab gpucost` wrote
+// (--costs FILE, by default data/results/costs.json of the project holding the
+// working directory), or, only when asked with --live-timing, CPU ns measured
+// now.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "report/cost_source.hpp"
 #include "report/cost_table.hpp"
 #include "report/pareto.hpp"
 
@@ -19,46 +24,85 @@ namespace sglab::app {
 
 struct CostsOption {
   std::string costs;  // empty: the project's data/results/costs.json
+  std::string cost;   // when --cost is not given: report::default_cost_source (cpu-batch with --live-timing)
   bool live_timing = false;
+  CLI::Option* cost_option = nullptr;  // whether --cost was given (an empty value is refused, not the default)
 
   void add_to(CLI::App* cmd) {
+    cost_option = cmd->add_option(
+        "--cost", cost,
+        "speed axis: gpu:FAMILY (ACO's inverse throughput of the GLSL export on that RADV family, "
+        "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab bench`). "
+        "Default gpu:navi21; cpu-batch under --precision double or --live-timing");
     cmd->add_option("--costs", costs,
-                    "cost table written by `sglab bench` (default: data/results/costs.json of the project "
-                    "holding the working directory)");
+                    "cost table written by `sglab bench` and `sglab gpucost` (default: data/results/costs.json of "
+                    "the project holding the working directory)");
     cmd->add_flag("--live-timing", live_timing,
-                  "time the methods now instead of reading a cost table (answers vary from run to run)");
+                  "time the methods on this CPU now instead of reading a cost table (answers vary from run to run)");
   }
 
-  // Fills ns_per_eval of `points`; returns a one-line description of the
-  // source for the output. Missing methods are named on stderr. Throws
-  // InputError (exit 2) for a missing or malformed table.
-  std::string fill(std::vector<report::MethodPoint>& points, validate::FloatFormat f, int repetitions,
-                   double min_time) const {
+  // The chosen source (parsed once); throws InputError (exit 2) naming --cost.
+  report::CostSource source(validate::FloatFormat f) const {
+    if (!cost_option || cost_option->count() == 0)
+      return live_timing ? report::CostSource{report::CostSourceKind::cpu_batch, {}}
+                         : report::default_cost_source(f);
+    const auto parsed = report::parse_cost_source(cost);
+    if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--cost: " + *why);
+    const auto& s = std::get<report::CostSource>(parsed);
+    if (s.kind == report::CostSourceKind::gpu && f != validate::FloatFormat::binary32)
+      throw InputError(fmt::format("--cost {}: the GPU cost is that of the float shader export; use --precision "
+                                   "float, or --cost cpu-batch / cpu-scalar",
+                                   s.name()));
+    if (s.kind == report::CostSourceKind::gpu && live_timing)
+      throw InputError(fmt::format("--cost {} and --live-timing exclude each other (live timing is CPU ns)", s.name()));
+    return s;
+  }
+
+  // Where the costs came from: `text` for the output (what, file, driver or
+  // machine), `provenance` the driver or machine alone (no path, for files
+  // that are kept, e.g. pareto.md).
+  struct From {
+    std::string text, provenance;
+  };
+
+  // Fills cost and cost_unit of `points` from source(f); returns where they
+  // came from. A method without a cost there is named on stderr and keeps NaN
+  // ("no cost"). Throws InputError (exit 2) for a bad --cost, a missing or
+  // malformed table, or a table without the source (no gpu section, family
+  // absent).
+  From fill(std::vector<report::MethodPoint>& points, validate::FloatFormat f, int repetitions,
+            double min_time) const {
+    const report::CostSource s = source(f);
     if (live_timing) {
       if (!costs.empty()) throw InputError("--costs and --live-timing exclude each other");
-      report::fill_costs(points, f, repetitions, min_time);
-      return fmt::format("live timing now: median batch ns/eval of {} repetitions (varies from run to run)",
-                         repetitions);
+      report::fill_costs(points, f, s.cpu_mode(), repetitions, min_time);
+      const std::string provenance =
+          fmt::format("live timing now: median of {} repetitions (varies from run to run)", repetitions);
+      return {fmt::format("{}, {}", s.describe(), provenance), provenance};
     }
     std::filesystem::path path = costs;
     if (costs.empty()) {
       const auto found = report::default_cost_table_path();
       if (!found)
         throw InputError(
-            "no cost table: no project folder (with data/results and include/sglab) above the working directory; "
-            "pass --costs FILE (written by `sglab bench`) or --live-timing");
+            "no cost table: no project folder (with data/constants and include/sglab) above the working directory; "
+            "pass --costs FILE (written by `sglab bench` and `sglab gpucost`) or --live-timing");
       path = *found;
     }
     const report::CostTable table = report::read_cost_table(path);
-    const std::vector<std::string> missing = report::fill_costs(points, f, table);
+    const std::vector<std::string> missing = report::fill_costs(points, f, table, s);
     for (const std::string& m : missing)
-      fmt::print(stderr,
-                 "sglab: warning: cost table {} has no irradiance/{}/batch cost for method '{}'; it is left out "
-                 "(run `sglab bench` to measure it)\n",
-                 path.string(), validate::to_string(f), m);
-    return fmt::format("cost table {} (sglab bench, {}; {}, {} cores; {} {} {})", path.string(), table.info.date,
-                       table.info.cpu, table.info.cores, table.info.compiler_id, table.info.compiler_version,
-                       table.info.build_type);
+      fmt::print(stderr, "sglab: warning: cost table {} has no {} cost for method '{}' ({}); it is listed as \"no "
+                         "cost\" and left out of the ranking (run `sglab {}` to measure it)\n",
+                 path.string(), s.name(), m,
+                 s.kind == report::CostSourceKind::gpu ? "GLSL, float" : validate::to_string(f),
+                 s.kind == report::CostSourceKind::gpu ? "gpucost" : "bench");
+    const std::string provenance =
+        s.kind == report::CostSourceKind::gpu
+            ? fmt::format("sglab gpucost, {}; a compiler estimate, not a timing", table.gpu->driver)
+            : fmt::format("sglab bench, {}; {}, {} cores; {} {} {}", table.info.date, table.info.cpu, table.info.cores,
+                          table.info.compiler_id, table.info.compiler_version, table.info.build_type);
+    return {fmt::format("{} from cost table {} ({})", s.describe(), path.string(), provenance), provenance};
   }
 };
 

@@ -3,7 +3,8 @@
 // total RGB irradiance is evaluated at --normals Fibonacci normals exactly
 // (reference engine) and with every registered irradiance method; error =
 // max over normals and channels of |Ê − E| / the scene's largest exact
-// irradiance. Ranking and cost as `sglab recommend --kappa` (validate/pareto.hpp).
+// irradiance. Ranking and cost (--cost, default GPU inverse throughput on
+// navi21) as `sglab recommend --kappa` (validate/pareto.hpp, app/costs_option.hpp).
 // Then the scene's κ range and, over that range, the error of each of sglab's
 // own models on the standard 29 κ × 41 c sub-grid: which of them suffices.
 #include "app/recommend_scene.hpp"
@@ -32,11 +33,10 @@ nlohmann::ordered_json number(double x) {
   return x;
 }
 
-// The one place the scene recommendation takes its costs from.
-
 }  // namespace
 
 void recommend_scene(const SceneRecommendArgs& args) {
+  const report::CostSource cost = args.costs.source(args.precision);  // a bad --cost before any work
   std::string text;
   try {
     text = io::read_input_file(args.scene, validate::kMaxSceneFileBytes, "a scene file");
@@ -69,7 +69,7 @@ void recommend_scene(const SceneRecommendArgs& args) {
     points.push_back(p);
     origins.push_back(m.origin);
   }
-  args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
+  const CostsOption::From source = args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
   const report::Recommendation r = report::recommend(points, args.budget);
 
   // sglab's models over the scene's κ range (κ = 0 lights: the range starts at 1e-3).
@@ -77,17 +77,17 @@ void recommend_scene(const SceneRecommendArgs& args) {
   const auto range_errors = report::irradiance_errors(lo, hi, args.precision);
   struct ModelOnRange {
     std::string id;
-    double error, ns;
+    double error, cost;
   };
   std::vector<ModelOnRange> models;
   const ModelOnRange* sufficient = nullptr;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (origins[i] != Origin::sglab) continue;
     for (const auto& e : range_errors)
-      if (e.method == points[i].method) models.push_back({e.method, e.max_peak_rel, points[i].ns_per_eval});
+      if (e.method == points[i].method) models.push_back({e.method, e.max_peak_rel, points[i].cost});
   }
   for (const auto& m : models)
-    if (m.error <= args.budget && (!sufficient || m.ns < sufficient->ns)) sufficient = &m;
+    if (m.error <= args.budget && std::isfinite(m.cost) && (!sufficient || m.cost < sufficient->cost)) sufficient = &m;
 
   if (args.json) {
     nlohmann::ordered_json doc;
@@ -97,10 +97,14 @@ void recommend_scene(const SceneRecommendArgs& args) {
     doc["kappa_range"] = {scene.kappa_min(), scene.kappa_max()};
     doc["budget"] = args.budget;
     doc["precision"] = std::string(validate::to_string(args.precision));
+    doc["cost_source"] = cost.name();
+    doc["cost_unit"] = std::string(cost.unit());
+    doc["cost_from"] = source.text;
     doc["error"] = "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the scene";
     auto point = [](const std::optional<report::MethodPoint>& p) -> nlohmann::ordered_json {
       if (!p) return nullptr;
-      return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"ns_per_eval", number(p->ns_per_eval)}};
+      return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"cost", number(p->cost)},
+              {"cost_unit", p->cost_unit}};
     };
     doc["choice"] = point(r.choice);
     doc["runner_up"] = point(r.runner_up);
@@ -110,8 +114,10 @@ void recommend_scene(const SceneRecommendArgs& args) {
       methods.push_back({{"method", points[i].method},
                          {"origin", std::string(to_string(origins[i]))},
                          {"scene_error", number(points[i].max_peak_rel)},
-                         {"ns_per_eval", number(points[i].ns_per_eval)},
-                         {"qualifies", std::isfinite(points[i].max_peak_rel) && points[i].max_peak_rel <= args.budget}});
+                         {"cost", number(points[i].cost)},
+                         {"cost_unit", points[i].cost_unit},
+                         {"qualifies", std::isfinite(points[i].max_peak_rel) && std::isfinite(points[i].cost) &&
+                                           points[i].max_peak_rel <= args.budget}});
     doc["methods"] = std::move(methods);
     nlohmann::ordered_json sg = nlohmann::ordered_json::array();
     for (const auto& m : models)
@@ -126,18 +132,18 @@ void recommend_scene(const SceneRecommendArgs& args) {
              scene.lights.size(), scene.kappa_min(), scene.kappa_max(), normals.size(),
              validate::to_string(args.precision), args.budget);
   fmt::print("error = max over normals and RGB channels of |Ê − E| / the scene's largest exact irradiance\n\n");
-  fmt::print("  {:<24} {:<10} {:>12} {:>10}  {}\n", "method", "origin", "scene error", "ns/eval", "meets budget");
+  fmt::print("  {:<24} {:<10} {:>12} {:>12}  {}\n", "method", "origin", "scene error", "cost", "meets budget");
   for (std::size_t i = 0; i < points.size(); ++i)
-    fmt::print("  {:<24} {:<10} {:>12.4g} {:>10.3g}  {}\n", points[i].method, to_string(origins[i]),
-               points[i].max_peak_rel, points[i].ns_per_eval,
+    fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", points[i].method, to_string(origins[i]),
+               points[i].max_peak_rel, report::cost_text(points[i]),
                std::isfinite(points[i].max_peak_rel) && points[i].max_peak_rel <= args.budget ? "yes" : "no");
   fmt::print("\n");
   if (r.choice) {
-    fmt::print("  choice:    {} (scene error {:.4g}, {:.3g} ns/eval)\n", r.choice->method, r.choice->max_peak_rel,
-               r.choice->ns_per_eval);
+    fmt::print("  choice:    {} (scene error {:.4g}, {})\n", r.choice->method, r.choice->max_peak_rel,
+               report::cost_text(*r.choice));
     if (r.runner_up)
-      fmt::print("  runner-up: {} (scene error {:.4g}, {:.3g} ns/eval)\n", r.runner_up->method,
-                 r.runner_up->max_peak_rel, r.runner_up->ns_per_eval);
+      fmt::print("  runner-up: {} (scene error {:.4g}, {})\n", r.runner_up->method, r.runner_up->max_peak_rel,
+                 report::cost_text(*r.runner_up));
   } else {
     fmt::print("  no method meets the budget on this scene.\n");
     if (r.most_accurate)
@@ -150,7 +156,7 @@ void recommend_scene(const SceneRecommendArgs& args) {
     fmt::print("  cheapest sglab model sufficient for the range: {}\n", sufficient->id);
   else
     fmt::print("  no registered sglab model meets the budget over this κ range.\n");
-  fmt::print("(cost: median batch ns/eval of 7 repetitions; costs within {}% are ties, broken by error)\n",
+  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(), source.text,
              report::kCostTieMargin * 100);
 }
 

@@ -9,11 +9,14 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <sglab/registry.hpp>
+
+#include "export/gpu_cost.hpp"
 
 namespace sglab::report {
 
@@ -24,7 +27,12 @@ struct GnuplotMissing : std::runtime_error {
 
 struct FiguresOptions {
   std::filesystem::path out = "out/figures";
-  std::filesystem::path pareto = "out/pareto/pareto.csv";  // figure (e); skipped when absent
+  // Figure (e): `sglab pareto` CSVs, one panel per cost source in them (absent files are skipped;
+  // the figure is skipped when none exists).
+  std::vector<std::filesystem::path> pareto = {"out/pareto/pareto.csv"};
+  // The "gpu" section of the cost table (export/gpu_cost.hpp): figure (e)
+  // tables the other families' inverse throughput beside a GPU panel.
+  std::optional<shader::gpu::Report> gpu;
   std::string gnuplot = "gnuplot";
   // t*(κ) of the 2022 normalized hemispherical integral (fit::optimal_steepness).
   std::function<std::vector<double>(const std::vector<double>&)> optimal_steepness;
@@ -49,12 +57,15 @@ bool gnuplot_available(const std::string& gnuplot = "gnuplot");
 std::vector<Figure> make_figures(const FiguresOptions& options);
 
 // Parses `sglab pareto`'s CSV (RFC 4180; header
-// method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier;
-// origin is published, refit or sglab, frontier true/false or 1/0).
+// method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier;
+// origin is published, refit or sglab, frontier true/false or 1/0). The CSV of
+// an older sglab, with ns_per_eval instead of the three cost columns, reads as
+// cost_unit "ns", cost_source "cpu-batch".
 struct ParetoRow {
   std::string method, precision;
   Origin origin = Origin::published;
-  double kappa_lo = 0, kappa_hi = 0, ns_per_eval = 0, max_peak_rel = 0;
+  double kappa_lo = 0, kappa_hi = 0, cost = 0, max_peak_rel = 0;
+  std::string cost_unit = "ns", cost_source = "cpu-batch";
   bool frontier = false;
 };
 // The largest Pareto CSV read (io::read_input_file); `sglab pareto` writes a few KB.

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <sglab/registry.hpp>
 
@@ -16,9 +17,14 @@ namespace sglab::report {
 
 namespace {
 
-bool usable(const MethodPoint& p) { return std::isfinite(p.ns_per_eval) && std::isfinite(p.max_peak_rel); }
+bool usable(const MethodPoint& p) { return std::isfinite(p.cost) && std::isfinite(p.max_peak_rel); }
 
 }  // namespace
+
+std::string cost_text(const MethodPoint& p) {
+  if (!std::isfinite(p.cost)) return "no cost";
+  return fmt::format("{:.3g} {}", p.cost, p.cost_unit);
+}
 
 void mark_frontier(std::vector<MethodPoint>& points) {
   for (MethodPoint& p : points) {
@@ -27,8 +33,8 @@ void mark_frontier(std::vector<MethodPoint>& points) {
     bool dominated = false;
     for (const MethodPoint& q : points) {
       if (&q == &p || !usable(q)) continue;
-      if (q.ns_per_eval <= p.ns_per_eval && q.max_peak_rel <= p.max_peak_rel &&
-          (q.ns_per_eval < p.ns_per_eval || q.max_peak_rel < p.max_peak_rel)) {
+      if (q.cost <= p.cost && q.max_peak_rel <= p.max_peak_rel &&
+          (q.cost < p.cost || q.max_peak_rel < p.max_peak_rel)) {
         dominated = true;
         break;
       }
@@ -44,21 +50,21 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget, 
   for (const MethodPoint& p : points) {
     if (!usable(p)) continue;
     if (!r.most_accurate || p.max_peak_rel < r.most_accurate->max_peak_rel ||
-        (p.max_peak_rel == r.most_accurate->max_peak_rel && p.ns_per_eval < r.most_accurate->ns_per_eval))
+        (p.max_peak_rel == r.most_accurate->max_peak_rel && p.cost < r.most_accurate->cost))
       r.most_accurate = p;
     if (p.max_peak_rel <= budget) remaining.push_back(p);
   }
   while (!remaining.empty()) {
     double cheapest = std::numeric_limits<double>::infinity();
-    for (const MethodPoint& p : remaining) cheapest = std::min(cheapest, p.ns_per_eval);
+    for (const MethodPoint& p : remaining) cheapest = std::min(cheapest, p.cost);
     const double limit = cheapest * (1.0 + tie_margin);
     auto best = remaining.end();
     for (auto it = remaining.begin(); it != remaining.end(); ++it) {
-      if (it->ns_per_eval > limit) continue;
+      if (it->cost > limit) continue;
       if (best == remaining.end() || it->max_peak_rel < best->max_peak_rel ||
           (it->max_peak_rel == best->max_peak_rel &&
-           (it->ns_per_eval < best->ns_per_eval ||
-            (it->ns_per_eval == best->ns_per_eval && it->method < best->method))))
+           (it->cost < best->cost ||
+            (it->cost == best->cost && it->method < best->method))))
         best = it;
     }
     r.ranked.push_back(*best);
@@ -104,47 +110,93 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, val
   return out;
 }
 
-void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, int repetitions, double min_time) {
+void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode, int repetitions, double min_time) {
   CostOptions options;
   options.repetitions = repetitions;
   options.min_time = min_time;
   options.kinds = {CostKind::irradiance};
   options.precisions = {f};
-  options.modes = {CostMode::batch};
+  options.modes = {mode};
   const std::vector<Cost> costs = measure_costs(options);
   for (MethodPoint& p : points) {
-    p.ns_per_eval = std::numeric_limits<double>::quiet_NaN();
+    p.cost = std::numeric_limits<double>::quiet_NaN();
+    p.cost_unit = "ns";
     for (const Cost& c : costs)
-      if (c.method == p.method) p.ns_per_eval = c.ns_per_eval;
+      if (c.method == p.method) p.cost = c.ns_per_eval;
   }
 }
 
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table) {
+namespace {
+
+// The rows of gpu:FAMILY in the table (unsplit float GLSL), or CostTableError.
+std::vector<const shader::gpu::Row*> gpu_rows(const CostTable& table, const std::string& family) {
+  const std::string where = table.path.empty() ? std::string("the cost table") : table.path.string();
+  if (!table.gpu)
+    throw CostTableError(fmt::format("--cost gpu:{}: {} has no \"gpu\" section (write it with `sglab gpucost --out "
+                                     "DIR`, or choose --cost cpu-batch)",
+                                     family, where));
+  std::vector<const shader::gpu::Row*> rows;
+  std::vector<std::string> families;
+  for (const shader::gpu::Row& r : table.gpu->rows) {
+    if (std::find(families.begin(), families.end(), r.family) == families.end()) families.push_back(r.family);
+    if (r.family == family && r.lang == shader::Language::glsl && !r.split && r.precision == "float")
+      rows.push_back(&r);
+  }
+  if (rows.empty())
+    throw CostTableError(fmt::format("--cost gpu:{}: {} has no GLSL rows for family '{}' (it has: {})", family, where,
+                                     family, families.empty() ? "none" : fmt::format("{}", fmt::join(families, ", "))));
+  return rows;
+}
+
+}  // namespace
+
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table,
+                                    const CostSource& source) {
   std::vector<std::string> missing;
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  if (source.kind == CostSourceKind::gpu) {
+    if (f != validate::FloatFormat::binary32)
+      throw std::invalid_argument(fmt::format("--cost {}: the GPU cost is that of the float shader export; use "
+                                              "--precision float or a cpu-* cost",
+                                              source.name()));
+    const std::vector<const shader::gpu::Row*> rows = gpu_rows(table, source.family);
+    for (MethodPoint& p : points) {
+      const auto it = std::find_if(rows.begin(), rows.end(), [&](const shader::gpu::Row* r) { return r->method == p.method; });
+      p.cost = it == rows.end() ? none : static_cast<double>((*it)->stats.inverse_throughput);
+      p.cost_unit = std::string(source.unit());
+      if (it == rows.end()) missing.push_back(p.method);
+    }
+    return missing;
+  }
   for (MethodPoint& p : points) {
-    const Cost* c = table.find(CostKind::irradiance, p.method, f, CostMode::batch);
-    p.ns_per_eval = c ? c->ns_per_eval : std::numeric_limits<double>::quiet_NaN();
+    const Cost* c = table.find(CostKind::irradiance, p.method, f, source.cpu_mode());
+    p.cost = c ? c->ns_per_eval : none;
+    p.cost_unit = std::string(source.unit());
     if (!c) missing.push_back(p.method);
   }
   return missing;
 }
 
-validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi) {
-  validate::Table t(fmt::format("Speed against accuracy ({}): batch ns/eval against max peak_rel over κ in [{}, {}] "
-                      "(29 κ × 41 c); frontier = not dominated",
-                      to_string(f), kappa_lo, kappa_hi),
+validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi,
+                   const CostSource& source, std::string_view cost_from) {
+  validate::Table t(fmt::format("Speed against accuracy ({}): {} against max peak_rel over κ in [{}, {}] "
+                      "(29 κ × 41 c); frontier = not dominated{}",
+                      to_string(f), source.describe(), kappa_lo, kappa_hi,
+                      cost_from.empty() ? std::string() : fmt::format(". Cost: {}", cost_from)),
           {{"method"},
            {"origin"},
            {"precision"},
            {"kappa_lo", 4},
            {"kappa_hi", 4},
-           {"ns_per_eval", 3},
+           {"cost", 3},
+           {"cost_unit"},
+           {"cost_source"},
            {"max_peak_rel", 3},
            {"frontier"}});
   for (const MethodPoint& p : points)
     t.add_row({validate::Table::text(p.method), validate::Table::text(std::string(to_string(p.origin))), validate::Table::text(to_string(f)),
-               validate::Table::real(kappa_lo), validate::Table::real(kappa_hi), validate::Table::real(p.ns_per_eval),
-               validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0)});
+               validate::Table::real(kappa_lo), validate::Table::real(kappa_hi), validate::Table::real(p.cost), validate::Table::text(p.cost_unit),
+               validate::Table::text(source.name()), validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0)});
   return t;
 }
 

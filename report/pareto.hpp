@@ -7,8 +7,10 @@
 // `sglab sweep --kappa LO:HI:29 --cosines 41 --method ID` reports as
 // max_peak_rel — except that a method with any non-finite output on the grid
 // gets error +inf (it cannot meet any budget and is never on the frontier).
-// Cost: the batch ns per evaluation from the cost table that `sglab bench`
-// wrote (cost_table.hpp), or measured live (measure_costs, cost.hpp).
+// Cost: from a cost source (cost_source.hpp: gpu:FAMILY inverse throughput in
+// cycles, cpu-batch or cpu-scalar ns per evaluation) of the cost table that
+// `sglab bench` and `sglab gpucost` wrote (cost_table.hpp), or CPU ns measured
+// live (measure_costs, cost.hpp).
 #pragma once
 
 #include <optional>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "report/cost.hpp"
+#include "report/cost_source.hpp"
 #include "report/cost_table.hpp"
 #include "validate/sweep.hpp"
 #include "validate/table.hpp"
@@ -29,10 +32,15 @@ inline constexpr double kCostTieMargin = 0.05;
 struct MethodPoint {
   std::string method;
   Origin origin = Origin::published;  // from the registry (Method::origin)
-  double ns_per_eval = 0;
+  double cost = 0;                    // in cost_unit; NaN: no cost in the chosen source
+  std::string cost_unit = "ns";       // CostSource::unit(): "cycles" or "ns"
   double max_peak_rel = 0;  // +inf on non-finite output, NaN if nothing was measured
   bool frontier = false;
 };
+
+// "132 cycles", "15.1 ns" (3 significant digits), or "no cost" when the cost
+// is not finite: how every text output shows a point's cost.
+std::string cost_text(const MethodPoint& p);
 
 // Marks the Pareto frontier in place: a point is on it iff its cost and error
 // are finite and no other point with finite cost and error dominates it
@@ -56,24 +64,34 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget,
                          double tie_margin = kCostTieMargin);
 
 // Max peak_rel of every irradiance method in precision `f` over the grid
-// {lo, hi, 29, 41} (see above). In registry order; ns_per_eval left 0.
+// {lo, hi, 29, 41} (see above). In registry order; cost left 0.
 // Throws std::invalid_argument on an invalid range.
 validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
 std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, validate::FloatFormat f);
 
-// Fills ns_per_eval with the median batch cost in precision `f`
-// (measure_costs, `repetitions` × `min_time` s per method): live timing,
-// which differs from run to run.
-void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, int repetitions = 5, double min_time = 0.01);
+// Fills cost (ns) with the median CPU cost in precision `f` and `mode` (batch
+// or scalar; measure_costs, `repetitions` × `min_time` s per method): live
+// timing, which differs from run to run.
+void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode, int repetitions = 5,
+                double min_time = 0.01);
 
-// Fills ns_per_eval from a cost table (cost_table.hpp): the irradiance batch
-// cost in precision `f`. A method without that row gets NaN (so it is neither
-// recommended nor on the frontier); returns the ids of those methods.
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table);
+// Fills cost and cost_unit from a cost table (cost_table.hpp) in `source`:
+// cpu-*: the irradiance batch/scalar ns of precision `f`; gpu:FAMILY: the
+// inverse throughput of the unsplit float GLSL row of FAMILY (the shaders are
+// float: f must be float). A method without its row gets NaN ("no cost": it is
+// listed but neither recommended nor on the frontier); returns the ids of
+// those methods. Throws CostTableError naming the table when the source has no
+// rows at all (no "gpu" section, FAMILY not in it: the families it has are
+// named), std::invalid_argument for gpu:* with f double.
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table,
+                                    const CostSource& source);
 
-// method, origin, precision, kappa_lo, kappa_hi, ns_per_eval, max_peak_rel,
-// frontier (origin published/refit/sglab, frontier 0/1).
-validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi);
+// method, origin, precision, kappa_lo, kappa_hi, cost, cost_unit, cost_source,
+// max_peak_rel, frontier (origin published/refit/sglab, frontier 0/1,
+// cost_source CostSource::name()); the title names the source and, when
+// given, where its costs came from (`cost_from`: table, driver or machine).
+validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi,
+                   const CostSource& source, std::string_view cost_from = {});
 
 // Whole-string finite number.
 bool parse_number(std::string_view text, double& out);

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -158,6 +159,59 @@ TEST(Figures, CommandWritesPngAndSvg) {
   EXPECT_EQ(std::count(g.begin(), g.end(), '\n'), 30) << g.substr(0, 500);
   EXPECT_EQ(g.rfind("kappa,wang2009_float,", 0), 0u) << g.substr(0, 200);
   fs::remove_all(dir);
+}
+
+// Figure (e) draws one panel per cost source of the Pareto CSVs it is given
+// (`sglab pareto --cost …`), in their order, each with its own points file and
+// axis label; an older CSV (ns_per_eval) is CPU batch ns.
+TEST(Figures, OnePanelPerCostSource) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  sglab::test::TempDir dir("figures-panels");
+  const std::string header = "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n";
+  sglab::io::write_file_atomic(dir.path / "gpu.csv", header +
+                                                         "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,0.15,1\n"
+                                                         "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,3e-5,1\n");
+  sglab::io::write_file_atomic(dir.path / "cpu.csv",
+                               "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+                               "vsgl2015,published,float,0.001,10000,3.7,0.15,1\n"
+                               "sglab_acc3,sglab,float,0.001,10000,18.3,3e-5,1\n");
+  // The cost table's GPU rows: beside the navi21 panel, a table of the other families (here navi10).
+  std::string gpu_rows;
+  for (const auto& [method, family, cycles] : {std::tuple{"vsgl2015", "navi21", 3}, {"vsgl2015", "navi10", 4},
+                                               {"sglab_acc3", "navi21", 169}, {"sglab_acc3", "navi10", 177}})
+    gpu_rows += fmt::format(R"({}{{"method": "{}", "family": "{}", "lang": "glsl", "split": false, "precision": "float", )"
+                            R"("instructions": 1, "inverse_throughput": {}, "latency": 1, "vgprs": 1, "sgprs": 1, )"
+                            R"("code_size": 4, "branches": 0, "spirv_hash": "0"}})",
+                            gpu_rows.empty() ? "" : ", ", method, family, cycles);
+  sglab::io::write_file_atomic(
+      dir.path / "costs.json",
+      R"({"format": "sglab-costs", "version": 1, "date": "2026-01-01T00:00:00Z", "command": "test", "machine": )"
+      R"({"cpu": "t", "cores": 1}, "compiler": {"id": "none", "version": "0"}, "build_type": "none", "timer": "none", )"
+      R"("inputs": "none", "costs": [], "gpu": {"driver": "radv test", "command": "test", "rows": [)" + gpu_rows + "]}}");
+  const fs::path out = dir.path / "figs";
+  const auto r = sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", (dir.path / "gpu.csv").string(),
+                                         "--pareto", (dir.path / "cpu.csv").string(), "--costs",
+                                         (dir.path / "costs.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(sglab::io::read_file(out / "e_pareto_1_families.csv"), "method,navi10\nvsgl2015,4\nsglab_acc3,177\n");
+  EXPECT_FALSE(fs::exists(out / "e_pareto_2_families.csv"));  // the CPU panel has none
+  const std::string gpu = sglab::io::read_file(out / "e_pareto_1_points.csv");
+  const std::string cpu = sglab::io::read_file(out / "e_pareto_2_points.csv");
+  EXPECT_NE(gpu.find("169,3e-05,3e-05,sglab_acc3,sglab,float,1,"), std::string::npos) << gpu;
+  EXPECT_NE(cpu.find("18.3,3e-05,3e-05,sglab_acc3,sglab,float,1,"), std::string::npos) << cpu;
+  EXPECT_EQ(gpu.find("18.3"), std::string::npos) << gpu;
+  const std::string script = sglab::io::read_file(out / "e_pareto.gp");
+  EXPECT_NE(script.find("set title '--cost gpu:navi21'"), std::string::npos);
+  EXPECT_NE(script.find("set xlabel 'GPU inverse throughput on navi21 (cycles per wave, ACO estimate)'"),
+            std::string::npos);
+  EXPECT_NE(script.find("set title '--cost cpu-batch'"), std::string::npos);
+  EXPECT_NE(script.find("set xlabel 'CPU batch ns/eval'"), std::string::npos);
+  EXPECT_GT(fs::file_size(out / "e_pareto.png"), 1000u);
+  // A header with cost but not its unit and source is refused.
+  sglab::io::write_file_atomic(dir.path / "half.csv",
+                               "method,origin,precision,kappa_lo,kappa_hi,cost,max_peak_rel,frontier\n"
+                               "a,published,float,1,10,1,0.1,1\n");
+  EXPECT_THROW(read_pareto_csv(dir.path / "half.csv"), std::invalid_argument);
 }
 
 // gnuplot is started with an argument vector, not through a shell: the

@@ -66,7 +66,8 @@ std::map<std::string, double> all_methods_cost(double ns) {
 }
 
 nlohmann::json recommend_json(const fs::path& table, const std::string& kappa, const std::string& budget) {
-  const auto r = run_sglab({"recommend", "--kappa", kappa, "--budget", budget, "--json", "--costs", table.string()},
+  const auto r = run_sglab({"recommend", "--kappa", kappa, "--budget", budget, "--json", "--costs", table.string(),
+                            "--cost", "cpu-batch"},
                            /*merge_stderr=*/false);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return nlohmann::json::parse(r.output);
@@ -95,7 +96,9 @@ TEST(CostTable, HandMadeTableDecidesTheRecommendation) {
   const auto a = recommend_json(dir / "a.json", "1:100", "1e-2");
   ASSERT_EQ(cheapest_qualifying(a, costs), "tokuyoshi2024");
   EXPECT_EQ(a.at("choice").at("method"), "tokuyoshi2024");
-  EXPECT_EQ(a.at("choice").at("ns_per_eval").get<double>(), 1.0);
+  EXPECT_EQ(a.at("choice").at("cost").get<double>(), 1.0);
+  EXPECT_EQ(a.at("choice").at("cost_unit"), "ns");
+  EXPECT_EQ(a.at("cost_source"), "cpu-batch");
 
   // Now the refit is the cheapest: the answer follows the table.
   costs["tokuyoshi2024"] = 50;
@@ -104,8 +107,8 @@ TEST(CostTable, HandMadeTableDecidesTheRecommendation) {
   const auto b = recommend_json(dir / "b.json", "1:100", "1e-2");
   ASSERT_EQ(cheapest_qualifying(b, costs), "tokuyoshi2024_refit");
   EXPECT_EQ(b.at("choice").at("method"), "tokuyoshi2024_refit");
-  EXPECT_EQ(b.at("choice").at("ns_per_eval").get<double>(), 2.0);
-  EXPECT_NE(b.at("cost_source").get<std::string>().find("b.json"), std::string::npos);
+  EXPECT_EQ(b.at("choice").at("cost").get<double>(), 2.0);
+  EXPECT_NE(b.at("cost_from").get<std::string>().find("b.json"), std::string::npos);
 }
 
 TEST(CostTable, MissingMethodIsNamedAndLeftOut) {
@@ -114,15 +117,14 @@ TEST(CostTable, MissingMethodIsNamedAndLeftOut) {
   costs.erase("tokuyoshi2024");
   write(dir / "t.json", hand_table(costs).dump(2));
   const auto r = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--json", "--costs",
-                            (dir / "t.json").string()},
+                            (dir / "t.json").string(), "--cost", "cpu-batch"},
                            /*merge_stderr=*/true);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("no irradiance/float/batch cost for method 'tokuyoshi2024'"), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find("no cpu-batch cost for method 'tokuyoshi2024' (float)"), std::string::npos) << r.output;
   const auto j = recommend_json(dir / "t.json", "1:100", "1e-2");
   for (const auto& c : j.at("candidates"))
     if (c.at("method") == "tokuyoshi2024") {
-      EXPECT_TRUE(c.at("ns_per_eval").is_null());
+      EXPECT_TRUE(c.at("cost").is_null());
       EXPECT_FALSE(c.at("qualifies").get<bool>());
     }
   EXPECT_NE(j.at("choice").at("method"), "tokuyoshi2024");

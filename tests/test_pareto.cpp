@@ -32,7 +32,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 MethodPoint pt(std::string id, double ns, double err) {
   MethodPoint p;
   p.method = std::move(id);
-  p.ns_per_eval = ns;
+  p.cost = ns;
   p.max_peak_rel = err;
   return p;
 }
@@ -58,7 +58,8 @@ TEST(Pareto, OriginFromRegistryInTable) {
   }
   EXPECT_TRUE(published && refit);  // both kinds exist in the registry today
   const std::string csv = sglab::validate::to_csv(
-      sglab::report::pareto_table(points, sglab::validate::FloatFormat::binary64, 1, 10));
+      sglab::report::pareto_table(points, sglab::validate::FloatFormat::binary64, 1, 10,
+                                    sglab::report::default_cost_source(sglab::validate::FloatFormat::binary64)));
   for (const auto& m : sglab::irradiance_methods) {
     const std::string row = fmt::format("\n{},{},double,", m.id, sglab::to_string(m.origin));
     EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;
@@ -202,7 +203,7 @@ void check_recommend(const std::string& kappa, double budget) {
   }
   const std::string method = choice.at("method");
   const double err = choice.at("max_peak_rel").get<double>();
-  const double ns = choice.at("ns_per_eval").get<double>();
+  const double ns = choice.at("cost").get<double>();
   EXPECT_LE(err, budget);
   const double swept = sweep_max_peak_rel(kappa, method, "float");
   EXPECT_LE(std::abs(err - swept), 1e-12 * std::abs(swept)) << method << ": recommend " << err << " sweep " << swept;
@@ -215,7 +216,7 @@ void check_recommend(const std::string& kappa, double budget) {
       continue;
     }
     // No qualifying method is cheaper than the choice by more than the tie margin.
-    EXPECT_GE(c.at("ns_per_eval").get<double>() * (1 + margin) * (1 + 1e-12), ns) << c.dump();
+    EXPECT_GE(c.at("cost").get<double>() * (1 + margin) * (1 + 1e-12), ns) << c.dump();
   }
   if (!doc.at("runner_up").is_null()) {
     EXPECT_NE(doc.at("runner_up").at("method"), method);
@@ -274,7 +275,8 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   char line[512] = {};
   ASSERT_TRUE(std::fgets(line, sizeof line, f));
   std::fclose(f);
-  EXPECT_EQ(std::string(line), "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n");
+  EXPECT_EQ(std::string(line),
+            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n");
   EXPECT_EQ(sglab::test::run_sglab({"pareto", "--kappa", "0:1", "--out", dir}).exit_code, 2);
 }
 

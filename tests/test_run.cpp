@@ -156,7 +156,8 @@ TEST(RunCommand, HostilePathWorksAndRunsNothing) {
   HostileOut dir;
   // The fast steps only; the report checks below cover the rest.
   const auto r = sglab::test::run_sglab({"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "erf",
-                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures"});
+                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "pareto-cpu",
+                                         "--skip", "figures"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.marker)) << "a command in the output path was run";
   EXPECT_TRUE(fs::is_regular_file(dir.out / "sweep" / "summary.csv")) << r.output;
@@ -216,6 +217,39 @@ pid_t spawn_sglab(const std::vector<std::string>& args) {
   return pid;
 }
 
+// Where gpucost found no RADV null device, the cost table has no GPU costs:
+// the pareto step (GPU cost by default) is skipped with the reason and the run
+// succeeds; pareto-cpu still writes the CPU-cost table. (A project of its own,
+// found from the working directory, whose committed table is CPU only.)
+TEST(RunCommand, ParetoWithoutGpuCostsIsSkippedWithTheReason) {
+  sglab::test::TempDir project("run-no-gpu");
+  fs::create_directories(project.path / "include" / "sglab");
+  fs::create_directories(project.path / "data" / "constants");  // what marks a project (io::find_project_root)
+  fs::create_directories(project.path / "data" / "results");
+  std::string rows;
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    rows += fmt::format(R"({}{{"kind": "irradiance", "method": "{}", "precision": "float", "mode": "batch", "ns_per_eval": 5}})",
+                        rows.empty() ? "" : ", ", m.id);
+  sglab::io::write_file_atomic(
+      project.path / "data" / "results" / "costs.json",
+      R"({"format": "sglab-costs", "version": 1, "date": "2026-01-01T00:00:00Z", "command": "test", "machine": {"cpu": "t", "cores": 1}, )"
+      R"("compiler": {"id": "none", "version": "0"}, "build_type": "none", "timer": "none", "inputs": "none", "costs": [)" +
+          rows + "]}");
+  const fs::path here = fs::current_path();
+  fs::current_path(project.path);
+  const fs::path out = project.path / "out";
+  const auto r = sglab::test::run_sglab({"run", "--out", out.string(), "--skip", "fit", "--skip", "sweep", "--skip",
+                                         "erf", "--skip", "stability", "--skip", "claims", "--skip", "bench", "--skip",
+                                         "gpucost", "--skip", "figures"});
+  fs::current_path(here);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("skipped: the cost table has no GPU costs"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "pareto" / "pareto.csv"));
+  ASSERT_TRUE(fs::is_regular_file(out / "pareto-cpu" / "pareto.csv")) << r.output;
+  EXPECT_NE(sglab::io::read_file(out / "pareto-cpu" / "pareto.csv").find(",ns,cpu-batch,"), std::string::npos);
+  EXPECT_NE(sglab::io::read_file(out / "index.md").find("no GPU costs"), std::string::npos);
+}
+
 TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   sglab::test::TempDir base("run-interrupted");
   const fs::path out = base.path / "out";
@@ -227,7 +261,8 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   sglab::io::write_file_atomic(out / "sweep" / "summary.csv", "previous\n");
   const auto before = files_under(out);
   const std::vector<std::string> args = {"run", "--quick", "--out", out.string(), "--skip", "fit", "--skip", "erf",
-                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures"};
+                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "pareto-cpu",
+                                         "--skip", "figures"};
   for (const int signal : {SIGINT, SIGTERM}) {
     const pid_t pid = spawn_sglab(args);
     ASSERT_GT(pid, 0);
