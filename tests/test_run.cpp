@@ -156,7 +156,8 @@ TEST(RunCommand, HostilePathWorksAndRunsNothing) {
   HostileOut dir;
   // The fast steps only; the report checks below cover the rest.
   const auto r = sglab::test::run_sglab({"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "erf",
-                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures"});
+                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures",
+                                         "--skip", "envmap"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.marker)) << "a command in the output path was run";
   EXPECT_TRUE(fs::is_regular_file(dir.out / "sweep" / "summary.csv")) << r.output;
@@ -227,7 +228,8 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   sglab::io::write_file_atomic(out / "sweep" / "summary.csv", "previous\n");
   const auto before = files_under(out);
   const std::vector<std::string> args = {"run", "--quick", "--out", out.string(), "--skip", "fit", "--skip", "erf",
-                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures"};
+                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "figures",
+                                         "--skip", "envmap"};
   for (const int signal : {SIGINT, SIGTERM}) {
     const pid_t pid = spawn_sglab(args);
     ASSERT_GT(pid, 0);
