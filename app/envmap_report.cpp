@@ -268,7 +268,8 @@ void run_baselines(const std::string& maps_arg, const std::string& out_arg, bool
       "where E_map sums every pixel of the map with its solid angle and E_lobes is the lobes' exact SG irradiance "
       "(reference engine). (a) BakingLab baseline: fixed spiral axes, BakingLab's shared sharpness, NNLS amplitudes "
       "on the radiance; (b) sglab radiance fit: every parameter jointly (Ceres) on the solid-angle weighted "
-      "radiance; (c) sglab irradiance fit: (b), then every parameter jointly on the irradiance at 1024 other "
+      "radiance; (c) sglab irradiance fit: a radiance fit as (b) on a 64 × 32 copy, then every parameter "
+      "jointly on the irradiance at 1024 other "
       "Fibonacci normals. Ratio = (a) max / (c) max; the target is ≥ 2.\n\n",
       kEvalNormals);
   std::size_t met = 0, total = 0;
