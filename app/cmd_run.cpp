@@ -128,6 +128,7 @@ int run_step(const std::vector<std::string>& arguments) {
   add_gpucost_command(app);
   add_pareto_command(app);
   add_figures_command(app);
+  add_envmap_command(app);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
   return run_and_map_exit_code(app, [&] { app.parse(reversed); });
 }
@@ -303,6 +304,8 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
   std::vector<std::string> erf = {"erf"};
   if (!quick) erf.emplace_back("--exhaustive");
   erf.insert(erf.end(), {"--out", in("erf")});
+  std::vector<std::string> envmap = {"envmap", "baselines", "--out", in("envmap")};
+  if (quick) envmap.emplace_back("--quick");
   return {
       {"fit", {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")}, "constants"},
       {"sweep", {"sweep", "--backend", "auto", "--out", in("sweep")}, "sweep"},
@@ -316,6 +319,8 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       {"pareto", pareto, "pareto"},
       {"pareto-cpu", pareto_cpu, "pareto-cpu"},
       {"figures", figures, "figures"},
+      // The committed maps (data/envmaps): BakingLab baseline against sglab's fits.
+      {"envmap", envmap, "envmap"},
   };
 }
 
@@ -390,7 +395,7 @@ void add_run_command(CLI::App& app) {
   auto quick = std::make_shared<bool>(false);
   auto skip = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--out", *out, "output directory")->check(non_empty_path())->capture_default_str();
-  cmd->add_flag("--quick", *quick, "sample the erf check instead of every float");
+  cmd->add_flag("--quick", *quick, "sample the erf check instead of every float; envmap fits at 12 lobes only");
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
   cmd->callback([out, quick, skip] {
     const fs::path root = *out;

@@ -78,5 +78,6 @@ void add_recommend_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_gpucost_command(CLI::App& app);
+void add_envmap_command(CLI::App& app);
 
 }  // namespace sglab::app

@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
   sglab::app::add_export_command(app);
   sglab::app::add_eval_command(app);
   sglab::app::add_gpucost_command(app);
+  sglab::app::add_envmap_command(app);
   if (const auto typo = unknown_subcommand(app, argc, argv)) {
     fmt::print(stderr, "sglab: error: {}\n", *typo);
     return 2;

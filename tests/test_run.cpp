@@ -157,7 +157,7 @@ TEST(RunCommand, HostilePathWorksAndRunsNothing) {
   // The fast steps only; the report checks below cover the rest.
   const auto r = sglab::test::run_sglab({"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "erf",
                                          "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "pareto-cpu",
-                                         "--skip", "figures"});
+                                         "--skip", "figures", "--skip", "envmap"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.marker)) << "a command in the output path was run";
   EXPECT_TRUE(fs::is_regular_file(dir.out / "sweep" / "summary.csv")) << r.output;
@@ -167,11 +167,12 @@ TEST(RunCommand, HostilePathWorksAndRunsNothing) {
 }
 
 TEST(RunCommand, QuickRunIndexHasNoBrokenLinkAndEachFigureOnce) {
-  // Every step of the quick run except the slow fit and bench (figures read
-  // the pareto table, which falls back to no cost data without bench).
+  // Every step of the quick run except the slow fit, bench and envmap (figures
+  // read the pareto table, which falls back to no cost data without bench;
+  // envmap's quick step fits eight maps, 50 s of CPU, and draws no figure).
   HostileOut dir;
-  const auto r =
-      sglab::test::run_sglab({"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "bench"});
+  const auto r = sglab::test::run_sglab(
+      {"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "bench", "--skip", "envmap"});
   EXPECT_FALSE(fs::exists(dir.marker));
   // Steps may fail for reasons outside the report (e.g. no gnuplot); the
   // report must be clean whatever happened.
@@ -240,7 +241,7 @@ TEST(RunCommand, ParetoWithoutGpuCostsIsSkippedWithTheReason) {
   const fs::path out = project.path / "out";
   const auto r = sglab::test::run_sglab({"run", "--out", out.string(), "--skip", "fit", "--skip", "sweep", "--skip",
                                          "erf", "--skip", "stability", "--skip", "claims", "--skip", "bench", "--skip",
-                                         "gpucost", "--skip", "figures"});
+                                         "gpucost", "--skip", "figures", "--skip", "envmap"});
   fs::current_path(here);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("skipped: the cost table has no GPU costs"), std::string::npos) << r.output;
@@ -262,7 +263,7 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   const auto before = files_under(out);
   const std::vector<std::string> args = {"run", "--quick", "--out", out.string(), "--skip", "fit", "--skip", "erf",
                                          "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "pareto-cpu",
-                                         "--skip", "figures"};
+                                         "--skip", "figures", "--skip", "envmap"};
   for (const int signal : {SIGINT, SIGTERM}) {
     const pid_t pid = spawn_sglab(args);
     ASSERT_GT(pid, 0);

@@ -70,7 +70,10 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   }
   if (!doc.is_object()) fail(source, "(top level)", fmt::format("expected an object, got {}", type_name(doc)));
   for (const auto& [key, value] : doc.items())
-    if (key != "lights") fail(source, key, "unknown key (expected only \"lights\")");
+    if (key != "lights" && key != "provenance")
+      fail(source, key, "unknown key (expected \"lights\" and optionally \"provenance\")");
+  if (doc.contains("provenance") && !doc["provenance"].is_object())
+    fail(source, "provenance", fmt::format("expected an object, got {}", type_name(doc["provenance"])));
   if (!doc.contains("lights")) fail(source, "lights", "missing key");
   const json& lights = doc["lights"];
   if (!lights.is_array()) fail(source, "lights", fmt::format("expected an array, got {}", type_name(lights)));

@@ -3,6 +3,8 @@
 //
 // Scene file (JSON):
 //   {"lights": [{"axis": [x, y, z], "sharpness": κ, "amplitude": [r, g, b]}, …]}
+// and optionally "provenance": an object, not read (how the scene was made,
+// e.g. by `sglab envmap fit --out`).
 // axis: three finite numbers with a nonzero length (normalized on reading);
 // sharpness: a finite number ≥ 0; amplitude: three finite numbers ≥ 0. Every
 // light needs all three keys and no others; at least one light; at least one

@@ -1,0 +1,334 @@
+// `sglab envmap`: real lighting from HDR environment maps (envmap/envmap.hpp).
+//   downsample IN OUT --width W   area-averaged copy (how data/envmaps/ was made)
+//   irradiance FILE [--normals N] the map's exact diffuse irradiance, CSV
+//   fit FILE --lobes N            SG lobes fitted with Ceres, --out scene.json
+//   recommend FILE --budget E     fewest lobes × cheapest method meeting E
+//   baselines [--maps DIR]        the BakingLab baseline against sglab's fits, all maps
+// Every error is against the map's exact irradiance (envmap::irradiance) at
+// --normals Fibonacci normals, relative to its largest value (max over
+// normals and RGB channels); times are shown on a terminal only.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+
+#include <sglab/registry.hpp>
+
+#include "app/commands.hpp"
+#include "app/costs_option.hpp"
+#include "envmap/envmap.hpp"
+#include "common/atomic_files.hpp"
+#include "app/envmap_report.hpp"
+#include "common/io.hpp"
+#include "report/pareto.hpp"
+
+namespace sglab::app {
+
+namespace {
+
+using envmap::Vec3;
+using json = nlohmann::ordered_json;
+
+bool terminal() { return ::isatty(STDERR_FILENO) == 1; }
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string command_line(const std::string& head, CLI::App* cmd) {
+  std::string s = head;  // the command and its positional arguments
+  for (const CLI::Option* o : cmd->get_options()) {
+    if (o->count() == 0 || o->get_name() == "--help" || o->get_name().rfind("--", 0) != 0) continue;
+    s += " " + o->get_name();
+    if (o->get_type_size_min() > 0)
+      for (const std::string& r : o->results()) s += " " + r;
+  }
+  return s;
+}
+
+json lobes_json(const std::vector<envmap::Lobe>& lobes) {
+  json a = json::array();
+  for (const auto& l : lobes)
+    a.push_back({{"axis", {l.axis[0], l.axis[1], l.axis[2]}},
+                 {"sharpness", l.sharpness},
+                 {"amplitude", {l.amplitude[0], l.amplitude[1], l.amplitude[2]}}});
+  return a;
+}
+
+void print_lobes(const std::vector<envmap::Lobe>& lobes) {
+  fmt::print("  {:>3}  {:>28}  {:>10}  {:>36}\n", "#", "axis (x, y, z)", "sharpness", "amplitude (r, g, b)");
+  for (std::size_t k = 0; k < lobes.size(); ++k) {
+    const auto& l = lobes[k];
+    fmt::print("  {:>3}  {:>8.4f} {:>8.4f} {:>8.4f}    {:>10.4g}  {:>11.5g} {:>11.5g} {:>11.5g}\n", k, l.axis[0],
+               l.axis[1], l.axis[2], l.sharpness, l.amplitude[0], l.amplitude[1], l.amplitude[2]);
+  }
+}
+
+struct DownsampleArgs {
+  std::string in, out;
+  std::size_t width = 128;
+};
+
+struct IrradianceArgs {
+  std::string file;
+  std::size_t normals = 1024;
+};
+
+struct FitArgs {
+  std::string file, objective = "irradiance", out;
+  std::size_t lobes = 0, normals = envmap::kEvalNormals;
+  bool json = false;
+};
+
+struct RecommendArgs {
+  std::string file, budget, precision = "float";
+  std::size_t max_lobes = 32, normals = envmap::kEvalNormals;
+  bool json = false;
+  CostsOption costs;
+};
+
+struct BaselinesArgs {
+  std::string maps, out;
+  bool quick = false;
+};
+
+void run_fit(const FitArgs& a, const std::string& command) {
+  envmap::Objective objective;
+  if (a.objective == "radiance")
+    objective = envmap::Objective::radiance;
+  else if (a.objective == "irradiance")
+    objective = envmap::Objective::irradiance;
+  else
+    throw InputError(fmt::format("--objective: expected radiance or irradiance, got '{}'", a.objective));
+  if (!a.out.empty()) io::check_output_path(a.out);
+  const auto t0 = std::chrono::steady_clock::now();
+  const envmap::Map map = envmap::read_map(a.file);
+  const envmap::Map work = envmap::working_copy(map);
+  envmap::FitOptions options;
+  options.lobes = a.lobes;
+  options.objective = objective;
+  const auto fit_normals = validate::fibonacci_normals(options.fit_normals);
+  const auto eval_normals = validate::fibonacci_normals(a.normals);
+  envmap::check_lobe_count(work, a.lobes);
+  io::Progress progress(fmt::format("envmap fit {}", a.file), 0);
+  progress.note("exact irradiance of the map");
+  const auto exact_fit = envmap::irradiance(map, fit_normals);
+  const auto exact_eval = envmap::irradiance(map, eval_normals);
+  progress.note("baseline and fit");
+  const auto baseline = envmap::fit_baseline(work, a.lobes);
+  const envmap::FitReport report = envmap::fit(work, exact_fit, options);
+  progress.note("errors (reference engine)");
+  const auto e_base = envmap::irradiance_error(envmap::lobes_irradiance_exact(baseline, eval_normals), exact_eval);
+  const auto e_fit = envmap::irradiance_error(envmap::lobes_irradiance_exact(report.lobes, eval_normals), exact_eval);
+  progress.finish();
+
+  json prov;
+  prov["map"] = a.file;
+  prov["map_size"] = {map.width, map.height};
+  prov["fitted_at"] = {work.width, work.height};
+  prov["lobes"] = a.lobes;
+  prov["objective"] = a.objective;
+  prov["fit_normals"] = options.fit_normals;
+  prov["error_normals"] = a.normals;
+  prov["irradiance_error"] = "max and RMS over Fibonacci normals and RGB of |E_lobes - E_map| / max E_map; E_lobes "
+                             "exact (reference engine), E_map every pixel with its solid angle";
+  prov["max_rel"] = e_fit.max_rel;
+  prov["rms_rel"] = e_fit.rms_rel;
+  prov["baseline_max_rel"] = e_base.max_rel;
+  prov["baseline_rms_rel"] = e_base.rms_rel;
+  prov["ceres_iterations"] = report.iterations;
+  prov["converged"] = report.converged;
+  prov["command"] = command;
+  prov["tool"] = std::string("sglab ") + SGLAB_VERSION;
+  json scene;
+  scene["lights"] = lobes_json(report.lobes);
+  scene["provenance"] = prov;
+  if (!a.out.empty()) io::write_file_atomic(a.out, scene.dump(2) + "\n");
+  if (a.json) {
+    fmt::print("{}\n", scene.dump(2));
+  } else {
+    fmt::print("map {}: {} x {}, fitted at {} x {}; {} lobes, {} objective ({} Ceres iterations{})\n", a.file,
+               map.width, map.height, work.width, work.height, a.lobes, a.objective, report.iterations,
+               report.converged ? ", converged" : ", stopped before convergence");
+    print_lobes(report.lobes);
+    fmt::print("irradiance error at {} Fibonacci normals (|E_lobes − E_map| / max E_map, lobes exact):\n", a.normals);
+    fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", "BakingLab baseline (fixed axes, NNLS)", e_base.max_rel,
+               e_base.rms_rel);
+    fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", fmt::format("sglab fit ({})", a.objective), e_fit.max_rel,
+               e_fit.rms_rel);
+    if (!a.out.empty()) fmt::print("wrote {} (sglab recommend --scene {} --budget E)\n", a.out, a.out);
+  }
+  if (terminal()) fmt::print(stderr, "envmap fit: {:.2f} s\n", seconds_since(t0));
+}
+
+void run_recommend(const RecommendArgs& a) {
+  double budget = 0;
+  if (!report::parse_number(a.budget, budget))
+    throw InputError(fmt::format("--budget: '{}' is not a finite number", a.budget));
+  if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
+  const auto precision = report::parse_precision(a.precision);
+  if (!precision) throw InputError(fmt::format("--precision: expected float or double, got '{}'", a.precision));
+  const auto t0 = std::chrono::steady_clock::now();
+  const envmap::Map map = envmap::read_map(a.file);
+  const envmap::Map work = envmap::working_copy(map);
+  envmap::check_lobe_count(work, a.max_lobes);
+  // Costs first: a missing or malformed cost table is reported before any fit.
+  std::vector<report::MethodPoint> costs;
+  for (const Method& m : irradiance_methods) {
+    report::MethodPoint p;
+    p.method = std::string(m.id);
+    p.origin = m.origin;
+    costs.push_back(p);
+  }
+  const std::string cost_source = a.costs.fill(costs, *precision, 7, 0.01).text;
+  io::Progress progress(fmt::format("envmap recommend {}", a.file), 0);
+  const envmap::Selection sel = envmap::select(map, work, budget, a.max_lobes, a.normals, *precision, costs,
+                                               [&](const std::string& s) { progress.note(s); });
+  progress.finish();
+
+  if (a.json) {
+    json doc;
+    doc["map"] = a.file;
+    doc["budget"] = budget;
+    doc["precision"] = std::string(validate::to_string(*precision));
+    doc["normals"] = a.normals;
+    doc["error"] = "max over normals and RGB of |E_method(lobes) - E_map| / max E_map (lobe fit + approximation)";
+    doc["cost"] = "lobes x the method's cost per evaluation (--cost; unit per row)";
+    doc["cost_source"] = cost_source;
+    auto pair = [](const std::optional<envmap::Candidate>& c) -> json {
+      if (!c) return nullptr;
+      return {{"lobes", c->lobes}, {"method", c->method}, {"error", c->error}, {"cost", c->cost},
+              {"cost_unit", c->cost_unit}, {"total_cost", c->total_cost}};
+    };
+    doc["choice"] = pair(sel.choice);
+    doc["runner_up"] = pair(sel.runner_up);
+    json tried = json::array();
+    for (const auto& c : sel.tried) tried.push_back(pair(c));
+    doc["tried"] = std::move(tried);
+    doc["lobe_fit_error"] = json::array();
+    for (const auto& [n, e] : sel.fit_error) doc["lobe_fit_error"].push_back({{"lobes", n}, {"max_rel", e}});
+    fmt::print("{}\n", doc.dump(2));
+  } else {
+    fmt::print("map {} ({} x {}): budget {} on the irradiance error (lobe fit + method, {}), {} normals\n", a.file,
+               map.width, map.height, budget, validate::to_string(*precision), a.normals);
+    fmt::print("error = max over normals and RGB of |E_method(lobes) − E_map| / max E_map; cost = lobes × cost per evaluation (--cost)\n\n");
+    fmt::print("  {:>5}  {:<24} {:>10} {:>9} {:>10}  {}\n", "lobes", "method", "error", "per eval", "per point",
+               "meets");
+    for (const auto& c : sel.tried)
+      fmt::print("  {:>5}  {:<24} {:>10.4g} {:>9.3g} {:>10.3g}  {}\n", c.lobes, c.method, c.error, c.cost,
+                 c.total_cost, c.error <= budget ? "yes" : "no");
+    fmt::print("\n  lobe fit alone (exact SG irradiance):");
+    for (const auto& [n, e] : sel.fit_error) fmt::print(" {} lobes {:.3g};", n, e);
+    fmt::print("\n");
+    auto describe = [](const envmap::Candidate& c) {
+      return fmt::format("{} lobes with {} (error {:.4g}, {:.3g} {} per shading point)", c.lobes, c.method, c.error,
+                         c.total_cost, c.cost_unit);
+    };
+    if (sel.choice) {
+      fmt::print("  choice:    {}\n", describe(*sel.choice));
+      if (sel.runner_up)
+        fmt::print("  runner-up: {}\n", describe(*sel.runner_up));
+      else
+        fmt::print("  runner-up: none\n");
+    } else {
+      fmt::print("  no (lobes, method) pair up to {} lobes meets the budget.\n", a.max_lobes);
+    }
+    fmt::print("(costs: {})\n", cost_source);
+  }
+  if (terminal()) fmt::print(stderr, "envmap recommend: {:.2f} s\n", seconds_since(t0));
+}
+
+}  // namespace
+
+void add_envmap_command(CLI::App& app) {
+  auto* env = app.add_subcommand("envmap", "Real lighting: SG lobes fitted to HDR environment maps (OpenEXR, .hdr)");
+  env->require_subcommand(1);
+  env->footer("Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth "
+              "φ = 2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
+
+  {
+    auto a = std::make_shared<DownsampleArgs>();
+    auto* cmd = env->add_subcommand("downsample", "Area-averaged copy of a map as float RGB OpenEXR");
+    cmd->add_option("IN", a->in, "input map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("OUT", a->out, "output OpenEXR file")->required()->check(non_empty_path());
+    cmd->add_option("--width", a->width, "output width (divides the input width)")
+        ->check(count_in(8, 1 << 20))
+        ->capture_default_str();
+    cmd->callback([a] {
+      io::check_output_path(a->out);
+      const envmap::Map map = envmap::read_map(a->in);
+      envmap::write_exr(a->out, envmap::downsample(map, a->width));
+    });
+  }
+  {
+    auto a = std::make_shared<IrradianceArgs>();
+    auto* cmd = env->add_subcommand("irradiance", "The map's exact diffuse irradiance at Fibonacci normals, CSV");
+    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("--normals", a->normals, "number of Fibonacci normals")
+        ->check(count_in(1, 1000000))
+        ->capture_default_str();
+    cmd->callback([a] {
+      const envmap::Map map = envmap::read_map(a->file);
+      const auto normals = validate::fibonacci_normals(a->normals);
+      const auto e = envmap::irradiance(map, normals);
+      std::string out = "nx,ny,nz,r,g,b\n";
+      for (std::size_t k = 0; k < normals.size(); ++k)
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", normals[k][0], normals[k][1],
+                           normals[k][2], e[k][0], e[k][1], e[k][2]);
+      fmt::print("{}", out);
+    });
+  }
+  {
+    auto a = std::make_shared<FitArgs>();
+    auto* cmd = env->add_subcommand("fit", "SG lobes fitted to a map with Ceres; --out writes a scene file");
+    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("--lobes", a->lobes, "number of SG lobes")->required()->check(count_in(0, 1 << 20));
+    cmd->add_option("--objective", a->objective, "radiance or irradiance")->capture_default_str();
+    cmd->add_option("--normals", a->normals, "Fibonacci normals the error is measured at")
+        ->check(count_in(1, 100000))
+        ->capture_default_str();
+    cmd->add_option("--out", a->out, "scene JSON for `sglab recommend --scene`, with provenance")
+        ->check(non_empty_path());
+    cmd->add_flag("--json", a->json, "print the scene file (with provenance) on stdout");
+    cmd->callback([a, cmd] { run_fit(*a, command_line("sglab envmap fit " + a->file, cmd)); });
+  }
+  {
+    auto a = std::make_shared<RecommendArgs>();
+    auto* cmd = env->add_subcommand(
+        "recommend", "Fewest lobes and cheapest irradiance method whose combined error meets a budget");
+    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("--budget", a->budget, "max irradiance error allowed, relative to the largest irradiance (> 0)")
+        ->required();
+    cmd->add_option("--max-lobes", a->max_lobes, "largest lobe count tried")
+        ->check(count_in(1, 256))
+        ->capture_default_str();
+    cmd->add_option("--normals", a->normals, "Fibonacci normals the error is measured at")
+        ->check(count_in(1, 100000))
+        ->capture_default_str();
+    cmd->add_option("--precision", a->precision, "float or double")->capture_default_str();
+    cmd->add_flag("--json", a->json, "print the answer as JSON");
+    a->costs.add_to(cmd);
+    cmd->callback([a] { run_recommend(*a); });
+  }
+  {
+    auto a = std::make_shared<BaselinesArgs>();
+    auto* cmd = env->add_subcommand(
+        "baselines", "Every map: BakingLab baseline vs radiance and irradiance fits, tables and figures");
+    cmd->add_option("--maps", a->maps, "folder of maps (default: data/envmaps of the project)");
+    cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")->check(non_empty_path());
+    cmd->add_flag("--quick", a->quick, "12 lobes only, no curves or figures");
+    cmd->callback([a] { envmap::run_baselines(a->maps, a->out, a->quick); });
+  }
+}
+
+}  // namespace sglab::app

@@ -1,0 +1,53 @@
+// app/envmap_report.hpp — the selector of `sglab envmap recommend` and the
+// baselines run of `sglab envmap baselines` (tables and figures).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "envmap/envmap.hpp"
+#include "report/pareto.hpp"
+#include "validate/sweep.hpp"
+
+namespace sglab::envmap {
+
+struct Candidate {
+  std::size_t lobes = 0;
+  std::string method;
+  double error = 0;        // max over normals and RGB of |E_method(lobes) − E_map| / max E_map
+  double cost = 0;         // the method's cost per evaluation, in cost_unit (report::MethodPoint::cost)
+  std::string cost_unit;   // "cycles" (GPU inverse throughput) or "ns" (CPU)
+  double total_cost = 0;   // lobes × cost: the irradiance cost of one shading point
+};
+
+struct Selection {
+  std::optional<Candidate> choice, runner_up;
+  std::vector<Candidate> tried;                          // every (lobes, method) pair evaluated
+  std::vector<std::pair<std::size_t, double>> fit_error;  // lobes → max error with the exact SG irradiance
+};
+
+// Lobe counts tried, in order: 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96,
+// 128, 192, 256 up to max_lobes (and max_lobes itself).
+std::vector<std::size_t> lobe_ladder(std::size_t max_lobes);
+
+// Fewest lobes first: for each count of the ladder the irradiance-objective
+// fit, then every method with a cost (`costs`: cost filled, report::MethodPoint) judged on
+// the map's exact irradiance at `normals` Fibonacci normals; the first count
+// at which a method meets `budget` gives the choice (the cheapest there, ties
+// within report::kCostTieMargin broken by error) and the runner-up (the
+// next in that ranking).
+Selection select(const Map& map, const Map& work, double budget, std::size_t max_lobes, std::size_t normals,
+                 validate::FloatFormat precision, const std::vector<report::MethodPoint>& costs,
+                 const std::function<void(const std::string&)>& note);
+
+// `sglab envmap baselines`: every map in `maps` (default data/envmaps of the
+// project) × lobe counts; writes envmaps.md, envmaps.csv and the figures into
+// `out` (default data/results of the project). quick: 12 lobes only, no
+// curves or figures (the envmap step of `sglab run --quick`).
+void run_baselines(const std::string& maps, const std::string& out, bool quick);
+
+}  // namespace sglab::envmap

@@ -1,0 +1,165 @@
+// envmap/envmap.hpp — HDR environment maps as SG lighting (`sglab envmap`).
+//
+// Direction convention (README "Environment maps"; every envmap command uses it):
+// a map is an equirectangular (latitude-longitude) image of width W = 2H,
+// +z is up. Pixel (i, j), column i from the left and row j from the top
+// (0-based), covers the polar angles θ ∈ [πj/H, π(j+1)/H] from +z (row 0
+// touches the zenith, row H−1 the nadir) and the azimuths φ ∈ [2πi/W,
+// 2π(i+1)/W], with the direction
+//   ω(θ, φ) = (sin θ cos φ, −sin θ sin φ, cos θ);
+// its centre is θ = π(j + ½)/H, φ = 2π(i + ½)/W. So the image's left edge
+// looks along +x, a quarter of the way across along −y, the centre along −x.
+// The pixel's solid angle is ΔΩ_j = (2π/W)(cos(πj/H) − cos(π(j+1)/H)); the
+// W·H solid angles sum to 4π.
+//
+// Radiance is the pixel value (float RGB), constant over the pixel.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/io.hpp"
+#include "validate/scene.hpp"
+
+namespace sglab::envmap {
+
+using Vec3 = validate::Vec3;
+
+// An equirectangular RGB radiance map, rows from the top, RGB interleaved.
+struct Map {
+  std::size_t width = 0, height = 0;
+  std::vector<float> rgb;  // width·height·3
+  float at(std::size_t i, std::size_t j, std::size_t ch) const { return rgb[(j * width + i) * 3 + ch]; }
+};
+
+// Largest map read: 2^27 pixels (16384 × 8192; 1.5 GiB as float RGB), and
+// the smallest: 8 × 4.
+inline constexpr std::size_t kMaxPixels = std::size_t{1} << 27;
+inline constexpr std::size_t kMinHeight = 4;
+
+// Reads an OpenEXR file (channels R, G, B; half or float; the data window) or
+// a Radiance .hdr file (stb_image), chosen by the file's contents, not its
+// name. Throws io::InputError naming the file and the problem: missing or not
+// a regular file, neither OpenEXR nor Radiance HDR, unreadable or damaged, no
+// R/G/B channels, not 2:1 (W = 2H), smaller than 8 × 4 or over kMaxPixels, a
+// NaN, infinite or negative value (naming the pixel and channel; see check_map
+// for the tiny negatives of lossy encoders), no positive value.
+Map read_map(const std::filesystem::path& path);
+
+// Checks the rules above on a map in memory (`source` names it in messages),
+// and sets the tiny negative values lossy encoders leave (down to
+// −kNegativeTolerance × the map's mean radiance) to 0.
+inline constexpr double kNegativeTolerance = 0.05;
+void check_map(Map& map, const std::string& source);
+
+// The map as a ZIP-compressed float RGB OpenEXR file, written atomically
+// (io::write_file_atomic: a temporary renamed into place).
+void write_exr(const std::filesystem::path& path, const Map& map);
+
+// Area average to `width` × width/2: each output pixel is the solid-angle
+// weighted mean of the f × f input pixels it covers (f = W/width, which must
+// be a whole number), so every pixel's radiance times its solid angle — the
+// map's integral — is kept. Throws io::InputError if width does not divide W
+// or is < 8.
+Map downsample(const Map& map, std::size_t width);
+
+// A copy at the fitting resolution: the map itself when W ≤ max_width, else
+// the downsample to the largest even divisor of W that is ≤ max_width.
+Map working_copy(const Map& map, std::size_t max_width = 128);
+
+// Pixel geometry (the convention above).
+double pixel_solid_angle(const Map& map, std::size_t row);
+Vec3 pixel_direction(const Map& map, std::size_t i, std::size_t j);
+// ∫ ω dΩ over the pixel (exact): the pixel's clamped-cosine weight for a
+// normal n is n · moment whenever the whole pixel is above n's horizon.
+Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j);
+
+// The map's diffuse irradiance E(n) = ∫ L(ω) max(ω·n, 0) dω at each normal,
+// RGB, for radiance constant over each pixel: a pixel wholly above n's
+// horizon contributes L · n·m (m = ∫ω dΩ over the pixel, closed form), one
+// wholly below nothing, and one the horizon cuts is split into
+// kHorizonSubdivision² sub-pixels, each contributing L · max(n·m_sub, 0). In
+// parallel over normals (TBB), deterministic. The reference every envmap
+// error is measured against.
+inline constexpr std::size_t kHorizonSubdivision = 16;
+std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals);
+
+// ---- SG fits ------------------------------------------------------------------
+
+struct Lobe {
+  Vec3 axis;          // unit
+  double sharpness;   // κ
+  Vec3 amplitude;     // RGB ≥ 0, in the map's radiance units
+};
+
+enum class Objective { radiance, irradiance };
+const char* to_string(Objective o);
+
+// The BakingLab baseline ([BakingLab], SG.cpp GenerateUniformSGs / SolveNNLS):
+// N axes on BakingLab's spherical Fibonacci spiral (z_k = (2k + 1)/N − 1,
+// φ_k = kπ(3 − √5), our +z up), one shared sharpness
+// κ = N ln(0.65) / (min_k h_k·a_0 − 1) with h_k the normalized half vector
+// of a_k and a_0, and non-negative least-squares amplitudes per channel
+// against the radiance of every pixel of the working copy, weighted by its
+// solid angle (BakingLab samples uniformly; every pixel weighted by ΔΩ is the
+// same integral). NNLS by Ceres with lower bounds 0 (a linear problem).
+std::vector<Lobe> fit_baseline(const Map& work, std::size_t lobes);
+
+struct FitOptions {
+  std::size_t lobes = 12;
+  Objective objective = Objective::irradiance;
+  std::size_t fit_normals = 1024;  // irradiance objective: Fibonacci normals fitted at
+  int max_iterations = 200;
+};
+
+struct FitReport {
+  std::vector<Lobe> lobes;
+  int iterations = 0;         // Ceres iterations, all stages
+  bool converged = false;     // the last stage's termination was CONVERGENCE
+  std::size_t nonfinite = 0;  // non-finite residual evaluations seen (0 in a sound fit)
+};
+
+// Largest lobe count a map supports: one lobe per 32 pixels of the working
+// copy, at most 256. check_lobe_count throws io::InputError for 0 lobes or
+// more than that, naming the limit.
+std::size_t max_lobes(const Map& work);
+void check_lobe_count(const Map& work, std::size_t lobes);
+
+// Fibonacci normals every envmap error is measured at by default (a set
+// other than the 1024 the irradiance objective is fitted at).
+inline constexpr std::size_t kEvalNormals = 2000;
+
+// The SG fit of the working copy `work` (the map at fitting resolution) with
+// Ceres, every parameter jointly (axis on the unit sphere, sharpness in
+// [1e-2, (H/π)²] — a lobe no narrower than a pixel —, amplitudes ≥ 0):
+// - radiance: Σ_pixels ΔΩ ‖L − Σ_k G_k(ω)‖² from the baseline's lobes;
+// - irradiance: Σ_normals ‖E_map(n) − Σ_k a_k Ê(a_k·n, κ_k)‖² at
+//   `fit_normals` Fibonacci normals, Ê = sglab_acc3 (peak-relative error
+//   ≤ 3.2e-5 of the exact SG irradiance) with its derivatives by central
+//   differences, from the radiance fit. `exact` is the map's irradiance at
+//   those normals (from the full map, not the working copy).
+// Single-threaded Ceres (the same input gives the same bytes); run fits in
+// parallel over maps or lobe counts. Throws io::InputError for 0 lobes or more
+// than max_lobes(work).
+FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals, const FitOptions& options);
+
+// The lobes as a scene (validate/scene.hpp) and their exact irradiance at the
+// normals (reference engine), RGB in the map's units.
+validate::Scene to_scene(const std::vector<Lobe>& lobes);
+std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes, const std::vector<Vec3>& normals);
+
+// Max and RMS over normals and channels of |approx − exact|, divided by the
+// largest exact irradiance (max over normals and channels).
+struct ErrorStats {
+  double max_rel = 0, rms_rel = 0;
+};
+ErrorStats irradiance_error(const std::vector<Vec3>& approx, const std::vector<Vec3>& exact);
+
+// The reconstruction Σ_k G_k(ω) at every pixel centre of a map of the given
+// size (for figures).
+Map reconstruct(const std::vector<Lobe>& lobes, std::size_t width, std::size_t height);
+
+}  // namespace sglab::envmap

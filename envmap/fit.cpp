@@ -1,0 +1,388 @@
+// envmap/fit.cpp — SG mixtures fitted to an environment map with Ceres: the
+// BakingLab fixed-axis NNLS baseline, the joint radiance fit and the joint
+// irradiance fit (envmap.hpp).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include <ceres/ceres.h>
+#include <ceres/manifold.h>
+#include <fmt/format.h>
+
+#include <sglab/registry.hpp>
+
+#include "envmap/envmap.hpp"
+
+namespace sglab::envmap {
+
+namespace {
+
+using io::InputError;
+
+double dot3(const double* a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The map in fitting units: radiance divided by its solid-angle mean `scale`
+// (so amplitudes are O(1)), with the per-row weight √ΔΩ and pixel directions.
+struct Samples {
+  std::size_t width = 0, height = 0;
+  double scale = 1;
+  std::vector<double> weight;  // per row, √ΔΩ
+  std::vector<Vec3> dir;       // per pixel
+  std::vector<double> value;   // per pixel × 3, radiance / scale
+};
+
+Samples samples_of(const Map& map) {
+  Samples s;
+  s.width = map.width;
+  s.height = map.height;
+  double total = 0;
+  for (std::size_t j = 0; j < map.height; ++j) {
+    const double om = pixel_solid_angle(map, j);
+    s.weight.push_back(std::sqrt(om));
+    for (std::size_t i = 0; i < map.width; ++i)
+      for (std::size_t ch = 0; ch < 3; ++ch) total += om * map.at(i, j, ch);
+  }
+  s.scale = total / (3 * 4 * M_PI);
+  if (!(s.scale > 0)) s.scale = 1;
+  s.dir.resize(map.width * map.height);
+  s.value.resize(map.width * map.height * 3);
+  for (std::size_t j = 0; j < map.height; ++j)
+    for (std::size_t i = 0; i < map.width; ++i) {
+      s.dir[j * map.width + i] = pixel_direction(map, i, j);
+      for (std::size_t ch = 0; ch < 3; ++ch)
+        s.value[(j * map.width + i) * 3 + ch] = map.at(i, j, ch) / s.scale;
+    }
+  return s;
+}
+
+// Lobe parameters as Ceres blocks: axis[3] (on the unit sphere), kappa[1], amp[3].
+struct Params {
+  std::vector<std::array<double, 3>> axis;
+  std::vector<double> kappa;
+  std::vector<std::array<double, 3>> amp;
+  std::size_t size() const { return kappa.size(); }
+};
+
+// Radiance residuals of one row: √ΔΩ_j (Σ_k a_k G_k(ω) − L(ω)), 3 per pixel.
+class RowCost final : public ceres::CostFunction {
+ public:
+  RowCost(const Samples& s, std::size_t row, std::size_t lobes) : s_(s), row_(row), lobes_(lobes) {
+    set_num_residuals(static_cast<int>(3 * s.width));
+    for (std::size_t k = 0; k < lobes; ++k) {
+      mutable_parameter_block_sizes()->push_back(3);
+      mutable_parameter_block_sizes()->push_back(1);
+      mutable_parameter_block_sizes()->push_back(3);
+    }
+  }
+  bool Evaluate(double const* const* p, double* r, double** jac) const override {
+    const double w = s_.weight[row_];
+    const std::size_t W = s_.width;
+    for (std::size_t i = 0; i < W; ++i)
+      for (std::size_t ch = 0; ch < 3; ++ch) r[3 * i + ch] = -w * s_.value[(row_ * W + i) * 3 + ch];
+    if (jac)
+      for (std::size_t k = 0; k < 3 * lobes_; ++k)
+        if (jac[k]) std::fill(jac[k], jac[k] + 3 * W * (k % 3 == 1 ? 1 : 3), 0.0);
+    for (std::size_t k = 0; k < lobes_; ++k) {
+      const double* mu = p[3 * k];
+      const double kappa = p[3 * k + 1][0];
+      const double* a = p[3 * k + 2];
+      for (std::size_t i = 0; i < W; ++i) {
+        const Vec3& om = s_.dir[row_ * W + i];
+        const double c = dot3(mu, om);
+        const double g = std::exp(kappa * (c - 1));
+        for (std::size_t ch = 0; ch < 3; ++ch) r[3 * i + ch] += w * a[ch] * g;
+        if (!jac) continue;
+        for (std::size_t ch = 0; ch < 3; ++ch) {
+          const std::size_t ri = 3 * i + ch;
+          if (double* J = jac[3 * k])
+            for (std::size_t d = 0; d < 3; ++d) J[ri * 3 + d] = w * a[ch] * kappa * g * om[d];
+          if (double* J = jac[3 * k + 1]) J[ri] = w * a[ch] * (c - 1) * g;
+          if (double* J = jac[3 * k + 2]) J[ri * 3 + ch] = w * g;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  const Samples& s_;
+  std::size_t row_, lobes_;
+};
+
+// The SG irradiance Ê(c, κ) of a unit-amplitude lobe (sglab_acc3, double) and
+// its partial derivatives by central differences.
+const Method& accurate_method() {
+  static const Method* m = find_method(irradiance_methods, "sglab_acc3");
+  if (!m) throw std::logic_error("sglab_acc3 is not registered");
+  return *m;
+}
+
+struct IrrValue {
+  double e, de_dc, de_dk;
+};
+
+IrrValue sg_irradiance_d(double c, double kappa) {
+  const Method& m = accurate_method();
+  c = std::clamp(c, -1.0, 1.0);
+  const double hc = 1e-5;
+  const double c0 = std::max(-1.0, c - hc), c1 = std::min(1.0, c + hc);
+  const double hk = 1e-5 * kappa + 1e-9;
+  IrrValue v;
+  v.e = m.f64(c, kappa);
+  v.de_dc = (m.f64(c1, kappa) - m.f64(c0, kappa)) / (c1 - c0);
+  v.de_dk = (m.f64(c, kappa + hk) - m.f64(c, std::max(0.0, kappa - hk))) / (kappa + hk - std::max(0.0, kappa - hk));
+  return v;
+}
+
+// Irradiance residuals of a chunk of normals: (Σ_k a_k Ê(a_k·n, κ_k) − E(n)) / π.
+class NormalsCost final : public ceres::CostFunction {
+ public:
+  NormalsCost(const std::vector<Vec3>& normals, const std::vector<Vec3>& target, std::size_t first, std::size_t count,
+              std::size_t lobes)
+      : normals_(normals), target_(target), first_(first), count_(count), lobes_(lobes) {
+    set_num_residuals(static_cast<int>(3 * count));
+    for (std::size_t k = 0; k < lobes; ++k) {
+      mutable_parameter_block_sizes()->push_back(3);
+      mutable_parameter_block_sizes()->push_back(1);
+      mutable_parameter_block_sizes()->push_back(3);
+    }
+  }
+  bool Evaluate(double const* const* p, double* r, double** jac) const override {
+    const double inv_pi = 1 / M_PI;
+    for (std::size_t m = 0; m < count_; ++m)
+      for (std::size_t ch = 0; ch < 3; ++ch) r[3 * m + ch] = -target_[first_ + m][ch] * inv_pi;
+    if (jac)
+      for (std::size_t k = 0; k < 3 * lobes_; ++k)
+        if (jac[k]) std::fill(jac[k], jac[k] + 3 * count_ * (k % 3 == 1 ? 1 : 3), 0.0);
+    for (std::size_t k = 0; k < lobes_; ++k) {
+      const double* mu = p[3 * k];
+      const double kappa = p[3 * k + 1][0];
+      const double* a = p[3 * k + 2];
+      for (std::size_t m = 0; m < count_; ++m) {
+        const Vec3& n = normals_[first_ + m];
+        const IrrValue v = sg_irradiance_d(dot3(mu, n), kappa);
+        for (std::size_t ch = 0; ch < 3; ++ch) r[3 * m + ch] += a[ch] * v.e * inv_pi;
+        if (!jac) continue;
+        for (std::size_t ch = 0; ch < 3; ++ch) {
+          const std::size_t ri = 3 * m + ch;
+          if (double* J = jac[3 * k])
+            for (std::size_t d = 0; d < 3; ++d) J[ri * 3 + d] = a[ch] * v.de_dc * n[d] * inv_pi;
+          if (double* J = jac[3 * k + 1]) J[ri] = a[ch] * v.de_dk * inv_pi;
+          if (double* J = jac[3 * k + 2]) J[ri * 3 + ch] = v.e * inv_pi;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  const std::vector<Vec3>& normals_;
+  const std::vector<Vec3>& target_;
+  std::size_t first_, count_, lobes_;
+};
+
+// The sharpest lobe: standard deviation 1/√κ no smaller than one pixel
+// (π/H) of the working copy, so that a lobe sampled at pixel centres keeps its
+// integral (a Gaussian sampled at its own σ sums to its integral within 1e−8).
+double kappa_max(const Samples& s) {
+  const double h = static_cast<double>(s.height) / M_PI;
+  return h * h;
+}
+constexpr double kKappaMin = 1e-2;
+constexpr std::size_t kCoarseWidth = 64;
+
+void configure(ceres::Problem& problem, Params& p, double kmax, bool fix_shape) {
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    problem.SetManifold(p.axis[k].data(), new ceres::SphereManifold<3>());
+    problem.SetParameterLowerBound(&p.kappa[k], 0, kKappaMin);
+    problem.SetParameterUpperBound(&p.kappa[k], 0, kmax);
+    for (int ch = 0; ch < 3; ++ch) problem.SetParameterLowerBound(p.amp[k].data(), ch, 0.0);
+    if (fix_shape) {
+      problem.SetParameterBlockConstant(p.axis[k].data());
+      problem.SetParameterBlockConstant(&p.kappa[k]);
+    }
+  }
+}
+
+struct SolveOutcome {
+  int iterations = 0;
+  bool converged = false;
+};
+
+SolveOutcome solve(ceres::Problem& problem, int max_iterations) {
+  ceres::Solver::Options o;
+  o.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  o.num_threads = 1;  // deterministic: the same input gives the same bytes
+  o.max_num_iterations = max_iterations;
+  o.function_tolerance = 1e-10;
+  o.gradient_tolerance = 1e-12;
+  o.parameter_tolerance = 1e-10;
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem, &summary);
+  return {static_cast<int>(summary.iterations.size()), summary.termination_type == ceres::CONVERGENCE};
+}
+
+// BakingLab's spiral and shared sharpness (fit_baseline's comment).
+Params baseline_params(std::size_t n, double kmax) {
+  Params p;
+  const double inc = M_PI * (3 - std::sqrt(5.0)), off = 2.0 / static_cast<double>(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double z = static_cast<double>(k) * off - 1 + off / 2;
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    const double phi = static_cast<double>(k) * inc;
+    p.axis.push_back({std::cos(phi) * r, std::sin(phi) * r, z});
+  }
+  double min_dp = n > 1 ? 1.0 : 0.0;  // one lobe: as if its neighbour were 90° away
+  for (std::size_t k = 1; k < n; ++k) {
+    std::array<double, 3> h{p.axis[k][0] + p.axis[0][0], p.axis[k][1] + p.axis[0][1], p.axis[k][2] + p.axis[0][2]};
+    const double len = std::hypot(h[0], h[1], h[2]);
+    if (len > 0) min_dp = std::min(min_dp, (h[0] * p.axis[0][0] + h[1] * p.axis[0][1] + h[2] * p.axis[0][2]) / len);
+  }
+  const double kappa = std::clamp(std::log(0.65) * static_cast<double>(n) / (min_dp - 1), kKappaMin, kmax);
+  p.kappa.assign(n, kappa);
+  p.amp.assign(n, {0.0, 0.0, 0.0});
+  return p;
+}
+
+void add_radiance_residuals(ceres::Problem& problem, const Samples& s, Params& p) {
+  std::vector<double*> blocks;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    blocks.push_back(p.axis[k].data());
+    blocks.push_back(&p.kappa[k]);
+    blocks.push_back(p.amp[k].data());
+  }
+  for (std::size_t j = 0; j < s.height; ++j) problem.AddResidualBlock(new RowCost(s, j, p.size()), nullptr, blocks);
+}
+
+// Radiance NNLS with fixed axes and sharpness: amplitudes ≥ 0 (the baseline, and
+// the start of the joint fit).
+void solve_amplitudes(const Samples& s, Params& p) {
+  for (auto& a : p.amp) a = {0.1, 0.1, 0.1};
+  ceres::Problem problem;
+  add_radiance_residuals(problem, s, p);
+  configure(problem, p, kappa_max(s), /*fix_shape=*/true);
+  solve(problem, 100);
+}
+
+std::vector<Lobe> lobes_of(const Params& p, double scale) {
+  std::vector<Lobe> out;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    Lobe l;
+    const double len = std::hypot(p.axis[k][0], p.axis[k][1], p.axis[k][2]);
+    for (std::size_t d = 0; d < 3; ++d) l.axis[d] = p.axis[k][d] / len;
+    l.sharpness = p.kappa[k];
+    for (std::size_t ch = 0; ch < 3; ++ch) l.amplitude[ch] = std::max(0.0, p.amp[k][ch]) * scale;
+    out.push_back(l);
+  }
+  return out;
+}
+
+}  // namespace
+
+void check_lobe_count(const Map& work, std::size_t lobes) {
+  if (lobes == 0) throw InputError("--lobes 0: at least one lobe is needed");
+  if (lobes > max_lobes(work))
+    throw InputError(fmt::format("--lobes {}: more than the map supports (at most {} for a {} x {} working copy: one "
+                                 "lobe per 32 pixels, at most 256)",
+                                 lobes, max_lobes(work), work.width, work.height));
+}
+
+const char* to_string(Objective o) { return o == Objective::radiance ? "radiance" : "irradiance"; }
+
+std::size_t max_lobes(const Map& work) { return std::min<std::size_t>(256, work.width * work.height / 32); }
+
+std::vector<Lobe> fit_baseline(const Map& work, std::size_t lobes) {
+  check_lobe_count(work, lobes);
+  const Samples s = samples_of(work);
+  Params p = baseline_params(lobes, kappa_max(s));
+  solve_amplitudes(s, p);
+  return lobes_of(p, s.scale);
+}
+
+FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals, const FitOptions& options) {
+  check_lobe_count(work, options.lobes);
+  const Samples s = samples_of(work);
+  const double kmax = kappa_max(s);
+  // The radiance stage: on the working copy for the radiance objective; as the
+  // start of the irradiance objective, on a 64 × 32 copy (4× fewer residuals
+  // for a 128 × 64 map; the irradiance stage refines every parameter anyway).
+  const bool coarse = options.objective == Objective::irradiance && work.width > kCoarseWidth &&
+                      work.width % kCoarseWidth == 0 && options.lobes <= kCoarseWidth * kCoarseWidth / 64;
+  const Samples rs = coarse ? samples_of(downsample(work, kCoarseWidth)) : s;
+  Params p = baseline_params(options.lobes, kappa_max(rs));
+  solve_amplitudes(rs, p);
+  FitReport report;
+  {
+    ceres::Problem problem;
+    add_radiance_residuals(problem, rs, p);
+    configure(problem, p, kappa_max(rs), false);
+    const SolveOutcome o = solve(problem, options.max_iterations);
+    report.iterations += o.iterations;
+    report.converged = o.converged;
+  }
+  for (auto& a : p.amp)
+    for (double& x : a) x *= rs.scale / s.scale;  // the same units as the working copy's
+  if (options.objective == Objective::irradiance) {
+    const std::vector<Vec3> normals = validate::fibonacci_normals(options.fit_normals);
+    if (exact_at_fit_normals.size() != normals.size())
+      throw std::logic_error("envmap::fit: the exact irradiance is not given at the fit normals");
+    std::vector<Vec3> target(normals.size());
+    for (std::size_t m = 0; m < normals.size(); ++m)
+      for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact_at_fit_normals[m][ch] / s.scale;
+    ceres::Problem problem;
+    std::vector<double*> blocks;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      blocks.push_back(p.axis[k].data());
+      blocks.push_back(&p.kappa[k]);
+      blocks.push_back(p.amp[k].data());
+    }
+    const std::size_t chunk = 64;
+    for (std::size_t m = 0; m < normals.size(); m += chunk)
+      problem.AddResidualBlock(new NormalsCost(normals, target, m, std::min(chunk, normals.size() - m), p.size()),
+                               nullptr, blocks);
+    configure(problem, p, kmax, false);
+    const SolveOutcome o = solve(problem, options.max_iterations);
+    report.iterations += o.iterations;
+    report.converged = o.converged;
+  }
+  report.lobes = lobes_of(p, s.scale);
+  return report;
+}
+
+validate::Scene to_scene(const std::vector<Lobe>& lobes) {
+  validate::Scene scene;
+  for (const Lobe& l : lobes) scene.lights.push_back({l.axis, l.sharpness, l.amplitude});
+  return scene;
+}
+
+std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes, const std::vector<Vec3>& normals) {
+  double largest = 0;
+  for (const Lobe& l : lobes)
+    for (double a : l.amplitude) largest = std::max(largest, a);
+  if (!(largest > 0)) return std::vector<Vec3>(normals.size(), Vec3{0, 0, 0});
+  std::vector<Vec3> e = validate::scene_irradiance_reference(to_scene(lobes), normals);
+  for (auto& v : e)
+    for (double& x : v) x *= largest;
+  return e;
+}
+
+Map reconstruct(const std::vector<Lobe>& lobes, std::size_t width, std::size_t height) {
+  Map m;
+  m.width = width;
+  m.height = height;
+  m.rgb.assign(width * height * 3, 0.0f);
+  for (std::size_t j = 0; j < height; ++j)
+    for (std::size_t i = 0; i < width; ++i) {
+      const Vec3 om = pixel_direction(m, i, j);
+      for (const Lobe& l : lobes) {
+        const double g = std::exp(l.sharpness * (l.axis[0] * om[0] + l.axis[1] * om[1] + l.axis[2] * om[2] - 1));
+        for (std::size_t ch = 0; ch < 3; ++ch) m.rgb[(j * width + i) * 3 + ch] += static_cast<float>(l.amplitude[ch] * g);
+      }
+    }
+  return m;
+}
+
+}  // namespace sglab::envmap
