@@ -40,48 +40,41 @@ struct FitCliOptions {
   std::string costs;    // default: the project's data/results/costs.json, if any
 };
 
-// Which options each target uses; any other is refused (never silently ignored).
-struct TargetOptions {
-  std::string_view target;
-  bool precision, objective, kappa, max_error, alpha_free;
-};
-constexpr TargetOptions kTargetOptions[] = {
-    {"clamped-cosine", true, true, true, false, true},
-    {"steepness2022", false, true, true, true, false},
-    {"steepness2024", false, true, true, true, false},
-    {"erf", true, true, false, true, false},
-    {"lambda-d", false, true, true, false, false},  // --kappa only with --objective irradiance
-    {"sglab-fast", false, false, false, false, false},
-    {"sglab-accurate", false, false, true, true, false},  // --kappa with --max-error: the model order for a range
-    {"all", false, false, true, false, false},
-};
-
 struct GivenOptions {
-  bool precision, objective, kappa, max_error, alpha_free;
+  bool precision, objective, kappa, max_error, alpha_free, cold_start, costs;
 };
 
+// "TARGET, …": the targets that take an option.
+std::string users_of(bool fit::FitTarget::*flag) {
+  std::string users;
+  for (const auto& t : fit::fit_targets())
+    if (t.*flag) users += fmt::format("{}{}", users.empty() ? "" : ", ", t.name);
+  return users;
+}
+
+// " (TARGET, …)", for an option's help.
+std::string taken_by(bool fit::FitTarget::*flag) { return " (" + users_of(flag) + ")"; }
+
+// Any option the target does not take (fit::FitTarget) is refused, never
+// silently ignored; `all` passes --kappa, --cold-start and --costs on to the
+// targets that take them.
 void refuse_inapplicable(const std::string& target, const GivenOptions& given, const std::string& objective) {
-  const auto it = std::find_if(std::begin(kTargetOptions), std::end(kTargetOptions),
-                               [&](const TargetOptions& t) { return t.target == target; });
-  if (it == std::end(kTargetOptions)) return;  // unknown targets are reported by the caller
-  const auto check = [&](bool is_given, bool applies, const char* option) {
-    if (!is_given || applies) return;
-    std::string users;
-    for (const auto& t : kTargetOptions) {
-      const bool a = std::string_view(option) == "--precision"   ? t.precision
-                     : std::string_view(option) == "--objective" ? t.objective
-                     : std::string_view(option) == "--kappa"     ? t.kappa
-                     : std::string_view(option) == "--max-error" ? t.max_error
-                                                                 : t.alpha_free;
-      if (a) users += (users.empty() ? "" : ", ") + std::string(t.target);
-    }
-    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option, target, users));
+  using Flag = bool fit::FitTarget::*;
+  const fit::FitTarget* row = fit::find_fit_target(target);
+  if (!row && target != "all") return;  // unknown targets are reported by the caller
+  const auto check = [&](bool is_given, Flag applies, const char* option) {
+    const bool all_takes = applies == &fit::FitTarget::kappa || applies == &fit::FitTarget::cold_start ||
+                           applies == &fit::FitTarget::costs;
+    if (!is_given || (row ? row->*applies : all_takes)) return;
+    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option, target, users_of(applies)));
   };
-  check(given.precision, it->precision, "--precision");
-  check(given.objective, it->objective, "--objective");
-  check(given.kappa, it->kappa, "--kappa");
-  check(given.max_error, it->max_error, "--max-error");
-  check(given.alpha_free, it->alpha_free, "--alpha-free");
+  check(given.precision, &fit::FitTarget::precision, "--precision");
+  check(given.objective, &fit::FitTarget::objective, "--objective");
+  check(given.kappa, &fit::FitTarget::kappa, "--kappa");
+  check(given.max_error, &fit::FitTarget::max_error, "--max-error");
+  check(given.alpha_free, &fit::FitTarget::alpha_free, "--alpha-free");
+  check(given.cold_start, &fit::FitTarget::cold_start, "--cold-start");
+  check(given.costs, &fit::FitTarget::costs, "--costs");
   if (target == "lambda-d" && given.kappa && objective != "irradiance")
     throw InputError(
         "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other lambda-d objectives are "
@@ -196,28 +189,33 @@ fit::ordered_json diagnostics(std::size_t nonfinite, std::size_t messages, std::
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
-  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-fast | sglab-accurate | all")
-      ->required();
+  std::string targets_help = "what to fit:";
+  for (const auto& t : fit::fit_targets()) targets_help += fmt::format("\n  {:<15} {}", t.name, t.help);
+  targets_help += fmt::format("\n  {:<15} every target at its standard settings", "all");
+  cmd->add_option("target", o->target, targets_help)->required();
   auto* precision = cmd->add_option("--precision", o->precision,
-                                    "working precision: half | float | double (clamped-cosine, erf)")
+                                    "working precision: half | float | double" + taken_by(&fit::FitTarget::precision))
                         ->capture_default_str();
   auto* objective = cmd->add_option("--objective", o->objective,
-                                    "steepness: optimal-t | irradiance; lambda-d: sphere-ls | hemisphere-ls | "
-                                    "free-amplitude | irradiance; erf: listing5 | as7125");
+                                    "the target's objective (see the list above)" + taken_by(&fit::FitTarget::objective));
   auto* kappa = cmd->add_option("--kappa", o->kappa,
-                                "κ range LO:HI of the fit (default 1e-3:1e4; clamped-cosine, steepness, lambda-d "
-                                "irradiance, all); LO must not round to 0 in the working precision");
+                                "κ range LO:HI of the fit (default 1e-3:1e4; LO must not round to 0 in the working "
+                                "precision; lambda-d only with --objective irradiance)" +
+                                    taken_by(&fit::FitTarget::kappa));
   auto* max_error = cmd->add_option("--max-error", o->max_error,
-                                    "model order: smallest model meeting this error (erf: degrees and split; "
-                                    "steepness: rational order of t)");
+                                    "model order: the smallest model meeting this error (erf: degrees and split; "
+                                    "steepness: rational order of t; sglab-acc: the member)" +
+                                        taken_by(&fit::FitTarget::max_error));
   auto* alpha_free = cmd->add_flag("--alpha-free", o->alpha_free,
-                                   "clamped-cosine: α free instead of tied by energy conservation");
-  cmd->add_flag("--cold-start", o->cold_start,
-                "sglab-fast: fit from scratch instead of polishing the committed constant set");
+                                   "α free instead of tied by energy conservation" + taken_by(&fit::FitTarget::alpha_free));
+  auto* cold_start = cmd->add_flag("--cold-start", o->cold_start,
+                                   "fit from scratch instead of polishing the committed constant set" +
+                                       taken_by(&fit::FitTarget::cold_start));
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
-  cmd->add_option("--costs", o->costs,
-                  "sglab-accurate: cost table written by `sglab bench` for the cost column (default: "
-                  "data/results/costs.json of the project holding the working directory, if any)");
+  auto* costs = cmd->add_option("--costs", o->costs,
+                                "cost table written by `sglab bench` for the cost column (default: "
+                                "data/results/costs.json of the project holding the working directory, if any)" +
+                                    taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--out", o->out_dir,
@@ -229,10 +227,11 @@ void add_fit_command(CLI::App& app) {
                   "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
                   "checkout). The header holds the project's sets with those of --out in their place")
       ->check(non_empty_path());
-  cmd->callback([o, precision, objective, kappa, max_error, alpha_free] {
+  cmd->callback([o, precision, objective, kappa, max_error, alpha_free, cold_start, costs] {
     namespace fs = std::filesystem;
-    const GivenOptions given{precision->count() > 0, objective->count() > 0, kappa->count() > 0,
-                             max_error->count() > 0, alpha_free->count() > 0};
+    const GivenOptions given{precision->count() > 0,  objective->count() > 0,  kappa->count() > 0,
+                             max_error->count() > 0,  alpha_free->count() > 0, cold_start->count() > 0,
+                             costs->count() > 0};
     refuse_inapplicable(o->target, given, o->objective);
 
     std::string command = "sglab fit " + o->target;
@@ -245,40 +244,31 @@ void add_fit_command(CLI::App& app) {
 
     std::vector<fit::FitSpec> specs;
     if (o->target == "all") {
-      auto add = [&](const std::string& target, const std::string& objective, bool alpha_free, const std::string& prec) {
-        FitCliOptions each = *o;
-        each.objective = objective;
-        each.alpha_free = alpha_free;
-        each.precision = prec;
-        const bool uses_kappa = target != "erf" && target != "lambda-d";
-        if (!uses_kappa) each.kappa.clear();
-        std::string c = "sglab fit " + target;
-        if (prec != "float") c += " --precision " + prec;
-        if (!objective.empty()) c += " --objective " + objective;
-        if (alpha_free) c += " --alpha-free";
-        if (!each.kappa.empty()) c += " --kappa " + each.kappa;
-        specs.push_back(make_spec(each, target, c));
-      };
-      for (const char* prec : {"half", "float", "double"}) add("clamped-cosine", "", false, prec);
-      add("clamped-cosine", "", true, "float");
-      for (const char* t : {"steepness2022", "steepness2024"})
-        for (const char* obj : {"optimal-t", "irradiance"}) add(t, obj, false, "float");
-      add("erf", "", false, "float");
-      add("lambda-d", "", false, "float");
-      add("sglab-fast", "", false, "float");
-      add("sglab-accurate", "", false, "float");
+      for (const auto& target : fit::fit_targets())
+        for (const auto& run : target.all) {
+          FitCliOptions each = *o;
+          each.objective = run.objective;
+          each.alpha_free = run.alpha_free;
+          each.precision = run.precision;
+          // lambda-d takes --kappa only with --objective irradiance, not its fit all run
+          if (!target.kappa || target.name == "lambda-d") each.kappa.clear();
+          if (!target.cold_start) each.cold_start = false;
+          std::string c = fmt::format("sglab fit {}", target.name);
+          if (each.precision != "float") c += " --precision " + each.precision;
+          if (!each.objective.empty()) c += " --objective " + each.objective;
+          if (each.alpha_free) c += " --alpha-free";
+          if (!each.kappa.empty()) c += " --kappa " + each.kappa;
+          if (each.cold_start) c += " --cold-start";
+          specs.push_back(make_spec(each, std::string(target.name), c));
+        }
     } else {
-      const auto& known = fit::fit_targets();
-      if (std::find(known.begin(), known.end(), o->target) == known.end()) {
-        std::string list;
-        for (const auto& t : known) list += t + ", ";
-        throw InputError(fmt::format("unknown fit target '{}' (known: {}all)", o->target, list));
-      }
+      if (!fit::find_fit_target(o->target))
+        throw InputError(fmt::format("unknown fit target '{}' (known: {}, all)", o->target, fit::fit_target_names()));
       specs.push_back(make_spec(*o, o->target, command));
     }
-    const bool needs_costs = std::any_of(specs.begin(), specs.end(),
-                                         [](const fit::FitSpec& s) { return s.target == "sglab-accurate"; });
-    if (!needs_costs && !o->costs.empty()) throw InputError(fmt::format("--costs does not apply to `fit {}`", o->target));
+    const bool needs_costs = std::any_of(specs.begin(), specs.end(), [](const fit::FitSpec& s) {
+      return fit::find_fit_target(s.target)->costs;
+    });
     if (needs_costs) {
       const fit::MethodCosts costs = read_method_costs(o->costs);
       for (auto& s : specs) s.costs = costs;

@@ -540,7 +540,7 @@ std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
 }
 
 // sglab_acc<N>: b_j(kappa) = num_j(kappa)/den(kappa), for kappa >= 1 in powers of
-// 1/kappa (sglab_models.hpp sglab_acc_rational), and sum_j b_j z2^j.
+// 1/kappa (sglab_acc.hpp sglab_acc_rational), and sum_j b_j z2^j.
 std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto [n, d] = sglab_acc_shape(set);
@@ -565,7 +565,7 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
     b.push_back(fmt::format("b{}", j));
   }
   const std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
-// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
+// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp).
 {{INLINE}}float {{P}}correction(float kappa, float z2) {{
 {};
   if (kappa < 1.0f) {{
@@ -582,7 +582,7 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
 std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
 // Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
-// with sglab's fitted even correction (sglab/sglab_models.hpp). Where e^(-z^2) has underflowed
+// with sglab's fitted even correction (sglab/sglab_acc.hpp). Where e^(-z^2) has underflowed
 // the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
 // so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float kappa, float t) {
@@ -605,14 +605,14 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
-  std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_cheap.hpp
+  std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_fast.hpp
   {
     const auto all = pole_series(false);
     series.assign(all.begin(), all.begin() + 6);
   }
   return subst(fmt::format(R"(// E(1, kappa)/2 pi = (kappa - 1 + e^-kappa)/kappa^2: Taylor series below kappa = 1/4,
 // (1 - (1 - e^-kappa)/kappa)/kappa from there on, e^-kappa's argument stopped at 80
-// (sglab/sglab_cheap.hpp upper_over_two_pi_fast).
+// (sglab/sglab_fast.hpp upper_over_two_pi_fast).
 {{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
   if (kappa < 0.25f) return {0};
   float r = 1.0f / kappa;
@@ -625,7 +625,7 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   return v * v * v * (2.0f - v) + (u - 1.0f + over);
 }}
 // sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
-// k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_cheap.hpp).
+// k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_fast.hpp).
 {{INLINE}}float {{P}}fast(float cosine, float kappa) {{
   float k = min(kappa, {1});
   float inv_q = 1.0f / ({2} + k * k * k * k);
@@ -758,17 +758,17 @@ const std::vector<ShaderMethod>& shader_methods() {
       {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
        [] { return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude", constants::lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
        kBodyWang2009},
-      {"sglab_fast", "sglab's cheap model: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_cheap.hpp)",
+      {"sglab_fast", "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
        [] { return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
-      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_models.hpp)",
-       [] { return Slots{{"model", named("sglab_accurate_acc1", constants::sglab_accurate_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
-      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_models.hpp)",
-       [] { return Slots{{"model", named("sglab_accurate_acc2", constants::sglab_accurate_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
-      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_models.hpp)",
-       [] { return Slots{{"model", named("sglab_accurate_acc3", constants::sglab_accurate_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
   };
   return table;

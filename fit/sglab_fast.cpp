@@ -1,5 +1,5 @@
-// `sglab fit sglab-fast`: the coefficients of sglab's cheap model
-// (include/sglab/sglab_cheap.hpp)
+// `sglab fit sglab-fast`: the coefficients of sglab_fast
+// (include/sglab/sglab_fast.hpp)
 //   Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)),  A, B, C, V = P(κ)/Q(κ),
 // in three named stages, each warm-starting the next:
 //   1. per κ of the training grid, the four shape values (A, B, C, V) that
@@ -29,7 +29,7 @@
 #include <fmt/format.h>
 
 #include <sglab/sglab.hpp>
-#include <sglab/sglab_cheap.hpp>
+#include <sglab/sglab_fast.hpp>
 
 #include "fit/constants_io.hpp"
 #include "common/io.hpp"
