@@ -1,6 +1,6 @@
-// app/envmap_report.cpp — `sglab envmap recommend`'s selector and `sglab envmap
+// report/envmap_report.cpp — `sglab envmap recommend`'s selector and `sglab envmap
 // baselines` (envmap_report.hpp).
-#include "app/envmap_report.hpp"
+#include "report/envmap_report.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -21,7 +21,7 @@
 #include "report/figures.hpp"
 #include "common/io.hpp"
 
-namespace sglab::envmap {
+namespace sglab::report {
 
 namespace {
 
@@ -31,13 +31,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<Vec3> method_irradiance(const std::vector<Lobe>& lobes, const std::vector<Vec3>& normals, const Method& m,
+std::vector<envmap::Vec3> method_irradiance(const std::vector<envmap::Lobe>& lobes, const std::vector<envmap::Vec3>& normals, const Method& m,
                                     validate::FloatFormat precision) {
   double largest = 0;
-  for (const Lobe& l : lobes)
+  for (const envmap::Lobe& l : lobes)
     for (double a : l.amplitude) largest = std::max(largest, a);
-  if (!(largest > 0)) return std::vector<Vec3>(normals.size(), Vec3{0, 0, 0});
-  std::vector<Vec3> e = validate::scene_irradiance(to_scene(lobes), normals, m, precision);
+  if (!(largest > 0)) return std::vector<envmap::Vec3>(normals.size(), envmap::Vec3{0, 0, 0});
+  std::vector<envmap::Vec3> e = validate::scene_irradiance(envmap::to_scene(lobes), normals, m, precision);
   for (auto& v : e)
     for (double& x : v) x *= largest;
   return e;
@@ -53,12 +53,12 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes) {
   return out;
 }
 
-Selection select(const Map& map, const Map& work, double budget, std::size_t max_lobes, std::size_t normals_n,
+EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget, std::size_t max_lobes, std::size_t normals_n,
                  validate::FloatFormat precision, const std::vector<report::MethodPoint>& costs,
                  const std::function<void(const std::string&)>& note) {
-  Selection sel;
-  FitOptions options;
-  options.objective = Objective::irradiance;
+  EnvmapSelection sel;
+  envmap::FitOptions options;
+  options.objective = envmap::Objective::irradiance;
   const auto fit_normals = validate::fibonacci_normals(options.fit_normals);
   const auto normals = validate::fibonacci_normals(normals_n);
   note("exact irradiance of the map");
@@ -67,22 +67,22 @@ Selection select(const Map& map, const Map& work, double budget, std::size_t max
   for (std::size_t n : lobe_ladder(max_lobes)) {
     note(fmt::format("{} lobes: fit", n));
     options.lobes = n;
-    const FitReport fit = envmap::fit(work, exact_fit, options);
+    const envmap::FitReport fit = envmap::fit(work, exact_fit, options);
     note(fmt::format("{} lobes: errors", n));
-    sel.fit_error.emplace_back(n, irradiance_error(lobes_irradiance_exact(fit.lobes, normals), exact).max_rel);
+    sel.fit_error.emplace_back(n, envmap::irradiance_error(envmap::lobes_irradiance_exact(fit.lobes, normals), exact).max_rel);
     std::vector<report::MethodPoint> points;
     for (const report::MethodPoint& c : costs) {
       if (!std::isfinite(c.cost)) continue;
       const Method* m = find_method(irradiance_methods, c.method);
       if (!m) continue;
       report::MethodPoint p = c;
-      p.max_peak_rel = irradiance_error(method_irradiance(fit.lobes, normals, *m, precision), exact).max_rel;
+      p.max_peak_rel = envmap::irradiance_error(method_irradiance(fit.lobes, normals, *m, precision), exact).max_rel;
       points.push_back(p);
       sel.tried.push_back({n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost});
     }
     const report::Recommendation r = report::recommend(points, budget);
     auto candidate = [&](const report::MethodPoint& p) {
-      return Candidate{n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost};
+      return EnvmapCandidate{n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost};
     };
     if (r.choice) {
       sel.choice = candidate(*r.choice);
@@ -96,9 +96,9 @@ Selection select(const Map& map, const Map& work, double budget, std::size_t max
 namespace {
 
 struct Errors {
-  ErrorStats baseline, radiance, irradiance;
+  envmap::ErrorStats baseline, radiance, irradiance;
   double t_baseline = 0, t_radiance = 0, t_irradiance = 0;
-  std::vector<Lobe> irradiance_lobes;
+  std::vector<envmap::Lobe> irradiance_lobes;
 };
 
 std::string tonemap_rgb(double r, double g, double b, double exposure) {
@@ -111,27 +111,27 @@ std::string tonemap_rgb(double r, double g, double b, double exposure) {
 
 // The figure of one map: the map, its SG reconstruction, the irradiance over
 // every normal direction (exact, fitted) and the error, each an equirect panel.
-void write_map_figure(const std::filesystem::path& out, const std::string& name, const Map& work,
-                      const std::vector<Lobe>& lobes, std::size_t n_lobes) {
-  const Map recon = reconstruct(lobes, work.width, work.height);
+void write_map_figure(const std::filesystem::path& out, const std::string& name, const envmap::Map& work,
+                      const std::vector<envmap::Lobe>& lobes, std::size_t n_lobes) {
+  const envmap::Map recon = envmap::reconstruct(lobes, work.width, work.height);
   double mean = 0;
   for (float v : work.rgb) mean += v;
   mean /= static_cast<double>(work.rgb.size());
   const double exposure = 1 / (2 * mean);
   // Irradiance as an equirect image over normal directions (64 × 32).
-  Map grid;
+  envmap::Map grid;
   grid.width = 64;
   grid.height = 32;
-  std::vector<Vec3> dirs;
+  std::vector<envmap::Vec3> dirs;
   for (std::size_t j = 0; j < grid.height; ++j)
     for (std::size_t i = 0; i < grid.width; ++i) dirs.push_back(pixel_direction(grid, i, j));
   const auto exact = irradiance(work, dirs);
-  const auto fitted = lobes_irradiance_exact(lobes, dirs);
+  const auto fitted = envmap::lobes_irradiance_exact(lobes, dirs);
   double peak = 0;
   for (const auto& e : exact)
     for (double x : e) peak = std::max(peak, x);
   std::string data;
-  auto panel = [&](const Map& m) {
+  auto panel = [&](const envmap::Map& m) {
     for (std::size_t j = 0; j < m.height; ++j)
       for (std::size_t i = 0; i < m.width; ++i)
         data += fmt::format("{} {} {}\n", i, m.height - 1 - j, tonemap_rgb(m.at(i, j, 0), m.at(i, j, 1), m.at(i, j, 2), exposure));
@@ -139,10 +139,10 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
   };
   panel(work);
   panel(recon);
-  auto irr_panel = [&](const std::vector<Vec3>& e) {
+  auto irr_panel = [&](const std::vector<envmap::Vec3>& e) {
     for (std::size_t j = 0; j < grid.height; ++j)
       for (std::size_t i = 0; i < grid.width; ++i) {
-        const Vec3& v = e[j * grid.width + i];
+        const envmap::Vec3& v = e[j * grid.width + i];
         auto c = [&](double x) { return static_cast<int>(std::lround(255 * std::pow(std::clamp(x / peak, 0.0, 1.0), 1 / 2.2))); };
         data += fmt::format("{} {} {} {} {}\n", i, grid.height - 1 - j, c(v[0]), c(v[1]), c(v[2]));
       }
@@ -181,7 +181,7 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
 
 }  // namespace
 
-void run_baselines(const std::string& maps_arg, const std::string& out_arg, bool quick) {
+void run_envmap_baselines(const std::string& maps_arg, const std::string& out_arg, bool quick) {
   const auto root = io::find_project_root(std::filesystem::current_path());
   std::filesystem::path maps_dir = maps_arg, out = out_arg;
   if (maps_dir.empty()) {
@@ -208,17 +208,17 @@ void run_baselines(const std::string& maps_arg, const std::string& out_arg, bool
   const std::vector<std::size_t> table_counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{4, 8, 12, 24};
   struct MapData {
     std::string name;
-    Map map, work;
-    std::vector<Vec3> exact_fit, exact_eval;
+    envmap::Map map, work;
+    std::vector<envmap::Vec3> exact_fit, exact_eval;
   };
   std::vector<MapData> maps(files.size());
-  FitOptions base_options;
+  envmap::FitOptions base_options;
   const auto fit_normals = validate::fibonacci_normals(base_options.fit_normals);
-  const auto eval_normals = validate::fibonacci_normals(kEvalNormals);
+  const auto eval_normals = validate::fibonacci_normals(envmap::kEvalNormals);
   for (std::size_t m = 0; m < files.size(); ++m) {
     maps[m].name = files[m].stem().string();
-    maps[m].map = read_map(files[m]);
-    maps[m].work = working_copy(maps[m].map);
+    maps[m].map = envmap::read_map(files[m]);
+    maps[m].work = envmap::working_copy(maps[m].map);
     maps[m].exact_fit = irradiance(maps[m].map, fit_normals);
     maps[m].exact_eval = irradiance(maps[m].map, eval_normals);
   }
@@ -232,21 +232,21 @@ void run_baselines(const std::string& maps_arg, const std::string& out_arg, bool
       const std::size_t n = counts[job % counts.size()];
       Errors& r = results[job];
       auto t0 = std::chrono::steady_clock::now();
-      const auto base = fit_baseline(md.work, n);
+      const auto base = envmap::fit_baseline(md.work, n);
       r.t_baseline = seconds_since(t0);
-      FitOptions o = base_options;
+      envmap::FitOptions o = base_options;
       o.lobes = n;
-      o.objective = Objective::radiance;
+      o.objective = envmap::Objective::radiance;
       t0 = std::chrono::steady_clock::now();
-      const FitReport rad = fit(md.work, md.exact_fit, o);
+      const envmap::FitReport rad = fit(md.work, md.exact_fit, o);
       r.t_radiance = seconds_since(t0);
-      o.objective = Objective::irradiance;
+      o.objective = envmap::Objective::irradiance;
       t0 = std::chrono::steady_clock::now();
-      const FitReport irr = fit(md.work, md.exact_fit, o);
+      const envmap::FitReport irr = fit(md.work, md.exact_fit, o);
       r.t_irradiance = seconds_since(t0);
-      r.baseline = irradiance_error(lobes_irradiance_exact(base, eval_normals), md.exact_eval);
-      r.radiance = irradiance_error(lobes_irradiance_exact(rad.lobes, eval_normals), md.exact_eval);
-      r.irradiance = irradiance_error(lobes_irradiance_exact(irr.lobes, eval_normals), md.exact_eval);
+      r.baseline = envmap::irradiance_error(envmap::lobes_irradiance_exact(base, eval_normals), md.exact_eval);
+      r.radiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(rad.lobes, eval_normals), md.exact_eval);
+      r.irradiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(irr.lobes, eval_normals), md.exact_eval);
       r.irradiance_lobes = irr.lobes;
       progress.advance();
     });
@@ -271,7 +271,7 @@ void run_baselines(const std::string& maps_arg, const std::string& out_arg, bool
       "radiance; (c) sglab irradiance fit: a radiance fit as (b) on a 64 × 32 copy, then every parameter "
       "jointly on the irradiance at 1024 other "
       "Fibonacci normals. Ratio = (a) max / (c) max; the target is ≥ 2.\n\n",
-      kEvalNormals);
+      envmap::kEvalNormals);
   std::size_t met = 0, total = 0;
   md += "| map | lobes | (a) baseline max | (a) RMS | (b) radiance max | (b) RMS | (c) irradiance max | (c) RMS | ratio (a)/(c) |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -362,4 +362,4 @@ void run_baselines(const std::string& maps_arg, const std::string& out_arg, bool
   fmt::print("{}", md);
 }
 
-}  // namespace sglab::envmap
+}  // namespace sglab::report
