@@ -179,9 +179,16 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
     throw std::runtime_error(fmt::format("gnuplot failed on {}", (out / (stem + ".gp")).string()));
 }
 
-}  // namespace
+struct MapData {
+  std::string name;
+  envmap::Map map, work;
+  std::vector<envmap::Vec3> exact_fit, exact_eval;
+};
 
-void run_envmap_baselines(const std::string& maps_arg, const std::string& out_arg, bool quick) {
+// The maps of --maps (every .exr and .hdr, sorted) and the output folder
+// (default: the project's data/envmaps and data/results).
+std::pair<std::vector<std::filesystem::path>, std::filesystem::path> baseline_paths(const std::string& maps_arg,
+                                                                                   const std::string& out_arg) {
   const auto root = io::find_project_root(std::filesystem::current_path());
   std::filesystem::path maps_dir = maps_arg, out = out_arg;
   if (maps_dir.empty()) {
@@ -202,19 +209,14 @@ void run_envmap_baselines(const std::string& maps_arg, const std::string& out_ar
   if (ec) throw InputError(fmt::format("--maps {}: {}", maps_dir.string(), ec.message()));
   std::sort(files.begin(), files.end());
   if (files.empty()) throw InputError(fmt::format("--maps {}: no .exr or .hdr maps", maps_dir.string()));
+  return {files, out};
+}
 
-  const std::vector<std::size_t> counts =
-      quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16, 24};
-  const std::vector<std::size_t> table_counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{4, 8, 12, 24};
-  struct MapData {
-    std::string name;
-    envmap::Map map, work;
-    std::vector<envmap::Vec3> exact_fit, exact_eval;
-  };
+// Every map with its exact irradiance at the fit and the evaluation normals.
+std::vector<MapData> load_maps(const std::vector<std::filesystem::path>& files,
+                               const std::vector<envmap::Vec3>& fit_normals,
+                               const std::vector<envmap::Vec3>& eval_normals) {
   std::vector<MapData> maps(files.size());
-  envmap::FitOptions base_options;
-  const auto fit_normals = validate::fibonacci_normals(base_options.fit_normals);
-  const auto eval_normals = validate::fibonacci_normals(envmap::kEvalNormals);
   for (std::size_t m = 0; m < files.size(); ++m) {
     maps[m].name = files[m].stem().string();
     maps[m].map = envmap::read_map(files[m]);
@@ -222,47 +224,62 @@ void run_envmap_baselines(const std::string& maps_arg, const std::string& out_ar
     maps[m].exact_fit = irradiance(maps[m].map, fit_normals);
     maps[m].exact_eval = irradiance(maps[m].map, eval_normals);
   }
-  const std::size_t jobs = maps.size() * counts.size();
-  std::vector<Errors> results(jobs);
-  const auto t_all = std::chrono::steady_clock::now();
-  {
-    io::Progress progress("envmap baselines", jobs);
-    tbb::parallel_for(std::size_t{0}, jobs, [&](std::size_t job) {
-      const MapData& md = maps[job / counts.size()];
-      const std::size_t n = counts[job % counts.size()];
-      Errors& r = results[job];
-      auto t0 = std::chrono::steady_clock::now();
-      const auto base = envmap::fit_baseline(md.work, n);
-      r.t_baseline = seconds_since(t0);
-      envmap::FitOptions o = base_options;
-      o.lobes = n;
-      o.objective = envmap::Objective::radiance;
-      t0 = std::chrono::steady_clock::now();
-      const envmap::FitReport rad = fit(md.work, md.exact_fit, o);
-      r.t_radiance = seconds_since(t0);
-      o.objective = envmap::Objective::irradiance;
-      t0 = std::chrono::steady_clock::now();
-      const envmap::FitReport irr = fit(md.work, md.exact_fit, o);
-      r.t_irradiance = seconds_since(t0);
-      r.baseline = envmap::irradiance_error(envmap::lobes_irradiance_exact(base, eval_normals), md.exact_eval);
-      r.radiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(rad.lobes, eval_normals), md.exact_eval);
-      r.irradiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(irr.lobes, eval_normals), md.exact_eval);
-      r.irradiance_lobes = irr.lobes;
-      progress.advance();
-    });
-  }
-  const double wall = seconds_since(t_all);
-  auto at = [&](std::size_t m, std::size_t n) -> const Errors& {
-    const std::size_t c = static_cast<std::size_t>(std::find(counts.begin(), counts.end(), n) - counts.begin());
-    return results[m * counts.size() + c];
-  };
+  return maps;
+}
 
-  // envmaps.md: deterministic (no times).
+// The three fits of every (map, lobe count) and their errors, in parallel;
+// results[m * counts.size() + c].
+struct BaselineRun {
+  std::vector<std::size_t> counts, table_counts;
+  std::vector<MapData> maps;
+  std::vector<Errors> results;
+  double wall = 0;
+  bool quick = false;
+  const Errors& at(std::size_t m, std::size_t n) const {
+    const auto c = static_cast<std::size_t>(std::find(counts.begin(), counts.end(), n) - counts.begin());
+    return results[m * counts.size() + c];
+  }
+};
+
+void run_fits(BaselineRun& run, const envmap::FitOptions& base_options, const std::vector<envmap::Vec3>& eval_normals) {
+  const std::size_t jobs = run.maps.size() * run.counts.size();
+  run.results.assign(jobs, Errors{});
+  const auto t_all = std::chrono::steady_clock::now();
+  io::Progress progress("envmap baselines", jobs);
+  tbb::parallel_for(std::size_t{0}, jobs, [&](std::size_t job) {
+    const MapData& md = run.maps[job / run.counts.size()];
+    const std::size_t n = run.counts[job % run.counts.size()];
+    Errors& r = run.results[job];
+    auto t0 = std::chrono::steady_clock::now();
+    const auto base = envmap::fit_baseline(md.work, n);
+    r.t_baseline = seconds_since(t0);
+    envmap::FitOptions o = base_options;
+    o.lobes = n;
+    o.objective = envmap::Objective::radiance;
+    t0 = std::chrono::steady_clock::now();
+    const envmap::FitReport rad = fit(md.work, md.exact_fit, o);
+    r.t_radiance = seconds_since(t0);
+    o.objective = envmap::Objective::irradiance;
+    t0 = std::chrono::steady_clock::now();
+    const envmap::FitReport irr = fit(md.work, md.exact_fit, o);
+    r.t_irradiance = seconds_since(t0);
+    r.baseline = envmap::irradiance_error(envmap::lobes_irradiance_exact(base, eval_normals), md.exact_eval);
+    r.radiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(rad.lobes, eval_normals), md.exact_eval);
+    r.irradiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(irr.lobes, eval_normals), md.exact_eval);
+    r.irradiance_lobes = irr.lobes;
+    progress.advance();
+  });
+  progress.finish();
+  run.wall = seconds_since(t_all);
+}
+
+// envmaps.md: deterministic (no times).
+std::string baselines_markdown(const BaselineRun& run) {
   std::string md;
   md += "# Environment maps: SG lobe fits against the BakingLab baseline\n\n";
   md += fmt::format("Written by `sglab envmap baselines{}` from the maps in `data/envmaps/` (see its README: CC0, "
                     "128 × 64 area-averaged copies of Blender's studio-light worlds).\n\n",
-                    quick ? " --quick" : "");
+                    run.quick ? " --quick" : "");
   md += fmt::format(
       "Irradiance error = max (and RMS) over {} Fibonacci normals and RGB of |E_lobes(n) − E_map(n)| / max E_map, "
       "where E_map sums every pixel of the map with its solid angle and E_lobes is the lobes' exact SG irradiance "
@@ -275,90 +292,120 @@ void run_envmap_baselines(const std::string& maps_arg, const std::string& out_ar
   std::size_t met = 0, total = 0;
   md += "| map | lobes | (a) baseline max | (a) RMS | (b) radiance max | (b) RMS | (c) irradiance max | (c) RMS | ratio (a)/(c) |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (std::size_t m = 0; m < maps.size(); ++m)
-    for (std::size_t n : table_counts) {
-      const Errors& e = at(m, n);
+  for (std::size_t m = 0; m < run.maps.size(); ++m)
+    for (std::size_t n : run.table_counts) {
+      const Errors& e = run.at(m, n);
       const double ratio = e.baseline.max_rel / e.irradiance.max_rel;
       ++total;
       if (ratio >= 2) ++met;
-      md += fmt::format("| {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.1f}{} |\n", maps[m].name, n,
-                        e.baseline.max_rel, e.baseline.rms_rel, e.radiance.max_rel, e.radiance.rms_rel,
-                        e.irradiance.max_rel, e.irradiance.rms_rel, ratio, ratio >= 2 ? "" : " (below 2)");
+      md += fmt::format("| {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.1f}{} |\n",
+                        run.maps[m].name, n, e.baseline.max_rel, e.baseline.rms_rel, e.radiance.max_rel,
+                        e.radiance.rms_rel, e.irradiance.max_rel, e.irradiance.rms_rel, ratio,
+                        ratio >= 2 ? "" : " (below 2)");
     }
   md += fmt::format("\n(c) has at least 2× lower max irradiance error than (a) in {} of {} (map, lobes) cases.\n\n", met,
                     total);
-  if (!quick) {
-    md += "## Lobes needed for a 1 % budget\n\n";
-    md += "Fewest lobes (of 1, 2, 3, 4, 6, 8, 12, 16, 24) whose fit has max irradiance error ≤ 1 % (exact SG irradiance; "
-          "the error of a diffuse approximation comes on top: `sglab envmap recommend FILE --budget 0.01`).\n\n";
-    md += "| map | (a) baseline | (b) radiance fit | (c) irradiance fit |\n|---|---:|---:|---:|\n";
-    for (std::size_t m = 0; m < maps.size(); ++m) {
-      auto need = [&](auto pick) {
-        for (std::size_t n : counts)
-          if (pick(at(m, n)).max_rel <= 0.01) return fmt::format("{}", n);
-        return fmt::format("> {}", counts.back());
-      };
-      md += fmt::format("| {} | {} | {} | {} |\n", maps[m].name, need([](const Errors& e) { return e.baseline; }),
-                        need([](const Errors& e) { return e.radiance; }),
-                        need([](const Errors& e) { return e.irradiance; }));
-    }
-    md += "\n## Figures\n\n![error vs lobes](envmap_curves.png)\n\n";
-    md += "![one map: map, reconstruction, irradiance exact / fitted / error](envmap_" + maps[0].name + ".png)\n";
+  if (run.quick) return md;
+  md += "## Lobes needed for a 1 % budget\n\n";
+  md += "Fewest lobes (of 1, 2, 3, 4, 6, 8, 12, 16, 24) whose fit has max irradiance error ≤ 1 % (exact SG irradiance; "
+        "the error of a diffuse approximation comes on top: `sglab envmap recommend FILE --budget 0.01`).\n\n";
+  md += "| map | (a) baseline | (b) radiance fit | (c) irradiance fit |\n|---|---:|---:|---:|\n";
+  for (std::size_t m = 0; m < run.maps.size(); ++m) {
+    auto need = [&](auto pick) {
+      for (std::size_t n : run.counts)
+        if (pick(run.at(m, n)).max_rel <= 0.01) return fmt::format("{}", n);
+      return fmt::format("> {}", run.counts.back());
+    };
+    md += fmt::format("| {} | {} | {} | {} |\n", run.maps[m].name, need([](const Errors& e) { return e.baseline; }),
+                      need([](const Errors& e) { return e.radiance; }),
+                      need([](const Errors& e) { return e.irradiance; }));
   }
+  md += "\n## Figures\n\n![error vs lobes](envmap_curves.png)\n\n";
+  md += "![one map: map, reconstruction, irradiance exact / fitted / error](envmap_" + run.maps[0].name + ".png)\n";
+  return md;
+}
+
+std::string baselines_csv(const BaselineRun& run) {
   std::string csv = "map,lobes,fit,max_rel,rms_rel\n";
-  for (std::size_t m = 0; m < maps.size(); ++m)
-    for (std::size_t n : counts) {
-      const Errors& e = at(m, n);
-      csv += fmt::format("{},{},baseline,{:.6e},{:.6e}\n", maps[m].name, n, e.baseline.max_rel, e.baseline.rms_rel);
-      csv += fmt::format("{},{},radiance,{:.6e},{:.6e}\n", maps[m].name, n, e.radiance.max_rel, e.radiance.rms_rel);
-      csv += fmt::format("{},{},irradiance,{:.6e},{:.6e}\n", maps[m].name, n, e.irradiance.max_rel, e.irradiance.rms_rel);
+  for (std::size_t m = 0; m < run.maps.size(); ++m)
+    for (std::size_t n : run.counts) {
+      const Errors& e = run.at(m, n);
+      const std::string& name = run.maps[m].name;
+      csv += fmt::format("{},{},baseline,{:.6e},{:.6e}\n", name, n, e.baseline.max_rel, e.baseline.rms_rel);
+      csv += fmt::format("{},{},radiance,{:.6e},{:.6e}\n", name, n, e.radiance.max_rel, e.radiance.rms_rel);
+      csv += fmt::format("{},{},irradiance,{:.6e},{:.6e}\n", name, n, e.irradiance.max_rel, e.irradiance.rms_rel);
     }
+  return csv;
+}
+
+// envmap_curves.png: max error against lobes, every map, the three fits.
+void write_curves_figure(const std::filesystem::path& out, const BaselineRun& run) {
+  std::string dat;
+  std::string names;
+  for (std::size_t m = 0; m < run.maps.size(); ++m) {
+    names += (m ? " " : "") + run.maps[m].name;
+    dat += "# lobes baseline radiance irradiance (" + run.maps[m].name + ")\n";
+    for (std::size_t n : run.counts) {
+      const Errors& e = run.at(m, n);
+      dat += fmt::format("{} {:.6e} {:.6e} {:.6e}\n", n, e.baseline.max_rel, e.radiance.max_rel, e.irradiance.max_rel);
+    }
+    dat += "\n\n";
+  }
+  io::write_file_atomic(out / "envmap_curves.dat", dat);
+  const std::size_t last = run.maps.size() - 1;
+  const std::string gp = fmt::format(
+      "set terminal pngcairo size 1300,520 font 'sans,10'\nset output 'envmap_curves.png'\n"
+      "names = '{}'\nset logscale xy\nset xtics (1,2,3,4,6,8,12,16,24)\nset grid\n"
+      "set xlabel 'lobes'\nset ylabel 'max |E_{{lobes}} - E_{{map}}| / max E_{{map}}'\nset key outside right\n"
+      "set multiplot layout 1,2\n"
+      "set title '(c) sglab irradiance fit (solid), (a) BakingLab baseline (dashed)'\n"
+      "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:4 with linespoints lc i+1 pt 7 title word(names, i+1), "
+      "for [i=0:{}] '' index i using 1:2 with lines dt 2 lc i+1 notitle, 0.01 with lines lc 'black' dt 3 title '1 %'\n"
+      "set title '(b) sglab radiance fit'\n"
+      "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:3 with linespoints lc i+1 pt 7 title word(names, i+1), "
+      "0.01 with lines lc 'black' dt 3 title '1 %'\n"
+      "unset multiplot\n",
+      names, last, last, last);
+  io::write_file_atomic(out / "envmap_curves.gp", gp);
+  if (io::run_program({"gnuplot", "envmap_curves.gp"}, out, {}) != 0)
+    throw std::runtime_error(fmt::format("gnuplot failed on {}", (out / "envmap_curves.gp").string()));
+}
+
+// Times: on the terminal only (committed results stay deterministic).
+void print_times(const BaselineRun& run) {
+  if (::isatty(STDERR_FILENO) != 1) return;
+  fmt::print(stderr, "fit times (s; (c) includes its radiance stage):\n");
+  for (std::size_t m = 0; m < run.maps.size(); ++m)
+    for (std::size_t n : run.table_counts) {
+      const Errors& e = run.at(m, n);
+      fmt::print(stderr, "  {:<10} {:>3} lobes  (a) {:6.2f}  (b) {:6.2f}  (c) {:6.2f}\n", run.maps[m].name, n,
+                 e.t_baseline, e.t_radiance, e.t_irradiance);
+    }
+  fmt::print(stderr, "all fits: {:.1f} s wall\n", run.wall);
+}
+
+}  // namespace
+
+void run_envmap_baselines(const std::string& maps_arg, const std::string& out_arg, bool quick) {
+  const auto [files, out] = baseline_paths(maps_arg, out_arg);
+  BaselineRun run;
+  run.quick = quick;
+  run.counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16, 24};
+  run.table_counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{4, 8, 12, 24};
+  const envmap::FitOptions base_options;
+  const auto fit_normals = validate::fibonacci_normals(base_options.fit_normals);
+  const auto eval_normals = validate::fibonacci_normals(envmap::kEvalNormals);
+  run.maps = load_maps(files, fit_normals, eval_normals);
+  run_fits(run, base_options, eval_normals);
+
+  const std::string md = baselines_markdown(run);
   io::write_file_atomic(out / "envmaps.md", md);
-  io::write_file_atomic(out / "envmaps.csv", csv);
-
+  io::write_file_atomic(out / "envmaps.csv", baselines_csv(run));
   if (!quick && report::gnuplot_available()) {
-    std::string dat;
-    std::string names;
-    for (std::size_t m = 0; m < maps.size(); ++m) {
-      names += (m ? " " : "") + maps[m].name;
-      dat += "# lobes baseline radiance irradiance (" + maps[m].name + ")\n";
-      for (std::size_t n : counts) {
-        const Errors& e = at(m, n);
-        dat += fmt::format("{} {:.6e} {:.6e} {:.6e}\n", n, e.baseline.max_rel, e.radiance.max_rel, e.irradiance.max_rel);
-      }
-      dat += "\n\n";
-    }
-    io::write_file_atomic(out / "envmap_curves.dat", dat);
-    const std::string gp = fmt::format(
-        "set terminal pngcairo size 1300,520 font 'sans,10'\nset output 'envmap_curves.png'\n"
-        "names = '{}'\nset logscale xy\nset xtics (1,2,3,4,6,8,12,16,24)\nset grid\n"
-        "set xlabel 'lobes'\nset ylabel 'max |E_{{lobes}} - E_{{map}}| / max E_{{map}}'\nset key outside right\n"
-        "set multiplot layout 1,2\n"
-        "set title '(c) sglab irradiance fit (solid), (a) BakingLab baseline (dashed)'\n"
-        "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:4 with linespoints lc i+1 pt 7 title word(names, i+1), "
-        "for [i=0:{}] '' index i using 1:2 with lines dt 2 lc i+1 notitle, 0.01 with lines lc 'black' dt 3 title '1 %'\n"
-        "set title '(b) sglab radiance fit'\n"
-        "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:3 with linespoints lc i+1 pt 7 title word(names, i+1), "
-        "0.01 with lines lc 'black' dt 3 title '1 %'\n"
-        "unset multiplot\n",
-        names, maps.size() - 1, maps.size() - 1, maps.size() - 1);
-    io::write_file_atomic(out / "envmap_curves.gp", gp);
-    if (io::run_program({"gnuplot", "envmap_curves.gp"}, out, {}) != 0)
-      throw std::runtime_error(fmt::format("gnuplot failed on {}", (out / "envmap_curves.gp").string()));
-    write_map_figure(out, maps[0].name, maps[0].work, at(0, 12).irradiance_lobes, 12);
+    write_curves_figure(out, run);
+    write_map_figure(out, run.maps[0].name, run.maps[0].work, run.at(0, 12).irradiance_lobes, 12);
   }
-
-  // Times: on the terminal only (committed results stay deterministic).
-  if (::isatty(STDERR_FILENO) == 1) {
-    fmt::print(stderr, "fit times (s; (c) includes its radiance stage):\n");
-    for (std::size_t m = 0; m < maps.size(); ++m)
-      for (std::size_t n : table_counts) {
-        const Errors& e = at(m, n);
-        fmt::print(stderr, "  {:<10} {:>3} lobes  (a) {:6.2f}  (b) {:6.2f}  (c) {:6.2f}\n", maps[m].name, n, e.t_baseline,
-                   e.t_radiance, e.t_irradiance);
-      }
-    fmt::print(stderr, "all fits: {:.1f} s wall\n", wall);
-  }
+  print_times(run);
   fmt::print("{}", md);
 }
 
