@@ -193,6 +193,8 @@ void add_sweep_command(CLI::App& app) {
     if (args->lang == "hlsl" || args->lang == "both") langs.push_back(shader::Language::hlsl);
     if (langs.empty()) throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", args->lang));
     const auto precisions = checked_precisions(args->precisions);
+    if (!args->precisions.empty() && !vulkan && !vulkan_if_available)
+      throw InputError("--precision: chooses the exports of the vulkan backend; add --backend vulkan (or auto)");
 
     validate::SweepOptions options;
     if (!cpu) options.precisions.clear();

@@ -316,6 +316,19 @@ std::string half_literal(std::string_view digits, Language lang) {
 }
 
 bool ident_char(char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; }
+bool is_digit(char ch) { return std::isdigit(static_cast<unsigned char>(ch)) != 0; }
+
+// The end of the number that starts at text[i]: digits and '.', then an
+// optional exponent e[+-]digits (a suffix such as f is not part of it).
+std::size_t number_end(std::string_view text, std::size_t i) {
+  while (i < text.size() && (is_digit(text[i]) || text[i] == '.')) ++i;
+  if (i < text.size() && text[i] == 'e') {
+    ++i;
+    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+    while (i < text.size() && is_digit(text[i])) ++i;
+  }
+  return i;
+}
 
 // The HLSL intrinsics an export calls, which glslang's HLSL front end (12.0)
 // declares for float only: a half export calls {P}h_<name> (hlsl_half_prelude).
@@ -346,14 +359,8 @@ std::string to_half_code(std::string_view text, const Ctx& c) {
       const std::size_t end = std::min(text.find('\n', i), text.size());
       out.append(text.substr(i, end - i));
       i = end;
-    } else if (std::isdigit(static_cast<unsigned char>(ch)) || (ch == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
-      std::size_t j = i;
-      while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.')) ++j;
-      if (j < text.size() && text[j] == 'e') {
-        ++j;
-        if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
-        while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
-      }
+    } else if (is_digit(ch) || (ch == '.' && i + 1 < text.size() && is_digit(text[i + 1]))) {
+      const std::size_t j = number_end(text, i);
       const bool is_float = j < text.size() && text[j] == 'f' && (j + 1 == text.size() || !ident_char(text[j + 1]));
       out += is_float ? half_literal(text.substr(i, j - i), c.lang) : std::string(text.substr(i, j - i));
       i = is_float ? j + 1 : j;
@@ -1039,8 +1046,9 @@ std::string half_header(const ShaderMethod& m, Language lang) {
     h += "//   every operation and constant in half.\n";
   if (lang == Language::hlsl)
     h += "//   glslang's HLSL intrinsics take float only: exp, exp2, sqrt run in float, rounded once to half.\n";
-  return h + "//   Half fails where its range does: e^-kappa underflows above kappa ~ 17, 1/kappa^2 overflows\n"
-             "//   below kappa ~ 4e-3 (`sglab stability --half` gives each method's kappa range).\n";
+  return h + "//   binary16 has 11 bits and normal values 6.1e-5 ... 65504: e^-kappa underflows above kappa ~ 17\n"
+             "//   and 1/kappa^2 overflows below kappa ~ 4e-3 wherever a method forms them, and kappa above\n"
+             "//   65504 is infinite (`sglab stability --half` measures the kappa range each method survives).\n";
 }
 
 std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }

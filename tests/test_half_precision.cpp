@@ -8,6 +8,7 @@
 // `gpucost --precision half` reports half rows. Device tests skip with the reason.
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <regex>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/io.hpp"
 #include "export/gpu_cost.hpp"
 #include "export/shader_export.hpp"
 #include "export/vulkan_runner.hpp"
@@ -98,6 +100,9 @@ TEST(HalfExport, CppHalfAndBadPrecisionAreRefused) {
   EXPECT_NE(r.output.find("--precision"), std::string::npos) << r.output;
   r = run_sglab({"sweep", "--backend", "vulkan", "--precision", "double", "--method", "hill"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = run_sglab({"sweep", "--precision", "half", "--method", "hill"});  // the CPU rows have no half
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("vulkan backend"), std::string::npos) << r.output;
   r = run_sglab({"gpucost", "--precision", "quarter"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   r = run_sglab({"export", "--lang", "hlsl", "--method", "sglab_acc3", "--precision", "half"});
@@ -219,6 +224,36 @@ TEST_F(OnVulkanHalf, StabilityFindsWhereHalfFails) {
   }
   EXPECT_EQ(rows, static_cast<int>(sh::exportable_methods().size()));
   EXPECT_TRUE(std::filesystem::is_regular_file(dir.path / "half.md"));
+}
+
+// The header of a half export states the cost of a "half" row of the cost
+// table whose SPIR-V hash is that of this very code, and never a float row's.
+TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
+  namespace fs = std::filesystem;
+  TempDir dir("half-export-cost");
+  const fs::path checkout = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
+  fs::create_directories(dir.path / "include" / "sglab");
+  fs::create_directories(dir.path / "data" / "results");
+  fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
+  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  const std::string half_hash =
+      gpu::spirv_hash(gpu::method_shader("hill", sh::Language::glsl, sh::Precision::float16).spirv);
+  gpu::Statistics s;
+  s.instructions = s.inverse_throughput = s.latency = 777;
+  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  report.rows = {{"hill", "navi21", sh::Language::glsl, false, "half", s, half_hash},
+                 {"hill", "gfx1100", sh::Language::glsl, false, "float", s, half_hash}};  // not a half row
+  doc["gpu"] = gpu::to_json(report);
+  sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
+  const fs::path old = fs::current_path();
+  fs::current_path(dir.path);
+  const auto half = run_sglab({"export", "--lang", "glsl", "--method", "hill", "--precision", "half"}, false);
+  const auto single = run_sglab({"export", "--lang", "glsl", "--method", "hill"}, false);
+  fs::current_path(old);
+  ASSERT_EQ(half.exit_code, 0) << half.output;
+  EXPECT_NE(half.output.find("costs.json): navi21 777, gfx1100 not measured\n"), std::string::npos) << half.output;
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  EXPECT_EQ(single.output.find("777"), std::string::npos) << single.output;
 }
 
 // ---------------------------------------------------------------------------
