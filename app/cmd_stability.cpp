@@ -62,7 +62,7 @@ void add_stability_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print the full table as JSON on stdout; writes no file unless --out is given");
   cmd->add_flag("--half", args->half,
                 "also run every method's half export (`sglab export --precision half`) on the first Vulkan device and "
-                "report the κ range where half survives (half.{csv,md}); exit 1 without a device with shaderFloat16");
+                "report the κ range where half survives (stability_half.{csv,md}); exit 1 without a device with shaderFloat16");
   cmd->callback([args, out_option] {
     const validate::StabilityReport report = validate::stability();
     std::optional<validate::Table> half;
@@ -76,7 +76,7 @@ void add_stability_command(CLI::App& app) {
     if (write_files) {
       validate::write_table(full, dir, "stability", {TableFormat::csv, TableFormat::markdown});
       validate::write_table(findings, dir, "findings", {TableFormat::csv, TableFormat::markdown});
-      if (half) validate::write_table(*half, dir, "half", {TableFormat::csv, TableFormat::markdown});
+      if (half) validate::write_table(*half, dir, "stability_half", {TableFormat::csv, TableFormat::markdown});
     }
 
     nlohmann::ordered_json doc = nlohmann::ordered_json::object();
@@ -125,7 +125,7 @@ void add_stability_command(CLI::App& app) {
                      return std::string();
                    }());
     fmt::print("Written to {}: stability.{{csv,md,json}}, findings.{{csv,md}}{}\n", dir.string(),
-               half ? ", half.{csv,md}" : "");
+               half ? ", stability_half.{csv,md}" : "");
   });
 }
 

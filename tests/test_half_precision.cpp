@@ -223,7 +223,7 @@ TEST_F(OnVulkanHalf, StabilityFindsWhereHalfFails) {
     }
   }
   EXPECT_EQ(rows, static_cast<int>(sh::exportable_methods().size()));
-  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path / "half.md"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path / "stability_half.md"));
 }
 
 // The header of a half export states the cost of a "half" row of the cost
