@@ -28,6 +28,7 @@ namespace {
 // half, 65504) × 41 cosines, and where half fails (validate::half_ranges_table).
 // Throws vulkan::Unavailable without a device or without shaderFloat16.
 validate::Table half_ranges() {
+  shader::vulkan::Device device;  // first: no reference work without a device
   validate::SweepGrid grid;
   grid.kappa_lo = 1e-5;
   grid.kappa_hi = 1e5;
@@ -39,7 +40,6 @@ validate::Table half_ranges() {
   for (const auto& m : validate::registered_sweep_methods())
     if (m.quantity == validate::Quantity::irradiance) methods.push_back(m);
   validate::SweepResult r = validate::sweep(grid, methods, options);
-  shader::vulkan::Device device;
   for (auto precision : {shader::Precision::float32, shader::Precision::float16})
     shader::vulkan::add_device_entries(r, methods, shader::Language::glsl, device, true, precision);
   return validate::half_ranges_table(r);
