@@ -29,6 +29,7 @@ struct GpucostArgs {
   std::vector<std::string> families;
   std::vector<std::string> methods;
   std::string lang = "glsl";
+  std::string precision = "float";
   bool json = false;
   bool disasm = false;
   bool skip_unavailable = false;
@@ -56,6 +57,13 @@ std::vector<shader::Language> checked_languages(const std::string& lang) {
   throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", lang));
 }
 
+std::vector<shader::Precision> checked_precisions(const std::string& precision) {
+  if (precision == "float") return {shader::Precision::float32};
+  if (precision == "half") return {shader::Precision::float16};
+  if (precision == "both") return {shader::Precision::float32, shader::Precision::float16};
+  throw InputError(fmt::format("--precision: expected float, half or both, got '{}'", precision.substr(0, 40)));
+}
+
 std::vector<std::string> checked_methods(const std::vector<std::string>& asked) {
   const auto known = shader::exportable_methods();
   if (asked.empty()) return known;
@@ -71,6 +79,7 @@ std::string command_line(const GpucostArgs& a) {
   if (!a.families.empty()) c += " --families " + fmt::format("{}", fmt::join(a.families, ","));
   for (const std::string& m : a.methods) c += " --method " + m;
   if (a.lang != "glsl") c += " --lang " + a.lang;
+  if (a.precision != "float") c += " --precision " + a.precision;
   if (!a.out.empty()) c += " --out " + a.out;
   return c;
 }
@@ -102,7 +111,8 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
 // Measures (or with --disasm disassembles) and prints / writes the results.
 // Throws gpu::Unavailable when RADV cannot create a null device.
 void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& families,
-                        const std::vector<shader::Language>& languages, const std::vector<std::string>& methods) {
+                        const std::vector<shader::Language>& languages, const std::vector<std::string>& methods,
+                        const std::vector<shader::Precision>& precisions) {
   const auto manifest = gpu::find_radv_manifest();
   if (!manifest)
     throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
@@ -112,23 +122,24 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
   if (a.disasm) {
-    const gpu::Shader s = gpu::method_shader(methods[0], languages[0]);
+    const gpu::Shader s = gpu::method_shader(methods[0], languages[0], precisions[0]);
     fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
                "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
                methods[0], families[0], shader::to_string(languages[0]),
                gpu::disassemble(self, *manifest, families[0], s));
     return;
   }
-  io::Progress progress("gpucost", families.size() + methods.size() * languages.size());
+  io::Progress progress("gpucost", families.size() + methods.size() * languages.size() * precisions.size());
   std::vector<gpu::Shader> shaders;
-  for (shader::Language lang : languages) {
-    shaders.push_back(gpu::baseline_shader(lang));
-    for (const std::string& m : methods) {
-      progress.note(fmt::format("export {} ({})", m, shader::to_string(lang)));
-      shaders.push_back(gpu::method_shader(m, lang));
-      progress.advance();
+  for (shader::Precision precision : precisions)
+    for (shader::Language lang : languages) {
+      shaders.push_back(gpu::baseline_shader(lang, precision));
+      for (const std::string& m : methods) {
+        progress.note(fmt::format("export {} ({}, {})", m, shader::to_string(lang), shader::to_string(precision)));
+        shaders.push_back(gpu::method_shader(m, lang, precision));
+        progress.advance();
+      }
     }
-  }
   gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
     progress.note(fmt::format("ACO, {}", family));
     progress.advance();
@@ -154,6 +165,9 @@ void add_gpucost_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
+  cmd->add_option("--precision", args->precision,
+                  "float, half (`sglab export --precision half`, rows with precision \"half\") or both")
+      ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
   cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
       ->check(non_empty_path());
@@ -171,12 +185,14 @@ void add_gpucost_command(CLI::App& app) {
     const auto families = checked_families(args->families);
     const auto languages = checked_languages(args->lang);
     const auto methods = checked_methods(args->methods);
+    const auto precisions = checked_precisions(args->precision);
     if (args->disasm && (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
+                         precisions.size() != 1 ||
                          args->json || !args->out.empty()))
-      throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
-                       "or --out");
+      throw InputError("--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one --precision, "
+                       "and no --json or --out");
     try {
-      measure_and_report(*args, families, languages, methods);
+      measure_and_report(*args, families, languages, methods, precisions);
     } catch (const gpu::Unavailable& e) {
       if (!args->skip_unavailable) throw;
       fmt::print(stderr, "sglab: gpucost skipped: {}\n", e.what());

@@ -25,6 +25,8 @@ std::string_view to_string(Quantity q) {
   return "?";
 }
 
+bool is_device_format(FloatFormat f) { return f != FloatFormat::binary32 && f != FloatFormat::binary64; }
+
 std::string_view to_string(FloatFormat f) {
   switch (f) {
     case FloatFormat::binary32:
@@ -35,6 +37,10 @@ std::string_view to_string(FloatFormat f) {
       return "vulkan";
     case FloatFormat::vulkan_hlsl:
       return "vulkan_hlsl";
+    case FloatFormat::vulkan_half:
+      return "vulkan_half";
+    case FloatFormat::vulkan_hlsl_half:
+      return "vulkan_hlsl_half";
   }
   return "?";
 }
@@ -208,7 +214,7 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, c
 
   for (const SweepMethod& sm : methods) {
     for (FloatFormat f : options.precisions) {
-      if (f == FloatFormat::vulkan || f == FloatFormat::vulkan_hlsl) continue;
+      if (is_device_format(f)) continue;
       std::vector<double> values(nk * nc);
       for (std::size_t k = 0; k < nk; ++k)
         for (std::size_t j = 0; j < nc; ++j) values[r.index(k, j)] = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);

@@ -31,9 +31,14 @@ std::string_view to_string(Quantity q);
 
 // The arithmetic a method is evaluated in. `vulkan` / `vulkan_hlsl`: the
 // method's GLSL / HLSL export (`sglab export`) run on a Vulkan device (float),
-// values supplied through sweep_entry.
-enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl };
-std::string_view to_string(FloatFormat f);  // "float", "double", "vulkan", "vulkan_hlsl"
+// values supplied through sweep_entry. `vulkan_half` / `vulkan_hlsl_half`: the
+// half export (`sglab export --precision half`) on the device, float buffers
+// converted to half and back in the wrapper.
+enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl, vulkan_half, vulkan_hlsl_half };
+// "float", "double", "vulkan", "vulkan_hlsl", "vulkan_half", "vulkan_hlsl_half"
+std::string_view to_string(FloatFormat f);
+// A format whose values come from a device (sweep_entry), not from the runtime.
+bool is_device_format(FloatFormat f);
 
 // κ: kappa_count values log-spaced over [kappa_lo, kappa_hi] inclusive;
 // c: cosine_count values evenly spaced over [−1, 1] inclusive. The default is
