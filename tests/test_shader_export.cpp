@@ -834,7 +834,7 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
   const fs::path acc1 = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-accurate-acc1.json";
   const auto bad = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--constants", acc1.string()});
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 2>"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 3>"), std::string::npos) << bad.output;
   // sglab_fast reads its own committed set.
   const fs::path fast = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-fast-float.json";
   const auto rf = run_sglab({"export", "--lang", "cpp", "--method", "sglab_fast", "--constants", fast.string()}, false);
