@@ -558,8 +558,8 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
     products += fmt::format("  float b{} = fade * ({});\n", j, horner_text("u", poly));
     b.push_back(fmt::format("b{}", j));
   }
-  const std::string text = fmt::format(R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades as
-// kappa -> 0 and kappa -> inf; and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
+  const std::string text = fmt::format(R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades for
+// small and for large kappa; and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
 {{INLINE}}float {{P}}correction(float t, float z2) {{
   float w = 1.0f / (t + {});
   float u = t * w;

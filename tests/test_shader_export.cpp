@@ -785,14 +785,16 @@ TEST(ShaderExport, SweepWithoutAVulkanDriver) {
 // ---------------------------------------------------------------------------
 // sglab's own models.
 
-// sglab_acc3 is accurate to ~3e-5 of the peak, so its export must carry an
-// erfc good to 1/100 of that: the exporter picks the `listing5` tier, whose
-// measured float erfc error is below 3e-7 (an erfc error e moves the lerp
-// factor by at most e, i.e. the result by at most e of the peak).
+// sglab_acc3 is accurate to ~2e-5 of the peak (its bound in
+// tests/test_sglab_models.cpp: 2.5e-5), so its export must carry an erfc good
+// to 1/100 of that: the exporter picks the `listing5` tier, whose measured
+// float erfc error is below 3e-7 (an erfc error e moves the lerp factor by at
+// most e, i.e. the result by at most e of the peak).
 TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
   const sh::ErrorBudget b = sh::runtime_budget("sglab_acc3");
   ASSERT_TRUE(b.model.has_value());
-  EXPECT_NEAR(*b.model, 3.05e-5, 0.05e-5);
+  EXPECT_GT(*b.model, 1e-5);
+  EXPECT_LE(*b.model, 2.5e-5);
   const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::glsl, "sglab_acc3"));
   EXPECT_EQ(ex.tier.id, "listing5");
   EXPECT_LE(ex.budget.elementary.erfc_abs, *b.model / 100);
@@ -848,8 +850,8 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
 }
 
 // `sglab sweep --backend vulkan`: sglab_acc3 on the device within a few
-// percent of its C++ float error (3.05e-5 on the standard grid), and within
-// float noise of the C++ float runtime at every point.
+// percent of its C++ float error (the standard-grid error its fit recorded,
+// 2.07e-5), and within float noise of the C++ float runtime at every point.
 TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
   const fs::path dir = temp_dir("sweep_acc3");
   const auto r = run_sglab(
@@ -863,7 +865,9 @@ TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
     if (rec.at("precision") == "vulkan") glsl = rec.at("max_peak_rel");
     if (rec.at("precision") == "vulkan_hlsl") hlsl = rec.at("max_peak_rel");
   }
-  EXPECT_NEAR(cpu_float, 3.05e-5, 0.05e-5);
+  const auto recorded = sh::runtime_budget("sglab_acc3").model;
+  ASSERT_TRUE(recorded.has_value());
+  EXPECT_NEAR(cpu_float, *recorded, 0.02 * *recorded);
   EXPECT_NEAR(glsl, cpu_float, 0.03 * cpu_float);
   EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
   fs::remove_all(dir);
