@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <iterator>
@@ -122,7 +123,7 @@ ConstantSet named(std::string cpp_name, const SglabAccParams<double, N, D>& p) {
   const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
   return {fmt::format("SglabAccParams<double, {}, {}>", N, D),
           std::move(cpp_name),
-          {{"steep", vec(p.steep)}, {"num", vec(p.num)}, {"den", vec(p.den)}},
+          {{"steep", vec(p.steep)}, {"num", vec(p.num)}, {"scale", {p.scale}}},
           {},
           {}};
 }
@@ -629,10 +630,15 @@ std::string helper_hill(const Ctx& c, const Slots&) {
 }
 
 // The number of correction terms N and the degree D of an SglabAccParams set
-// (from its member sizes: steep 5, num N (D + 1), den D).
+// (from its type, SglabAccParams<double, N, D>, checked against its member
+// sizes: steep 5, num N (D + 1), scale 1).
 std::pair<std::size_t, std::size_t> sglab_acc_shape(const ConstantSet& s) {
-  const std::size_t d = member(s, "den").size(), n = member(s, "num").size() / (d + 1);
-  if (d == 0 || n == 0 || member(s, "num").size() != n * (d + 1) || member(s, "steep").size() != 5)
+  std::size_t n = 0, d = 0;
+  char tail = 0;
+  const bool typed = std::sscanf(s.cpp_type.c_str(), "SglabAccParams<double, %zu, %zu%c", &n, &d, &tail) == 3 &&
+                     tail == '>';
+  if (!typed || n == 0 || member(s, "num").size() != n * (d + 1) || member(s, "steep").size() != 5 ||
+      member(s, "scale").size() != 1)
     throw std::invalid_argument(fmt::format("constant set {}: member sizes do not form SglabAccParams", s.cpp_name));
   return {n, d};
 }
@@ -652,43 +658,30 @@ std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
                c);
 }
 
-// sglab_acc<N>: b_j(kappa) = num_j(kappa)/den(kappa), for kappa >= 1 in powers of
-// 1/kappa (sglab_acc.hpp sglab_acc_rational), and sum_j b_j z2^j.
+// sglab_acc<N>: b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc.hpp
+// sglab_acc_fade), and sum_j b_j z2^j.
 std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto [n, d] = sglab_acc_shape(set);
-  const auto num = names(c, "model", set, "num"), den = names(c, "model", set, "den");
-  std::vector<std::string> den_small(den.begin(), den.end()), den_large{"1.0f"};
-  den_small.push_back("1.0f");
-  for (std::size_t i = d; i-- > 0;) den_large.push_back(den[i]);
-  // One if/else for both forms: GLSL and HLSL front ends then branch alike
-  // (HLSL's ?: evaluates both arms).
-  std::string decl = "  float x, den", small_arm = "    x = kappa;\n", large_arm = "    x = 1.0f / kappa;\n";
-  small_arm += fmt::format("    den = {};\n", horner_text("x", den_small));
-  large_arm += fmt::format("    den = {};\n", horner_text("x", den_large));
+  const auto num = names(c, "model", set, "num"), scale = names(c, "model", set, "scale");
   std::string products;
   std::vector<std::string> b;
   for (std::size_t j = 0; j < n; ++j) {
-    std::vector<std::string> small(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
-    std::vector<std::string> large(small.rbegin(), small.rend());
-    decl += fmt::format(", n{}", j);
-    small_arm += fmt::format("    n{} = {};\n", j, horner_text("x", small));
-    large_arm += fmt::format("    n{} = {};\n", j, horner_text("x", large));
-    products += fmt::format("  float b{0} = n{0} * inv;\n", j);
+    const std::vector<std::string> poly(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
+    products += fmt::format("  float b{} = fade * ({});\n", j, horner_text("u", poly));
     b.push_back(fmt::format("b{}", j));
   }
-  const std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
-// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp).
-{{INLINE}}float {{P}}correction(float kappa, float z2) {{
-{};
-  if (kappa < 1.0f) {{
-{}  }} else {{
-{}  }}
-  float inv = 1.0f / den;
+  const std::string text = fmt::format(R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades for
+// small and for large kappa; and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp).
+{{INLINE}}float {{P}}correction(float t, float z2) {{
+  float w = 1.0f / (t + {});
+  float u = t * w;
+  float v = {} * w;
+  float fade = u * (v * v) * v;
 {}  return {};
 }}
 )",
-                                       d, decl, small_arm, large_arm, products, horner_text("z2", b));
+                                       d, scale[0], scale[0], products, horner_text("z2", b));
   return subst(text, c);
 }
 
@@ -698,7 +691,7 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
 // with sglab's fitted even correction (sglab/sglab_acc.hpp). Where e^(-z^2) has underflowed
 // the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
 // so erfc(t) is erfc_pos(t).
-{INLINE}float {P}lerp_factor(float cosine, float kappa, float t) {
+{INLINE}float {P}lerp_factor(float cosine, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
   float z2 = tz * tz;
@@ -708,7 +701,7 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   if (t > 0.0f) tail = g * (x * {P}expm1_over_x(x)) / t;
   float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail;
   float corr = 0.0f;
-  if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(kappa, z2);
+  if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(t, z2);
   return clamp(f + corr, 0.0f, 1.0f);
 }
 )",
@@ -859,7 +852,7 @@ const std::vector<Helper> kHelpers2022 = {helper_expm1, helper_erf, helper_steep
 const std::vector<Helper> kHelpers2024 = {helper_expm1, helper_erf, helper_steepness2024, helper_poles2024,
                                           helper_lerp2024};
 
-constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, kappa, {P}steepness(kappa));
+constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
   {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
   return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
@@ -932,13 +925,13 @@ const std::vector<ShaderMethod>& shader_methods() {
       {"sglab_fast", "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
        [] { return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
-      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_acc.hpp)",
+      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 1, D = 3 (sglab_acc.hpp)",
        [] { return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
-      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_acc.hpp)",
+      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 2, D = 3 (sglab_acc.hpp)",
        [] { return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
-      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_acc.hpp)",
+      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 3, D = 4 (sglab_acc.hpp)",
        [] { return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
   };

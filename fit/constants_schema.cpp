@@ -34,7 +34,7 @@ std::span<const ParamStruct> param_structs() {
       {"HillParams", {}, {"c0"}},
       {"Meder2018Params", {}, {"a2", "a1", "b1", "b0", "amplitude", "sharpness", "offset"}},
       {"SglabFastParams", {}, {"a[5]", "b[5]", "c[5]", "v[5]", "q[4]", "kappa_max"}},
-      {"SglabAccParams", {"N", "D"}, {"steep[5]", "num[N * (D + 1)]", "den[D > 0 ? D : 1]"}},
+      {"SglabAccParams", {"N", "D"}, {"steep[5]", "num[N * (D + 1)]", "scale"}},
   };
   return table;
 }
@@ -63,9 +63,9 @@ std::span<const RequiredSet> required_sets() {
       {"lambda_d_diffuse_lobe_irradiance", "DiffuseLobeParams<double>"},
       {"lambda_d_diffuse_lobe_sphere_ls", "DiffuseLobeParams<double>"},
       {"meder2018_published", "Meder2018Params<double>"},
-      {"sglab_acc_acc1", "SglabAccParams<double, 1, 2>"},
-      {"sglab_acc_acc2", "SglabAccParams<double, 2, 2>"},
-      {"sglab_acc_acc3", "SglabAccParams<double, 3, 3>"},
+      {"sglab_acc_acc1", "SglabAccParams<double, 1, 3>"},
+      {"sglab_acc_acc2", "SglabAccParams<double, 2, 3>"},
+      {"sglab_acc_acc3", "SglabAccParams<double, 3, 4>"},
       {"sglab_fast_float", "SglabFastParams<double>"},
       {"steepness2022_irradiance", "Steepness2022Params<double>"},
       {"steepness2022_optimal_t", "Steepness2022Params<double>"},

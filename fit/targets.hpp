@@ -73,10 +73,11 @@ FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.c
 FitOutcome fit_sglab_acc(const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
-// peak_rel error of SglabAccParams<double, terms, degree> on `samples`, from
-// `start` = steep[5], num[terms(degree+1)], den[degree] (den > 0).
+// peak_rel error of SglabAccParams<double, terms, degree> on `samples`, each
+// divided by its weight, from `start` = steep[5], num[terms(degree+1)], scale (> 0).
 struct SglabAccSample {
   double kappa, cosine, irradiance;
+  double weight = 1;  // the residual is peak_rel/weight (fit/sglab_acc.cpp: w(κ))
 };
 struct SglabAccFit {
   std::vector<double> values;  // same layout as start

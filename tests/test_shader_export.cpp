@@ -785,14 +785,16 @@ TEST(ShaderExport, SweepWithoutAVulkanDriver) {
 // ---------------------------------------------------------------------------
 // sglab's own models.
 
-// sglab_acc3 is accurate to ~3e-5 of the peak, so its export must carry an
-// erfc good to 1/100 of that: the exporter picks the `listing5` tier, whose
-// measured float erfc error is below 3e-7 (an erfc error e moves the lerp
-// factor by at most e, i.e. the result by at most e of the peak).
+// sglab_acc3 is accurate to ~2e-5 of the peak (its bound in
+// tests/test_sglab_acc.cpp: 2.5e-5), so its export must carry an erfc good
+// to 1/100 of that: the exporter picks the `listing5` tier, whose measured
+// float erfc error is below 3e-7 (an erfc error e moves the lerp factor by at
+// most e, i.e. the result by at most e of the peak).
 TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
   const sh::ErrorBudget b = sh::runtime_budget("sglab_acc3");
   ASSERT_TRUE(b.model.has_value());
-  EXPECT_NEAR(*b.model, 3.05e-5, 0.05e-5);
+  EXPECT_GT(*b.model, 1e-5);
+  EXPECT_LE(*b.model, 2.5e-5);
   const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::glsl, "sglab_acc3"));
   EXPECT_EQ(ex.tier.id, "listing5");
   EXPECT_LE(ex.budget.elementary.erfc_abs, *b.model / 100);
@@ -834,7 +836,7 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
   const fs::path acc1 = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc1.json";
   const auto bad = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--constants", acc1.string()});
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 2>"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 3>"), std::string::npos) << bad.output;
   // sglab_fast reads its own committed set.
   const fs::path fast = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-fast-float.json";
   const auto rf = run_sglab({"export", "--lang", "cpp", "--method", "sglab_fast", "--constants", fast.string()}, false);
@@ -848,8 +850,8 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
 }
 
 // `sglab sweep --backend vulkan`: sglab_acc3 on the device within a few
-// percent of its C++ float error (3.05e-5 on the standard grid), and within
-// float noise of the C++ float runtime at every point.
+// percent of its C++ float error (the standard-grid error its fit recorded,
+// 2.07e-5), and within float noise of the C++ float runtime at every point.
 TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
   const fs::path dir = temp_dir("sweep_acc3");
   const auto r = run_sglab(
@@ -863,7 +865,9 @@ TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
     if (rec.at("precision") == "vulkan") glsl = rec.at("max_peak_rel");
     if (rec.at("precision") == "vulkan_hlsl") hlsl = rec.at("max_peak_rel");
   }
-  EXPECT_NEAR(cpu_float, 3.05e-5, 0.05e-5);
+  const auto recorded = sh::runtime_budget("sglab_acc3").model;
+  ASSERT_TRUE(recorded.has_value());
+  EXPECT_NEAR(cpu_float, *recorded, 0.02 * *recorded);
   EXPECT_NEAR(glsl, cpu_float, 0.03 * cpu_float);
   EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
   fs::remove_all(dir);

@@ -96,13 +96,13 @@ template <class S> struct SglabFastParams {
 
 // sglab_acc `sglab_acc<N>` (sglab_acc.hpp): the 2024
 // steepness t(κ) with coefficients steep = {A, B, C, D, E} (Steepness2024Params
-// order) and N correction coefficients b_j(κ) = num_j(κ)/den(κ), rational of
-// degree D: num_j(κ) = num[j(D+1)] + num[j(D+1)+1] κ + … + num[j(D+1)+D] κ^D,
-// den(κ) = den[0] + den[1] κ + … + den[D−1] κ^{D−1} + κ^D with den[i] > 0.
+// order) and N correction coefficients b_j(κ) = u(1 − u)³ P_j(u) that fade as
+// κ → 0 and κ → ∞, u = t/(t + scale) ∈ [0, 1), P_j of degree D:
+// P_j(u) = num[j(D+1)] + num[j(D+1)+1] u + … + num[j(D+1)+D] u^D; scale > 0.
 template <class S, std::size_t N, std::size_t D> struct SglabAccParams {
   S steep[5];
   S num[N * (D + 1)];
-  S den[D > 0 ? D : 1];
+  S scale;
 };
 
 }  // namespace sglab

@@ -9,26 +9,28 @@
 // where f₂₀₂₄ = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t) is
 // the factor of [Tokuyoshi2024] supplementary Listing 7, t(κ) its steepness
 // (same rational form, coefficients refitted jointly with the correction),
-// and every b_j(κ) is a rational function of κ of degree D over one shared
-// monic denominator with positive coefficients (so it never vanishes for
-// κ ≥ 0). The residual of the 2024 form is even in c; the correction is even,
-// reuses the e^{−z²} the form already computes (no extra exp/erfc call),
-// and vanishes at c = ±1, so the poles E(±1, κ) stay exact.
+// and every b_j(κ) = u(1 − u)³ P_j(u), u = t/(t + s), P_j a polynomial of
+// degree D (sglab_acc_fade): the correction fades where the 2024 form is
+// already exact (like κ as κ → 0, like κ^{−3/2} as κ → ∞). The residual of
+// the 2024 form is even in c; the correction is even, reuses the e^{−z²} the
+// form already computes (no extra exp/erfc call), and vanishes at c = ±1, so
+// the poles E(±1, κ) stay exact.
 //
 // Everything that depends on κ alone (t, erfc(t), 1/t, the poles, the b_j)
 // is computed once per light by `sglab_acc_light`; `sglab_acc_eval` is the
 // per-shading-point part. The plain function is exactly eval(setup(κ), c).
-// Fitted by `sglab fit sglab-acc` (fit/sglab_acc.cpp); the measured
-// errors of the shipped sets are in their provenance (sglab/constants.hpp)
-// and data/results/sglab_acc.md. Max peak_rel |Ê − E|/E(1, κ), float,
-// κ ∈ [1e−3, 1e4], on a held-out 200 κ × 401 c grid never used in fitting:
-//   sglab_acc1 (N = 1, D = 2) 2.47e−4,  sglab_acc2 (N = 2, D = 2) 7.5e−5,
-//   sglab_acc3 (N = 3, D = 3) 3.15e−5  (tokuyoshi2024: 1.44e−3 refitted).
-// Cost (callgrind, float, instructions per call): 1.06×, 1.09×, 1.12× of
-// tokuyoshi2024; the same erfc/exp/expm1 calls, one extra division per light.
-// The float batch (irradiance_sglab_acc_batch) vectorizes: callgrind, 2^16
-// random inputs, sglab_acc3 ≈ 156 instructions per evaluation against ≈ 572 for
-// the scalar float loop (tokuyoshi2024's batch ≈ 116).
+// Fitted by `sglab fit sglab-acc` (fit/sglab_acc.cpp), each
+// residual divided by min(T, max(e₂₀₂₄(κ), 8e−7)) so that at every κ the
+// error stays at or below tokuyoshi2024's (or 1e−6); the measured errors of
+// the shipped sets are in their provenance (sglab/constants.hpp). Max
+// peak_rel |Ê − E|/E(1, κ), float, κ ∈ [1e−3, 1e4], on a held-out 200 κ ×
+// 401 c grid never used in fitting:
+//   sglab_acc1 (N = 1, D = 3) 1.93e−4,  sglab_acc2 (N = 2, D = 3) 5.68e−5,
+//   sglab_acc3 (N = 3, D = 4) 2.15e−5  (tokuyoshi2024: 1.44e−3 refitted).
+// Cost (callgrind, float, instructions per evaluation, scripts/method_cost.cpp):
+// scalar 454, 465, 477 and batch 125, 127, 133 against tokuyoshi2024's 423
+// and 115 (1.07×, 1.10×, 1.13× scalar; 1.09×, 1.10×, 1.16× batch): the same
+// erfc/exp/expm1 calls, one extra division per light.
 #pragma once
 
 #include <cmath>
@@ -48,7 +50,7 @@ namespace sglab {
 template <class T, std::size_t N> struct SglabAccLight {
   T t;             // steepness t(κ)
   T half_erfc_t;   // ½ erfc(t)
-  T tail_scale;    // 1/(2√π t), 0 when t ≤ ε (detail::sglab_acc_tail_scale)
+  T tail_scale;    // 1/(2√π max(t, ε)) (detail::sglab_acc_tail_scale)
   T t2;            // t²
   T lower, upper;  // Ē(−1, κ), Ē(1, κ) (closed_forms.hpp)
   T b[N];          // correction coefficients b_j(κ)
@@ -56,59 +58,58 @@ template <class T, std::size_t N> struct SglabAccLight {
 
 namespace detail {
 
-// b_j(κ) = (a_{j,0} + a_{j,1} κ + … + a_{j,D} κ^D)/(d_0 + d_1 κ + … + κ^D),
-// for κ ≥ 1 evaluated in powers of r = 1/κ (numerator and denominator divided
-// by κ^D) so that nothing overflows up to the largest finite κ. One division.
-// One Horner recurrence serves both sides: x = κ or r, and each step's
-// coefficient is selected (Ops::select, no branch in the float batch); the
-// arithmetic of either side is that of its own Horner scheme.
-template <class T, class S, std::size_t N, std::size_t D, class Ops = LibmOps>
-SGLAB_FORCE_INLINE void sglab_acc_rational(const T& kappa, const SglabAccParams<S, N, D>& p, T (&b)[N], Ops = {}) {
-  const bool small = kappa < T(1);
-  const T x = Ops::select(small, kappa, T(1) / Ops::select(small, T(1), kappa));
-  // Denominator: κ < 1: κ^D + d_{D−1}κ^{D−1} + … + d_0 (Horner from the monic
-  // term); κ ≥ 1: d_0 r^D + … + d_{D−1} r + 1 (Horner from d_0).
-  T den = Ops::select(small, T(1), D > 0 ? T(p.den[0]) : T(1));
-  for (std::size_t j = 1; j <= D; ++j)
-    den = den * x + Ops::select(small, T(p.den[D - j]), j < D ? T(p.den[j]) : T(1));
-  const T inv = T(1) / den;
+// b_j(κ) = u(1 − u)³ P_j(u), u = t/(t + s) ∈ [0, 1) with t = t(κ) ≥ 0 and the
+// fitted scale s > 0, P_j(u) = a_{j,0} + a_{j,1} u + … + a_{j,D} u^D (Horner).
+// The fade u(1 − u)³ makes the correction vanish where the [Tokuyoshi2024]
+// form is already exact: as κ → 0, u ≈ t/s ∝ κ (the form's residual falls
+// like κ², and the correction moves Ê by κ b_j); as κ → ∞, t ≈ √(κ/2) and
+// (1 − u)³ ≈ (s/t)³ ∝ κ^{−3/2}, the decay of the form's residual. One
+// division, no branch; t + s ≥ s > 0, and for the largest finite κ
+// (t ≈ 1.3e19 in float) u = 1 and (1 − u)³ underflows to 0, so does b_j.
+template <class T, class S, std::size_t N, std::size_t D>
+SGLAB_FORCE_INLINE void sglab_acc_fade(const T& t, const SglabAccParams<S, N, D>& p, T (&b)[N]) {
+  const T w = T(1) / (t + T(p.scale));
+  const T u = t * w, v = T(p.scale) * w;  // u and 1 − u
+  const T fade = u * (v * v) * v;
   for (std::size_t i = 0; i < N; ++i) {
     const S* a = p.num + i * (D + 1);
-    // κ < 1: from a_D down to a_0; κ ≥ 1: from a_0 up to a_D.
-    T y = Ops::select(small, T(a[D]), T(a[0]));
-    for (std::size_t j = 1; j <= D; ++j) y = y * x + Ops::select(small, T(a[D - j]), T(a[j]));
-    b[i] = y * inv;
+    T y = T(a[D]);
+    for (std::size_t j = 1; j <= D; ++j) y = y * u + T(a[D - j]);
+    b[i] = fade * y;
   }
 }
 
-// The scale 1/(2√π t) of the [Tokuyoshi2024] tail term
-// e^{−z²} expm1(−t²(1 − c²))/(2√π t), or 0 where t ≤ ε (the epsilon of T).
-// 1/t overflows for a subnormal t (t < 1/max: κ ≲ 1e−38 in float, 1e−308 in
-// double), where t² is 0 and the tail became 0·inf = NaN. Dropping the term
-// there is below rounding: |expm1(−x)| ≤ x bounds it by t(1 − c²)/(2√π) <
-// 0.29ε in f, and Ê = 2π lerp(Ē(−1), Ē(1), f) moves by that times
-// 2π(Ē(1) − Ē(−1)) = O(κ), far below an ulp of Ê ≈ π (κ ≲ 3t there).
-// `Ops::select` keeps the float batch branch-free (1/t of a selected 1 is finite).
+// The scale 1/(2√π max(t, ε)) of the [Tokuyoshi2024] tail term
+// e^{−z²} expm1(−t²(1 − c²))/(2√π t), ε the epsilon of T. 1/t overflows for
+// a subnormal t (t < 1/max: κ ≲ 1e−38 in float, 1e−308 in double), where t²
+// is 0 and the tail became 0·inf = NaN. Dividing by ε instead where t ≤ ε
+// keeps the term below rounding: |expm1(−x)| ≤ x bounds it by
+// t²(1 − c²)/(2√π ε) ≤ t/(2√π) < 0.29ε in f, and Ê = 2π lerp(Ē(−1), Ē(1), f)
+// moves by that times 2π(Ē(1) − Ē(−1)) = O(κ), far below an ulp of Ê ≈ π
+// (κ ≲ 3t there). `Ops::select` keeps the float batch branch-free (one
+// select, not two: the float batch stays within 1.15× of tokuyoshi2024).
 template <class T, class Ops = LibmOps> SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
   const bool keep = t > std::numeric_limits<T>::epsilon();
-  return Ops::select(keep, T(0.5) * inv_sqrt_pi_v<T>() / Ops::select(keep, t, T(1)), T(0));
+  return T(0.5) * inv_sqrt_pi_v<T>() / Ops::select(keep, t, std::numeric_limits<T>::epsilon());
 }
 
 }  // namespace detail
 
 // Per-light setup of `sglab_acc<N>`: everything that depends on κ alone.
 template <class T, class S, std::size_t N, std::size_t D>
-SglabAccLight<T, N> sglab_acc_light(const T& kappa, const SglabAccParams<S, N, D>& p) {
+SGLAB_FORCE_INLINE SglabAccLight<T, N> sglab_acc_light(const T& kappa, const SglabAccParams<S, N, D>& p) {
   using std::erfc;
-  using std::sqrt;
+  // t and the poles (one exp for both) as the setup of `tokuyoshi2024` (irradiance.hpp).
+  const Tokuyoshi2024Light<T> base =
+      tokuyoshi2024_light(kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
   SglabAccLight<T, N> l;
-  l.t = steepness2024(kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
+  l.t = base.t;
   l.half_erfc_t = T(0.5) * erfc(l.t);
   l.tail_scale = detail::sglab_acc_tail_scale(l.t);
   l.t2 = l.t * l.t;
-  l.lower = irradiance_lower_over_two_pi(kappa);
-  l.upper = irradiance_upper_over_two_pi(kappa);
-  detail::sglab_acc_rational(kappa, p, l.b);
+  l.lower = base.lower;
+  l.upper = base.upper;
+  detail::sglab_acc_fade(l.t, p, l.b);
   return l;
 }
 
@@ -126,7 +127,7 @@ SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_light_branch_free(float kap
   l.t2 = base.t * base.t;
   l.lower = base.lower;
   l.upper = base.upper;
-  detail::sglab_acc_rational(kappa, p, l.b, detail::BranchFreeOps{});
+  detail::sglab_acc_fade(base.t, p, l.b);
   return l;
 }
 
@@ -166,7 +167,7 @@ SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine, co
 
 // `sglab_acc<N>` in one call: eval(setup(κ), c).
 template <class T, class S, std::size_t N, std::size_t D>
-T irradiance_sglab_acc(const T& cosine, const T& kappa, const SglabAccParams<S, N, D>& p) {
+SGLAB_FORCE_INLINE T irradiance_sglab_acc(const T& cosine, const T& kappa, const SglabAccParams<S, N, D>& p) {
   return sglab_acc_eval(sglab_acc_light(kappa, p), cosine);
 }
 
