@@ -71,7 +71,7 @@ shader::ConstantSet read_constant_set(const std::string& path) {
 
 // The error measured on Vulkan for `method` in the committed results
 // (data/results/vulkan_sweep.json, written by `sglab sweep --backend vulkan`).
-void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang) {
+void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang, bool split) {
   const auto root = fit::find_project_root(std::filesystem::current_path());
   if (!root) return;  // not inside a checkout: the header names no measured error
   const auto file = *root / "data" / "results" / "vulkan_sweep.json";
@@ -79,14 +79,15 @@ void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader:
   if (!std::filesystem::exists(file, ec)) return;
   try {
     const auto doc = nlohmann::json::parse(io::read_file(file));
-    const std::string precision = lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan";
+    const std::string precision = std::string(split ? "vulkan_split" : "vulkan") +
+                                  (lang == shader::Language::hlsl ? "_hlsl" : "");
     for (const auto& rec : doc.at("results"))
       if (rec.at("method") == method && rec.at("quantity") == "irradiance" && rec.at("precision") == precision &&
           rec.at("max_peak_rel").is_number()) {
         b.vulkan = rec["max_peak_rel"].get<double>();
-        b.vulkan_device = fmt::format("{}, {} export, data/results/vulkan_sweep.json",
+        b.vulkan_device = fmt::format("{}, {} export{}, data/results/vulkan_sweep.json",
                                       doc.value("device", std::string("?")),
-                                      lang == shader::Language::hlsl ? "HLSL" : "GLSL");
+                                      lang == shader::Language::hlsl ? "HLSL" : "GLSL", split ? " (split)" : "");
       }
   } catch (const std::exception& e) {
     throw std::runtime_error(fmt::format("{}: {}", file.string(), e.what()));
@@ -110,7 +111,7 @@ void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& export
   const std::string hash = shader::gpu::spirv_hash(shader::gpu::export_shader(req.method, req.lang, exported).spirv);
   for (shader::GpuCost& cost : req.gpu_cost)
     for (const shader::gpu::Row& row : table->gpu->rows)
-      if (row.family == cost.family && row.method == req.method && row.lang == req.lang && !row.split &&
+      if (row.family == cost.family && row.method == req.method && row.lang == req.lang && row.split == req.split &&
           row.precision == "float" && row.spirv_hash == hash)
         cost.inverse_throughput = row.stats.inverse_throughput;
   req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
@@ -120,6 +121,7 @@ struct ExportArgs {
   std::string lang;
   std::string method;
   std::string constants;
+  bool split = false;
 };
 
 }  // namespace
@@ -133,6 +135,9 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("--constants", args->constants,
                   "constant-set JSON replacing the compiled-in set of the same type (e.g. one `sglab fit ... --out DIR` "
                   "wrote)");
+  cmd->add_flag("--split", args->split,
+                "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills it once per light, "
+                "and sglab_irradiance_<ID>(light, float cosine) per pixel");
   cmd->callback([args] {
     const auto lang = shader::parse_language(args->lang);
     if (!lang) throw InputError(fmt::format("--lang: expected glsl, hlsl or cpp, got '{}'", args->lang));
@@ -141,6 +146,14 @@ void add_export_command(CLI::App& app) {
       throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", args->method,
                                    fmt::join(known, ", ")));
     shader::ExportRequest req = shader::standard_request(*lang, args->method);
+    if (args->split) {
+      const auto split = shader::split_methods();
+      if (std::find(split.begin(), split.end(), args->method) == split.end())
+        throw InputError(fmt::format("--split: method '{}' has no per-light split; methods with one: {}", args->method,
+                                     fmt::join(split, ", ")));
+      req.split = true;
+      req.command += " --split";
+    }
     // Provenance of the compiled-in sets from the JSON they were generated
     // from, when the source tree is at hand.
     try {
@@ -159,7 +172,7 @@ void add_export_command(CLI::App& app) {
       req.budget = {};
       req.budget.model = req.overrides.back().achieved_irradiance_error;
     } else {
-      add_vulkan_error(req.budget, args->method, *lang);
+      add_vulkan_error(req.budget, args->method, *lang, req.split);
     }
     shader::ExportResult result;
     try {

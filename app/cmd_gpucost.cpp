@@ -29,6 +29,7 @@ struct GpucostArgs {
   std::vector<std::string> families;
   std::vector<std::string> methods;
   std::string lang = "glsl";
+  std::string form = "both";  // unsplit, split (the per-pixel function of `export --split`) or both
   bool json = false;
   bool disasm = false;
   bool skip_unavailable = false;
@@ -71,6 +72,7 @@ std::string command_line(const GpucostArgs& a) {
   if (!a.families.empty()) c += " --families " + fmt::format("{}", fmt::join(a.families, ","));
   for (const std::string& m : a.methods) c += " --method " + m;
   if (a.lang != "glsl") c += " --lang " + a.lang;
+  if (a.form != "both") c += " --form " + a.form;
   if (!a.out.empty()) c += " --out " + a.out;
   return c;
 }
@@ -112,20 +114,32 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
   if (a.disasm) {
-    const gpu::Shader s = gpu::method_shader(methods[0], languages[0]);
-    fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
-               "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
-               methods[0], families[0], shader::to_string(languages[0]),
+    const bool split = a.form == "split";
+    const gpu::Shader s =
+        split ? gpu::split_method_shader(methods[0], languages[0]) : gpu::method_shader(methods[0], languages[0]);
+    fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of the whole "
+               "pipeline: the sweep's compute wrapper ({}) around the export\n{}",
+               methods[0], families[0], shader::to_string(languages[0]), split ? " --form split" : "",
+               split ? "one float load, the light struct at the workgroup's index, one float store"
+                     : "one float2 load, one float store",
                gpu::disassemble(self, *manifest, families[0], s));
     return;
   }
-  io::Progress progress("gpucost", families.size() + methods.size() * languages.size());
+  // Unsplit rows for every method, then split rows for those with a split form.
+  const auto split_ids = shader::split_methods();
+  std::vector<std::pair<std::string, bool>> forms;
+  for (bool split : {false, true})
+    for (const std::string& m : methods)
+      if ((split ? a.form != "unsplit" : a.form != "split") &&
+          (!split || std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end()))
+        forms.emplace_back(m, split);
+  io::Progress progress("gpucost", families.size() + forms.size() * languages.size());
   std::vector<gpu::Shader> shaders;
   for (shader::Language lang : languages) {
     shaders.push_back(gpu::baseline_shader(lang));
-    for (const std::string& m : methods) {
-      progress.note(fmt::format("export {} ({})", m, shader::to_string(lang)));
-      shaders.push_back(gpu::method_shader(m, lang));
+    for (const auto& [m, split] : forms) {
+      progress.note(fmt::format("export {}{} ({})", m, split ? " --split" : "", shader::to_string(lang)));
+      shaders.push_back(split ? gpu::split_method_shader(m, lang) : gpu::method_shader(m, lang));
       progress.advance();
     }
   }
@@ -154,6 +168,10 @@ void add_gpucost_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
+  cmd->add_option("--form", args->form,
+                  "unsplit, split (the per-pixel function of `sglab export --split`, rows with split = true, for the "
+                  "methods that have one) or both")
+      ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
   cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
       ->check(non_empty_path());
@@ -171,10 +189,19 @@ void add_gpucost_command(CLI::App& app) {
     const auto families = checked_families(args->families);
     const auto languages = checked_languages(args->lang);
     const auto methods = checked_methods(args->methods);
+    if (args->form != "unsplit" && args->form != "split" && args->form != "both")
+      throw InputError(fmt::format("--form: expected unsplit, split or both, got '{}'", args->form.substr(0, 40)));
+    if (args->form == "split") {
+      const auto split = shader::split_methods();
+      for (const std::string& m : methods)
+        if (std::find(split.begin(), split.end(), m) == split.end() && !args->methods.empty())
+          throw InputError(fmt::format("--form split: method '{}' has no per-light split; methods with one: {}", m,
+                                       fmt::join(split, ", ")));
+    }
     if (args->disasm && (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
                          args->json || !args->out.empty()))
       throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
-                       "or --out");
+                       "or --out (--form split: the split export)");
     try {
       measure_and_report(*args, families, languages, methods);
     } catch (const gpu::Unavailable& e) {

@@ -75,7 +75,7 @@ validate::Table device_vs_float_table(const validate::SweepResult& r) {
                     {{"method"}, {"quantity"}, {"precision"}, {"max_diff_peak_rel", 3}, {"worst_kappa", 4},
                      {"worst_cosine", 4}});
   for (const auto& e : r.entries) {
-    if (e.precision != validate::FloatFormat::vulkan && e.precision != validate::FloatFormat::vulkan_hlsl) continue;
+    if (!validate::on_device(e.precision)) continue;
     const auto* f = r.find(e.method, e.quantity, validate::FloatFormat::binary32);
     if (!f || f->values.size() != e.values.size()) continue;
     double worst = 0, wk = NAN, wc = NAN;
@@ -177,6 +177,8 @@ void add_sweep_command(CLI::App& app) {
       device_name = device->name();
       std::vector<std::string> skipped;
       for (auto lang : langs) skipped = shader::vulkan::add_device_entries(result, methods, lang, *device);
+      // The per-light split exports (`sglab export --split`), lights filled on the host by the C++ runtime.
+      for (auto lang : langs) shader::vulkan::add_split_device_entries(result, methods, lang, *device);
       if (!skipped.empty() && !args->json)
         fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
       // Method-major order, as the CPU entries.

@@ -70,6 +70,9 @@ struct Shader {
   std::string method;  // registry id; kBaseline for the trivial body
   shader::Language lang = shader::Language::glsl;
   std::vector<std::uint32_t> spirv;
+  // The per-pixel function of a split export in shader::split_compute_shader
+  // (the light struct loaded from a buffer at a wave-uniform index).
+  bool split = false;
 };
 inline constexpr std::string_view kBaseline = "(wrapper)";
 
@@ -78,8 +81,11 @@ inline constexpr std::string_view kBaseline = "(wrapper)";
 Shader baseline_shader(shader::Language lang);
 // The standard export of `method` in the wrapper, compiled to SPIR-V.
 Shader method_shader(std::string_view method, shader::Language lang);
+// The split export of `method` (ExportRequest::split) in the split wrapper.
+Shader split_method_shader(std::string_view method, shader::Language lang);
 // An export (its source and entry point; comments do not reach the SPIR-V) in
-// the wrapper, compiled to SPIR-V: what `gpucost` costs for it.
+// the wrapper (the split wrapper for a split export), compiled to SPIR-V: what
+// `gpucost` costs for it.
 Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported);
 
 // 64-bit FNV-1a of the SPIR-V words, as 16 hex digits: which code was costed.
@@ -89,7 +95,7 @@ struct Row {
   std::string method;
   std::string family;
   shader::Language lang = shader::Language::glsl;
-  bool split = false;             // per-light split form (not exported yet: always false)
+  bool split = false;             // the per-pixel function of the split form (Shader::split)
   std::string precision = "float";
   Statistics stats;
   std::string spirv_hash;
