@@ -930,22 +930,21 @@ std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
 // tokuyoshi2022: the product SG's sharpness and axis depend on the cosine, so
 // its term keeps kappa; the light's own hemispherical term
 // H(c, kappa) = 2 pi lerp(e^-kappa, 1, s) (1 - e^-kappa)/kappa needs per pixel only erf(t c).
+// alpha p - alpha q cancels heavily at small kappa, so H is formed by the very
+// operations of the unsplit export (helper_hemispherical2022): the same float result.
 std::vector<LightField> fields_tokuyoshi2022(const Slots&) {
   return {{"kappa", "the sharpness kappa (the product with the clamped-cosine SG depends on the cosine)"},
           {"t", "steepness t(kappa) ([Tokuyoshi2022] Eq. 6)"},
-          {"inv_erf_t", "1/erf(t), 0 where t < 2^-13 (the ratio erf(t c)/erf(t) is c there)"},
-          {"q0", "2 pi e^-kappa (1 - e^-kappa)/kappa"},
-          {"q1", "2 pi (1 - e^-kappa) (1 - e^-kappa)/kappa"}};
+          {"erf_t", "erf(t)"},
+          {"e", "e^-kappa"},
+          {"m", "(1 - e^-kappa)/kappa"}};
 }
 std::string light_tokuyoshi2022(const Ctx& c, const Slots&) {
   return subst(R"(  light.kappa = kappa;
   light.t = {P}steepness(kappa);
-  light.inv_erf_t = 0.0f;
-  if (light.t >= 0.0001220703125f) light.inv_erf_t = 1.0f / {P}erf(light.t);
-  float e = exp(-kappa);
-  float m = 6.28318548f * {P}expm1_over_x(-kappa);
-  light.q0 = e * m;
-  light.q1 = (1.0f - e) * m;
+  light.erf_t = {P}erf(light.t);
+  light.e = exp(-kappa);
+  light.m = {P}expm1_over_x(-kappa);
 )",
                c);
 }
@@ -955,9 +954,13 @@ std::string pixel_tokuyoshi2022(const Ctx& c, const Slots&) {
   {VEC3} prod = {P}product_with_normal(cosine, light.kappa, lambda);
   float p = {P}hemispherical(prod.z, prod.x) * exp(lambda + prod.y);
   float c = clamp(cosine, -1.0f, 1.0f);
-  float ratio = c;
-  if (light.t >= 0.0001220703125f) ratio = clamp({P}erf(light.t * c) * light.inv_erf_t, -1.0f, 1.0f);
-  float q = light.q0 + (0.5f + 0.5f * ratio) * light.q1;
+  float ratio;
+  if (light.t < 0.0001220703125f)
+    ratio = c;
+  else
+    ratio = clamp({P}erf(light.t * c) / light.erf_t, -1.0f, 1.0f);
+  float s = 0.5f + 0.5f * ratio;
+  float q = 6.28318548f * (light.e + s * (1.0f - light.e)) * light.m;
   return max(alpha * p - alpha * q, 0.0f);
 )",
                c);

@@ -504,17 +504,20 @@ std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<
   return skipped;
 }
 
+std::vector<float> device_lights(const shader::ExportResult& ex, shader::Language lang,
+                                 const std::vector<float>& kappas, Device& device) {
+  const auto spirv = compile_compute(lang, shader::light_compute_shader(lang, ex.source, ex));
+  return device.dispatch(spirv, {kappas}, kappas.size() * ex.light_floats,
+                         static_cast<std::uint32_t>((kappas.size() + 63) / 64));
+}
+
 std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& ex, shader::Language lang,
                                 const std::vector<float>& kappas, Device& device) {
   const std::size_t n = ex.light_floats;
   if (n == 0 || n > kLightStateFloats)
     throw std::invalid_argument(fmt::format("split_lights: {} is not a split export of at most {} floats",
                                             ex.entry_point, kLightStateFloats));
-  if (!method.light_setup32) {
-    // No split in the C++ runtime: the export's own sglab_light_<ID>, on the device.
-    const auto spirv = compile_compute(lang, shader::light_compute_shader(lang, ex.source, ex));
-    return device.dispatch(spirv, {kappas}, kappas.size() * n, static_cast<std::uint32_t>((kappas.size() + 63) / 64));
-  }
+  if (!method.light_setup32) return device_lights(ex, lang, kappas, device);
   std::vector<float> lights;
   lights.reserve(kappas.size() * n);
   for (float kappa : kappas) {
@@ -523,6 +526,18 @@ std::vector<float> split_lights(const sglab::Method& method, const shader::Expor
     lights.insert(lights.end(), state, state + n);
   }
   return lights;
+}
+
+std::vector<float> run_split(const shader::ExportResult& ex, shader::Language lang, const std::vector<float>& lights,
+                             const std::vector<float>& cosines, Device& device) {
+  if (ex.light_floats == 0 || lights.size() % ex.light_floats)
+    throw std::invalid_argument(fmt::format("run_split: {} lights of {} floats expected", ex.light_struct, ex.light_floats));
+  const std::size_t count = lights.size() / ex.light_floats;
+  const auto spirv = compile_compute(lang, shader::split_compute_shader(lang, ex.source, ex));
+  // One row of workgroups per light: the sweep has at most SweepGrid::kMaxPoints / 2 = 50,000
+  // kappas, within the 65,535 workgroups every Vulkan device offers in y.
+  return device.dispatch(spirv, {cosines, lights}, count * cosines.size(),
+                         static_cast<std::uint32_t>((cosines.size() + 63) / 64), static_cast<std::uint32_t>(count));
 }
 
 std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
@@ -540,13 +555,7 @@ std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
     shader::ExportRequest request = shader::standard_request(lang, id);
     request.split = true;
     const shader::ExportResult ex = shader::export_source(request);
-    const std::vector<float> lights = split_lights(sm.method, ex, lang, kappas, device);
-    const auto spirv = compile_compute(lang, shader::split_compute_shader(lang, ex.source, ex));
-    // One row of workgroups per light: at most SweepGrid::kMaxPoints / 2 = 50,000 kappas, within the
-    // 65,535 workgroups every Vulkan device offers in y.
-    const std::vector<float> out = device.dispatch(spirv, {cosines, lights}, kappas.size() * cosines.size(),
-                                                   static_cast<std::uint32_t>((cosines.size() + 63) / 64),
-                                                   static_cast<std::uint32_t>(kappas.size()));
+    const std::vector<float> out = run_split(ex, lang, split_lights(sm.method, ex, lang, kappas, device), cosines, device);
     const std::vector<double> values(out.begin(), out.end());
     r.entries.push_back(sweep_entry(r, sm,
                                     lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_split_hlsl

@@ -101,11 +101,21 @@ std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<
                                             shader::Language lang, Device& device, bool keep_points = true);
 
 // The lights of a split export for the given kappas, light_floats floats
-// each: from the C++ runtime's per-light setup (registry.hpp light_setup32,
+// each, from its sglab_light_<ID> run on `device` (shader::light_compute_shader).
+std::vector<float> device_lights(const shader::ExportResult& exported, shader::Language lang,
+                                 const std::vector<float>& kappas, Device& device);
+
+// The same from the C++ runtime's per-light setup (registry.hpp light_setup32,
 // whose state the struct is) where the runtime splits the method, otherwise
 // from sglab_light_<ID> run on `device` (shader::light_compute_shader).
 std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& exported,
                                 shader::Language lang, const std::vector<float>& kappas, Device& device);
+
+// The per-pixel function of a split export on `device` for every light
+// (light_floats floats each) and cosine: values[l * cosines.size() + i]
+// (shader::split_compute_shader).
+std::vector<float> run_split(const shader::ExportResult& exported, shader::Language lang,
+                             const std::vector<float>& lights, const std::vector<float>& cosines, Device& device);
 
 // Adds a `vulkan_split` (GLSL) or `vulkan_split_hlsl` (HLSL) entry to r for
 // every irradiance method of `methods` with a split export: the lights filled
