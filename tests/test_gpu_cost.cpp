@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
@@ -184,6 +185,49 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
     EXPECT_LE(std::abs(h - g), 0.05 * g) << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h
                                          << " cycles";
   }
+}
+
+// Split rows (issue 16 §3): the per-pixel function of `sglab export --split`,
+// the light struct loaded from a buffer, for the methods that have a split
+// (none for hill). On RDNA2 and RDNA3 the per-pixel cost of split
+// tokuyoshi2024 and split sglab_acc3 is at most 0.6× the unsplit tokuyoshi2024
+// inverse throughput, and every split row costs less than its unsplit row.
+TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
+  const auto r = run_sglab({"gpucost", "--families", "navi21,gfx1100", "--method", "tokuyoshi2024", "--method",
+                            "sglab_acc3", "--method", "hill", "--json"},
+                           false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  std::map<std::tuple<std::string, std::string, bool>, nlohmann::json> rows;  // (family, method, split)
+  for (const auto& row : doc.at("rows"))
+    rows[{row.at("family").get<std::string>(), row.at("method").get<std::string>(), row.at("split").get<bool>()}] = row;
+  EXPECT_EQ(rows.size(), 2u * 5u);  // 2 families × (3 unsplit + 2 split)
+  for (const std::string family : {"navi21", "gfx1100"}) {
+    SCOPED_TRACE(family);
+    EXPECT_FALSE(rows.count({family, "hill", true}));
+    ASSERT_TRUE(rows.count({family, "tokuyoshi2024", false}) && rows.count({family, "tokuyoshi2024", true}) &&
+                rows.count({family, "sglab_acc3", false}) && rows.count({family, "sglab_acc3", true}));
+    const auto cycles = [&](const char* method, bool split) {
+      return rows.at({family, method, split}).at("inverse_throughput").get<double>();
+    };
+    const double reference = cycles("tokuyoshi2024", false);
+    EXPECT_GT(cycles("tokuyoshi2024", true), 0);
+    EXPECT_LE(cycles("tokuyoshi2024", true), 0.6 * reference);
+    EXPECT_LE(cycles("sglab_acc3", true), 0.6 * reference);
+    EXPECT_LT(cycles("sglab_acc3", true), cycles("sglab_acc3", false));
+    EXPECT_NE(rows.at({family, "sglab_acc3", true}).at("spirv_hash"), rows.at({family, "sglab_acc3", false}).at("spirv_hash"));
+  }
+  const auto only = run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "sglab_fast", "--json"}, false);
+  ASSERT_EQ(only.exit_code, 0) << only.output;
+  const auto only_doc = nlohmann::json::parse(only.output);
+  ASSERT_EQ(only_doc.at("rows").size(), 1u);
+  EXPECT_TRUE(only_doc.at("rows")[0].at("split").get<bool>());
+  const auto none = run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "hill"});
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("hill"), std::string::npos) << none.output;
+  const auto bad = run_sglab({"gpucost", "--families", "navi21", "--form", "halfway"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--form"), std::string::npos) << bad.output;
 }
 
 TEST_F(OnRadv, AFamilyRadvDoesNotKnowIsReported) {
