@@ -330,6 +330,36 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
   EXPECT_EQ(cpp.output.find("GPU cost"), std::string::npos);
 }
 
+// `export --split` states the cost of the split row (split = true, the hash of
+// the split export in the split wrapper), the unsplit export that of its own row.
+TEST(GpuCostInExport, SplitHeaderReadsTheSplitRow) {
+  TempDir dir("gpucost-export-split");
+  const fs::path checkout = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
+  fs::create_directories(dir.path / "include" / "sglab");
+  fs::create_directories(dir.path / "data" / "results");
+  fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
+  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  gpu::Statistics unsplit_stats, split_stats;
+  unsplit_stats.inverse_throughput = 4321;
+  split_stats.inverse_throughput = 1234;
+  const std::string unsplit_hash = gpu::spirv_hash(gpu::method_shader("sglab_fast", shader::Language::glsl).spirv);
+  const std::string split_hash = gpu::spirv_hash(gpu::split_method_shader("sglab_fast", shader::Language::glsl).spirv);
+  ASSERT_NE(unsplit_hash, split_hash);
+  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  report.rows = {{"sglab_fast", "navi21", shader::Language::glsl, false, "float", unsplit_stats, unsplit_hash},
+                 {"sglab_fast", "navi21", shader::Language::glsl, true, "float", split_stats, split_hash}};
+  doc["gpu"] = gpu::to_json(report);
+  sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
+  WorkingDirectory cwd(dir.path);
+  const auto split = run_sglab({"export", "--lang", "glsl", "--method", "sglab_fast", "--split"}, false);
+  ASSERT_EQ(split.exit_code, 0) << split.output;
+  EXPECT_NE(split.output.find("costs.json): navi21 1234, gfx1100 not measured\n"), std::string::npos) << split.output;
+  const auto unsplit = run_sglab({"export", "--lang", "glsl", "--method", "sglab_fast"}, false);
+  ASSERT_EQ(unsplit.exit_code, 0) << unsplit.output;
+  EXPECT_NE(unsplit.output.find("costs.json): navi21 4321, gfx1100 not measured\n"), std::string::npos)
+      << unsplit.output;
+}
+
 TEST(GpuCost, SpirvHashIsFnv1aOfTheBytes) {
   EXPECT_EQ(gpu::spirv_hash({}), "cbf29ce484222325");  // FNV-1a 64 offset basis: no bytes hashed
   // The bytes in memory order: one word and its byte-swapped twin differ.
