@@ -206,9 +206,23 @@ struct Device::Impl {
 
 namespace {
 
-// Points binding i of `set` at buffers[i], whole.
-void write_descriptors(VkDevice dev, VkDescriptorSet set, const std::vector<Buffer>& buffers) {
+// A descriptor set of `layout` from a new pool (left in `pool` for the caller
+// to destroy) whose binding i is buffers[i], whole.
+VkDescriptorSet descriptor_set(VkDevice dev, VkDescriptorSetLayout layout, const std::vector<Buffer>& buffers,
+                               VkDescriptorPool& pool) {
   const auto n = static_cast<std::uint32_t>(buffers.size());
+  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, n};
+  auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 1;
+  dpci.pPoolSizes = &pool_size;
+  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool), "vkCreateDescriptorPool");
+  auto dsai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  dsai.descriptorPool = pool;
+  dsai.descriptorSetCount = 1;
+  dsai.pSetLayouts = &layout;
+  VkDescriptorSet set;
+  check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
   std::vector<VkDescriptorBufferInfo> infos(n);
   std::vector<VkWriteDescriptorSet> writes(n);
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -221,6 +235,7 @@ void write_descriptors(VkDevice dev, VkDescriptorSet set, const std::vector<Buff
     writes[i].pBufferInfo = &infos[i];
   }
   vkUpdateDescriptorSets(dev, n, writes.data(), 0, nullptr);
+  return set;
 }
 
 }  // namespace
@@ -352,19 +367,7 @@ std::vector<float> Device::dispatch(const std::vector<std::uint32_t>& spirv,
     }
   } o{dev};
 
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count};
-  auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-  dpci.maxSets = 1;
-  dpci.poolSizeCount = 1;
-  dpci.pPoolSizes = &pool_size;
-  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &o.pool), "vkCreateDescriptorPool");
-  auto dsai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-  dsai.descriptorPool = o.pool;
-  dsai.descriptorSetCount = 1;
-  dsai.pSetLayouts = &p.set_layout;
-  VkDescriptorSet set;
-  check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
-  write_descriptors(dev, set, buffers);
+  const VkDescriptorSet set = descriptor_set(dev, p.set_layout, buffers, o.pool);
 
   auto cpoolci = make<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
   cpoolci.queueFamilyIndex = d.queue_family;
