@@ -966,6 +966,62 @@ std::string pixel_tokuyoshi2022(const Ctx& c, const Slots&) {
                c);
 }
 
+// punctual, hill, hill_exact ([Pettineo2016]): the curve's kappa-only terms and
+// the integral factor, per pixel the operations of the unsplit export
+// (helper_hill), so the values are the same floats.
+std::vector<LightField> fields_punctual(const Slots&) { return {{"s", "2 pi/kappa"}}; }
+std::string light_punctual(const Ctx&, const Slots&) { return "  light.s = 6.28318548f / kappa;\n"; }
+std::string pixel_punctual(const Ctx&, const Slots&) { return "  return clamp(cosine, 0.0f, 1.0f) * light.s;\n"; }
+
+std::vector<LightField> fields_hill(const Slots&) {
+  return {{"scale", "1 + 2 e^-2kappa - 1/kappa"},
+          {"bias", "(e^-kappa - e^-2kappa)/kappa - e^-2kappa"},
+          {"x", "sqrt(1 - scale)"},
+          {"x1", "x/(4 c0)"},
+          {"s", "the integral factor: 2 pi/kappa (hill), 4 pi (1 - e^-2kappa)/(2 kappa) (hill_exact)"}};
+}
+std::string light_hill(const Ctx& c, const Slots&, std::string_view integral) {
+  return subst(fmt::format(R"(  float c0 = {{P}}hill_c0;
+  float c1 = 1.0f / (4.0f * c0);
+  float eml = exp(-kappa);
+  float em2l = eml * eml;
+  float rl = 1.0f / kappa;
+  light.scale = 1.0f + 2.0f * em2l - rl;
+  light.bias = (eml - em2l) * rl - em2l;
+  light.x = sqrt(1.0f - light.scale);
+  light.x1 = c1 * light.x;
+  light.s = {};
+)",
+                           integral),
+               c);
+}
+std::string light_hill_approx(const Ctx& c, const Slots& s) { return light_hill(c, s, "6.28318548f / kappa"); }
+std::string light_hill_exact(const Ctx& c, const Slots& s) {
+  return light_hill(c, s, "12.566371f * {P}expm1_over_x(-2.0f * kappa)");
+}
+std::string pixel_hill(const Ctx& c, const Slots&) {
+  return subst(R"(  float x0 = {P}hill_c0 * cosine;
+  float n = x0 + light.x1;
+  float y = abs(x0) <= light.x1 ? n * n / light.x : clamp(cosine, 0.0f, 1.0f);
+  return (light.scale * y + light.bias) * light.s;
+)",
+               c);
+}
+
+// vsgl2015 ([Tokuyoshi2015], [Iwasaki2012]): the product's sharpness and 1/|kappa v + lambda_d n|.
+std::vector<LightField> fields_vsgl2015(const Slots&) {
+  return {{"lam", "kappa lambda_d/(kappa + lambda_d)"}, {"sum", "kappa + lambda_d"}};
+}
+std::string light_vsgl2015(const Ctx& c, const Slots&) {
+  return subst(R"(  light.sum = kappa + {P}diffuse_lobe_lambda_d;
+  light.lam = light.sum > 0.0f ? kappa * {P}diffuse_lobe_lambda_d / light.sum : 0.0f;
+)",
+               c);
+}
+std::string pixel_vsgl2015(const Ctx&, const Slots&) {
+  return "  return 6.28318548f * exp(light.lam * (cosine - 1.0f)) / light.sum;\n";
+}
+
 // THE table of split forms, by method id (every other method: no split).
 const std::vector<SplitForm>& split_forms() {
   static const std::vector<SplitForm> table = [] {
@@ -977,7 +1033,13 @@ const std::vector<SplitForm>& split_forms() {
                         fields_sglab_acc,
                         {helper_expm1, helper_erf, helper_sglab_acc_steepness, helper_poles2024},
                         light_sglab_acc, pixel_sglab_acc};
-    std::vector<SplitForm> v;
+    const SplitForm vsgl{"vsgl2015", "", fields_vsgl2015, {}, light_vsgl2015, pixel_vsgl2015};
+    std::vector<SplitForm> v = {
+        {"punctual", "", fields_punctual, {}, light_punctual, pixel_punctual},
+        {"hill", "", fields_hill, {}, light_hill_approx, pixel_hill},
+        {"hill_exact", "", fields_hill, {helper_expm1}, light_hill_exact, pixel_hill},
+        vsgl};
+    v.push_back(vsgl), v.back().id = "vsgl2015_refit";
     for (std::string_view id : {"tokuyoshi2024", "tokuyoshi2024_refit"}) v.push_back(t2024), v.back().id = id;
     for (std::string_view id : {"tokuyoshi2022", "tokuyoshi2022_listing5", "tokuyoshi2022_refit"})
       v.push_back(t2022), v.back().id = id;

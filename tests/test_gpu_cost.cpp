@@ -115,7 +115,7 @@ TEST_F(OnRadv, TwoRunsGiveTheSameBytes) {
   EXPECT_EQ(a.output, b.output);
   const auto doc = nlohmann::json::parse(a.output);
   EXPECT_NE(doc.at("driver").get<std::string>().find("Mesa"), std::string::npos);
-  ASSERT_EQ(doc.at("rows").size(), 4u);  // 2 families × 1 method × 2 languages
+  ASSERT_EQ(doc.at("rows").size(), 8u);  // 2 families × 1 method × 2 languages × (unsplit, split)
   for (const auto& row : doc.at("rows")) {
     for (const char* key : {"method", "family", "lang", "split", "precision", "instructions", "inverse_throughput",
                             "latency", "vgprs", "sgprs", "code_size", "branches", "spirv_hash"})
@@ -139,9 +139,11 @@ TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
   ASSERT_EQ(after.costs.size(), before.costs.size());
   for (std::size_t i = 0; i < before.costs.size(); ++i) EXPECT_EQ(after.costs[i].ns_per_eval, before.costs[i].ns_per_eval);
   ASSERT_TRUE(after.gpu.has_value());
-  ASSERT_EQ(after.gpu->rows.size(), 1u);
+  ASSERT_EQ(after.gpu->rows.size(), 2u);  // unsplit and split
   EXPECT_EQ(after.gpu->rows[0].method, "hill");
   EXPECT_EQ(after.gpu->rows[0].family, "navi21");
+  EXPECT_FALSE(after.gpu->rows[0].split);
+  EXPECT_TRUE(after.gpu->rows[1].split);
   EXPECT_TRUE(fs::is_regular_file(dir.path / "gpu_costs.md"));
   const std::string first = sglab::io::read_file(dir.path / "costs.json");
   ASSERT_EQ(run_sglab(args).exit_code, 0);
@@ -189,12 +191,12 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
 
 // Split rows (issue 16 §3): the per-pixel function of `sglab export --split`,
 // the light struct loaded from a buffer, for the methods that have a split
-// (none for hill). On RDNA2 and RDNA3 the per-pixel cost of split
+// (none for wang2009). On RDNA2 and RDNA3 the per-pixel cost of split
 // tokuyoshi2024 and split sglab_acc3 is at most 0.6× the unsplit tokuyoshi2024
 // inverse throughput, and every split row costs less than its unsplit row.
 TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
   const auto r = run_sglab({"gpucost", "--families", "navi21,gfx1100", "--method", "tokuyoshi2024", "--method",
-                            "sglab_acc3", "--method", "hill", "--json"},
+                            "sglab_acc3", "--method", "wang2009", "--json"},
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
@@ -204,7 +206,7 @@ TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
   EXPECT_EQ(rows.size(), 2u * 5u);  // 2 families × (3 unsplit + 2 split)
   for (const std::string family : {"navi21", "gfx1100"}) {
     SCOPED_TRACE(family);
-    EXPECT_FALSE(rows.count({family, "hill", true}));
+    EXPECT_FALSE(rows.count({family, "wang2009", true}));
     ASSERT_TRUE(rows.count({family, "tokuyoshi2024", false}) && rows.count({family, "tokuyoshi2024", true}) &&
                 rows.count({family, "sglab_acc3", false}) && rows.count({family, "sglab_acc3", true}));
     const auto cycles = [&](const char* method, bool split) {
@@ -222,9 +224,9 @@ TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
   const auto only_doc = nlohmann::json::parse(only.output);
   ASSERT_EQ(only_doc.at("rows").size(), 1u);
   EXPECT_TRUE(only_doc.at("rows")[0].at("split").get<bool>());
-  const auto none = run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "hill"});
+  const auto none = run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "wang2009"});
   EXPECT_EQ(none.exit_code, 2) << none.output;
-  EXPECT_NE(none.output.find("hill"), std::string::npos) << none.output;
+  EXPECT_NE(none.output.find("wang2009"), std::string::npos) << none.output;
   const auto bad = run_sglab({"gpucost", "--families", "navi21", "--form", "halfway"});
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("--form"), std::string::npos) << bad.output;
