@@ -79,8 +79,8 @@ void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader:
   if (!std::filesystem::exists(file, ec)) return;
   try {
     const auto doc = nlohmann::json::parse(io::read_file(file));
-    const std::string precision = std::string(split ? "vulkan_split" : "vulkan") +
-                                  (lang == shader::Language::hlsl ? "_hlsl" : "");
+    const std::string precision = std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") +
+                                  (split ? "_split" : "");
     for (const auto& rec : doc.at("results"))
       if (rec.at("method") == method && rec.at("quantity") == "irradiance" && rec.at("precision") == precision &&
           rec.at("max_peak_rel").is_number()) {

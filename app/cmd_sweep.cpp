@@ -75,7 +75,7 @@ validate::Table device_vs_float_table(const validate::SweepResult& r) {
                     {{"method"}, {"quantity"}, {"precision"}, {"max_diff_peak_rel", 3}, {"worst_kappa", 4},
                      {"worst_cosine", 4}});
   for (const auto& e : r.entries) {
-    if (!validate::on_device(e.precision)) continue;
+    if (!validate::is_device_format(e.precision)) continue;
     const auto* f = r.find(e.method, e.quantity, validate::FloatFormat::binary32);
     if (!f || f->values.size() != e.values.size()) continue;
     double worst = 0, wk = NAN, wc = NAN;

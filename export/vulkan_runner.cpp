@@ -561,7 +561,7 @@ std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
     const std::vector<float> out = run_split(ex, lang, split_lights(sm.method, ex, lang, kappas, device), cosines, device);
     const std::vector<double> values(out.begin(), out.end());
     r.entries.push_back(sweep_entry(r, sm,
-                                    lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_split_hlsl
+                                    lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_hlsl_split
                                                                    : validate::FloatFormat::vulkan_split,
                                     values, keep_points));
   }

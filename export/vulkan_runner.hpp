@@ -117,7 +117,7 @@ std::vector<float> split_lights(const sglab::Method& method, const shader::Expor
 std::vector<float> run_split(const shader::ExportResult& exported, shader::Language lang,
                              const std::vector<float>& lights, const std::vector<float>& cosines, Device& device);
 
-// Adds a `vulkan_split` (GLSL) or `vulkan_split_hlsl` (HLSL) entry to r for
+// Adds a `vulkan_split` (GLSL) or `vulkan_hlsl_split` (HLSL) entry to r for
 // every irradiance method of `methods` with a split export: the lights filled
 // by split_lights and uploaded in a buffer, the per-pixel function run on
 // `device` over r's grid (shader::split_compute_shader). Returns the ids that

@@ -1105,7 +1105,7 @@ TEST_F(OnVulkan, SweepReportsSplitRows) {
   for (const auto& rec : doc.at("results"))
     precisions[rec.at("method").get<std::string>()].insert(rec.at("precision").get<std::string>());
   EXPECT_EQ(precisions["sglab_acc3"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl",
-                                                               "vulkan_split", "vulkan_split_hlsl"}));
+                                                               "vulkan_split", "vulkan_hlsl_split"}));
   EXPECT_EQ(precisions["wang2009"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl"}));
   fs::remove_all(dir);
 }

@@ -37,13 +37,13 @@ std::string_view to_string(FloatFormat f) {
       return "vulkan_hlsl";
     case FloatFormat::vulkan_split:
       return "vulkan_split";
-    case FloatFormat::vulkan_split_hlsl:
-      return "vulkan_split_hlsl";
+    case FloatFormat::vulkan_hlsl_split:
+      return "vulkan_hlsl_split";
   }
   return "?";
 }
 
-bool on_device(FloatFormat f) { return f != FloatFormat::binary32 && f != FloatFormat::binary64; }
+bool is_device_format(FloatFormat f) { return f != FloatFormat::binary32 && f != FloatFormat::binary64; }
 
 void SweepGrid::validate() const {
   constexpr double flt_max = std::numeric_limits<float>::max();
@@ -214,7 +214,7 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, c
 
   for (const SweepMethod& sm : methods) {
     for (FloatFormat f : options.precisions) {
-      if (on_device(f)) continue;
+      if (is_device_format(f)) continue;
       std::vector<double> values(nk * nc);
       for (std::size_t k = 0; k < nk; ++k)
         for (std::size_t j = 0; j < nc; ++j) values[r.index(k, j)] = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);

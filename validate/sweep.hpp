@@ -31,13 +31,13 @@ std::string_view to_string(Quantity q);
 
 // The arithmetic a method is evaluated in. `vulkan` / `vulkan_hlsl`: the
 // method's GLSL / HLSL export (`sglab export`) run on a Vulkan device (float),
-// values supplied through sweep_entry. `vulkan_split` / `vulkan_split_hlsl`:
+// values supplied through sweep_entry. `vulkan_split` / `vulkan_hlsl_split`:
 // the same for the per-light split export (`sglab export --split`).
-enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl, vulkan_split, vulkan_split_hlsl };
-// "float", "double", "vulkan", "vulkan_hlsl", "vulkan_split", "vulkan_split_hlsl"
+enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl, vulkan_split, vulkan_hlsl_split };
+// "float", "double", "vulkan", "vulkan_hlsl", "vulkan_split", "vulkan_hlsl_split"
 std::string_view to_string(FloatFormat f);
-// Whether the values come from a Vulkan device (every format but binary32 and binary64).
-bool on_device(FloatFormat f);
+// A format whose values come from a device (sweep_entry), not from the runtime.
+bool is_device_format(FloatFormat f);
 
 // κ: kappa_count values log-spaced over [kappa_lo, kappa_hi] inclusive;
 // c: cosine_count values evenly spaced over [−1, 1] inclusive. The default is
