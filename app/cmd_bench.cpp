@@ -120,6 +120,97 @@ class CollectingReporter : public benchmark::BenchmarkReporter {
   std::map<std::string, double> median_, single_;
 };
 
+// The cases --filter selects (all without one).
+std::vector<report::CostCase> selected_cases(const BenchArgs& args,
+                                            const std::shared_ptr<report::CostWorkload>& workload) {
+  std::regex filter;
+  try {
+    if (!args.filter.empty()) filter = std::regex(args.filter);
+  } catch (const std::regex_error& e) {
+    throw InputError(fmt::format("--filter: '{}' is not a valid regex ({})", args.filter, e.what()));
+  }
+  std::vector<report::CostCase> cases;
+  for (auto& c : report::cost_cases(workload))
+    if (args.filter.empty() || std::regex_search(c.name(), filter)) cases.push_back(std::move(c));
+  if (cases.empty()) throw InputError(fmt::format("--filter: '{}' matches no case", args.filter));
+  return cases;
+}
+
+// Times every case with Google Benchmark (the median of the repetitions), and
+// the 1-min load average before and after.
+struct Timings {
+  std::vector<report::Cost> costs;
+  double load_start = 0, load_end = 0;
+};
+Timings time_cases(const std::vector<report::CostCase>& cases, const BenchArgs& args) {
+  benchmark::ClearRegisteredBenchmarks();
+  for (const report::CostCase& c : cases) {
+    const report::CostCase* pc = &c;
+    benchmark::RegisterBenchmark(c.name().c_str(),
+                                 [pc](benchmark::State& state) {
+                                   for (auto _ : state) pc->run();
+                                   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                                                           static_cast<std::int64_t>(pc->evaluations));
+                                 })
+        ->Unit(benchmark::kNanosecond)
+        ->UseRealTime()
+        ->Threads(1)
+        ->MinTime(args.min_time)
+        ->Repetitions(args.repetitions)
+        ->ReportAggregatesOnly(true);
+  }
+  CollectingReporter reporter(cases.size());
+  Timings t;
+  t.load_start = report::load_average_1min();
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  t.load_end = report::load_average_1min();
+  benchmark::ClearRegisteredBenchmarks();
+  for (const report::CostCase& c : cases) {
+    const double ns = reporter.ns_per_iteration(c.name());
+    if (ns < 0) throw std::runtime_error(fmt::format("bench: no result for {}", c.name()));
+    t.costs.push_back(
+        report::Cost{c.kind, c.method, c.refit, c.precision, c.mode, ns / static_cast<double>(c.evaluations)});
+  }
+  return t;
+}
+
+// Writes bench.{csv,md}, bench_summary.{csv,md} and costs.json (keeping the
+// GPU section `sglab gpucost` wrote) and prints the tables.
+void write_bench(const BenchArgs& args, const Timings& t, const std::optional<shader::gpu::Report>& kept_gpu_costs) {
+  const std::filesystem::path dir(args.out);
+  const std::string timer = fmt::format(
+      "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry function "
+      "pointer per element, batch = batch pointer over all inputs, light_setup = ns per light, light_eval = ns "
+      "per shading point",
+      args.repetitions, args.min_time);
+  const validate::Table table =
+      report::cost_table(t.costs, fmt::format("ns per evaluation ({}; {})", timer, report::cost_input_description()));
+  const validate::Table summary = summary_table(t.costs);
+
+  report::CostTable cost_table;
+  cost_table.info = report::current_cost_table_info();
+  cost_table.info.command = args.command_line;
+  cost_table.info.timer = timer;
+  cost_table.info.inputs = report::cost_input_description();
+  cost_table.info.load_start = t.load_start;
+  cost_table.info.load_end = t.load_end;
+  cost_table.costs = t.costs;
+  cost_table.gpu = kept_gpu_costs;
+  using validate::TableFormat;
+  validate::write_table(table, dir, "bench", {TableFormat::csv, TableFormat::markdown});
+  validate::write_table(summary, dir, "bench_summary", {TableFormat::csv, TableFormat::markdown});
+  report::write_cost_table(cost_table, dir / "costs.json");
+  if (args.json) {
+    fmt::print("{}\n", validate::to_json(table).dump(2));
+    return;
+  }
+  fmt::print("{}\n{}\nMachine: {}, {} cores; {} {} {}; 1-min load average {:.2f} at start, {:.2f} at end\n",
+             validate::to_markdown(summary), validate::to_markdown(table), cost_table.info.cpu, cost_table.info.cores,
+             cost_table.info.compiler_id, cost_table.info.compiler_version, cost_table.info.build_type, t.load_start,
+             t.load_end);
+  fmt::print("Written to {}: bench.{{csv,md}}, bench_summary.{{csv,md}}, costs.json\n", dir.string());
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
@@ -145,85 +236,14 @@ void add_bench_command(CLI::App& app) {
       throw InputError(fmt::format("--repetitions: must be >= 1, got {}", args->repetitions));
     if (!(args->min_time > 0) || !(args->min_time <= 10))
       throw InputError(fmt::format("--min-time: must be in (0, 10] seconds, got {}", args->min_time));
-    const std::filesystem::path dir(args->out);
     // What `sglab gpucost` wrote into the same table stays (read before the
     // measurement, so a malformed table is reported at once).
     std::optional<shader::gpu::Report> kept_gpu_costs;
-    if (const auto existing = report::read_existing_cost_table(dir / "costs.json")) kept_gpu_costs = existing->gpu;
-    std::regex filter;
-    try {
-      if (!args->filter.empty()) filter = std::regex(args->filter);
-    } catch (const std::regex_error& e) {
-      throw InputError(fmt::format("--filter: '{}' is not a valid regex ({})", args->filter, e.what()));
-    }
-
+    if (const auto existing = report::read_existing_cost_table(std::filesystem::path(args->out) / "costs.json"))
+      kept_gpu_costs = existing->gpu;
     const auto workload = report::make_cost_workload();
-    std::vector<report::CostCase> cases;
-    for (auto& c : report::cost_cases(workload))
-      if (args->filter.empty() || std::regex_search(c.name(), filter)) cases.push_back(std::move(c));
-    if (cases.empty()) throw InputError(fmt::format("--filter: '{}' matches no case", args->filter));
-
-    benchmark::ClearRegisteredBenchmarks();
-    for (const report::CostCase& c : cases) {
-      const report::CostCase* pc = &c;
-      benchmark::RegisterBenchmark(c.name().c_str(),
-                                   [pc](benchmark::State& state) {
-                                     for (auto _ : state) pc->run();
-                                     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
-                                                             static_cast<std::int64_t>(pc->evaluations));
-                                   })
-          ->Unit(benchmark::kNanosecond)
-          ->UseRealTime()
-          ->Threads(1)
-          ->MinTime(args->min_time)
-          ->Repetitions(args->repetitions)
-          ->ReportAggregatesOnly(true);
-    }
-    CollectingReporter reporter(cases.size());
-    const double load_start = report::load_average_1min();
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    const double load_end = report::load_average_1min();
-    benchmark::ClearRegisteredBenchmarks();
-
-    std::vector<report::Cost> costs;
-    for (const report::CostCase& c : cases) {
-      const double ns = reporter.ns_per_iteration(c.name());
-      if (ns < 0) throw std::runtime_error(fmt::format("bench: no result for {}", c.name()));
-      costs.push_back(report::Cost{c.kind, c.method, c.refit, c.precision, c.mode,
-                                     ns / static_cast<double>(c.evaluations)});
-    }
-    const std::string timer = fmt::format(
-        "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry function "
-        "pointer per element, batch = batch pointer over all inputs, light_setup = ns per light, light_eval = ns "
-        "per shading point",
-        args->repetitions, args->min_time);
-    const validate::Table table =
-        report::cost_table(costs, fmt::format("ns per evaluation ({}; {})", timer, report::cost_input_description()));
-    const validate::Table summary = summary_table(costs);
-
-    report::CostTable cost_table;
-    cost_table.info = report::current_cost_table_info();
-    cost_table.info.command = args->command_line;
-    cost_table.info.timer = timer;
-    cost_table.info.inputs = report::cost_input_description();
-    cost_table.info.load_start = load_start;
-    cost_table.info.load_end = load_end;
-    cost_table.costs = costs;
-
-    cost_table.gpu = kept_gpu_costs;
-    using validate::TableFormat;
-    validate::write_table(table, dir, "bench", {TableFormat::csv, TableFormat::markdown});
-    validate::write_table(summary, dir, "bench_summary", {TableFormat::csv, TableFormat::markdown});
-    report::write_cost_table(cost_table, dir / "costs.json");
-    if (args->json) {
-      fmt::print("{}\n", validate::to_json(table).dump(2));
-    } else {
-      fmt::print("{}\n{}\nMachine: {}, {} cores; {} {} {}; 1-min load average {:.2f} at start, {:.2f} at end\n",
-                 validate::to_markdown(summary), validate::to_markdown(table), cost_table.info.cpu,
-                 cost_table.info.cores, cost_table.info.compiler_id, cost_table.info.compiler_version,
-                 cost_table.info.build_type, load_start, load_end);
-      fmt::print("Written to {}: bench.{{csv,md}}, bench_summary.{{csv,md}}, costs.json\n", dir.string());
-    }
+    const std::vector<report::CostCase> cases = selected_cases(*args, workload);
+    write_bench(*args, time_cases(cases, *args), kept_gpu_costs);
   });
 }
 

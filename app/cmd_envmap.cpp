@@ -28,7 +28,7 @@
 #include "app/costs_option.hpp"
 #include "envmap/envmap.hpp"
 #include "common/atomic_files.hpp"
-#include "app/envmap_report.hpp"
+#include "report/envmap_report.hpp"
 #include "common/io.hpp"
 #include "report/pareto.hpp"
 
@@ -192,7 +192,7 @@ void run_recommend(const RecommendArgs& a) {
   }
   const std::string cost_source = a.costs.fill(costs, *precision, 7, 0.01).text;
   io::Progress progress(fmt::format("envmap recommend {}", a.file), 0);
-  const envmap::Selection sel = envmap::select(map, work, budget, a.max_lobes, a.normals, *precision, costs,
+  const report::EnvmapSelection sel = report::select_envmap_method(map, work, budget, a.max_lobes, a.normals, *precision, costs,
                                                [&](const std::string& s) { progress.note(s); });
   progress.finish();
 
@@ -205,7 +205,7 @@ void run_recommend(const RecommendArgs& a) {
     doc["error"] = "max over normals and RGB of |E_method(lobes) - E_map| / max E_map (lobe fit + approximation)";
     doc["cost"] = "lobes x the method's cost per evaluation (--cost; unit per row)";
     doc["cost_source"] = cost_source;
-    auto pair = [](const std::optional<envmap::Candidate>& c) -> json {
+    auto pair = [](const std::optional<report::EnvmapCandidate>& c) -> json {
       if (!c) return nullptr;
       return {{"lobes", c->lobes}, {"method", c->method}, {"error", c->error}, {"cost", c->cost},
               {"cost_unit", c->cost_unit}, {"total_cost", c->total_cost}};
@@ -230,7 +230,7 @@ void run_recommend(const RecommendArgs& a) {
     fmt::print("\n  lobe fit alone (exact SG irradiance):");
     for (const auto& [n, e] : sel.fit_error) fmt::print(" {} lobes {:.3g};", n, e);
     fmt::print("\n");
-    auto describe = [](const envmap::Candidate& c) {
+    auto describe = [](const report::EnvmapCandidate& c) {
       return fmt::format("{} lobes with {} (error {:.4g}, {:.3g} {} per shading point)", c.lobes, c.method, c.error,
                          c.total_cost, c.cost_unit);
     };
@@ -327,7 +327,7 @@ void add_envmap_command(CLI::App& app) {
     cmd->add_option("--maps", a->maps, "folder of maps (default: data/envmaps of the project)");
     cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")->check(non_empty_path());
     cmd->add_flag("--quick", a->quick, "12 lobes only, no curves or figures");
-    cmd->callback([a] { envmap::run_baselines(a->maps, a->out, a->quick); });
+    cmd->callback([a] { report::run_envmap_baselines(a->maps, a->out, a->quick); });
   }
 }
 

@@ -71,7 +71,8 @@ shader::ConstantSet read_constant_set(const std::string& path) {
 
 // The error measured on Vulkan for `method` in the committed results
 // (data/results/vulkan_sweep.json, written by `sglab sweep --backend vulkan`).
-void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang, bool split) {
+void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang, bool split,
+                      shader::Precision export_precision) {
   const auto root = fit::find_project_root(std::filesystem::current_path());
   if (!root) return;  // not inside a checkout: the header names no measured error
   const auto file = *root / "data" / "results" / "vulkan_sweep.json";
@@ -79,8 +80,8 @@ void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader:
   if (!std::filesystem::exists(file, ec)) return;
   try {
     const auto doc = nlohmann::json::parse(io::read_file(file));
-    const std::string precision = std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") +
-                                  (split ? "_split" : "");
+    const char* suffix = split ? "_split" : export_precision == shader::Precision::float16 ? "_half" : "";
+    const std::string precision = std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") + suffix;
     for (const auto& rec : doc.at("results"))
       if (rec.at("method") == method && rec.at("quantity") == "irradiance" && rec.at("precision") == precision &&
           rec.at("max_peak_rel").is_number()) {
@@ -108,11 +109,12 @@ void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& export
   if (!path) return;
   const auto table = report::read_existing_cost_table(*path);
   if (!table || !table->gpu) return;
-  const std::string hash = shader::gpu::spirv_hash(shader::gpu::export_shader(req.method, req.lang, exported).spirv);
+  const std::string hash =
+      shader::gpu::spirv_hash(shader::gpu::export_shader(req.method, req.lang, exported, req.precision).spirv);
   for (shader::GpuCost& cost : req.gpu_cost)
     for (const shader::gpu::Row& row : table->gpu->rows)
       if (row.family == cost.family && row.method == req.method && row.lang == req.lang && row.split == req.split &&
-          row.precision == "float" && row.spirv_hash == hash)
+          row.precision == shader::to_string(req.precision) && row.spirv_hash == hash)
         cost.inverse_throughput = row.stats.inverse_throughput;
   req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
 }
@@ -122,7 +124,22 @@ struct ExportArgs {
   std::string method;
   std::string constants;
   bool split = false;
+  std::string precision = "float";
 };
+
+// --split: the per-light form of req's method (refused for a method without
+// one, and with --precision half: the split export is float only).
+void set_split(shader::ExportRequest& req) {
+  const auto split = shader::split_methods();
+  if (std::find(split.begin(), split.end(), req.method) == split.end())
+    throw InputError(fmt::format("--split: method '{}' has no per-light split; methods with one: {}", req.method,
+                                 fmt::join(split, ", ")));
+  if (req.precision == shader::Precision::float16)
+    throw InputError("--split with --precision half: the per-light split export is float only (its light struct "
+                     "is std430 floats filled by the float runtime); use one or the other");
+  req.split = true;
+  req.command += " --split";
+}
 
 }  // namespace
 
@@ -138,22 +155,24 @@ void add_export_command(CLI::App& app) {
   cmd->add_flag("--split", args->split,
                 "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills it once per light, "
                 "and sglab_irradiance_<ID>(light, float cosine) per pixel");
+  cmd->add_option("--precision", args->precision,
+                  "float, or half (16-bit floats: GLSL float16_t, HLSL half with 16-bit types; not for cpp)")
+      ->capture_default_str();
   cmd->callback([args] {
     const auto lang = shader::parse_language(args->lang);
     if (!lang) throw InputError(fmt::format("--lang: expected glsl, hlsl or cpp, got '{}'", args->lang));
+    const auto precision = shader::parse_precision(args->precision);
+    if (!precision)
+      throw InputError(fmt::format("--precision: expected float or half, got '{}'", args->precision.substr(0, 40)));
+    if (*precision == shader::Precision::float16 && *lang == shader::Language::cpp)
+      throw InputError("--precision half: the C++ export is float only (g++'s _Float16 may keep float "
+                       "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
     const auto known = shader::exportable_methods();
     if (std::find(known.begin(), known.end(), args->method) == known.end())
       throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", args->method,
                                    fmt::join(known, ", ")));
-    shader::ExportRequest req = shader::standard_request(*lang, args->method);
-    if (args->split) {
-      const auto split = shader::split_methods();
-      if (std::find(split.begin(), split.end(), args->method) == split.end())
-        throw InputError(fmt::format("--split: method '{}' has no per-light split; methods with one: {}", args->method,
-                                     fmt::join(split, ", ")));
-      req.split = true;
-      req.command += " --split";
-    }
+    shader::ExportRequest req = shader::standard_request(*lang, args->method, *precision);
+    if (args->split) set_split(req);
     // Provenance of the compiled-in sets from the JSON they were generated
     // from, when the source tree is at hand.
     try {
@@ -172,7 +191,7 @@ void add_export_command(CLI::App& app) {
       req.budget = {};
       req.budget.model = req.overrides.back().achieved_irradiance_error;
     } else {
-      add_vulkan_error(req.budget, args->method, *lang, req.split);
+      add_vulkan_error(req.budget, args->method, *lang, req.split, *precision);
     }
     shader::ExportResult result;
     try {

@@ -40,48 +40,41 @@ struct FitCliOptions {
   std::string costs;    // default: the project's data/results/costs.json, if any
 };
 
-// Which options each target uses; any other is refused (never silently ignored).
-struct TargetOptions {
-  std::string_view target;
-  bool precision, objective, kappa, max_error, alpha_free;
-};
-constexpr TargetOptions kTargetOptions[] = {
-    {"clamped-cosine", true, true, true, false, true},
-    {"steepness2022", false, true, true, true, false},
-    {"steepness2024", false, true, true, true, false},
-    {"erf", true, true, false, true, false},
-    {"lambda-d", false, true, true, false, false},  // --kappa only with --objective irradiance
-    {"sglab-fast", false, false, false, false, false},
-    {"sglab-accurate", false, false, true, true, false},  // --kappa with --max-error: the model order for a range
-    {"all", false, false, true, false, false},
-};
-
 struct GivenOptions {
-  bool precision, objective, kappa, max_error, alpha_free;
+  bool precision, objective, kappa, max_error, alpha_free, cold_start, costs;
 };
 
+// "TARGET, …": the targets that take an option.
+std::string users_of(bool fit::FitTarget::*flag) {
+  std::string users;
+  for (const auto& t : fit::fit_targets())
+    if (t.*flag) users += fmt::format("{}{}", users.empty() ? "" : ", ", t.name);
+  return users;
+}
+
+// " (TARGET, …)", for an option's help.
+std::string taken_by(bool fit::FitTarget::*flag) { return " (" + users_of(flag) + ")"; }
+
+// Any option the target does not take (fit::FitTarget) is refused, never
+// silently ignored; `all` passes --kappa, --cold-start and --costs on to the
+// targets that take them.
 void refuse_inapplicable(const std::string& target, const GivenOptions& given, const std::string& objective) {
-  const auto it = std::find_if(std::begin(kTargetOptions), std::end(kTargetOptions),
-                               [&](const TargetOptions& t) { return t.target == target; });
-  if (it == std::end(kTargetOptions)) return;  // unknown targets are reported by the caller
-  const auto check = [&](bool is_given, bool applies, const char* option) {
-    if (!is_given || applies) return;
-    std::string users;
-    for (const auto& t : kTargetOptions) {
-      const bool a = std::string_view(option) == "--precision"   ? t.precision
-                     : std::string_view(option) == "--objective" ? t.objective
-                     : std::string_view(option) == "--kappa"     ? t.kappa
-                     : std::string_view(option) == "--max-error" ? t.max_error
-                                                                 : t.alpha_free;
-      if (a) users += (users.empty() ? "" : ", ") + std::string(t.target);
-    }
-    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option, target, users));
+  using Flag = bool fit::FitTarget::*;
+  const fit::FitTarget* row = fit::find_fit_target(target);
+  if (!row && target != "all") return;  // unknown targets are reported by the caller
+  const auto check = [&](bool is_given, Flag applies, const char* option) {
+    const bool all_takes = applies == &fit::FitTarget::kappa || applies == &fit::FitTarget::cold_start ||
+                           applies == &fit::FitTarget::costs;
+    if (!is_given || (row ? row->*applies : all_takes)) return;
+    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option, target, users_of(applies)));
   };
-  check(given.precision, it->precision, "--precision");
-  check(given.objective, it->objective, "--objective");
-  check(given.kappa, it->kappa, "--kappa");
-  check(given.max_error, it->max_error, "--max-error");
-  check(given.alpha_free, it->alpha_free, "--alpha-free");
+  check(given.precision, &fit::FitTarget::precision, "--precision");
+  check(given.objective, &fit::FitTarget::objective, "--objective");
+  check(given.kappa, &fit::FitTarget::kappa, "--kappa");
+  check(given.max_error, &fit::FitTarget::max_error, "--max-error");
+  check(given.alpha_free, &fit::FitTarget::alpha_free, "--alpha-free");
+  check(given.cold_start, &fit::FitTarget::cold_start, "--cold-start");
+  check(given.costs, &fit::FitTarget::costs, "--costs");
   if (target == "lambda-d" && given.kappa && objective != "irradiance")
     throw InputError(
         "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other lambda-d objectives are "
@@ -191,33 +184,183 @@ fit::ordered_json diagnostics(std::size_t nonfinite, std::size_t messages, std::
   return {{"nonfinite_residual_evaluations", nonfinite}, {"solver_messages", messages}};
 }
 
+namespace fs = std::filesystem;
+
+// The command line of one fit as its provenance records it.
+std::string command_of(const FitCliOptions& o, std::string_view target) {
+  std::string c = fmt::format("sglab fit {}", target);
+  if (o.precision != "float") c += " --precision " + o.precision;
+  if (!o.objective.empty()) c += " --objective " + o.objective;
+  if (!o.kappa.empty()) c += " --kappa " + o.kappa;
+  if (o.max_error != 0) c += fmt::format(" --max-error {}", o.max_error);
+  if (o.alpha_free) c += " --alpha-free";
+  if (o.cold_start) c += " --cold-start";
+  return c;
+}
+
+// The fits to run: the one target, or for `all` every run of the target table.
+std::vector<fit::FitSpec> fit_specs(const FitCliOptions& o) {
+  std::vector<fit::FitSpec> specs;
+  if (o.target == "all") {
+    for (const auto& target : fit::fit_targets())
+      for (const auto& run : target.all) {
+        FitCliOptions each = o;
+        each.objective = run.objective;
+        each.alpha_free = run.alpha_free;
+        each.precision = run.precision;
+        // lambda-d takes --kappa only with --objective irradiance, not its fit all run
+        if (!target.kappa || target.name == "lambda-d") each.kappa.clear();
+        if (!target.cold_start) each.cold_start = false;
+        specs.push_back(make_spec(each, std::string(target.name), command_of(each, target.name)));
+      }
+  } else {
+    if (!fit::find_fit_target(o.target))
+      throw InputError(fmt::format("unknown fit target '{}' (known: {}, all)", o.target, fit::fit_target_names()));
+    specs.push_back(make_spec(o, o.target, command_of(o, o.target)));
+  }
+  const bool needs_costs = std::any_of(specs.begin(), specs.end(),
+                                       [](const fit::FitSpec& s) { return fit::find_fit_target(s.target)->costs; });
+  if (needs_costs) {
+    const fit::MethodCosts costs = read_method_costs(o.costs);
+    for (auto& s : specs) s.costs = costs;
+  }
+  return specs;
+}
+
+// Where the results go.
+struct Destination {
+  fs::path out_dir, header;
+  std::optional<fs::path> base_dir;      // the project's data/constants, if any
+  std::vector<fit::SkippedFile> skipped;  // files of the folders read that are not constant sets
+};
+
+// Resolved before the (long) fits so that a missing project is reported at
+// once. A dry run writes nothing and needs none.
+Destination resolve_destination(const FitCliOptions& o) {
+  Destination d;
+  try {
+    if (!o.dry_run || !o.out_dir.empty()) {
+      d.out_dir = o.out_dir.empty() ? fit::default_constants_dir() : fs::path(o.out_dir);
+      d.header = o.header.empty() ? fit::default_header_for(d.out_dir) : fs::path(o.header);
+    }
+    std::error_code ec;
+    if (const auto root = fit::find_project_root(fs::current_path(ec)); root && !ec)
+      d.base_dir = *root / "data" / "constants";
+    if (!o.dry_run && !d.base_dir) {
+      // Outside a project the header can only come from --out itself: it
+      // must already hold every set the code uses.
+      std::vector<fit::ordered_json> sets;
+      std::vector<std::string> files;
+      if (fs::exists(d.out_dir, ec))
+        for (auto& f : fit::load_constant_set_files(d.out_dir, &d.skipped)) {
+          files.push_back(f.file.string());
+          sets.push_back(std::move(f.set));
+        }
+      try {
+        fit::validate_header_sets(sets, files);
+      } catch (const fit::ConstantsError& e) {
+        throw fit::ConstantsError(fmt::format(
+            "no sglab project at or above the working directory, so the header would hold only the sets in {}, "
+            "and {}: run inside a checkout, or use --dry-run",
+            d.out_dir.string(), e.what()));
+      }
+    }
+  } catch (const fit::ConstantsError& e) {
+    throw InputError(e.what());
+  }
+  return d;
+}
+
+// What the fits produced.
+struct FitRuns {
+  fit::ordered_json reports = fit::ordered_json::array();
+  std::vector<fit::ConstantSetFile> to_write;
+  std::string log;
+  bool all_converged = true;
+};
+
+// Runs every fit in turn (progress on a terminal); prints each fit's text
+// unless the output is JSON.
+FitRuns run_fits(const std::vector<fit::FitSpec>& specs, const FitCliOptions& o, const Destination& d) {
+  FitRuns runs;
+  io::Progress progress("fit", specs.size());
+  for (const auto& spec : specs) {
+    fit::FitOutcome outcome;
+    const std::size_t nonfinite_before = fit::nonfinite_residual_evaluations();
+    const std::size_t messages_before = fit::solver_messages().count;
+    try {
+      io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);  // open-ended: counts Ceres solves
+      fit::FitProgressScope scope(solves);
+      outcome = fit::run_fit(spec);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+    outcome.report["diagnostics"] = diagnostics(fit::nonfinite_residual_evaluations() - nonfinite_before,
+                                                fit::solver_messages().count - messages_before, outcome.text);
+    runs.all_converged = runs.all_converged && outcome.converged;
+    progress.advance();
+    if (!o.json) fmt::print("{}", outcome.text);
+    if (!o.dry_run)
+      for (auto& f : sets_to_write(outcome, d.out_dir, o.force, runs.log)) runs.to_write.push_back(std::move(f));
+    outcome.report["command"] = spec.command;
+    runs.reports.push_back(outcome.report);
+  }
+  progress.finish();
+  return runs;
+}
+
+// Writes the sets and the header as one unit; the files written, in order.
+fit::ordered_json write_results(FitRuns& runs, Destination& d) {
+  fit::ordered_json written = fit::ordered_json::array();
+  try {
+    d.skipped.clear();  // read again, with the sets written
+    fit::write_sets_and_header(runs.to_write, d.out_dir, d.base_dir, d.header, &d.skipped);
+  } catch (const fit::ConstantsError& e) {
+    throw InputError(fmt::format("nothing was written: {}", e.what()));
+  }
+  for (const auto& f : d.skipped)
+    runs.log += fmt::format("  skipped {}: not a constant set: {}\n", f.file.string(), f.reason);
+  for (const auto& f : runs.to_write) {
+    runs.log += fmt::format("  wrote {}\n", f.file.string());
+    written.push_back(f.file.string());
+  }
+  runs.log += fmt::format("regenerated {}\n", d.header.string());
+  written.push_back(d.header.string());
+  return written;
+}
+
 }  // namespace
 
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
-  cmd->add_option("target", o->target, "clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d | sglab-fast | sglab-accurate | all")
-      ->required();
+  std::string targets_help = "what to fit:";
+  for (const auto& t : fit::fit_targets()) targets_help += fmt::format("\n  {:<15} {}", t.name, t.help);
+  targets_help += fmt::format("\n  {:<15} every target at its standard settings", "all");
+  cmd->add_option("target", o->target, targets_help)->required();
   auto* precision = cmd->add_option("--precision", o->precision,
-                                    "working precision: half | float | double (clamped-cosine, erf)")
+                                    "working precision: half | float | double" + taken_by(&fit::FitTarget::precision))
                         ->capture_default_str();
   auto* objective = cmd->add_option("--objective", o->objective,
-                                    "steepness: optimal-t | irradiance; lambda-d: sphere-ls | hemisphere-ls | "
-                                    "free-amplitude | irradiance; erf: listing5 | as7125");
+                                    "the target's objective (see the list above)" + taken_by(&fit::FitTarget::objective));
   auto* kappa = cmd->add_option("--kappa", o->kappa,
-                                "κ range LO:HI of the fit (default 1e-3:1e4; clamped-cosine, steepness, lambda-d "
-                                "irradiance, all); LO must not round to 0 in the working precision");
+                                "κ range LO:HI of the fit (default 1e-3:1e4; LO must not round to 0 in the working "
+                                "precision; lambda-d only with --objective irradiance)" +
+                                    taken_by(&fit::FitTarget::kappa));
   auto* max_error = cmd->add_option("--max-error", o->max_error,
-                                    "model order: smallest model meeting this error (erf: degrees and split; "
-                                    "steepness: rational order of t)");
+                                    "model order: the smallest model meeting this error (erf: degrees and split; "
+                                    "steepness: rational order of t; sglab-acc: the member)" +
+                                        taken_by(&fit::FitTarget::max_error));
   auto* alpha_free = cmd->add_flag("--alpha-free", o->alpha_free,
-                                   "clamped-cosine: α free instead of tied by energy conservation");
-  cmd->add_flag("--cold-start", o->cold_start,
-                "sglab-fast: fit from scratch instead of polishing the committed constant set");
+                                   "α free instead of tied by energy conservation" + taken_by(&fit::FitTarget::alpha_free));
+  auto* cold_start = cmd->add_flag("--cold-start", o->cold_start,
+                                   "fit from scratch instead of polishing the committed constant set" +
+                                       taken_by(&fit::FitTarget::cold_start));
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
-  cmd->add_option("--costs", o->costs,
-                  "sglab-accurate: cost table written by `sglab bench` for the cost column (default: "
-                  "data/results/costs.json of the project holding the working directory, if any)");
+  auto* costs = cmd->add_option("--costs", o->costs,
+                                "cost table written by `sglab bench` for the cost column (default: "
+                                "data/results/costs.json of the project holding the working directory, if any)" +
+                                    taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--out", o->out_dir,
@@ -229,163 +372,34 @@ void add_fit_command(CLI::App& app) {
                   "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
                   "checkout). The header holds the project's sets with those of --out in their place")
       ->check(non_empty_path());
-  cmd->callback([o, precision, objective, kappa, max_error, alpha_free] {
-    namespace fs = std::filesystem;
-    const GivenOptions given{precision->count() > 0, objective->count() > 0, kappa->count() > 0,
-                             max_error->count() > 0, alpha_free->count() > 0};
+  cmd->callback([o, precision, objective, kappa, max_error, alpha_free, cold_start, costs] {
+    const GivenOptions given{precision->count() > 0,  objective->count() > 0,  kappa->count() > 0,
+                             max_error->count() > 0,  alpha_free->count() > 0, cold_start->count() > 0,
+                             costs->count() > 0};
     refuse_inapplicable(o->target, given, o->objective);
+    const std::vector<fit::FitSpec> specs = fit_specs(*o);
+    Destination dest = resolve_destination(*o);
 
-    std::string command = "sglab fit " + o->target;
-    if (o->precision != "float") command += " --precision " + o->precision;
-    if (!o->objective.empty()) command += " --objective " + o->objective;
-    if (!o->kappa.empty()) command += " --kappa " + o->kappa;
-    if (o->max_error != 0) command += fmt::format(" --max-error {}", o->max_error);
-    if (o->alpha_free) command += " --alpha-free";
-    if (o->cold_start) command += " --cold-start";
-
-    std::vector<fit::FitSpec> specs;
-    if (o->target == "all") {
-      auto add = [&](const std::string& target, const std::string& objective, bool alpha_free, const std::string& prec) {
-        FitCliOptions each = *o;
-        each.objective = objective;
-        each.alpha_free = alpha_free;
-        each.precision = prec;
-        const bool uses_kappa = target != "erf" && target != "lambda-d";
-        if (!uses_kappa) each.kappa.clear();
-        std::string c = "sglab fit " + target;
-        if (prec != "float") c += " --precision " + prec;
-        if (!objective.empty()) c += " --objective " + objective;
-        if (alpha_free) c += " --alpha-free";
-        if (!each.kappa.empty()) c += " --kappa " + each.kappa;
-        specs.push_back(make_spec(each, target, c));
-      };
-      for (const char* prec : {"half", "float", "double"}) add("clamped-cosine", "", false, prec);
-      add("clamped-cosine", "", true, "float");
-      for (const char* t : {"steepness2022", "steepness2024"})
-        for (const char* obj : {"optimal-t", "irradiance"}) add(t, obj, false, "float");
-      add("erf", "", false, "float");
-      add("lambda-d", "", false, "float");
-      add("sglab-fast", "", false, "float");
-      add("sglab-accurate", "", false, "float");
-    } else {
-      const auto& known = fit::fit_targets();
-      if (std::find(known.begin(), known.end(), o->target) == known.end()) {
-        std::string list;
-        for (const auto& t : known) list += t + ", ";
-        throw InputError(fmt::format("unknown fit target '{}' (known: {}all)", o->target, list));
-      }
-      specs.push_back(make_spec(*o, o->target, command));
-    }
-    const bool needs_costs = std::any_of(specs.begin(), specs.end(),
-                                         [](const fit::FitSpec& s) { return s.target == "sglab-accurate"; });
-    if (!needs_costs && !o->costs.empty()) throw InputError(fmt::format("--costs does not apply to `fit {}`", o->target));
-    if (needs_costs) {
-      const fit::MethodCosts costs = read_method_costs(o->costs);
-      for (auto& s : specs) s.costs = costs;
-    }
-
-    // Where the results go, resolved before the (long) fits so that a missing
-    // project is reported at once. A dry run writes nothing and needs none.
-    fs::path out_dir, header;
-    std::optional<fs::path> base_dir;
-    std::vector<fit::SkippedFile> skipped;  // files of the folders read that are not constant sets
-    try {
-      if (!o->dry_run || !o->out_dir.empty()) {
-        out_dir = o->out_dir.empty() ? fit::default_constants_dir() : fs::path(o->out_dir);
-        header = o->header.empty() ? fit::default_header_for(out_dir) : fs::path(o->header);
-      }
-      std::error_code ec;
-      if (const auto root = fit::find_project_root(fs::current_path(ec)); root && !ec)
-        base_dir = *root / "data" / "constants";
-      if (!o->dry_run && !base_dir) {
-        // Outside a project the header can only come from --out itself: it
-        // must already hold every set the code uses.
-        std::vector<fit::ordered_json> sets;
-        std::vector<std::string> files;
-        if (fs::exists(out_dir, ec))
-          for (auto& f : fit::load_constant_set_files(out_dir, &skipped)) {
-            files.push_back(f.file.string());
-            sets.push_back(std::move(f.set));
-          }
-        try {
-          fit::validate_header_sets(sets, files);
-        } catch (const fit::ConstantsError& e) {
-          throw fit::ConstantsError(fmt::format(
-              "no sglab project at or above the working directory, so the header would hold only the sets in {}, "
-              "and {}: run inside a checkout, or use --dry-run",
-              out_dir.string(), e.what()));
-        }
-      }
-    } catch (const fit::ConstantsError& e) {
-      throw InputError(e.what());
-    }
-
-    fit::ordered_json reports = fit::ordered_json::array();
-    std::vector<fit::ConstantSetFile> to_write;
-    std::string log;
-    bool all_converged = true;
     const auto start = std::chrono::steady_clock::now();
-    io::Progress progress("fit", specs.size());
-    for (const auto& spec : specs) {
-      fit::FitOutcome outcome;
-      const std::size_t nonfinite_before = fit::nonfinite_residual_evaluations();
-      const std::size_t messages_before = fit::solver_messages().count;
-      try {
-        io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);  // open-ended: counts Ceres solves
-        fit::FitProgressScope scope(solves);
-        outcome = fit::run_fit(spec);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(e.what());
-      }
-      outcome.report["diagnostics"] = diagnostics(fit::nonfinite_residual_evaluations() - nonfinite_before,
-                                                  fit::solver_messages().count - messages_before, outcome.text);
-      all_converged = all_converged && outcome.converged;
-      progress.advance();
-      if (!o->json) fmt::print("{}", outcome.text);
-      if (!o->dry_run) {
-        std::string set_log;
-        for (auto& f : sets_to_write(outcome, out_dir, o->force, set_log)) to_write.push_back(std::move(f));
-        log += set_log;
-      }
-      outcome.report["command"] = spec.command;
-      reports.push_back(outcome.report);
-    }
-    progress.finish();
-
-    fit::ordered_json written = fit::ordered_json::array();
-    if (!o->dry_run) {
-      try {
-        skipped.clear();  // read again, with the sets written
-        fit::write_sets_and_header(to_write, out_dir, base_dir, header, &skipped);
-      } catch (const fit::ConstantsError& e) {
-        throw InputError(fmt::format("nothing was written: {}", e.what()));
-      }
-      for (const auto& f : skipped)
-        log += fmt::format("  skipped {}: not a constant set: {}\n", f.file.string(), f.reason);
-      for (const auto& f : to_write) {
-        log += fmt::format("  wrote {}\n", f.file.string());
-        written.push_back(f.file.string());
-      }
-      log += fmt::format("regenerated {}\n", header.string());
-      written.push_back(header.string());
-    }
+    FitRuns runs = run_fits(specs, *o, dest);
+    const fit::ordered_json written = o->dry_run ? fit::ordered_json::array() : write_results(runs, dest);
     // The report (stdout) is the same for the same inputs: no timing in it.
     // The time taken is a terminal's progress information.
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o->json) {
-      fit::ordered_json out = reports.size() == 1 ? reports[0] : fit::ordered_json{{"fits", reports}};
+      fit::ordered_json out = runs.reports.size() == 1 ? runs.reports[0] : fit::ordered_json{{"fits", runs.reports}};
       out["dry_run"] = o->dry_run;
       out["written"] = written;
       out["skipped"] = fit::ordered_json::array();
-      for (const auto& f : skipped) out["skipped"].push_back({{"file", f.file.string()}, {"reason", f.reason}});
+      for (const auto& f : dest.skipped) out["skipped"].push_back({{"file", f.file.string()}, {"reason", f.reason}});
       fmt::print("{}\n", out.dump(2));
     } else {
-      fmt::print("{}", log);
+      fmt::print("{}", runs.log);
       if (o->dry_run) fmt::print("dry run: nothing was written\n");
     }
     std::fflush(stdout);
     if (io::stderr_is_terminal()) fmt::print(stderr, "fit took {:.1f} s\n", secs);
-    if (!all_converged) throw std::runtime_error("a fit did not converge (see above); nothing was written for it");
+    if (!runs.all_converged) throw std::runtime_error("a fit did not converge (see above); nothing was written for it");
   });
 }
 

@@ -30,6 +30,7 @@ struct GpucostArgs {
   std::vector<std::string> methods;
   std::string lang = "glsl";
   std::string form = "both";  // unsplit, split (the per-pixel function of `export --split`) or both
+  std::string precision = "float";
   bool json = false;
   bool disasm = false;
   bool skip_unavailable = false;
@@ -57,6 +58,13 @@ std::vector<shader::Language> checked_languages(const std::string& lang) {
   throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", lang));
 }
 
+std::vector<shader::Precision> checked_precisions(const std::string& precision) {
+  if (precision == "float") return {shader::Precision::float32};
+  if (precision == "half") return {shader::Precision::float16};
+  if (precision == "both") return {shader::Precision::float32, shader::Precision::float16};
+  throw InputError(fmt::format("--precision: expected float, half or both, got '{}'", precision.substr(0, 40)));
+}
+
 std::vector<std::string> checked_methods(const std::vector<std::string>& asked) {
   const auto known = shader::exportable_methods();
   if (asked.empty()) return known;
@@ -73,6 +81,7 @@ std::string command_line(const GpucostArgs& a) {
   for (const std::string& m : a.methods) c += " --method " + m;
   if (a.lang != "glsl") c += " --lang " + a.lang;
   if (a.form != "both") c += " --form " + a.form;
+  if (a.precision != "float") c += " --precision " + a.precision;
   if (!a.out.empty()) c += " --out " + a.out;
   return c;
 }
@@ -101,10 +110,24 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
                                     report.driver, report.command, gpu::to_markdown(report)));
 }
 
+// The (method, split) pairs to cost: unsplit rows for every method, then
+// split rows for those with a split form (as --form asks).
+std::vector<std::pair<std::string, bool>> costed_forms(const GpucostArgs& a, const std::vector<std::string>& methods) {
+  const auto split_ids = shader::split_methods();
+  std::vector<std::pair<std::string, bool>> forms;
+  for (bool split : {false, true})
+    for (const std::string& m : methods)
+      if ((split ? a.form != "unsplit" : a.form != "split") &&
+          (!split || std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end()))
+        forms.emplace_back(m, split);
+  return forms;
+}
+
 // Measures (or with --disasm disassembles) and prints / writes the results.
 // Throws gpu::Unavailable when RADV cannot create a null device.
 void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& families,
-                        const std::vector<shader::Language>& languages, const std::vector<std::string>& methods) {
+                        const std::vector<shader::Language>& languages, const std::vector<std::string>& methods,
+                        const std::vector<shader::Precision>& precisions) {
   const auto manifest = gpu::find_radv_manifest();
   if (!manifest)
     throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
@@ -115,34 +138,34 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
   if (a.disasm) {
     const bool split = a.form == "split";
-    const gpu::Shader s =
-        split ? gpu::split_method_shader(methods[0], languages[0]) : gpu::method_shader(methods[0], languages[0]);
+    const gpu::Shader s = split ? gpu::split_method_shader(methods[0], languages[0])
+                                : gpu::method_shader(methods[0], languages[0], precisions[0]);
+    const char* option = split ? " --form split" : precisions[0] == shader::Precision::float16 ? " --precision half" : "";
     fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of the whole "
                "pipeline: the sweep's compute wrapper ({}) around the export\n{}",
-               methods[0], families[0], shader::to_string(languages[0]), split ? " --form split" : "",
+               methods[0], families[0], shader::to_string(languages[0]), option,
                split ? "one float load, the light struct at the workgroup's index, one float store"
                      : "one float2 load, one float store",
                gpu::disassemble(self, *manifest, families[0], s));
     return;
   }
-  // Unsplit rows for every method, then split rows for those with a split form.
-  const auto split_ids = shader::split_methods();
-  std::vector<std::pair<std::string, bool>> forms;
-  for (bool split : {false, true})
-    for (const std::string& m : methods)
-      if ((split ? a.form != "unsplit" : a.form != "split") &&
-          (!split || std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end()))
-        forms.emplace_back(m, split);
-  io::Progress progress("gpucost", families.size() + forms.size() * languages.size());
+  const auto forms = costed_forms(a, methods);
+  std::size_t exports = 0;
+  for (shader::Precision precision : precisions)
+    for (const auto& [m, split] : forms) exports += split && precision == shader::Precision::float16 ? 0 : 1;
+  io::Progress progress("gpucost", families.size() + exports * languages.size());
   std::vector<gpu::Shader> shaders;
-  for (shader::Language lang : languages) {
-    shaders.push_back(gpu::baseline_shader(lang));
-    for (const auto& [m, split] : forms) {
-      progress.note(fmt::format("export {}{} ({})", m, split ? " --split" : "", shader::to_string(lang)));
-      shaders.push_back(split ? gpu::split_method_shader(m, lang) : gpu::method_shader(m, lang));
-      progress.advance();
+  for (shader::Precision precision : precisions)
+    for (shader::Language lang : languages) {
+      shaders.push_back(gpu::baseline_shader(lang, precision));
+      for (const auto& [m, split] : forms) {
+        if (split && precision == shader::Precision::float16) continue;  // the split export is float only
+        progress.note(fmt::format("export {}{} ({}, {})", m, split ? " --split" : "", shader::to_string(lang),
+                                  shader::to_string(precision)));
+        shaders.push_back(split ? gpu::split_method_shader(m, lang) : gpu::method_shader(m, lang, precision));
+        progress.advance();
+      }
     }
-  }
   gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
     progress.note(fmt::format("ACO, {}", family));
     progress.advance();
@@ -172,6 +195,9 @@ void add_gpucost_command(CLI::App& app) {
                   "unsplit, split (the per-pixel function of `sglab export --split`, rows with split = true, for the "
                   "methods that have one) or both")
       ->capture_default_str();
+  cmd->add_option("--precision", args->precision,
+                  "float, half (`sglab export --precision half`, rows with precision \"half\") or both")
+      ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
   cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
       ->check(non_empty_path());
@@ -198,12 +224,17 @@ void add_gpucost_command(CLI::App& app) {
           throw InputError(fmt::format("--form split: method '{}' has no per-light split; methods with one: {}", m,
                                        fmt::join(split, ", ")));
     }
+    const auto precisions = checked_precisions(args->precision);
+    if (args->form == "split" && args->precision == "half")
+      throw InputError("--form split with --precision half: the per-light split export is float only (its light "
+                       "struct is std430 floats filled by the float runtime); use --precision float");
     if (args->disasm && (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
+                         precisions.size() != 1 ||
                          args->json || !args->out.empty()))
-      throw InputError("--disasm: takes one --method, one --family and one --lang (glsl or hlsl), and no --json "
-                       "or --out (--form split: the split export)");
+      throw InputError("--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one --precision, "
+                       "and no --json or --out (--form split: the split export)");
     try {
-      measure_and_report(*args, families, languages, methods);
+      measure_and_report(*args, families, languages, methods, precisions);
     } catch (const gpu::Unavailable& e) {
       if (!args->skip_unavailable) throw;
       fmt::print(stderr, "sglab: gpucost skipped: {}\n", e.what());

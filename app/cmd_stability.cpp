@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,15 +14,44 @@
 
 #include "app/commands.hpp"
 #include "common/io.hpp"
+#include "export/vulkan_runner.hpp"
 #include "validate/stability.hpp"
+#include "validate/sweep.hpp"
 #include "validate/table.hpp"
 
 namespace sglab::app {
+
+namespace {
+
+// `--half`: every exportable method's float and half GLSL exports on the first
+// Vulkan device over κ = 1e-5 … 1e5 (8 per decade, the top beyond the largest
+// half, 65504) × 41 cosines, and where half fails (validate::half_ranges_table).
+// Throws vulkan::Unavailable without a device or without shaderFloat16.
+validate::Table half_ranges() {
+  shader::vulkan::Device device;  // first: no reference work without a device
+  validate::SweepGrid grid;
+  grid.kappa_lo = 1e-5;
+  grid.kappa_hi = 1e5;
+  grid.kappa_count = 81;
+  validate::SweepOptions options;
+  options.precisions.clear();
+  options.progress = io::stderr_is_terminal();
+  std::vector<validate::SweepMethod> methods;
+  for (const auto& m : validate::registered_sweep_methods())
+    if (m.quantity == validate::Quantity::irradiance) methods.push_back(m);
+  validate::SweepResult r = validate::sweep(grid, methods, options);
+  for (auto precision : {shader::Precision::float32, shader::Precision::float16})
+    shader::vulkan::add_device_entries(r, methods, shader::Language::glsl, device, true, precision);
+  return validate::half_ranges_table(r);
+}
+
+}  // namespace
 
 void add_stability_command(CLI::App& app) {
   struct Args {
     std::string out = "out/stability";
     bool json = false;
+    bool half = false;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -30,8 +60,13 @@ void add_stability_command(CLI::App& app) {
                          ->check(non_empty_path())
                          ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the full table as JSON on stdout; writes no file unless --out is given");
+  cmd->add_flag("--half", args->half,
+                "also run every method's half export (`sglab export --precision half`) on the first Vulkan device and "
+                "report the κ range where half survives (stability_half.{csv,md}); exit 1 without a device with shaderFloat16");
   cmd->callback([args, out_option] {
     const validate::StabilityReport report = validate::stability();
+    std::optional<validate::Table> half;
+    if (args->half) half = half_ranges();
     const validate::Table full = validate::stability_table(report);
     const validate::Table findings = validate::stability_findings_table(report);
     const std::filesystem::path dir(args->out);
@@ -41,6 +76,7 @@ void add_stability_command(CLI::App& app) {
     if (write_files) {
       validate::write_table(full, dir, "stability", {TableFormat::csv, TableFormat::markdown});
       validate::write_table(findings, dir, "findings", {TableFormat::csv, TableFormat::markdown});
+      if (half) validate::write_table(*half, dir, "stability_half", {TableFormat::csv, TableFormat::markdown});
     }
 
     nlohmann::ordered_json doc = nlohmann::ordered_json::object();
@@ -64,6 +100,7 @@ void add_stability_command(CLI::App& app) {
     for (const validate::StabilityRow* r : validate::own_failures_on_valid_inputs(report))
       own.push_back(fmt::format("{} ({})", r->function, validate::to_string(r->precision)));
     doc["sglab_failures_on_valid_inputs"] = std::move(own);
+    if (half) doc["half"] = validate::to_json_records(*half);
     const std::string json = doc.dump(2) + "\n";
     if (write_files) io::write_file_atomic(dir / "stability.json", json);
 
@@ -72,6 +109,7 @@ void add_stability_command(CLI::App& app) {
       return;
     }
     fmt::print("{}\n", validate::to_markdown(findings));
+    if (half) fmt::print("{}\n", validate::to_markdown(*half));
     const auto own_failures = validate::own_failures_on_valid_inputs(report);
     if (own_failures.empty())
       fmt::print("sglab's own primitives and methods (origin sglab or refit): no NaN / Inf / negative / out-of-range "
@@ -86,7 +124,8 @@ void add_stability_command(CLI::App& app) {
                          return r->failures[k].example;
                      return std::string();
                    }());
-    fmt::print("Written to {}: stability.{{csv,md,json}}, findings.{{csv,md}}\n", dir.string());
+    fmt::print("Written to {}: stability.{{csv,md,json}}, findings.{{csv,md}}{}\n", dir.string(),
+               half ? ", stability_half.{csv,md}" : "");
   });
 }
 

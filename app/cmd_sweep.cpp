@@ -104,7 +104,44 @@ struct SweepArgs {
   std::vector<std::string> methods;
   std::vector<std::string> backends;  // cpu, vulkan
   std::string lang = "both";          // shader language(s) of the vulkan backend
+  std::vector<std::string> precisions;  // float, half: the exports the vulkan backend runs
 };
+
+// --precision float,half: the precisions of the exports the vulkan backend runs (default float).
+std::vector<shader::Precision> checked_precisions(const std::vector<std::string>& asked) {
+  std::vector<shader::Precision> out;
+  for (const std::string& p : asked) {
+    const auto parsed = shader::parse_precision(p);
+    if (!parsed) throw InputError(fmt::format("--precision: expected float or half, got '{}'", p.substr(0, 40)));
+    if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
+  }
+  if (out.empty()) out.push_back(shader::Precision::float32);
+  return out;
+}
+
+// The device rows of every language and precision; half rows are skipped,
+// with the reason on stderr, on a device without shaderFloat16. With float:
+// also the per-light split exports (`sglab export --split`, rows vulkan_split /
+// vulkan_hlsl_split), lights filled on the host by the C++ runtime; the split
+// export is float only, so half runs add no split rows.
+std::vector<std::string> add_all_device_entries(validate::SweepResult& result,
+                                                const std::vector<validate::SweepMethod>& methods,
+                                                const std::vector<shader::Language>& langs,
+                                                const std::vector<shader::Precision>& precisions,
+                                                shader::vulkan::Device& device) {
+  std::vector<std::string> skipped;
+  for (auto precision : precisions) {
+    if (precision == shader::Precision::float16 && !device.has_float16()) {
+      fmt::print(stderr, "sglab sweep: no half rows: {} offers no half arithmetic in shaders (shaderFloat16)\n",
+                 device.name());
+      continue;
+    }
+    for (auto lang : langs) skipped = shader::vulkan::add_device_entries(result, methods, lang, device, true, precision);
+    if (precision == shader::Precision::float32)
+      for (auto lang : langs) shader::vulkan::add_split_device_entries(result, methods, lang, device);
+  }
+  return skipped;
+}
 
 }  // namespace
 
@@ -131,6 +168,10 @@ void add_sweep_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--lang", args->lang, "shader language(s) of the vulkan backend: glsl, hlsl or both")
       ->capture_default_str();
+  cmd->add_option("--precision", args->precisions,
+                  "precision(s) of the exports the vulkan backend runs: float (default) and/or half "
+                  "(`sglab export --precision half`, rows vulkan_half and vulkan_hlsl_half); comma-separated")
+      ->delimiter(',');
   cmd->callback([args, out_option] {
     validate::SweepGrid grid;  // the standard grid (docs/quantities.md)
     if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
@@ -156,6 +197,9 @@ void add_sweep_command(CLI::App& app) {
     if (args->lang == "glsl" || args->lang == "both") langs.push_back(shader::Language::glsl);
     if (args->lang == "hlsl" || args->lang == "both") langs.push_back(shader::Language::hlsl);
     if (langs.empty()) throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", args->lang));
+    const auto precisions = checked_precisions(args->precisions);
+    if (!args->precisions.empty() && !vulkan && !vulkan_if_available)
+      throw InputError("--precision: chooses the exports of the vulkan backend; add --backend vulkan (or auto)");
 
     validate::SweepOptions options;
     if (!cpu) options.precisions.clear();
@@ -175,10 +219,7 @@ void add_sweep_command(CLI::App& app) {
     }
     if (vulkan) {
       device_name = device->name();
-      std::vector<std::string> skipped;
-      for (auto lang : langs) skipped = shader::vulkan::add_device_entries(result, methods, lang, *device);
-      // The per-light split exports (`sglab export --split`), lights filled on the host by the C++ runtime.
-      for (auto lang : langs) shader::vulkan::add_split_device_entries(result, methods, lang, *device);
+      const std::vector<std::string> skipped = add_all_device_entries(result, methods, langs, precisions, *device);
       if (!skipped.empty() && !args->json)
         fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
       // Method-major order, as the CPU entries.

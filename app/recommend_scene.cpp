@@ -4,7 +4,8 @@
 // (reference engine) and with every registered irradiance method; error =
 // max over normals and channels of |Ê − E| / the scene's largest exact
 // irradiance. Ranking and cost (--cost, default GPU inverse throughput on
-// navi21) as `sglab recommend --kappa` (validate/pareto.hpp, app/costs_option.hpp).
+// navi21) as `sglab recommend --kappa` (report/scene_ranking.hpp, report/pareto.hpp,
+// app/costs_option.hpp).
 // Then the scene's κ range and, over that range, the error of each of sglab's
 // own models on the standard 29 κ × 41 c sub-grid: which of them suffices.
 #include "app/recommend_scene.hpp"
@@ -22,6 +23,7 @@
 #include "app/commands.hpp"
 #include "common/io.hpp"
 #include "report/pareto.hpp"
+#include "report/scene_ranking.hpp"
 #include "validate/scene.hpp"
 
 namespace sglab::app {
@@ -33,10 +35,7 @@ nlohmann::ordered_json number(double x) {
   return x;
 }
 
-}  // namespace
-
-void recommend_scene(const SceneRecommendArgs& args) {
-  const report::CostSource cost = args.costs.source(args.precision);  // a bad --cost before any work
+validate::Scene read_scene(const SceneRecommendArgs& args) {
   std::string text;
   try {
     text = io::read_input_file(args.scene, validate::kMaxSceneFileBytes, "a scene file");
@@ -49,94 +48,78 @@ void recommend_scene(const SceneRecommendArgs& args) {
   } catch (const validate::SceneError& e) {
     throw InputError(e.what());
   }
-
   // Limits (validate/scene.hpp, README) before anything is allocated for the normals.
   try {
     validate::check_scene_limits(scene.lights.size(), args.normals);
   } catch (const validate::SceneError& e) {
     throw InputError(fmt::format("--scene {}: {}", args.scene, e.what()));
   }
-  const auto normals = validate::fibonacci_normals(args.normals);
-  const std::vector<double> errors = validate::scene_errors(scene, normals, irradiance_methods, args.precision);
-  std::vector<report::MethodPoint> points;
-  std::vector<Origin> origins;
-  for (std::size_t i = 0; i < std::size(irradiance_methods); ++i) {
-    const Method& m = irradiance_methods[i];
-    report::MethodPoint p;
-    p.method = std::string(m.id);
-    p.origin = m.origin;
-    p.max_peak_rel = errors[i];
-    points.push_back(p);
-    origins.push_back(m.origin);
-  }
-  const CostsOption::From source = args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
-  const report::Recommendation r = report::recommend(points, args.budget);
+  return scene;
+}
 
-  // sglab's models over the scene's κ range (κ = 0 lights: the range starts at 1e-3).
-  const double lo = std::max(scene.kappa_min(), 1e-3), hi = std::max(scene.kappa_max(), lo);
-  const auto range_errors = report::irradiance_errors(lo, hi, args.precision);
-  struct ModelOnRange {
-    std::string id;
-    double error, cost;
+// What both outputs show.
+struct SceneOutput {
+  const SceneRecommendArgs& args;
+  const validate::Scene& scene;
+  std::size_t normals;
+  const report::CostSource& cost;
+  const CostsOption::From& source;
+  const std::vector<report::MethodPoint>& points;
+  const report::SceneRanking& ranking;
+};
+
+void print_json(const SceneOutput& o) {
+  const report::Recommendation& r = o.ranking.recommendation;
+  nlohmann::ordered_json doc;
+  doc["scene"] = o.args.scene;
+  doc["lights"] = o.scene.lights.size();
+  doc["normals"] = o.normals;
+  doc["kappa_range"] = {o.scene.kappa_min(), o.scene.kappa_max()};
+  doc["budget"] = o.args.budget;
+  doc["precision"] = std::string(validate::to_string(o.args.precision));
+  doc["cost_source"] = o.cost.name();
+  doc["cost_unit"] = std::string(o.cost.unit());
+  doc["cost_from"] = o.source.text;
+  doc["error"] = "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the scene";
+  auto point = [](const std::optional<report::MethodPoint>& p) -> nlohmann::ordered_json {
+    if (!p) return nullptr;
+    return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"cost", number(p->cost)},
+            {"cost_unit", p->cost_unit}};
   };
-  std::vector<ModelOnRange> models;
-  const ModelOnRange* sufficient = nullptr;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (origins[i] != Origin::sglab) continue;
-    for (const auto& e : range_errors)
-      if (e.method == points[i].method) models.push_back({e.method, e.max_peak_rel, points[i].cost});
-  }
-  for (const auto& m : models)
-    if (m.error <= args.budget && std::isfinite(m.cost) && (!sufficient || m.cost < sufficient->cost)) sufficient = &m;
+  doc["choice"] = point(r.choice);
+  doc["runner_up"] = point(r.runner_up);
+  doc["most_accurate"] = point(r.most_accurate);
+  nlohmann::ordered_json methods = nlohmann::ordered_json::array();
+  for (const auto& p : o.points)
+    methods.push_back({{"method", p.method},
+                       {"origin", std::string(to_string(p.origin))},
+                       {"scene_error", number(p.max_peak_rel)},
+                       {"cost", number(p.cost)},
+                       {"cost_unit", p.cost_unit},
+                       {"qualifies", std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) &&
+                                         p.max_peak_rel <= o.args.budget}});
+  doc["methods"] = std::move(methods);
+  nlohmann::ordered_json sg = nlohmann::ordered_json::array();
+  for (const auto& m : o.ranking.models_on_range)
+    sg.push_back({{"method", m.method},
+                  {"range_max_peak_rel", number(m.max_peak_rel)},
+                  {"meets_budget", m.max_peak_rel <= o.args.budget}});
+  const auto& sufficient = o.ranking.sufficient;
+  doc["sglab_models_on_range"] = {{"kappa_lo", o.ranking.kappa_lo}, {"kappa_hi", o.ranking.kappa_hi}, {"models", sg},
+                                  {"sufficient", sufficient ? nlohmann::ordered_json(sufficient->method) : nullptr}};
+  fmt::print("{}\n", doc.dump(2));
+}
 
-  if (args.json) {
-    nlohmann::ordered_json doc;
-    doc["scene"] = args.scene;
-    doc["lights"] = scene.lights.size();
-    doc["normals"] = normals.size();
-    doc["kappa_range"] = {scene.kappa_min(), scene.kappa_max()};
-    doc["budget"] = args.budget;
-    doc["precision"] = std::string(validate::to_string(args.precision));
-    doc["cost_source"] = cost.name();
-    doc["cost_unit"] = std::string(cost.unit());
-    doc["cost_from"] = source.text;
-    doc["error"] = "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the scene";
-    auto point = [](const std::optional<report::MethodPoint>& p) -> nlohmann::ordered_json {
-      if (!p) return nullptr;
-      return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"cost", number(p->cost)},
-              {"cost_unit", p->cost_unit}};
-    };
-    doc["choice"] = point(r.choice);
-    doc["runner_up"] = point(r.runner_up);
-    doc["most_accurate"] = point(r.most_accurate);
-    nlohmann::ordered_json methods = nlohmann::ordered_json::array();
-    for (std::size_t i = 0; i < points.size(); ++i)
-      methods.push_back({{"method", points[i].method},
-                         {"origin", std::string(to_string(origins[i]))},
-                         {"scene_error", number(points[i].max_peak_rel)},
-                         {"cost", number(points[i].cost)},
-                         {"cost_unit", points[i].cost_unit},
-                         {"qualifies", std::isfinite(points[i].max_peak_rel) && std::isfinite(points[i].cost) &&
-                                           points[i].max_peak_rel <= args.budget}});
-    doc["methods"] = std::move(methods);
-    nlohmann::ordered_json sg = nlohmann::ordered_json::array();
-    for (const auto& m : models)
-      sg.push_back({{"method", m.id}, {"range_max_peak_rel", number(m.error)}, {"meets_budget", m.error <= args.budget}});
-    doc["sglab_models_on_range"] = {{"kappa_lo", lo}, {"kappa_hi", hi}, {"models", sg},
-                                    {"sufficient", sufficient ? nlohmann::ordered_json(sufficient->id) : nullptr}};
-    fmt::print("{}\n", doc.dump(2));
-    return;
-  }
-
-  fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n", args.scene,
-             scene.lights.size(), scene.kappa_min(), scene.kappa_max(), normals.size(),
-             validate::to_string(args.precision), args.budget);
+void print_text(const SceneOutput& o) {
+  const report::Recommendation& r = o.ranking.recommendation;
+  fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n", o.args.scene,
+             o.scene.lights.size(), o.scene.kappa_min(), o.scene.kappa_max(), o.normals,
+             validate::to_string(o.args.precision), o.args.budget);
   fmt::print("error = max over normals and RGB channels of |Ê − E| / the scene's largest exact irradiance\n\n");
   fmt::print("  {:<24} {:<10} {:>12} {:>12}  {}\n", "method", "origin", "scene error", "cost", "meets budget");
-  for (std::size_t i = 0; i < points.size(); ++i)
-    fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", points[i].method, to_string(origins[i]),
-               points[i].max_peak_rel, report::cost_text(points[i]),
-               std::isfinite(points[i].max_peak_rel) && points[i].max_peak_rel <= args.budget ? "yes" : "no");
+  for (const auto& p : o.points)
+    fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", p.method, to_string(p.origin), p.max_peak_rel,
+               report::cost_text(p), std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes" : "no");
   fmt::print("\n");
   if (r.choice) {
     fmt::print("  choice:    {} (scene error {:.4g}, {})\n", r.choice->method, r.choice->max_peak_rel,
@@ -149,15 +132,32 @@ void recommend_scene(const SceneRecommendArgs& args) {
     if (r.most_accurate)
       fmt::print("  most accurate: {} (scene error {:.4g})\n", r.most_accurate->method, r.most_accurate->max_peak_rel);
   }
-  fmt::print("\n  sglab models over the scene's κ range [{:.4g}, {:.4g}] (max peak_rel, 29 κ × 41 c):\n", lo, hi);
-  for (const auto& m : models)
-    fmt::print("    {:<22} {:.4g}{}\n", m.id, m.error, m.error <= args.budget ? "  meets the budget" : "");
-  if (sufficient)
-    fmt::print("  cheapest sglab model sufficient for the range: {}\n", sufficient->id);
+  fmt::print("\n  sglab models over the scene's κ range [{:.4g}, {:.4g}] (max peak_rel, 29 κ × 41 c):\n",
+             o.ranking.kappa_lo, o.ranking.kappa_hi);
+  for (const auto& m : o.ranking.models_on_range)
+    fmt::print("    {:<22} {:.4g}{}\n", m.method, m.max_peak_rel, m.max_peak_rel <= o.args.budget ? "  meets the budget" : "");
+  if (o.ranking.sufficient)
+    fmt::print("  cheapest sglab model sufficient for the range: {}\n", o.ranking.sufficient->method);
   else
     fmt::print("  no registered sglab model meets the budget over this κ range.\n");
-  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(), source.text,
+  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", o.cost.unit(), o.source.text,
              report::kCostTieMargin * 100);
+}
+
+}  // namespace
+
+void recommend_scene(const SceneRecommendArgs& args) {
+  const report::CostSource cost = args.costs.source(args.precision);  // a bad --cost before any work
+  const validate::Scene scene = read_scene(args);
+  const auto normals = validate::fibonacci_normals(args.normals);
+  std::vector<report::MethodPoint> points = report::scene_points(scene, normals, args.precision);
+  const CostsOption::From source = args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
+  const report::SceneRanking ranking = report::rank_scene(points, scene, args.budget, args.precision);
+  const SceneOutput out{args, scene, normals.size(), cost, source, points, ranking};
+  if (args.json)
+    print_json(out);
+  else
+    print_text(out);
 }
 
 }  // namespace sglab::app

@@ -137,15 +137,22 @@ std::string upper(std::string_view s) {
 
 }  // namespace
 
-Shader baseline_shader(shader::Language lang) {
-  const std::string body =
-      fmt::format("float {}(float cosine, float kappa) {{ return cosine + kappa; }}\n", kBaselineEntry);
+Shader baseline_shader(shader::Language lang, shader::Precision precision) {
+  const bool half = precision == shader::Precision::float16;
+  const std::string type = half ? (lang == shader::Language::glsl ? "float16_t" : "half") : "float";
+  const std::string body = fmt::format("{}{} {}({} cosine, {} kappa) {{ return cosine + kappa; }}\n",
+                                       half && lang == shader::Language::glsl
+                                           ? "#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n"
+                                           : "",
+                                       type, kBaselineEntry, type, type);
   return {std::string(kBaseline), lang,
-          vulkan::compile_compute(lang, shader::compute_shader(lang, body, kBaselineEntry))};
+          vulkan::compile_compute(lang, shader::compute_shader(lang, body, kBaselineEntry, precision), precision),
+          false, precision};
 }
 
-Shader method_shader(std::string_view method, shader::Language lang) {
-  return export_shader(method, lang, shader::export_source(shader::standard_request(lang, method)));
+Shader method_shader(std::string_view method, shader::Language lang, shader::Precision precision) {
+  return export_shader(method, lang, shader::export_source(shader::standard_request(lang, method, precision)),
+                       precision);
 }
 
 Shader split_method_shader(std::string_view method, shader::Language lang) {
@@ -154,12 +161,14 @@ Shader split_method_shader(std::string_view method, shader::Language lang) {
   return export_shader(method, lang, shader::export_source(request));
 }
 
-Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported) {
+Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported,
+                     shader::Precision precision) {
   const bool split = !exported.light_struct.empty();
-  return {std::string(method), lang,
-          vulkan::compile_compute(lang, split ? shader::split_compute_shader(lang, exported.source, exported)
-                                              : shader::compute_shader(lang, exported.source, exported.entry_point)),
-          split};
+  if (split && precision != shader::Precision::float32)
+    throw std::invalid_argument("gpu::export_shader: the split export is float only");
+  const std::string source = split ? shader::split_compute_shader(lang, exported.source, exported)
+                                   : shader::compute_shader(lang, exported.source, exported.entry_point, precision);
+  return {std::string(method), lang, vulkan::compile_compute(lang, source, precision), split, precision};
 }
 
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {
@@ -299,17 +308,19 @@ Report measure(const fs::path& self, const fs::path& manifest, const std::vector
     const json r = run_family(self, manifest, family, shaders, false);
     if (report.driver.empty()) report.driver = r.at("driver").get<std::string>();
     const std::string where = fmt::format("gpucost worker for '{}'", family);
-    std::map<shader::Language, Statistics> baseline;
+    std::map<std::pair<shader::Language, shader::Precision>, Statistics> baseline;
     for (std::size_t i = 0; i < shaders.size(); ++i) {
       const Statistics s = stats_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
+      const auto key = std::make_pair(shaders[i].lang, shaders[i].precision);
       if (shaders[i].method == kBaseline) {
-        baseline[shaders[i].lang] = s;
+        baseline[key] = s;
         continue;
       }
-      if (!baseline.count(shaders[i].lang))
-        throw std::logic_error("gpu::measure: a language's baseline must come before its methods");
-      report.rows.push_back({shaders[i].method, family, shaders[i].lang, shaders[i].split, "float",
-                             subtract(s, baseline[shaders[i].lang]), spirv_hash(shaders[i].spirv)});
+      if (!baseline.count(key))
+        throw std::logic_error("gpu::measure: a language and precision's baseline must come before its methods");
+      report.rows.push_back({shaders[i].method, family, shaders[i].lang, shaders[i].split,
+                             std::string(shader::to_string(shaders[i].precision)), subtract(s, baseline[key]),
+                             spirv_hash(shaders[i].spirv)});
     }
   }
   return report;
@@ -390,8 +401,8 @@ std::string to_markdown(const Report& report) {
       out += "| method | lang | instructions | inverse throughput | latency | VGPRs | SGPRs | code size | branches |\n";
       out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     }
-    out += fmt::format("| {}{} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.method, r.split ? " (split)" : "",
-                       shader::to_string(r.lang),
+    out += fmt::format("| {}{} | {}{} | {} | {} | {} | {} | {} | {} | {} |\n", r.method, r.split ? " (split)" : "",
+                       shader::to_string(r.lang), r.precision == "half" ? " half" : "",
                        r.stats.instructions, r.stats.inverse_throughput, r.stats.latency, r.stats.vgprs, r.stats.sgprs,
                        r.stats.code_size, r.stats.branches);
   }

@@ -73,20 +73,27 @@ struct Shader {
   // The per-pixel function of a split export in shader::split_compute_shader
   // (the light struct loaded from a buffer at a wave-uniform index).
   bool split = false;
+  // The export's precision: a half export is costed in the half wrapper
+  // (conversions at the call) against the half baseline.
+  shader::Precision precision = shader::Precision::float32;
 };
 inline constexpr std::string_view kBaseline = "(wrapper)";
 
 // The wrapper with its trivial body, `return cosine + kappa;` (both inputs
-// used, so the loads are the same as for a real method), in `lang`.
-Shader baseline_shader(shader::Language lang);
+// used, so the loads are the same as for a real method), in `lang` (in half
+// arithmetic for `precision` half).
+Shader baseline_shader(shader::Language lang, shader::Precision precision = shader::Precision::float32);
 // The standard export of `method` in the wrapper, compiled to SPIR-V.
-Shader method_shader(std::string_view method, shader::Language lang);
-// The split export of `method` (ExportRequest::split) in the split wrapper.
+Shader method_shader(std::string_view method, shader::Language lang,
+                     shader::Precision precision = shader::Precision::float32);
+// The split export of `method` (ExportRequest::split) in the split wrapper
+// (float: the split export has no half form).
 Shader split_method_shader(std::string_view method, shader::Language lang);
 // An export (its source and entry point; comments do not reach the SPIR-V) in
 // the wrapper (the split wrapper for a split export), compiled to SPIR-V: what
 // `gpucost` costs for it.
-Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported);
+Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported,
+                     shader::Precision precision = shader::Precision::float32);
 
 // 64-bit FNV-1a of the SPIR-V words, as 16 hex digits: which code was costed.
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv);
@@ -128,8 +135,8 @@ Measured measure_here(std::string_view family, const std::vector<Shader>& shader
 
 // Every family, each in its own process (`self` with
 // `gpucost --worker-family F --worker-dir D`), with `progress` told each
-// family as it starts. The first shader of each language must be that
-// language's baseline; rows are reported for the others.
+// family as it starts. Each language and precision's baseline must come before
+// its methods; rows are reported for the others.
 Report measure(const std::filesystem::path& self, const std::filesystem::path& manifest,
                const std::vector<std::string>& families, const std::vector<Shader>& shaders,
                const std::function<void(std::string_view family)>& progress = {});

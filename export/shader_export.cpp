@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <iterator>
 #include <mutex>
 #include <stdexcept>
 #include <tuple>
@@ -32,6 +34,14 @@ std::optional<Language> parse_language(std::string_view text) {
   if (text == "glsl") return Language::glsl;
   if (text == "hlsl") return Language::hlsl;
   if (text == "cpp") return Language::cpp;
+  return std::nullopt;
+}
+
+std::string_view to_string(Precision p) { return p == Precision::float16 ? "half" : "float"; }
+
+std::optional<Precision> parse_precision(std::string_view text) {
+  if (text == "float") return Precision::float32;
+  if (text == "half") return Precision::float16;
   return std::nullopt;
 }
 
@@ -281,6 +291,109 @@ std::string subst(std::string_view tmpl, const Ctx& c) {
   s = replace_all(s, "{INLINE}", c.lang == Language::cpp ? "inline " : "");
   s = replace_all(s, "{ENTRY}", "sglab_irradiance_" + c.id);
   return s;
+}
+
+// ---------------------------------------------------------------------------
+// Half precision: the float text of an export translated token by token.
+
+// The half type of a language: GLSL float16_t
+// (GL_EXT_shader_explicit_arithmetic_types_float16), HLSL `half` (16-bit with
+// glslang's EShMsgHlslEnable16BitTypes).
+std::string_view half_type(Language lang) { return lang == Language::glsl ? "float16_t" : "half"; }
+
+// A float literal's value rounded to binary16, written so that the shading
+// language reads exactly that half (a half is a float, whose 9 digits round
+// back to it). Throws std::invalid_argument when it is not finite in half.
+std::string half_literal(std::string_view digits, Language lang) {
+  const float f = std::strtof(std::string(digits).c_str(), nullptr);
+  const auto h = static_cast<_Float16>(f);
+  if (!std::isfinite(static_cast<float>(h)))
+    throw std::invalid_argument(fmt::format("literal {} is not finite in half (largest 65504)", digits));
+  std::string s = fmt::format("{:.9g}", static_cast<float>(h));
+  if (s.find('.') == std::string::npos) {
+    const auto e = s.find('e');
+    s.insert(e == std::string::npos ? s.size() : e, ".0");
+  }
+  return s + (lang == Language::glsl ? "hf" : "h");
+}
+
+bool ident_char(char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; }
+bool is_digit(char ch) { return std::isdigit(static_cast<unsigned char>(ch)) != 0; }
+
+// The end of the number that starts at text[i]: digits and '.', then an
+// optional exponent e[+-]digits (a suffix such as f is not part of it).
+std::size_t number_end(std::string_view text, std::size_t i) {
+  while (i < text.size() && (is_digit(text[i]) || text[i] == '.')) ++i;
+  if (i < text.size() && text[i] == 'e') {
+    ++i;
+    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+    while (i < text.size() && is_digit(text[i])) ++i;
+  }
+  return i;
+}
+
+// The HLSL intrinsics an export calls, which glslang's HLSL front end (12.0)
+// declares for float only: a half export calls {P}h_<name> (hlsl_half_prelude).
+constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2", "sqrt", "abs", "min", "max", "clamp", "dot"};
+
+// One identifier of the code translated to half: float and the vector types
+// become half types; in HLSL the intrinsics become the prelude's functions.
+std::string half_identifier(std::string_view id, bool call, const Ctx& c) {
+  const bool glsl = c.lang == Language::glsl;
+  if (id == "float") return std::string(half_type(c.lang));
+  if (id == "vec2" || id == "float2") return glsl ? "f16vec2" : "half2";
+  if (id == "vec3" || id == "float3") return glsl ? "f16vec3" : "half3";
+  if (!glsl && call && std::find(std::begin(kHlslHalfIntrinsics), std::end(kHlslHalfIntrinsics), id) !=
+                           std::end(kHlslHalfIntrinsics))
+    return c.prefix + "h_" + std::string(id);
+  return std::string(id);
+}
+
+// The code of a float export translated to half: types, f-suffixed literals
+// (rounded to half) and, in HLSL, intrinsic calls; // comments are left as
+// they are. The code uses no other float-typed construct (see kShaderMethods).
+std::string to_half_code(std::string_view text, const Ctx& c) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char ch = text[i];
+    if (ch == '/' && i + 1 < text.size() && text[i + 1] == '/') {  // comment: to the end of the line
+      const std::size_t end = std::min(text.find('\n', i), text.size());
+      out.append(text.substr(i, end - i));
+      i = end;
+    } else if (is_digit(ch) || (ch == '.' && i + 1 < text.size() && is_digit(text[i + 1]))) {
+      const std::size_t j = number_end(text, i);
+      const bool is_float = j < text.size() && text[j] == 'f' && (j + 1 == text.size() || !ident_char(text[j + 1]));
+      out += is_float ? half_literal(text.substr(i, j - i), c.lang) : std::string(text.substr(i, j - i));
+      i = is_float ? j + 1 : j;
+    } else if (ident_char(ch)) {
+      std::size_t j = i;
+      while (j < text.size() && ident_char(text[j])) ++j;
+      out += half_identifier(text.substr(i, j - i), j < text.size() && text[j] == '(', c);
+      i = j;
+    } else {
+      out += ch;
+      ++i;
+    }
+  }
+  return out;
+}
+
+// The functions an HLSL half export calls in place of the float-only
+// intrinsics: min, max, clamp, abs and dot in half arithmetic; exp, exp2 and
+// sqrt evaluated in float and rounded once to half.
+std::string hlsl_half_prelude(const Ctx& c) {
+  return subst(R"(// glslang's HLSL front end declares its intrinsics for float only: half versions.
+half {P}h_min(half a, half b) { return b < a ? b : a; }
+half {P}h_max(half a, half b) { return a < b ? b : a; }
+half {P}h_clamp(half x, half lo, half hi) { return {P}h_min({P}h_max(x, lo), hi); }
+half {P}h_abs(half x) { return x < 0.0h ? -x : x; }
+half {P}h_dot(half3 a, half3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+half {P}h_exp(half x) { return (half)exp((float)x); }
+half {P}h_exp2(half x) { return (half)exp2((float)x); }
+half {P}h_sqrt(half x) { return (half)sqrt((float)x); }
+)",
+               c);
 }
 
 // The constant names of a slot: {P}<role>_<member>, arrays <member><i>.
@@ -543,7 +656,7 @@ std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
 
 // The rational functions b_j(kappa) = num_j(kappa)/den(kappa) of an SglabAccParams set as
 // shader text: `decl` declares x, den, n0 … n{N-1}; `small_arm` (kappa < 1, Horner in kappa) and
-// `large_arm` (kappa >= 1, Horner in r = 1/kappa) assign them (sglab_models.hpp sglab_acc_rational).
+// `large_arm` (kappa >= 1, Horner in r = 1/kappa) assign them (sglab_acc.hpp sglab_acc_rational).
 // One if/else for both forms: GLSL and HLSL front ends then branch alike
 // (HLSL's ?: evaluates both arms).
 struct RationalText {
@@ -575,7 +688,7 @@ RationalText sglab_acc_rational_text(const Ctx& c, const Slots& slots) {
 }
 
 // sglab_acc<N>: b_j(kappa) = num_j(kappa)/den(kappa), for kappa >= 1 in powers of
-// 1/kappa (sglab_models.hpp sglab_acc_rational), and sum_j b_j z2^j.
+// 1/kappa (sglab_acc.hpp sglab_acc_rational), and sum_j b_j z2^j.
 std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   const RationalText r = sglab_acc_rational_text(c, slots);
   std::string products;
@@ -585,7 +698,7 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
     b.push_back(fmt::format("b{}", j));
   }
   const std::string text = fmt::format(R"(// b_j(kappa) = num_j(kappa)/den(kappa), rational of degree {} (for kappa >= 1 in powers of
-// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_models.hpp).
+// r = 1/kappa), and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp).
 {{INLINE}}float {{P}}correction(float kappa, float z2) {{
 {};
   if (kappa < 1.0f) {{
@@ -602,7 +715,7 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
 std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
 // Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
-// with sglab's fitted even correction (sglab/sglab_models.hpp). Where e^(-z^2) has underflowed
+// with sglab's fitted even correction (sglab/sglab_acc.hpp). Where e^(-z^2) has underflowed
 // the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
 // so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float kappa, float t) {
@@ -625,14 +738,14 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
-  std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_cheap.hpp
+  std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_fast.hpp
   {
     const auto all = pole_series(false);
     series.assign(all.begin(), all.begin() + 6);
   }
   return subst(fmt::format(R"(// E(1, kappa)/2 pi = (kappa - 1 + e^-kappa)/kappa^2: Taylor series below kappa = 1/4,
 // (1 - (1 - e^-kappa)/kappa)/kappa from there on, e^-kappa's argument stopped at 80
-// (sglab/sglab_cheap.hpp upper_over_two_pi_fast).
+// (sglab/sglab_fast.hpp upper_over_two_pi_fast).
 {{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
   if (kappa < 0.25f) return {0};
   float r = 1.0f / kappa;
@@ -645,7 +758,7 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   return v * v * v * (2.0f - v) + (u - 1.0f + over);
 }}
 // sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
-// k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_cheap.hpp).
+// k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_fast.hpp).
 {{INLINE}}float {{P}}fast(float cosine, float kappa) {{
   float k = min(kappa, {1});
   float inv_q = 1.0f / ({2} + k * k * k * k);
@@ -659,7 +772,65 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
                c);
 }
 
+// The half form of sglab_fast: its κ-only part (E(1, κ) and the rational A, B,
+// C, V, whose κ^4 overflows half above κ = 16) in float, the per-pixel shape in
+// half: the runtime's per-light split (sglab/sglab_fast.hpp sglab_fast_light,
+// sglab_fast_eval) with the light's four numbers rounded to half.
+std::string helper_sglab_fast_half(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  const bool glsl = c.lang == Language::glsl;
+  const std::string h(half_type(c.lang)), abs16 = glsl ? "abs" : c.prefix + "h_abs";
+  return subst(fmt::format(R"(// The C2 ramp rho(u) in half (as {{P}}ramp).
+{0} {{P}}ramp_half({0} u) {{
+  {0} over = {1}(u - {0}(1.0));
+  {0} v = {0}(0.5) * ({1}(u) - over + {0}(1.0));
+  return v * v * v * ({0}(2.0) - v) + (u - {0}(1.0) + over);
+}}
+// sglab_fast in half: a = A E(1, kappa)/Q, b, c_ramp, v = V/Q in float (kappa alone), rounded to
+// half; max(0, a + b c + c_ramp rho(v c + 1/2)) in half.
+{0} {{P}}fast_half({0} cosine, float kappa) {{
+  float k = min(kappa, {2});
+  float inv_q = 1.0f / ({3} + k * k * k * k);
+  float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
+  {0} a = {0}({4} * scale);
+  {0} b = {0}({5} * scale);
+  {0} c_ramp = {0}({6} * scale);
+  {0} v = {0}({7} * inv_q);
+  {0} s = a + b * cosine + c_ramp * {{P}}ramp_half(v * cosine + {0}(0.5));
+  return {0}(0.5) * (s + {1}(s));
+}}
+)",
+                           h, abs16, names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"),
+                           poly("c"), poly("v")),
+               c);
+}
+
 using Helper = std::string (*)(const Ctx&, const Slots&);
+
+// A method's own half form, where the translated float code would fail in
+// half: its constants and helpers stay as written (float where they say
+// float), and the body of the half entry point calls them.
+struct HalfForm {
+  std::string_view id;
+  std::string_view description;  // for the header comment
+  std::vector<Helper> helpers;
+  std::string_view body;
+};
+const std::vector<HalfForm>& half_forms() {
+  static const std::vector<HalfForm> table = {
+      {"sglab_fast",
+       "kappa-only part (E(1, kappa), the rational A, B, C, V) in float, per-pixel shape in half",
+       {helper_sglab_fast, helper_sglab_fast_half},
+       "  return {P}fast_half(cosine, float(kappa));\n"},
+  };
+  return table;
+}
+const HalfForm* find_half_form(std::string_view id) {
+  for (const HalfForm& f : half_forms())
+    if (f.id == id) return &f;
+  return nullptr;
+}
 
 // How a method uses erf: not at all, through the tier the exporter picks for
 // the model's accuracy, or through its own constant slot "erf" (the method is
@@ -778,17 +949,17 @@ const std::vector<ShaderMethod>& shader_methods() {
       {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
        [] { return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude", constants::lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
        kBodyWang2009},
-      {"sglab_fast", "sglab's cheap model: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_cheap.hpp)",
+      {"sglab_fast", "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
        [] { return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
-      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_models.hpp)",
-       [] { return Slots{{"model", named("sglab_accurate_acc1", constants::sglab_accurate_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 1, D = 2 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
-      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_models.hpp)",
-       [] { return Slots{{"model", named("sglab_accurate_acc2", constants::sglab_accurate_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 2, D = 2 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
-      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_models.hpp)",
-       [] { return Slots{{"model", named("sglab_accurate_acc3", constants::sglab_accurate_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction, N = 3, D = 3 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
        kBodySglabAcc},
   };
   return table;
@@ -906,7 +1077,7 @@ std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
                            r.decl, r.small_arm, r.large_arm, products),
                c);
 }
-// sglab_models.hpp sglab_acc_eval: the [Tokuyoshi2024] Listing 7 factor from the light's t, erfc(t)/2,
+// sglab_acc.hpp sglab_acc_eval: the [Tokuyoshi2024] Listing 7 factor from the light's t, erfc(t)/2,
 // 1/(2 sqrt(pi) t) and t^2, plus (1 - c^2) e^(-z^2) sum_j b_j z^2j (0 where e^(-z^2) underflowed).
 std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
   const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
@@ -1025,11 +1196,11 @@ std::string pixel_vsgl2015(const Ctx&, const Slots&) {
 // THE table of split forms, by method id (every other method: no split).
 const std::vector<SplitForm>& split_forms() {
   static const std::vector<SplitForm> table = [] {
-    const SplitForm t2024{"tokuyoshi2024", "sglab::Tokuyoshi2024Light<float> (sglab/irradiance.hpp tokuyoshi2024_setup)",
+    const SplitForm t2024{"tokuyoshi2024", "sglab::Tokuyoshi2024Light<float> (sglab/irradiance.hpp tokuyoshi2024_light)",
                           fields_tokuyoshi2024, kHelpers2024, light_tokuyoshi2024, pixel_tokuyoshi2024};
     const SplitForm t2022{"tokuyoshi2022", "", fields_tokuyoshi2022, kHelpers2022, light_tokuyoshi2022,
                           pixel_tokuyoshi2022};
-    const SplitForm acc{"sglab_acc", "sglab::SglabAccLight<float, N> (sglab/sglab_models.hpp sglab_acc_setup)",
+    const SplitForm acc{"sglab_acc", "sglab::SglabAccLight<float, N> (sglab/sglab_acc.hpp sglab_acc_light)",
                         fields_sglab_acc,
                         {helper_expm1, helper_erf, helper_sglab_acc_steepness, helper_poles2024},
                         light_sglab_acc, pixel_sglab_acc};
@@ -1043,7 +1214,7 @@ const std::vector<SplitForm>& split_forms() {
     for (std::string_view id : {"tokuyoshi2024", "tokuyoshi2024_refit"}) v.push_back(t2024), v.back().id = id;
     for (std::string_view id : {"tokuyoshi2022", "tokuyoshi2022_listing5", "tokuyoshi2022_refit"})
       v.push_back(t2022), v.back().id = id;
-    v.push_back({"sglab_fast", "sglab::SglabFastLight<float> (sglab/sglab_cheap.hpp sglab_fast_light)",
+    v.push_back({"sglab_fast", "sglab::SglabFastLight<float> (sglab/sglab_fast.hpp sglab_fast_light)",
                  fields_sglab_fast, {helper_sglab_fast}, light_sglab_fast, pixel_sglab_fast});
     for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"}) v.push_back(acc), v.back().id = id;
     return v;
@@ -1093,6 +1264,68 @@ void check_finite_in_float(const ConstantSet& set) {
         throw std::invalid_argument(fmt::format(
             "constant set {}: key '{}': {} is not finite in float, the precision of the exported code", set.cpp_name,
             values.size() == 1 ? "coefficients." + name : fmt::format("coefficients.{}[{}]", name, i), values[i]));
+}
+
+// A half export writes every coefficient as a half literal (methods without a
+// half form of their own): one beyond 65504 would be inf. Throws
+// std::invalid_argument naming the set and the key.
+void check_finite_in_half(const ConstantSet& set) {
+  for (const auto& [name, values] : set.members)
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(static_cast<float>(static_cast<_Float16>(static_cast<float>(values[i])))))
+        throw std::invalid_argument(fmt::format(
+            "constant set {}: key '{}': {} is not finite in half (largest 65504), the precision of the exported code",
+            set.cpp_name, values.size() == 1 ? "coefficients." + name : fmt::format("coefficients.{}[{}]", name, i),
+            values[i]));
+}
+
+// The vector form of the entry point (every export).
+constexpr std::string_view kVectorForm = R"(// Vector form: light axis v (unit), sharpness kappa, surface normal n (unit).
+{INLINE}float {ENTRY}({VEC3} axis, float sharpness, {VEC3} normal) {
+  return {ENTRY}(clamp(dot(axis, normal), -1.0f, 1.0f), sharpness);
+}
+)";
+
+// The code (after the header comment) of a half export: the float code
+// translated to half (to_half_code), or the method's own half form.
+std::string half_code(const Ctx& c, const ShaderMethod& m, const Slots& slots) {
+  const HalfForm* form = find_half_form(m.id);
+  std::string out = c.lang == Language::glsl
+                        ? "#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n\n"
+                        : hlsl_half_prelude(c) + "\n";
+  for (const auto& [role, set] : slots) {
+    if (!form) check_finite_in_half(set);
+    const std::string decls = constant_decls(c, role, set);
+    out += form ? decls : to_half_code(decls, c);
+  }
+  out += "\n";
+  if (form) {
+    for (Helper helper : form->helpers) out += helper(c, slots) + "\n";
+  } else {
+    for (Helper helper : m.helpers) out += to_half_code(helper(c, slots), c) + "\n";
+  }
+  out += to_half_code(subst("{INLINE}float {ENTRY}(float cosine, float kappa) {\n", c), c);
+  out += form ? subst(form->body, c) : to_half_code(subst(m.body, c), c);
+  out += "}\n\n";
+  out += to_half_code(subst(kVectorForm, c), c);
+  return out;
+}
+
+// The header lines of a half export: what is half and what is not.
+std::string half_header(const ShaderMethod& m, Language lang) {
+  std::string h = lang == Language::glsl
+                      ? "// Precision: half (binary16, float16_t through GL_EXT_shader_explicit_arithmetic_types_float16);\n"
+                      : "// Precision: half (binary16, `half` with 16-bit types: DXC -enable-16bit-types, glslang "
+                        "--hlsl-enable-16bit-types);\n";
+  if (const HalfForm* form = find_half_form(m.id))
+    h += fmt::format("//   the method's half form: {}.\n", form->description);
+  else
+    h += "//   every operation and constant in half.\n";
+  if (lang == Language::hlsl)
+    h += "//   glslang's HLSL intrinsics take float only: exp, exp2, sqrt run in float, rounded once to half.\n";
+  return h + "//   binary16 has 11 bits and normal values 6.1e-5 ... 65504: e^-kappa underflows above kappa ~ 17\n"
+             "//   and 1/kappa^2 overflows below kappa ~ 4e-3 wherever a method forms them, and kappa above\n"
+             "//   65504 is infinite (`sglab stability --half` measures the kappa range each method survives).\n";
 }
 
 std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }
@@ -1166,11 +1399,13 @@ ErrorBudget runtime_budget(std::string_view method) {
   return b;
 }
 
-ExportRequest standard_request(Language lang, std::string_view method) {
+ExportRequest standard_request(Language lang, std::string_view method, Precision precision) {
   ExportRequest req;
   req.lang = lang;
   req.method = std::string(method);
-  req.command = fmt::format("sglab export --lang {} --method {}", to_string(lang), method);
+  req.precision = precision;
+  req.command = fmt::format("sglab export --lang {} --method {}{}", to_string(lang), method,
+                            precision == Precision::float16 ? " --precision half" : "");
   req.budget = runtime_budget(method);
   return req;
 }
@@ -1268,6 +1503,7 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
   if (b.vulkan)
     h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device), fmt_error(b.vulkan));
   if (request.lang != Language::cpp) h += gpu_cost_line(request);
+  if (request.precision == Precision::float16) h += half_header(m, request.lang);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));
   return h;
 }
@@ -1279,12 +1515,7 @@ std::string unsplit_functions(const Ctx& c, const ShaderMethod& m, const Slots& 
   body += subst("{INLINE}float {ENTRY}(float cosine, float kappa) {\n", c);
   body += subst(m.body, c);
   body += "}\n\n";
-  body += subst(R"(// Vector form: light axis v (unit), sharpness kappa, surface normal n (unit).
-{INLINE}float {ENTRY}({VEC3} axis, float sharpness, {VEC3} normal) {
-  return {ENTRY}(clamp(dot(axis, normal), -1.0f, 1.0f), sharpness);
-}
-)",
-                c);
+  body += subst(kVectorForm, c);
   return body;
 }
 
@@ -1345,6 +1576,12 @@ ExportResult export_source(const ExportRequest& request) {
   if (request.split && !form)
     throw std::invalid_argument(fmt::format("method '{}' has no per-light split (--split); methods with one: {}",
                                             request.method, fmt::format("{}", fmt::join(split_methods(), ", "))));
+  if (request.split && request.precision == Precision::float16)
+    throw std::invalid_argument("--split with --precision half: the per-light split export is float only (its light "
+                                "struct is std430 floats filled by the float runtime); use one or the other");
+  if (request.precision == Precision::float16 && request.lang == Language::cpp)
+    throw std::invalid_argument("--precision half: the C++ export is float only (g++'s _Float16 may keep float "
+                                "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
   ExportResult result;
   result.budget = request.budget;
   const Slots slots = request_slots(request, *m, result);
@@ -1364,7 +1601,12 @@ ExportResult export_source(const ExportRequest& request) {
     result.light_floats = form->fields(slots).size();
   }
 
-  std::string body = header_comment(request, *m, slots, result, erf_set != nullptr) + "\n" + prelude(c);
+  const std::string header = header_comment(request, *m, slots, result, erf_set != nullptr);
+  if (request.precision == Precision::float16) {
+    result.source = header + "\n" + half_code(c, *m, slots);
+    return result;
+  }
+  std::string body = header + "\n" + prelude(c);
   for (const auto& [role, set] : slots) body += constant_decls(c, role, set);
   body += "\n";
   body += form ? split_functions(c, *form, slots) : unsplit_functions(c, *m, slots);
@@ -1382,7 +1624,44 @@ ExportResult export_source(const ExportRequest& request) {
   return result;
 }
 
-std::string compute_shader(Language lang, std::string_view exported, std::string_view entry) {
+namespace {
+
+// The wrapper of a half export: float buffers, converted at the call.
+std::string compute_shader_half(Language lang, std::string_view exported, std::string_view entry) {
+  if (lang == Language::glsl)
+    return fmt::format(R"(#version 450
+layout(local_size_x = 64) in;
+layout(std430, set = 0, binding = 0) readonly buffer Inputs {{ vec2 cosine_kappa[]; }};
+layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[]; }};
+
+{}
+void main() {{
+  uint i = gl_GlobalInvocationID.x;
+  if (i < uint(cosine_kappa.length()))
+    result[i] = float({}(float16_t(cosine_kappa[i].x), float16_t(cosine_kappa[i].y)));
+}}
+)",
+                       exported, entry);
+  if (lang == Language::hlsl)
+    return fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float2> cosine_kappa;
+[[vk::binding(1, 0)]] RWStructuredBuffer<float> result;
+
+{}
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {{
+  uint n, stride;
+  cosine_kappa.GetDimensions(n, stride);
+  if (id.x < n) result[id.x] = (float){}((half)cosine_kappa[id.x].x, (half)cosine_kappa[id.x].y);
+}}
+)",
+                       exported, entry);
+  throw std::invalid_argument("compute_shader: C++ is not a shader language");
+}
+
+}  // namespace
+
+std::string compute_shader(Language lang, std::string_view exported, std::string_view entry, Precision precision) {
+  if (precision == Precision::float16) return compute_shader_half(lang, exported, entry);
   if (lang == Language::glsl)
     return fmt::format(R"(#version 450
 layout(local_size_x = 64) in;

@@ -26,6 +26,17 @@ std::string_view to_string(Language lang);
 // "glsl", "hlsl", "cpp"; nullopt otherwise.
 std::optional<Language> parse_language(std::string_view text);
 
+// The arithmetic of the exported code: float (binary32), or half (binary16:
+// GLSL float16_t through GL_EXT_shader_explicit_arithmetic_types_float16, HLSL
+// `half` with glslang's 16-bit types). The half form is the float form with
+// every type, literal and constant in binary16, except where a method has a
+// half form of its own (sglab_fast: its κ-only part stays float). C++ has no
+// half export.
+enum class Precision { float32, float16 };
+std::string_view to_string(Precision p);  // "float", "half"
+// "float", "half"; nullopt otherwise.
+std::optional<Precision> parse_precision(std::string_view text);
+
 // One constant set as a method body sees it: the parameter type of
 // include/sglab/params.hpp it is (e.g. "Steepness2024Params<double>"), its
 // name in sglab/constants.hpp and its members by name (arrays as several
@@ -77,6 +88,7 @@ struct GpuCost {
 struct ExportRequest {
   Language lang = Language::glsl;
   std::string method;
+  Precision precision = Precision::float32;
   // Constant sets replacing the compiled-in set of the same cpp_type.
   std::vector<ConstantSet> overrides;
   // The exact command that produced the output, for the header comment.
@@ -127,7 +139,8 @@ std::vector<ConstantSet> method_constants(std::string_view method);
 // it only through comment_text (common/comment_text.hpp), inside // comments.
 // Throws std::invalid_argument for an unknown method, an override no constant
 // slot of the method accepts, or a coefficient that is not finite in float (the
-// precision of the exported code), naming the set and the key.
+// precision of the exported code; in half for a half export), naming the set
+// and the key, and for a C++ half export.
 ExportResult export_source(const ExportRequest& request);
 
 // The model error (double) and the C++ float error of a registered
@@ -137,7 +150,8 @@ ErrorBudget runtime_budget(std::string_view method);
 
 // The request `sglab export --lang L --method ID` makes with the compiled-in
 // constants: runtime budget filled in, command written out.
-ExportRequest standard_request(Language lang, std::string_view method);
+// With `precision` half: `sglab export ... --precision half`.
+ExportRequest standard_request(Language lang, std::string_view method, Precision precision = Precision::float32);
 
 // The measured error of one tier's elementary functions (cached).
 ElementaryError measure_elementary(std::string_view tier_id);
@@ -149,8 +163,11 @@ ElementaryTier choose_tier(std::optional<double> model_error);
 // The sweep-grid wrapper: a compute shader (GLSL) or compute entry point
 // `main` (HLSL) reading float2 (cosine, kappa) from binding 0 and writing the
 // method's value to binding 1, both storage buffers of set 0, 64 threads per
-// group. Used by the Vulkan backend of `sglab sweep`.
-std::string compute_shader(Language lang, std::string_view exported_source, std::string_view entry_point);
+// group. Used by the Vulkan backend of `sglab sweep`. For a half export the
+// buffers stay float: the wrapper converts (cosine, kappa) to half before the
+// call and the result back to float after it.
+std::string compute_shader(Language lang, std::string_view exported_source, std::string_view entry_point,
+                           Precision precision = Precision::float32);
 
 // The wrapper of a split export's per-pixel function: binding 0 holds the
 // cosines (float), binding 2 the lights (the export's struct, std430), binding

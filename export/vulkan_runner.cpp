@@ -24,7 +24,8 @@ void init_glslang() {
 
 }  // namespace
 
-std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source) {
+std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source,
+                                           shader::Precision precision) {
   if (lang == shader::Language::cpp) throw CompileError("C++ is not a shader language");
   init_glslang();
   const bool hlsl = lang == shader::Language::hlsl;
@@ -39,8 +40,10 @@ std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_vi
     sh.setEntryPoint("main");
     sh.setSourceEntryPoint("main");
   }
-  const auto messages =
-      static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? EShMsgReadHlsl : EShMsgDefault));
+  const bool half16 = hlsl && precision == shader::Precision::float16;
+  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules |
+                                                 (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
+                                                 (half16 ? EShMsgHlslEnable16BitTypes : EShMsgDefault));
   if (!sh.parse(GetDefaultResources(), hlsl ? 100 : 450, false, messages))
     throw CompileError(fmt::format("{} compile failed:\n{}{}", shader::to_string(lang), sh.getInfoLog(),
                                    sh.getInfoDebugLog()));
@@ -57,14 +60,17 @@ std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_vi
   return spirv;
 }
 
-void check_compiles(shader::Language lang, std::string_view exported_source) {
+void check_compiles(shader::Language lang, std::string_view exported_source, shader::Precision precision) {
   // An export defines functions only; it is checked inside the compute
   // shader that calls its scalar entry point.
-  const auto pos = exported_source.find("float sglab_irradiance_");
+  const std::string type = precision == shader::Precision::float16
+                               ? (lang == shader::Language::glsl ? "float16_t " : "half ")
+                               : "float ";
+  const auto pos = exported_source.find(type + "sglab_irradiance_");
   if (pos == std::string_view::npos) throw CompileError("no sglab_irradiance_ entry point in the source");
   const auto end = exported_source.find('(', pos);
-  const std::string entry(exported_source.substr(pos + 6, end - pos - 6));
-  compile_compute(lang, shader::compute_shader(lang, exported_source, entry));
+  const std::string entry(exported_source.substr(pos + type.size(), end - pos - type.size()));
+  compile_compute(lang, shader::compute_shader(lang, exported_source, entry, precision), precision);
 }
 
 // ---------------------------------------------------------------------------
@@ -159,6 +165,7 @@ struct Device::Impl {
   std::string name;
   std::string driver_name, driver_info;
   bool statistics = false;  // VK_KHR_pipeline_executable_properties enabled
+  bool float16 = false;     // shaderFloat16 (VK_KHR_shader_float16_int8) enabled
   PFN_vkGetPipelineExecutablePropertiesKHR get_executable_properties = nullptr;
   PFN_vkGetPipelineExecutableStatisticsKHR get_executable_statistics = nullptr;
   PFN_vkGetPipelineExecutableInternalRepresentationsKHR get_executable_representations = nullptr;
@@ -289,6 +296,23 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
   constexpr const char* kStatistics = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
   d.statistics = std::any_of(extensions.begin(), extensions.end(),
                              [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, kStatistics) == 0; });
+  const auto has_extension = [&](const char* name) {
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+  };
+  // Half arithmetic in shaders, where offered (lavapipe and RADV do).
+  auto float16_feature =
+      make<VkPhysicalDeviceShaderFloat16Int8FeaturesKHR>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES_KHR);
+  constexpr const char* kFloat16 = VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME;
+  if (has_extension(kFloat16)) {
+    auto features2 = make<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    features2.pNext = &float16_feature;
+    vkGetPhysicalDeviceFeatures2(d.physical, &features2);
+    d.float16 = float16_feature.shaderFloat16 == VK_TRUE;
+    float16_feature = make<VkPhysicalDeviceShaderFloat16Int8FeaturesKHR>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES_KHR);
+    float16_feature.shaderFloat16 = VK_TRUE;
+  }
   const float priority = 1.0f;
   auto qci = make<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
   qci.queueFamilyIndex = d.queue_family;
@@ -300,11 +324,19 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
   auto dci = make<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
+  std::vector<const char*> enabled;
   if (d.statistics) {
+    statistics_feature.pNext = const_cast<void*>(dci.pNext);
     dci.pNext = &statistics_feature;
-    dci.enabledExtensionCount = 1;
-    dci.ppEnabledExtensionNames = &kStatistics;
+    enabled.push_back(kStatistics);
   }
+  if (d.float16) {
+    float16_feature.pNext = const_cast<void*>(dci.pNext);
+    dci.pNext = &float16_feature;
+    enabled.push_back(kFloat16);
+  }
+  dci.enabledExtensionCount = static_cast<std::uint32_t>(enabled.size());
+  dci.ppEnabledExtensionNames = enabled.empty() ? nullptr : enabled.data();
   if (VkResult r = vkCreateDevice(d.physical, &dci, nullptr, &d.device); r != VK_SUCCESS)
     throw Unavailable(fmt::format("vkCreateDevice on {} returned {}", d.name, static_cast<int>(r)));
   vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
@@ -325,6 +357,7 @@ std::string Device::name() const { return impl_->name; }
 std::string Device::driver_name() const { return impl_->driver_name; }
 std::string Device::driver_info() const { return impl_->driver_info; }
 bool Device::has_pipeline_statistics() const { return impl_->statistics; }
+bool Device::has_float16() const { return impl_->float16; }
 
 std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& pairs) {
   if (pairs.empty() || pairs.size() % 2) throw std::invalid_argument("Device::run: need a non-empty list of pairs");
@@ -480,7 +513,11 @@ std::vector<std::pair<std::string, std::string>> Device::pipeline_representation
 }
 
 std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
-                                            shader::Language lang, Device& device, bool keep_points) {
+                                            shader::Language lang, Device& device, bool keep_points,
+                                            shader::Precision precision) {
+  const bool half = precision == shader::Precision::float16;
+  if (half && !device.has_float16())
+    throw Unavailable(fmt::format("{} offers no half arithmetic in shaders (shaderFloat16)", device.name()));
   const auto exportable = shader::exportable_methods();
   std::vector<float> pairs;
   pairs.reserve(2 * r.kappas.size() * r.cosines.size());
@@ -497,12 +534,16 @@ std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<
       skipped.push_back(fmt::format("{} ({})", id, to_string(sm.quantity)));
       continue;
     }
-    const shader::ExportResult ex = shader::export_source(shader::standard_request(lang, id));
-    const auto spirv = compile_compute(lang, shader::compute_shader(lang, ex.source, ex.entry_point));
+    const shader::ExportResult ex = shader::export_source(shader::standard_request(lang, id, precision));
+    const auto spirv =
+        compile_compute(lang, shader::compute_shader(lang, ex.source, ex.entry_point, precision), precision);
     const std::vector<float> out = device.run(spirv, pairs);
     const std::vector<double> values(out.begin(), out.end());
-    r.entries.push_back(sweep_entry(r, sm, lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_hlsl : validate::FloatFormat::vulkan,
-                                    values, keep_points));
+    const bool hlsl = lang == shader::Language::hlsl;
+    const validate::FloatFormat format =
+        half ? (hlsl ? validate::FloatFormat::vulkan_hlsl_half : validate::FloatFormat::vulkan_half)
+             : (hlsl ? validate::FloatFormat::vulkan_hlsl : validate::FloatFormat::vulkan);
+    r.entries.push_back(sweep_entry(r, sm, format, values, keep_points));
   }
   return skipped;
 }

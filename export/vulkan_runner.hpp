@@ -29,13 +29,16 @@ struct CompileError : std::runtime_error {
 };
 
 // GLSL (#version 450) or HLSL (entry point `main`) compute shader → SPIR-V 1.0
-// for Vulkan 1.0. Throws CompileError with the info log.
-std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source);
+// for Vulkan 1.0; HLSL with `precision` half is read with 16-bit types (`half`
+// is binary16). Throws CompileError with the info log.
+std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source,
+                                           shader::Precision precision = shader::Precision::float32);
 
 // Checks that a shader-language export compiles on its own: GLSL as a
 // compute-stage translation unit (it has no main, so parse only), HLSL
 // likewise through the HLSL front end. Throws CompileError with the log.
-void check_compiles(shader::Language lang, std::string_view exported_source);
+void check_compiles(shader::Language lang, std::string_view exported_source,
+                    shader::Precision precision = shader::Precision::float32);
 
 // One statistic the driver's shader compiler reports for a pipeline
 // (VK_KHR_pipeline_executable_properties), e.g. RADV/ACO's "Instructions",
@@ -62,6 +65,9 @@ class Device {
   // Whether pipeline_statistics() is available (the device offers
   // VK_KHR_pipeline_executable_properties).
   bool has_pipeline_statistics() const;
+  // Whether half arithmetic in shaders (shaderFloat16 of
+  // VK_KHR_shader_float16_int8) is offered, and so enabled on this device.
+  bool has_float16() const;
 
   // Builds the compute pipeline of `spirv` (the layout run() uses) and returns
   // the integer statistics of its compute executable, in the driver's order.
@@ -97,8 +103,11 @@ class Device {
 // with its compiled-in constants (exactly what `sglab export --lang L --method
 // ID` prints), compiled with glslang and run on `device` over r's grid.
 // Returns the ids that were skipped because they cannot be exported.
+// With `precision` half: the half exports (`--precision half`), as `vulkan_half`
+// / `vulkan_hlsl_half`; throws Unavailable when the device has no shaderFloat16.
 std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
-                                            shader::Language lang, Device& device, bool keep_points = true);
+                                            shader::Language lang, Device& device, bool keep_points = true,
+                                            shader::Precision precision = shader::Precision::float32);
 
 // The lights of a split export for the given kappas, light_floats floats
 // each, from its sglab_light_<ID> run on `device` (shader::light_compute_shader).

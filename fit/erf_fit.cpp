@@ -124,7 +124,7 @@ std::vector<double> taylor_small(std::size_t n) {
   double fact = 1;
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0) fact *= static_cast<double>(k);
-    c.push_back((k % 2 ? -1.0 : 1.0) * 2 / std::sqrt(pi_v<double>()) / (fact * (2 * k + 1)));
+    c.push_back((k % 2 ? -1.0 : 1.0) * 2 / std::sqrt(pi_v<double>()) / (fact * static_cast<double>(2 * k + 1)));
   }
   return c;
 }

@@ -7,6 +7,8 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -28,7 +30,7 @@ struct MethodCosts {
 };
 
 struct FitSpec {
-  std::string target;                   // clamped-cosine | steepness2022 | steepness2024 | erf | lambda-d
+  std::string target;                   // a name of fit_targets()
   WorkingPrecision precision = WorkingPrecision::single;
   std::string objective;                // target-specific; empty = the target's default
   bool alpha_free = false;              // clamped-cosine: α free instead of tied by energy conservation
@@ -38,7 +40,7 @@ struct FitSpec {
   std::optional<double> max_error;      // model order: the error budget
   bool cold_start = false;              // sglab-fast: ignore the committed set as a warm start
   std::string command;                  // the command line, recorded in provenance
-  MethodCosts costs;                    // sglab-accurate: the cost column of its report
+  MethodCosts costs;                    // sglab-acc: the cost column of its report
 };
 
 struct FitOutcome {
@@ -67,10 +69,10 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec);
 FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
-FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab's cheap model (fit/sglab_cheap.cpp)
-FitOutcome fit_sglab_accurate(const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
+FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
+FitOutcome fit_sglab_acc(const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
 
-// The core of the sglab-accurate fit, exposed for tests: minimax of the
+// The core of the sglab-acc fit, exposed for tests: minimax of the
 // peak_rel error of SglabAccParams<double, terms, degree> on `samples`, from
 // `start` = steep[5], num[terms(degree+1)], den[degree] (den > 0).
 struct SglabAccSample {
@@ -81,7 +83,7 @@ struct SglabAccFit {
   double max_abs = 0;          // max peak_rel on the samples
   bool converged = false;
 };
-SglabAccFit fit_sglab_accurate_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
+SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
                                             const std::vector<SglabAccSample>& samples);
 
 // t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
@@ -89,8 +91,31 @@ SglabAccFit fit_sglab_accurate_coefficients(std::size_t terms, std::size_t degre
 // ("steepness2024") — the dots of [Tokuyoshi2022] supplementary Fig. 2.
 std::vector<double> optimal_steepness(const std::string& target, const std::vector<double>& kappas);
 
+// One `fit all` run of a target: its objective (empty: the default), α
+// tie and working precision.
+struct FitAllRun {
+  std::string_view objective;
+  bool alpha_free;
+  std::string_view precision;
+};
+
+// The `sglab fit` targets, one row each: every place that lists targets (the
+// dispatch, the CLI's help and option checks, `fit all`) reads this table.
+struct FitTarget {
+  std::string_view name;
+  FitOutcome (*fit)(const FitSpec&);
+  std::string_view help;  // one line for `sglab fit --help`
+  // The options the target takes; any other is refused, never ignored.
+  bool precision, objective, kappa, max_error, alpha_free, cold_start, costs;
+  std::span<const FitAllRun> all;  // the runs of `fit all`, in order
+};
+std::span<const FitTarget> fit_targets();
+// The row of `name`, nullptr when there is none.
+const FitTarget* find_fit_target(std::string_view name);
+// "clamped-cosine, steepness2022, …" for messages and help.
+std::string fit_target_names();
+
 // Dispatch by spec.target; throws std::invalid_argument for an unknown target or objective.
 FitOutcome run_fit(const FitSpec& spec);
-const std::vector<std::string>& fit_targets();
 
 }  // namespace sglab::fit

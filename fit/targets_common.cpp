@@ -75,22 +75,52 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target, c
   return set;
 }
 
-const std::vector<std::string>& fit_targets() {
-  static const std::vector<std::string> targets = {"clamped-cosine", "steepness2022", "steepness2024", "erf",
-                                                   "lambda-d",       "sglab-fast",    "sglab-accurate"};
-  return targets;
+namespace {
+
+constexpr FitAllRun kClampedCosineAll[] = {
+    {"", false, "half"}, {"", false, "float"}, {"", false, "double"}, {"", true, "float"}};
+constexpr FitAllRun kSteepnessAll[] = {{"optimal-t", false, "float"}, {"irradiance", false, "float"}};
+constexpr FitAllRun kDefaultAll[] = {{"", false, "float"}};
+
+// name, fitter, help; precision, objective, kappa, max_error, alpha_free, cold_start, costs; fit all
+constexpr FitTarget kTargets[] = {
+    {"clamped-cosine", fit_clamped_cosine, "λ, α of max(cos θ, 0) ≈ α(e^{λ cos θ} − 1) ([Tokuyoshi2022] Listing 1)",
+     true, true, true, false, true, false, false, kClampedCosineAll},
+    {"steepness2022", fit_steepness, "rational steepness t(κ) of [Tokuyoshi2022] Eq. 5/6 (optimal-t | irradiance)",
+     false, true, true, true, false, false, false, kSteepnessAll},
+    {"steepness2024", fit_steepness, "rational steepness t(κ) of [Tokuyoshi2024] (optimal-t | irradiance)",
+     false, true, true, true, false, false, false, kSteepnessAll},
+    {"erf", fit_erf, "erf approximations (listing5 | as7125)",
+     true, true, false, true, false, false, false, kDefaultAll},
+    // --kappa only with --objective irradiance: checked by the CLI
+    {"lambda-d", fit_lambda_d, "diffuse SG sharpness λd (sphere-ls | hemisphere-ls | free-amplitude | irradiance)",
+     false, true, true, false, false, false, false, kDefaultAll},
+    {"sglab-fast", fit_sglab_fast, "sglab_fast's rational coefficients", false, false, true, false, false, true, false,
+     kDefaultAll},
+    // --kappa with --max-error: the model order for a range
+    {"sglab-acc", fit_sglab_acc, "the sglab_acc ladder, or with --max-error the smallest member meeting it",
+     false, false, true, true, false, false, true, kDefaultAll},
+};
+
+}  // namespace
+
+std::span<const FitTarget> fit_targets() { return kTargets; }
+
+const FitTarget* find_fit_target(std::string_view name) {
+  for (const auto& t : kTargets)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+std::string fit_target_names() {
+  std::string list;
+  for (const auto& t : kTargets) list += fmt::format("{}{}", list.empty() ? "" : ", ", t.name);
+  return list;
 }
 
 FitOutcome run_fit(const FitSpec& spec) {
-  if (spec.target == "clamped-cosine") return fit_clamped_cosine(spec);
-  if (spec.target == "steepness2022" || spec.target == "steepness2024") return fit_steepness(spec);
-  if (spec.target == "lambda-d") return fit_lambda_d(spec);
-  if (spec.target == "erf") return fit_erf(spec);
-  if (spec.target == "sglab-fast") return fit_sglab_fast(spec);
-  if (spec.target == "sglab-accurate") return fit_sglab_accurate(spec);
-  std::string known;
-  for (const auto& t : fit_targets()) known += (known.empty() ? "" : ", ") + t;
-  throw std::invalid_argument(fmt::format("unknown fit target '{}' (known: {}, all)", spec.target, known));
+  if (const FitTarget* t = find_fit_target(spec.target)) return t->fit(spec);
+  throw std::invalid_argument(fmt::format("unknown fit target '{}' (known: {}, all)", spec.target, fit_target_names()));
 }
 
 }  // namespace sglab::fit

@@ -262,12 +262,12 @@ TEST(LightSplit, EvalOfSetupEqualsPlainFloat) {
 
 TEST(LightSplit, Tokuyoshi2024SetupHoldsSteepnessAndPoles) {
   for (double kappa : {0.0, 1e-3, 0.5, 1.0, 4.0, 1e4}) {
-    const auto light = sglab::tokuyoshi2024_setup(kappa);
+    const auto light = sglab::tokuyoshi2024_light(kappa);
     EXPECT_EQ(light.t, sglab::steepness2024(kappa));
     EXPECT_EQ(light.upper, sglab::irradiance_upper_over_two_pi(kappa));
     EXPECT_EQ(light.lower, sglab::irradiance_lower_over_two_pi(kappa));
     for (double c : {-1.0, 0.0, 0.3, 1.0})
-      EXPECT_EQ(sglab::tokuyoshi2024_evaluate(light, c), sglab::irradiance_tokuyoshi2024(c, kappa));
+      EXPECT_EQ(sglab::tokuyoshi2024_eval(light, c), sglab::irradiance_tokuyoshi2024(c, kappa));
   }
 }
 

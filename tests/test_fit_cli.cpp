@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/constants_io.hpp"
+#include "fit/targets.hpp"
 #include "common/io.hpp"
 #include "tests/test_support.hpp"
 
@@ -105,6 +106,8 @@ TEST(FitCli, OptionsThatDoNotApplyAreRefused) {
       {"fit", "lambda-d", "--max-error", "1e-3"},
       {"fit", "all", "--objective", "irradiance"},
       {"fit", "all", "--precision", "double"},
+      {"fit", "erf", "--cold-start"},
+      {"fit", "clamped-cosine", "--costs", "costs.json"},
   };
   for (auto args : refused) {
     args.push_back("--dry-run");
@@ -117,6 +120,20 @@ TEST(FitCli, OptionsThatDoNotApplyAreRefused) {
   // Where it applies, the same option is accepted.
   const auto r = run_sglab({"fit", "lambda-d", "--objective", "irradiance", "--kappa", "1:10", "--dry-run", "--json"}, false);
   EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// The help lists every target of the one target table, and nothing is
+// dispatched that the table does not hold.
+TEST(FitCli, HelpListsEveryTargetOfTheTable) {
+  const auto help = run_sglab({"fit", "--help"}, false);
+  ASSERT_EQ(help.exit_code, 0) << help.output;
+  for (const auto& t : sglab::fit::fit_targets()) {
+    EXPECT_NE(help.output.find(std::string(t.name)), std::string::npos) << t.name;
+    EXPECT_FALSE(t.all.empty()) << t.name << " has no `fit all` run";
+  }
+  const auto r = run_sglab({"fit", "no-such-target", "--dry-run"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(sglab::fit::fit_target_names()), std::string::npos) << r.output;
 }
 
 TEST(FitCli, DryRunSaysNothingWasWritten) {
@@ -148,7 +165,7 @@ TEST(FitCli, ForeignFilesInTheOutputFolderAreSkippedAndNamed) {
       {"r.json", ""},
       {"costs.json", slurp(kRoot / "data" / "results" / "costs.json")},
       {"notes.json", "[1, 2]"},
-      {"partial.json", "sglab-accurate model order, kappa in [2, 50]\n"}};
+      {"partial.json", "sglab-acc model order, kappa in [2, 50]\n"}};
   for (const auto& [name, text] : foreign) std::ofstream(out / name, std::ios::binary) << text;
   const auto r = run_sglab(quick_fit({"--out", out.string(), "--force", "--json"}), false);
   ASSERT_EQ(r.exit_code, 0) << r.output;

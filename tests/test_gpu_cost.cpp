@@ -184,7 +184,7 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
     if (row.lang != shader::Language::hlsl) continue;
     const std::int64_t g = glsl.at({row.family, row.method}), h = row.stats.inverse_throughput;
     EXPECT_GT(g, 0) << row.family << " " << row.method;
-    EXPECT_LE(std::abs(h - g), 0.05 * g) << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h
+    EXPECT_LE(static_cast<double>(std::abs(h - g)), 0.05 * static_cast<double>(g)) << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h
                                          << " cycles";
   }
 }

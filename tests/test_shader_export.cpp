@@ -336,7 +336,7 @@ sglab::test::CommandResult compile_cpp(const std::string& source, const fs::path
 // its comments (no line outside a comment carries the payload) and compiles.
 TEST(ShaderExport, ConstantsTextCannotLeaveTheComments) {
   sglab::test::TempDir dir("export_injection");
-  nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-accurate-acc1.json");
+  nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-acc-acc1.json");
   j["provenance"]["objective"] = "x\n#error INJECTED_OBJECTIVE\n//";
   j["provenance"]["command"] = "x\nfloat INJECTED_COMMAND = 1.0;\n//";
   j["provenance"]["date"] = "x\r\n#error INJECTED_DATE\r\n//";
@@ -369,7 +369,7 @@ TEST(ShaderExport, ConstantsTextCannotLeaveTheComments) {
 // duplicated key is refused (it is not "last one wins"), naming the file.
 TEST(ShaderExport, ConstantsWithADuplicateKeyAreRefused) {
   sglab::test::TempDir dir("export_duplicate");
-  const std::string text = read_json(kConstantsDir / "sglab-accurate-acc1.json").dump(2);
+  const std::string text = read_json(kConstantsDir / "sglab-acc-acc1.json").dump(2);
   const fs::path file = dir.path / "duplicate.json";
   std::ofstream(file) << "{\n  \"cpp_name\": \"first_of_two\"," << text.substr(1);
   const auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc1", "--constants", file.string()});
@@ -397,7 +397,7 @@ TEST(ShaderExport, CoefficientNotFiniteInFloatIsRefused) {
   for (const Case& c : {Case{1e308, 2, sh::Language::glsl}, Case{1e308, 2, sh::Language::cpp},
                         Case{-1e308, 2, sh::Language::hlsl}, Case{std::nextafter(overflow, 0.0), 0, sh::Language::glsl},
                         Case{std::nextafter(overflow, INFINITY), 2, sh::Language::glsl}}) {
-    nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-accurate-acc1.json");
+    nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-acc-acc1.json");
     j["coefficients"]["num"][1] = c.value;
     const fs::path file = dir.path / "overflow.json";
     std::ofstream(file) << j.dump(2);
@@ -804,7 +804,7 @@ TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
 // is [Tokuyoshi2024] with the set's steepness, computed here by the runtime.
 TEST(ShaderExport, SglabAccConstantsOverride) {
   const fs::path dir = temp_dir("sglab_acc_override");
-  const fs::path src = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-accurate-acc3.json";
+  const fs::path src = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc3.json";
   nlohmann::ordered_json j = nlohmann::ordered_json::parse(std::ifstream(src));
   for (auto& x : j["coefficients"]["num"]) x = 0.0;
   j["cpp_name"] = "sglab_acc3_no_correction";
@@ -831,7 +831,7 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
   ASSERT_TRUE(acc3);
   EXPECT_GT(deviation(*acc3, g, values).exported, 1e-4);
   // A set of another SglabAccParams shape is refused, naming its type.
-  const fs::path acc1 = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-accurate-acc1.json";
+  const fs::path acc1 = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc1.json";
   const auto bad = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--constants", acc1.string()});
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 2>"), std::string::npos) << bad.output;
@@ -907,6 +907,26 @@ TEST(ShaderExport, SplitFormsAndRefusals) {
             std::string::npos);
   EXPECT_NE(ok.output.find("Produced by: sglab export --lang hlsl --method sglab_acc3 --split"), std::string::npos);
   EXPECT_NE(ok.output.find("std430"), std::string::npos);
+}
+
+// The split export is float only: split with half precision is refused by the
+// library (invalid_argument), by `sglab export` and by `sglab gpucost --form
+// split --precision half` (exit 2, naming both options); the half export alone
+// and the float split alone still work.
+TEST(ShaderExport, SplitWithHalfIsRefused) {
+  sh::ExportRequest request = sh::standard_request(sh::Language::glsl, "sglab_acc3", sh::Precision::float16);
+  request.split = true;
+  EXPECT_THROW(sh::export_source(request), std::invalid_argument);
+  request.split = false;
+  EXPECT_NO_THROW(sh::export_source(request));
+  auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--split", "--precision", "half"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--split with --precision half"), std::string::npos) << r.output;
+  r = run_sglab({"gpucost", "--families", "navi21", "--method", "sglab_acc3", "--form", "split", "--precision", "half"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--form split with --precision half"), std::string::npos) << r.output;
+  r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--split"}, false);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
 // glslang compiles every split export, GLSL and HLSL, in both of its

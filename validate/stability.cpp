@@ -812,4 +812,65 @@ Table stability_findings_table(const StabilityReport& report) {
   return t;
 }
 
+namespace {
+
+// What half does at one κ of the grid: "" (survived), or the first of nan, inf,
+// negative, off (beyond the tolerance) over the cosines; and the largest
+// finite |E_half − E_float|/E(1, κ).
+struct HalfAtKappa {
+  std::string failure;
+  double diff = 0;
+};
+HalfAtKappa half_at_kappa(const SweepResult& r, const SweepEntry& f, const SweepEntry& h, std::size_t k,
+                          double tolerance) {
+  HalfAtKappa out;
+  const double peak = r.peak_value(f.quantity, k);
+  for (std::size_t j = 0; j < r.cosines.size(); ++j) {
+    const double x = h.values[r.index(k, j)], y = f.values[r.index(k, j)];
+    const double d = std::abs(x - y) / peak;
+    std::string why = std::isnan(x) ? "nan" : std::isinf(x) ? "inf" : x < 0 ? "negative" : !(d <= tolerance) ? "off" : "";
+    if (std::isfinite(d)) out.diff = std::max(out.diff, d);
+    if (out.failure.empty()) out.failure = std::move(why);
+  }
+  return out;
+}
+
+}  // namespace
+
+Table half_ranges_table(const SweepResult& r, double tolerance) {
+  Table t(fmt::format("Half precision: κ range each method's half export survives on the device (every cosine finite, "
+                      "non-negative and within {:g} of its float export, relative to E(1, κ))",
+                      tolerance),
+          {{"method"}, {"survives_kappa_lo", 4}, {"survives_kappa_hi", 4}, {"fails_below_kappa", 4}, {"below"},
+           {"fails_above_kappa", 4}, {"above"}, {"max_diff_in_range", 3}, {"max_diff_grid", 3}});
+  for (const SweepEntry& h : r.entries) {
+    if (h.precision != FloatFormat::vulkan_half) continue;
+    const SweepEntry* f = r.find(h.method, h.quantity, FloatFormat::vulkan);
+    if (!f || f->values.size() != h.values.size()) continue;
+    std::vector<HalfAtKappa> at;
+    for (std::size_t k = 0; k < r.kappas.size(); ++k) at.push_back(half_at_kappa(r, *f, h, k, tolerance));
+    // The largest run of survived κ (the first, on ties).
+    std::size_t best_lo = 0, best_len = 0;
+    for (std::size_t k = 0; k < at.size();) {
+      std::size_t e = k;
+      while (e < at.size() && at[e].failure.empty()) ++e;
+      if (e - k > best_len) best_lo = k, best_len = e - k;
+      k = e == k ? k + 1 : e;
+    }
+    double in_range = 0, grid = 0;
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      grid = std::max(grid, at[k].diff);
+      if (k >= best_lo && k < best_lo + best_len) in_range = std::max(in_range, at[k].diff);
+    }
+    const bool any = best_len > 0, below = any && best_lo > 0, above = any && best_lo + best_len < at.size();
+    t.add_row({Table::text(h.method), Table::real(any ? r.kappas[best_lo] : kNaN),
+               Table::real(any ? r.kappas[best_lo + best_len - 1] : kNaN),
+               Table::real(below ? r.kappas[best_lo - 1] : kNaN), Table::text(below ? at[best_lo - 1].failure : "-"),
+               Table::real(above ? r.kappas[best_lo + best_len] : kNaN),
+               Table::text(above ? at[best_lo + best_len].failure : "-"), Table::real(any ? in_range : kNaN),
+               Table::real(grid)});
+  }
+  return t;
+}
+
 }  // namespace sglab::validate

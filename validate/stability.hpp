@@ -125,4 +125,15 @@ Table stability_table(const StabilityReport& report);
 // Only the rows with failures, with a one-line summary of each.
 Table stability_findings_table(const StabilityReport& report);
 
+// Where half precision fails, per method: from a sweep holding each method's
+// float export and its half export run on a device (`vulkan` and
+// `vulkan_half` entries; `sglab stability --half`), a κ is survived when every
+// cosine's half value is finite, non-negative and within `tolerance` of the
+// float export's, relative to the peak E(1, κ). Columns: method, the largest
+// run of survived κ of the grid (lo, hi), the nearest failing κ below and above
+// it with what failed there (nan, inf, negative, off), the largest
+// |E_half − E_float|/E(1, κ) inside the run and over the whole grid.
+inline constexpr double kHalfTolerance = 1e-2;
+Table half_ranges_table(const SweepResult& r, double tolerance = kHalfTolerance);
+
 }  // namespace sglab::validate

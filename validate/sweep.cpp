@@ -25,6 +25,8 @@ std::string_view to_string(Quantity q) {
   return "?";
 }
 
+bool is_device_format(FloatFormat f) { return f != FloatFormat::binary32 && f != FloatFormat::binary64; }
+
 std::string_view to_string(FloatFormat f) {
   switch (f) {
     case FloatFormat::binary32:
@@ -35,6 +37,10 @@ std::string_view to_string(FloatFormat f) {
       return "vulkan";
     case FloatFormat::vulkan_hlsl:
       return "vulkan_hlsl";
+    case FloatFormat::vulkan_half:
+      return "vulkan_half";
+    case FloatFormat::vulkan_hlsl_half:
+      return "vulkan_hlsl_half";
     case FloatFormat::vulkan_split:
       return "vulkan_split";
     case FloatFormat::vulkan_hlsl_split:
@@ -42,8 +48,6 @@ std::string_view to_string(FloatFormat f) {
   }
   return "?";
 }
-
-bool is_device_format(FloatFormat f) { return f != FloatFormat::binary32 && f != FloatFormat::binary64; }
 
 void SweepGrid::validate() const {
   constexpr double flt_max = std::numeric_limits<float>::max();

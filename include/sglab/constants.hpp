@@ -192,44 +192,44 @@ inline constexpr Meder2018Params<double> meder2018_published{
     .sharpness = 0.0315,
     .offset = 31.7003};
 
-// sglab-accurate / acc1: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
+// sglab-acc / acc1: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
 //   objective: minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) on a training grid of 72 kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 offset cosines, c = +-z_k/t, z_k = 0.1..3.1), 3020 points in all, kappa in [0.001, 10000]
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":29,"cosine_count":41}
 //   achieved: {"objective":0.00024062036727001552,"standard_grid":"29 kappa x 41 cosines","standard_max_peak_rel_float":0.00024376308709638512,"standard_max_peak_rel_double":0.000243767647030963,"held_out_grid":"200 kappa x 401 cosines, never used in fitting","held_out_max_peak_rel_float":0.0002465976127537536,"held_out_max_peak_rel_double":0.0002465248490276505,"extra_operations_vs_tokuyoshi2024":"setup 6 (one division), eval 4 multiply-adds"}
-//   command: sglab fit sglab-accurate
+//   command: sglab fit sglab-acc
 //   tool: sglab 0.1.0
 //   date: 2026-12-01
-inline constexpr SglabAccParams<double, 1, 2> sglab_accurate_acc1{
+inline constexpr SglabAccParams<double, 1, 2> sglab_acc_acc1{
     .steep = {5.391420863251596, 2.1486307114572663, 2.1170705402573233, 26.00339859444978, 2.1293261943176278e-19},
     .num = {0.674322222928594, 0.12145936301292315, -0.00025187145345655846},
     .den = {54.42757333765419, 1.1636964215762719e-20}};
 
-// sglab-accurate / acc2: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
+// sglab-acc / acc2: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
 //   objective: minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) on a training grid of 72 kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 offset cosines, c = +-z_k/t, z_k = 0.1..3.1), 3020 points in all, kappa in [0.001, 10000]
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":29,"cosine_count":41}
 //   achieved: {"objective":7.09337075763983e-05,"standard_grid":"29 kappa x 41 cosines","standard_max_peak_rel_float":7.409545908886239e-05,"standard_max_peak_rel_double":7.409956896464341e-05,"held_out_grid":"200 kappa x 401 cosines, never used in fitting","held_out_max_peak_rel_float":7.48088700889893e-05,"held_out_max_peak_rel_double":7.480976028846471e-05,"extra_operations_vs_tokuyoshi2024":"setup 9 (one division), eval 5 multiply-adds"}
-//   command: sglab fit sglab-accurate
+//   command: sglab fit sglab-acc
 //   tool: sglab 0.1.0
 //   date: 2026-12-01
-inline constexpr SglabAccParams<double, 2, 2> sglab_accurate_acc2{
+inline constexpr SglabAccParams<double, 2, 2> sglab_acc_acc2{
     .steep = {252.87934616779393, 2021.76599626292, 211.95554616320032, 863.7192731433256, 7257.300963047347},
     .num = {-0.015075245148764379, 0.3191119005726582, -3.0014983777823847e-05, 0.083011174396814, 0.05240798892898569, -0.00019431087328047005},
     .den = {23.680396348447093, 3.015943468936063}};
 
-// sglab-accurate / acc3: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
+// sglab-acc / acc3: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = (num[j*(D+1)] + ... + num[j*(D+1)+D]*kappa^D)/(den[0] + ... + den[D-1]*kappa^(D-1) + kappa^D)
 //   objective: minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) on a training grid of 72 kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 offset cosines, c = +-z_k/t, z_k = 0.1..3.1), 3020 points in all, kappa in [0.001, 10000]
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":29,"cosine_count":41}
 //   achieved: {"objective":2.9868422910892788e-05,"standard_grid":"29 kappa x 41 cosines","standard_max_peak_rel_float":3.048339042298961e-05,"standard_max_peak_rel_double":3.0494894518353317e-05,"held_out_grid":"200 kappa x 401 cosines, never used in fitting","held_out_max_peak_rel_float":3.15319536299504e-05,"held_out_max_peak_rel_double":3.144750556648651e-05,"extra_operations_vs_tokuyoshi2024":"setup 16 (one division), eval 6 multiply-adds"}
-//   command: sglab fit sglab-accurate
+//   command: sglab fit sglab-acc
 //   tool: sglab 0.1.0
 //   date: 2026-12-01
-inline constexpr SglabAccParams<double, 3, 3> sglab_accurate_acc3{
+inline constexpr SglabAccParams<double, 3, 3> sglab_acc_acc3{
     .steep = {1.5117525513611225, 9.12198552583342, 3.5163587942726533, 10.36875620331705, 40.837773965786475},
     .num = {0.05220013687927748, -0.23538099011859298, -0.01771641002276978, 3.1491971268957345e-05, -0.5286668839824281, -0.3155389845367718, -0.006093462052665905, -7.376426455453398e-05, -0.48325863032797717, -0.19820669753676298, 0.007287674810501263, -6.295198446268567e-06},
     .den = {141.54344012644268, 4.2032333575114684e-17, 6.838630454515482e-18}};

@@ -186,7 +186,7 @@ template <class T> struct Tokuyoshi2024Light {
 };
 
 template <class T, class P = Steepness2024Params<double>>
-Tokuyoshi2024Light<T> tokuyoshi2024_setup(const T& kappa, const P& p = constants::steepness2024_published) {
+Tokuyoshi2024Light<T> tokuyoshi2024_light(const T& kappa, const P& p = constants::steepness2024_published) {
   const PoleIrradiances<T> poles = irradiance_poles_over_two_pi(kappa);
   return {steepness(kappa, p), poles.lower, poles.upper};
 }
@@ -194,7 +194,7 @@ Tokuyoshi2024Light<T> tokuyoshi2024_setup(const T& kappa, const P& p = constants
 // The same setup in float without branches (both sides of κ < 1 computed and
 // selected; branch_free.hpp elementary functions), for the batch kernel.
 template <class S>
-SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_setup_branch_free(float kappa, const Steepness2024Params<S>& p) {
+SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(float kappa, const Steepness2024Params<S>& p) {
   namespace bf = branch_free;
   const float A = float(p.A), B = float(p.B), C = float(p.C), D = float(p.D), E = float(p.E);
   const bool small = kappa < 1.0f;
@@ -213,7 +213,7 @@ SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_setup_branch_free(flo
 }
 
 template <class T, class Ops = detail::LibmOps>
-T tokuyoshi2024_evaluate(const Tokuyoshi2024Light<T>& light, const T& cosine, Ops ops = {}) {
+T tokuyoshi2024_eval(const Tokuyoshi2024Light<T>& light, const T& cosine, Ops ops = {}) {
   const T f = lerp_factor_tokuyoshi2024_at_steepness(cosine, light.t, ops);
   return two_pi_v<T>() * lerp(light.lower, light.upper, f);
 }
@@ -222,7 +222,7 @@ T tokuyoshi2024_evaluate(const Tokuyoshi2024Light<T>& light, const T& cosine, Op
 // supplementary Listings 6-7). `p` may be any steepness form (Steepness2024Params by default).
 template <class T, class P = Steepness2024Params<double>>
 T irradiance_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constants::steepness2024_published) {
-  return tokuyoshi2024_evaluate(tokuyoshi2024_setup(kappa, p), cosine);
+  return tokuyoshi2024_eval(tokuyoshi2024_light(kappa, p), cosine);
 }
 
 // Float batch of `tokuyoshi2024` that vectorizes: the same setup and
@@ -235,7 +235,7 @@ SGLAB_FLATTEN void irradiance_tokuyoshi2024_batch(const float* __restrict cosine
                                     float* __restrict out, std::size_t n,
                                     const Steepness2024Params<S>& p = constants::steepness2024_published) {
   for (std::size_t i = 0; i < n; ++i)
-    out[i] = tokuyoshi2024_evaluate(tokuyoshi2024_setup_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
+    out[i] = tokuyoshi2024_eval(tokuyoshi2024_light_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
 }
 
 }  // namespace sglab

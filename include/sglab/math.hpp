@@ -12,11 +12,26 @@
 
 namespace sglab {
 
+namespace detail {
+// A long double constant in T: rounded once for float and double, exact for
+// long double and wider types. A Ceres Jet (value member `a`, derivative `v`)
+// is built from its value type, so the rounding is said, not implied.
+template <class T> constexpr T constant(long double x) {
+  if constexpr (requires(T t) {
+                  t.a;
+                  t.v;
+                })
+    return T(static_cast<decltype(T{}.a)>(x));
+  else
+    return static_cast<T>(x);
+}
+}  // namespace detail
+
 // Constants as functions so that they also instantiate for Ceres Jets (not literal types).
-template <class T> constexpr T pi_v() { return T(3.141592653589793238462643383279502884L); }
-template <class T> constexpr T two_pi_v() { return T(6.283185307179586476925286766559005768L); }
-template <class T> constexpr T four_pi_v() { return T(12.56637061435917295385057353311801154L); }
-template <class T> constexpr T inv_sqrt_pi_v() { return T(0.5641895835477562869480794515607725858L); }
+template <class T> constexpr T pi_v() { return detail::constant<T>(3.141592653589793238462643383279502884L); }
+template <class T> constexpr T two_pi_v() { return detail::constant<T>(6.283185307179586476925286766559005768L); }
+template <class T> constexpr T four_pi_v() { return detail::constant<T>(12.56637061435917295385057353311801154L); }
+template <class T> constexpr T inv_sqrt_pi_v() { return detail::constant<T>(0.5641895835477562869480794515607725858L); }
 
 // Horner evaluation c[0] + x(c[1] + x(c[2] + ...)), coefficients lowest
 // order first.

@@ -83,7 +83,7 @@ template <class S> struct Meder2018Params {
   S amplitude, sharpness, offset;
 };
 
-// sglab's cheap irradiance model (include/sglab/sglab_cheap.hpp):
+// sglab's cheap irradiance model (include/sglab/sglab_fast.hpp):
 // Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)) with
 // A = Pa(κ̃)/Q(κ̃), B = Pb/Q, C = Pc/Q, V = Pv/Q, κ̃ = min(κ, kappa_max),
 // numerators of degree 4 and one shared monic quartic Q = κ̃⁴ + q[3]κ̃³ + … + q[0]
@@ -94,7 +94,7 @@ template <class S> struct SglabFastParams {
   S kappa_max;
 };
 
-// sglab's accurate model `sglab_acc<N>` (sglab_models.hpp): the 2024
+// sglab_acc `sglab_acc<N>` (sglab_acc.hpp): the 2024
 // steepness t(κ) with coefficients steep = {A, B, C, D, E} (Steepness2024Params
 // order) and N correction coefficients b_j(κ) = num_j(κ)/den(κ), rational of
 // degree D: num_j(κ) = num[j(D+1)] + num[j(D+1)+1] κ + … + num[j(D+1)+D] κ^D,

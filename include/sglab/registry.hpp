@@ -11,8 +11,8 @@
 #include "erf.hpp"
 #include "hemispherical.hpp"
 #include "irradiance.hpp"
-#include "sglab_cheap.hpp"
-#include "sglab_models.hpp"
+#include "sglab_fast.hpp"
+#include "sglab_acc.hpp"
 
 namespace sglab {
 
@@ -94,12 +94,12 @@ template <class Light, class Setup, class Eval> constexpr Method with_light_spli
 
 
 // The per-light split of a method whose setup returns a trivially copyable
-// struct of floats (sglab_models.hpp): the struct is the state.
+// struct of floats (sglab_acc.hpp): the struct is the state.
 template <const auto& P> struct SglabAccSplit {
-  using Light = decltype(sglab_acc_setup(0.0f, P));
+  using Light = decltype(sglab_acc_light(0.0f, P));
   static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float));
   static void setup(float kappa, float* state) {
-    const Light l = sglab_acc_setup(kappa, P);
+    const Light l = sglab_acc_light(kappa, P);
     std::memcpy(state, &l, sizeof l);
   }
   static float eval(const float* state, float cosine) {
@@ -115,7 +115,7 @@ template <const auto& P> constexpr Method make_sglab_acc(std::string_view id, st
                          Origin::sglab);
   m.light_setup32 = &SglabAccSplit<P>::setup;
   m.light_eval32 = &SglabAccSplit<P>::eval;
-  // Float batch that vectorizes (sglab_models.hpp irradiance_sglab_acc_batch).
+  // Float batch that vectorizes (sglab_acc.hpp irradiance_sglab_acc_batch).
   m.batch32 = [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_acc_batch(c, k, o, n, P); };
   return m;
 }
@@ -145,8 +145,8 @@ inline constexpr Method irradiance_methods[] = {
                                 "steepness2024_published",
                                 [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
             [](const float* c, const float* k, float* o, std::size_t n) { irradiance_tokuyoshi2024_batch(c, k, o, n); }),
-        [](float k) { return tokuyoshi2024_setup(k); },
-        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_evaluate(l, c); }),
+        [](float k) { return tokuyoshi2024_light(k); },
+        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
     // The published formulas with sglab's refitted constants (`sglab fit all`)
     // and the shader path of the 2022 method (Listing 5 erf).
     detail::make_method("tokuyoshi2022_listing5", "tokuyoshi2022 with the [Tokuyoshi2022] Listing 5 erf, as a shader runs it",
@@ -171,8 +171,8 @@ inline constexpr Method irradiance_methods[] = {
             [](const float* c, const float* k, float* o, std::size_t n) {
               irradiance_tokuyoshi2024_batch(c, k, o, n, constants::steepness2024_irradiance);
             }),
-        [](float k) { return tokuyoshi2024_setup(k, constants::steepness2024_irradiance); },
-        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_evaluate(l, c); }),
+        [](float k) { return tokuyoshi2024_light(k, constants::steepness2024_irradiance); },
+        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
     detail::make_method("vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
                         "lambda_d_diffuse_lobe_irradiance",
                         [](auto c, auto k) { return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance); },
@@ -186,24 +186,24 @@ inline constexpr Method irradiance_methods[] = {
         detail::with_batch32(
             detail::make_method("sglab_fast",
                                 "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational A, B, C, V in κ "
-                                "(sglab_cheap.hpp)",
+                                "(sglab_fast.hpp)",
                                 "sglab_fast_float", [](auto c, auto k) { return irradiance_sglab_fast(c, k); },
                                 Origin::sglab),
             [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_fast_batch(c, k, o, n); }),
         [](float k) { return sglab_fast_light(k); },
         [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
-    // sglab's own models (sglab_models.hpp, `sglab fit sglab-accurate`): the
+    // sglab's own models (sglab_acc.hpp, `sglab fit sglab-acc`): the
     // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
     // of 1, 2, 3 correction terms.
-    detail::make_sglab_acc<constants::sglab_accurate_acc1>(
+    detail::make_sglab_acc<constants::sglab_acc_acc1>(
         "sglab_acc1", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 rational of degree 2",
-        "sglab_accurate_acc1"),
-    detail::make_sglab_acc<constants::sglab_accurate_acc2>(
+        "sglab_acc_acc1"),
+    detail::make_sglab_acc<constants::sglab_acc_acc2>(
         "sglab_acc2", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j rational of degree 2",
-        "sglab_accurate_acc2"),
-    detail::make_sglab_acc<constants::sglab_accurate_acc3>(
+        "sglab_acc_acc2"),
+    detail::make_sglab_acc<constants::sglab_acc_acc3>(
         "sglab_acc3", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j rational of degree 3",
-        "sglab_accurate_acc3"),
+        "sglab_acc_acc3"),
 };
 
 // Approximate hemispherical integrals H̃(c, κ) (`erf2022` [Tokuyoshi2022], `meder2018` [Meder2018]).

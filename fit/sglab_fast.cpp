@@ -1,5 +1,5 @@
-// `sglab fit sglab-fast`: the coefficients of sglab's cheap model
-// (include/sglab/sglab_cheap.hpp)
+// `sglab fit sglab-fast`: the coefficients of sglab_fast
+// (include/sglab/sglab_fast.hpp)
 //   Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)),  A, B, C, V = P(κ)/Q(κ),
 // in three named stages, each warm-starting the next:
 //   1. per κ of the training grid, the four shape values (A, B, C, V) that
@@ -29,7 +29,7 @@
 #include <fmt/format.h>
 
 #include <sglab/sglab.hpp>
-#include <sglab/sglab_cheap.hpp>
+#include <sglab/sglab_fast.hpp>
 
 #include "fit/constants_io.hpp"
 #include "common/io.hpp"
@@ -148,7 +148,7 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
   std::vector<double> q = {1.0};  // ascending, monic
   const double a = std::log10(lo), b = std::log10(hi);
   for (std::size_t i = 0; i < kDegree; ++i) {
-    const double root = std::pow(10.0, a + (b - a) * (i + 0.5) / kDegree);
+    const double root = std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
     std::vector<double> next(q.size() + 1, 0.0);
     for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
     q = next;

@@ -1,4 +1,4 @@
-// sglab's cheap model `sglab_fast` (include/sglab/sglab_cheap.hpp) against
+// sglab_fast `sglab_fast` (include/sglab/sglab_fast.hpp) against
 // the reference engine on random points never used in fitting, its per-light
 // split against the plain function, and its behaviour outside the fitted range.
 #include <cmath>
@@ -17,7 +17,7 @@ namespace {
 using sglab::test::hex;
 
 // The bound the model is shipped with (max peak_rel over κ ∈ [1e−3, 1e4];
-// measured 2.54e−3 on the held-out 211 × 401 grid, data/results/sglab_models_cheap.md;
+// measured 2.54e−3 on the held-out 211 × 401 grid, data/results/sglab_fast.md;
 // the target is 4e−3).
 constexpr double kBound = 3e-3;
 

@@ -1,4 +1,4 @@
-// app/envmap_report.hpp — the selector of `sglab envmap recommend` and the
+// report/envmap_report.hpp — the selector of `sglab envmap recommend` and the
 // baselines run of `sglab envmap baselines` (tables and figures).
 #pragma once
 
@@ -13,9 +13,9 @@
 #include "report/pareto.hpp"
 #include "validate/sweep.hpp"
 
-namespace sglab::envmap {
+namespace sglab::report {
 
-struct Candidate {
+struct EnvmapCandidate {
   std::size_t lobes = 0;
   std::string method;
   double error = 0;        // max over normals and RGB of |E_method(lobes) − E_map| / max E_map
@@ -24,9 +24,9 @@ struct Candidate {
   double total_cost = 0;   // lobes × cost: the irradiance cost of one shading point
 };
 
-struct Selection {
-  std::optional<Candidate> choice, runner_up;
-  std::vector<Candidate> tried;                          // every (lobes, method) pair evaluated
+struct EnvmapSelection {
+  std::optional<EnvmapCandidate> choice, runner_up;
+  std::vector<EnvmapCandidate> tried;                          // every (lobes, method) pair evaluated
   std::vector<std::pair<std::size_t, double>> fit_error;  // lobes → max error with the exact SG irradiance
 };
 
@@ -40,7 +40,7 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes);
 // at which a method meets `budget` gives the choice (the cheapest there, ties
 // within report::kCostTieMargin broken by error) and the runner-up (the
 // next in that ranking).
-Selection select(const Map& map, const Map& work, double budget, std::size_t max_lobes, std::size_t normals,
+EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget, std::size_t max_lobes, std::size_t normals,
                  validate::FloatFormat precision, const std::vector<report::MethodPoint>& costs,
                  const std::function<void(const std::string&)>& note);
 
@@ -48,6 +48,6 @@ Selection select(const Map& map, const Map& work, double budget, std::size_t max
 // project) × lobe counts; writes envmaps.md, envmaps.csv and the figures into
 // `out` (default data/results of the project). quick: 12 lobes only, no
 // curves or figures (the envmap step of `sglab run --quick`).
-void run_baselines(const std::string& maps, const std::string& out, bool quick);
+void run_envmap_baselines(const std::string& maps, const std::string& out, bool quick);
 
-}  // namespace sglab::envmap
+}  // namespace sglab::report

@@ -1,4 +1,4 @@
-// sglab/sglab_cheap.hpp — sglab's own cheap irradiance model `sglab_fast`.
+// sglab/sglab_fast.hpp — sglab's own cheap irradiance model `sglab_fast`.
 //
 //   Ê(c, κ) = E(1, κ) · max(0, A + B c + C ρ(V c + ½)),
 //
@@ -11,13 +11,14 @@
 // denominator (SglabFastParams), so the whole κ dependence costs one exp, two
 // divisions and five Horner steps of degree 4, all of it once per light
 // (SglabFastLight); a shading point then pays a multiply-add, the ramp and a
-// clamp. Fitted by `sglab fit sglab-fast` (fit/sglab_cheap.cpp): minimax of
+// clamp. Fitted by `sglab fit sglab-fast` (fit/sglab_fast.cpp): minimax of
 // peak_rel over a training grid of κ ∈ [1e−3, 1e4]. Measured max peak_rel
 // (float and double alike): 2.52e−3 on the standard 29 κ × 41 c grid, 2.54e−3
 // on a held-out 211 κ × 401 c grid (data/constants/sglab-fast-float.json,
-// data/results/sglab_models_cheap.md); the family's per-κ floor is 1.35e−3.
-// Cost (float, CPU time): fused ≈ 3.6× vsgl2015 and 0.19× tokuyoshi2024;
-// per shading point after the per-light setup ≈ 0.8× vsgl2015.
+// data/results/sglab_fast.md); the family's per-κ floor is 1.35e−3.
+// Cost: CPU ns in data/results/bench_summary.md (`sglab bench`), GPU cycles in
+// data/results/gpu_costs.md (`sglab gpucost`); the per-light split leaves a
+// shading point the multiply-add, the ramp and the clamp.
 //
 // Never NaN for finite κ ≥ 0 and c ∈ [−1, 1]: E(1, κ) is formed without
 // overflow (no κ²) and by a Taylor series below κ = ¼, and the rational
@@ -131,7 +132,7 @@ SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kapp
           horner(k, p.v) * inv_q};
 }
 
-// Float batch of `sglab_fast` that vectorizes (tests/test_sglab_cheap.cpp
+// Float batch of `sglab_fast` that vectorizes (tests/test_sglab_fast.cpp
 // compares it with the scalar path).
 template <class S = double>
 SGLAB_FLATTEN void irradiance_sglab_fast_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,

@@ -1,5 +1,5 @@
-// `sglab fit sglab-accurate`: sglab's accurate model `sglab_acc<N>`
-// (include/sglab/sglab_models.hpp) — the [Tokuyoshi2024] lerp factor plus the
+// `sglab fit sglab-acc`: sglab_acc `sglab_acc<N>`
+// (include/sglab/sglab_acc.hpp) — the [Tokuyoshi2024] lerp factor plus the
 // correction (1 − c²) e^{−z²} Σ_j b_j(κ) z^{2j}, z = t c, with the b_j rational
 // in κ over one shared positive denominator and the steepness refitted jointly.
 //
@@ -27,7 +27,7 @@
 #include <fmt/format.h>
 
 #include <sglab/sglab.hpp>
-#include <sglab/sglab_models.hpp>
+#include <sglab/sglab_acc.hpp>
 
 #include "fit/minimax.hpp"
 #include "validate/reference.hpp"
@@ -383,7 +383,7 @@ SglabAccFit fit_coefficients_any(std::size_t n, std::size_t d, const std::vector
   SGLAB_MEMBER(3, 3)
   SGLAB_MEMBER(4, 3)
 #undef SGLAB_MEMBER
-  throw std::invalid_argument(fmt::format("sglab-accurate: no member N={} D={}", n, d));
+  throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", n, d));
 }
 
 template <std::size_t N, std::size_t D>
@@ -412,7 +412,7 @@ struct Floors {
       case 2: o = per_kappa_optima<2>(train); break;
       case 3: o = per_kappa_optima<3>(train); break;
       case 4: o = per_kappa_optima<4>(train); break;
-      default: throw std::logic_error("sglab-accurate: terms not instantiated");
+      default: throw std::logic_error("sglab-acc: terms not instantiated");
     }
     return by_terms.emplace(n, std::move(o)).first->second;
   }
@@ -436,7 +436,7 @@ std::vector<double> staged_start_any(Member m, Floors& floors, const std::vector
   SGLAB_MEMBER(3, 3)
   SGLAB_MEMBER(4, 3)
 #undef SGLAB_MEMBER
-  throw std::logic_error("sglab-accurate: member not instantiated");
+  throw std::logic_error("sglab-acc: member not instantiated");
 }
 
 MemberFit fit_any(Member m, const std::vector<double>& start, const std::vector<SglabAccSample>& train,
@@ -454,7 +454,7 @@ MemberFit fit_any(Member m, const std::vector<double>& start, const std::vector<
   SGLAB_MEMBER(3, 3)
   SGLAB_MEMBER(4, 3)
 #undef SGLAB_MEMBER
-  throw std::logic_error("sglab-accurate: member not instantiated");
+  throw std::logic_error("sglab-acc: member not instantiated");
 }
 
 ordered_json coefficients_json(const MemberFit& f) {
@@ -471,7 +471,7 @@ std::optional<std::vector<double>> committed(const std::string& variant, Member 
   // Warm start from the project around the working directory, if any.
   const auto root = find_project_root(std::filesystem::current_path());
   if (!root) return std::nullopt;
-  const auto path = *root / "data" / "constants" / fmt::format("sglab-accurate-{}.json", variant);
+  const auto path = *root / "data" / "constants" / fmt::format("sglab-acc-{}.json", variant);
   if (!std::filesystem::exists(path)) return std::nullopt;
   try {
     const ordered_json set = load_constant_set(path);  // bounded and strict, as every constants file
@@ -549,21 +549,21 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
       {"held_out_max_peak_rel_double", f.held_out.double_max},
       {"extra_operations_vs_tokuyoshi2024", fmt::format("setup {} (one division), eval {} multiply-adds",
                                                         operations(f.member).setup, operations(f.member).eval)}};
-  return make_constant_set(spec, "sglab-accurate", variant,
+  return make_constant_set(spec, "sglab-acc", variant,
                            fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
                            coefficients_json(f), objective, achieved);
 }
 
 }  // namespace
 
-SglabAccFit fit_sglab_accurate_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
+SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
                                             const std::vector<SglabAccSample>& samples) {
   return fit_coefficients_any(terms, degree, start, samples);
 }
 
-FitOutcome fit_sglab_accurate(const FitSpec& spec) {
+FitOutcome fit_sglab_acc(const FitSpec& spec) {
   if (!spec.objective.empty() && spec.objective != "peak-rel")
-    throw std::invalid_argument(fmt::format("sglab-accurate objective is 'peak-rel'; got '{}'", spec.objective));
+    throw std::invalid_argument(fmt::format("sglab-acc objective is 'peak-rel'; got '{}'", spec.objective));
   const int held_k = 200, held_c = 401;
   auto& engine = validate::reference_engine();
   std::vector<SglabAccSample> train;
@@ -592,7 +592,7 @@ FitOutcome fit_sglab_accurate(const FitSpec& spec) {
     out.report = {{"target", spec.target}, {"objective", "model-order"}, {"max_error", budget},
                   {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"cost_source", cost_source(spec.costs)},
                   {"members", ordered_json::array()}};
-    out.text = fmt::format("sglab-accurate model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
+    out.text = fmt::format("sglab-acc model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
                            spec.kappa_lo, spec.kappa_hi, budget);
     out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
     out.text += kHeader;
@@ -617,7 +617,7 @@ FitOutcome fit_sglab_accurate(const FitSpec& spec) {
   // The shipped ladder.
   out.report = {{"target", spec.target}, {"objective", "peak-rel"}, {"kappa_range", {spec.kappa_lo, spec.kappa_hi}},
                 {"cost_source", cost_source(spec.costs)}, {"ladder", ordered_json::array()}};
-  out.text = fmt::format("sglab-accurate ladder, kappa in [{}, {}] (float = float runtime vs double reference):\n",
+  out.text = fmt::format("sglab-acc ladder, kappa in [{}, {}] (float = float runtime vs double reference):\n",
                          spec.kappa_lo, spec.kappa_hi);
   out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
   out.text += kHeader;

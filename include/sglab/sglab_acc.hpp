@@ -1,4 +1,4 @@
-// sglab/sglab_models.hpp — sglab's own irradiance models (origin "sglab").
+// sglab/sglab_acc.hpp — sglab's own irradiance models (origin "sglab").
 //
 // `sglab_acc<N>`: the [Tokuyoshi2024] interpolation form with a fitted
 // correction of its lerp factor,
@@ -16,11 +16,11 @@
 // and vanishes at c = ±1, so the poles E(±1, κ) stay exact.
 //
 // Everything that depends on κ alone (t, erfc(t), 1/t, the poles, the b_j)
-// is computed once per light by `sglab_acc_setup`; `sglab_acc_eval` is the
+// is computed once per light by `sglab_acc_light`; `sglab_acc_eval` is the
 // per-shading-point part. The plain function is exactly eval(setup(κ), c).
-// Fitted by `sglab fit sglab-accurate` (fit/sglab_accurate.cpp); the measured
+// Fitted by `sglab fit sglab-acc` (fit/sglab_acc.cpp); the measured
 // errors of the shipped sets are in their provenance (sglab/constants.hpp)
-// and data/results/sglab_models.md. Max peak_rel |Ê − E|/E(1, κ), float,
+// and data/results/sglab_acc.md. Max peak_rel |Ê − E|/E(1, κ), float,
 // κ ∈ [1e−3, 1e4], on a held-out 200 κ × 401 c grid never used in fitting:
 //   sglab_acc1 (N = 1, D = 2) 2.47e−4,  sglab_acc2 (N = 2, D = 2) 7.5e−5,
 //   sglab_acc3 (N = 3, D = 3) 3.15e−5  (tokuyoshi2024: 1.44e−3 refitted).
@@ -98,7 +98,7 @@ template <class T, class Ops = LibmOps> SGLAB_FORCE_INLINE T sglab_acc_tail_scal
 
 // Per-light setup of `sglab_acc<N>`: everything that depends on κ alone.
 template <class T, class S, std::size_t N, std::size_t D>
-SglabAccLight<T, N> sglab_acc_setup(const T& kappa, const SglabAccParams<S, N, D>& p) {
+SglabAccLight<T, N> sglab_acc_light(const T& kappa, const SglabAccParams<S, N, D>& p) {
   using std::erfc;
   using std::sqrt;
   SglabAccLight<T, N> l;
@@ -116,8 +116,8 @@ SglabAccLight<T, N> sglab_acc_setup(const T& kappa, const SglabAccParams<S, N, D
 // poles as the vectorizing setup of `tokuyoshi2024` (irradiance.hpp), erfc(t)
 // by branch_free.hpp's erfc_bf (absolute error ≤ 6e−7).
 template <class S, std::size_t N, std::size_t D>
-SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_setup_branch_free(float kappa, const SglabAccParams<S, N, D>& p) {
-  const Tokuyoshi2024Light<float> base = tokuyoshi2024_setup_branch_free(
+SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_light_branch_free(float kappa, const SglabAccParams<S, N, D>& p) {
+  const Tokuyoshi2024Light<float> base = tokuyoshi2024_light_branch_free(
       kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
   SglabAccLight<float, N> l;
   l.t = base.t;
@@ -161,13 +161,13 @@ template <class S, std::size_t N, std::size_t D>
 SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
                                 std::size_t n, const SglabAccParams<S, N, D>& p) {
   for (std::size_t i = 0; i < n; ++i)
-    out[i] = sglab_acc_eval(sglab_acc_setup_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
+    out[i] = sglab_acc_eval(sglab_acc_light_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
 }
 
 // `sglab_acc<N>` in one call: eval(setup(κ), c).
 template <class T, class S, std::size_t N, std::size_t D>
 T irradiance_sglab_acc(const T& cosine, const T& kappa, const SglabAccParams<S, N, D>& p) {
-  return sglab_acc_eval(sglab_acc_setup(kappa, p), cosine);
+  return sglab_acc_eval(sglab_acc_light(kappa, p), cosine);
 }
 
 }  // namespace sglab

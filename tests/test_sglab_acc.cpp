@@ -1,4 +1,4 @@
-// sglab's own accurate models `sglab_acc<N>` (include/sglab/sglab_models.hpp):
+// sglab's own accurate models `sglab_acc<N>` (include/sglab/sglab_acc.hpp):
 // against the reference engine on random points the fit never saw (float and
 // double), the per-light split against the plain function, the exact poles,
 // the fitter on synthetic data with known coefficients, and the `eval` /
@@ -158,7 +158,7 @@ TEST(SglabAccFit, RecoversKnownSyntheticCoefficients) {
     }
   }
   const std::vector<double> start{1.0, 13.0, 2.0, 10.0, 55.0, 0.0, 0.0, 0.0, 0.0, 2.0};
-  const auto f = sglab::fit::fit_sglab_accurate_coefficients(2, 1, start, samples);
+  const auto f = sglab::fit::fit_sglab_acc_coefficients(2, 1, start, samples);
   ASSERT_TRUE(f.converged);
   const std::vector<double> want{1.1, 14.0, 2.2, 11.0, 60.0, 0.02, 0.05, -0.01, 0.03, 3.0};
   ASSERT_EQ(f.values.size(), want.size());
@@ -179,7 +179,7 @@ TEST(SglabAccFit, RecoversKnownSyntheticCoefficients) {
 // method has), never from a timing taken in the fit.
 TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   sglab::fit::FitSpec spec;
-  spec.target = "sglab-accurate";
+  spec.target = "sglab-acc";
   spec.kappa_lo = 2;
   spec.kappa_hi = 50;
   spec.kappa_range_given = true;

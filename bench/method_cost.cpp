@@ -1,11 +1,12 @@
-// scripts/method_cost.cpp — CPU cost of one registry method, outside any
+// bench/method_cost.cpp — CPU cost of one registry method, outside any
 // benchmark framework, for `perf stat` (task-clock: CPU time, so a loaded
 // machine's waiting is not counted) and `valgrind --tool=callgrind`
-// (instruction counts). Header-only runtime, so one compiler call builds it:
-//   g++ -O3 -std=c++20 -Iinclude scripts/method_cost.cpp -o /tmp/method_cost
-//   /tmp/method_cost METHOD PASSES [batch|scalar|eval|setup]
-// Workload as validate/cost.hpp: 4096 inputs, κ log-uniform over [1e−3, 1e4],
-// c uniform over [−1, 1] (mt19937_64, seed 20261121). Modes: batch (the
+// (instruction counts). Built as build/bench/method_cost (it needs only the
+// header-only runtime):
+//   build/bench/method_cost METHOD PASSES [batch|scalar|eval|setup]
+// Workload: the distribution of report/cost.hpp (κ log-uniform over
+// [1e−3, 1e4], c uniform over [−1, 1], mt19937_64 seed 20261121) but 4096
+// inputs, not 2^20, so that a callgrind run stays short. Modes: batch (the
 // registry's batch32), scalar (f32 per element), eval (one light_setup32 per
 // pass, then light_eval32 per cosine: the per-shading-point cost), setup
 // (light_setup32 per κ: the per-light cost). Cost per evaluation =

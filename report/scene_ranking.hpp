@@ -1,0 +1,35 @@
+// report/scene_ranking.hpp — `sglab recommend --scene`: every irradiance
+// method judged on a scene's lights (validate/scene.hpp) and ranked as
+// `recommend --kappa` ranks them on a κ range (pareto.hpp), plus sglab's own
+// models over the scene's κ range.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "report/pareto.hpp"
+#include "validate/scene.hpp"
+#include "validate/sweep.hpp"
+
+namespace sglab::report {
+
+// Every irradiance method of the registry with its scene error in
+// max_peak_rel (validate::scene_errors at `normals`); cost left 0 for the
+// caller's cost source.
+std::vector<MethodPoint> scene_points(const validate::Scene& scene, const std::vector<validate::Vec3>& normals,
+                                      validate::FloatFormat precision);
+
+struct SceneRanking {
+  Recommendation recommendation;  // recommend(points, budget)
+  // sglab's models (origin sglab) with their max peak_rel over the scene's κ
+  // range [kappa_lo, kappa_hi] (irradiance_errors) and their scene cost.
+  double kappa_lo = 0, kappa_hi = 0;
+  std::vector<MethodPoint> models_on_range;
+  std::optional<MethodPoint> sufficient;  // the cheapest of them meeting the budget on the range
+};
+
+// `points` with costs filled. κ = 0 lights: the range starts at 1e-3.
+SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene, double budget,
+                        validate::FloatFormat precision);
+
+}  // namespace sglab::report
