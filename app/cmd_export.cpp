@@ -71,7 +71,7 @@ shader::ConstantSet read_constant_set(const std::string& path) {
 
 // The error measured on Vulkan for `method` in the committed results
 // (data/results/vulkan_sweep.json, written by `sglab sweep --backend vulkan`).
-void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang,
+void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang, bool split,
                       shader::Precision export_precision) {
   const auto root = fit::find_project_root(std::filesystem::current_path());
   if (!root) return;  // not inside a checkout: the header names no measured error
@@ -80,15 +80,15 @@ void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader:
   if (!std::filesystem::exists(file, ec)) return;
   try {
     const auto doc = nlohmann::json::parse(io::read_file(file));
-    const std::string precision = std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") +
-                                  (export_precision == shader::Precision::float16 ? "_half" : "");
+    const char* suffix = split ? "_split" : export_precision == shader::Precision::float16 ? "_half" : "";
+    const std::string precision = std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") + suffix;
     for (const auto& rec : doc.at("results"))
       if (rec.at("method") == method && rec.at("quantity") == "irradiance" && rec.at("precision") == precision &&
           rec.at("max_peak_rel").is_number()) {
         b.vulkan = rec["max_peak_rel"].get<double>();
-        b.vulkan_device = fmt::format("{}, {} export, data/results/vulkan_sweep.json",
+        b.vulkan_device = fmt::format("{}, {} export{}, data/results/vulkan_sweep.json",
                                       doc.value("device", std::string("?")),
-                                      lang == shader::Language::hlsl ? "HLSL" : "GLSL");
+                                      lang == shader::Language::hlsl ? "HLSL" : "GLSL", split ? " (split)" : "");
       }
   } catch (const std::exception& e) {
     throw std::runtime_error(fmt::format("{}: {}", file.string(), e.what()));
@@ -113,7 +113,7 @@ void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& export
       shader::gpu::spirv_hash(shader::gpu::export_shader(req.method, req.lang, exported, req.precision).spirv);
   for (shader::GpuCost& cost : req.gpu_cost)
     for (const shader::gpu::Row& row : table->gpu->rows)
-      if (row.family == cost.family && row.method == req.method && row.lang == req.lang && !row.split &&
+      if (row.family == cost.family && row.method == req.method && row.lang == req.lang && row.split == req.split &&
           row.precision == shader::to_string(req.precision) && row.spirv_hash == hash)
         cost.inverse_throughput = row.stats.inverse_throughput;
   req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
@@ -123,8 +123,23 @@ struct ExportArgs {
   std::string lang;
   std::string method;
   std::string constants;
+  bool split = false;
   std::string precision = "float";
 };
+
+// --split: the per-light form of req's method (refused for a method without
+// one, and with --precision half: the split export is float only).
+void set_split(shader::ExportRequest& req) {
+  const auto split = shader::split_methods();
+  if (std::find(split.begin(), split.end(), req.method) == split.end())
+    throw InputError(fmt::format("--split: method '{}' has no per-light split; methods with one: {}", req.method,
+                                 fmt::join(split, ", ")));
+  if (req.precision == shader::Precision::float16)
+    throw InputError("--split with --precision half: the per-light split export is float only (its light struct "
+                     "is std430 floats filled by the float runtime); use one or the other");
+  req.split = true;
+  req.command += " --split";
+}
 
 }  // namespace
 
@@ -137,6 +152,9 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("--constants", args->constants,
                   "constant-set JSON replacing the compiled-in set of the same type (e.g. one `sglab fit ... --out DIR` "
                   "wrote)");
+  cmd->add_flag("--split", args->split,
+                "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills it once per light, "
+                "and sglab_irradiance_<ID>(light, float cosine) per pixel");
   cmd->add_option("--precision", args->precision,
                   "float, or half (16-bit floats: GLSL float16_t, HLSL half with 16-bit types; not for cpp)")
       ->capture_default_str();
@@ -154,6 +172,7 @@ void add_export_command(CLI::App& app) {
       throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", args->method,
                                    fmt::join(known, ", ")));
     shader::ExportRequest req = shader::standard_request(*lang, args->method, *precision);
+    if (args->split) set_split(req);
     // Provenance of the compiled-in sets from the JSON they were generated
     // from, when the source tree is at hand.
     try {
@@ -172,7 +191,7 @@ void add_export_command(CLI::App& app) {
       req.budget = {};
       req.budget.model = req.overrides.back().achieved_irradiance_error;
     } else {
-      add_vulkan_error(req.budget, args->method, *lang, *precision);
+      add_vulkan_error(req.budget, args->method, *lang, req.split, *precision);
     }
     shader::ExportResult result;
     try {

@@ -29,6 +29,7 @@ struct GpucostArgs {
   std::vector<std::string> families;
   std::vector<std::string> methods;
   std::string lang = "glsl";
+  std::string form = "both";  // unsplit, split (the per-pixel function of `export --split`) or both
   std::string precision = "float";
   bool json = false;
   bool disasm = false;
@@ -79,6 +80,7 @@ std::string command_line(const GpucostArgs& a) {
   if (!a.families.empty()) c += " --families " + fmt::format("{}", fmt::join(a.families, ","));
   for (const std::string& m : a.methods) c += " --method " + m;
   if (a.lang != "glsl") c += " --lang " + a.lang;
+  if (a.form != "both") c += " --form " + a.form;
   if (a.precision != "float") c += " --precision " + a.precision;
   if (!a.out.empty()) c += " --out " + a.out;
   return c;
@@ -108,6 +110,19 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
                                     report.driver, report.command, gpu::to_markdown(report)));
 }
 
+// The (method, split) pairs to cost: unsplit rows for every method, then
+// split rows for those with a split form (as --form asks).
+std::vector<std::pair<std::string, bool>> costed_forms(const GpucostArgs& a, const std::vector<std::string>& methods) {
+  const auto split_ids = shader::split_methods();
+  std::vector<std::pair<std::string, bool>> forms;
+  for (bool split : {false, true})
+    for (const std::string& m : methods)
+      if ((split ? a.form != "unsplit" : a.form != "split") &&
+          (!split || std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end()))
+        forms.emplace_back(m, split);
+  return forms;
+}
+
 // Measures (or with --disasm disassembles) and prints / writes the results.
 // Throws gpu::Unavailable when RADV cannot create a null device.
 void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& families,
@@ -122,21 +137,32 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
   if (a.disasm) {
-    const gpu::Shader s = gpu::method_shader(methods[0], languages[0], precisions[0]);
-    fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}\n; ACO's final assembly of the whole "
-               "pipeline: the sweep's compute wrapper (one float2 load, one float store) around the export\n{}",
-               methods[0], families[0], shader::to_string(languages[0]),
+    const bool split = a.form == "split";
+    const gpu::Shader s = split ? gpu::split_method_shader(methods[0], languages[0])
+                                : gpu::method_shader(methods[0], languages[0], precisions[0]);
+    const char* option = split ? " --form split" : precisions[0] == shader::Precision::float16 ? " --precision half" : "";
+    fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of the whole "
+               "pipeline: the sweep's compute wrapper ({}) around the export\n{}",
+               methods[0], families[0], shader::to_string(languages[0]), option,
+               split ? "one float load, the light struct at the workgroup's index, one float store"
+                     : "one float2 load, one float store",
                gpu::disassemble(self, *manifest, families[0], s));
     return;
   }
-  io::Progress progress("gpucost", families.size() + methods.size() * languages.size() * precisions.size());
+  const auto forms = costed_forms(a, methods);
+  std::size_t exports = 0;
+  for (shader::Precision precision : precisions)
+    for (const auto& [m, split] : forms) exports += split && precision == shader::Precision::float16 ? 0 : 1;
+  io::Progress progress("gpucost", families.size() + exports * languages.size());
   std::vector<gpu::Shader> shaders;
   for (shader::Precision precision : precisions)
     for (shader::Language lang : languages) {
       shaders.push_back(gpu::baseline_shader(lang, precision));
-      for (const std::string& m : methods) {
-        progress.note(fmt::format("export {} ({}, {})", m, shader::to_string(lang), shader::to_string(precision)));
-        shaders.push_back(gpu::method_shader(m, lang, precision));
+      for (const auto& [m, split] : forms) {
+        if (split && precision == shader::Precision::float16) continue;  // the split export is float only
+        progress.note(fmt::format("export {}{} ({}, {})", m, split ? " --split" : "", shader::to_string(lang),
+                                  shader::to_string(precision)));
+        shaders.push_back(split ? gpu::split_method_shader(m, lang) : gpu::method_shader(m, lang, precision));
         progress.advance();
       }
     }
@@ -165,6 +191,10 @@ void add_gpucost_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
+  cmd->add_option("--form", args->form,
+                  "unsplit, split (the per-pixel function of `sglab export --split`, rows with split = true, for the "
+                  "methods that have one) or both")
+      ->capture_default_str();
   cmd->add_option("--precision", args->precision,
                   "float, half (`sglab export --precision half`, rows with precision \"half\") or both")
       ->capture_default_str();
@@ -185,12 +215,24 @@ void add_gpucost_command(CLI::App& app) {
     const auto families = checked_families(args->families);
     const auto languages = checked_languages(args->lang);
     const auto methods = checked_methods(args->methods);
+    if (args->form != "unsplit" && args->form != "split" && args->form != "both")
+      throw InputError(fmt::format("--form: expected unsplit, split or both, got '{}'", args->form.substr(0, 40)));
+    if (args->form == "split") {
+      const auto split = shader::split_methods();
+      for (const std::string& m : methods)
+        if (std::find(split.begin(), split.end(), m) == split.end() && !args->methods.empty())
+          throw InputError(fmt::format("--form split: method '{}' has no per-light split; methods with one: {}", m,
+                                       fmt::join(split, ", ")));
+    }
     const auto precisions = checked_precisions(args->precision);
+    if (args->form == "split" && args->precision == "half")
+      throw InputError("--form split with --precision half: the per-light split export is float only (its light "
+                       "struct is std430 floats filled by the float runtime); use --precision float");
     if (args->disasm && (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
                          precisions.size() != 1 ||
                          args->json || !args->out.empty()))
       throw InputError("--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one --precision, "
-                       "and no --json or --out");
+                       "and no --json or --out (--form split: the split export)");
     try {
       measure_and_report(*args, families, languages, methods, precisions);
     } catch (const gpu::Unavailable& e) {

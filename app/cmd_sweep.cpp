@@ -75,7 +75,7 @@ validate::Table device_vs_float_table(const validate::SweepResult& r) {
                     {{"method"}, {"quantity"}, {"precision"}, {"max_diff_peak_rel", 3}, {"worst_kappa", 4},
                      {"worst_cosine", 4}});
   for (const auto& e : r.entries) {
-    if (e.precision != validate::FloatFormat::vulkan && e.precision != validate::FloatFormat::vulkan_hlsl) continue;
+    if (!validate::is_device_format(e.precision)) continue;
     const auto* f = r.find(e.method, e.quantity, validate::FloatFormat::binary32);
     if (!f || f->values.size() != e.values.size()) continue;
     double worst = 0, wk = NAN, wc = NAN;
@@ -120,7 +120,10 @@ std::vector<shader::Precision> checked_precisions(const std::vector<std::string>
 }
 
 // The device rows of every language and precision; half rows are skipped,
-// with the reason on stderr, on a device without shaderFloat16.
+// with the reason on stderr, on a device without shaderFloat16. With float:
+// also the per-light split exports (`sglab export --split`, rows vulkan_split /
+// vulkan_hlsl_split), lights filled on the host by the C++ runtime; the split
+// export is float only, so half runs add no split rows.
 std::vector<std::string> add_all_device_entries(validate::SweepResult& result,
                                                 const std::vector<validate::SweepMethod>& methods,
                                                 const std::vector<shader::Language>& langs,
@@ -134,6 +137,8 @@ std::vector<std::string> add_all_device_entries(validate::SweepResult& result,
       continue;
     }
     for (auto lang : langs) skipped = shader::vulkan::add_device_entries(result, methods, lang, device, true, precision);
+    if (precision == shader::Precision::float32)
+      for (auto lang : langs) shader::vulkan::add_split_device_entries(result, methods, lang, device);
   }
   return skipped;
 }

@@ -147,7 +147,7 @@ Shader baseline_shader(shader::Language lang, shader::Precision precision) {
                                        type, kBaselineEntry, type, type);
   return {std::string(kBaseline), lang,
           vulkan::compile_compute(lang, shader::compute_shader(lang, body, kBaselineEntry, precision), precision),
-          precision};
+          false, precision};
 }
 
 Shader method_shader(std::string_view method, shader::Language lang, shader::Precision precision) {
@@ -155,12 +155,20 @@ Shader method_shader(std::string_view method, shader::Language lang, shader::Pre
                        precision);
 }
 
+Shader split_method_shader(std::string_view method, shader::Language lang) {
+  shader::ExportRequest request = shader::standard_request(lang, method);
+  request.split = true;
+  return export_shader(method, lang, shader::export_source(request));
+}
+
 Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported,
                      shader::Precision precision) {
-  return {std::string(method), lang,
-          vulkan::compile_compute(lang, shader::compute_shader(lang, exported.source, exported.entry_point, precision),
-                                  precision),
-          precision};
+  const bool split = !exported.light_struct.empty();
+  if (split && precision != shader::Precision::float32)
+    throw std::invalid_argument("gpu::export_shader: the split export is float only");
+  const std::string source = split ? shader::split_compute_shader(lang, exported.source, exported)
+                                   : shader::compute_shader(lang, exported.source, exported.entry_point, precision);
+  return {std::string(method), lang, vulkan::compile_compute(lang, source, precision), split, precision};
 }
 
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {
@@ -223,7 +231,8 @@ Measured measure_here(std::string_view family, const std::vector<Shader>& shader
     throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", device->name()));
   Measured m;
   m.driver = fmt::format("{} {}", device->driver_name(), device->driver_info());
-  for (const Shader& s : shaders) m.stats.push_back(from_driver(device->pipeline_statistics(s.spirv)));
+  for (const Shader& s : shaders)
+    m.stats.push_back(from_driver(device->pipeline_statistics(s.spirv, s.split ? 3 : 2)));
   return m;
 }
 
@@ -233,7 +242,7 @@ void run_worker(std::string_view family, const fs::path& dir) {
   std::vector<Shader> shaders;
   for (std::size_t i = 0; i < manifest.at("shaders").size(); ++i)
     shaders.push_back({manifest.at("shaders")[i].at("method").get<std::string>(), shader::Language::glsl,
-                       read_spirv(dir / shader_file(i))});
+                       read_spirv(dir / shader_file(i)), manifest.at("shaders")[i].value("split", false)});
   json out;
   try {
     const Measured m = measure_here(family, shaders);
@@ -245,7 +254,7 @@ void run_worker(std::string_view family, const fs::path& dir) {
       out["assembly"] = json::array();
       for (const Shader& s : shaders) {
         std::string text;
-        for (auto& [name, representation] : device.pipeline_representations(s.spirv))
+        for (auto& [name, representation] : device.pipeline_representations(s.spirv, s.split ? 3 : 2))
           if (name == "Assembly") text = std::move(representation);
         out["assembly"].push_back(text);
       }
@@ -266,7 +275,9 @@ json run_family(const fs::path& self, const fs::path& manifest, const std::strin
   json list = json::array();
   for (std::size_t i = 0; i < shaders.size(); ++i) {
     write_spirv(scratch.path() / shader_file(i), shaders[i].spirv);
-    list.push_back({{"method", shaders[i].method}, {"lang", std::string(shader::to_string(shaders[i].lang))}});
+    list.push_back({{"method", shaders[i].method},
+                    {"lang", std::string(shader::to_string(shaders[i].lang))},
+                    {"split", shaders[i].split}});
   }
   io::write_file_atomic(scratch.path() / "shaders.json",
                         json{{"shaders", list}, {"disassemble", disassemble}}.dump() + "\n");
@@ -307,7 +318,7 @@ Report measure(const fs::path& self, const fs::path& manifest, const std::vector
       }
       if (!baseline.count(key))
         throw std::logic_error("gpu::measure: a language and precision's baseline must come before its methods");
-      report.rows.push_back({shaders[i].method, family, shaders[i].lang, false,
+      report.rows.push_back({shaders[i].method, family, shaders[i].lang, shaders[i].split,
                              std::string(shader::to_string(shaders[i].precision)), subtract(s, baseline[key]),
                              spirv_hash(shaders[i].spirv)});
     }
@@ -329,7 +340,9 @@ json to_json(const Report& report) {
   j["command"] = report.command;
   j["wrapper"] =
       "the sweep's compute wrapper (one float2 load, one float store, 64 threads), minus the same wrapper around "
-      "`return cosine + kappa;`; vgprs and sgprs are the whole pipeline's";
+      "`return cosine + kappa;`; vgprs and sgprs are the whole pipeline's. Rows with split = true: the per-pixel "
+      "function of the split export in the split wrapper (one float load, the light struct loaded at the "
+      "workgroup's index, one float store), minus the same baseline: the struct's loads count as the function's";
   j["rows"] = json::array();
   for (const Row& r : report.rows) {
     json row = {{"method", r.method},          {"family", r.family},   {"lang", std::string(shader::to_string(r.lang))},
@@ -388,8 +401,8 @@ std::string to_markdown(const Report& report) {
       out += "| method | lang | instructions | inverse throughput | latency | VGPRs | SGPRs | code size | branches |\n";
       out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     }
-    out += fmt::format("| {} | {}{} | {} | {} | {} | {} | {} | {} | {} |\n", r.method, shader::to_string(r.lang),
-                       r.precision == "half" ? " half" : "",
+    out += fmt::format("| {}{} | {}{} | {} | {} | {} | {} | {} | {} | {} |\n", r.method, r.split ? " (split)" : "",
+                       shader::to_string(r.lang), r.precision == "half" ? " half" : "",
                        r.stats.instructions, r.stats.inverse_throughput, r.stats.latency, r.stats.vgprs, r.stats.sgprs,
                        r.stats.code_size, r.stats.branches);
   }

@@ -70,6 +70,9 @@ struct Shader {
   std::string method;  // registry id; kBaseline for the trivial body
   shader::Language lang = shader::Language::glsl;
   std::vector<std::uint32_t> spirv;
+  // The per-pixel function of a split export in shader::split_compute_shader
+  // (the light struct loaded from a buffer at a wave-uniform index).
+  bool split = false;
   // The export's precision: a half export is costed in the half wrapper
   // (conversions at the call) against the half baseline.
   shader::Precision precision = shader::Precision::float32;
@@ -83,8 +86,12 @@ Shader baseline_shader(shader::Language lang, shader::Precision precision = shad
 // The standard export of `method` in the wrapper, compiled to SPIR-V.
 Shader method_shader(std::string_view method, shader::Language lang,
                      shader::Precision precision = shader::Precision::float32);
+// The split export of `method` (ExportRequest::split) in the split wrapper
+// (float: the split export has no half form).
+Shader split_method_shader(std::string_view method, shader::Language lang);
 // An export (its source and entry point; comments do not reach the SPIR-V) in
-// the wrapper, compiled to SPIR-V: what `gpucost` costs for it.
+// the wrapper (the split wrapper for a split export), compiled to SPIR-V: what
+// `gpucost` costs for it.
 Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported,
                      shader::Precision precision = shader::Precision::float32);
 
@@ -95,7 +102,7 @@ struct Row {
   std::string method;
   std::string family;
   shader::Language lang = shader::Language::glsl;
-  bool split = false;             // per-light split form (not exported yet: always false)
+  bool split = false;             // the per-pixel function of the split form (Shader::split)
   std::string precision = "float";
   Statistics stats;
   std::string spirv_hash;

@@ -9,8 +9,10 @@
 #include <iterator>
 #include <mutex>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <sglab/constants.hpp>
 #include <sglab/registry.hpp>
@@ -944,6 +946,270 @@ const ShaderMethod* find_shader_method(std::string_view id) {
   return nullptr;
 }
 
+// ---------------------------------------------------------------------------
+// Per-light split forms (`sglab export --split`): everything that depends on
+// kappa alone goes into a light struct, filled once per light by
+// sglab_light_<ID>(float kappa); the pixel pays {ENTRY}({LIGHT} light, float
+// cosine). {LIGHT} is the struct's name. The struct holds floats only, so its
+// std430 layout is field k at byte 4k, and where the C++ runtime splits the
+// method (registry.hpp light_setup32) the fields are its state, in its order.
+
+// One float of a light struct and what it holds (for the header comment).
+struct LightField {
+  std::string name;
+  std::string doc;
+};
+
+struct SplitForm {
+  std::string_view id;
+  // The C++ runtime state the struct equals, or empty when the runtime has no split.
+  std::string_view runtime;
+  std::vector<LightField> (*fields)(const Slots&);
+  std::vector<Helper> helpers;
+  // The bodies of sglab_light_<ID>(float kappa) (fills `light` and returns it)
+  // and of {ENTRY}({LIGHT} light, float cosine).
+  std::string (*light_body)(const Ctx&, const Slots&);
+  std::string (*pixel_body)(const Ctx&, const Slots&);
+};
+
+std::vector<LightField> fields_tokuyoshi2024(const Slots&) {
+  return {{"t", "steepness t(kappa) ([Tokuyoshi2024] Listing 7)"},
+          {"lower", "E(-1, kappa)/2 pi, the exact lower pole (closed_forms.hpp)"},
+          {"upper", "E(+1, kappa)/2 pi, the exact upper pole"}};
+}
+std::string light_tokuyoshi2024(const Ctx& c, const Slots&) {
+  return subst(R"(  light.t = {P}steepness(kappa);
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  light.lower = poles.x;
+  light.upper = poles.y;
+)",
+               c);
+}
+std::string pixel_tokuyoshi2024(const Ctx& c, const Slots&) {
+  return subst(R"(  float f = {P}lerp_factor(cosine, light.t);
+  return 6.28318548f * (light.lower + f * (light.upper - light.lower));
+)",
+               c);
+}
+
+std::vector<LightField> fields_sglab_fast(const Slots&) {
+  return {{"a", "A(kappa) E(1, kappa)"},
+          {"b", "B(kappa) E(1, kappa)"},
+          {"c_ramp", "C(kappa) E(1, kappa)"},
+          {"v", "V(kappa)"}};
+}
+std::string light_sglab_fast(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return subst(fmt::format(R"(  float k = min(kappa, {});
+  float inv_q = 1.0f / ({} + k * k * k * k);
+  float e1 = 6.28318548f * {{P}}upper_over_two_pi(kappa);
+  light.a = {} * inv_q * e1;
+  light.b = {} * inv_q * e1;
+  light.c_ramp = {} * inv_q * e1;
+  light.v = {} * inv_q;
+)",
+                           names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"), poly("c"),
+                           poly("v")),
+               c);
+}
+std::string pixel_sglab_fast(const Ctx& c, const Slots&) {
+  return subst(R"(  float s = light.a + light.b * cosine + light.c_ramp * {P}ramp(light.v * cosine + 0.5f);
+  return 0.5f * (s + abs(s));
+)",
+               c);
+}
+
+std::vector<LightField> fields_sglab_acc(const Slots& slots) {
+  std::vector<LightField> f = {{"t", "steepness t(kappa)"},
+                               {"half_erfc_t", "erfc(t)/2"},
+                               {"tail_scale", "1/(2 sqrt(pi) max(t, 2^-23))"},
+                               {"t2", "t^2"},
+                               {"lower", "E(-1, kappa)/2 pi"},
+                               {"upper", "E(+1, kappa)/2 pi"}};
+  const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
+  for (std::size_t j = 0; j < n; ++j) f.push_back({fmt::format("b{}", j), fmt::format("correction coefficient b_{}(kappa)", j)});
+  return f;
+}
+// sglab_acc.hpp sglab_acc_light: t and the poles as tokuyoshi2024's setup, the tail scale
+// 1/(2 sqrt(pi) max(t, eps)) and b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc_fade).
+std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto [n, d] = sglab_acc_shape(set);
+  const auto num = names(c, "model", set, "num"), scale = names(c, "model", set, "scale");
+  std::string products;
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::vector<std::string> poly(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
+    products += fmt::format("  light.b{} = fade * ({});\n", j, horner_text("u", poly));
+  }
+  return subst(fmt::format(R"(  light.t = {{P}}steepness(kappa);
+  light.half_erfc_t = 0.5f * {{P}}erfc_pos(light.t);
+  float t_or_eps = light.t;
+  if (t_or_eps <= 1.1920929e-7f) t_or_eps = 1.1920929e-7f;
+  light.tail_scale = 0.5f * 0.564189584f / t_or_eps;
+  light.t2 = light.t * light.t;
+  {{VEC2}} poles = {{P}}poles_over_two_pi(kappa);  // (lower, upper)
+  light.lower = poles.x;
+  light.upper = poles.y;
+  float w = 1.0f / (light.t + {0});
+  float u = light.t * w;
+  float v = {0} * w;
+  float fade = u * (v * v) * v;
+{1})",
+                           scale[0], products),
+               c);
+}
+// sglab_acc.hpp sglab_acc_eval: the [Tokuyoshi2024] Listing 7 factor from the light's t, erfc(t)/2,
+// 1/(2 sqrt(pi) t) and t^2, plus (1 - c^2) e^(-z^2) sum_j b_j z^2j (0 where e^(-z^2) underflowed).
+std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
+  const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
+  std::vector<std::string> b;
+  for (std::size_t j = 0; j < n; ++j) b.push_back(fmt::format("light.b{}", j));
+  return subst(fmt::format(R"(  float c = clamp(cosine, -1.0f, 1.0f);
+  float z = light.t * c;
+  float z2 = z * z;
+  float one_minus_c2 = 1.0f - c * c;
+  float g = exp(-z2);
+  float x = -light.t2 * one_minus_c2;
+  float f = 0.5f * c * {{P}}erfc(-z) + light.half_erfc_t - g * (x * {{P}}expm1_over_x(x)) * light.tail_scale;
+  if (g > 0.0f) f += one_minus_c2 * g * {};
+  f = clamp(f, 0.0f, 1.0f);
+  return 6.28318548f * (light.lower + f * (light.upper - light.lower));
+)",
+                           horner_text("z2", b)),
+               c);
+}
+
+// tokuyoshi2022: the product SG's sharpness and axis depend on the cosine, so
+// its term keeps kappa; the light's own hemispherical term
+// H(c, kappa) = 2 pi lerp(e^-kappa, 1, s) (1 - e^-kappa)/kappa needs per pixel only erf(t c).
+// alpha p - alpha q cancels heavily at small kappa, so H is formed by the very
+// operations of the unsplit export (helper_hemispherical2022): the same float result.
+std::vector<LightField> fields_tokuyoshi2022(const Slots&) {
+  return {{"kappa", "the sharpness kappa (the product with the clamped-cosine SG depends on the cosine)"},
+          {"t", "steepness t(kappa) ([Tokuyoshi2022] Eq. 6)"},
+          {"erf_t", "erf(t)"},
+          {"e", "e^-kappa"},
+          {"m", "(1 - e^-kappa)/kappa"}};
+}
+std::string light_tokuyoshi2022(const Ctx& c, const Slots&) {
+  return subst(R"(  light.kappa = kappa;
+  light.t = {P}steepness(kappa);
+  light.erf_t = {P}erf(light.t);
+  light.e = exp(-kappa);
+  light.m = {P}expm1_over_x(-kappa);
+)",
+               c);
+}
+std::string pixel_tokuyoshi2022(const Ctx& c, const Slots&) {
+  return subst(R"(  float lambda = {P}clamped_cosine_lambda;
+  float alpha = {P}clamped_cosine_alpha;
+  {VEC3} prod = {P}product_with_normal(cosine, light.kappa, lambda);
+  float p = {P}hemispherical(prod.z, prod.x) * exp(lambda + prod.y);
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float ratio;
+  if (light.t < 0.0001220703125f)
+    ratio = c;
+  else
+    ratio = clamp({P}erf(light.t * c) / light.erf_t, -1.0f, 1.0f);
+  float s = 0.5f + 0.5f * ratio;
+  float q = 6.28318548f * (light.e + s * (1.0f - light.e)) * light.m;
+  return max(alpha * p - alpha * q, 0.0f);
+)",
+               c);
+}
+
+// punctual, hill, hill_exact ([Pettineo2016]): the curve's kappa-only terms and
+// the integral factor, per pixel the operations of the unsplit export
+// (helper_hill), so the values are the same floats.
+std::vector<LightField> fields_punctual(const Slots&) { return {{"s", "2 pi/kappa"}}; }
+std::string light_punctual(const Ctx&, const Slots&) { return "  light.s = 6.28318548f / kappa;\n"; }
+std::string pixel_punctual(const Ctx&, const Slots&) { return "  return clamp(cosine, 0.0f, 1.0f) * light.s;\n"; }
+
+std::vector<LightField> fields_hill(const Slots&) {
+  return {{"scale", "1 + 2 e^-2kappa - 1/kappa"},
+          {"bias", "(e^-kappa - e^-2kappa)/kappa - e^-2kappa"},
+          {"x", "sqrt(1 - scale)"},
+          {"x1", "x/(4 c0)"},
+          {"s", "the integral factor: 2 pi/kappa (hill), 4 pi (1 - e^-2kappa)/(2 kappa) (hill_exact)"}};
+}
+std::string light_hill(const Ctx& c, const Slots&, std::string_view integral) {
+  return subst(fmt::format(R"(  float c0 = {{P}}hill_c0;
+  float c1 = 1.0f / (4.0f * c0);
+  float eml = exp(-kappa);
+  float em2l = eml * eml;
+  float rl = 1.0f / kappa;
+  light.scale = 1.0f + 2.0f * em2l - rl;
+  light.bias = (eml - em2l) * rl - em2l;
+  light.x = sqrt(1.0f - light.scale);
+  light.x1 = c1 * light.x;
+  light.s = {};
+)",
+                           integral),
+               c);
+}
+std::string light_hill_approx(const Ctx& c, const Slots& s) { return light_hill(c, s, "6.28318548f / kappa"); }
+std::string light_hill_exact(const Ctx& c, const Slots& s) {
+  return light_hill(c, s, "12.566371f * {P}expm1_over_x(-2.0f * kappa)");
+}
+std::string pixel_hill(const Ctx& c, const Slots&) {
+  return subst(R"(  float x0 = {P}hill_c0 * cosine;
+  float n = x0 + light.x1;
+  float y = abs(x0) <= light.x1 ? n * n / light.x : clamp(cosine, 0.0f, 1.0f);
+  return (light.scale * y + light.bias) * light.s;
+)",
+               c);
+}
+
+// vsgl2015 ([Tokuyoshi2015], [Iwasaki2012]): the product's sharpness and 1/|kappa v + lambda_d n|.
+std::vector<LightField> fields_vsgl2015(const Slots&) {
+  return {{"lam", "kappa lambda_d/(kappa + lambda_d)"}, {"sum", "kappa + lambda_d"}};
+}
+std::string light_vsgl2015(const Ctx& c, const Slots&) {
+  return subst(R"(  light.sum = kappa + {P}diffuse_lobe_lambda_d;
+  light.lam = light.sum > 0.0f ? kappa * {P}diffuse_lobe_lambda_d / light.sum : 0.0f;
+)",
+               c);
+}
+std::string pixel_vsgl2015(const Ctx&, const Slots&) {
+  return "  return 6.28318548f * exp(light.lam * (cosine - 1.0f)) / light.sum;\n";
+}
+
+// THE table of split forms, by method id (every other method: no split).
+const std::vector<SplitForm>& split_forms() {
+  static const std::vector<SplitForm> table = [] {
+    const SplitForm t2024{"tokuyoshi2024", "sglab::Tokuyoshi2024Light<float> (sglab/irradiance.hpp tokuyoshi2024_light)",
+                          fields_tokuyoshi2024, kHelpers2024, light_tokuyoshi2024, pixel_tokuyoshi2024};
+    const SplitForm t2022{"tokuyoshi2022", "", fields_tokuyoshi2022, kHelpers2022, light_tokuyoshi2022,
+                          pixel_tokuyoshi2022};
+    const SplitForm acc{"sglab_acc", "sglab::SglabAccLight<float, N> (sglab/sglab_acc.hpp sglab_acc_light)",
+                        fields_sglab_acc,
+                        {helper_expm1, helper_erf, helper_sglab_acc_steepness, helper_poles2024},
+                        light_sglab_acc, pixel_sglab_acc};
+    const SplitForm vsgl{"vsgl2015", "", fields_vsgl2015, {}, light_vsgl2015, pixel_vsgl2015};
+    std::vector<SplitForm> v = {
+        {"punctual", "", fields_punctual, {}, light_punctual, pixel_punctual},
+        {"hill", "", fields_hill, {}, light_hill_approx, pixel_hill},
+        {"hill_exact", "", fields_hill, {helper_expm1}, light_hill_exact, pixel_hill},
+        vsgl};
+    v.push_back(vsgl), v.back().id = "vsgl2015_refit";
+    for (std::string_view id : {"tokuyoshi2024", "tokuyoshi2024_refit"}) v.push_back(t2024), v.back().id = id;
+    for (std::string_view id : {"tokuyoshi2022", "tokuyoshi2022_listing5", "tokuyoshi2022_refit"})
+      v.push_back(t2022), v.back().id = id;
+    v.push_back({"sglab_fast", "sglab::SglabFastLight<float> (sglab/sglab_fast.hpp sglab_fast_light)",
+                 fields_sglab_fast, {helper_sglab_fast}, light_sglab_fast, pixel_sglab_fast});
+    for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"}) v.push_back(acc), v.back().id = id;
+    return v;
+  }();
+  return table;
+}
+
+const SplitForm* find_split_form(std::string_view id) {
+  for (const SplitForm& s : split_forms())
+    if (s.id == id) return &s;
+  return nullptr;
+}
+
 std::string prelude(const Ctx& c) {
   if (c.lang != Language::cpp) return {};
   return subst(R"(#include <cmath>
@@ -1139,25 +1405,18 @@ ElementaryTier choose_tier(std::optional<double> model_error) {
   return {best.id, best.description};
 }
 
-ExportResult export_source(const ExportRequest& request) {
-  const ShaderMethod* m = find_shader_method(request.method);
-  if (!m) {
-    std::string known;
-    for (const auto& id : exportable_methods()) known += (known.empty() ? "" : ", ") + id;
-    throw std::invalid_argument(
-        fmt::format("unknown or non-exportable method '{}'; exportable: {}", request.method, known));
-  }
-  if (request.precision == Precision::float16 && request.lang == Language::cpp)
-    throw std::invalid_argument("--precision half: the C++ export is float only (g++'s _Float16 may keep float "
-                                "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
-  Slots slots = m->constants();
-  ExportResult result;
-  result.budget = request.budget;
-  if (m->erf == ErfUse::tiered) {
+namespace {
+
+// The constant slots of the request's method: its compiled-in sets, the erf
+// tier it takes (recorded in `result`), and the overrides in place of the sets
+// of their type.
+Slots request_slots(const ExportRequest& request, const ShaderMethod& m, ExportResult& result) {
+  Slots slots = m.constants();
+  if (m.erf == ErfUse::tiered) {
     result.tier = choose_tier(request.budget.model);
     for (const Tier& t : kTiers)
       if (t.id == result.tier.id) slots.emplace_back("erf", t.set());
-  } else if (m->erf == ErfUse::own) {
+  } else if (m.erf == ErfUse::own) {
     result.tier = {"own", "the method's own erf constants (slot 'erf')"};
   }
   // Overrides replace the slot of the same parameter type.
@@ -1181,31 +1440,22 @@ ExportResult export_source(const ExportRequest& request) {
                                               request.method, types.empty() ? "no constants" : types));
     }
   }
-  const ConstantSet* erf_set = nullptr;
-  for (const auto& [role, set] : slots) {
-    check_finite_in_float(set);
-    if (role == "erf") erf_set = &set;
-  }
-  if (erf_set) {
-    result.budget.elementary = measure(erf_set);
-  } else {
-    result.budget.elementary = measure_elementary("");
-  }
+  return slots;
+}
 
-  Ctx c{request.lang, entry_point_name(request.method).substr(std::string_view("sglab_irradiance_").size()), {}};
-  c.prefix = "sglab_" + c.id + "_";
-  result.entry_point = "sglab_irradiance_" + c.id;
-
-  // Header comment.
+// The header comment: method, source, constants, tier, error budget, GPU cost, command.
+std::string header_comment(const ExportRequest& request, const ShaderMethod& m, const Slots& slots,
+                           const ExportResult& result, bool has_erf) {
   const ErrorBudget& b = result.budget;
   std::string h;
-  h += fmt::format("// {}: sglab export of method `{}` ({})\n", result.entry_point, m->id,
+  h += fmt::format("// {}: sglab export of method `{}` ({}{})\n", result.entry_point, m.id,
                    request.lang == Language::glsl   ? "GLSL 4.50"
                    : request.lang == Language::hlsl ? "HLSL, Shader Model 6"
-                                                    : "C++");
+                                                    : "C++",
+                   request.split ? ", per-light split" : "");
   h += fmt::format("// Irradiance E(c, kappa) = integral of exp(kappa (w.v - 1)) max(w.n, 0) dw, c = v.n, of a\n"
                    "// unit-amplitude SG light of sharpness kappa >= 0.\n");
-  h += fmt::format("// Source: {}.\n", m->citation);
+  h += fmt::format("// Source: {}.\n", m.citation);
   h += "// Constants:\n";
   for (const auto& [role, set] : slots) {
     std::string prov = set.provenance;
@@ -1225,7 +1475,7 @@ ExportResult export_source(const ExportRequest& request) {
   } else {
     h += fmt::format("//   model (as recorded by the constant set's fit, over its own kappa range): {}\n", fmt_error(b.model));
   }
-  if (erf_set)
+  if (has_erf)
     h += fmt::format("//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
                      "(e^x - 1)/x rel {:.2g}\n",
                      b.elementary.erf_abs, b.elementary.erf_rel_small, b.elementary.erfc_abs,
@@ -1235,24 +1485,122 @@ ExportResult export_source(const ExportRequest& request) {
   if (b.vulkan)
     h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device), fmt_error(b.vulkan));
   if (request.lang != Language::cpp) h += gpu_cost_line(request);
-  if (request.precision == Precision::float16) h += half_header(*m, request.lang);
+  if (request.precision == Precision::float16) h += half_header(m, request.lang);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));
-  if (request.precision == Precision::float16) {
-    result.source = h + "\n" + half_code(c, *m, slots);
-    return result;
-  }
+  return h;
+}
 
+// The entry point {ENTRY}(float cosine, float kappa) and its vector form.
+std::string unsplit_functions(const Ctx& c, const ShaderMethod& m, const Slots& slots) {
   std::string body;
-  body += h + "\n" + prelude(c);
-  for (const auto& [role, set] : slots) body += constant_decls(c, role, set);
-  body += "\n";
-  for (Helper helper : m->helpers) body += helper(c, slots) + "\n";
+  for (Helper helper : m.helpers) body += helper(c, slots) + "\n";
   body += subst("{INLINE}float {ENTRY}(float cosine, float kappa) {\n", c);
-  body += subst(m->body, c);
+  body += subst(m.body, c);
   body += "}\n\n";
   body += subst(kVectorForm, c);
-  if (c.lang == Language::cpp)
+  return body;
+}
+
+// The light struct (documented field by field), sglab_light_<ID>(float kappa)
+// and the per-pixel {ENTRY}({LIGHT} light, float cosine).
+std::string split_functions(const Ctx& c, const SplitForm& form, const Slots& slots) {
+  const std::string light = light_struct_name(c.id);
+  const std::vector<LightField> fields = form.fields(slots);
+  std::string body;
+  for (Helper helper : form.helpers) body += helper(c, slots) + "\n";
+  body += fmt::format("// {}: the per-light state of {}, {} floats. std430 layout (floats only): field k\n"
+                      "// at byte offset 4k, struct size {} bytes, array stride {} bytes. {}.\n",
+                      light, form.id, fields.size(), 4 * fields.size(), 4 * fields.size(),
+                      form.runtime.empty()
+                          ? "The C++ runtime has no split of this method: fill it with sglab_light_" + c.id +
+                                " (the C++ export on the host, or a shader pre-pass)"
+                          : fmt::format("The same floats, in the same order, as the C++ runtime's {} (the state "
+                                        "of registry.hpp light_setup32), so the host can fill it from the runtime",
+                                        form.runtime));
+  body += "struct " + light + " {\n";
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    body += fmt::format("  float {};  // offset {}: {}\n", fields[i].name, 4 * i, fields[i].doc);
+  body += "};\n\n";
+  body += fmt::format("// Per light (once per frame): everything of {} that depends on kappa alone.\n", form.id);
+  body += fmt::format("{}{} sglab_light_{}(float kappa) {{\n  {} light;\n", c.lang == Language::cpp ? "inline " : "",
+                      light, c.id, light);
+  body += form.light_body(c, slots);
+  body += "  return light;\n}\n\n";
+  body += "// Per pixel: the irradiance at cosine c = v.n from the light's state.\n";
+  body += subst("{INLINE}float {ENTRY}(", c) + light + " light, float cosine) {\n";
+  body += form.pixel_body(c, slots);
+  body += "}\n";
+  return body;
+}
+
+}  // namespace
+
+std::string light_struct_name(std::string_view method) {
+  return "SglabLight_" + entry_point_name(method).substr(std::string_view("sglab_irradiance_").size());
+}
+
+std::vector<std::string> split_methods() {
+  std::vector<std::string> out;
+  for (const ShaderMethod& m : shader_methods())
+    if (find_split_form(m.id)) out.emplace_back(m.id);
+  return out;
+}
+
+ExportResult export_source(const ExportRequest& request) {
+  const ShaderMethod* m = find_shader_method(request.method);
+  if (!m) {
+    std::string known;
+    for (const auto& id : exportable_methods()) known += (known.empty() ? "" : ", ") + id;
+    throw std::invalid_argument(
+        fmt::format("unknown or non-exportable method '{}'; exportable: {}", request.method, known));
+  }
+  const SplitForm* form = request.split ? find_split_form(m->id) : nullptr;
+  if (request.split && !form)
+    throw std::invalid_argument(fmt::format("method '{}' has no per-light split (--split); methods with one: {}",
+                                            request.method, fmt::format("{}", fmt::join(split_methods(), ", "))));
+  if (request.split && request.precision == Precision::float16)
+    throw std::invalid_argument("--split with --precision half: the per-light split export is float only (its light "
+                                "struct is std430 floats filled by the float runtime); use one or the other");
+  if (request.precision == Precision::float16 && request.lang == Language::cpp)
+    throw std::invalid_argument("--precision half: the C++ export is float only (g++'s _Float16 may keep float "
+                                "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
+  ExportResult result;
+  result.budget = request.budget;
+  const Slots slots = request_slots(request, *m, result);
+  const ConstantSet* erf_set = nullptr;
+  for (const auto& [role, set] : slots) {
+    check_finite_in_float(set);
+    if (role == "erf") erf_set = &set;
+  }
+  result.budget.elementary = erf_set ? measure(erf_set) : measure_elementary("");
+
+  Ctx c{request.lang, entry_point_name(request.method).substr(std::string_view("sglab_irradiance_").size()), {}};
+  c.prefix = "sglab_" + c.id + "_";
+  result.entry_point = "sglab_irradiance_" + c.id;
+  if (form) {
+    result.light_function = "sglab_light_" + c.id;
+    result.light_struct = light_struct_name(c.id);
+    result.light_floats = form->fields(slots).size();
+  }
+
+  const std::string header = header_comment(request, *m, slots, result, erf_set != nullptr);
+  if (request.precision == Precision::float16) {
+    result.source = header + "\n" + half_code(c, *m, slots);
+    return result;
+  }
+  std::string body = header + "\n" + prelude(c);
+  for (const auto& [role, set] : slots) body += constant_decls(c, role, set);
+  body += "\n";
+  body += form ? split_functions(c, *form, slots) : unsplit_functions(c, *m, slots);
+  if (c.lang == Language::cpp) {
     body += subst("\n}  // namespace sglab_export_{ID}\nusing sglab_export_{ID}::{ENTRY};\n", c);
+    if (form) {
+      // Its own namespace, so that a program may hold the split and the unsplit export of a method.
+      body += "using sglab_export_{ID}::" + result.light_function + ";\nusing sglab_export_{ID}::" +
+              result.light_struct + ";\n";
+      body = replace_all(body, "sglab_export_{ID}", "sglab_export_{ID}_split");
+    }
+  }
   // {ID} only occurs in the C++ namespace lines.
   result.source = replace_all(body, "{ID}", c.id);
   return result;
@@ -1323,6 +1671,81 @@ void main(uint3 id : SV_DispatchThreadID) {{
 )",
                        exported, entry);
   throw std::invalid_argument("compute_shader: C++ is not a shader language");
+}
+
+namespace {
+void require_split(const ExportResult& exported, const char* who) {
+  if (exported.light_struct.empty() || exported.light_function.empty())
+    throw std::invalid_argument(fmt::format("{}: the export is not a split form (ExportRequest::split)", who));
+}
+}  // namespace
+
+std::string split_compute_shader(Language lang, std::string_view exported, const ExportResult& ex) {
+  require_split(ex, "split_compute_shader");
+  if (lang == Language::glsl)
+    return fmt::format(R"(#version 450
+layout(local_size_x = 64) in;
+
+{0}
+layout(std430, set = 0, binding = 0) readonly buffer Cosines {{ float cosines[]; }};
+layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[]; }};
+layout(std430, set = 0, binding = 2) readonly buffer Lights {{ {1} lights[]; }};
+
+void main() {{
+  uint i = gl_GlobalInvocationID.x;
+  uint l = gl_WorkGroupID.y;
+  uint n = uint(cosines.length());
+  if (i < n) result[l * n + i] = {2}(lights[l], cosines[i]);
+}}
+)",
+                       exported, ex.light_struct, ex.entry_point);
+  if (lang == Language::hlsl)
+    return fmt::format(R"({0}
+[[vk::binding(0, 0)]] StructuredBuffer<float> cosines;
+[[vk::binding(1, 0)]] RWStructuredBuffer<float> result;
+[[vk::binding(2, 0)]] StructuredBuffer<{1}> lights;
+
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID, uint3 group : SV_GroupID) {{
+  uint n, stride;
+  cosines.GetDimensions(n, stride);
+  if (id.x < n) result[group.y * n + id.x] = {2}(lights[group.y], cosines[id.x]);
+}}
+)",
+                       exported, ex.light_struct, ex.entry_point);
+  throw std::invalid_argument("split_compute_shader: C++ is not a shader language");
+}
+
+std::string light_compute_shader(Language lang, std::string_view exported, const ExportResult& ex) {
+  require_split(ex, "light_compute_shader");
+  if (lang == Language::glsl)
+    return fmt::format(R"(#version 450
+layout(local_size_x = 64) in;
+
+{0}
+layout(std430, set = 0, binding = 0) readonly buffer Kappas {{ float kappas[]; }};
+layout(std430, set = 0, binding = 1) writeonly buffer Lights {{ {1} lights[]; }};
+
+void main() {{
+  uint i = gl_GlobalInvocationID.x;
+  if (i < uint(kappas.length())) lights[i] = {2}(kappas[i]);
+}}
+)",
+                       exported, ex.light_struct, ex.light_function);
+  if (lang == Language::hlsl)
+    return fmt::format(R"({0}
+[[vk::binding(0, 0)]] StructuredBuffer<float> kappas;
+[[vk::binding(1, 0)]] RWStructuredBuffer<{1}> lights;
+
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {{
+  uint n, stride;
+  kappas.GetDimensions(n, stride);
+  if (id.x < n) lights[id.x] = {2}(kappas[id.x]);
+}}
+)",
+                       exported, ex.light_struct, ex.light_function);
+  throw std::invalid_argument("light_compute_shader: C++ is not a shader language");
 }
 
 }  // namespace sglab::shader

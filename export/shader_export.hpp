@@ -103,6 +103,10 @@ struct ExportRequest {
   // measured: the header says so), and where it was read (driver, file).
   std::vector<GpuCost> gpu_cost;
   std::string gpu_cost_source;
+  // The per-light split form (`sglab export --split`): a light struct,
+  // sglab_light_<ID>(float kappa) that fills it and the per-pixel
+  // sglab_irradiance_<ID>(light, float cosine). Methods without one: invalid_argument.
+  bool split = false;
 };
 
 struct ExportResult {
@@ -110,6 +114,11 @@ struct ExportResult {
   std::string entry_point;  // sglab_irradiance_<ID>
   ElementaryTier tier;      // empty id when the method needs no erf
   ErrorBudget budget;
+  // Split form only (empty / 0 otherwise): sglab_light_<ID>, SglabLight_<ID>
+  // and its number of floats (std430: 4 bytes each, no padding).
+  std::string light_function;
+  std::string light_struct;
+  std::size_t light_floats = 0;
 };
 
 // Method ids that can be exported, in registry order.
@@ -117,6 +126,11 @@ std::vector<std::string> exportable_methods();
 
 // The entry point name for a method id: non-alphanumerics become '_'.
 std::string entry_point_name(std::string_view method);
+
+// Method ids that have a per-light split form (ExportRequest::split), in registry order.
+std::vector<std::string> split_methods();
+// The light struct of a method's split form: SglabLight_<ID>.
+std::string light_struct_name(std::string_view method);
 
 // The compiled-in constant sets a method uses (before overrides).
 std::vector<ConstantSet> method_constants(std::string_view method);
@@ -154,5 +168,17 @@ ElementaryTier choose_tier(std::optional<double> model_error);
 // call and the result back to float after it.
 std::string compute_shader(Language lang, std::string_view exported_source, std::string_view entry_point,
                            Precision precision = Precision::float32);
+
+// The wrapper of a split export's per-pixel function: binding 0 holds the
+// cosines (float), binding 2 the lights (the export's struct, std430), binding
+// 1 receives result[l * n + i] = sglab_irradiance_<ID>(lights[l], cosines[i])
+// for the n cosines; dispatched as (ceil(n / 64), number of lights, 1)
+// workgroups of 64 threads, so the light index is the workgroup's (uniform).
+std::string split_compute_shader(Language lang, std::string_view exported_source, const ExportResult& exported);
+
+// The pre-pass of a split export: binding 0 holds kappas (float), binding 1
+// receives lights[i] = sglab_light_<ID>(kappas[i]) (light_floats floats each),
+// 64 threads per group.
+std::string light_compute_shader(Language lang, std::string_view exported_source, const ExportResult& exported);
 
 }  // namespace sglab::shader

@@ -104,7 +104,7 @@ struct Buffer {
 };
 
 // The compute pipeline of the sweep wrapper: one shader module, storage
-// buffers at bindings 0 and 1 of set 0, entry point `main`. `flags` asks the
+// buffers at bindings 0 … bindings − 1 of set 0, entry point `main`. `flags` asks the
 // driver to keep its statistics (VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR).
 struct ComputePipeline {
   VkDevice dev;
@@ -113,22 +113,23 @@ struct ComputePipeline {
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
 
-  ComputePipeline(VkDevice device, const std::vector<std::uint32_t>& spirv, VkPipelineCreateFlags flags = 0)
+  ComputePipeline(VkDevice device, const std::vector<std::uint32_t>& spirv, VkPipelineCreateFlags flags = 0,
+                  std::uint32_t binding_count = 2)
       : dev(device) {
     auto smci = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     smci.codeSize = spirv.size() * sizeof(std::uint32_t);
     smci.pCode = spirv.data();
     check(vkCreateShaderModule(dev, &smci, nullptr, &module), "vkCreateShaderModule");
-    VkDescriptorSetLayoutBinding bindings[2]{};
-    for (std::uint32_t i = 0; i < 2; ++i) {
+    std::vector<VkDescriptorSetLayoutBinding> bindings(binding_count);
+    for (std::uint32_t i = 0; i < binding_count; ++i) {
       bindings[i].binding = i;
       bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       bindings[i].descriptorCount = 1;
       bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
     auto dslci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-    dslci.bindingCount = 2;
-    dslci.pBindings = bindings;
+    dslci.bindingCount = binding_count;
+    dslci.pBindings = bindings.data();
     check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
     auto plci = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     plci.setLayoutCount = 1;
@@ -199,7 +200,52 @@ struct Device::Impl {
     check(vkAllocateMemory(device, &alloc, nullptr, &b.memory), "vkAllocateMemory");
     check(vkBindBufferMemory(device, b.buffer, b.memory, 0), "vkBindBufferMemory");
   }
+
+  // A storage buffer holding `data`.
+  void upload(Buffer& b, const std::vector<float>& data) {
+    make_buffer(b, data.size() * sizeof(float));
+    void* mapped = nullptr;
+    check(vkMapMemory(device, b.memory, 0, b.size, 0, &mapped), "vkMapMemory");
+    std::memcpy(mapped, data.data(), b.size);
+    vkUnmapMemory(device, b.memory);
+  }
 };
+
+namespace {
+
+// A descriptor set of `layout` from a new pool (left in `pool` for the caller
+// to destroy) whose binding i is buffers[i], whole.
+VkDescriptorSet descriptor_set(VkDevice dev, VkDescriptorSetLayout layout, const std::vector<Buffer>& buffers,
+                               VkDescriptorPool& pool) {
+  const auto n = static_cast<std::uint32_t>(buffers.size());
+  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, n};
+  auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 1;
+  dpci.pPoolSizes = &pool_size;
+  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool), "vkCreateDescriptorPool");
+  auto dsai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  dsai.descriptorPool = pool;
+  dsai.descriptorSetCount = 1;
+  dsai.pSetLayouts = &layout;
+  VkDescriptorSet set;
+  check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
+  std::vector<VkDescriptorBufferInfo> infos(n);
+  std::vector<VkWriteDescriptorSet> writes(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    infos[i] = {buffers[i].buffer, 0, VK_WHOLE_SIZE};
+    writes[i] = make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(dev, n, writes.data(), 0, nullptr);
+  return set;
+}
+
+}  // namespace
 
 Device::Device() : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
@@ -314,20 +360,33 @@ bool Device::has_pipeline_statistics() const { return impl_->statistics; }
 bool Device::has_float16() const { return impl_->float16; }
 
 std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& pairs) {
-  Impl& d = *impl_;
   if (pairs.empty() || pairs.size() % 2) throw std::invalid_argument("Device::run: need a non-empty list of pairs");
   const std::size_t n = pairs.size() / 2;
+  return dispatch(spirv, {pairs}, n, static_cast<std::uint32_t>((n + 63) / 64));
+}
+
+std::vector<float> Device::dispatch(const std::vector<std::uint32_t>& spirv,
+                                    const std::vector<std::vector<float>>& inputs, std::size_t out_floats,
+                                    std::uint32_t groups_x, std::uint32_t groups_y) {
+  Impl& d = *impl_;
+  if (inputs.empty() || out_floats == 0 ||
+      std::any_of(inputs.begin(), inputs.end(), [](const auto& in) { return in.empty(); }))
+    throw std::invalid_argument("Device::dispatch: need non-empty inputs and output");
   VkDevice dev = d.device;
+  const auto binding_count = static_cast<std::uint32_t>(inputs.size() + 1);
 
-  Buffer in, out;
-  d.make_buffer(in, pairs.size() * sizeof(float));
-  d.make_buffer(out, n * sizeof(float));
-  void* mapped = nullptr;
-  check(vkMapMemory(dev, in.memory, 0, in.size, 0, &mapped), "vkMapMemory");
-  std::memcpy(mapped, pairs.data(), in.size);
-  vkUnmapMemory(dev, in.memory);
+  // buffers[b] is binding b: the output at 1, the inputs at 0, 2, 3, …
+  std::vector<Buffer> buffers(binding_count);
+  for (std::uint32_t b = 0; b < binding_count; ++b) {
+    if (b == 1) {
+      d.make_buffer(buffers[b], out_floats * sizeof(float));
+      continue;
+    }
+    d.upload(buffers[b], inputs[b == 0 ? 0 : b - 1]);
+  }
+  const Buffer& out = buffers[1];
 
-  ComputePipeline p(dev, spirv);
+  ComputePipeline p(dev, spirv, 0, binding_count);
   // Every object below is destroyed by one guard, in reverse order.
   struct Objects {
     VkDevice dev;
@@ -341,29 +400,7 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
     }
   } o{dev};
 
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
-  auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-  dpci.maxSets = 1;
-  dpci.poolSizeCount = 1;
-  dpci.pPoolSizes = &pool_size;
-  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &o.pool), "vkCreateDescriptorPool");
-  auto dsai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-  dsai.descriptorPool = o.pool;
-  dsai.descriptorSetCount = 1;
-  dsai.pSetLayouts = &p.set_layout;
-  VkDescriptorSet set;
-  check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
-  VkDescriptorBufferInfo infos[2] = {{in.buffer, 0, VK_WHOLE_SIZE}, {out.buffer, 0, VK_WHOLE_SIZE}};
-  VkWriteDescriptorSet writes[2]{};
-  for (std::uint32_t i = 0; i < 2; ++i) {
-    writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    writes[i].dstSet = set;
-    writes[i].dstBinding = i;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &infos[i];
-  }
-  vkUpdateDescriptorSets(dev, 2, writes, 0, nullptr);
+  const VkDescriptorSet set = descriptor_set(dev, p.set_layout, buffers, o.pool);
 
   auto cpoolci = make<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
   cpoolci.queueFamilyIndex = d.queue_family;
@@ -379,7 +416,7 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline_layout, 0, 1, &set, 0, nullptr);
-  vkCmdDispatch(cb, static_cast<std::uint32_t>((n + 63) / 64), 1, 1);
+  vkCmdDispatch(cb, groups_x, groups_y, 1);
   auto barrier = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -394,7 +431,8 @@ std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const st
   check(vkQueueSubmit(d.queue, 1, &submit, o.fence), "vkQueueSubmit");
   check(vkWaitForFences(dev, 1, &o.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
 
-  std::vector<float> result(n);
+  std::vector<float> result(out_floats);
+  void* mapped = nullptr;
   check(vkMapMemory(dev, out.memory, 0, out.size, 0, &mapped), "vkMapMemory");
   std::memcpy(result.data(), mapped, out.size);
   vkUnmapMemory(dev, out.memory);
@@ -420,11 +458,12 @@ VkPipelineExecutableInfoKHR compute_executable(VkDevice device, VkPipeline pipel
 
 }  // namespace
 
-std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std::uint32_t>& spirv) {
+std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std::uint32_t>& spirv,
+                                                           std::uint32_t bindings) {
   Impl& d = *impl_;
   if (!d.statistics)
     throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
-  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR);
+  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR, bindings);
   const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
   std::uint32_t count = 0;
   check(d.get_executable_statistics(d.device, &executable, &count, nullptr), "vkGetPipelineExecutableStatisticsKHR");
@@ -442,11 +481,11 @@ std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std
 }
 
 std::vector<std::pair<std::string, std::string>> Device::pipeline_representations(
-    const std::vector<std::uint32_t>& spirv) {
+    const std::vector<std::uint32_t>& spirv, std::uint32_t bindings) {
   Impl& d = *impl_;
   if (!d.statistics)
     throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
-  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR);
+  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR, bindings);
   const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
   std::uint32_t count = 0;
   check(d.get_executable_representations(d.device, &executable, &count, nullptr),
@@ -505,6 +544,67 @@ std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<
         half ? (hlsl ? validate::FloatFormat::vulkan_hlsl_half : validate::FloatFormat::vulkan_half)
              : (hlsl ? validate::FloatFormat::vulkan_hlsl : validate::FloatFormat::vulkan);
     r.entries.push_back(sweep_entry(r, sm, format, values, keep_points));
+  }
+  return skipped;
+}
+
+std::vector<float> device_lights(const shader::ExportResult& ex, shader::Language lang,
+                                 const std::vector<float>& kappas, Device& device) {
+  const auto spirv = compile_compute(lang, shader::light_compute_shader(lang, ex.source, ex));
+  return device.dispatch(spirv, {kappas}, kappas.size() * ex.light_floats,
+                         static_cast<std::uint32_t>((kappas.size() + 63) / 64));
+}
+
+std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& ex, shader::Language lang,
+                                const std::vector<float>& kappas, Device& device) {
+  const std::size_t n = ex.light_floats;
+  if (n == 0 || n > kLightStateFloats)
+    throw std::invalid_argument(fmt::format("split_lights: {} is not a split export of at most {} floats",
+                                            ex.entry_point, kLightStateFloats));
+  if (!method.light_setup32) return device_lights(ex, lang, kappas, device);
+  std::vector<float> lights;
+  lights.reserve(kappas.size() * n);
+  for (float kappa : kappas) {
+    float state[kLightStateFloats] = {};
+    method.light_setup32(kappa, state);
+    lights.insert(lights.end(), state, state + n);
+  }
+  return lights;
+}
+
+std::vector<float> run_split(const shader::ExportResult& ex, shader::Language lang, const std::vector<float>& lights,
+                             const std::vector<float>& cosines, Device& device) {
+  if (ex.light_floats == 0 || lights.size() % ex.light_floats)
+    throw std::invalid_argument(fmt::format("run_split: {} lights of {} floats expected", ex.light_struct, ex.light_floats));
+  const std::size_t count = lights.size() / ex.light_floats;
+  const auto spirv = compile_compute(lang, shader::split_compute_shader(lang, ex.source, ex));
+  // One row of workgroups per light: the sweep has at most SweepGrid::kMaxPoints / 2 = 50,000
+  // kappas, within the 65,535 workgroups every Vulkan device offers in y.
+  return device.dispatch(spirv, {cosines, lights}, count * cosines.size(),
+                         static_cast<std::uint32_t>((cosines.size() + 63) / 64), static_cast<std::uint32_t>(count));
+}
+
+std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
+                                                  std::span<const validate::SweepMethod> methods,
+                                                  shader::Language lang, Device& device, bool keep_points) {
+  const auto split = shader::split_methods();
+  const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()), cosines(r.cosines.begin(), r.cosines.end());
+  std::vector<std::string> skipped;
+  for (const validate::SweepMethod& sm : methods) {
+    const std::string id(sm.method.id);
+    if (sm.quantity != validate::Quantity::irradiance || std::find(split.begin(), split.end(), id) == split.end()) {
+      skipped.push_back(fmt::format("{} ({})", id, to_string(sm.quantity)));
+      continue;
+    }
+    shader::ExportRequest request = shader::standard_request(lang, id);
+    request.split = true;
+    const shader::ExportResult ex = shader::export_source(request);
+    const std::vector<float> out = run_split(ex, lang, split_lights(sm.method, ex, lang, kappas, device), cosines, device);
+    const std::vector<double> values(out.begin(), out.end());
+    r.entries.push_back(sweep_entry(r, sm,
+                                    lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_hlsl_split
+                                                                   : validate::FloatFormat::vulkan_split,
+                                    values, keep_points));
   }
   return skipped;
 }

@@ -73,15 +73,25 @@ class Device {
   // the integer statistics of its compute executable, in the driver's order.
   // Throws Unavailable when the device does not offer them, std::runtime_error
   // naming the failed call otherwise.
-  std::vector<PipelineStatistic> pipeline_statistics(const std::vector<std::uint32_t>& spirv);
+  // `bindings` storage buffers at bindings 0 … bindings − 1 of set 0 (3 for
+  // shader::split_compute_shader).
+  std::vector<PipelineStatistic> pipeline_statistics(const std::vector<std::uint32_t>& spirv,
+                                                     std::uint32_t bindings = 2);
   // The same pipeline's internal representations as text, by the driver's
   // name for each (RADV: "NIR Shader(s)", "ACO IR", "Assembly").
-  std::vector<std::pair<std::string, std::string>> pipeline_representations(const std::vector<std::uint32_t>& spirv);
+  std::vector<std::pair<std::string, std::string>> pipeline_representations(const std::vector<std::uint32_t>& spirv,
+                                                                            std::uint32_t bindings = 2);
 
   // Runs a compute shader built by shader::compute_shader over the points:
   // binding 0 holds (cosine, kappa) pairs as float2, binding 1 receives one
   // float per point. Throws std::runtime_error naming the failed call.
   std::vector<float> run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& cosine_kappa_pairs);
+
+  // Runs any compute shader over storage buffers of floats: binding 1
+  // receives `out_floats` floats, `inputs` fill bindings 0, 2, 3, … in that
+  // order; `groups` workgroups in x and y. Throws std::runtime_error naming the failed call.
+  std::vector<float> dispatch(const std::vector<std::uint32_t>& spirv, const std::vector<std::vector<float>>& inputs,
+                              std::size_t out_floats, std::uint32_t groups_x, std::uint32_t groups_y = 1);
 
  private:
   struct Impl;
@@ -98,5 +108,31 @@ class Device {
 std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
                                             shader::Language lang, Device& device, bool keep_points = true,
                                             shader::Precision precision = shader::Precision::float32);
+
+// The lights of a split export for the given kappas, light_floats floats
+// each, from its sglab_light_<ID> run on `device` (shader::light_compute_shader).
+std::vector<float> device_lights(const shader::ExportResult& exported, shader::Language lang,
+                                 const std::vector<float>& kappas, Device& device);
+
+// The same from the C++ runtime's per-light setup (registry.hpp light_setup32,
+// whose state the struct is) where the runtime splits the method, otherwise
+// from sglab_light_<ID> run on `device` (shader::light_compute_shader).
+std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& exported,
+                                shader::Language lang, const std::vector<float>& kappas, Device& device);
+
+// The per-pixel function of a split export on `device` for every light
+// (light_floats floats each) and cosine: values[l * cosines.size() + i]
+// (shader::split_compute_shader).
+std::vector<float> run_split(const shader::ExportResult& exported, shader::Language lang,
+                             const std::vector<float>& lights, const std::vector<float>& cosines, Device& device);
+
+// Adds a `vulkan_split` (GLSL) or `vulkan_hlsl_split` (HLSL) entry to r for
+// every irradiance method of `methods` with a split export: the lights filled
+// by split_lights and uploaded in a buffer, the per-pixel function run on
+// `device` over r's grid (shader::split_compute_shader). Returns the ids that
+// were skipped because they have no split form.
+std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
+                                                  std::span<const validate::SweepMethod> methods,
+                                                  shader::Language lang, Device& device, bool keep_points = true);
 
 }  // namespace sglab::shader::vulkan

@@ -148,7 +148,7 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
   std::vector<double> q = {1.0};  // ascending, monic
   const double a = std::log10(lo), b = std::log10(hi);
   for (std::size_t i = 0; i < kDegree; ++i) {
-    const double root = std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / kDegree);
+    const double root = std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
     std::vector<double> next(q.size() + 1, 0.0);
     for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
     q = next;

@@ -282,13 +282,19 @@ TEST(HalfGpuCost, HalfRowsOnRadv) {
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
-  int half = 0, single = 0;
+  int half = 0, single = 0, half_split = 0, single_split = 0;
   for (const auto& row : doc.at("rows")) {
-    (row.at("precision") == "half" ? half : single) += 1;
+    if (row.at("split").get<bool>())
+      (row.at("precision") == "half" ? half_split : single_split) += 1;
+    else
+      (row.at("precision") == "half" ? half : single) += 1;
     EXPECT_GT(row.at("inverse_throughput").get<int>(), 0) << row.dump();
   }
   EXPECT_EQ(half, 2 * 2 * 2);  // methods × families × languages
   EXPECT_EQ(single, 2 * 2 * 2);
+  // The default --form both adds the split rows, float only: the split export has no half form.
+  EXPECT_EQ(single_split, 2 * 2 * 2);
+  EXPECT_EQ(half_split, 0);
 }
 
 }  // namespace

@@ -872,3 +872,264 @@ TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
   EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
   fs::remove_all(dir);
 }
+
+// ---------------------------------------------------------------------------
+// Per-light split exports (`sglab export --split`).
+
+namespace {
+
+sh::ExportResult split_export(sh::Language lang, const std::string& method) {
+  sh::ExportRequest request = sh::standard_request(lang, method);
+  request.split = true;
+  return sh::export_source(request);
+}
+
+}  // namespace
+
+// The methods the issue names, and every other whose kappa-only work is separable, have a split form; a method without one is
+// refused by the library (invalid_argument) and by the CLI (exit 2, naming --split).
+TEST(ShaderExport, SplitFormsAndRefusals) {
+  // Every registered method but those whose product SG with the normal makes
+  // all their work depend on the cosine (wang2009 and its refit, meder2018).
+  std::vector<std::string> expected;
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    if (m.id != "wang2009" && m.id != "wang2009_refit" && m.id != "meder2018") expected.emplace_back(m.id);
+  EXPECT_EQ(sh::split_methods(), expected);
+  for (const char* id : {"tokuyoshi2024", "tokuyoshi2024_refit", "tokuyoshi2022", "tokuyoshi2022_listing5",
+                         "tokuyoshi2022_refit", "sglab_fast", "sglab_acc1", "sglab_acc2", "sglab_acc3"})
+    EXPECT_NE(std::find(expected.begin(), expected.end(), id), expected.end()) << id;  // the issue's list
+  EXPECT_THROW(split_export(sh::Language::glsl, "wang2009"), std::invalid_argument);
+  const auto r = run_sglab({"export", "--lang", "glsl", "--method", "wang2009", "--split"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--split"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("wang2009"), std::string::npos) << r.output;
+  const auto ok = run_sglab({"export", "--lang", "hlsl", "--method", "sglab_acc3", "--split"}, false);
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("struct SglabLight_sglab_acc3 {"), std::string::npos);
+  EXPECT_NE(ok.output.find("SglabLight_sglab_acc3 sglab_light_sglab_acc3(float kappa)"), std::string::npos);
+  EXPECT_NE(ok.output.find("float sglab_irradiance_sglab_acc3(SglabLight_sglab_acc3 light, float cosine)"),
+            std::string::npos);
+  EXPECT_NE(ok.output.find("Produced by: sglab export --lang hlsl --method sglab_acc3 --split"), std::string::npos);
+  EXPECT_NE(ok.output.find("std430"), std::string::npos);
+}
+
+// The split export is float only: split with half precision is refused by the
+// library (invalid_argument), by `sglab export` and by `sglab gpucost --form
+// split --precision half` (exit 2, naming both options); the half export alone
+// and the float split alone still work.
+TEST(ShaderExport, SplitWithHalfIsRefused) {
+  sh::ExportRequest request = sh::standard_request(sh::Language::glsl, "sglab_acc3", sh::Precision::float16);
+  request.split = true;
+  EXPECT_THROW(sh::export_source(request), std::invalid_argument);
+  request.split = false;
+  EXPECT_NO_THROW(sh::export_source(request));
+  auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--split", "--precision", "half"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--split with --precision half"), std::string::npos) << r.output;
+  r = run_sglab({"gpucost", "--families", "navi21", "--method", "sglab_acc3", "--form", "split", "--precision", "half"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--form split with --precision half"), std::string::npos) << r.output;
+  r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--split"}, false);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// glslang compiles every split export, GLSL and HLSL, in both of its
+// wrappers: the per-pixel one (lights from a buffer) and the light pre-pass.
+TEST(ShaderExport, SplitExportsCompileToSpirv) {
+  for (const std::string& id : sh::split_methods())
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
+      const sh::ExportResult ex = split_export(lang, id);
+      EXPECT_EQ(ex.light_struct, "SglabLight_" + id);
+      EXPECT_EQ(ex.light_function, "sglab_light_" + id);
+      try {
+        vk::compile_compute(lang, sh::split_compute_shader(lang, ex.source, ex));
+        vk::compile_compute(lang, sh::light_compute_shader(lang, ex.source, ex));
+      } catch (const vk::CompileError& e) {
+        ADD_FAILURE() << id << " " << sh::to_string(lang) << ": " << e.what();
+      }
+    }
+}
+
+// The C++ split exports, compiled with the unsplit ones in one program (each
+// in its own namespace): per pixel from sglab_light_<ID>(κ), the split form is
+// within 1e-6 of the peak E(1, κ) of the unsplit export at every grid point.
+// Where the runtime splits the method, its light_setup32 state copied byte for
+// byte into the struct (as a host fills the shader's buffer) gives the same
+// values, and the struct's floats are the runtime's, field by field.
+TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
+  const Grid g = standard_grid();
+  const fs::path dir = temp_dir("cpp_split");
+  struct Item {
+    const sglab::Method* method;
+    sh::ExportResult split;
+    bool host;  // the runtime has light_setup32
+  };
+  std::vector<Item> items;
+  std::ofstream main(dir / "main.cpp");
+  main << "#include <cstdio>\n#include <cstdlib>\n#include <cstring>\n";
+  for (const std::string& id : sh::split_methods()) {
+    const sglab::Method* m = sglab::find_method(sglab::irradiance_methods, id);
+    ASSERT_TRUE(m) << id;
+    items.push_back({m, split_export(sh::Language::cpp, id), m->light_setup32 != nullptr});
+    std::ofstream(dir / (id + "_split.hpp")) << items.back().split.source;
+    std::ofstream(dir / (id + ".hpp")) << export_text(sh::Language::cpp, id);
+    main << "#include \"" << id << ".hpp\"\n#include \"" << id << "_split.hpp\"\n";
+  }
+  main << "int main(int, char** argv) {\n  std::FILE* f = std::fopen(argv[1], \"r\");\n  char a[64];\n"
+       << "  auto next = [&] { return std::fscanf(f, \"%63s\", a) == 1 ? std::strtof(a, nullptr) : 0.0f; };\n"
+       << "  while (std::fscanf(f, \"%63s\", a) == 1) {\n    float c = std::strtof(a, nullptr), k = next();\n";
+  for (const Item& it : items) {
+    const std::string& L = it.split.light_struct;
+    const std::size_t n = it.split.light_floats;
+    main << fmt::format("    {{\n      static_assert(sizeof({0}) == {1} * sizeof(float), \"std430: no padding\");\n"
+                        "      {0} l = {2}(k);\n      float lf[{1}];\n      std::memcpy(lf, &l, sizeof l);\n"
+                        "      std::printf(\"%a %a \", (double){3}(c, k), (double){3}(l, c));\n"
+                        "      for (float x : lf) std::printf(\"%a \", (double)x);\n",
+                        L, n, it.split.light_function, it.split.entry_point);
+    if (it.host)
+      main << fmt::format("      float s[{0}];\n      for (float& x : s) x = next();\n      {1} h;\n"
+                          "      std::memcpy(&h, s, sizeof h);\n      std::printf(\"%a \", (double){2}(h, c));\n"
+                          "      for (float x : s) std::printf(\"%a \", (double)x);\n",
+                          n, L, it.split.entry_point);
+    main << "    }\n";
+  }
+  main << "    std::printf(\"\\n\");\n  }\n  return 0;\n}\n";
+  main.close();
+  {
+    std::ofstream in(dir / "points.txt");
+    for (std::size_t i = 0; i < g.kappa.size(); ++i) {
+      in << fmt::format("{:a} {:a}", g.cosine[i], g.kappa[i]);
+      for (const Item& it : items) {
+        if (!it.host) continue;
+        float state[sglab::kLightStateFloats] = {};
+        it.method->light_setup32(g.kappa[i], state);
+        for (std::size_t j = 0; j < it.split.light_floats; ++j) in << fmt::format(" {:a}", state[j]);
+      }
+      in << "\n";
+    }
+  }
+  const auto build = run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
+                                  (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
+  ASSERT_EQ(build.exit_code, 0) << build.output;
+  const auto run = run_program({(dir / "prog").string(), (dir / "points.txt").string()}, false);
+  ASSERT_EQ(run.exit_code, 0);
+  std::istringstream lines(run.output);
+  std::string line;
+  std::size_t point = 0;
+  std::map<std::string, double> worst_unsplit, worst_host;
+  std::map<std::string, std::string> where;
+  while (std::getline(lines, line)) {
+    ASSERT_LT(point, g.kappa.size());
+    std::istringstream row(line);
+    const auto next = [&] {
+      std::string field;
+      row >> field;
+      return std::strtod(field.c_str(), nullptr);
+    };
+    const double k = g.kappa[point], c = g.cosine[point], peak = sglab::irradiance_upper(k);
+    for (const Item& it : items) {
+      const std::string id(it.method->id);
+      const double unsplit = next(), split = next();
+      std::vector<double> fields(it.split.light_floats);
+      for (double& x : fields) x = next();
+      if (std::fabs(split - unsplit) / peak > worst_unsplit[id]) {
+        worst_unsplit[id] = std::fabs(split - unsplit) / peak;
+        where[id] = fmt::format("kappa {}, cosine {}: split {}, unsplit {}", k, c, split, unsplit);
+      }
+      if (!it.host) continue;
+      const double host = next();
+      worst_host[id] = std::max(worst_host[id], std::fabs(host - split) / peak);
+      for (std::size_t j = 0; j < fields.size(); ++j) {
+        const double state = next();
+        EXPECT_LE(std::fabs(fields[j] - state), 1e-5 * std::max(std::fabs(fields[j]), std::fabs(state)) + 1e-6)
+            << id << " field " << j << " at kappa " << k << ": export " << fields[j] << ", runtime " << state;
+      }
+    }
+    ++point;
+  }
+  EXPECT_EQ(point, g.kappa.size());
+  for (const Item& it : items) {
+    const std::string id(it.method->id);
+    EXPECT_LE(worst_unsplit[id], 1e-6) << id << ": split against unsplit export, worst at " << where[id];
+    if (it.host) {
+      EXPECT_LE(worst_host[id], 1e-6) << id << ": struct filled from light_setup32";
+    }
+  }
+  fs::remove_all(dir);
+}
+
+// On the device: every split export in GLSL, four of them in HLSL (every
+// one compiles: SplitExportsCompileToSpirv). With its lights from its own
+// sglab_light_<ID> run on the device (a pre-pass), the split export is within
+// 1e-6 of the peak of the unsplit export at every grid point (the same
+// arithmetic, split in two). With the lights the sweep uses (split_lights: the
+// runtime's light_setup32 state, filled on the host, where the runtime splits
+// the method), it is within 1e-6 of the peak of the runtime's own per-pixel
+// light_eval32 on the same state.
+TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
+  std::vector<sglab::validate::SweepMethod> methods;
+  const auto split_ids = sh::split_methods();
+  for (const sglab::validate::SweepMethod& sm : sglab::validate::registered_sweep_methods())
+    if (sm.quantity == sglab::validate::Quantity::irradiance &&
+        std::find(split_ids.begin(), split_ids.end(), sm.method.id) != split_ids.end())
+      methods.push_back(sm);
+  ASSERT_EQ(methods.size(), split_ids.size());
+  const std::set<std::string> hlsl_ids = {"tokuyoshi2024", "tokuyoshi2022", "sglab_fast", "sglab_acc3"};
+  std::vector<sglab::validate::SweepMethod> hlsl_methods;
+  for (const auto& sm : methods)
+    if (hlsl_ids.count(std::string(sm.method.id))) hlsl_methods.push_back(sm);
+  sglab::validate::SweepOptions options;
+  options.precisions.clear();
+  options.progress = false;
+  sglab::validate::SweepResult r = sglab::validate::sweep(sglab::validate::SweepGrid{}, methods, options);
+  vk::add_device_entries(r, methods, sh::Language::glsl, *device_);
+  vk::add_device_entries(r, hlsl_methods, sh::Language::hlsl, *device_);
+  const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()), cosines(r.cosines.begin(), r.cosines.end());
+  using F = sglab::validate::FloatFormat;
+  const sglab::validate::Quantity E = sglab::validate::Quantity::irradiance;
+  for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl})
+    for (const auto& sm : lang == sh::Language::glsl ? methods : hlsl_methods) {
+      const std::string id(sm.method.id);
+      SCOPED_TRACE(id + " " + std::string(sh::to_string(lang)));
+      const auto* unsplit = r.find(id, E, lang == sh::Language::hlsl ? F::vulkan_hlsl : F::vulkan);
+      ASSERT_TRUE(unsplit);
+      const sh::ExportResult ex = split_export(lang, id);
+      const std::vector<float> prepass = vk::run_split(ex, lang, vk::device_lights(ex, lang, kappas, *device_), cosines, *device_);
+      const std::vector<float> host = vk::run_split(ex, lang, vk::split_lights(sm.method, ex, lang, kappas, *device_), cosines, *device_);
+      ASSERT_EQ(prepass.size(), unsplit->values.size());
+      ASSERT_EQ(host.size(), unsplit->values.size());
+      double worst_prepass = 0, worst_runtime = 0;
+      for (std::size_t k = 0; k < r.kappas.size(); ++k) {
+        float state[sglab::kLightStateFloats] = {};
+        if (sm.method.light_setup32) sm.method.light_setup32(kappas[k], state);
+        for (std::size_t j = 0; j < r.cosines.size(); ++j) {
+          const std::size_t i = r.index(k, j);
+          const double peak = r.peak_value(E, k);
+          const double d = std::fabs(prepass[i] - unsplit->values[i]) / peak;
+          worst_prepass = std::isnan(d) ? INFINITY : std::max(worst_prepass, d);
+          if (!sm.method.light_setup32) continue;
+          const double e = std::fabs(host[i] - sm.method.light_eval32(state, cosines[j])) / peak;
+          worst_runtime = std::isnan(e) ? INFINITY : std::max(worst_runtime, e);
+        }
+      }
+      EXPECT_LE(worst_prepass, 1e-6);
+      EXPECT_LE(worst_runtime, 1e-6);
+    }
+}
+
+// `sglab sweep --backend vulkan` reports the split rows as their own precisions.
+TEST_F(OnVulkan, SweepReportsSplitRows) {
+  const fs::path dir = temp_dir("sweep_split");
+  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--method", "wang2009", "--out",
+                            dir.string(), "--json"},
+                           false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::map<std::string, std::set<std::string>> precisions;
+  const auto doc = nlohmann::json::parse(r.output);
+  for (const auto& rec : doc.at("results"))
+    precisions[rec.at("method").get<std::string>()].insert(rec.at("precision").get<std::string>());
+  EXPECT_EQ(precisions["sglab_acc3"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl",
+                                                               "vulkan_split", "vulkan_hlsl_split"}));
+  EXPECT_EQ(precisions["wang2009"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl"}));
+  fs::remove_all(dir);
+}

@@ -41,6 +41,10 @@ std::string_view to_string(FloatFormat f) {
       return "vulkan_half";
     case FloatFormat::vulkan_hlsl_half:
       return "vulkan_hlsl_half";
+    case FloatFormat::vulkan_split:
+      return "vulkan_split";
+    case FloatFormat::vulkan_hlsl_split:
+      return "vulkan_hlsl_split";
   }
   return "?";
 }

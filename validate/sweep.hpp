@@ -33,9 +33,12 @@ std::string_view to_string(Quantity q);
 // method's GLSL / HLSL export (`sglab export`) run on a Vulkan device (float),
 // values supplied through sweep_entry. `vulkan_half` / `vulkan_hlsl_half`: the
 // half export (`sglab export --precision half`) on the device, float buffers
-// converted to half and back in the wrapper.
-enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl, vulkan_half, vulkan_hlsl_half };
-// "float", "double", "vulkan", "vulkan_hlsl", "vulkan_half", "vulkan_hlsl_half"
+// converted to half and back in the wrapper. `vulkan_split` /
+// `vulkan_hlsl_split`: the float per-light split export (`sglab export
+// --split`; split is not combined with half).
+enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl, vulkan_half, vulkan_hlsl_half, vulkan_split, vulkan_hlsl_split };
+// "float", "double", "vulkan", "vulkan_hlsl", "vulkan_half", "vulkan_hlsl_half", "vulkan_split",
+// "vulkan_hlsl_split"
 std::string_view to_string(FloatFormat f);
 // A format whose values come from a device (sweep_entry), not from the runtime.
 bool is_device_format(FloatFormat f);
