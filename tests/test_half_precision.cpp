@@ -259,7 +259,7 @@ TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
 // ---------------------------------------------------------------------------
 // RADV's null devices: `gpucost --precision half` (RDNA has packed 16-bit math).
 
-TEST(HalfGpuCost, HalfRowsOnRadv) {
+TEST(OnRadv, HalfRowsCostTheHalfExports) {
   const auto manifest = gpu::find_radv_manifest();
   if (!manifest) GTEST_SKIP() << "no RADV null device: no radeon_icd.*.json in the Vulkan loader's folders";
   try {
