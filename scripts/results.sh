@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# scripts/results.sh: regenerates every committed result, data/results/ and
+# the measured tables of README.md, from the commands that produce them. One
+# command, so that no number in them is ever typed: `sglab run` (sweep, erf,
+# stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
+# out/results, the curated files copied from it, then the runs `sglab run`
+# does not make (GPU cost of the half exports, the Vulkan sweep with split and
+# half rows, the held-out sweep, half stability, callgrind instruction counts),
+# and the generated blocks of the Markdown files filled from them: each lies
+# between `<!-- generated: NAME (scripts/results.sh) -->` and
+# `<!-- end: NAME -->` and is replaced whole; the prose around it is not
+# touched. tests/test_readme_numbers.cpp checks the README's numbers against
+# the same sources. Takes about 15 minutes on 2 cores; the bench timings depend
+# on the machine's load, the instruction counts and GPU statistics do not.
+# Extra arguments go to `sglab run` (e.g. --quick).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/deps.sh jq valgrind
+scripts/build.sh
+cmake --build build --target method_cost -j"$(nproc)"
+
+results=data/results
+work=out/results
+sglab=build/sglab
+
+# 1. The main job, then the files of it that are committed.
+"$sglab" run --out "$work" "$@"
+cp "$work"/bench/{bench.csv,bench.md,bench_summary.csv,bench_summary.md,costs.json,gpu_costs.md} "$results"/
+cp "$work"/claims/claims.md "$work"/erf/erf_summary.md "$results"/
+cp "$work"/stability/{stability.md,findings.md} "$results"/
+cp "$work"/pareto/{pareto.csv,pareto.md} "$results"/
+cp "$work"/figures/[a-g]_*.{png,svg} "$results"/
+cp "$work"/envmap/{envmaps.csv,envmaps.md,envmap_city.png,envmap_curves.png} "$results"/
+
+# 2. What `sglab run` does not make.
+"$sglab" gpucost --lang both --precision both --out "$results"  # the gpu section of costs.json, gpu_costs.md
+"$sglab" sweep --backend cpu,vulkan --precision float,half --lang both --out "$work/vulkan"
+cp "$work/vulkan/summary.json" "$results/vulkan_sweep.json"
+cp "$work/vulkan/summary.md" "$results/sweep_summary.md"
+"$sglab" sweep --kappa 1.1e-3:9.7e3:217 --cosines 401 --out "$work/heldout"
+cp "$work/heldout/summary.json" "$results/heldout_sweep.json"
+"$sglab" stability --half --out "$work/stability-half"
+cp "$work/stability-half/stability_half.md" "$results"/
+models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_acc1 sglab_acc2 sglab_acc3)
+scripts/callgrind_costs.sh "$results/callgrind.csv" "${models[@]}"
+"$sglab" fit sglab-acc --dry-run --costs "$results/costs.json" >"$work/fit-sglab-acc.txt"
+"$sglab" fit sglab-fast --dry-run >"$work/fit-sglab-fast.txt"
+for scene in studio sun_and_sky soft_room; do
+  "$sglab" recommend --scene "data/scenes/$scene.json" --budget 5e-3 --costs "$results/costs.json" >"$work/recommend-$scene.txt"
+done
+
+# 3. The generated blocks.
+scripts/results_tables.sh "$work"
+echo "results.sh: data/results and README.md regenerated (git diff shows what moved)"

@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# scripts/results_tables.sh WORK: fills the generated blocks of README.md and
+# data/results/*.md from data/results (costs.json, callgrind.csv,
+# heldout_sweep.json, vulkan_sweep.json) and from the fit reports that
+# scripts/results.sh leaves in WORK. Called by scripts/results.sh; on its own
+# it redraws the tables from the committed sources without rerunning anything.
+# A block is the text between `<!-- generated: NAME (scripts/results.sh) -->`
+# and `<!-- end: NAME -->`; a file without the block is an error (exit 2).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+(($# == 1)) || { echo "usage: scripts/results_tables.sh WORK" >&2; exit 2; }
+work=$1
+results=data/results
+costs=$results/costs.json
+heldout=$results/heldout_sweep.json
+standard=$results/vulkan_sweep.json
+callgrind=$results/callgrind.csv
+
+# fill FILE NAME: replaces the block NAME of FILE with standard input.
+fill() {
+  local file=$1 name=$2 body
+  body=$(mktemp)
+  cat >"$body"
+  grep -qF -- "<!-- generated: $name (scripts/results.sh) -->" "$file" && grep -qF -- "<!-- end: $name -->" "$file" ||
+    { echo "results_tables: $file has no block '$name'" >&2; rm -f "$body"; exit 2; }
+  local partial
+  partial=$(mktemp "$file.XXXXXX")
+  awk -v begin="<!-- generated: $name (scripts/results.sh) -->" -v end="<!-- end: $name -->" -v body="$body" '
+    $0 == begin { print; while ((getline line < body) > 0) print line; skip = 1; next }
+    $0 == end { skip = 0 }
+    !skip { print }' "$file" >"$partial"
+  mv "$partial" "$file"
+  rm -f "$body"
+}
+
+# Number formats of the documents: three significant digits, a Unicode minus
+# in exponents (1.93e−4); `plain` for CSV-like cells (1.93e-04 → 0.000193).
+fmt_awk='function sig(x,   s, m, e) {
+  if (x == "" || x == "null") return "";
+  if (x >= 0.01 || x == 0) { s = sprintf("%.3g", x); return s }
+  s = sprintf("%.2e", x); split(s, m, "e"); e = m[2] + 0;
+  sub(/0+$/, "", m[1]); sub(/\.$/, "", m[1]);
+  return m[1] "e\xe2\x88\x92" (-e)
+}
+function ratio(a, b) { return sprintf("%.2f", a / b) }'
+
+# Float max peak_rel of METHOD in a sweep summary (irradiance rows).
+peak() { jq -r --arg m "$2" --arg p "${3:-float}" \
+  '[.results[] | select(.method == $m and .quantity == "irradiance" and .precision == $p)][0].max_peak_rel // ""' "$1"; }
+worst_kappa() { jq -r --arg m "$2" \
+  '[.results[] | select(.method == $m and .quantity == "irradiance" and .precision == "float")][0].worst_kappa // ""' "$1"; }
+# ACO inverse throughput of METHOD's GLSL float export on FAMILY (split: true|false).
+cycles() { jq -r --arg m "$1" --arg f "$2" --argjson s "${3:-false}" \
+  '[.gpu.rows[] | select(.method == $m and .family == $f and .lang == "glsl" and .precision == "float" and .split == $s)][0].inverse_throughput // ""' "$costs"; }
+batch_ns() { jq -r --arg m "$1" \
+  '[.costs[] | select(.method == $m and .kind == "irradiance" and .precision == "float" and .mode == "batch")][0].ns_per_eval // ""' "$costs"; }
+instructions() { awk -F, -v m="$1" -v mode="$2" '$1 == m && $2 == mode { print $3 }' "$callgrind"; }
+
+# README.md: the table of sglab's own models.
+models_table() {
+  echo "| method | form | held-out max peak_rel | standard grid | GPU cycles | batch ns |"
+  echo "|---|---|---:|---:|---:|---:|"
+  while IFS='|' read -r method form bold; do
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$method" "$form" "$bold" "$(peak "$heldout" "$method")" \
+      "$(peak "$standard" "$method")" "$(cycles "$method" navi21)" "$(batch_ns "$method")"
+  done <<'EOF' | awk -F'\t' "$fmt_awk"'
+    { name = $1; if (name !~ /^(vsgl2015|tokuyoshi2024)$/) name = "`" name "`"; else name = name " (published)";
+      h = sig($4); s = sig($5); if ($3 == "bold") { h = "**" h "**"; s = "**" s "**" }
+      printf "| %s | %s | %s | %s | %s | %s |\n", name, $2, h, s, $6, sprintf("%.3g", $7) }'
+vsgl2015|[Tokuyoshi2015] diffuse SG, one exp|
+tokuyoshi2024|[Tokuyoshi2024] lerp of the exact poles, erfc-based factor|
+sglab_acc1|2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P0(u), u = t/(t + s)|
+sglab_acc2|… + b1(κ)z²|
+sglab_acc3|… + b2(κ)z⁴, P_j of degree 4 (acc1, acc2: 3)|bold
+sglab_fast|exact E(1, κ) × A + Bc + Cρ(Vc + ½), rational A, B, C, V|
+EOF
+}
+models_table | fill README.md sglab-models
+
+# data/results/sglab_acc.md: the fit report, the held-out errors, the costs.
+fence() { echo '```'; cat; echo '```'; }
+fence <"$work/fit-sglab-acc.txt" | fill "$results/sglab_acc.md" fit
+{
+  echo "| method | float | double | worst κ (float) |"
+  echo "|---|---:|---:|---:|"
+  for m in tokuyoshi2024 sglab_acc1 sglab_acc2 sglab_acc3; do
+    printf '%s\t%s\t%s\t%s\n' "$m" "$(peak "$heldout" "$m")" "$(peak "$heldout" "$m" double)" "$(worst_kappa "$heldout" "$m")"
+  done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), $4 }'
+} | fill "$results/sglab_acc.md" heldout
+cost_table() {  # METHOD...: callgrind and GPU cost, ratios to the first
+  echo "| method | scalar Ir | ratio | batch Ir | ratio | navi21 | ratio | gfx1100 | ratio | navi21 split |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  for m in "$@"; do
+    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+      "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" "$(cycles "$m" navi21 true)"
+  done | awk -F'\t' "$fmt_awk"'
+    NR == 1 { s = $2; b = $3; n = $4; g = $5 }
+    { printf "| %s | %.0f | %s | %.0f | %s | %s | %s | %s | %s | %s |\n", $1, $2, ratio($2, s), $3, ratio($3, b),
+        $4, ratio($4, n), $5, ratio($5, g), $6 }'
+}
+cost_table tokuyoshi2024 sglab_acc1 sglab_acc2 sglab_acc3 | fill "$results/sglab_acc.md" cost
+
+# data/results/sglab_fast.md: the fit report, errors on both grids, the costs.
+fence <"$work/fit-sglab-fast.txt" | fill "$results/sglab_fast.md" fit
+{
+  echo "| method | standard float | standard double | held-out float | held-out double | worst κ held-out (float) |"
+  echo "|---|---:|---:|---:|---:|---:|"
+  for m in sglab_fast tokuyoshi2024 vsgl2015; do
+    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(peak "$standard" "$m")" "$(peak "$standard" "$m" double)" \
+      "$(peak "$heldout" "$m")" "$(peak "$heldout" "$m" double)" "$(worst_kappa "$heldout" "$m")"
+  done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), sig($4), sig($5), $6 }'
+} | fill "$results/sglab_fast.md" accuracy
+{
+  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+  for m in sglab_fast vsgl2015 tokuyoshi2024; do
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+      "$(instructions "$m" setup)" "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" \
+      "$(cycles "$m" navi21 true)"
+  done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
+                        printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8 }'
+} | fill "$results/sglab_fast.md" cost
+for scene in studio sun_and_sky soft_room; do
+  echo '```sh'
+  echo "build/sglab recommend --scene data/scenes/$scene.json --budget 5e-3 --costs data/results/costs.json"
+  echo '```'
+  echo
+  fence <"$work/recommend-$scene.txt"
+  echo
+done | sed '$d' | fill "$results/sglab_fast.md" scenes
+
+# data/results/vulkan_sweep.md: one row per method, one column per backend.
+{
+  echo "| method | double (model) | C++ float | Vulkan GLSL | Vulkan HLSL | GLSL split | GLSL half | HLSL half | max \\|GLSL − C++ float\\|/E(1, κ) | max \\|split GLSL − C++ float\\|/E(1, κ) |"
+  echo "|:---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  jq -r '
+    .results as $r | (.device_vs_float // []) as $d |
+    def err($m; $p): ([$r[] | select(.method == $m and .quantity == "irradiance" and .precision == $p)][0].max_peak_rel) // "";
+    def diff($m; $p): ([$d[] | select(.method == $m and .quantity == "irradiance" and .precision == $p)][0].max_diff_peak_rel) // "";
+    (reduce ($r[] | select(.quantity == "irradiance") | .method) as $m ([]; if index([$m]) then . else . + [$m] end))[] as $m |
+    [$m, err($m; "double"), err($m; "float"), err($m; "vulkan"), err($m; "vulkan_hlsl"), err($m; "vulkan_split"),
+     err($m; "vulkan_half"), err($m; "vulkan_hlsl_half"), diff($m; "vulkan"), diff($m; "vulkan_split")] | @tsv' "$standard" |
+    awk -F'\t' '{ printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", ($i == "" ? "" : sprintf("%.3g", $i)); printf "\n" }'
+} | fill "$results/vulkan_sweep.md" vulkan-table
