@@ -88,15 +88,16 @@ fence <"$work/fit-sglab-acc.txt" | fill "$results/sglab_acc.md" fit
   done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), $4 }'
 } | fill "$results/sglab_acc.md" heldout
 cost_table() {  # METHOD...: callgrind and GPU cost, ratios to the first
-  echo "| method | scalar Ir | ratio | batch Ir | ratio | navi21 | ratio | gfx1100 | ratio | navi21 split |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| method | scalar Ir | ratio | batch Ir | ratio | setup Ir | eval Ir | navi21 | ratio | gfx1100 | ratio | navi21 split |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   for m in "$@"; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+      "$(instructions "$m" setup)" "$(instructions "$m" eval)" \
       "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" "$(cycles "$m" navi21 true)"
   done | awk -F'\t' "$fmt_awk"'
-    NR == 1 { s = $2; b = $3; n = $4; g = $5 }
-    { printf "| %s | %.0f | %s | %.0f | %s | %s | %s | %s | %s | %s |\n", $1, $2, ratio($2, s), $3, ratio($3, b),
-        $4, ratio($4, n), $5, ratio($5, g), $6 }'
+    NR == 1 { s = $2; b = $3; n = $6; g = $7 }
+    { printf "| %s | %.0f | %s | %.0f | %s | %.0f | %.0f | %s | %s | %s | %s | %s |\n", $1, $2, ratio($2, s), $3, ratio($3, b),
+        $4, $5, $6, ratio($6, n), $7, ratio($7, g), $8 }'
 }
 cost_table tokuyoshi2024 sglab_acc1 sglab_acc2 sglab_acc3 | fill "$results/sglab_acc.md" cost
 
