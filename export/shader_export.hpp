@@ -5,7 +5,12 @@
 // Shading languages have no erf, erfc or expm1, so an export carries its own
 // elementary functions, chosen here for the accuracy the model needs
 // (ElementaryTier). Every method body is one entry of one table in
-// shader_export.cpp (kShaderMethods): adding a method is adding one entry.
+// export/shader_methods.cpp (shader_methods()): adding a method is adding one
+// entry. The export is split along its seams: constant-set adapters
+// (shader_constants), elementary functions (shader_elementary), source text and
+// its half translation (shader_text), method snippets (shader_methods,
+// shader_split_forms), emit (shader_export.cpp) and the compute wrappers
+// (shader_wrappers.cpp).
 //
 // The C++ form is the same code as the shader forms (same templates, same
 // literals), so compiling it in a test and comparing it to the runtime checks

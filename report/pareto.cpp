@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -12,6 +14,8 @@
 #include <fmt/ranges.h>
 
 #include <sglab/registry.hpp>
+
+#include "common/io.hpp"
 
 namespace sglab::report {
 
@@ -214,6 +218,123 @@ std::optional<validate::FloatFormat> parse_precision(std::string_view text) {
   if (text == "float") return validate::FloatFormat::binary32;
   if (text == "double") return validate::FloatFormat::binary64;
   return std::nullopt;
+}
+
+// ---- reading `sglab pareto`'s CSV (figure e reads it back) -------------------------
+
+namespace {
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < line.size() && line[i + 1] == '"')
+          cur += '"', ++i;
+        else
+          quoted = false;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != '\r') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+bool parse_bool(const std::string& s, bool& out) {
+  std::string l;
+  for (char c : s) l += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (l == "true" || l == "1" || l == "yes") return out = true, true;
+  if (l == "false" || l == "0" || l == "no" || l.empty()) return out = false, true;
+  return false;
+}
+
+double parse_number(const std::string& s, const std::filesystem::path& path, std::size_t line, const char* col) {
+  std::string t = s;
+  if (t == "nan" || t.empty()) return std::nan("");
+  if (t == "inf") return INFINITY;
+  try {
+    std::size_t pos = 0;
+    const double x = std::stod(t, &pos);
+    if (pos == t.size()) return x;
+  } catch (...) {
+  }
+  throw std::invalid_argument(fmt::format("{}:{}: column {}: '{}' is not a number", path.string(), line, col, s));
+}
+
+}  // namespace
+
+std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
+  const std::string text = io::read_input_file(path, kMaxParetoCsvBytes, "a Pareto CSV");
+  std::istringstream in(std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
+  std::string line;
+  std::size_t lineno = 0;
+  std::vector<std::string> header;
+  std::map<std::string, std::size_t> col;
+  std::vector<ParetoRow> rows;
+  static const char* kRequired[] = {"method", "origin", "precision", "kappa_lo", "kappa_hi", "max_peak_rel",
+                                     "frontier"};
+  bool legacy = false;  // ns_per_eval instead of cost, cost_unit, cost_source
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.empty() || line == "\r") continue;
+    auto cells = split_csv_line(line);
+    if (header.empty()) {
+      header = cells;
+      for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+      for (const char* r : kRequired)
+        if (!col.count(r))
+          throw std::invalid_argument(fmt::format("{}: header lacks column '{}' (expected "
+                                                  "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,"
+                                                  "cost_source,max_peak_rel,frontier)",
+                                                  path.string(), r));
+      legacy = !col.count("cost") && col.count("ns_per_eval");
+      for (const char* r : {"cost", "cost_unit", "cost_source"})
+        if (!legacy && !col.count(r))
+          throw std::invalid_argument(fmt::format("{}: header lacks column '{}' (nor has it the ns_per_eval of an "
+                                                  "older `sglab pareto`)",
+                                                  path.string(), r));
+      continue;
+    }
+    if (cells.size() != header.size())
+      throw std::invalid_argument(
+          fmt::format("{}:{}: {} fields, the header has {}", path.string(), lineno, cells.size(), header.size()));
+    ParetoRow r;
+    r.method = cells[col["method"]];
+    r.precision = cells[col["precision"]];
+    const std::string& origin = cells[col["origin"]];
+    if (origin == to_string(Origin::published))
+      r.origin = Origin::published;
+    else if (origin == to_string(Origin::refit))
+      r.origin = Origin::refit;
+    else if (origin == to_string(Origin::sglab))
+      r.origin = Origin::sglab;
+    else
+      throw std::invalid_argument(fmt::format("{}:{}: origin '{}' is not one of published, refit, sglab",
+                                              path.string(), lineno, origin));
+    if (!parse_bool(cells[col["frontier"]], r.frontier))
+      throw std::invalid_argument(fmt::format("{}:{}: frontier must be true/false", path.string(), lineno));
+    r.kappa_lo = parse_number(cells[col["kappa_lo"]], path, lineno, "kappa_lo");
+    r.kappa_hi = parse_number(cells[col["kappa_hi"]], path, lineno, "kappa_hi");
+    r.cost = parse_number(cells[col[legacy ? "ns_per_eval" : "cost"]], path, lineno, legacy ? "ns_per_eval" : "cost");
+    r.cost_unit = legacy ? "ns" : cells[col["cost_unit"]];
+    r.cost_source = legacy ? "cpu-batch" : cells[col["cost_source"]];
+    r.max_peak_rel = parse_number(cells[col["max_peak_rel"]], path, lineno, "max_peak_rel");
+    rows.push_back(std::move(r));
+  }
+  if (header.empty()) throw std::invalid_argument(fmt::format("{}: empty file (no header)", path.string()));
+  return rows;
 }
 
 }  // namespace sglab::report

@@ -13,6 +13,8 @@
 // live (measure_costs, cost.hpp).
 #pragma once
 
+#include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -97,5 +99,21 @@ validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::F
 bool parse_number(std::string_view text, double& out);
 // "float" / "double".
 std::optional<validate::FloatFormat> parse_precision(std::string_view text);
+
+// Parses `sglab pareto`'s CSV (RFC 4180; header
+// method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier;
+// origin is published, refit or sglab, frontier true/false or 1/0). The CSV of
+// an older sglab, with ns_per_eval instead of the three cost columns, reads as
+// cost_unit "ns", cost_source "cpu-batch".
+struct ParetoRow {
+  std::string method, precision;
+  Origin origin = Origin::published;
+  double kappa_lo = 0, kappa_hi = 0, cost = 0, max_peak_rel = 0;
+  std::string cost_unit = "ns", cost_source = "cpu-batch";
+  bool frontier = false;
+};
+// The largest Pareto CSV read (io::read_input_file); `sglab pareto` writes a few KB.
+inline constexpr std::size_t kMaxParetoCsvBytes = 16 << 20;
+std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path);
 
 }  // namespace sglab::report

@@ -1,0 +1,443 @@
+#include "export/shader_methods.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include <sglab/constants.hpp>
+
+#include "export/shader_elementary.hpp"
+
+namespace sglab::shader::detail {
+
+std::string helper_product(const Ctx& c, const Slots&) {
+  return subst(R"(// Product of the light SG with an SG (n, lambda) about the normal, c = v.n:
+// (sharpness, log-amplitude, cosine of the product axis with n), without
+// cancellation or overflow (sglab/sg.hpp sg_product_with_normal; [Tokuyoshi2022] Eq. 1-2).
+{INLINE}{VEC3} {P}product_with_normal(float c, float kappa, float lambda) {
+  float m = max(kappa, lambda);
+  if (!(m > 0.0f)) return {VEC3}(0.0f, 0.0f, 1.0f);
+  float ks = kappa / m;
+  float ls = lambda / m;
+  float diff = (kappa - lambda) / m;  // exact where kappa - lambda cancels (Sterbenz)
+  float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
+  float kmin = min(kappa, lambda);
+  float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
+  float c3 = 1.0f;
+  if (k3s > 0.0f) c3 = clamp((ks * c + ls) / k3s, -1.0f, 1.0f);
+  return {VEC3}(m * k3s, log_amp, c3);
+}
+)",
+               c);
+}
+
+std::string helper_steepness2022(const Ctx& c, const Slots&) {
+  return subst(R"(// t(kappa) = kappa sqrt((0.5 kappa + A)/((kappa + B) kappa + C)) ([Tokuyoshi2022] Eq. 6),
+// in powers of 1/kappa for kappa >= 1 so that nothing overflows.
+{INLINE}float {P}steepness(float kappa) {
+  if (kappa < 1.0f)
+    return kappa * sqrt((0.5f * kappa + {P}steepness_A) / ((kappa + {P}steepness_B) * kappa + {P}steepness_C));
+  float r = 1.0f / kappa;
+  return sqrt(kappa) * sqrt((0.5f + {P}steepness_A * r) / (1.0f + ({P}steepness_B + {P}steepness_C * r) * r));
+}
+)",
+               c);
+}
+
+std::string helper_steepness2024(const Ctx& c, const Slots&) {
+  return subst(R"(// t(kappa) = kappa sqrt(0.5((kappa + A) kappa + B)/(((kappa + C) kappa + D) kappa + E))
+// ([Tokuyoshi2024] Listing 7), in powers of 1/kappa for kappa >= 1.
+{INLINE}float {P}steepness(float kappa) {
+  if (kappa < 1.0f)
+    return kappa * sqrt(0.5f * ((kappa + {P}steepness_A) * kappa + {P}steepness_B) /
+                        (((kappa + {P}steepness_C) * kappa + {P}steepness_D) * kappa + {P}steepness_E));
+  float r = 1.0f / kappa;
+  return sqrt(kappa) * sqrt(0.5f * (1.0f + ({P}steepness_A + {P}steepness_B * r) * r) /
+                            (1.0f + ({P}steepness_C + ({P}steepness_D + {P}steepness_E * r) * r) * r));
+}
+)",
+               c);
+}
+
+std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
+  return subst(R"(// H~(c, kappa) = 2 pi lerp(e^-kappa, 1, s~) (1 - e^-kappa)/kappa, s~ = 1/2 + erf(t c)/(2 erf(t))
+// ([Tokuyoshi2022] Eq. 5-6, Listing 3); the ratio is c below t = 2^-13.
+{INLINE}float {P}hemispherical(float cosine, float kappa) {
+  float t = {P}steepness(kappa);
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float ratio;
+  if (t < 0.0001220703125f)
+    ratio = c;
+  else
+    ratio = clamp({P}erf(t * c) / {P}erf(t), -1.0f, 1.0f);
+  float s = 0.5f + 0.5f * ratio;
+  float e = exp(-kappa);
+  return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
+}
+)",
+               c);
+}
+
+std::string helper_poles2024(const Ctx& c, const Slots&) {
+  return subst(fmt::format(R"(// Exact poles (E(-1, kappa), E(+1, kappa))/2 pi (sglab/closed_forms.hpp), series at kappa < 1;
+// beyond, upper = (1 - m)/kappa and lower = e (m - e)/kappa share e = e^-kappa and
+// m = (1 - e)/kappa (one branch, one exp for both).
+{{INLINE}}{{VEC2}} {{P}}poles_over_two_pi(float kappa) {{
+  float e = exp(-kappa);
+  if (kappa < 1.0f) return {{VEC2}}(e * {}, {});
+  float m = (1.0f - e) / kappa;
+  return {{VEC2}}(e * ((m - e) / kappa), (1.0f - m) / kappa);
+}}
+)",
+                           horner_text("kappa", literals(pole_series(true))),
+                           horner_text("kappa", literals(pole_series(false)))),
+               c);
+}
+
+std::string helper_lerp2024(const Ctx& c, const Slots&) {
+  return subst(R"(// f = 1/2 (c erfc(-t c) + erfc(t)) - e^(-t^2 c^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t),
+// saturated ([Tokuyoshi2024] Listing 7); t = t(kappa) >= 0, so erfc(t) is erfc_pos(t).
+{INLINE}float {P}lerp_factor(float cosine, float t) {
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float tz = t * c;
+  float x = t * t * (c * c - 1.0f);
+  float tail = 0.0f;
+  if (t > 0.0f) tail = exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t;
+  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
+}
+)",
+               c);
+}
+
+std::string helper_meder2018(const Ctx& c, const Slots&) {
+  return subst(R"(// [Meder2018] normalized logistic hemispherical integral, t(kappa) = sqrt(kappa) (a2 kappa^2 + a1 kappa)/
+// (kappa^2 + b1 kappa + b0) as published, s = sigma(t c) (1 - e^(-t(1+c)))/(1 - e^(-t)), evaluated as
+// sglab/hemispherical.hpp normalized_meder2018: sigma from e^(-t|c|), the ratio as
+// (1 + c) E(-t(1+c))/E(-t) with E(x) = (e^x - 1)/x (no 0/0 at t = 0).
+{INLINE}float {P}hemispherical(float cosine, float kappa) {
+  float t = sqrt(kappa) * ({P}meder_a2 * kappa * kappa + {P}meder_a1 * kappa) /
+            (kappa * kappa + {P}meder_b1 * kappa + {P}meder_b0);
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float e = exp(-(t * abs(c)));
+  float sigma = c < 0.0f ? e / (1.0f + e) : 1.0f / (1.0f + e);
+  float u = 1.0f + c;
+  float s = clamp(sigma * (u * ({P}expm1_over_x(-(t * u)) / {P}expm1_over_x(-t))), 0.0f, 1.0f);
+  float em = exp(-kappa);
+  return 6.28318548f * (em + s * (1.0f - em)) * {P}expm1_over_x(-kappa);
+}
+)",
+               c);
+}
+
+std::string helper_hill(const Ctx& c, const Slots&) {
+  return subst(R"(// Stephen Hill's fitted curve for a normalized SG ([Pettineo2016]).
+{INLINE}float {P}hill_normalized(float cosine, float kappa) {
+  float c0 = {P}hill_c0;
+  float c1 = 1.0f / (4.0f * c0);
+  float eml = exp(-kappa);
+  float em2l = eml * eml;
+  float rl = 1.0f / kappa;
+  float scale = 1.0f + 2.0f * em2l - rl;
+  float bias = (eml - em2l) * rl - em2l;
+  float x = sqrt(1.0f - scale);
+  float x0 = c0 * cosine;
+  float x1 = c1 * x;
+  float n = x0 + x1;
+  float y = abs(x0) <= x1 ? n * n / x : clamp(cosine, 0.0f, 1.0f);
+  return scale * y + bias;
+}
+)",
+               c);
+}
+
+// The number of correction terms N and the degree D of an SglabAccParams set
+// (from its type, SglabAccParams<double, N, D>, checked against its member
+// sizes: steep 5, num N (D + 1), scale 1).
+std::pair<std::size_t, std::size_t> sglab_acc_shape(const ConstantSet& s) {
+  std::size_t n = 0, d = 0;
+  char tail = 0;
+  const bool typed = std::sscanf(s.cpp_type.c_str(), "SglabAccParams<double, %zu, %zu%c", &n, &d, &tail) == 3 &&
+                     tail == '>';
+  if (!typed || n == 0 || member(s, "num").size() != n * (d + 1) || member(s, "steep").size() != 5 ||
+      member(s, "scale").size() != 1)
+    throw std::invalid_argument(fmt::format("constant set {}: member sizes do not form SglabAccParams", s.cpp_name));
+  return {n, d};
+}
+
+std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
+  const auto s = names(c, "model", slot(slots, "model"), "steep");
+  return subst(fmt::format(R"(// t(kappa) = kappa sqrt(0.5((kappa + s0) kappa + s1)/(((kappa + s2) kappa + s3) kappa + s4))
+// ([Tokuyoshi2024] Listing 7 form, sglab's coefficients), in powers of 1/kappa for kappa >= 1.
+{{INLINE}}float {{P}}steepness(float kappa) {{
+  if (kappa < 1.0f)
+    return kappa * sqrt(0.5f * ((kappa + {0}) * kappa + {1}) / (((kappa + {2}) * kappa + {3}) * kappa + {4}));
+  float r = 1.0f / kappa;
+  return sqrt(kappa) * sqrt(0.5f * (1.0f + ({0} + {1} * r) * r) / (1.0f + ({2} + ({3} + {4} * r) * r) * r));
+}}
+)",
+                           s[0], s[1], s[2], s[3], s[4]),
+               c);
+}
+
+// sglab_acc<N>: b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc.hpp
+// sglab_acc_fade), and sum_j b_j z2^j.
+std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto [n, d] = sglab_acc_shape(set);
+  const auto num = names(c, "model", set, "num"), scale = names(c, "model", set, "scale");
+  std::string products;
+  std::vector<std::string> b;
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::vector<std::string> poly(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
+    products += fmt::format("  float b{} = fade * ({});\n", j, horner_text("u", poly));
+    b.push_back(fmt::format("b{}", j));
+  }
+  const std::string text = fmt::format(R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades for
+// small and for large kappa; and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp).
+{{INLINE}}float {{P}}correction(float t, float z2) {{
+  float w = 1.0f / (t + {});
+  float u = t * w;
+  float v = {} * w;
+  float fade = u * (v * v) * v;
+{}  return {};
+}}
+)",
+                                       d, scale[0], scale[0], products, horner_text("z2", b));
+  return subst(text, c);
+}
+
+std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
+  return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
+// Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
+// with sglab's fitted even correction (sglab/sglab_acc.hpp). Where e^(-z^2) has underflowed
+// the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
+// so erfc(t) is erfc_pos(t).
+{INLINE}float {P}lerp_factor(float cosine, float t) {
+  float c = clamp(cosine, -1.0f, 1.0f);
+  float tz = t * c;
+  float z2 = tz * tz;
+  float x = t * t * (c * c - 1.0f);
+  float g = exp(-z2);
+  float tail = 0.0f;
+  if (t > 0.0f) tail = g * (x * {P}expm1_over_x(x)) / t;
+  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail;
+  float corr = 0.0f;
+  if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(t, z2);
+  return clamp(f + corr, 0.0f, 1.0f);
+}
+)",
+               c);
+}
+
+std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_fast.hpp
+  {
+    const auto all = pole_series(false);
+    series.assign(all.begin(), all.begin() + 6);
+  }
+  return subst(fmt::format(R"(// E(1, kappa)/2 pi = (kappa - 1 + e^-kappa)/kappa^2: Taylor series below kappa = 1/4,
+// (1 - (1 - e^-kappa)/kappa)/kappa from there on, e^-kappa's argument stopped at 80
+// (sglab/sglab_fast.hpp upper_over_two_pi_fast).
+{{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
+  if (kappa < 0.25f) return {0};
+  float r = 1.0f / kappa;
+  return (1.0f - (1.0f - exp(-min(kappa, 80.0f))) * r) * r;
+}}
+// The C2 ramp rho(u) = 0 | u^3 (2 - u) | 2u - 1 on u <= 0 | (0, 1) | u >= 1, branch-free.
+{{INLINE}}float {{P}}ramp(float u) {{
+  float over = abs(u - 1.0f);
+  float v = 0.5f * (abs(u) - over + 1.0f);
+  return v * v * v * (2.0f - v) + (u - 1.0f + over);
+}}
+// sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
+// k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_fast.hpp).
+{{INLINE}}float {{P}}fast(float cosine, float kappa) {{
+  float k = min(kappa, {1});
+  float inv_q = 1.0f / ({2} + k * k * k * k);
+  float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
+  float s = {3} * scale + {4} * scale * cosine + {5} * scale * {{P}}ramp({6} * inv_q * cosine + 0.5f);
+  return 0.5f * (s + abs(s));
+}}
+)",
+                           horner_text("kappa", literals(series)), names(c, "model", set, "kappa_max")[0],
+                           poly("q"), poly("a"), poly("b"), poly("c"), poly("v")),
+               c);
+}
+
+// The half form of sglab_fast: its κ-only part (E(1, κ) and the rational A, B,
+// C, V, whose κ^4 overflows half above κ = 16) in float, the per-pixel shape in
+// half: the runtime's per-light split (sglab/sglab_fast.hpp sglab_fast_light,
+// sglab_fast_eval) with the light's four numbers rounded to half.
+std::string helper_sglab_fast_half(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  const bool glsl = c.lang == Language::glsl;
+  const std::string h(half_type(c.lang)), abs16 = glsl ? "abs" : c.prefix + "h_abs";
+  return subst(fmt::format(R"(// The C2 ramp rho(u) in half (as {{P}}ramp).
+{0} {{P}}ramp_half({0} u) {{
+  {0} over = {1}(u - {0}(1.0));
+  {0} v = {0}(0.5) * ({1}(u) - over + {0}(1.0));
+  return v * v * v * ({0}(2.0) - v) + (u - {0}(1.0) + over);
+}}
+// sglab_fast in half: a = A E(1, kappa)/Q, b, c_ramp, v = V/Q in float (kappa alone), rounded to
+// half; max(0, a + b c + c_ramp rho(v c + 1/2)) in half.
+{0} {{P}}fast_half({0} cosine, float kappa) {{
+  float k = min(kappa, {2});
+  float inv_q = 1.0f / ({3} + k * k * k * k);
+  float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
+  {0} a = {0}({4} * scale);
+  {0} b = {0}({5} * scale);
+  {0} c_ramp = {0}({6} * scale);
+  {0} v = {0}({7} * inv_q);
+  {0} s = a + b * cosine + c_ramp * {{P}}ramp_half(v * cosine + {0}(0.5));
+  return {0}(0.5) * (s + {1}(s));
+}}
+)",
+                           h, abs16, names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"),
+                           poly("c"), poly("v")),
+               c);
+}
+
+const std::vector<HalfForm>& half_forms() {
+  static const std::vector<HalfForm> table = {
+      {"sglab_fast",
+       "kappa-only part (E(1, kappa), the rational A, B, C, V) in float, per-pixel shape in half",
+       {helper_sglab_fast, helper_sglab_fast_half},
+       "  return {P}fast_half(cosine, float(kappa));\n"},
+  };
+  return table;
+}
+const HalfForm* find_half_form(std::string_view id) {
+  for (const HalfForm& f : half_forms())
+    if (f.id == id) return &f;
+  return nullptr;
+}
+
+constexpr std::string_view kBodyTokuyoshi2022 = R"(  float lambda = {P}clamped_cosine_lambda;
+  float alpha = {P}clamped_cosine_alpha;
+  {VEC3} prod = {P}product_with_normal(cosine, kappa, lambda);
+  float p = {P}hemispherical(prod.z, prod.x) * exp(lambda + prod.y);
+  float q = {P}hemispherical(cosine, kappa);
+  return max(alpha * p - alpha * q, 0.0f);
+)";
+constexpr std::string_view kBodyTokuyoshi2024 = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  return 6.28318548f * (poles.x + f * (poles.y - poles.x));
+)";
+// [Wang2009] a e^{d - kappa - lambda} 2 pi (1 - e^{-2d})/d, d = |kappa v + lambda n|, through the
+// stable product (sglab/sg.hpp sg_inner_product): d - kappa - lambda without cancellation and
+// S(d) = 4 pi (e^{-2d} - 1)/(-2d) with its d -> 0 limit.
+constexpr std::string_view kBodyWang2009 = R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}cosine_lobe_lambda);
+  float s = 12.566371f * {P}expm1_over_x(-2.0f * prod.x);
+  return max({P}cosine_lobe_amplitude * (exp(prod.y) * s), 0.0f);
+)";
+const std::vector<Helper> kHelpersWang2009 = {helper_expm1, helper_product};
+constexpr std::string_view kBodyVsgl2015 = R"(  float sum = kappa + {P}diffuse_lobe_lambda_d;
+  float lam = sum > 0.0f ? kappa * {P}diffuse_lobe_lambda_d / sum : 0.0f;
+  return 6.28318548f * exp(lam * (cosine - 1.0f)) / sum;
+)";
+
+const std::vector<Helper>& helpers2022() {
+  static const std::vector<Helper> list = {helper_expm1, helper_erf, helper_steepness2022, helper_product, helper_hemispherical2022};
+  return list;
+}
+const std::vector<Helper>& helpers2024() {
+  static const std::vector<Helper> list = {helper_expm1, helper_erf, helper_steepness2024, helper_poles2024, helper_lerp2024};
+  return list;
+}
+
+constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
+  {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
+  return 6.28318548f * (poles.x + f * (poles.y - poles.x));
+)";
+const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
+                                              helper_sglab_acc_steepness, helper_poles2024,
+                                              helper_sglab_acc_correction, helper_sglab_acc_lerp};
+
+// THE table: one entry per exportable method. To add a method (e.g. one of
+// sglab's own models): append {id, citation, its constant slots as
+// Slots{{"role", named("NAME", the set NAME of constants.hpp)}}, how it uses erf, the
+// helpers it calls, and the body in the shading-language subset used here
+// (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?: with cheap arms and if/else
+// where an arm costs (glslang's HLSL front end evaluates both arms of ?:),
+// {VEC3}, {VEC2}; constants as {P}<role>_<member>)}. A constant set of a parameter type not yet listed
+// above also needs a named() overload. tests/test_shader_export.cpp then
+// compiles it to SPIR-V (GLSL and HLSL), compiles the C++ form and runs the
+// shader forms on Vulkan against the runtime.
+const std::vector<ShaderMethod>& shader_methods() {
+  static const std::vector<ShaderMethod> table = {
+      {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
+       [] { return Slots{{"cosine_lobe", named("cosine_lobe_published", constants::cosine_lobe_published)}}; }, ErfUse::none, kHelpersWang2009, kBodyWang2009},
+      {"punctual", "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa", [] { return Slots{}; },
+       ErfUse::none, {}, "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
+      {"hill", "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
+       [] { return Slots{{"hill", named("hill_published", constants::hill_published)}}; }, ErfUse::none, {helper_hill},
+       "  return {P}hill_normalized(cosine, kappa) * (6.28318548f / kappa);\n"},
+      {"hill_exact", "[Pettineo2016] Hill's fitted curve times the exact SG integral",
+       [] { return Slots{{"hill", named("hill_published", constants::hill_published)}}; }, ErfUse::none, {helper_expm1, helper_hill},
+       "  return {P}hill_normalized(cosine, kappa) * (12.566371f * {P}expm1_over_x(-2.0f * kappa));\n"},
+      {"vsgl2015", "[Tokuyoshi2015] diffuse SG lambda_d = 2 with the [Iwasaki2012] product integral",
+       [] { return Slots{{"diffuse_lobe", named("diffuse_lobe_published", constants::diffuse_lobe_published)}}; }, ErfUse::none, {}, kBodyVsgl2015},
+      {"meder2018", "[Meder2018] logistic hemispherical integral with an SG cosine fit",
+       [] { return Slots{{"meder", named("meder2018_published", constants::meder2018_published)}}; }, ErfUse::none,
+       {helper_expm1, helper_product, helper_meder2018},
+       R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}meder_sharpness);
+  float upper = exp(prod.y) * {P}hemispherical(prod.z, prod.x);
+  return {P}meder_amplitude * upper - {P}meder_offset * {P}hemispherical(cosine, kappa);
+)"},
+      {"tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, Listings 1-4",
+       [] {
+         return Slots{{"clamped_cosine", named("clamped_cosine_published", constants::clamped_cosine_published)},
+                      {"steepness", named("steepness2022_published", constants::steepness2022_published)}};
+       },
+       ErfUse::tiered, helpers2022(), kBodyTokuyoshi2022},
+      {"tokuyoshi2024", "[Tokuyoshi2024] supplementary Listings 6-7",
+       [] { return Slots{{"steepness", named("steepness2024_published", constants::steepness2024_published)}}; }, ErfUse::tiered, helpers2024(),
+       kBodyTokuyoshi2024},
+      {"tokuyoshi2022_listing5", "[Tokuyoshi2022] Eq. 3-6, Listings 1-5 (its own Listing 5 erf)",
+       [] {
+         return Slots{{"clamped_cosine", named("clamped_cosine_published", constants::clamped_cosine_published)},
+                      {"steepness", named("steepness2022_published", constants::steepness2022_published)},
+                      {"erf", named("erf_listing5_published", constants::erf_listing5_published)}};
+       },
+       ErfUse::own, helpers2022(), kBodyTokuyoshi2022},
+      {"tokuyoshi2022_refit", "[Tokuyoshi2022] Eq. 3-6 with sglab's refitted constants",
+       [] {
+         return Slots{{"clamped_cosine", named("clamped_cosine_float", constants::clamped_cosine_float)},
+                      {"steepness", named("steepness2022_irradiance", constants::steepness2022_irradiance)}};
+       },
+       ErfUse::tiered, helpers2022(), kBodyTokuyoshi2022},
+      {"tokuyoshi2024_refit", "[Tokuyoshi2024] Listings 6-7 with sglab's refitted t(kappa)",
+       [] { return Slots{{"steepness", named("steepness2024_irradiance", constants::steepness2024_irradiance)}}; }, ErfUse::tiered, helpers2024(),
+       kBodyTokuyoshi2024},
+      {"vsgl2015_refit", "[Tokuyoshi2015] with sglab's refitted lambda_d",
+       [] { return Slots{{"diffuse_lobe", named("lambda_d_diffuse_lobe_irradiance", constants::lambda_d_diffuse_lobe_irradiance)}}; }, ErfUse::none, {},
+       kBodyVsgl2015},
+      {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
+       [] { return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude", constants::lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
+       kBodyWang2009},
+      {"sglab_fast", "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
+       [] { return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
+       "  return {P}fast(cosine, kappa);\n"},
+      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 1, D = 3 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       kBodySglabAcc},
+      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 2, D = 3 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       kBodySglabAcc},
+      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 3, D = 4 (sglab_acc.hpp)",
+       [] { return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
+       kBodySglabAcc},
+  };
+  return table;
+}
+
+const ShaderMethod* find_shader_method(std::string_view id) {
+  for (const ShaderMethod& m : shader_methods())
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+}  // namespace sglab::shader::detail
