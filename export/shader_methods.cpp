@@ -189,17 +189,18 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   std::vector<std::string> b;
   for (std::size_t j = 0; j < n; ++j) {
     const std::vector<std::string> poly(num.begin() + j * (d + 1), num.begin() + (j + 1) * (d + 1));
-    products += fmt::format("  float b{} = fade * ({});\n", j, horner_text("u", poly));
-    b.push_back(fmt::format("b{}", j));
+    products += fmt::format("  float p{} = {};\n", j, horner_text("u", poly));
+    b.push_back(fmt::format("p{}", j));
   }
   const std::string text = fmt::format(R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades for
-// small and for large kappa; and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp).
+// small and for large kappa; and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp),
+// with the common factor u (1 - u)^3 applied once.
 {{INLINE}}float {{P}}correction(float t, float z2) {{
   float w = 1.0f / (t + {});
   float u = t * w;
   float v = {} * w;
   float fade = u * (v * v) * v;
-{}  return {};
+{}  return fade * ({});
 }}
 )",
                                        d, scale[0], scale[0], products, horner_text("z2", b));
@@ -257,7 +258,7 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   float k = min(kappa, {1});
   float inv_q = 1.0f / ({2} + k * k * k * k);
   float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
-  float s = {3} * scale + {4} * scale * cosine + {5} * scale * {{P}}ramp({6} * inv_q * cosine + 0.5f);
+  float s = ({3} + {4} * cosine + {5} * {{P}}ramp({6} * inv_q * cosine + 0.5f)) * scale;
   return 0.5f * (s + abs(s));
 }}
 )",
