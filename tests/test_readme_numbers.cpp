@@ -1,6 +1,6 @@
 // tests/test_readme_numbers.cpp — every error and cost ratio that README.md and
-// the hand-written documents of data/results (sglab_acc.md, sglab_fast.md,
-// vulkan_sweep.md's prose) state is the one their source holds: the sweep
+// the documents of data/results (sglab_acc.md, sglab_fast.md, vulkan_sweep.md,
+// gpu_costs.md, bench_summary.md) state is the one their source holds: the sweep
 // summaries (`sglab sweep`: sweep_summary.md, heldout_sweep.json,
 // vulkan_sweep.json), the cost table (`sglab bench`, `sglab gpucost`:
 // costs.json), the environment-map baselines (`sglab envmap baselines`:
@@ -155,11 +155,16 @@ Stated stated_after(const std::string& text, const std::string& anchor, std::siz
   return n.size() > nth ? n[nth] : Stated{NAN, 1};
 }
 
+// Half a unit of the last stated digit of `x`.
+double half_unit(const Stated& x) {
+  return 0.5 * std::pow(10.0, std::floor(std::log10(std::fabs(x.value))) - (x.digits - 1));
+}
+
 // A ratio of two stated (rounded) numbers is the stated ratio: within the
-// ratio's own rounding plus what rounding the two numbers moves it.
-void expect_ratio(const Stated& ratio, double num, double den, const std::string& what) {
-  const double q = num / den;
-  EXPECT_NEAR(ratio.value, q, 0.005 + q * (0.5 / num + 0.5 / den)) << what;
+// ratio's own rounding plus what the rounding of the two numbers moves it.
+void expect_ratio(const Stated& ratio, const Stated& num, const Stated& den, const std::string& what) {
+  const double q = num.value / den.value;
+  EXPECT_NEAR(ratio.value, q, half_unit(ratio) + q * (half_unit(num) / num.value + half_unit(den) / den.value)) << what;
 }
 
 // `truth` printed with the stated number of significant digits is the stated value.
@@ -578,7 +583,7 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
     expect_matches(number(row[9], m), r.cycles(m, "navi21", true), "sglab_acc.md navi21 split " + m);
     // Each ratio is its column over tokuyoshi2024's (the Ir columns are callgrind counts, see the report).
     for (std::size_t c : {1u, 3u, 5u, 7u})
-      expect_ratio(number(row[c + 1], m), number(row[c], m).value, number(cost[0][c], m).value,
+      expect_ratio(number(row[c + 1], m), number(row[c], m), number(cost[0][c], m),
                    fmt::format("sglab_acc.md {} ratio of column {}", m, c));
   }
 }
@@ -640,6 +645,70 @@ TEST(ResultsDocs, VulkanSweepTableMatchesItsJson) {
     check(8, r.device_vs_float, "vulkan");
     check(9, r.device_vs_float, "vulkan_split");
   }
+}
+
+
+// gpu_costs.md and bench_summary.md are written beside the cost table by
+// `sglab gpucost --out` and `sglab bench --out`: every number in them is the
+// table's, and every row of the table is in them.
+TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
+  const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
+  // (method, family, lang, split, precision)
+  using GpuKey = std::tuple<std::string, std::string, std::string, bool, std::string>;
+  std::map<GpuKey, nlohmann::json> table;
+  for (const auto& e : costs.at("gpu").at("rows"))
+    table[{e.at("method"), e.at("family"), e.at("lang"), e.at("split"), e.at("precision")}] = e;
+  const std::string doc = slurp(kResults / "gpu_costs.md");
+  const char* stats[] = {"instructions", "inverse_throughput", "latency", "vgprs", "sgprs", "code_size", "branches"};
+  std::size_t checked = 0;
+  for (std::size_t at = doc.find("\n## "); at != std::string::npos; at = doc.find("\n## ", at + 1)) {
+    const std::string family = doc.substr(at + 4, doc.find(' ', at + 4) - at - 4);
+    for (const auto& row : table_after(doc.substr(at), {"method", "lang", "instructions", "inverse throughput"})) {
+      ASSERT_EQ(row.size(), 9u);
+      const std::string lang = row[1].substr(0, row[1].find(' '));
+      const std::string precision = row[1].ends_with(" half") ? "half" : "float";
+      const GpuKey key{method_of(row[0]), family, lang, row[0].ends_with(" (split)"), precision};
+      const std::string what = fmt::format("gpu_costs.md {} {} {}", family, row[0], row[1]);
+      const auto it = table.find(key);
+      ASSERT_NE(it, table.end()) << what << ": not in costs.json";
+      for (std::size_t i = 0; i < std::size(stats); ++i)
+        expect_matches(number(row[i + 2], what), it->second.at(stats[i]).get<double>(), what + " " + stats[i]);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, table.size()) << "gpu_costs.md leaves out rows of costs.json";
+}
+
+TEST(ResultsDocs, BenchSummaryMatchesTheCostTable) {
+  const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, double> ns;  // kind method precision mode
+  for (const auto& e : costs.at("costs"))
+    ns[{e.at("kind"), e.at("method"), e.at("precision"), e.at("mode")}] = e.at("ns_per_eval");
+  const auto rows = table_after(slurp(kResults / "bench_summary.md"), {"kind", "method", "precision", "scalar_ns"});
+  ASSERT_FALSE(rows.empty());
+  std::size_t checked = 0;
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), 8u);
+    const auto check = [&](std::size_t column, const char* mode) {
+      const auto it = ns.find({row[0], row[1], row[2], mode});
+      const std::string what = fmt::format("bench_summary.md {} {} {} {}", row[0], row[1], row[2], mode);
+      if (row[column].empty()) {
+        EXPECT_TRUE(it == ns.end()) << what << ": empty, but costs.json has " << it->second;
+        return;
+      }
+      ASSERT_NE(it, ns.end()) << what << ": not in costs.json";
+      expect_matches(number(row[column], what), it->second, what);
+      ++checked;
+    };
+    check(3, "scalar");
+    check(4, "batch");
+    check(6, "light_setup");
+    check(7, "light_eval");
+    if (!row[5].empty())
+      expect_ratio(number(row[5], row[1]), number(row[3], row[1]), number(row[4], row[1]),
+                   "bench_summary.md batch_speedup " + row[1]);
+  }
+  EXPECT_EQ(checked, ns.size()) << "bench_summary.md leaves out rows of costs.json";
 }
 
 }  // namespace
