@@ -198,8 +198,8 @@ TEST(KappaRangeCli, FitAcceptsSubnormalKappaInDouble) {
 // to end result.
 TEST(KappaRangeCli, SweepEqualBoundsGiveEqualKappas) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / fmt::format("sglab_test_args_{}", ::getpid());
-  fs::remove_all(dir);
+  const sglab::test::TempDir tmp("args");
+  const fs::path dir = tmp.path / "out";
   const auto r = sglab::test::run_sglab(
       {"sweep", "--kappa", "5:5:4", "--cosines", "3", "--method", "tokuyoshi2024", "--out", dir.string(), "--json"}, false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -222,7 +222,6 @@ TEST(KappaRangeCli, SweepEqualBoundsGiveEqualKappas) {
     pos = end;
   }
   EXPECT_EQ(rows, 8u) << csv;  // 4 κ × float and double
-  fs::remove_all(dir);
 }
 
 }  // namespace

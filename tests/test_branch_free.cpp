@@ -1,7 +1,9 @@
-// Branch-free float elementary functions, the vectorizing float batch of
-// tokuyoshi2024, its per-light split and the compile-time pole series, each
-// against an independent truth: the standard library in double, the scalar
-// double path of the method, and the reference engine.
+// Branch-free float elementary functions, the compile-time pole series, the
+// error of tokuyoshi2024's vectorizing float batch against the reference
+// engine and its per-light setup, each against an independent truth: the
+// standard library in double, the scalar double path of the method, and the
+// reference engine. Every method's float batch and per-light split against
+// its plain function: tests/test_methods.cpp.
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -116,54 +118,6 @@ TEST(PoleSeries, FloatAndDoubleMatchAcrossKappaOne) {
   }
 }
 
-// Float batch (vectorizing kernel) against the scalar double path: ≤ 1e−6 of
-// the peak E(1, κ) over 2^20 random inputs (κ log-uniform in [1e−3, 1e4], c
-// uniform), the standard grid, and edge κ; scalar float for scale.
-void check_batch_against_double(const sglab::Method& m) {
-  SCOPED_TRACE(std::string(m.id));
-  std::mt19937_64 rng(77);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<float> c, k;
-  for (int i = 0; i < (1 << 20); ++i) {
-    k.push_back(static_cast<float>(std::pow(10.0, -3 + 7 * u(rng))));
-    c.push_back(static_cast<float>(-1 + 2 * u(rng)));
-  }
-  for (double kappa : sglab::test::standard_kappas())
-    for (double cosine : sglab::test::standard_cosines()) {
-      k.push_back(static_cast<float>(kappa));
-      c.push_back(static_cast<float>(cosine));
-    }
-  for (float kappa : {0.0f, 1e-30f, 0.99999994f, 1.0f, 1e20f, std::numeric_limits<float>::max()})
-    for (float cosine : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f}) {
-      k.push_back(kappa);
-      c.push_back(cosine);
-    }
-  std::vector<float> out(k.size());
-  m.batch32(c.data(), k.data(), out.data(), k.size());
-  double worst_batch = 0, worst_scalar = 0;
-  for (std::size_t i = 0; i < k.size(); ++i) {
-    const double want = m.f64(c[i], k[i]);
-    const double peak = sglab::irradiance_upper(static_cast<double>(k[i]));
-    ASSERT_TRUE(std::isfinite(out[i])) << hex(k[i]) << " " << hex(c[i]);
-    const double e = std::abs(out[i] - want) / peak;
-    ASSERT_LE(e, 1e-6) << "kappa " << hex(k[i]) << " c " << hex(c[i]) << " batch " << out[i] << " double " << want;
-    worst_batch = std::max(worst_batch, e);
-    worst_scalar = std::max(worst_scalar, std::abs(m.f32(c[i], k[i]) - want) / peak);
-  }
-  // Both float paths are at float noise; the batch at most a few times the scalar.
-  EXPECT_LE(worst_scalar, 1e-6);
-  std::printf("%s: max |float batch - double| / peak = %.3g, scalar float %.3g\n", std::string(m.id).c_str(),
-              worst_batch, worst_scalar);
-}
-
-TEST(Tokuyoshi2024Batch, PublishedMatchesDoubleWithinOneMillionthOfPeak) {
-  check_batch_against_double(*sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024"));
-}
-
-TEST(Tokuyoshi2024Batch, RefitMatchesDoubleWithinOneMillionthOfPeak) {
-  check_batch_against_double(*sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024_refit"));
-}
-
 // The method's own error against the reference engine over the standard grid
 // is unchanged by the batch kernel: max peak_rel ≈ 1.55e−3 (scalar float).
 TEST(Tokuyoshi2024Batch, PeakRelAgainstReferenceUnchanged) {
@@ -188,76 +142,6 @@ TEST(Tokuyoshi2024Batch, PeakRelAgainstReferenceUnchanged) {
   }
   EXPECT_NEAR(worst_scalar, 1.55e-3, 0.01e-3);
   EXPECT_LE(std::abs(worst_batch - worst_scalar), 1e-6);
-}
-
-// sglab's accurate models: the same vectorizing kernel (one implementation of
-// the model, sglab_acc_eval, with branch_free.hpp's exp/expm1/erfc). erfc_bf
-// is within 6e−7 absolute and an erfc error e moves the lerp factor by at most
-// e, so the batch stays within 1e−6 of the peak of the scalar double path.
-TEST(SglabAccBatch, MatchesDoubleWithinOneMillionthOfPeak) {
-  for (const char* id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"}) {
-    const sglab::Method* m = sglab::find_method(sglab::irradiance_methods, id);
-    ASSERT_TRUE(m && m->batch32);
-    check_batch_against_double(*m);
-  }
-}
-
-// Against the reference engine: sglab_acc3's float batch keeps its accuracy
-// target 3.5e−5 of the peak over the standard grid and 8192 random points
-// (κ log-uniform in [1e−3, 1e4]), and its max error is the scalar float
-// path's to within 1e−6.
-TEST(SglabAccBatch, Acc3KeepsItsAccuracyAgainstTheReference) {
-  const auto& engine = sglab::validate::reference_engine();
-  std::vector<sglab::validate::Query> q;
-  for (double kappa : sglab::test::standard_kappas())
-    for (double cosine : sglab::test::standard_cosines())
-      q.push_back({static_cast<double>(static_cast<float>(kappa)), static_cast<double>(static_cast<float>(cosine))});
-  std::mt19937_64 rng(2024);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int i = 0; i < 8192; ++i)
-    q.push_back({static_cast<double>(static_cast<float>(std::pow(10.0, -3 + 7 * u(rng)))),
-                 static_cast<double>(static_cast<float>(-1 + 2 * u(rng)))});
-  const auto ref = engine.evaluate(q);
-  std::vector<float> c, k, out(q.size());
-  for (const auto& p : q) {
-    c.push_back(static_cast<float>(p.cosine));
-    k.push_back(static_cast<float>(p.kappa));
-  }
-  const auto* m = sglab::find_method(sglab::irradiance_methods, "sglab_acc3");
-  ASSERT_TRUE(m);
-  m->batch32(c.data(), k.data(), out.data(), q.size());
-  double worst_batch = 0, worst_scalar = 0;
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const double peak = sglab::irradiance_upper(q[i].kappa);
-    worst_batch = std::max(worst_batch, std::abs(out[i] - ref[i].irradiance) / peak);
-    worst_scalar = std::max(worst_scalar, std::abs(m->f32(c[i], k[i]) - ref[i].irradiance) / peak);
-  }
-  std::printf("sglab_acc3 vs reference: batch %.4g, scalar float %.4g\n", worst_batch, worst_scalar);
-  EXPECT_LE(worst_batch, 3.5e-5);
-  EXPECT_LE(std::abs(worst_batch - worst_scalar), 1e-6);
-}
-
-// The per-light split equals the plain float evaluation (the same operations
-// in the same order) for every method that has it.
-TEST(LightSplit, EvalOfSetupEqualsPlainFloat) {
-  int with_split = 0;
-  for (const sglab::Method& m : sglab::irradiance_methods) {
-    if (!m.light_setup32 && !m.light_eval32) continue;
-    ASSERT_TRUE(m.light_setup32 && m.light_eval32) << m.id << ": setup and eval come together";
-    ++with_split;
-    for (double kappa : sglab::test::standard_kappas()) {
-      float state[sglab::kLightStateFloats];
-      m.light_setup32(static_cast<float>(kappa), state);
-      for (double cosine : sglab::test::standard_cosines()) {
-        const float want = m.f32(static_cast<float>(cosine), static_cast<float>(kappa));
-        const float got = m.light_eval32(state, static_cast<float>(cosine));
-        const double peak = sglab::irradiance_upper(kappa);
-        ASSERT_LE(std::abs(got - want), 4 * std::numeric_limits<float>::epsilon() * peak)
-            << m.id << " kappa " << kappa << " c " << cosine;
-      }
-    }
-  }
-  EXPECT_GE(with_split, 2);  // tokuyoshi2024 and tokuyoshi2024_refit at least
 }
 
 TEST(LightSplit, Tokuyoshi2024SetupHoldsSteepnessAndPoles) {

@@ -40,9 +40,8 @@ TEST(Constants, PublishedValuesAreThePublishedDigits) {
 
 TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "sglab_constants_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const sglab::test::TempDir tmp("constants");
+  const fs::path& dir = tmp.path;
   // Both carry the format tag: damaged constant sets, refused (not skipped as foreign files).
   sglab::io::write_file_atomic(dir / "bad.json", "{\"format\": \"sglab-constants\", \"target\": \"x\",");
   try {
@@ -58,7 +57,6 @@ TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
   const auto r = sglab::test::run_sglab({"constants", "--dir", dir.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("bad.json"), std::string::npos) << r.output;
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -27,12 +27,6 @@ namespace {
 namespace fs = std::filesystem;
 using sglab::test::run_sglab;
 
-fs::path temp_dir(const std::string& tag) {
-  const auto d = fs::temp_directory_path() / fmt::format("sglab test_costs {}_{}", tag, ::getpid());
-  fs::create_directories(d);
-  return d;
-}
-
 void write(const fs::path& p, const std::string& text) {
   std::ofstream out(p);
   out << text;
@@ -89,7 +83,8 @@ std::string cheapest_qualifying(const nlohmann::json& doc, const std::map<std::s
 }
 
 TEST(CostTable, HandMadeTableDecidesTheRecommendation) {
-  const fs::path dir = temp_dir("hand");
+  const sglab::test::TempDir tmp("test_costs hand");
+  const fs::path& dir = tmp.path;
   auto costs = all_methods_cost(100);
   costs["tokuyoshi2024"] = 1;
   write(dir / "a.json", hand_table(costs).dump(2));
@@ -112,7 +107,8 @@ TEST(CostTable, HandMadeTableDecidesTheRecommendation) {
 }
 
 TEST(CostTable, MissingMethodIsNamedAndLeftOut) {
-  const fs::path dir = temp_dir("missing");
+  const sglab::test::TempDir tmp("test_costs missing");
+  const fs::path& dir = tmp.path;
   auto costs = all_methods_cost(10);
   costs.erase("tokuyoshi2024");
   write(dir / "t.json", hand_table(costs).dump(2));
@@ -137,7 +133,8 @@ TEST(CostTable, RecommendAndParetoAnswerTheSameTwice) {
   ASSERT_EQ(r1.exit_code, 0) << r1.output;
   EXPECT_EQ(r1.output, r2.output);
   EXPECT_NE(r1.output.find("costs.json"), std::string::npos) << r1.output;
-  const fs::path a = temp_dir("pareto_a"), b = temp_dir("pareto_b");
+  const sglab::test::TempDir ta("test_costs pareto_a"), tb("test_costs pareto_b");
+  const fs::path &a = ta.path, &b = tb.path;
   const auto p1 = run_sglab({"pareto", "--kappa", "1e-3:1e4", "--out", a.string()}, false);
   const auto p2 = run_sglab({"pareto", "--kappa", "1e-3:1e4", "--out", b.string()}, false);
   ASSERT_EQ(p1.exit_code, 0) << p1.output;
@@ -149,7 +146,8 @@ TEST(CostTable, RecommendAndParetoAnswerTheSameTwice) {
 }
 
 TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
-  const fs::path dir = temp_dir("bad");
+  const sglab::test::TempDir tmp("test_costs bad");
+  const fs::path& dir = tmp.path;
   const std::map<std::string, std::string> bad = {
       {"not_json.json", "{ this is not json"},
       {"no_costs.json", [] {
@@ -199,7 +197,8 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
 }
 
 TEST(CostTable, BenchWritesATableThatReadsBack) {
-  const fs::path dir = temp_dir("bench");
+  const sglab::test::TempDir tmp("test_costs bench");
+  const fs::path& dir = tmp.path;
   const auto r = run_sglab({"bench", "--filter", "^irradiance/(hill|tokuyoshi2024)/float/", "--repetitions", "1",
                             "--min-time", "0.01", "--out", dir.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -227,7 +226,8 @@ TEST(CostTable, BenchWritesATableThatReadsBack) {
 }
 
 TEST(CostTable, LiveTimingStillAvailable) {
-  const fs::path dir = temp_dir("live");
+  const sglab::test::TempDir tmp("test_costs live");
+  const fs::path& dir = tmp.path;
   const auto r = run_sglab({"pareto", "--kappa", "1:100", "--live-timing", "--out", dir.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("live timing"), std::string::npos) << r.output;

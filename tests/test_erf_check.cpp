@@ -292,7 +292,8 @@ TEST(ErfCommand, JsonHasTheDocumentedKeys) {
 }
 
 TEST(ErfCommand, OutWritesSeriesAndSummary) {
-  const std::string dir = ::testing::TempDir() + "sglab_erf_out";
+  const sglab::test::TempDir tmp("erf-out");
+  const std::string dir = tmp.path.string();
   const auto r =
       sglab::test::run_sglab({"erf", "--variant", "as7125", "--bins", "64", "--double-points", "20000", "--out", dir});
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -22,6 +22,7 @@
 #include "export/shader_export.hpp"
 #include "export/vulkan_runner.hpp"
 #include "tests/test_support.hpp"
+#include "tests/vulkan_fixture.hpp"
 
 namespace {
 
@@ -130,30 +131,8 @@ TEST(HalfExport, CoefficientNotFiniteInHalfIsRefused) {
 }
 
 // ---------------------------------------------------------------------------
-// On a Vulkan device with half arithmetic (lavapipe). Skipped with the reason.
-
-class OnVulkanHalf : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    try {
-      device_ = new vk::Device();
-      if (!device_->has_float16()) skip_reason_ = device_->name() + " offers no shaderFloat16";
-    } catch (const vk::Unavailable& e) {
-      skip_reason_ = e.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    delete device_;
-    device_ = nullptr;
-  }
-  void SetUp() override {
-    if (!skip_reason_.empty()) GTEST_SKIP() << "no Vulkan device with half arithmetic: " << skip_reason_;
-  }
-  static vk::Device* device_;
-  static std::string skip_reason_;
-};
-vk::Device* OnVulkanHalf::device_ = nullptr;
-std::string OnVulkanHalf::skip_reason_;
+// On a Vulkan device with half arithmetic (lavapipe; tests/vulkan_fixture.hpp).
+// Skipped with the reason.
 
 // The device computes in half: punctual's max(c, 0) 2π/κ at c = 1,
 // κ = 1e-3 is the binary16 quotient of the half 2π by the half κ (6280),

@@ -18,6 +18,7 @@
 #include "common/io.hpp"
 #include "validate/metrics.hpp"
 #include "validate/table.hpp"
+#include "tests/test_support.hpp"
 
 namespace sv = sglab::validate;
 
@@ -359,8 +360,8 @@ TEST(Table, JsonParsesBack) {
 
 TEST(Table, WritesEveryFormatAtomically) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / fmt::format("sglab-test-table-{}", ::getpid());
-  fs::remove_all(dir);
+  const sglab::test::TempDir tmp("table");
+  const fs::path dir = tmp.path / "out";  // write_table makes the folder
   const sv::Table t = sample_table();
   const auto paths =
       sv::write_table(t, dir, "sample", {sv::TableFormat::csv, sv::TableFormat::markdown, sv::TableFormat::json});
@@ -371,7 +372,6 @@ TEST(Table, WritesEveryFormatAtomically) {
   EXPECT_EQ(sglab::io::read_file(paths[0]), sv::to_csv(t));
   EXPECT_EQ(sglab::io::read_file(paths[1]), sv::to_markdown(t));
   EXPECT_EQ(nlohmann::json::parse(sglab::io::read_file(paths[2])), nlohmann::json::parse(sv::to_json(t).dump()));
-  fs::remove_all(dir);
 }
 
 // ---- ulp of an exact value (the erf checker's metric) ----------------------

@@ -158,15 +158,10 @@ Output run_stdout(const std::string& args) {
   return {r.exit_code, r.output};
 }
 
-std::string temp_dir(const std::string& tag) {
-  const auto d = std::filesystem::temp_directory_path() / fmt::format("sglab_test_pareto_{}_{}", tag, ::getpid());
-  std::filesystem::create_directories(d);
-  return d.string();
-}
-
 double sweep_max_peak_rel(const std::string& kappa, const std::string& method, const std::string& precision) {
+  const sglab::test::TempDir dir("pareto-sweep");
   const Output s = run_stdout(fmt::format("sweep --kappa {}:29 --cosines 41 --json --method {} --out {}", kappa,
-                                          method, temp_dir("sweep")));
+                                          method, dir.path.string()));
   EXPECT_EQ(s.exit_code, 0) << s.out;
   const auto doc = nlohmann::json::parse(s.out);
   for (const auto& row : doc.at("results"))
@@ -267,7 +262,8 @@ TEST(RecommendCli, BadOptionsExit2) {
 }
 
 TEST(ParetoCli, WritesCsvWithExactHeader) {
-  const std::string dir = temp_dir("pareto");
+  const sglab::test::TempDir tmp("pareto");
+  const std::string dir = tmp.path.string();
   const auto r = sglab::test::run_sglab({"pareto", "--kappa", "1:100", "--out", dir});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   FILE* f = std::fopen((std::filesystem::path(dir) / "pareto.csv").c_str(), "r");

@@ -27,6 +27,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "common/io.hpp"
 #include "validate/reference.hpp"
 #include "validate/reference_detail.hpp"
 #include "tests/test_support.hpp"
@@ -413,22 +414,12 @@ TEST(ReferenceEngineApi, ConcurrentCallersAgree) {
 
 // ---------------------------------------------------------------------------
 // `sglab reference`.
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    path = std::filesystem::temp_directory_path() / fmt::format("sglab-test-reference-{}", ::getpid());
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-  std::string write(const std::string& name, const std::string& content) const {
-    const auto file = path / name;
-    std::ofstream(file) << content;
-    return file.string();
-  }
-};
+// Writes `content` to dir/name and returns the path.
+std::string write(const sglab::test::TempDir& dir, const std::string& name, const std::string& content) {
+  const auto file = dir.path / name;
+  sglab::io::write_file_atomic(file, content);
+  return file.string();
+}
 
 // `sglab reference --points FILE` with extra options before --points.
 sglab::test::CommandResult sglab_reference(const std::string& file, std::vector<std::string> options = {}) {
@@ -438,8 +429,8 @@ sglab::test::CommandResult sglab_reference(const std::string& file, std::vector<
 }
 
 TEST(ReferenceCommand, PrintsCsvWith17Digits) {
-  TempDir dir;
-  const std::string file = dir.write("points.csv", "kappa,cosine\n0,0.5\n1e-6,-1\n2.5,0.1\r\n 1000 , -0.25 \n1e6,1\n\n");
+  const sglab::test::TempDir dir("reference");
+  const std::string file = write(dir, "points.csv", "kappa,cosine\n0,0.5\n1e-6,-1\n2.5,0.1\r\n 1000 , -0.25 \n1e6,1\n\n");
   const auto r = sglab_reference(file);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::string expected = "kappa,cosine,hemispherical,irradiance,normalized\n";
@@ -457,7 +448,7 @@ TEST(ReferenceCommand, PrintsCsvWith17Digits) {
 }
 
 TEST(ReferenceCommand, BadInputIsExitCode2NamingTheLine) {
-  TempDir dir;
+  const sglab::test::TempDir dir("reference-bad");
   struct Case {
     const char* name;
     const char* content;
@@ -476,7 +467,7 @@ TEST(ReferenceCommand, BadInputIsExitCode2NamingTheLine) {
       {"header.csv", "k,c\n1,0\n", "header.csv:1"},
   };
   for (const Case& c : cases) {
-    const std::string file = dir.write(c.name, c.content);
+    const std::string file = write(dir, c.name, c.content);
     const auto r = sglab_reference(file);
     EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
     EXPECT_NE(r.output.find(c.where), std::string::npos) << c.name << ": " << r.output;

@@ -141,15 +141,10 @@ void check_index(const fs::path& out, std::size_t min_images) {
 // An output folder whose name holds a space, both quotes and a semicolon
 // followed by a command: through a shell, that command would create `marker`.
 struct HostileOut {
-  fs::path base = fs::temp_directory_path() / fmt::format("sglab-test-run-{}", ::getpid());
-  fs::path marker = base / "marker";
+  sglab::test::TempDir base{"run"};
+  fs::path marker = base.path / "marker";
   // Through a shell: `.../a b;touch MARKER;'q'"x"/...` runs `touch MARKER`.
-  fs::path out = base / fmt::format("a b;touch {};'q'\"x\"", marker.string());
-  HostileOut() {
-    fs::remove_all(base);
-    fs::create_directories(base);
-  }
-  ~HostileOut() { fs::remove_all(base); }
+  fs::path out = base.path / fmt::format("a b;touch {};'q'\"x\"", marker.string());
 };
 
 TEST(RunCommand, HostilePathWorksAndRunsNothing) {

@@ -318,20 +318,20 @@ TEST(Scene, LimitsAreRefusedWithTheMemory) {
   EXPECT_LT(scene_memory_bytes(1000, 4096), std::size_t{16} << 20);
 }
 
-fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "sglab_test_scene";
-  fs::create_directories(dir);
-  const fs::path p = dir / name;
+// Writes `text` to dir/name and returns the path.
+fs::path write_temp(const sglab::test::TempDir& dir, const std::string& name, const std::string& text) {
+  const fs::path p = dir.path / name;
   std::ofstream(p) << text;
   return p;
 }
 
 TEST(RecommendScene, BadFilesExitTwoWithTheKey) {
-  const auto negative = write_temp("negative.json", R"({"lights": [{"axis": [0, 0, 1], "sharpness": -1, "amplitude": [1, 1, 1]}]})");
+  const sglab::test::TempDir dir("scene-bad");
+  const auto negative = write_temp(dir, "negative.json", R"({"lights": [{"axis": [0, 0, 1], "sharpness": -1, "amplitude": [1, 1, 1]}]})");
   auto r = sglab::test::run_sglab({"recommend", "--scene", negative.string(), "--budget", "1e-2"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("lights[0].sharpness"), std::string::npos) << r.output;
-  const auto malformed = write_temp("malformed.json", "{\"lights\": [\n");
+  const auto malformed = write_temp(dir, "malformed.json", "{\"lights\": [\n");
   r = sglab::test::run_sglab({"recommend", "--scene", malformed.string(), "--budget", "1e-2"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("line 2"), std::string::npos) << r.output;
@@ -342,15 +342,16 @@ TEST(RecommendScene, BadFilesExitTwoWithTheKey) {
 }
 
 TEST(RecommendScene, LimitsAndHugeSharpnessExitTwo) {
+  const sglab::test::TempDir dir("scene-limits");
   std::string lights;
   for (int i = 0; i < 1000; ++i)
     lights += fmt::format(R"({}{{"axis": [{}, 1, 0.5], "sharpness": {}, "amplitude": [1, 1, 1]}})", i ? "," : "",
                           std::cos(i), 1 + i % 50);
-  const auto many = write_temp("many.json", R"({"lights": [)" + lights + "]}");
+  const auto many = write_temp(dir, "many.json", R"({"lights": [)" + lights + "]}");
   auto r = sglab::test::run_sglab({"recommend", "--scene", many.string(), "--budget", "1e-2", "--normals", "1000000"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("MB"), std::string::npos) << r.output;
-  const auto huge = write_temp("huge.json", R"({"lights": [
+  const auto huge = write_temp(dir, "huge.json", R"({"lights": [
       {"axis": [0, 0, 1], "sharpness": 2, "amplitude": [1, 1, 1]},
       {"axis": [0, 1, 1], "sharpness": 3, "amplitude": [1, 1, 1]},
       {"axis": [1, 0, 1], "sharpness": 4, "amplitude": [1, 1, 1]},
@@ -366,7 +367,8 @@ TEST(RecommendScene, LimitsAndHugeSharpnessExitTwo) {
 // A light of subnormal κ (2e−39: a subnormal float) is a valid light: every
 // sglab model gets a finite scene error.
 TEST(RecommendScene, SubnormalSharpnessGivesFiniteErrors) {
-  const auto scene = write_temp("subnormal.json", R"({"lights": [
+  const sglab::test::TempDir dir("scene-subnormal");
+  const auto scene = write_temp(dir, "subnormal.json", R"({"lights": [
       {"axis": [0, 0, 1], "sharpness": 2e-39, "amplitude": [1, 1, 1]},
       {"axis": [1, 0, 0], "sharpness": 5, "amplitude": [0.5, 0.5, 0.5]}]})");
   const auto r = sglab::test::run_sglab(
@@ -380,7 +382,8 @@ TEST(RecommendScene, SubnormalSharpnessGivesFiniteErrors) {
 }
 
 TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {
-  const auto scene = write_temp("two.json", R"({"lights": [
+  const sglab::test::TempDir dir("scene-choice");
+  const auto scene = write_temp(dir, "two.json", R"({"lights": [
       {"axis": [0, 0, 1], "sharpness": 30, "amplitude": [1, 1, 1]},
       {"axis": [1, 0, 0], "sharpness": 0.5, "amplitude": [0.2, 0.3, 0.4]}]})");
   const auto r = sglab::test::run_sglab(

@@ -30,6 +30,7 @@
 #include "export/shader_export.hpp"
 #include "validate/sweep.hpp"
 #include "tests/test_support.hpp"
+#include "tests/vulkan_fixture.hpp"
 #include "export/vulkan_runner.hpp"
 
 namespace fs = std::filesystem;
@@ -39,13 +40,6 @@ using sglab::test::run_program;
 using sglab::test::run_sglab;
 
 namespace {
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / fmt::format("sglab_test_shader_{}_{}", ::getpid(), name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 // The standard sweep grid as float (cosine, κ) points, κ-major.
 struct Grid {
@@ -192,7 +186,8 @@ TEST(ShaderExport, EveryMethodCompilesToSpirv) {
 // The SPIR-V glslang produced passes SPIRV-Tools' validator (an independent
 // implementation) for Vulkan 1.0.
 TEST(ShaderExport, SpirvPassesSpirvVal) {
-  const fs::path dir = temp_dir("spirv");
+  const sglab::test::TempDir tmp("shader-spirv");
+  const fs::path& dir = tmp.path;
   for (const std::string id : {"tokuyoshi2024", "tokuyoshi2022_listing5", "meder2018"})
     for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
       const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, id));
@@ -203,7 +198,6 @@ TEST(ShaderExport, SpirvPassesSpirvVal) {
       const auto r = run_program({"spirv-val", "--target-env", "vulkan1.0", file.string()});
       EXPECT_EQ(r.exit_code, 0) << id << " " << sh::to_string(lang) << ": " << r.output;
     }
-  fs::remove_all(dir);
 }
 
 // The compiler must reject broken code (so the test above can fail).
@@ -226,7 +220,8 @@ TEST(ShaderExport, CppExportMatchesRuntime) {
     methods.push_back(&m);
     exports.push_back({ex.source, ex.entry_point});
   }
-  const fs::path dir = temp_dir("cpp_all");
+  const sglab::test::TempDir tmp("shader-cpp_all");
+  const fs::path& dir = tmp.path;
   const auto columns = run_cpp_exports(exports, g, dir);
   ASSERT_EQ(columns.size(), methods.size());
   for (std::size_t i = 0; i < methods.size(); ++i) {
@@ -238,7 +233,6 @@ TEST(ShaderExport, CppExportMatchesRuntime) {
         << m.id << ": worst at kappa = " << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst]
         << ": exported " << values[d.worst] << ", runtime double " << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
   }
-  fs::remove_all(dir);
 }
 
 // The vector form equals the scalar form at c = v·n.
@@ -249,7 +243,8 @@ TEST(ShaderExport, VectorFormMatchesScalarForm) {
       g.kappa.push_back(k);
       g.cosine.push_back(c);
     }
-  const fs::path dir = temp_dir("vector");
+  const sglab::test::TempDir tmp("shader-vector");
+  const fs::path& dir = tmp.path;
   const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, "tokuyoshi2024"));
   const auto scalar = run_cpp_export(ex.source, ex.entry_point, g, dir);
   const auto vector = run_cpp_export(ex.source, ex.entry_point, g, dir, true);
@@ -257,7 +252,6 @@ TEST(ShaderExport, VectorFormMatchesScalarForm) {
   for (std::size_t i = 0; i < scalar.size(); ++i)
     EXPECT_NEAR(vector[i], scalar[i], 1e-6 * sglab::irradiance_upper(double(g.kappa[i])))
         << "kappa " << g.kappa[i] << " cosine " << g.cosine[i];
-  fs::remove_all(dir);
 }
 
 // --constants replaces the compiled-in set of the same type: tokuyoshi2024
@@ -269,7 +263,8 @@ TEST(ShaderExport, ConstantsFileOverridesTheCompiledInSet) {
   EXPECT_NE(r.output.find("steepness2024_irradiance"), std::string::npos);
   EXPECT_NE(r.output.find("--constants " + file.string()), std::string::npos);
   const Grid g = standard_grid();
-  const fs::path dir = temp_dir("override");
+  const sglab::test::TempDir tmp("shader-override");
+  const fs::path& dir = tmp.path;
   const auto values = run_cpp_export(r.output, "sglab_irradiance_tokuyoshi2024", g, dir);
   const sglab::Method* refit = sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024_refit");
   const sglab::Method* published = sglab::find_method(sglab::irradiance_methods, "tokuyoshi2024");
@@ -278,7 +273,6 @@ TEST(ShaderExport, ConstantsFileOverridesTheCompiledInSet) {
   EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance);
   // …and is measurably not the published method.
   EXPECT_GT(deviation(*published, g, values).exported, 10 * kAllowance);
-  fs::remove_all(dir);
 }
 
 TEST(ShaderExport, BadInputExitsWithCode2) {
@@ -294,12 +288,12 @@ TEST(ShaderExport, BadInputExitsWithCode2) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("HillParams"), std::string::npos) << r.output;
   // Malformed JSON.
-  const fs::path dir = temp_dir("bad");
+  const sglab::test::TempDir tmp("shader-bad");
+  const fs::path& dir = tmp.path;
   std::ofstream(dir / "bad.json") << "{ not json";
   r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants", (dir / "bad.json").string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bad.json"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------
@@ -687,30 +681,8 @@ TEST(ShaderExport, ElementaryTiersAreChosenByTheModelError) {
 }
 
 // ---------------------------------------------------------------------------
-// On a Vulkan device (lavapipe needs no GPU). Skipped only when no device can
-// be created.
-
-class OnVulkan : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    try {
-      device_ = new vk::Device();
-    } catch (const vk::Unavailable& e) {
-      skip_reason_ = e.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    delete device_;
-    device_ = nullptr;
-  }
-  void SetUp() override {
-    if (!device_) GTEST_SKIP() << "no Vulkan device: " << skip_reason_;
-  }
-  static vk::Device* device_;
-  static std::string skip_reason_;
-};
-vk::Device* OnVulkan::device_ = nullptr;
-std::string OnVulkan::skip_reason_;
+// On a Vulkan device (lavapipe needs no GPU; tests/vulkan_fixture.hpp). Skipped
+// only when no device can be created.
 
 TEST_F(OnVulkan, EveryMethodMatchesTheRuntime) {
   const Grid g = standard_grid();
@@ -738,7 +710,8 @@ TEST_F(OnVulkan, EveryMethodMatchesTheRuntime) {
 // `sglab sweep --backend vulkan --json`: the sweep's schema with "vulkan"
 // rows; published tokuyoshi2024 within a few percent of its C++ float error.
 TEST_F(OnVulkan, SweepBackendReportsVulkanRows) {
-  const fs::path dir = temp_dir("sweep");
+  const sglab::test::TempDir tmp("shader-sweep");
+  const fs::path& dir = tmp.path;
   const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "tokuyoshi2024", "--method",
                             "tokuyoshi2022_listing5", "--out", dir.string(), "--json"},
                            false);
@@ -755,7 +728,6 @@ TEST_F(OnVulkan, SweepBackendReportsVulkanRows) {
   EXPECT_NEAR(cpu_float, 1.55e-3, 0.01e-3);
   EXPECT_NEAR(glsl, cpu_float, 0.03 * cpu_float);
   EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
-  fs::remove_all(dir);
 }
 
 // Without a Vulkan driver: `--backend vulkan` fails with the reason,
@@ -764,7 +736,8 @@ TEST(ShaderExport, SweepWithoutAVulkanDriver) {
   const char* old = std::getenv("VK_ICD_FILENAMES");
   const std::string saved = old ? old : "";
   ::setenv("VK_ICD_FILENAMES", "/nonexistent/sglab_no_icd.json", 1);
-  const fs::path dir = temp_dir("noicd");
+  const sglab::test::TempDir tmp("shader-noicd");
+  const fs::path& dir = tmp.path;
   auto r = run_sglab({"sweep", "--backend", "vulkan", "--method", "tokuyoshi2024", "--out", dir.string()});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("no Vulkan instance"), std::string::npos) << r.output;
@@ -779,7 +752,6 @@ TEST(ShaderExport, SweepWithoutAVulkanDriver) {
   std::vector<std::string> precisions;
   for (const auto& rec : doc.at("results")) precisions.push_back(rec.at("precision"));
   EXPECT_EQ(precisions, (std::vector<std::string>{"float", "double"}));
-  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------
@@ -805,7 +777,8 @@ TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
 // replaces the compiled-in one. With every correction numerator 0 the model
 // is [Tokuyoshi2024] with the set's steepness, computed here by the runtime.
 TEST(ShaderExport, SglabAccConstantsOverride) {
-  const fs::path dir = temp_dir("sglab_acc_override");
+  const sglab::test::TempDir tmp("shader-sglab_acc_override");
+  const fs::path& dir = tmp.path;
   const fs::path src = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc3.json";
   nlohmann::ordered_json j = nlohmann::ordered_json::parse(std::ifstream(src));
   for (auto& x : j["coefficients"]["num"]) x = 0.0;
@@ -846,14 +819,14 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
   ASSERT_TRUE(fm);
   const Deviation d = deviation(*fm, g, fv);
   EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance);
-  fs::remove_all(dir);
 }
 
 // `sglab sweep --backend vulkan`: sglab_acc3 on the device within a few
 // percent of its C++ float error (the standard-grid error its fit recorded,
 // 2.07e-5), and within float noise of the C++ float runtime at every point.
 TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
-  const fs::path dir = temp_dir("sweep_acc3");
+  const sglab::test::TempDir tmp("shader-sweep_acc3");
+  const fs::path& dir = tmp.path;
   const auto r = run_sglab(
       {"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--out", dir.string(), "--json"}, false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -870,7 +843,6 @@ TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
   EXPECT_NEAR(cpu_float, *recorded, 0.02 * *recorded);
   EXPECT_NEAR(glsl, cpu_float, 0.03 * cpu_float);
   EXPECT_NEAR(hlsl, cpu_float, 0.03 * cpu_float);
-  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------
@@ -958,7 +930,8 @@ TEST(ShaderExport, SplitExportsCompileToSpirv) {
 // values, and the struct's floats are the runtime's, field by field.
 TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
   const Grid g = standard_grid();
-  const fs::path dir = temp_dir("cpp_split");
+  const sglab::test::TempDir tmp("shader-cpp_split");
+  const fs::path& dir = tmp.path;
   struct Item {
     const sglab::Method* method;
     sh::ExportResult split;
@@ -1055,7 +1028,6 @@ TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
       EXPECT_LE(worst_host[id], 1e-6) << id << ": struct filled from light_setup32";
     }
   }
-  fs::remove_all(dir);
 }
 
 // On the device: every split export in GLSL, four of them in HLSL (every
@@ -1119,7 +1091,8 @@ TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
 
 // `sglab sweep --backend vulkan` reports the split rows as their own precisions.
 TEST_F(OnVulkan, SweepReportsSplitRows) {
-  const fs::path dir = temp_dir("sweep_split");
+  const sglab::test::TempDir tmp("shader-sweep_split");
+  const fs::path& dir = tmp.path;
   const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--method", "wang2009", "--out",
                             dir.string(), "--json"},
                            false);
@@ -1131,5 +1104,4 @@ TEST_F(OnVulkan, SweepReportsSplitRows) {
   EXPECT_EQ(precisions["sglab_acc3"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl",
                                                                "vulkan_split", "vulkan_hlsl_split"}));
   EXPECT_EQ(precisions["wang2009"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl"}));
-  fs::remove_all(dir);
 }

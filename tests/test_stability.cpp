@@ -261,8 +261,8 @@ TEST(Stability, TableHasCountsAndKappaSpans) {
 }
 
 TEST(StabilityCli, JsonParses) {
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / fmt::format("sglab-test-stability-{}", ::getpid())).string();
+  const sglab::test::TempDir tmp("stability");
+  const std::string dir = tmp.path.string();
   const auto r = sglab::test::run_sglab({"stability", "--out", dir, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.output.substr(0, 2000);
   const auto j = nlohmann::json::parse(r.output);
@@ -274,5 +274,4 @@ TEST(StabilityCli, JsonParses) {
       EXPECT_TRUE(e.contains(k)) << k;
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "stability.csv"));
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "stability.md"));
-  std::filesystem::remove_all(dir);
 }

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 #include <fmt/format.h>
@@ -56,13 +58,19 @@ inline std::vector<std::string> words(std::string_view text) {
 }
 
 // A fresh folder under the system's temporary directory, named after `name`
-// and the process id, removed with everything in it when the object goes.
+// and the process id with a random suffix (mkdtemp), so that no two tests,
+// processes (ctest -j) or TempDirs of one test ever share it; removed with
+// everything in it when the object goes. `name` may hold any characters but
+// '/' (tests use spaces, quotes and semicolons to check that paths are taken
+// literally).
 struct TempDir {
   std::filesystem::path path;
-  explicit TempDir(const std::string& name)
-      : path(std::filesystem::temp_directory_path() / fmt::format("sglab-test-{}-{}", name, ::getpid())) {
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
+  explicit TempDir(const std::string& name) {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / fmt::format("sglab-test-{}-{}-XXXXXX", name, ::getpid())).string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+      throw std::system_error(errno, std::generic_category(), "mkdtemp " + pattern);
+    path = pattern;
   }
   ~TempDir() {
     std::error_code ec;

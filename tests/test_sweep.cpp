@@ -253,12 +253,9 @@ TEST(Sweep, RegisteredMethodsAndTables) {
 
 namespace {
 
-std::string out_dir(const char* tag) {
-  return (std::filesystem::temp_directory_path() / fmt::format("sglab-test-sweep-{}-{}", tag, ::getpid())).string();
-}
-
-sglab::test::CommandResult sweep_cli(const std::string& args, const char* tag = "cli") {
-  std::vector<std::string> argv = {"sweep", "--out", out_dir(tag)};
+// `sglab sweep --out DIR ARGS`.
+sglab::test::CommandResult sweep_cli(const std::string& args, const sglab::test::TempDir& dir) {
+  std::vector<std::string> argv = {"sweep", "--out", dir.path.string()};
   for (std::string& w : sglab::test::words(args)) argv.push_back(std::move(w));
   return sglab::test::run_sglab(argv);
 }
@@ -266,7 +263,8 @@ sglab::test::CommandResult sweep_cli(const std::string& args, const char* tag = 
 }  // namespace
 
 TEST(SweepCli, JsonHasTheDocumentedKeys) {
-  const auto r = sweep_cli("--kappa 0.1:10:3 --cosines 5 --json", "json");
+  const sglab::test::TempDir dir("sweep-json");
+  const auto r = sweep_cli("--kappa 0.1:10:3 --cosines 5 --json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);  // stdout carries only JSON
   ASSERT_TRUE(j.is_object());
@@ -292,24 +290,24 @@ TEST(SweepCli, JsonHasTheDocumentedKeys) {
   }
   namespace fs = std::filesystem;
   for (const char* f : {"summary.csv", "summary.md", "summary.json", "per_kappa.csv", "per_kappa.md", "points.csv"})
-    EXPECT_TRUE(fs::exists(fs::path(out_dir("json")) / f)) << f;
-  fs::remove_all(out_dir("json"));
+    EXPECT_TRUE(fs::exists(dir.path / f)) << f;
 }
 
 TEST(SweepCli, MethodFilter) {
-  const auto r = sweep_cli("--kappa 1:1:1 --cosines 3 --method meder2018 --method tokuyoshi2024 --json", "filter");
+  const sglab::test::TempDir dir("sweep-filter");
+  const auto r = sweep_cli("--kappa 1:1:1 --cosines 3 --method meder2018 --method tokuyoshi2024 --json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   // meder2018 exists for all three quantities, tokuyoshi2024 for irradiance only; × 2 precisions.
   EXPECT_EQ(j.at("results").size(), 8u);
-  std::filesystem::remove_all(out_dir("filter"));
 }
 
 TEST(SweepCli, BadKappaExitsTwoNamingTheOption) {
+  const sglab::test::TempDir dir("sweep-bad-kappa");
   for (const char* bad : {"--kappa=-1:10:5", "--kappa -1:10:5", "--kappa a:b:c", "--kappa 1:10", "--kappa 1:10:5:7",
                           "--kappa 10:1:5", "--kappa 1:10:0", "--kappa 1:10:1", "--kappa inf:1e4:3",
                           "--kappa 1:nan:3", "--kappa 0:10:5", "--kappa 1:1e40:5", "--kappa 1:10:2.5"}) {
-    const auto r = sweep_cli(bad, "bad");
+    const auto r = sweep_cli(bad, dir);
     EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
     EXPECT_NE(r.output.find("--kappa"), std::string::npos) << bad << "\n" << r.output;
     EXPECT_NE(r.output.find("sglab: error:"), std::string::npos) << bad << "\n" << r.output;
@@ -317,14 +315,14 @@ TEST(SweepCli, BadKappaExitsTwoNamingTheOption) {
 }
 
 TEST(SweepCli, BadCosinesAndUnknownMethodExitTwo) {
+  const sglab::test::TempDir dir("sweep-bad");
   for (const char* bad : {"--cosines 1", "--cosines x", "--cosines -3"}) {
-    const auto r = sweep_cli(bad, "bad");
+    const auto r = sweep_cli(bad, dir);
     EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
     EXPECT_NE(r.output.find("--cosines"), std::string::npos) << bad << "\n" << r.output;
   }
-  const auto r = sweep_cli("--method no_such_method", "bad");
+  const auto r = sweep_cli("--method no_such_method", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("no_such_method"), std::string::npos) << r.output;
   for (const auto& m : sglab::irradiance_methods) EXPECT_NE(r.output.find(std::string(m.id)), std::string::npos) << m.id;
-  std::filesystem::remove_all(out_dir("bad"));
 }
