@@ -201,6 +201,7 @@ struct Results {
   std::map<Key, double> device_vs_float;  // vulkan_sweep.json device_vs_float, max_diff_peak_rel
   std::map<std::tuple<std::string, std::string, bool>, double> gpu;  // (method, family, split): GLSL float cycles
   std::map<Key, double> ns;             // (method, "scalar" | "batch"): float ns/eval
+  std::map<Key, double> ir;             // callgrind.csv: (method, mode): instructions per float evaluation
   std::map<std::tuple<std::string, int, std::string>, double> envmap;  // (map, lobes, fit): max_rel
   std::map<std::tuple<std::string, int, std::string>, double> envmap_rms;  // (map, lobes, fit): rms_rel
   std::set<std::string> maps;
@@ -227,6 +228,9 @@ struct Results {
   }
   double ns_per_eval(const std::string& m, const std::string& mode) const {
     return at(ns, Key{m, mode}, "costs.json " + m + " " + mode);
+  }
+  double instructions(const std::string& m, const std::string& mode) const {
+    return at(ir, Key{m, mode}, "callgrind.csv " + m + " " + mode);
   }
   double envmap_err(const std::string& map, int lobes, const std::string& fit) const {
     return at(envmap, std::tuple{map, lobes, fit}, fmt::format("envmaps.csv {} {} {}", map, lobes, fit));
@@ -266,6 +270,19 @@ void read_costs(Results& r) {
       r.ns[{e.at("method"), e.at("mode")}] = e.at("ns_per_eval");
 }
 
+// callgrind.csv (scripts/callgrind_costs.sh): method,mode,instructions.
+void read_callgrind(Results& r) {
+  std::istringstream in(slurp(kResults / "callgrind.csv"));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "method,mode,instructions");
+  while (std::getline(in, line)) {
+    const std::size_t a = line.find(','), b = line.find(',', a + 1);
+    if (a == std::string::npos || b == std::string::npos) continue;
+    r.ir[{line.substr(0, a), line.substr(a + 1, b - a - 1)}] = std::stod(line.substr(b + 1));
+  }
+}
+
 // envmaps.csv's numbers: %.6e.
 constexpr int kCsvDigits = 7;
 
@@ -293,6 +310,7 @@ const Results& results() {
     Results out;
     read_sweeps(out);
     read_costs(out);
+    read_callgrind(out);
     read_envmaps(out);
     return out;
   }();
@@ -336,7 +354,6 @@ double envmap_ratio_bound(const Results& r, bool largest) {
 }
 
 // Shorthands for the claims below.
-double standard(const Results& r, const char* m) { return r.standard_err(m); }
 double vulkan(const Results& r, const char* m, const char* p = "vulkan") { return r.vulkan_err(m, p); }
 
 // How many (map, lobes) cases of README's table have (a)/(c) ≥ `ratio`.
@@ -386,15 +403,6 @@ const Claim kClaims[] = {
      "envmaps.csv, cases with (a)/(c) ≥ 2"},
     {"data/results/envmaps.md", "(c) has at least 2× lower max irradiance error than (a) in ", 1, Says::equals,
      [](const Results& r) { return double(r.maps.size() * std::size(kTableLobes)); }, "envmaps.csv, cases"},
-    // data/results/sglab_fast.md
-    {"data/results/sglab_fast.md", "For comparison on the standard grid: ", 0, Says::equals,
-     [](const Results& r) { return standard(r, "vsgl2015"); }, "sweep_summary.md vsgl2015"},
-    {"data/results/sglab_fast.md", "For comparison on the standard grid: ", 1, Says::equals,
-     [](const Results& r) { return standard(r, "tokuyoshi2024"); }, "sweep_summary.md tokuyoshi2024"},
-    {"data/results/sglab_fast.md", "For comparison on the standard grid: ", 2, Says::equals,
-     [](const Results& r) { return standard(r, "tokuyoshi2024_refit"); }, "sweep_summary.md tokuyoshi2024_refit"},
-    {"data/results/sglab_fast.md", "For comparison on the standard grid: ", 3, Says::equals,
-     [](const Results& r) { return standard(r, "tokuyoshi2022"); }, "sweep_summary.md tokuyoshi2022"},
     // data/results/vulkan_sweep.md
     {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 0, Says::equals,
      [](const Results& r) { return std::max(r.device_diff("tokuyoshi2024"), r.device_diff("tokuyoshi2024_refit")); },
@@ -417,32 +425,6 @@ const Claim kClaims[] = {
      [](const Results& r) { return r.device_diff("wang2009"); }, "vulkan_sweep.json device_vs_float"},
     {"data/results/vulkan_sweep.md", "device and C++ float agree to ", 1, Says::equals,
      [](const Results& r) { return r.device_diff("meder2018"); }, "vulkan_sweep.json device_vs_float"},
-    {"data/results/vulkan_sweep.md", "sglab_acc3's model error ", 0, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc3", "double"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "sglab_acc3's model error ", 1, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc3", "double") / 100; }, "vulkan_sweep.json, 1/100"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 0, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc3"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 1, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc3", "float"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 2, Says::equals,
-     [](const Results& r) { return 100 * (vulkan(r, "sglab_acc3") / vulkan(r, "sglab_acc3", "float") - 1); },
-     "vulkan_sweep.json, per cent"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 3, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc2"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 4, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc2", "float"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 5, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc1"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 5, Says::equals,
-     [](const Results& r) { return vulkan(r, "sglab_acc1", "float"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "On the device sglab_acc3 measures ", 6, Says::equals,
-     [](const Results& r) {
-       return std::max({r.device_diff("sglab_acc1"), r.device_diff("sglab_acc2"), r.device_diff("sglab_acc3")});
-     },
-     "vulkan_sweep.json device_vs_float"},
-    {"data/results/vulkan_sweep.md", "sglab_fast (no erf) agrees to ", 0, Says::equals,
-     [](const Results& r) { return r.device_diff("sglab_fast"); }, "vulkan_sweep.json device_vs_float"},
 };
 
 TEST(ReadmeNumbers, ProseMatchesTheResults) {
@@ -468,6 +450,9 @@ TEST(ReadmeNumbers, WordedClaimsHold) {
   EXPECT_LE(r.held_out_err("sglab_fast"), 2 * r.held_out_err("tokuyoshi2024")) << fast;
   EXPECT_LE(r.standard_err("sglab_fast"), 2 * r.standard_err("tokuyoshi2024")) << fast;
   EXPECT_LT(r.cycles("sglab_fast"), 0.5 * r.cycles("tokuyoshi2024")) << fast;
+  const std::string point = "a `sglab_fast` shading point then costs fewer instructions\nthan vsgl2015's";
+  ASSERT_NE(readme.find(point), std::string::npos) << "README no longer says '" << point << "'";
+  EXPECT_LT(r.instructions("sglab_fast", "eval"), r.instructions("vsgl2015", "scalar")) << point;
   const std::string neither = "neither (a) nor (b) reaches 1 % within 24 lobes";
   ASSERT_NE(readme.find(neither), std::string::npos) << "README no longer says '" << neither << "'";
   for (const auto& [key, err] : r.envmap) {
@@ -595,17 +580,21 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
     expect_matches(number(row[3], row[0]), r.held_out_worst_kappa.at({row[0], "float"}),
                    "sglab_acc.md worst κ " + row[0]);
   }
-  const auto cost = table_after(doc, {"method", "scalar Ir", "ratio", "batch Ir", "ratio", "navi21"});
+  const auto cost =
+      table_after(doc, {"method", "scalar Ir", "ratio", "batch Ir", "ratio", "setup Ir", "eval Ir", "navi21"});
   ASSERT_EQ(cost.size(), 4u);
   ASSERT_EQ(cost[0][0], "tokuyoshi2024");
   for (const auto& row : cost) {
-    ASSERT_EQ(row.size(), 10u);
+    ASSERT_EQ(row.size(), 12u);
     const std::string& m = row[0];
-    expect_matches(number(row[5], m), r.cycles(m), "sglab_acc.md navi21 " + m);
-    expect_matches(number(row[7], m), r.cycles(m, "gfx1100"), "sglab_acc.md gfx1100 " + m);
-    expect_matches(number(row[9], m), r.cycles(m, "navi21", true), "sglab_acc.md navi21 split " + m);
-    // Each ratio is its column over tokuyoshi2024's (the Ir columns are callgrind counts, see the report).
-    for (std::size_t c : {1u, 3u, 5u, 7u})
+    const std::pair<std::size_t, const char*> ir_columns[] = {{1, "scalar"}, {3, "batch"}, {5, "setup"}, {6, "eval"}};
+    for (const auto& [c, mode] : ir_columns)
+      expect_matches(number(row[c], m), r.instructions(m, mode), fmt::format("sglab_acc.md {} Ir {}", mode, m));
+    expect_matches(number(row[7], m), r.cycles(m), "sglab_acc.md navi21 " + m);
+    expect_matches(number(row[9], m), r.cycles(m, "gfx1100"), "sglab_acc.md gfx1100 " + m);
+    expect_matches(number(row[11], m), r.cycles(m, "navi21", true), "sglab_acc.md navi21 split " + m);
+    // Each ratio is its column over tokuyoshi2024's.
+    for (std::size_t c : {1u, 3u, 7u, 9u})
       expect_ratio(number(row[c + 1], m), number(row[c], m), number(cost[0][c], m),
                    fmt::format("sglab_acc.md {} ratio of column {}", m, c));
     if (m == "tokuyoshi2024") continue;
@@ -617,39 +606,40 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
   }
 }
 
-// sglab_fast.md's accuracy table: the standard grid from the sweep summary,
-// the held-out, training and floor rows from the constant set's provenance.
+// sglab_fast.md's accuracy table (both grids, from the sweep summaries) and
+// its cost table (callgrind.csv and the cost table's GPU rows; '–' where a
+// method has no per-light split on the CPU).
 TEST(ResultsDocs, SglabFastMatchesTheResults) {
-  const auto rows = table_after(slurp(kResults / "sglab_fast.md"), {"grid", "float", "double"});
-  ASSERT_GE(rows.size(), 5u);
+  const std::string doc = slurp(kResults / "sglab_fast.md");
   const Results& r = results();
-  const auto a = achieved("sglab-fast-float");
-  std::map<std::string, std::pair<double, double>> want = {
-      {"standard", {r.standard_err("sglab_fast"), r.standard_err("sglab_fast", "double")}},
-      {"held-out", {a.at("held_out_max_peak_rel_float"), a.at("held_out_max_peak_rel_double")}},
-      {"training", {a.at("training_max_peak_rel_float"), NAN}},
-      {"per-κ", {a.at("per_kappa_floor"), NAN}},
-  };
-  int checked = 0;
-  for (const auto& row : rows) {
-    const std::string key = row[0].substr(0, row[0].find_first_of(" ,"));
-    if (!want.count(key)) continue;
-    ++checked;
-    expect_matches(number(row[1], row[0]), want[key].first, "sglab_fast.md " + row[0] + " float");
-    if (!std::isnan(want[key].second))
-      expect_matches(number(row[2], row[0]), want[key].second, "sglab_fast.md " + row[0] + " double");
+  const auto acc = table_after(doc, {"method", "standard float", "standard double", "held-out float"});
+  ASSERT_EQ(acc.size(), 3u);
+  for (const auto& row : acc) {
+    ASSERT_EQ(row.size(), 6u);
+    const std::string& m = row[0];
+    expect_matches(number(row[1], m), r.standard_err(m), "sglab_fast.md standard float " + m);
+    expect_matches(number(row[2], m), r.standard_err(m, "double"), "sglab_fast.md standard double " + m);
+    expect_matches(number(row[3], m), r.held_out_err(m), "sglab_fast.md held-out float " + m);
+    expect_matches(number(row[4], m), r.held_out_err(m, "double"), "sglab_fast.md held-out double " + m);
+    expect_matches(number(row[5], m), r.held_out_worst_kappa.at({m, "float"}), "sglab_fast.md worst κ " + m);
   }
-  EXPECT_EQ(checked, 4);
-  // The random-points row states the bound tests/test_methods.cpp checks.
-  const double bound = sglab::test::find_tolerance("sglab_fast", sglab::test::peak_rel, sglab::test::f32)->bound;
-  bool random_row = false;
-  for (const auto& row : rows)
-    if (row[0].find("tests/test_methods.cpp") != std::string::npos) {
-      random_row = true;
-      expect_matches(number(row[1], row[0]), bound, "sglab_fast.md random points (tests/tolerances.hpp)");
-      expect_matches(number(row[2], row[0]), bound, "sglab_fast.md random points (tests/tolerances.hpp)");
+  const auto cost = table_after(doc, {"method", "scalar Ir", "batch Ir", "per-light setup Ir"});
+  ASSERT_EQ(cost.size(), 3u);
+  for (const auto& row : cost) {
+    ASSERT_EQ(row.size(), 8u);
+    const std::string& m = row[0];
+    const std::pair<std::size_t, const char*> ir_columns[] = {{1, "scalar"}, {2, "batch"}, {3, "setup"}, {4, "eval"}};
+    for (const auto& [c, mode] : ir_columns) {
+      if (row[c] == "–") {
+        EXPECT_FALSE(r.ir.count({m, mode})) << "sglab_fast.md: callgrind.csv has " << m << " " << mode;
+        continue;
+      }
+      expect_matches(number(row[c], m), r.instructions(m, mode), fmt::format("sglab_fast.md {} Ir {}", mode, m));
     }
-  EXPECT_TRUE(random_row);
+    expect_matches(number(row[5], m), r.cycles(m), "sglab_fast.md navi21 " + m);
+    expect_matches(number(row[6], m), r.cycles(m, "gfx1100"), "sglab_fast.md gfx1100 " + m);
+    expect_matches(number(row[7], m), r.cycles(m, "navi21", true), "sglab_fast.md navi21 split " + m);
+  }
 }
 
 // vulkan_sweep.md's table: the irradiance rows of vulkan_sweep.json (an empty
