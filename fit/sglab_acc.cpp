@@ -31,6 +31,9 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -50,8 +53,31 @@ struct Member {
   std::size_t n, d;  // correction terms, rational degree
 };
 
-// The family, cheapest first (by the operations counted in `operations`).
+// The family, cheapest first (by the operations counted in `operations`):
+// the one list of the members that are instantiated (with_member below).
 constexpr Member kFamily[] = {{1, 2}, {1, 3}, {2, 2}, {2, 3}, {3, 3}, {3, 4}, {4, 4}};
+
+template <std::size_t V> using Size = std::integral_constant<std::size_t, V>;
+
+// f(Size<N>{}, Size<D>{}) for the member m = {N, D} of kFamily: the one bridge
+// from a runtime member to the templated code (a fold over kFamily's indices).
+template <class F> auto with_member(Member m, F&& f) {
+  using R = decltype(f(Size<kFamily[0].n>{}, Size<kFamily[0].d>{}));
+  return [&]<std::size_t... I>(std::index_sequence<I...>) -> R {
+    std::optional<R> r;
+    ((m.n == kFamily[I].n && m.d == kFamily[I].d && (r.emplace(f(Size<kFamily[I].n>{}, Size<kFamily[I].d>{})), true)) ||
+     ...);
+    if (!r) throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", m.n, m.d));
+    return std::move(*r);
+  }(std::make_index_sequence<std::size(kFamily)>{});
+}
+
+// f(Size<N>{}) for the number of terms N of a member of kFamily.
+template <class F> auto with_terms(std::size_t n, F&& f) {
+  const Member* m = std::find_if(std::begin(kFamily), std::end(kFamily), [n](Member e) { return e.n == n; });
+  if (m == std::end(kFamily)) throw std::invalid_argument(fmt::format("sglab-acc: no member with N={}", n));
+  return with_member(*m, [&](auto terms, auto) { return f(terms); });
+}
 // The shipped ladder: id suffix and member.
 struct Rung {
   const char* variant;
@@ -390,17 +416,9 @@ template <std::size_t N, std::size_t D> std::vector<double> staged_start(const s
 
 SglabAccFit fit_coefficients_any(std::size_t n, std::size_t d, const std::vector<double>& start,
                                  const std::vector<SglabAccSample>& samples, bool polish_only = false) {
-#define SGLAB_MEMBER(n_, d_) \
-  if (n == n_ && d == d_) return fit_coefficients<n_, d_>(start, samples, polish_only);
-  SGLAB_MEMBER(1, 2)
-  SGLAB_MEMBER(1, 3)
-  SGLAB_MEMBER(2, 2)
-  SGLAB_MEMBER(2, 3)
-  SGLAB_MEMBER(3, 3)
-  SGLAB_MEMBER(3, 4)
-  SGLAB_MEMBER(4, 4)
-#undef SGLAB_MEMBER
-  throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", n, d));
+  return with_member({n, d}, [&](auto N, auto D) {
+    return fit_coefficients<decltype(N)::value, decltype(D)::value>(start, samples, polish_only);
+  });
 }
 
 template <std::size_t N, std::size_t D>
@@ -423,14 +441,8 @@ struct Floors {
   const std::vector<KappaOptimum>& get(std::size_t n, const std::vector<SglabAccSample>& train) {
     auto it = by_terms.find(n);
     if (it != by_terms.end()) return it->second;
-    std::vector<KappaOptimum> o;
-    switch (n) {
-      case 1: o = per_kappa_optima<1>(train); break;
-      case 2: o = per_kappa_optima<2>(train); break;
-      case 3: o = per_kappa_optima<3>(train); break;
-      case 4: o = per_kappa_optima<4>(train); break;
-      default: throw std::logic_error("sglab-acc: terms not instantiated");
-    }
+    std::vector<KappaOptimum> o =
+        with_terms(n, [&](auto N) { return per_kappa_optima<decltype(N)::value>(train); });
     return by_terms.emplace(n, std::move(o)).first->second;
   }
   double floor(std::size_t n, const std::vector<SglabAccSample>& train) {
@@ -442,34 +454,16 @@ struct Floors {
 
 std::vector<double> staged_start_any(Member m, Floors& floors, const std::vector<SglabAccSample>& train) {
   const auto& optima = floors.get(m.n, train);
-#define SGLAB_MEMBER(n_, d_) \
-  if (m.n == n_ && m.d == d_) return staged_start<n_, d_>(optima);
-  SGLAB_MEMBER(1, 2)
-  SGLAB_MEMBER(1, 3)
-  SGLAB_MEMBER(2, 2)
-  SGLAB_MEMBER(2, 3)
-  SGLAB_MEMBER(3, 3)
-  SGLAB_MEMBER(3, 4)
-  SGLAB_MEMBER(4, 4)
-#undef SGLAB_MEMBER
-  throw std::logic_error("sglab-acc: member not instantiated");
+  return with_member(m, [&](auto N, auto D) { return staged_start<decltype(N)::value, decltype(D)::value>(optima); });
 }
 
 MemberFit fit_any(Member m, const std::vector<double>& start, const std::vector<SglabAccSample>& train,
                   const std::vector<validate::ReferencePoint>& standard,
                   const std::vector<validate::ReferencePoint>& held_out, bool polish_only = false) {
   const SglabAccFit f = fit_coefficients_any(m.n, m.d, start, train, polish_only);
-#define SGLAB_MEMBER(n_, d_) \
-  if (m.n == n_ && m.d == d_) return measure_member<n_, d_>(f, standard, held_out);
-  SGLAB_MEMBER(1, 2)
-  SGLAB_MEMBER(1, 3)
-  SGLAB_MEMBER(2, 2)
-  SGLAB_MEMBER(2, 3)
-  SGLAB_MEMBER(3, 3)
-  SGLAB_MEMBER(3, 4)
-  SGLAB_MEMBER(4, 4)
-#undef SGLAB_MEMBER
-  throw std::logic_error("sglab-acc: member not instantiated");
+  return with_member(m, [&](auto N, auto D) {
+    return measure_member<decltype(N)::value, decltype(D)::value>(f, standard, held_out);
+  });
 }
 
 // Start values for member m: the latest earlier fit nested in it (no more
