@@ -48,6 +48,11 @@ Eigen::VectorXd weighted_residuals(const Eigen::MatrixXd& a, const Eigen::Vector
   return (a * x - y).cwiseQuotient(w);
 }
 
+// Entries of the scaled LP (|entries| ≤ 1, E = O(1)) below this are taken as 0:
+// far under CLP's tolerances (1e−10), and entries of 1e−20 and less (rows where
+// e^{−z²} has almost underflowed) made its simplex report a feasible LP infeasible.
+constexpr double kNegligible = 1e-15;
+
 // The LP on `rows`: unknowns x (free; columns scaled to unit max norm on
 // these rows) and E ≥ 0; per row two constraints, A'x − E ≤ y' and
 // A'x + E ≥ y', with A' = A/w, y' = y/w ([Cheney1966] ch. 2). Minimize E.
@@ -61,6 +66,11 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
     as.row(r) = a.row(i) / w[i];
     ys[r] = y[i] / w[i];
   }
+  // Rows scaled by σ = max |y'| so that E is O(1) against CLP's absolute
+  // tolerances (x is unchanged, E is σ times the scaled optimum).
+  const double sigma = ys.cwiseAbs().maxCoeff() > 0 ? ys.cwiseAbs().maxCoeff() : 1.0;
+  as /= sigma;
+  ys /= sigma;
   Eigen::VectorXd scale = as.cwiseAbs().colwise().maxCoeff().transpose();
   for (int j = 0; j < n; ++j)
     if (scale[j] == 0) scale[j] = 1;
@@ -70,8 +80,7 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
   std::vector<double> value;
   for (int j = 0; j < n; ++j) {
     for (int r = 0; r < m; ++r)
-      if (as(r, j) != 0) {
-        const double v = as(r, j) / scale[j];
+      if (const double v = as(r, j) / scale[j]; std::abs(v) > kNegligible) {
         index.push_back(2 * r), value.push_back(v);
         index.push_back(2 * r + 1), value.push_back(v);
       }
@@ -88,21 +97,31 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
     row_lo[std::size_t(2 * r)] = -COIN_DBL_MAX, row_hi[std::size_t(2 * r)] = ys[r];
     row_lo[std::size_t(2 * r + 1)] = ys[r], row_hi[std::size_t(2 * r + 1)] = COIN_DBL_MAX;
   }
+  // Dual simplex; where it ends without a clean optimum (the scaled problem
+  // optimal but not the unscaled one, or a feasible LP reported infeasible),
+  // the same LP afresh by CLP's initialSolve (presolve, its own choice of
+  // method), then by primal simplex without scaling.
   ClpSimplex lp;
-  lp.setLogLevel(0);
-  lp.loadProblem(n + 1, 2 * m, start.data(), index.data(), value.data(), col_lo.data(), col_hi.data(), obj.data(),
-                 row_lo.data(), row_hi.data());
-  lp.setPrimalTolerance(1e-10);
-  lp.setDualTolerance(1e-10);
-  lp.dual();
-  if (lp.status() != 0)
-    throw std::runtime_error(fmt::format("lp_minimax: CLP stopped without an optimum (status {}, {} rows, {} unknowns)",
-                                         lp.status(), m, n));
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    lp = ClpSimplex();
+    lp.setLogLevel(0);
+    lp.loadProblem(n + 1, 2 * m, start.data(), index.data(), value.data(), col_lo.data(), col_hi.data(), obj.data(),
+                   row_lo.data(), row_hi.data());
+    lp.setPrimalTolerance(1e-10);
+    lp.setDualTolerance(1e-10);
+    if (attempt == 0) lp.dual();
+    if (attempt == 1) lp.initialSolve();
+    if (attempt == 2) lp.scaling(0), lp.primal();
+    if (lp.status() == 0 && lp.secondaryStatus() == 0) break;
+  }
+  if (lp.status() != 0 || lp.secondaryStatus() != 0)
+    throw std::runtime_error(fmt::format("lp_minimax: CLP stopped without an optimum (status {}, secondary status {}, "
+                                         "{} rows, {} unknowns)", lp.status(), lp.secondaryStatus(), m, n));
   LpMinimaxResult out;
   out.x.resize(n);
   const double* sol = lp.getColSolution();
   for (int j = 0; j < n; ++j) out.x[j] = sol[j] / scale[j];
-  out.lower_bound = sol[n];
+  out.lower_bound = sol[n] * sigma;
   out.working_rows = rows.size();
   return out;
 }
@@ -187,6 +206,27 @@ LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, c
     if (add.empty()) return best;  // every peak is in the set: only rounding separates the two
     for (std::size_t i : add) in_set[i] = true, rows.push_back(i);
   }
+}
+
+LinearSubproblem linear_subproblem(const Residuals& residuals, const std::vector<double>& values,
+                                   const std::vector<std::size_t>& linear) {
+  const auto m = Eigen::Index(residuals.size()), k = Eigen::Index(linear.size());
+  std::vector<const double*> blocks(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) blocks[i] = &values[i];
+  std::vector<double> column(linear.size());
+  std::vector<double*> jacobians(values.size(), nullptr);  // only the linear blocks are differentiated
+  for (std::size_t c = 0; c < linear.size(); ++c) jacobians[linear[c]] = &column[c];
+  Eigen::VectorXd x0(k);
+  for (Eigen::Index c = 0; c < k; ++c) x0[c] = values[linear[std::size_t(c)]];
+  LinearSubproblem out{Eigen::MatrixXd(m, k), Eigen::VectorXd(m), x0};
+  for (Eigen::Index i = 0; i < m; ++i) {
+    double r = 0;
+    if (!residuals[std::size_t(i)]->Evaluate(blocks.data(), &r, jacobians.data()))
+      throw std::runtime_error(fmt::format("lp_minimax: residual {} cannot be evaluated", i));
+    for (Eigen::Index c = 0; c < k; ++c) out.a(i, c) = column[std::size_t(c)];
+    out.y[i] = -r;
+  }
+  return out;
 }
 
 }  // namespace sglab::fit

@@ -21,6 +21,8 @@
 
 #include <Eigen/Dense>
 
+#include "fit/minimax.hpp"
+
 namespace sglab::fit {
 
 struct LpMinimaxOptions {
@@ -68,5 +70,19 @@ struct Extrema {
   std::size_t alternations = 0;  // sign changes between successive extrema in row order
 };
 Extrema extrema(const Eigen::VectorXd& r, double level);
+
+// The linear part of a fit's residuals (fit/minimax.hpp) in the parameters
+// `linear` at `values` (the others held): r_i(x₀ + δ) = r_i(x₀) + J_i·δ, J the
+// Jacobian of the residual code itself (Ceres' automatic derivatives), as
+// A δ − y with A = J, y = −r(x₀) (the step δ from x₀ keeps y the size of the
+// residuals, not of the coefficients). Exact where the residuals are linear
+// in those parameters (a coefficient vector at fixed nonlinear parameters).
+struct LinearSubproblem {
+  Eigen::MatrixXd a;
+  Eigen::VectorXd y;
+  Eigen::VectorXd x0;  // `values` at the `linear` indices: the solution is x₀ + δ
+};
+LinearSubproblem linear_subproblem(const Residuals& residuals, const std::vector<double>& values,
+                                   const std::vector<std::size_t>& linear);
 
 }  // namespace sglab::fit

@@ -8,9 +8,15 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "fit/lp_minimax.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -163,6 +169,62 @@ TEST(LpMinimax, IllPosedInputIsRefusedWithAClearMessage) {
   bad_y[5] = std::nan("");
   expect_refused(a, bad_y, w, "non-finite");
   EXPECT_THROW(lp_minimax_on(a, y, w, {0, 1, 10}), std::invalid_argument);
+}
+
+// y = p0 + p1·x + p2·x² − data, the residual code of a fit: its linear part
+// in (p0, p2) at p1 held is exact, and the LP on it is the minimax.
+struct QuadraticResidual {
+  double x, data;
+  template <class T> bool operator()(T const* const* p, T* r) const {
+    r[0] = p[0][0] + p[1][0] * T(x) + p[2][0] * T(x * x) - T(data);
+    return true;
+  }
+};
+
+TEST(LpMinimax, LinearSubproblemOfAFitsResidualsIsExact) {
+  using namespace sglab::fit;
+  Residuals residuals;
+  std::vector<double> xs;
+  for (int i = 0; i < 101; ++i) xs.push_back(-1 + 0.02 * i);
+  for (double x : xs) residuals.push_back(make_residual(QuadraticResidual{x, std::abs(x)}, 3));
+  const std::vector<double> values = {0.3, 0.0, -0.7};  // p1 = 0 held: |x| is even
+  const LinearSubproblem sub = linear_subproblem(residuals, values, {0, 2});
+  ASSERT_EQ(sub.a.cols(), 2);
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    EXPECT_DOUBLE_EQ(sub.a(Eigen::Index(i), 0), 1.0);
+    EXPECT_NEAR(sub.a(Eigen::Index(i), 1), xs[i] * xs[i], 1e-15);
+    EXPECT_NEAR(sub.y[Eigen::Index(i)], std::abs(xs[i]) - 0.3 + 0.7 * xs[i] * xs[i], 1e-15);  // −r(x₀)
+  }
+  // Best even quadratic to |x| on [−1, 1] = best linear a + b·s to √s on
+  // s = x² ∈ [0, 1]: b = 1, a = 1/8, error 1/8 (chord slope, tangent at s = 1/4).
+  const auto r = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
+  EXPECT_NEAR(sub.x0[0] + r.x[0], 0.125, 1e-9);
+  EXPECT_NEAR(sub.x0[1] + r.x[1], 1.0, 1e-9);
+  EXPECT_NEAR(r.achieved, 0.125, 1e-9);
+  EXPECT_LE(r.lower_bound, r.achieved * (1 + 1e-9));
+}
+
+// The schema (fit/constants_schema.cpp) checks a certificate: a set whose
+// certificate lacks its lower bound is refused, naming the file and the key.
+TEST(LpMinimax, ConstantSetWithAnIncompleteCertificateIsRefused) {
+  namespace fs = std::filesystem;
+  sglab::test::TempDir tmp("lp_certificate");
+  const fs::path dir = tmp.path / "constants";
+  fs::create_directories(dir);
+  for (const auto& e : fs::directory_iterator(fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants"))
+    fs::copy_file(e.path(), dir / e.path().filename());
+  const fs::path file = dir / "sglab-acc-acc3.json";
+  std::ifstream in(file);
+  auto set = nlohmann::ordered_json::parse(in);
+  set["provenance"]["certificate"] = {{"kind", "lp_at_fitted_steepness"}, {"grid", "g"}, {"achieved", 0.5}};
+  std::ofstream(file, std::ios::trunc) << set.dump(2);
+  const auto r = sglab::test::run_sglab({"constants", "--dir", dir.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("sglab-acc-acc3.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("provenance.certificate.lower_bound"), std::string::npos) << r.output;
+  set["provenance"]["certificate"]["lower_bound"] = 0.4;
+  std::ofstream(file, std::ios::trunc) << set.dump(2);
+  EXPECT_EQ(sglab::test::run_sglab({"constants", "--dir", dir.string()}).exit_code, 0);
 }
 
 }  // namespace
