@@ -208,6 +208,12 @@ LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, c
   }
 }
 
+double max_abs_residual(const std::vector<double>& r) {
+  double m = 0;
+  for (double x : r) m = std::isfinite(x) ? std::max(m, std::abs(x)) : std::numeric_limits<double>::infinity();
+  return m;
+}
+
 LinearSubproblem linear_subproblem(const Residuals& residuals, const std::vector<double>& values,
                                    const std::vector<std::size_t>& linear) {
   const auto m = Eigen::Index(residuals.size()), k = Eigen::Index(linear.size());

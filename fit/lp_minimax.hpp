@@ -85,4 +85,7 @@ struct LinearSubproblem {
 LinearSubproblem linear_subproblem(const Residuals& residuals, const std::vector<double>& values,
                                    const std::vector<std::size_t>& linear);
 
+// max_i |r_i| of residual values (+inf when one is not finite).
+double max_abs_residual(const std::vector<double>& r);
+
 }  // namespace sglab::fit

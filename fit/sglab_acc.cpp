@@ -471,13 +471,6 @@ std::vector<double> log_parameters(std::vector<double> v) {
   return v;
 }
 
-// max |r_i| (inf where one is not finite).
-double max_abs(const std::vector<double>& r) {
-  double m = 0;
-  for (double x : r) m = std::isfinite(x) ? std::max(m, std::abs(x)) : std::numeric_limits<double>::infinity();
-  return m;
-}
-
 // The best numerators at the steepness and scale of `values` on `samples`:
 // at fixed t(κ) and s, f̂ and so Ê is linear in the coefficients of every P_j,
 // so the minimax is the LP of fit/lp_minimax.hpp (exchange from a subset of
@@ -494,7 +487,7 @@ std::pair<std::vector<double>, LpMinimaxResult> best_numerators(const std::vecto
   LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
   std::vector<double> out = values;
   for (std::size_t k = 0; k < linear.size(); ++k) out[5 + k] += lp.x[Eigen::Index(k)];  // x₀ + δ
-  lp.achieved = max_abs(evaluate_residuals(residuals, log_parameters(out)));
+  lp.achieved = max_abs_residual(evaluate_residuals(residuals, log_parameters(out)));
   return {out, lp};
 }
 
@@ -591,7 +584,7 @@ MemberFit certified_fit(const std::vector<double>& start, const std::vector<Sgla
     values = std::move(next), lp = next_lp;
   }
   f.values = values;
-  f.max_abs = max_abs(evaluate_residuals(member_residuals<N, D>(train), log_parameters(values)));
+  f.max_abs = max_abs_residual(evaluate_residuals(member_residuals<N, D>(train), log_parameters(values)));
   MemberFit out = measure_member<N, D>(f, standard, held_out);
   const auto [floor_weighted, floor_plain] =
       per_kappa_floor<N>(std::vector<double>(values.begin(), values.begin() + 5), dense);
