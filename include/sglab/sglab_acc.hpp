@@ -25,8 +25,8 @@
 // the shipped sets are in their provenance (sglab/constants.hpp). Max
 // peak_rel |Ê − E|/E(1, κ), float, κ ∈ [1e−3, 1e4], on a held-out 200 κ ×
 // 401 c grid never used in fitting:
-//   sglab_acc1 (N = 1, D = 3) 1.93e−4,  sglab_acc2 (N = 2, D = 3) 5.68e−5,
-//   sglab_acc3 (N = 3, D = 4) 2.15e−5  (tokuyoshi2024: 1.44e−3 refitted).
+//   sglab_acc1 (N = 1, D = 3) 1.93e−4,  sglab_acc2 (N = 2, D = 3) 5.51e−5,
+//   sglab_acc3 (N = 3, D = 4) 2.12e−5  (tokuyoshi2024: 1.44e−3 refitted).
 // Cost (callgrind, float, instructions per evaluation, bench/method_cost.cpp):
 // scalar 454, 465, 477 and batch 125, 127, 133 against tokuyoshi2024's 423
 // and 115 (1.07×, 1.10×, 1.13× scalar; 1.09×, 1.10×, 1.16× batch): the same
