@@ -575,10 +575,12 @@ template <std::size_t N, std::size_t D>
 MemberFit certified_fit(const std::vector<double>& start, const std::vector<SglabAccSample>& train,
                         const std::vector<SglabAccSample>& dense, const std::vector<validate::ReferencePoint>& standard,
                         const std::vector<validate::ReferencePoint>& held_out, bool polish_only) {
-  SglabAccFit f = fit_coefficients<N, D>(start, train, polish_only);
-  auto [values, lp] = best_numerators<N, D>(f.values, dense);
-  for (int round = 1; round < kAlternations; ++round) {
-    const SglabAccFit g = fit_coefficients<N, D>(values, train, true);
+  // Round 0: the LP at the start's t(κ) and s (a refit from a committed set
+  // is never worse than it); then Ceres and the LP in turn while they gain.
+  auto [values, lp] = best_numerators<N, D>(start, dense);
+  SglabAccFit f = fit_coefficients<N, D>(values, train, polish_only);
+  for (int round = 1; round <= kAlternations; ++round) {
+    const SglabAccFit g = round == 1 ? f : fit_coefficients<N, D>(values, train, true);
     auto [next, next_lp] = best_numerators<N, D>(g.values, dense);
     if (!(next_lp.achieved < lp.achieved)) break;
     values = std::move(next), lp = next_lp;
