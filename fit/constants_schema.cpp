@@ -375,6 +375,17 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
   if (const ordered_json* a = find(*provenance, "achieved"))
     if (const ordered_json* v = find(*a, "objective"); v && !v->is_number())
       fail(file, "provenance.achieved.objective", fmt::format("must be a number, got {}", v->type_name()));
+  // A fit's certificate (fit/sglab_acc.cpp): its kind and grid, the max
+  // achieved and the lower bound for the family, both finite numbers.
+  if (const ordered_json* c = find(*provenance, "certificate")) {
+    if (!c->is_object()) fail(file, "provenance.certificate", fmt::format("must be an object, got {}", c->type_name()));
+    for (const char* key : {"kind", "grid"})
+      if (const ordered_json* v = find(*c, key); !v || !v->is_string())
+        fail(file, std::string("provenance.certificate.") + key, v ? fmt::format("must be a string, got {}", v->type_name()) : "missing");
+    for (const char* key : {"achieved", "lower_bound"})
+      if (const ordered_json* v = find(*c, key); !v || !v->is_number() || !std::isfinite(v->get<double>()))
+        fail(file, std::string("provenance.certificate.") + key, v ? "must be a finite number" : "missing");
+  }
 }
 
 void validate_header_sets(const std::vector<ordered_json>& sets, const std::vector<std::string>& files) {

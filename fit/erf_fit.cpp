@@ -12,11 +12,13 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <numeric>
 
 #include <fmt/format.h>
 
 #include <sglab/sglab.hpp>
 
+#include "fit/lp_minimax.hpp"
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
 
@@ -217,6 +219,48 @@ ordered_json to_json(const std::vector<double>& v) {
   return a;
 }
 
+// The certificate of a fit whose residuals are linear in the parameters
+// `linear` at the others' fitted values: the LP optimum on the fit's points
+// (fit/lp_minimax.hpp) is the best those parameters can do there (exact
+// arithmetic), a lower bound of every member with the others fixed; the fit's
+// max on the same points (its coefficients, rounded to float where it rounds)
+// is achieved.
+ordered_json lp_certificate(const Residuals& residuals, const std::vector<double>& values, std::size_t first,
+                            std::size_t count, const std::string& kind, const std::string& grid) {
+  std::vector<std::size_t> linear(count);
+  std::iota(linear.begin(), linear.end(), first);
+  const LinearSubproblem sub = linear_subproblem(residuals, values, linear);
+  const LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
+  const double achieved = max_abs_residual(evaluate_residuals(residuals, values));
+  return {{"kind", kind}, {"grid", grid}, {"achieved", achieved}, {"lower_bound", lp.lower_bound},
+          {"within_percent_of_best_member", 100 * (achieved / lp.lower_bound - 1)}};
+}
+
+// listing5's small piece x·P(x²) is linear in P: its certificate on the fit's
+// 1500 Chebyshev points of [0, split], the large piece as fitted.
+ordered_json listing5_certificate(const Listing5Fit& f) {
+  Residuals residuals;
+  for (double x : chebyshev_points(0, f.shape.split, 1500))
+    residuals.push_back(make_residual(Listing5Residual{x, std::erf(x), f.shape.split, f.shape.cutoff}, kMaxSmall + kMaxLarge));
+  std::vector<double> values(kMaxSmall + kMaxLarge, 0.0);
+  std::copy(f.small.begin(), f.small.end(), values.begin());
+  std::copy(f.large.begin(), f.large.end(), values.begin() + kMaxSmall);
+  return lp_certificate(residuals, values, 0, f.small.size(), "lp_small_piece: the best P of this degree",
+                        fmt::format("1500 Chebyshev points of [0, {}] (the fit's)", f.shape.split));
+}
+
+// as7125 is linear in a1..aN at fixed p: its certificate on the fit's 2000
+// Chebyshev points of [0, 6].
+ordered_json as_certificate(const AsFit& f) {
+  Residuals residuals;
+  for (double x : chebyshev_points(0, 6, 2000))
+    residuals.push_back(make_residual(AbramowitzStegunResidual{x, std::erf(x)}, 1 + kMaxTerms));
+  std::vector<double> values(1 + kMaxTerms, 0.0);
+  std::copy(f.coefficients.begin(), f.coefficients.end(), values.begin());
+  return lp_certificate(residuals, values, 1, f.coefficients.size() - 1, "lp_at_fitted_p: the best a_i at this p",
+                        "2000 Chebyshev points of [0, 6] (the fit's)");
+}
+
 // Float-evaluated error: every 16th float in [0, 4] (about 6.8e7 inputs).
 // The exhaustive check of every float is `sglab erf --exhaustive`.
 constexpr std::uint32_t kFloatStride = 16;
@@ -290,7 +334,9 @@ FitOutcome fit_erf(const FitSpec& spec) {
         coefficients,
         fmt::format("minimax of |erf_listing5(x) - erf(x)| (Lawson IRLS){}", round ? ", coefficients rounded to float one at a time with re-fits" : ""),
         achieved));
-    ordered_json row = {{"structure", "listing5"}, {"variant", variant}};
+    const ordered_json certificate = listing5_certificate(chosen);
+    out.constant_sets.back()["provenance"]["certificate"] = certificate;
+    ordered_json row = {{"structure", "listing5"}, {"variant", variant}, {"certificate", certificate}};
     for (auto& [k, v] : coefficients.items()) row[k] = v;
     row["max_abs"] = exact_fit.first;
     row["worst_x"] = exact_fit.second;
@@ -302,9 +348,11 @@ FitOutcome fit_erf(const FitSpec& spec) {
                         {"max_abs_float", float_pub.first}, {"worst_x_float", float_pub.second}, {"operations", 13}};
     out.report["results"].push_back(row);
     out.text += fmt::format("erf listing5 ({}): {}+{} terms, split {}: max abs {:.3e} exact, {:.3e} float; published "
-                            "{:.3e} exact, {:.3e} float\n",
+                            "{:.3e} exact, {:.3e} float; small piece within {:.2f}% of the best P (LP {:.3e})\n",
                             variant, chosen.small.size(), chosen.large.size(), chosen.shape.split, exact_fit.first,
-                            float_fit.first, exact_pub.first, float_pub.first);
+                            float_fit.first, exact_pub.first, float_pub.first,
+                            certificate["within_percent_of_best_member"].get<double>(),
+                            certificate["lower_bound"].get<double>());
   }
 
   if (structure != "listing5") {
@@ -346,7 +394,9 @@ FitOutcome fit_erf(const FitSpec& spec) {
         "erf(x) ≈ 1 - (a1 t + a2 t^2 + ...) exp(-x^2), t = 1/(1 + p x), x >= 0; odd", coefficients,
         fmt::format("minimax of |erf_as(x) - erf(x)| on [0, 6] (Lawson IRLS){}", round ? ", coefficients rounded to float one at a time with re-fits" : ""),
         achieved));
-    ordered_json row = {{"structure", "as7125"}, {"variant", variant}, {"p", chosen.coefficients[0]}};
+    const ordered_json certificate = as_certificate(chosen);
+    out.constant_sets.back()["provenance"]["certificate"] = certificate;
+    ordered_json row = {{"structure", "as7125"}, {"variant", variant}, {"certificate", certificate}, {"p", chosen.coefficients[0]}};
     for (std::size_t i = 1; i < chosen.coefficients.size(); ++i) row[fmt::format("a{}", i)] = chosen.coefficients[i];
     row["max_abs"] = exact_fit.first;
     row["worst_x"] = exact_fit.second;
@@ -357,9 +407,10 @@ FitOutcome fit_erf(const FitSpec& spec) {
                         {"worst_x", exact_pub.second}, {"max_abs_float", float_pub.first}};
     out.report["results"].push_back(row);
     out.text += fmt::format("erf as7125 ({}): {} terms: max abs {:.3e} exact, {:.3e} float; published {:.3e} exact, "
-                            "{:.3e} float\n",
+                            "{:.3e} float; within {:.2f}% of the best a_i at this p (LP {:.3e})\n",
                             variant, chosen.coefficients.size() - 1, exact_fit.first, float_fit.first, exact_pub.first,
-                            float_pub.first);
+                            float_pub.first, certificate["within_percent_of_best_member"].get<double>(),
+                            certificate["lower_bound"].get<double>());
   }
   return out;
 }

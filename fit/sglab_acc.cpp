@@ -8,8 +8,16 @@
 //   default         fits the shipped ladder acc1 (1, 3), acc2 (2, 3), acc3 (3, 4),
 //                   each warm-started from the committed JSON when present
 //                   (else from the next lower member), minimax of the peak_rel
-//                   error on a training grid, then measured on the standard grid
-//                   and on a held-out dense grid that the fit never sees.
+//                   error on a training grid (Ceres, every parameter), then
+//                   alternately the exact best coefficients of the P_j at the
+//                   fitted t(κ) and s (an LP, fit/lp_minimax.hpp: f̂, and so Ê,
+//                   is linear in them) on a dense training grid and a Ceres
+//                   polish; measured on the standard grid and on a held-out
+//                   dense grid that the fit never sees. Certified: the LP's
+//                   optimum at the final t, s is the best member with those
+//                   (the lower bound; the report says how far above it the
+//                   fit is), and the per-κ floor (b_j free at each κ) bounds
+//                   every member with that steepness.
 //                   Never worse than tokuyoshi2024: the residual at κ is divided
 //                   by w(κ) = min(T, max(e₂₀₂₄(κ), 8e−7)), e₂₀₂₄(κ) the float
 //                   error of tokuyoshi2024 at that κ (max over its training
@@ -30,13 +38,18 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_acc.hpp>
 
+#include "fit/lp_minimax.hpp"
 #include "fit/minimax.hpp"
 #include "validate/reference.hpp"
 #include "fit/constants_io.hpp"
@@ -50,8 +63,31 @@ struct Member {
   std::size_t n, d;  // correction terms, rational degree
 };
 
-// The family, cheapest first (by the operations counted in `operations`).
+// The family, cheapest first (by the operations counted in `operations`):
+// the one list of the members that are instantiated (with_member below).
 constexpr Member kFamily[] = {{1, 2}, {1, 3}, {2, 2}, {2, 3}, {3, 3}, {3, 4}, {4, 4}};
+
+template <std::size_t V> using Size = std::integral_constant<std::size_t, V>;
+
+// f(Size<N>{}, Size<D>{}) for the member m = {N, D} of kFamily: the one bridge
+// from a runtime member to the templated code (a fold over kFamily's indices).
+template <class F> auto with_member(Member m, F&& f) {
+  using R = decltype(f(Size<kFamily[0].n>{}, Size<kFamily[0].d>{}));
+  return [&]<std::size_t... I>(std::index_sequence<I...>) -> R {
+    std::optional<R> r;
+    ((m.n == kFamily[I].n && m.d == kFamily[I].d && (r.emplace(f(Size<kFamily[I].n>{}, Size<kFamily[I].d>{})), true)) ||
+     ...);
+    if (!r) throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", m.n, m.d));
+    return std::move(*r);
+  }(std::make_index_sequence<std::size(kFamily)>{});
+}
+
+// f(Size<N>{}) for the number of terms N of a member of kFamily.
+template <class F> auto with_terms(std::size_t n, F&& f) {
+  const Member* m = std::find_if(std::begin(kFamily), std::end(kFamily), [n](Member e) { return e.n == n; });
+  if (m == std::end(kFamily)) throw std::invalid_argument(fmt::format("sglab-acc: no member with N={}", n));
+  return with_member(*m, [&](auto terms, auto) { return f(terms); });
+}
 // The shipped ladder: id suffix and member.
 struct Rung {
   const char* variant;
@@ -175,6 +211,26 @@ std::vector<validate::Query> measuring_grid(double lo, double hi, int nk, int nc
   return q;
 }
 
+// Dense training grid of the certificate (and of the LP's exchange): κ as
+// training_kappas with twice the count, per κ c = 0, 64 cosines at half-step
+// offsets of a uniform grid and c = ±z_k/t(κ), z_k = 0.05 … 3.15 (32), sorted
+// by c (the exchange adds a peak's neighbours in c). Never a measuring grid.
+constexpr int kDenseKappas = 80, kDenseUniform = 64;
+std::vector<validate::Query> dense_training_grid(double lo, double hi) {
+  std::vector<validate::Query> q;
+  const int uniform = kDenseUniform, zcount = 32;
+  for (double k : training_kappas(lo, hi, kDenseKappas)) {
+    const double t = steepness2024(k, constants::steepness2024_irradiance);
+    std::vector<double> c{0.0};
+    for (int j = 0; j < uniform; ++j) c.push_back(-1 + 2 * (j + 0.5) / uniform);
+    for (int j = 0; j < zcount; ++j)
+      if (const double x = 0.1 * (j + 0.5) / t; x < 1) c.push_back(x), c.push_back(-x);
+    std::sort(c.begin(), c.end());
+    for (double x : c) q.push_back({k, x});
+  }
+  return q;
+}
+
 struct Measured {
   double float_max = 0, double_max = 0;
   double float_kappa = 0, float_cosine = 0;
@@ -214,8 +270,22 @@ Measured measure(const SglabAccParams<double, N, D>& p, const std::vector<valida
   return m;
 }
 
+// The certificate of a member's fit (issue 17 §1), on the dense training
+// grid (dense_training_grid), in the units of the fit's objective, peak_rel/w(κ):
+// achieved ≥ lower_bound ≥ per_kappa_floor.
+struct Certificate {
+  double achieved = 0;     // max at the final coefficients (double), every row
+  double lower_bound = 0;  // LP optimum at the fitted steepness t(κ) and scale s: the best member with those
+  double per_kappa_floor = 0;           // max over κ of the optimum with b_j(κ) free at each κ, t(κ) as fitted
+  double per_kappa_floor_peak_rel = 0;  // the same without the weight w(κ) (plain max peak_rel)
+  std::size_t rows = 0, kappas = 0, working_rows = 0;
+  int rounds = 0;
+  bool converged = false;  // the LP's exchange closed the gap (lp_minimax.hpp)
+};
+
 struct MemberFit {
   Member member;
+  Certificate certificate;
   std::vector<double> values;  // steep[5], num, scale (itself, not its log)
   double train = 0;            // the fit objective: max of peak_rel/w(κ) on the training grid (double)
   Measured standard, held_out;
@@ -232,6 +302,15 @@ template <std::size_t N, std::size_t D> SglabAccParams<double, N, D> params_of(c
   return p;
 }
 
+// The residuals of member (N, D) on `samples`, of the parameters log steep[5], num, log scale.
+template <std::size_t N, std::size_t D> Residuals member_residuals(const std::vector<SglabAccSample>& samples) {
+  Residuals residuals;
+  for (const auto& r : samples)
+    residuals.push_back(make_residual(PeakRelResidual<N, D>{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), r.weight},
+                                      5 + N * (D + 1) + 1));
+  return residuals;
+}
+
 template <std::size_t N, std::size_t D>
 SglabAccFit fit_coefficients(const std::vector<double>& start, const std::vector<SglabAccSample>& samples,
                              bool polish_only) {
@@ -243,10 +322,7 @@ SglabAccFit fit_coefficients(const std::vector<double>& start, const std::vector
   params.values.insert(params.values.end(), start.begin() + 5, start.begin() + 5 + N * (D + 1));
   params.values.push_back(std::log(start[5 + N * (D + 1)]));
   bound(params);
-  Residuals residuals;
-  for (const auto& r : samples)
-    residuals.push_back(make_residual(PeakRelResidual<N, D>{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), r.weight},
-                                      params.size()));
+  const Residuals residuals = member_residuals<N, D>(samples);
   // Fewer rounds than the defaults: the training grid is large and the
   // staged start is close. From a converged set (the committed JSON) a short
   // polish: the full schedule there takes minutes and moves the error < 2%.
@@ -388,19 +464,72 @@ template <std::size_t N, std::size_t D> std::vector<double> staged_start(const s
   return out;
 }
 
+// The parameters of member_residuals (log steep, num, log scale) of values (steep, num, scale).
+std::vector<double> log_parameters(std::vector<double> v) {
+  for (std::size_t i = 0; i < 5; ++i) v[i] = std::log(v[i]);
+  v.back() = std::log(v.back());
+  return v;
+}
+
+// The best numerators at the steepness and scale of `values` on `samples`:
+// at fixed t(κ) and s, f̂ and so Ê is linear in the coefficients of every P_j,
+// so the minimax is the LP of fit/lp_minimax.hpp (exchange from a subset of
+// the rows). Returns `values` with those numerators, and the LP's answer
+// with `achieved` taken on the model itself (the clamp of f̂ to [0, 1] lies
+// outside the linear part).
+template <std::size_t N, std::size_t D>
+std::pair<std::vector<double>, LpMinimaxResult> best_numerators(const std::vector<double>& values,
+                                                                const std::vector<SglabAccSample>& samples) {
+  const Residuals residuals = member_residuals<N, D>(samples);
+  std::vector<std::size_t> linear(N * (D + 1));
+  std::iota(linear.begin(), linear.end(), std::size_t(5));
+  const LinearSubproblem sub = linear_subproblem(residuals, log_parameters(values), linear);
+  LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
+  std::vector<double> out = values;
+  for (std::size_t k = 0; k < linear.size(); ++k) out[5 + k] += lp.x[Eigen::Index(k)];  // x₀ + δ
+  lp.achieved = max_abs_residual(evaluate_residuals(residuals, log_parameters(out)));
+  return {out, lp};
+}
+
+// The per-κ floor at the steepness steep[5]: at each κ of `samples` (grouped
+// by κ) the LP optimum over its cosines with b_0 … b_{N−1} free (PerKappaResidual),
+// t(κ) fixed; no member with that t(κ) does better at that κ, whatever its
+// fade, scale or degree. Returns the max over κ weighted (÷ w(κ)) and plain.
+template <std::size_t N>
+std::pair<double, double> per_kappa_floor(const std::vector<double>& steep, const std::vector<SglabAccSample>& samples) {
+  const Steepness2024Params<double> sp{steep[0], steep[1], steep[2], steep[3], steep[4]};
+  double weighted = 0, plain = 0;
+  for (std::size_t i = 0; i < samples.size();) {
+    std::size_t end = i;
+    while (end < samples.size() && samples[end].kappa == samples[i].kappa) ++end;
+    const double k = samples[i].kappa, t = steepness2024(k, sp);
+    Residuals residuals;
+    std::vector<std::size_t> rows;
+    for (std::size_t s = i; s < end; ++s, rows.push_back(rows.size()))
+      residuals.push_back(make_residual(PerKappaResidual<N>{t, samples[s].cosine, samples[s].irradiance,
+                                                            irradiance_upper(k), irradiance_lower_over_two_pi(k),
+                                                            irradiance_upper_over_two_pi(k)},
+                                        N));
+    std::vector<std::size_t> linear(N);
+    std::iota(linear.begin(), linear.end(), std::size_t(0));
+    const LinearSubproblem sub = linear_subproblem(residuals, std::vector<double>(N, 0.0), linear);
+    const double f = lp_minimax_on(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()), rows).lower_bound;
+    plain = std::max(plain, f);
+    weighted = std::max(weighted, f / samples[i].weight);
+    i = end;
+  }
+  return {weighted, plain};
+}
+
+// Alternations of the LP (exact numerators at fixed t, s) with a Ceres polish
+// of every parameter (t, s move), each round kept only if it lowers the LP's achieved max.
+constexpr int kAlternations = 3;
+
 SglabAccFit fit_coefficients_any(std::size_t n, std::size_t d, const std::vector<double>& start,
                                  const std::vector<SglabAccSample>& samples, bool polish_only = false) {
-#define SGLAB_MEMBER(n_, d_) \
-  if (n == n_ && d == d_) return fit_coefficients<n_, d_>(start, samples, polish_only);
-  SGLAB_MEMBER(1, 2)
-  SGLAB_MEMBER(1, 3)
-  SGLAB_MEMBER(2, 2)
-  SGLAB_MEMBER(2, 3)
-  SGLAB_MEMBER(3, 3)
-  SGLAB_MEMBER(3, 4)
-  SGLAB_MEMBER(4, 4)
-#undef SGLAB_MEMBER
-  throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", n, d));
+  return with_member({n, d}, [&](auto N, auto D) {
+    return fit_coefficients<decltype(N)::value, decltype(D)::value>(start, samples, polish_only);
+  });
 }
 
 template <std::size_t N, std::size_t D>
@@ -423,14 +552,8 @@ struct Floors {
   const std::vector<KappaOptimum>& get(std::size_t n, const std::vector<SglabAccSample>& train) {
     auto it = by_terms.find(n);
     if (it != by_terms.end()) return it->second;
-    std::vector<KappaOptimum> o;
-    switch (n) {
-      case 1: o = per_kappa_optima<1>(train); break;
-      case 2: o = per_kappa_optima<2>(train); break;
-      case 3: o = per_kappa_optima<3>(train); break;
-      case 4: o = per_kappa_optima<4>(train); break;
-      default: throw std::logic_error("sglab-acc: terms not instantiated");
-    }
+    std::vector<KappaOptimum> o =
+        with_terms(n, [&](auto N) { return per_kappa_optima<decltype(N)::value>(train); });
     return by_terms.emplace(n, std::move(o)).first->second;
   }
   double floor(std::size_t n, const std::vector<SglabAccSample>& train) {
@@ -442,34 +565,44 @@ struct Floors {
 
 std::vector<double> staged_start_any(Member m, Floors& floors, const std::vector<SglabAccSample>& train) {
   const auto& optima = floors.get(m.n, train);
-#define SGLAB_MEMBER(n_, d_) \
-  if (m.n == n_ && m.d == d_) return staged_start<n_, d_>(optima);
-  SGLAB_MEMBER(1, 2)
-  SGLAB_MEMBER(1, 3)
-  SGLAB_MEMBER(2, 2)
-  SGLAB_MEMBER(2, 3)
-  SGLAB_MEMBER(3, 3)
-  SGLAB_MEMBER(3, 4)
-  SGLAB_MEMBER(4, 4)
-#undef SGLAB_MEMBER
-  throw std::logic_error("sglab-acc: member not instantiated");
+  return with_member(m, [&](auto N, auto D) { return staged_start<decltype(N)::value, decltype(D)::value>(optima); });
+}
+
+// Member (N, D) from `start`: Ceres (fit_coefficients) on the training grid,
+// then the LP on the dense grid at its t(κ) and s, alternating with Ceres
+// polishes; measured on the standard and held-out grids, and certified.
+template <std::size_t N, std::size_t D>
+MemberFit certified_fit(const std::vector<double>& start, const std::vector<SglabAccSample>& train,
+                        const std::vector<SglabAccSample>& dense, const std::vector<validate::ReferencePoint>& standard,
+                        const std::vector<validate::ReferencePoint>& held_out, bool polish_only) {
+  // Round 0: the LP at the start's t(κ) and s (a refit from a committed set
+  // is never worse than it); then Ceres and the LP in turn while they gain.
+  auto [values, lp] = best_numerators<N, D>(start, dense);
+  SglabAccFit f = fit_coefficients<N, D>(values, train, polish_only);
+  for (int round = 1; round <= kAlternations; ++round) {
+    const SglabAccFit g = round == 1 ? f : fit_coefficients<N, D>(values, train, true);
+    auto [next, next_lp] = best_numerators<N, D>(g.values, dense);
+    if (!(next_lp.achieved < lp.achieved)) break;
+    values = std::move(next), lp = next_lp;
+  }
+  f.values = values;
+  f.max_abs = max_abs_residual(evaluate_residuals(member_residuals<N, D>(train), log_parameters(values)));
+  MemberFit out = measure_member<N, D>(f, standard, held_out);
+  const auto [floor_weighted, floor_plain] =
+      per_kappa_floor<N>(std::vector<double>(values.begin(), values.begin() + 5), dense);
+  std::size_t kappas = 0;
+  for (std::size_t i = 0; i < dense.size(); ++i) kappas += i == 0 || dense[i].kappa != dense[i - 1].kappa;
+  out.certificate = {lp.achieved, lp.lower_bound, floor_weighted, floor_plain, dense.size(), kappas,
+                     lp.working_rows, lp.rounds, lp.converged};
+  return out;
 }
 
 MemberFit fit_any(Member m, const std::vector<double>& start, const std::vector<SglabAccSample>& train,
-                  const std::vector<validate::ReferencePoint>& standard,
+                  const std::vector<SglabAccSample>& dense, const std::vector<validate::ReferencePoint>& standard,
                   const std::vector<validate::ReferencePoint>& held_out, bool polish_only = false) {
-  const SglabAccFit f = fit_coefficients_any(m.n, m.d, start, train, polish_only);
-#define SGLAB_MEMBER(n_, d_) \
-  if (m.n == n_ && m.d == d_) return measure_member<n_, d_>(f, standard, held_out);
-  SGLAB_MEMBER(1, 2)
-  SGLAB_MEMBER(1, 3)
-  SGLAB_MEMBER(2, 2)
-  SGLAB_MEMBER(2, 3)
-  SGLAB_MEMBER(3, 3)
-  SGLAB_MEMBER(3, 4)
-  SGLAB_MEMBER(4, 4)
-#undef SGLAB_MEMBER
-  throw std::logic_error("sglab-acc: member not instantiated");
+  return with_member(m, [&](auto N, auto D) {
+    return certified_fit<decltype(N)::value, decltype(D)::value>(start, train, dense, standard, held_out, polish_only);
+  });
 }
 
 // Start values for member m: the latest earlier fit nested in it (no more
@@ -541,7 +674,35 @@ std::vector<SglabAccSample> weighted(std::vector<SglabAccSample> samples, double
   return samples;
 }
 
+// The certificate (Certificate) as the report and the constant set carry it.
+ordered_json certificate_json(const Certificate& c) {
+  return {{"kind", "lp_at_fitted_steepness"},
+          {"what", "lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) "
+                   "and scale s, the best member with those; achieved: the max at the shipped coefficients; both of "
+                   "max peak_rel/w(kappa) (double) on the grid below"},
+          {"grid", fmt::format("dense training grid: {} kappa x (c = 0, {} offset cosines, c = +-z_k/t, z_k = "
+                               "0.05..3.15), {} points, never a measuring grid",
+                               c.kappas, kDenseUniform, c.rows)},
+          {"achieved", c.achieved},
+          {"lower_bound", c.lower_bound},
+          {"within_percent_of_best_member", 100 * (c.achieved / c.lower_bound - 1)},
+          {"per_kappa_floor",
+           {{"kind", "b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better"},
+            {"weighted", c.per_kappa_floor},
+            {"max_peak_rel", c.per_kappa_floor_peak_rel}}},
+          {"lp", {{"working_rows", c.working_rows}, {"rounds", c.rounds}, {"converged", c.converged}}}};
+}
+
 std::string member_name(Member m) { return fmt::format("N={} D={}", m.n, m.d); }
+
+// "within x% of the best member" (the certificate's achieved over its lower bound).
+std::string within_text(const Certificate& c) {
+  return fmt::format("achieved {:.4e} (weighted, dense training grid), within {:.2f}% of the best member at the "
+                     "fitted steepness and scale ({:.4e}, LP); per-kappa floor at that steepness {:.4e} "
+                     "(max peak_rel {:.3e})",
+                     c.achieved, 100 * (c.achieved / c.lower_bound - 1), c.lower_bound, c.per_kappa_floor,
+                     c.per_kappa_floor_peak_rel);
+}
 
 ordered_json member_report(const MemberFit& f) {
   const Operations ops = operations(f.member);
@@ -560,20 +721,29 @@ ordered_json member_report(const MemberFit& f) {
           {"held_out_worst_float", {f.held_out.float_kappa, f.held_out.float_cosine}},
           {"weighted_objective", f.train},
           {"held_out_never_worse_ratio", f.held_out.never_worse},
-          {"held_out_never_worse_worst_kappa", f.held_out.never_worse_kappa}};
+          {"held_out_never_worse_worst_kappa", f.held_out.never_worse_kappa},
+          {"certificate", certificate_json(f.certificate)},
+          {"summary", within_text(f.certificate)}};
 }
 
 std::string member_line(const MemberFit& f, const char* mark) {
   const Operations ops = operations(f.member);
-  return fmt::format("  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}{}\n",
+  const Certificate& c = f.certificate;
+  return fmt::format("  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}   {:.3e}  {:.3e} "
+                     "{:>6.2f}%  {:.3e}  {:.3e}{}\n",
                      member_name(f.member), f.values.size(), ops.setup, ops.eval,
                      f.cost ? fmt::format("{:.3f}", *f.cost) : "-",
                      f.floor > 0 ? fmt::format("{:.2e}", f.floor) : "-", f.train, f.standard.float_max,
-                     f.held_out.float_max, f.held_out.double_max, f.held_out.never_worse, mark);
+                     f.held_out.float_max, f.held_out.double_max, f.held_out.never_worse, c.achieved, c.lower_bound,
+                     100 * (c.achieved / c.lower_bound - 1), c.per_kappa_floor, c.per_kappa_floor_peak_rel, mark);
 }
 
+// The last five columns are the certificate (certificate_json), weighted,
+// on the dense training grid: achieved, the LP bound (best member at the
+// fitted steepness and scale), how far above it, the per-κ floor weighted and plain.
 const char* kHeader =
-    "  member    coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) held-out(f) held-out(d) never-worse\n";
+    "  member    coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) held-out(f) held-out(d) "
+    "never-worse  dense      LP bound    within  floor/k(w)  floor/k(peak_rel)\n";
 
 ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::string& variant, int held_k, int held_c,
                           double target) {
@@ -585,11 +755,14 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
       "minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) divided by w(kappa) = min(T, max(e2024(kappa), "
       "8e-7)), T = {:g}, e2024(kappa) the float error of tokuyoshi2024 at kappa (never worse than it), on a training "
       "grid of {} kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 "
-      "offset cosines, c = +-z_k/t, z_k = 0.1..3.1), {} points in all, kappa in [{}, {}]",
+      "offset cosines, c = +-z_k/t, z_k = 0.1..3.1), {} points in all, kappa in [{}, {}] (Ceres, every parameter); "
+      "alternating with the exact minimax of the coefficients of every P_j at the fitted t(kappa) and s (a linear "
+      "program, COIN-OR CLP) on the dense training grid of the certificate, whose max is the objective",
       target, training_kappas(spec.kappa_lo, spec.kappa_hi, 40).size(),
       training_grid(spec.kappa_lo, spec.kappa_hi).size(), spec.kappa_lo, spec.kappa_hi);
   ordered_json achieved = {
-      {"objective", f.train},
+      {"objective", f.certificate.achieved},
+      {"training_grid_objective", f.train},
       {"standard_grid", fmt::format("{} kappa x {} cosines", spec.kappa_count, spec.cosine_count)},
       {"standard_max_peak_rel_float", f.standard.float_max},
       {"standard_max_peak_rel_double", f.standard.double_max},
@@ -599,9 +772,11 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
       {"held_out_never_worse_ratio", f.held_out.never_worse},
       {"extra_operations_vs_tokuyoshi2024", fmt::format("setup {} (one division), eval {} multiply-adds",
                                                         operations(f.member).setup, operations(f.member).eval)}};
-  return make_constant_set(spec, "sglab-acc", variant,
-                           fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
-                           coefficients_json(f), objective, achieved);
+  ordered_json set = make_constant_set(spec, "sglab-acc", variant,
+                                       fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
+                                       coefficients_json(f), objective, achieved);
+  set["provenance"]["certificate"] = certificate_json(f.certificate);
+  return set;
 }
 
 }  // namespace
@@ -619,6 +794,9 @@ FitOutcome fit_sglab_acc(const FitSpec& spec) {
   std::vector<SglabAccSample> train;
   for (const auto& r : engine.evaluate(training_grid(spec.kappa_lo, spec.kappa_hi)))
     train.push_back({r.kappa, r.cosine, r.irradiance});
+  std::vector<SglabAccSample> dense;  // the LP's and the certificate's rows
+  for (const auto& r : engine.evaluate(dense_training_grid(spec.kappa_lo, spec.kappa_hi)))
+    dense.push_back({r.kappa, r.cosine, r.irradiance});
   const auto standard = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count, spec.cosine_count));
   const auto held_out = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, held_k, held_c));
 
@@ -632,7 +810,8 @@ FitOutcome fit_sglab_acc(const FitSpec& spec) {
     fits.reserve(std::size(kFamily));  // `chosen` points into it
     for (const Member m : kFamily) {
       // A nested earlier member (or the stage-wise start: per-κ optima, then fade fits), then the joint minimax.
-      fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget), standard, held_out));
+      fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget), weighted(dense, budget),
+                             standard, held_out));
       fits.back().cost = member_cost(m, spec.costs);
       fits.back().floor = floors.floor(m.n, train);
       if (fits.back().converged && fits.back().held_out.float_max <= budget && fits.back().held_out.never_worse <= 1) {
@@ -679,7 +858,8 @@ FitOutcome fit_sglab_acc(const FitSpec& spec) {
     if (spec.kappa_range_given) variant += fmt::format("-k{}-{}", spec.kappa_lo, spec.kappa_hi);
     const auto warm = committed(variant, rung.member);
     MemberFit f = fit_any(rung.member, warm ? *warm : start_for(rung.member, done, floors, train),
-                          weighted(train, rung.target), standard, held_out, warm.has_value());
+                          weighted(train, rung.target), weighted(dense, rung.target), standard, held_out,
+                          warm.has_value());
     done.push_back(f);
     f.cost = member_cost(rung.member, spec.costs);
     if (!warm) f.floor = floors.floor(rung.member.n, train);

@@ -185,6 +185,19 @@ TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   EXPECT_EQ(out.constant_sets[0]["cpp_type"], "SglabAccParams<double, 1, 2>");
   EXPECT_NE(out.report["cost_source"].get<std::string>().find("a test table"), std::string::npos);
   for (const auto& m : out.report["members"]) EXPECT_TRUE(m["cost_ratio_float_vs_tokuyoshi2024"].is_null()) << m;
+  // Every fit is certified (issue 17 §1, fit/lp_minimax.hpp): the LP's bound
+  // (the best member at the fitted steepness) ≤ the achieved max, the per-κ
+  // floor ≤ that bound; in the report and in the set's provenance.
+  for (const auto& m : out.report["members"]) {
+    const auto& c = m["certificate"];
+    const double achieved = c["achieved"].get<double>(), bound = c["lower_bound"].get<double>();
+    EXPECT_GT(bound, 0) << c;
+    EXPECT_LE(bound, achieved * (1 + 1e-6)) << c;
+    EXPECT_LE(c["per_kappa_floor"]["weighted"].get<double>(), bound * (1 + 1e-6)) << c;
+    EXPECT_TRUE(c["lp"]["converged"].get<bool>()) << c;
+    EXPECT_NE(m["summary"].get<std::string>().find("of the best member"), std::string::npos) << m;
+  }
+  EXPECT_EQ(out.constant_sets[0]["provenance"]["certificate"]["kind"], "lp_at_fitted_steepness");
 
   const auto ref = sglab::validate::reference_engine().evaluate(random_points(3000, 99));
   for (const char* id : {"sglab_acc1", "sglab_acc2"}) {
