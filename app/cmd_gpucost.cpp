@@ -51,13 +51,6 @@ std::vector<std::string> checked_families(const std::vector<std::string>& asked)
   return families;
 }
 
-std::vector<shader::Language> checked_languages(const std::string& lang) {
-  if (lang == "glsl") return {shader::Language::glsl};
-  if (lang == "hlsl") return {shader::Language::hlsl};
-  if (lang == "both") return {shader::Language::glsl, shader::Language::hlsl};
-  throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", lang));
-}
-
 std::vector<shader::Precision> checked_precisions(const std::string& precision) {
   if (precision == "float") return {shader::Precision::float32};
   if (precision == "half") return {shader::Precision::float16};

@@ -60,6 +60,84 @@ std::string describe(const report::MethodPoint& p) {
                      p.max_peak_rel, report::cost_text(p));
 }
 
+// The κ-range answer (the request, choice, runner-up, most accurate) with every candidate, as JSON.
+void print_recommendation_json(double lo, double hi, double budget, validate::FloatFormat precision,
+                               const std::vector<report::MethodPoint>& points, const report::Recommendation& r,
+                               const report::CostSource& cost, const CostsOption::From& source) {
+  nlohmann::ordered_json doc;
+  doc["kappa_lo"] = lo;
+  doc["kappa_hi"] = hi;
+  doc["budget"] = budget;
+  doc["precision"] = std::string(validate::to_string(precision));
+  doc["choice"] = point_json(r.choice);
+  doc["runner_up"] = point_json(r.runner_up);
+  doc["most_accurate"] = point_json(r.most_accurate);
+  doc["tie_margin"] = report::kCostTieMargin;
+  doc["cost_source"] = cost.name();
+  doc["cost_unit"] = std::string(cost.unit());
+  doc["cost_from"] = source.text;
+  nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
+  for (const auto& p : points) {
+    auto j = point_json(p);
+    j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) && p.max_peak_rel <= budget;
+    candidates.push_back(std::move(j));
+  }
+  doc["candidates"] = std::move(candidates);
+  fmt::print("{}\n", doc.dump(2));
+}
+
+// The κ-range answer as text.
+void print_recommendation_text(double lo, double hi, double budget, validate::FloatFormat precision,
+                               const report::Recommendation& r, const report::CostSource& cost,
+                               const CostsOption::From& source) {
+  fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi, validate::to_string(precision), budget);
+  if (r.choice) {
+    fmt::print("  choice:    {}\n", describe(*r.choice));
+    if (r.runner_up)
+      fmt::print("  runner-up: {}\n", describe(*r.runner_up));
+    else
+      fmt::print("  runner-up: none (no other method meets the budget)\n");
+  } else {
+    fmt::print("  no method meets the budget.\n");
+    if (r.most_accurate)
+      fmt::print("  most accurate: {}\n", describe(*r.most_accurate));
+    else
+      fmt::print("  no method has a finite error over this range.\n");
+  }
+  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(), source.text,
+             report::kCostTieMargin * 100);
+}
+
+// `sglab recommend`: the options checked, then the scene ranking or the κ-range answer.
+void run_recommend(const RecommendArgs& args) {
+  double lo = 0, hi = 0, budget = 0;
+  if (args.kappa.empty() == args.scene.empty()) throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
+  if (!report::parse_number(args.budget, budget))
+    throw InputError(fmt::format("--budget: '{}' is not a finite number", args.budget));
+  if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
+  const auto precision = report::parse_precision(args.precision);
+  if (!precision) throw InputError(fmt::format("--precision: expected float or double, got '{}'", args.precision));
+  if (!args.scene.empty()) {
+    recommend_scene({args.scene, budget, *precision, args.normals, args.json, args.costs});
+    return;
+  }
+  {
+    const auto parsed = io::parse_kappa_range(args.kappa, io::KappaRangeRules{});  // LO:HI, float
+    if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
+    lo = std::get<io::KappaRange>(parsed).lo;
+    hi = std::get<io::KappaRange>(parsed).hi;
+  }
+
+  const report::CostSource cost = args.costs.source(*precision);  // a bad --cost before the sweep
+  std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
+  const CostsOption::From source = args.costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
+  const report::Recommendation r = report::recommend(points, budget);
+  if (args.json)
+    print_recommendation_json(lo, hi, budget, *precision, points, r, cost, source);
+  else
+    print_recommendation_text(lo, hi, budget, *precision, r, cost, source);
+}
+
 }  // namespace
 
 void add_recommend_command(CLI::App& app) {
@@ -78,71 +156,7 @@ void add_recommend_command(CLI::App& app) {
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the answer as JSON on stdout");
   args->costs.add_to(cmd);
-  cmd->callback([args] {
-    double lo = 0, hi = 0, budget = 0;
-    if (args->kappa.empty() == args->scene.empty()) throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
-    if (!report::parse_number(args->budget, budget))
-      throw InputError(fmt::format("--budget: '{}' is not a finite number", args->budget));
-    if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
-    const auto precision = report::parse_precision(args->precision);
-    if (!precision)
-      throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
-    if (!args->scene.empty()) {
-      recommend_scene({args->scene, budget, *precision, args->normals, args->json, args->costs});
-      return;
-    }
-    {
-      const auto parsed = io::parse_kappa_range(args->kappa, io::KappaRangeRules{});  // LO:HI, float
-      if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
-      lo = std::get<io::KappaRange>(parsed).lo;
-      hi = std::get<io::KappaRange>(parsed).hi;
-    }
-
-    const report::CostSource cost = args->costs.source(*precision);  // a bad --cost before the sweep
-    std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
-    const CostsOption::From source = args->costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
-    const report::Recommendation r = report::recommend(points, budget);
-
-    if (args->json) {
-      nlohmann::ordered_json doc;
-      doc["kappa_lo"] = lo;
-      doc["kappa_hi"] = hi;
-      doc["budget"] = budget;
-      doc["precision"] = std::string(validate::to_string(*precision));
-      doc["choice"] = point_json(r.choice);
-      doc["runner_up"] = point_json(r.runner_up);
-      doc["most_accurate"] = point_json(r.most_accurate);
-      doc["tie_margin"] = report::kCostTieMargin;
-      doc["cost_source"] = cost.name();
-      doc["cost_unit"] = std::string(cost.unit());
-      doc["cost_from"] = source.text;
-      nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
-      for (const auto& p : points) {
-        auto j = point_json(p);
-        j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) && p.max_peak_rel <= budget;
-        candidates.push_back(std::move(j));
-      }
-      doc["candidates"] = std::move(candidates);
-      fmt::print("{}\n", doc.dump(2));
-      return;
-    }
-    fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi, validate::to_string(*precision), budget);
-    if (r.choice) {
-      fmt::print("  choice:    {}\n", describe(*r.choice));
-      if (r.runner_up)
-        fmt::print("  runner-up: {}\n", describe(*r.runner_up));
-      else
-        fmt::print("  runner-up: none (no other method meets the budget)\n");
-    } else {
-      fmt::print("  no method meets the budget.\n");
-      if (r.most_accurate)
-        fmt::print("  most accurate: {}\n", describe(*r.most_accurate));
-      else
-        fmt::print("  no method has a finite error over this range.\n");
-    }
-    fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(), source.text,
-               report::kCostTieMargin * 100);
-  });
+  cmd->callback([args] { run_recommend(*args); });
 }
 
 }  // namespace sglab::app

@@ -143,6 +143,132 @@ std::vector<std::string> add_all_device_entries(validate::SweepResult& result,
   return skipped;
 }
 
+// The backends of --backend: cpu (the default), vulkan, or auto (cpu, plus
+// vulkan when a device can be created).
+struct Backends {
+  bool cpu = true, vulkan = false, vulkan_if_available = false;
+};
+Backends parse_backends(const std::vector<std::string>& asked) {
+  Backends b;
+  b.cpu = asked.empty();
+  for (const std::string& x : asked) {
+    if (x == "cpu")
+      b.cpu = true;
+    else if (x == "vulkan")
+      b.vulkan = true;
+    else if (x == "auto")
+      b.cpu = b.vulkan_if_available = true;
+    else
+      throw InputError(fmt::format("--backend: expected cpu, vulkan or auto, got '{}'", x));
+  }
+  return b;
+}
+
+// The first Vulkan device: required with vulkan (throws vulkan::Unavailable
+// with the reason), optional with auto (then `vulkan` says whether there is one).
+std::unique_ptr<shader::vulkan::Device> open_device(Backends& b) {
+  if (b.vulkan) return std::make_unique<shader::vulkan::Device>();
+  if (!b.vulkan_if_available) return nullptr;
+  try {
+    auto device = std::make_unique<shader::vulkan::Device>();
+    b.vulkan = true;
+    return device;
+  } catch (const shader::vulkan::Unavailable& e) {
+    fmt::print(stderr, "sglab sweep: --backend auto: no Vulkan rows: {}\n", e.what());
+  }
+  return nullptr;
+}
+
+// The device rows, in method-major order as the CPU entries.
+void add_vulkan_rows(validate::SweepResult& result, const std::vector<validate::SweepMethod>& methods,
+                     const std::vector<shader::Language>& langs, const std::vector<shader::Precision>& precisions,
+                     shader::vulkan::Device& device, bool json) {
+  const std::vector<std::string> skipped = add_all_device_entries(result, methods, langs, precisions, device);
+  if (!skipped.empty() && !json)
+    fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
+  std::stable_sort(result.entries.begin(), result.entries.end(), [&](const auto& a, const auto& b) {
+    auto rank = [&](const validate::SweepEntry& e) {
+      for (std::size_t i = 0; i < methods.size(); ++i)
+        if (methods[i].method.id == e.method && methods[i].quantity == e.quantity) return i;
+      return methods.size();
+    };
+    return rank(a) < rank(b);
+  });
+}
+
+// The tables into --out (when files are written), summary.json, and the
+// summary on stdout (as JSON with --json).
+void write_sweep_report(const SweepArgs& args, bool write_files, const validate::SweepGrid& grid,
+                        const validate::SweepResult& result, const Backends& b, const std::string& device_name) {
+  const validate::Table summary = validate::summary_table(result);
+  const std::filesystem::path dir(args.out);
+  using validate::TableFormat;
+  if (write_files) {
+    validate::write_table(summary, dir, "summary", {TableFormat::csv, TableFormat::markdown});
+    validate::write_table(validate::per_kappa_table(result), dir, "per_kappa",
+                          {TableFormat::csv, TableFormat::markdown});
+    validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
+  }
+
+  // The device against the C++ runtime in float, point by point.
+  std::optional<validate::Table> device_vs_float;
+  if (b.vulkan && b.cpu) device_vs_float = device_vs_float_table(result);
+  if (device_vs_float && write_files)
+    validate::write_table(*device_vs_float, dir, "device_vs_float", {TableFormat::csv, TableFormat::markdown});
+
+  nlohmann::ordered_json doc = nlohmann::ordered_json::object();
+  doc["grid"] = {{"kappa_lo", grid.kappa_lo},
+                 {"kappa_hi", grid.kappa_hi},
+                 {"kappa_count", grid.kappa_count},
+                 {"cosine_count", grid.cosine_count}};
+  if (b.vulkan) {
+    doc["backend"] = b.cpu ? "cpu,vulkan" : "vulkan";
+    doc["device"] = device_name;
+  }
+  doc["results"] = validate::to_json_records(summary);
+  if (device_vs_float) doc["device_vs_float"] = validate::to_json_records(*device_vs_float);
+  const std::string json = doc.dump(2) + "\n";
+  if (write_files) io::write_file_atomic(dir / "summary.json", json);
+
+  if (args.json)
+    fmt::print("{}", json);
+  else
+    fmt::print("{}\n{}Written to {}: summary.{{csv,md,json}}, per_kappa.{{csv,md}}, points.csv{}\n",
+               validate::to_markdown(summary), device_vs_float ? validate::to_markdown(*device_vs_float) + "\n" : "",
+               dir.string(), device_vs_float ? ", device_vs_float.{csv,md}" : "");
+}
+
+// `sglab sweep`: the options checked, the CPU sweep, the device rows, the report.
+// --json prints to stdout; files are written only where asked (`out_given`).
+void run_sweep(const SweepArgs& args, bool out_given) {
+  validate::SweepGrid grid;  // the standard grid (docs/quantities.md)
+  if (!args.kappa.empty()) parse_kappa_option(args.kappa, grid);
+  if (!args.cosines.empty()) parse_cosines_option(args.cosines, grid);
+  try {
+    grid.validate();
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  const auto methods = select_methods(args.methods);
+  Backends b = parse_backends(args.backends);
+  const std::vector<shader::Language> langs = checked_languages(args.lang);
+  const auto precisions = checked_precisions(args.precisions);
+  if (!args.precisions.empty() && !b.vulkan && !b.vulkan_if_available)
+    throw InputError("--precision: chooses the exports of the vulkan backend; add --backend vulkan (or auto)");
+
+  validate::SweepOptions options;
+  if (!b.cpu) options.precisions.clear();
+  options.progress = io::stderr_is_terminal();
+  validate::SweepResult result = validate::sweep(grid, methods, options);
+  std::string device_name;
+  const std::unique_ptr<shader::vulkan::Device> device = open_device(b);
+  if (b.vulkan) {
+    device_name = device->name();
+    add_vulkan_rows(result, methods, langs, precisions, *device, args.json);
+  }
+  write_sweep_report(args, !args.json || out_given, grid, result, b, device_name);
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app) {
@@ -172,105 +298,7 @@ void add_sweep_command(CLI::App& app) {
                   "precision(s) of the exports the vulkan backend runs: float (default) and/or half "
                   "(`sglab export --precision half`, rows vulkan_half and vulkan_hlsl_half); comma-separated")
       ->delimiter(',');
-  cmd->callback([args, out_option] {
-    validate::SweepGrid grid;  // the standard grid (docs/quantities.md)
-    if (!args->kappa.empty()) parse_kappa_option(args->kappa, grid);
-    if (!args->cosines.empty()) parse_cosines_option(args->cosines, grid);
-    try {
-      grid.validate();
-    } catch (const std::invalid_argument& e) {
-      throw InputError(e.what());
-    }
-    const auto methods = select_methods(args->methods);
-    bool cpu = args->backends.empty(), vulkan = false, vulkan_if_available = false;
-    for (const std::string& b : args->backends) {
-      if (b == "cpu")
-        cpu = true;
-      else if (b == "vulkan")
-        vulkan = true;
-      else if (b == "auto")
-        cpu = vulkan_if_available = true;
-      else
-        throw InputError(fmt::format("--backend: expected cpu, vulkan or auto, got '{}'", b));
-    }
-    std::vector<shader::Language> langs;
-    if (args->lang == "glsl" || args->lang == "both") langs.push_back(shader::Language::glsl);
-    if (args->lang == "hlsl" || args->lang == "both") langs.push_back(shader::Language::hlsl);
-    if (langs.empty()) throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", args->lang));
-    const auto precisions = checked_precisions(args->precisions);
-    if (!args->precisions.empty() && !vulkan && !vulkan_if_available)
-      throw InputError("--precision: chooses the exports of the vulkan backend; add --backend vulkan (or auto)");
-
-    validate::SweepOptions options;
-    if (!cpu) options.precisions.clear();
-    options.progress = io::stderr_is_terminal();
-    validate::SweepResult result = validate::sweep(grid, methods, options);
-    std::string device_name;
-    std::unique_ptr<shader::vulkan::Device> device;
-    if (vulkan) {
-      device = std::make_unique<shader::vulkan::Device>();  // throws vulkan::Unavailable with the reason
-    } else if (vulkan_if_available) {
-      try {
-        device = std::make_unique<shader::vulkan::Device>();
-        vulkan = true;
-      } catch (const shader::vulkan::Unavailable& e) {
-        fmt::print(stderr, "sglab sweep: --backend auto: no Vulkan rows: {}\n", e.what());
-      }
-    }
-    if (vulkan) {
-      device_name = device->name();
-      const std::vector<std::string> skipped = add_all_device_entries(result, methods, langs, precisions, *device);
-      if (!skipped.empty() && !args->json)
-        fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
-      // Method-major order, as the CPU entries.
-      std::stable_sort(result.entries.begin(), result.entries.end(), [&](const auto& a, const auto& b) {
-        auto rank = [&](const validate::SweepEntry& e) {
-          for (std::size_t i = 0; i < methods.size(); ++i)
-            if (methods[i].method.id == e.method && methods[i].quantity == e.quantity) return i;
-          return methods.size();
-        };
-        return rank(a) < rank(b);
-      });
-    }
-    const validate::Table summary = validate::summary_table(result);
-    const std::filesystem::path dir(args->out);
-    // --json prints to stdout; files are written only where asked.
-    const bool write_files = !args->json || out_option->count() > 0;
-    using validate::TableFormat;
-    if (write_files) {
-      validate::write_table(summary, dir, "summary", {TableFormat::csv, TableFormat::markdown});
-      validate::write_table(validate::per_kappa_table(result), dir, "per_kappa",
-                            {TableFormat::csv, TableFormat::markdown});
-      validate::write_table(validate::points_table(result), dir, "points", {TableFormat::csv});
-    }
-
-    // The device against the C++ runtime in float, point by point.
-    std::optional<validate::Table> device_vs_float;
-    if (vulkan && cpu) device_vs_float = device_vs_float_table(result);
-    if (device_vs_float && write_files)
-      validate::write_table(*device_vs_float, dir, "device_vs_float", {TableFormat::csv, TableFormat::markdown});
-
-    nlohmann::ordered_json doc = nlohmann::ordered_json::object();
-    doc["grid"] = {{"kappa_lo", grid.kappa_lo},
-                   {"kappa_hi", grid.kappa_hi},
-                   {"kappa_count", grid.kappa_count},
-                   {"cosine_count", grid.cosine_count}};
-    if (vulkan) {
-      doc["backend"] = cpu ? "cpu,vulkan" : "vulkan";
-      doc["device"] = device_name;
-    }
-    doc["results"] = validate::to_json_records(summary);
-    if (device_vs_float) doc["device_vs_float"] = validate::to_json_records(*device_vs_float);
-    const std::string json = doc.dump(2) + "\n";
-    if (write_files) io::write_file_atomic(dir / "summary.json", json);
-
-    if (args->json)
-      fmt::print("{}", json);
-    else
-      fmt::print("{}\n{}Written to {}: summary.{{csv,md,json}}, per_kappa.{{csv,md}}, points.csv{}\n",
-                 validate::to_markdown(summary), device_vs_float ? validate::to_markdown(*device_vs_float) + "\n" : "",
-                 dir.string(), device_vs_float ? ", device_vs_float.{csv,md}" : "");
-  });
+  cmd->callback([args, out_option] { run_sweep(*args, out_option->count() > 0); });
 }
 
 }  // namespace sglab::app

@@ -5,12 +5,14 @@
 #include <stdexcept>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "common/args.hpp"
 #include "common/io.hpp"
+#include "export/shader_export.hpp"
 
 namespace sglab::app {
 
@@ -26,6 +28,15 @@ inline CLI::Validator non_empty_path() {
   return CLI::Validator(
       [](std::string& value) { return value.empty() ? std::string("an empty path is not allowed") : std::string(); },
       "PATH", "non-empty path");
+}
+
+// --lang glsl|hlsl|both (gpucost, and the vulkan backend of sweep): the
+// shader languages, glsl first.
+inline std::vector<shader::Language> checked_languages(const std::string& lang) {
+  if (lang == "glsl") return {shader::Language::glsl};
+  if (lang == "hlsl") return {shader::Language::hlsl};
+  if (lang == "both") return {shader::Language::glsl, shader::Language::hlsl};
+  throw InputError(fmt::format("--lang: expected glsl, hlsl or both, got '{}'", lang));
 }
 
 // Parses with `parse()` (which runs the chosen subcommand's callback) and

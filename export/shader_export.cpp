@@ -51,12 +51,11 @@ using namespace detail;
 
 namespace {
 
+// The C++ export's prelude: <cmath>, its namespace (opened here, closed by
+// export_source) and the shading-language functions and types its code calls.
 std::string prelude(const Ctx& c) {
   if (c.lang != Language::cpp) return {};
-  return subst(R"(#include <cmath>
-
-namespace sglab_export_{ID} {
-using std::abs;
+  return "#include <cmath>\n\nnamespace sglab_export_{ID} {\n" + subst(R"(using std::abs;
 using std::exp;
 using std::exp2;
 using std::sqrt;

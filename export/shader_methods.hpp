@@ -26,6 +26,7 @@ struct HalfForm {
   std::vector<Helper> helpers;
   std::string_view body;
 };
+
 // How a method uses erf: not at all, through the tier the exporter picks for
 // the model's accuracy, or through its own constant slot "erf" (the method is
 // defined by that erf, e.g. tokuyoshi2022_listing5).
@@ -44,6 +45,7 @@ struct ShaderMethod {
   std::string_view body;
 };
 
+// THE table of exportable methods (shader_methods.cpp), in registry order.
 const std::vector<ShaderMethod>& shader_methods();
 const ShaderMethod* find_shader_method(std::string_view id);
 const HalfForm* find_half_form(std::string_view id);

@@ -171,6 +171,13 @@ struct Device::Impl {
   PFN_vkGetPipelineExecutableInternalRepresentationsKHR get_executable_representations = nullptr;
   VkPhysicalDeviceMemoryProperties memory_properties{};
 
+  // The steps of Device::Device, in order.
+  void create_instance();
+  void pick_compute_device();
+  void read_properties();
+  void create_device();
+  void load_statistics_functions();
+
   ~Impl() {
     if (device) vkDestroyDevice(device, nullptr);
     if (instance) vkDestroyInstance(instance, nullptr);
@@ -247,22 +254,27 @@ VkDescriptorSet descriptor_set(VkDevice dev, VkDescriptorSetLayout layout, const
 
 }  // namespace
 
-Device::Device() : impl_(std::make_unique<Impl>()) {
-  Impl& d = *impl_;
+// Device::Device in its steps (Impl's members below): the instance, the first
+// device with a compute queue, its properties, the logical device with the
+// optional features it offers, and the statistics entry points.
+void Device::Impl::create_instance() {
   auto app = make<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
   app.pApplicationName = "sglab";
   // 1.1 for vkGetPhysicalDeviceProperties2 (the driver's name and version).
   app.apiVersion = VK_API_VERSION_1_1;
   auto ici = make<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
   ici.pApplicationInfo = &app;
-  if (VkResult r = vkCreateInstance(&ici, nullptr, &d.instance); r != VK_SUCCESS)
+  if (VkResult r = vkCreateInstance(&ici, nullptr, &instance); r != VK_SUCCESS)
     throw Unavailable(fmt::format("no Vulkan instance (vkCreateInstance returned {}): is a Vulkan driver installed "
                                   "(e.g. mesa-vulkan-drivers for lavapipe)?",
                                   static_cast<int>(r)));
+}
+
+void Device::Impl::pick_compute_device() {
   std::uint32_t count = 0;
-  vkEnumeratePhysicalDevices(d.instance, &count, nullptr);
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
   std::vector<VkPhysicalDevice> devices(count);
-  if (count) vkEnumeratePhysicalDevices(d.instance, &count, devices.data());
+  if (count) vkEnumeratePhysicalDevices(instance, &count, devices.data());
   for (VkPhysicalDevice pd : devices) {
     std::uint32_t nq = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, nullptr);
@@ -270,36 +282,43 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, families.data());
     for (std::uint32_t i = 0; i < nq; ++i)
       if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
-        d.physical = pd;
-        d.queue_family = i;
+        physical = pd;
+        queue_family = i;
         break;
       }
-    if (d.physical) break;
+    if (physical) break;
   }
-  if (!d.physical) throw Unavailable(fmt::format("no Vulkan device with a compute queue ({} devices)", count));
+  if (!physical) throw Unavailable(fmt::format("no Vulkan device with a compute queue ({} devices)", count));
+}
+
+void Device::Impl::read_properties() {
   VkPhysicalDeviceProperties props;
-  vkGetPhysicalDeviceProperties(d.physical, &props);
-  d.name = props.deviceName;
+  vkGetPhysicalDeviceProperties(physical, &props);
+  name = props.deviceName;
   if (props.apiVersion >= VK_API_VERSION_1_2) {
     auto driver = make<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
     auto props2 = make<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
     props2.pNext = &driver;
-    vkGetPhysicalDeviceProperties2(d.physical, &props2);
-    d.driver_name = driver.driverName;
-    d.driver_info = driver.driverInfo;
+    vkGetPhysicalDeviceProperties2(physical, &props2);
+    driver_name = driver.driverName;
+    driver_info = driver.driverInfo;
   }
-  vkGetPhysicalDeviceMemoryProperties(d.physical, &d.memory_properties);
+  vkGetPhysicalDeviceMemoryProperties(physical, &memory_properties);
+}
+
+// The logical device and its queue, with pipeline statistics and half
+// arithmetic enabled where the device offers them.
+void Device::Impl::create_device() {
   std::uint32_t extension_count = 0;
-  vkEnumerateDeviceExtensionProperties(d.physical, nullptr, &extension_count, nullptr);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &extension_count, nullptr);
   std::vector<VkExtensionProperties> extensions(extension_count);
-  if (extension_count) vkEnumerateDeviceExtensionProperties(d.physical, nullptr, &extension_count, extensions.data());
+  if (extension_count) vkEnumerateDeviceExtensionProperties(physical, nullptr, &extension_count, extensions.data());
   constexpr const char* kStatistics = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
-  d.statistics = std::any_of(extensions.begin(), extensions.end(),
-                             [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, kStatistics) == 0; });
-  const auto has_extension = [&](const char* name) {
+  const auto has_extension = [&](const char* extension) {
     return std::any_of(extensions.begin(), extensions.end(),
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, extension) == 0; });
   };
+  statistics = has_extension(kStatistics);
   // Half arithmetic in shaders, where offered (lavapipe and RADV do).
   auto float16_feature =
       make<VkPhysicalDeviceShaderFloat16Int8FeaturesKHR>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES_KHR);
@@ -307,15 +326,15 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
   if (has_extension(kFloat16)) {
     auto features2 = make<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
     features2.pNext = &float16_feature;
-    vkGetPhysicalDeviceFeatures2(d.physical, &features2);
-    d.float16 = float16_feature.shaderFloat16 == VK_TRUE;
+    vkGetPhysicalDeviceFeatures2(physical, &features2);
+    float16 = float16_feature.shaderFloat16 == VK_TRUE;
     float16_feature = make<VkPhysicalDeviceShaderFloat16Int8FeaturesKHR>(
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES_KHR);
     float16_feature.shaderFloat16 = VK_TRUE;
   }
   const float priority = 1.0f;
   auto qci = make<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
-  qci.queueFamilyIndex = d.queue_family;
+  qci.queueFamilyIndex = queue_family;
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   auto statistics_feature = make<VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR>(
@@ -325,30 +344,41 @@ Device::Device() : impl_(std::make_unique<Impl>()) {
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
   std::vector<const char*> enabled;
-  if (d.statistics) {
+  if (statistics) {
     statistics_feature.pNext = const_cast<void*>(dci.pNext);
     dci.pNext = &statistics_feature;
     enabled.push_back(kStatistics);
   }
-  if (d.float16) {
+  if (float16) {
     float16_feature.pNext = const_cast<void*>(dci.pNext);
     dci.pNext = &float16_feature;
     enabled.push_back(kFloat16);
   }
   dci.enabledExtensionCount = static_cast<std::uint32_t>(enabled.size());
   dci.ppEnabledExtensionNames = enabled.empty() ? nullptr : enabled.data();
-  if (VkResult r = vkCreateDevice(d.physical, &dci, nullptr, &d.device); r != VK_SUCCESS)
-    throw Unavailable(fmt::format("vkCreateDevice on {} returned {}", d.name, static_cast<int>(r)));
-  vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
-  if (d.statistics) {
-    d.get_executable_properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
-        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutablePropertiesKHR"));
-    d.get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
-        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableStatisticsKHR"));
-    d.get_executable_representations = reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
-        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
-    d.statistics = d.get_executable_properties && d.get_executable_statistics && d.get_executable_representations;
+  if (VkResult r = vkCreateDevice(physical, &dci, nullptr, &device); r != VK_SUCCESS)
+    throw Unavailable(fmt::format("vkCreateDevice on {} returned {}", name, static_cast<int>(r)));
+  vkGetDeviceQueue(device, queue_family, 0, &queue);
+}
+
+void Device::Impl::load_statistics_functions() {
+  if (statistics) {
+    get_executable_properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+        vkGetDeviceProcAddr(device, "vkGetPipelineExecutablePropertiesKHR"));
+    get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+        vkGetDeviceProcAddr(device, "vkGetPipelineExecutableStatisticsKHR"));
+    get_executable_representations = reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
+        vkGetDeviceProcAddr(device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
+    statistics = get_executable_properties && get_executable_statistics && get_executable_representations;
   }
+}
+
+Device::Device() : impl_(std::make_unique<Impl>()) {
+  impl_->create_instance();
+  impl_->pick_compute_device();
+  impl_->read_properties();
+  impl_->create_device();
+  impl_->load_statistics_functions();
 }
 
 Device::~Device() = default;

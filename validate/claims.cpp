@@ -178,97 +178,114 @@ std::vector<Claim> claims_lambda_d() {
 
 // ---- [Pettineo2016] ---------------------------------------------------------
 
-std::vector<Claim> claims_mjp() {
-  std::vector<Claim> out;
+Claim claim_wang_lobe_energy() {
   const double lam = constants::cosine_lobe_published.lambda, amp = constants::cosine_lobe_published.amplitude;
   const double energy = amp * 2 * kPi * (1 - std::exp(-2 * lam)) / lam;
-  out.push_back({"wang_lobe_energy",
-                 "Wang et al.'s cosine-lobe SG (λ = 2.133, a = 1.17) keeps the area under the curve 'somewhat consistent' "
-                 "with the clamped cosine",
-                 "[Pettineo2016] (Error Analysis)",
-                 "∫_{S²} 1.17·e^{2.133(cos-1)} dω = 1.17·2π(1-e^{-4.266})/2.133 vs ∫ max(cos,0) dω = π; "
-                 "'somewhat consistent' read as within 10%",
-                 fmt::format("lobe energy {:.4f} vs π = {:.4f}: {:+.2f}%", energy, kPi, 100 * (energy / kPi - 1)),
-                 std::abs(energy / kPi - 1) < 0.10 ? "holds" : "does not hold"});
+  return {"wang_lobe_energy",
+          "Wang et al.'s cosine-lobe SG (λ = 2.133, a = 1.17) keeps the area under the curve 'somewhat consistent' "
+          "with the clamped cosine",
+          "[Pettineo2016] (Error Analysis)",
+          "∫_{S²} 1.17·e^{2.133(cos-1)} dω = 1.17·2π(1-e^{-4.266})/2.133 vs ∫ max(cos,0) dω = π; "
+          "'somewhat consistent' read as within 10%",
+          fmt::format("lobe energy {:.4f} vs π = {:.4f}: {:+.2f}%", energy, kPi, 100 * (energy / kPi - 1)),
+          std::abs(energy / kPi - 1) < 0.10 ? "holds" : "does not hold"};
+}
 
-  // The κ = 4 charts: θ ∈ [0, π], 361 points.
-  const double kappa = 4;
-  const int n = 361;
+// The κ = 4 charts of [Pettineo2016]: θ ∈ [0, π], 361 points, with the
+// reference irradiance there and its peak E(1, κ).
+struct Kappa4Chart {
+  double kappa = 4;
+  int n = 361;
   std::vector<Query> q;
   std::vector<double> theta;
-  for (int i = 0; i < n; ++i) {
-    theta.push_back(kPi * i / (n - 1));
-    q.push_back({kappa, std::clamp(std::cos(theta.back()), -1.0, 1.0)});
+  std::vector<ReferencePoint> ref;
+  double peak = 0;
+};
+Kappa4Chart kappa4_chart() {
+  Kappa4Chart c;
+  for (int i = 0; i < c.n; ++i) {
+    c.theta.push_back(kPi * i / (c.n - 1));
+    c.q.push_back({c.kappa, std::clamp(std::cos(c.theta.back()), -1.0, 1.0)});
   }
-  const auto ref = reference_engine().evaluate(q);
-  const double peak = reference_engine().evaluate(kappa, 1.0).irradiance;
-  auto method = [](const char* id) {
-    const Method* m = find_method(irradiance_methods, id);
-    if (!m) throw std::logic_error(fmt::format("claims: method '{}' not registered", id));
-    return m;
-  };
-  {
-    const Method* m = method("wang2009");
-    double max_err = 0, max_theta = 0, back_min_diff = std::numeric_limits<double>::infinity(), back_max = 0,
-           front_max = 0;
-    for (int i = 0; i < n; ++i) {
-      const double d = m->f64(q[i].cosine, kappa) - ref[i].irradiance;
-      if (std::abs(d) > max_err) max_err = std::abs(d), max_theta = theta[i];
-      if (theta[i] > kPi / 2) {
-        back_min_diff = std::min(back_min_diff, d);
-        back_max = std::max(back_max, std::abs(d));
-      } else {
-        front_max = std::max(front_max, std::abs(d));
-      }
+  c.ref = reference_engine().evaluate(c.q);
+  c.peak = reference_engine().evaluate(c.kappa, 1.0).irradiance;
+  return c;
+}
+
+const Method* registered_irradiance(const char* id) {
+  const Method* m = find_method(irradiance_methods, id);
+  if (!m) throw std::logic_error(fmt::format("claims: method '{}' not registered", id));
+  return m;
+}
+
+Claim claim_mjp_inner_product_back(const Kappa4Chart& c) {
+  const Method* m = registered_irradiance("wang2009");
+  double max_err = 0, max_theta = 0, back_min_diff = std::numeric_limits<double>::infinity(), back_max = 0,
+         front_max = 0;
+  for (int i = 0; i < c.n; ++i) {
+    const double d = m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance;
+    if (std::abs(d) > max_err) max_err = std::abs(d), max_theta = c.theta[i];
+    if (c.theta[i] > kPi / 2) {
+      back_min_diff = std::min(back_min_diff, d);
+      back_max = std::max(back_max, std::abs(d));
+    } else {
+      front_max = std::max(front_max, std::abs(d));
     }
-    const bool stronger = back_min_diff > 0;
-    const bool biggest_back = max_theta > kPi / 2;
-    out.push_back({"mjp_inner_product_back",
-                   "κ = 4 chart: the SG inner product (wang2009) is not hugely off; its biggest difference is on the side facing "
-                   "away from the light, where it has a stronger tail",
-                   "[Pettineo2016] (Error Analysis chart)",
-                   "Ê - E over θ ∈ [0, π] (361 points) at κ = 4: sign of Ê - E for θ > π/2 and where |Ê - E| is largest",
-                   fmt::format("max |Ê-E| = {:.4f} ({:.2f}% of E(1)) at θ = {:.1f}°; max on back side {:.4f}, front side {:.4f}; "
-                               "min (Ê-E) for θ > 90° = {:.3g}",
-                               max_err, 100 * max_err / peak, max_theta * 180 / kPi, back_max, front_max, back_min_diff),
-                   stronger && biggest_back ? "holds" : (stronger || biggest_back ? "holds in part" : "does not hold")});
   }
-  {
-    const Method* m = method("punctual");
-    double back_max = 0, front_max = 0;
-    for (int i = 0; i < n; ++i) {
-      const double d = std::abs(m->f64(q[i].cosine, kappa) - ref[i].irradiance);
-      (theta[i] > kPi / 2 ? back_max : front_max) = std::max(theta[i] > kPi / 2 ? back_max : front_max, d);
-    }
-    out.push_back({"mjp_punctual",
-                   "κ = 4 chart: pulling the cosine out (punctual) introduces quite a bit of error, particularly where θ > π/2",
-                   "[Pettineo2016] (A Cheaper Approximation)",
-                   "max |Ê - E| / E(1) for θ > π/2 and θ <= π/2 at κ = 4; 'quite a bit' read as > 5% of the peak",
-                   fmt::format("max peak_rel: θ > 90°: {:.2f}%, θ <= 90°: {:.2f}%", 100 * back_max / peak,
-                               100 * front_max / peak),
-                   back_max / peak > 0.05 && back_max > front_max ? "holds"
-                   : back_max / peak > 0.05 || front_max / peak > 0.05 ? "holds in part"
-                                                                     : "does not hold"});
+  const bool stronger = back_min_diff > 0;
+  const bool biggest_back = max_theta > kPi / 2;
+  return {"mjp_inner_product_back",
+          "κ = 4 chart: the SG inner product (wang2009) is not hugely off; its biggest difference is on the side facing "
+          "away from the light, where it has a stronger tail",
+          "[Pettineo2016] (Error Analysis chart)",
+          "Ê - E over θ ∈ [0, π] (361 points) at κ = 4: sign of Ê - E for θ > π/2 and where |Ê - E| is largest",
+          fmt::format("max |Ê-E| = {:.4f} ({:.2f}% of E(1)) at θ = {:.1f}°; max on back side {:.4f}, front side {:.4f}; "
+                      "min (Ê-E) for θ > 90° = {:.3g}",
+                      max_err, 100 * max_err / c.peak, max_theta * 180 / kPi, back_max, front_max, back_min_diff),
+          stronger && biggest_back ? "holds" : (stronger || biggest_back ? "holds in part" : "does not hold")};
+}
+
+Claim claim_mjp_punctual(const Kappa4Chart& c) {
+  const Method* m = registered_irradiance("punctual");
+  double back_max = 0, front_max = 0;
+  for (int i = 0; i < c.n; ++i) {
+    const double d = std::abs(m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance);
+    (c.theta[i] > kPi / 2 ? back_max : front_max) = std::max(c.theta[i] > kPi / 2 ? back_max : front_max, d);
   }
-  {
-    const Method* m = method("hill");
-    const Method* w = method("wang2009");
-    double hill_max = 0, wang_max = 0;
-    for (int i = 0; i < n; ++i) {
-      hill_max = std::max(hill_max, std::abs(m->f64(q[i].cosine, kappa) - ref[i].irradiance));
-      wang_max = std::max(wang_max, std::abs(w->f64(q[i].cosine, kappa) - ref[i].irradiance));
-    }
-    out.push_back({"mjp_hill_close",
-                   "κ = 4 chart: Stephen Hill's fitted curve is 'very close' to the ground truth (closer than the inner product)",
-                   "[Pettineo2016] (A More Accurate Approximation)",
-                   "max |Ê - E| / E(1) over θ ∈ [0, π] at κ = 4; 'very close' read as <= 1% of the peak (invisible on the chart)",
-                   fmt::format("hill max peak_rel = {:.3f}% (wang2009: {:.3f}%)", 100 * hill_max / peak,
-                               100 * wang_max / peak),
-                   hill_max / peak <= 0.01 && hill_max < wang_max ? "holds"
-                   : hill_max < wang_max                           ? "holds in part"
-                                                                   : "does not hold"});
+  return {"mjp_punctual",
+          "κ = 4 chart: pulling the cosine out (punctual) introduces quite a bit of error, particularly where θ > π/2",
+          "[Pettineo2016] (A Cheaper Approximation)",
+          "max |Ê - E| / E(1) for θ > π/2 and θ <= π/2 at κ = 4; 'quite a bit' read as > 5% of the peak",
+          fmt::format("max peak_rel: θ > 90°: {:.2f}%, θ <= 90°: {:.2f}%", 100 * back_max / c.peak,
+                      100 * front_max / c.peak),
+          back_max / c.peak > 0.05 && back_max > front_max ? "holds"
+          : back_max / c.peak > 0.05 || front_max / c.peak > 0.05 ? "holds in part"
+                                                            : "does not hold"};
+}
+
+Claim claim_mjp_hill_close(const Kappa4Chart& c) {
+  const Method* m = registered_irradiance("hill");
+  const Method* w = registered_irradiance("wang2009");
+  double hill_max = 0, wang_max = 0;
+  for (int i = 0; i < c.n; ++i) {
+    hill_max = std::max(hill_max, std::abs(m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance));
+    wang_max = std::max(wang_max, std::abs(w->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance));
   }
-  return out;
+  return {"mjp_hill_close",
+          "κ = 4 chart: Stephen Hill's fitted curve is 'very close' to the ground truth (closer than the inner product)",
+          "[Pettineo2016] (A More Accurate Approximation)",
+          "max |Ê - E| / E(1) over θ ∈ [0, π] at κ = 4; 'very close' read as <= 1% of the peak (invisible on the chart)",
+          fmt::format("hill max peak_rel = {:.3f}% (wang2009: {:.3f}%)", 100 * hill_max / c.peak,
+                      100 * wang_max / c.peak),
+          hill_max / c.peak <= 0.01 && hill_max < wang_max ? "holds"
+          : hill_max < wang_max                           ? "holds in part"
+                                                          : "does not hold"};
+}
+
+std::vector<Claim> claims_mjp() {
+  const Kappa4Chart chart = kappa4_chart();
+  return {claim_wang_lobe_energy(), claim_mjp_inner_product_back(chart), claim_mjp_punctual(chart),
+          claim_mjp_hill_close(chart)};
 }
 
 // ---- [Tokuyoshi2022] --------------------------------------------------------

@@ -323,18 +323,126 @@ template <class Real> typename Wide<Real>::type normalized_by_difference(const R
   return exp(-kw) * kw * W(quad.value()) / (m * m);
 }
 
+// The integrand of H/(2π·peak factor) at one point as f(side, s), with s ≥ 0
+// the angular offset from the peak, returned together with γ·u·f for E
+// (compute() below). kscale: see compute().
+template <class Real> struct PointIntegrand {
+  enum Side { toward_horizon = 0, toward_pole = 1, boundary_layer = 2 };
+  Real kappa, r, kscale;
+  Real gamma = 1;  // ≈ H/E, so that both components weigh alike in abs(Pair)
+  Real theta_c = 0, alpha = 0, beta = 0;
+
+  Pair<Real> operator()(int side, const Real& s) const {
+    using std::cos;
+    using std::exp;
+    using std::sin;
+    Real rho, u, exponent;
+    if (side == boundary_layer) {
+      // c < 0, ψ = s: u = sin ψ, ρ = cos ψ,
+      // κ(cu + rρ − r) = −2κ sin(ψ/2 + β) sin(ψ/2).
+      u = sin(s);
+      rho = cos(s);
+      exponent = -(kappa * sin(s / 2 + beta)) * (2 * sin(s / 2));  // no −2κ: it overflows
+    } else {
+      // c ≥ 0, t = ±s: κ(cu + rρ − 1) = −2κ sin²(t/2). θ = θc + t and
+      // ψ = π/2 − θ = α − t are both formed from accurate parts, and ρ = sin θ,
+      // u = sin ψ each from the one that is accurate where that factor is
+      // small (ρ near the pole, u near the horizon).
+      const Real t = side == toward_horizon ? s : Real(-s);
+      rho = sin(std::max(Real(0), Real(theta_c + t)));
+      u = sin(std::max(Real(0), Real(alpha - t)));
+      const Real h = sin(s / 2);
+      exponent = -(kappa * h) * (2 * h);
+    }
+    rho = std::min(rho, Real(1));
+    u = std::min(u, Real(1));
+    const Real value = exp(exponent) * scaled_bessel_i0(Real(kappa * r * rho)) * (rho * kscale);
+    return Pair<Real>(value, gamma * u * value);
+  }
+};
+
+// The segments of the quadrature, placed from the peak (filling γ and the
+// angles of `f`), and log_peak = κ(m − 1), m = max over u of cu + rρ. T is the
+// truncation exponent and gauss_cut the offset where the Gaussian reaches it
+// (compute()). Returns false when the peak factor underflows: H = E = s = 0.
+template <class Real>
+bool place_segments(AdaptiveQuadrature<Real, Pair<Real>>& quad, PointIntegrand<Real>& f, double kappa_in,
+                    double cosine_in, const Real& c, const Real& T, const Real& gauss_cut,
+                    typename Wide<Real>::type& log_peak) {
+  using W = typename Wide<Real>::type;
+  using std::asin;
+  using std::atan2;
+  using std::min;
+  using std::sqrt;
+  using I = PointIntegrand<Real>;
+  const Real pi = boost::math::constants::pi<Real>();
+  const Real kappa = f.kappa, r = f.r;
+  if (!(c < 0)) {
+    // c ≥ 0: the peak is at θ = θc inside the hemisphere; m = 1, no factor.
+    f.theta_c = atan2(r, c);  // angle of v from n
+    f.alpha = atan2(c, r);    // π/2 − θc, angle of v above the horizon
+    f.gamma = 1 / std::max(c, Real(Real(0.5) / (1 + sqrt(kappa))));
+    const Real w = 1 / sqrt(kappa);  // Gaussian width in the angle
+    quad.add_from_peak(f, I::toward_horizon, min(f.alpha, gauss_cut), w);
+    quad.add_from_peak(f, I::toward_pole, min(f.theta_c, gauss_cut), w);
+    return true;
+  }
+  // c < 0: the peak is on the horizon u = 0 with m = r; peak factor
+  // e^{κ(r−1)}, r − 1 = −c²/(1+r), formed in the wide type.
+  const W cw = cosine_in, kw = kappa_in;
+  const W rw = sqrt((1 - cw) * (1 + cw));
+  log_peak = -kw * (cw * cw) / (1 + rw);
+  // Below e^{−750}, even 2π·(π/2)·peak rounds to 0 in double: H = E = 0 and
+  // s = 0 (s ≤ H/(H(1)−H(−1)) < e^{−740}); skip the quadrature.
+  if (log_peak < W(-750)) return false;
+  f.beta = atan2(-c, r);  // θc − π/2 = asin|c|
+  // (Any finite weight will do: capped where 2κ|c| would overflow; there
+  // the peak factor is 0 anyway.)
+  f.gamma = std::min(Real(2 * (1 + kappa * -c + sqrt(kappa))), std::numeric_limits<Real>::max());
+  // Exponent ≈ −κ(ψ|c| + ψ²r/2): boundary layer of width 1/(κ|c|) or 1/√(κr).
+  const Real w = 1 / (kappa * -c + sqrt(kappa * r));
+  // −2κ sin(ψ/2+β) sin(ψ/2) decreases in ψ and is ≤ −2κ·max(sin β,
+  // sin(ψ/2))·sin(ψ/2): cut where either bound reaches −T.
+  Real cut = min(Real(pi / 2), gauss_cut);
+  if (T / 2 / kappa / -c < 1) cut = min(cut, Real(2 * asin(T / 2 / kappa / -c)));
+  quad.add_from_peak(f, I::boundary_layer, cut, w);
+  return true;
+}
+
+// s = (H − H(−1)) / (H(1) − H(−1)), docs/quantities.md, from H at the point.
+template <class Real>
+typename Wide<Real>::type normalized_from(double kappa_in, double cosine_in, const Real& kappa, const Real& c,
+                                          const Real& r, const typename Wide<Real>::type& hemispherical) {
+  using W = typename Wide<Real>::type;
+  W normalized;
+  if (kappa < std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon()) {
+    // s = (1+c)/2 + O(κ): exact to far below ε, and no denormal κ below.
+    normalized = (1 + W(cosine_in)) / 2;
+  } else if (kappa <= 1) {
+    normalized = W(normalized_small_kappa(kappa, c, r));
+  } else {
+    // κ > 1: the denominator H(1) − H(−1) ≥ 0.63·H(1) does not cancel. The
+    // numerator H(c) − H(−1) loses at most a bit while H(c) ≥ 2H(−1); below
+    // that (c < 0, towards c = −1) it is integrated as one non-negative
+    // difference instead, so that s stays accurate relative to itself.
+    const W kw = kappa_in;
+    const W h_minus = hemispherical_at_minus_one(kw);
+    if (c < 0 && hemispherical < 2 * h_minus)
+      normalized = normalized_by_difference(kappa, c, r);
+    else
+      normalized = (hemispherical - h_minus) / hemispherical_span(kw);
+  }
+  return std::clamp(normalized, W(0), W(1));
+}
+
 // H, E, s at one point, docs/quantities.md. Requires finite κ ≥ 0 and c ∈ [−1, 1]
 // (checked by the caller). Never NaN: where H underflows double the result is
 // 0 or a denormal.
 template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) {
   using W = typename Wide<Real>::type;
   using std::asin;
-  using std::atan2;
-  using std::cos;
   using std::exp;
   using std::log;
-  using std::min;
-  using std::sin;
   using std::sqrt;
   const Real pi = boost::math::constants::pi<Real>();
   const Real kappa = kappa_in, c = cosine_in;
@@ -364,69 +472,11 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   int kexp = 0;
   std::frexp(kappa_in, &kexp);
   const double kscale_d = kappa_in > 1 ? std::ldexp(1.0, kexp - 1) : 1.0;
-  const Real kscale = kscale_d;
 
-  // The integrand of H/(2π·peak factor) as f(side, s) with s ≥ 0 the angular
-  // offset from the peak, returned together with γ·u·f for E.
-  enum Side { toward_horizon = 0, toward_pole = 1, boundary_layer = 2 };
-  W log_peak = 0;  // κ(m − 1), m = max over u of cu + rρ
-  Real gamma = 1;  // ≈ H/E, so that both components weigh alike in abs(Pair)
-  Real theta_c = 0, alpha = 0, beta = 0;
-  auto f = [&](int side, const Real& s) -> Pair<Real> {
-    Real rho, u, exponent;
-    if (side == boundary_layer) {
-      // c < 0, ψ = s: u = sin ψ, ρ = cos ψ,
-      // κ(cu + rρ − r) = −2κ sin(ψ/2 + β) sin(ψ/2).
-      u = sin(s);
-      rho = cos(s);
-      exponent = -(kappa * sin(s / 2 + beta)) * (2 * sin(s / 2));  // no −2κ: it overflows
-    } else {
-      // c ≥ 0, t = ±s: κ(cu + rρ − 1) = −2κ sin²(t/2). θ = θc + t and
-      // ψ = π/2 − θ = α − t are both formed from accurate parts, and ρ = sin θ,
-      // u = sin ψ each from the one that is accurate where that factor is
-      // small (ρ near the pole, u near the horizon).
-      const Real t = side == toward_horizon ? s : Real(-s);
-      rho = sin(std::max(Real(0), Real(theta_c + t)));
-      u = sin(std::max(Real(0), Real(alpha - t)));
-      const Real h = sin(s / 2);
-      exponent = -(kappa * h) * (2 * h);
-    }
-    rho = std::min(rho, Real(1));
-    u = std::min(u, Real(1));
-    const Real value = exp(exponent) * scaled_bessel_i0(Real(kappa * r * rho)) * (rho * kscale);
-    return Pair<Real>(value, gamma * u * value);
-  };
-
+  PointIntegrand<Real> f{kappa, r, Real(kscale_d)};
+  W log_peak = 0;
   AdaptiveQuadrature<Real, Pair<Real>> quad;
-  if (!(c < 0)) {
-    // c ≥ 0: the peak is at θ = θc inside the hemisphere; m = 1, no factor.
-    theta_c = atan2(r, c);  // angle of v from n
-    alpha = atan2(c, r);    // π/2 − θc, angle of v above the horizon
-    gamma = 1 / std::max(c, Real(Real(0.5) / (1 + sqrt(kappa))));
-    const Real w = 1 / sqrt(kappa);  // Gaussian width in the angle
-    quad.add_from_peak(f, toward_horizon, min(alpha, gauss_cut), w);
-    quad.add_from_peak(f, toward_pole, min(theta_c, gauss_cut), w);
-  } else {
-    // c < 0: the peak is on the horizon u = 0 with m = r; peak factor
-    // e^{κ(r−1)}, r − 1 = −c²/(1+r), formed in the wide type.
-    const W cw = cosine_in, kw = kappa_in;
-    const W rw = sqrt((1 - cw) * (1 + cw));
-    log_peak = -kw * (cw * cw) / (1 + rw);
-    // Below e^{−750}, even 2π·(π/2)·peak rounds to 0 in double: H = E = 0 and
-    // s = 0 (s ≤ H/(H(1)−H(−1)) < e^{−740}); skip the quadrature.
-    if (log_peak < W(-750)) return out;
-    beta = atan2(-c, r);  // θc − π/2 = asin|c|
-    // (Any finite weight will do: capped where 2κ|c| would overflow; there
-    // the peak factor is 0 anyway.)
-    gamma = std::min(Real(2 * (1 + kappa * -c + sqrt(kappa))), std::numeric_limits<Real>::max());
-    // Exponent ≈ −κ(ψ|c| + ψ²r/2): boundary layer of width 1/(κ|c|) or 1/√(κr).
-    const Real w = 1 / (kappa * -c + sqrt(kappa * r));
-    // −2κ sin(ψ/2+β) sin(ψ/2) decreases in ψ and is ≤ −2κ·max(sin β,
-    // sin(ψ/2))·sin(ψ/2): cut where either bound reaches −T.
-    Real cut = min(Real(pi / 2), gauss_cut);
-    if (T / 2 / kappa / -c < 1) cut = min(cut, Real(2 * asin(T / 2 / kappa / -c)));
-    quad.add_from_peak(f, boundary_layer, cut, w);
-  }
+  if (!place_segments(quad, f, kappa_in, cosine_in, c, T, gauss_cut, log_peak)) return out;
   quad.run(f, Settings<Real>::tolerance());
   const Pair<Real> q = quad.value();
   const Real q_error = quad.error();
@@ -438,29 +488,10 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
   // (Divided by kscale, see above.)
   const W kscale_w = W(kscale_d);
   out.hemispherical = scale * W(q.h) / kscale_w;
-  out.irradiance = scale * W(q.e / gamma) / kscale_w;
+  out.irradiance = scale * W(q.e / f.gamma) / kscale_w;
   out.hemispherical_error = scale * W(q_error) / kscale_w;
-  out.irradiance_error = scale * W(q_error / gamma) / kscale_w;
-
-  // s = (H − H(−1)) / (H(1) − H(−1)), docs/quantities.md.
-  if (kappa < std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon()) {
-    // s = (1+c)/2 + O(κ): exact to far below ε, and no denormal κ below.
-    out.normalized = (1 + W(cosine_in)) / 2;
-  } else if (kappa <= 1) {
-    out.normalized = W(normalized_small_kappa(kappa, c, r));
-  } else {
-    // κ > 1: the denominator H(1) − H(−1) ≥ 0.63·H(1) does not cancel. The
-    // numerator H(c) − H(−1) loses at most a bit while H(c) ≥ 2H(−1); below
-    // that (c < 0, towards c = −1) it is integrated as one non-negative
-    // difference instead, so that s stays accurate relative to itself.
-    const W kw = kappa_in;
-    const W h_minus = hemispherical_at_minus_one(kw);
-    if (c < 0 && out.hemispherical < 2 * h_minus)
-      out.normalized = normalized_by_difference(kappa, c, r);
-    else
-      out.normalized = (out.hemispherical - h_minus) / hemispherical_span(kw);
-  }
-  out.normalized = std::clamp(out.normalized, W(0), W(1));
+  out.irradiance_error = scale * W(q_error / f.gamma) / kscale_w;
+  out.normalized = normalized_from(kappa_in, cosine_in, kappa, c, r, out.hemispherical);
   return out;
 }
 

@@ -23,7 +23,6 @@
 
 namespace sglab::validate::stability_detail {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Exact text of a value: shortest decimal in its own precision and hex.
