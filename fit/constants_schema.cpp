@@ -301,6 +301,39 @@ std::optional<std::string> why_not_a_constant_set(std::string_view text) {
   return fmt::format("{} (a constant set has \"format\": {})", why, tag);
 }
 
+namespace {
+
+// The provenance block: its string and object fields, κ range, objective and certificate.
+void validate_provenance(const ordered_json& set, const std::string& file) {
+  const ordered_json* provenance = find(set, "provenance");
+  if (!provenance) fail(file, "provenance", "missing");
+  if (!provenance->is_object()) fail(file, "provenance", fmt::format("must be an object, got {}", provenance->type_name()));
+  for (const char* key : {"objective", "source", "command", "tool", "date", "precision"})
+    if (const ordered_json* v = find(*provenance, key); v && !v->is_string())
+      fail(file, std::string("provenance.") + key, fmt::format("must be a string, got {}", v->type_name()));
+  for (const char* key : {"grid", "achieved"})
+    if (const ordered_json* v = find(*provenance, key); v && !v->is_object())
+      fail(file, std::string("provenance.") + key, fmt::format("must be an object, got {}", v->type_name()));
+  if (const ordered_json* v = find(*provenance, "kappa_range");
+      v && !(v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number()))
+    fail(file, "provenance.kappa_range", "must be an array of two numbers [LO, HI]");
+  if (const ordered_json* a = find(*provenance, "achieved"))
+    if (const ordered_json* v = find(*a, "objective"); v && !v->is_number())
+      fail(file, "provenance.achieved.objective", fmt::format("must be a number, got {}", v->type_name()));
+  // A fit's certificate (fit/sglab_acc.cpp): its kind and grid, the max
+  // achieved and the lower bound for the family, both finite numbers.
+  if (const ordered_json* c = find(*provenance, "certificate")) {
+    if (!c->is_object()) fail(file, "provenance.certificate", fmt::format("must be an object, got {}", c->type_name()));
+    for (const char* key : {"kind", "grid"})
+      if (const ordered_json* v = find(*c, key); !v || !v->is_string())
+        fail(file, std::string("provenance.certificate.") + key, v ? fmt::format("must be a string, got {}", v->type_name()) : "missing");
+    for (const char* key : {"achieved", "lower_bound"})
+      if (const ordered_json* v = find(*c, key); !v || !v->is_number() || !std::isfinite(v->get<double>()))
+        fail(file, std::string("provenance.certificate.") + key, v ? "must be a finite number" : "missing");
+  }
+}
+}  // namespace
+
 void validate_constant_set(const ordered_json& set, const std::string& file) {
   if (!set.is_object()) fail(file, "", "not a JSON object");
   const ordered_json* format = find(set, "format");
@@ -360,32 +393,7 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
     if (!coefficients->contains(name))
       fail(file, "coefficients." + name, fmt::format("missing: {} needs every member", type.canonical));
 
-  const ordered_json* provenance = find(set, "provenance");
-  if (!provenance) fail(file, "provenance", "missing");
-  if (!provenance->is_object()) fail(file, "provenance", fmt::format("must be an object, got {}", provenance->type_name()));
-  for (const char* key : {"objective", "source", "command", "tool", "date", "precision"})
-    if (const ordered_json* v = find(*provenance, key); v && !v->is_string())
-      fail(file, std::string("provenance.") + key, fmt::format("must be a string, got {}", v->type_name()));
-  for (const char* key : {"grid", "achieved"})
-    if (const ordered_json* v = find(*provenance, key); v && !v->is_object())
-      fail(file, std::string("provenance.") + key, fmt::format("must be an object, got {}", v->type_name()));
-  if (const ordered_json* v = find(*provenance, "kappa_range");
-      v && !(v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number()))
-    fail(file, "provenance.kappa_range", "must be an array of two numbers [LO, HI]");
-  if (const ordered_json* a = find(*provenance, "achieved"))
-    if (const ordered_json* v = find(*a, "objective"); v && !v->is_number())
-      fail(file, "provenance.achieved.objective", fmt::format("must be a number, got {}", v->type_name()));
-  // A fit's certificate (fit/sglab_acc.cpp): its kind and grid, the max
-  // achieved and the lower bound for the family, both finite numbers.
-  if (const ordered_json* c = find(*provenance, "certificate")) {
-    if (!c->is_object()) fail(file, "provenance.certificate", fmt::format("must be an object, got {}", c->type_name()));
-    for (const char* key : {"kind", "grid"})
-      if (const ordered_json* v = find(*c, key); !v || !v->is_string())
-        fail(file, std::string("provenance.certificate.") + key, v ? fmt::format("must be a string, got {}", v->type_name()) : "missing");
-    for (const char* key : {"achieved", "lower_bound"})
-      if (const ordered_json* v = find(*c, key); !v || !v->is_number() || !std::isfinite(v->get<double>()))
-        fail(file, std::string("provenance.certificate.") + key, v ? "must be a finite number" : "missing");
-  }
+  validate_provenance(set, file);
 }
 
 void validate_header_sets(const std::vector<ordered_json>& sets, const std::vector<std::string>& files) {

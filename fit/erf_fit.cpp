@@ -265,6 +265,166 @@ ordered_json as_certificate(const AsFit& f) {
 // The exhaustive check of every float is `sglab erf --exhaustive`.
 constexpr std::uint32_t kFloatStride = 16;
 
+// listing5's model: the published shape refitted, or with --max-error the
+// smallest total degree meeting it over splits and degrees (each tried model a
+// row of `order_table`); none meeting it: the refit, and the fit not converged.
+Listing5Fit choose_listing5(const FitSpec& spec, const Listing5Shape& pub_shape, const std::vector<double>& pub_small,
+                            const std::vector<double>& pub_large, bool round, ordered_json& order_table,
+                            FitOutcome& out) {
+  const auto& pl = constants::erf_listing5_published;
+  Listing5Fit chosen;
+  if (spec.max_error) {
+    // Smallest total degree meeting the budget, over splits b and degrees.
+    bool found = false;
+    for (double split : {0.5, 0.75, 1.0, 1.25, 1.5, 2.0}) {
+      for (std::size_t ns = 2; ns <= kMaxSmall; ++ns) {
+        fit_progress_note(fmt::format("listing5 split {}: {} small terms", split, ns));
+        const Listing5Fit small_only =
+            fit_listing5({ns, 2, split, pl.cutoff}, taylor_small(ns), pub_large, round);
+        if (small_only.small_error > *spec.max_error) continue;
+        for (std::size_t nl = 2; nl <= kMaxLarge; ++nl) {
+          fit_progress_note(fmt::format("listing5 split {}: {}+{} terms", split, ns, nl));
+          const Listing5Fit f = fit_listing5({ns, nl, split, pl.cutoff}, small_only.small, pub_large, round);
+          order_table.push_back({{"split", split}, {"small_terms", ns}, {"large_terms", nl},
+                                 {"max_error", f.max_error()}, {"operations", f.operations()}});
+          if (f.max_error() <= *spec.max_error) {
+            if (!found || f.operations() < chosen.operations()) chosen = f, found = true;
+            break;
+          }
+        }
+        break;  // larger ns only costs more for this split
+      }
+    }
+    if (!found) {
+      out.converged = false;
+      out.text += fmt::format("erf listing5: no model with up to {}+{} terms meets {:.3e}\n", kMaxSmall, kMaxLarge,
+                              *spec.max_error);
+      chosen = fit_listing5(pub_shape, pub_small, pub_large, round);
+    }
+  } else {
+    chosen = fit_listing5(pub_shape, pub_small, pub_large, round);
+  }
+  return chosen;
+}
+
+// as7125's model: the published 3 terms refitted, or with --max-error the
+// fewest terms meeting it (each a row of `order_table`); none: 3 terms, not converged.
+AsFit choose_as7125(const FitSpec& spec, const std::vector<double>& pub, bool round, ordered_json& order_table,
+                    FitOutcome& out) {
+  AsFit chosen;
+  if (spec.max_error) {
+    bool found = false;
+    std::vector<double> start = pub;
+    for (std::size_t n = 2; n <= kMaxTerms && !found; ++n) {
+      fit_progress_note(fmt::format("as7125: {} terms", n));
+      const AsFit f = fit_as(n, start, round);
+      order_table.push_back({{"terms", n}, {"max_error", f.error}, {"operations", n + 1}});
+      start = f.coefficients;
+      if (f.error <= *spec.max_error) chosen = f, found = true;
+    }
+    if (!found) {
+      out.converged = false;
+      out.text += fmt::format("erf as7125: no model with up to {} terms meets {:.3e}\n", kMaxTerms, *spec.max_error);
+      chosen = fit_as(3, pub, round);
+    }
+  } else {
+    chosen = fit_as(3, pub, round);
+  }
+  return chosen;
+}
+
+// The listing5 structure: its model, its errors against the published one, a
+// constant set with its certificate, a report row and a line of text.
+void add_listing5(const FitSpec& spec, bool round, FitOutcome& out) {
+  const auto& pl = constants::erf_listing5_published;
+  const std::vector<double> pub_small(std::begin(pl.small), std::end(pl.small));
+  const std::vector<double> pub_large(std::begin(pl.large), std::end(pl.large));
+  const Listing5Shape pub_shape{pub_small.size(), pub_large.size(), pl.split, pl.cutoff};
+  ordered_json order_table = ordered_json::array();
+  const Listing5Fit chosen = choose_listing5(spec, pub_shape, pub_small, pub_large, round, order_table, out);
+  fit_progress_note("listing5: error of the chosen and published models (dense and float grids)");
+  const Listing5Fit published{pub_shape, pub_small, pub_large, 0, 0};
+  const auto exact_fit = max_error_dense([&](double x) { return listing5_eval(chosen, x); }, 6.0);
+  const auto exact_pub = max_error_dense([&](double x) { return listing5_eval(published, x); }, 6.0);
+  const auto float_fit = max_error_float([&](float x) { return listing5_eval_float(chosen, x); }, 4.0f, kFloatStride);
+  const auto float_pub = max_error_float([&](float x) { return listing5_eval_float(published, x); }, 4.0f, kFloatStride);
+  std::string variant = "listing5-" + precision_name(spec.precision);
+  if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
+  ordered_json coefficients = {{"split", chosen.shape.split}, {"cutoff", chosen.shape.cutoff},
+                               {"small", to_json(chosen.small)}, {"large", to_json(chosen.large)}};
+  ordered_json achieved = {{"objective", exact_fit.first},
+                           {"max_abs_exact_arithmetic", exact_fit.first},
+                           {"max_abs_float_every_16th_float", float_fit.first}};
+  out.constant_sets.push_back(make_constant_set(
+      spec, "erf", variant,
+      fmt::format("Listing5Params<double, {}, {}>", chosen.small.size(), chosen.large.size()),
+      "erf(x) ≈ x*P(x^2) for |x| <= split; 1 - 2^(-a*Q(a)) for split < a=|x| < cutoff; sign(x) beyond",
+      coefficients,
+      fmt::format("minimax of |erf_listing5(x) - erf(x)| (Lawson IRLS){}", round ? ", coefficients rounded to float one at a time with re-fits" : ""),
+      achieved));
+  const ordered_json certificate = listing5_certificate(chosen);
+  out.constant_sets.back()["provenance"]["certificate"] = certificate;
+  ordered_json row = {{"structure", "listing5"}, {"variant", variant}, {"certificate", certificate}};
+  for (auto& [k, v] : coefficients.items()) row[k] = v;
+  row["max_abs"] = exact_fit.first;
+  row["worst_x"] = exact_fit.second;
+  row["max_abs_float"] = float_fit.first;
+  row["worst_x_float"] = float_fit.second;
+  row["operations"] = chosen.operations();
+  if (!order_table.empty()) row["model_order"] = order_table;
+  row["published"] = {{"max_abs", exact_pub.first}, {"worst_x", exact_pub.second},
+                      {"max_abs_float", float_pub.first}, {"worst_x_float", float_pub.second}, {"operations", 13}};
+  out.report["results"].push_back(row);
+  out.text += fmt::format("erf listing5 ({}): {}+{} terms, split {}: max abs {:.3e} exact, {:.3e} float; published "
+                          "{:.3e} exact, {:.3e} float; small piece within {:.2f}% of the best P (LP {:.3e})\n",
+                          variant, chosen.small.size(), chosen.large.size(), chosen.shape.split, exact_fit.first,
+                          float_fit.first, exact_pub.first, float_pub.first,
+                          certificate["within_percent_of_best_member"].get<double>(),
+                          certificate["lower_bound"].get<double>());
+}
+
+// The as7125 structure, as add_listing5.
+void add_as7125(const FitSpec& spec, bool round, FitOutcome& out) {
+  const auto& pa = constants::erf_as7125_published;
+  const std::vector<double> pub = {pa.p, pa.a[0], pa.a[1], pa.a[2]};
+  ordered_json order_table = ordered_json::array();
+  const AsFit chosen = choose_as7125(spec, pub, round, order_table, out);
+  fit_progress_note("as7125: error of the chosen and published models (dense and float grids)");
+  const auto exact_fit = max_error_dense([&](double x) { return as_eval(chosen.coefficients, x); }, 6.0);
+  const auto exact_pub = max_error_dense([&](double x) { return as_eval(pub, x); }, 6.0);
+  const auto float_fit = max_error_float([&](float x) { return as_eval_float(chosen.coefficients, x); }, 4.0f, kFloatStride);
+  const auto float_pub = max_error_float([&](float x) { return as_eval_float(pub, x); }, 4.0f, kFloatStride);
+  std::string variant = "as7125-" + precision_name(spec.precision);
+  if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
+  ordered_json coefficients = {{"p", chosen.coefficients[0]},
+                               {"a", to_json({chosen.coefficients.begin() + 1, chosen.coefficients.end()})}};
+  ordered_json achieved = {{"objective", exact_fit.first},
+                           {"max_abs_exact_arithmetic", exact_fit.first},
+                           {"max_abs_float_every_16th_float", float_fit.first}};
+  out.constant_sets.push_back(make_constant_set(
+      spec, "erf", variant, fmt::format("AbramowitzStegunParams<double, {}>", chosen.coefficients.size() - 1),
+      "erf(x) ≈ 1 - (a1 t + a2 t^2 + ...) exp(-x^2), t = 1/(1 + p x), x >= 0; odd", coefficients,
+      fmt::format("minimax of |erf_as(x) - erf(x)| on [0, 6] (Lawson IRLS){}", round ? ", coefficients rounded to float one at a time with re-fits" : ""),
+      achieved));
+  const ordered_json certificate = as_certificate(chosen);
+  out.constant_sets.back()["provenance"]["certificate"] = certificate;
+  ordered_json row = {{"structure", "as7125"}, {"variant", variant}, {"certificate", certificate}, {"p", chosen.coefficients[0]}};
+  for (std::size_t i = 1; i < chosen.coefficients.size(); ++i) row[fmt::format("a{}", i)] = chosen.coefficients[i];
+  row["max_abs"] = exact_fit.first;
+  row["worst_x"] = exact_fit.second;
+  row["max_abs_float"] = float_fit.first;
+  row["worst_x_float"] = float_fit.second;
+  if (!order_table.empty()) row["model_order"] = order_table;
+  row["published"] = {{"p", pa.p}, {"a1", pa.a[0]}, {"a2", pa.a[1]}, {"a3", pa.a[2]}, {"max_abs", exact_pub.first},
+                      {"worst_x", exact_pub.second}, {"max_abs_float", float_pub.first}};
+  out.report["results"].push_back(row);
+  out.text += fmt::format("erf as7125 ({}): {} terms: max abs {:.3e} exact, {:.3e} float; published {:.3e} exact, "
+                          "{:.3e} float; within {:.2f}% of the best a_i at this p (LP {:.3e})\n",
+                          variant, chosen.coefficients.size() - 1, exact_fit.first, float_fit.first, exact_pub.first,
+                          float_pub.first, certificate["within_percent_of_best_member"].get<double>(),
+                          certificate["lower_bound"].get<double>());
+}
+
 }  // namespace
 
 FitOutcome fit_erf(const FitSpec& spec) {
@@ -274,144 +434,8 @@ FitOutcome fit_erf(const FitSpec& spec) {
   const bool round = spec.precision != WorkingPrecision::dbl;
   FitOutcome out;
   out.report = {{"target", "erf"}, {"precision", precision_name(spec.precision)}, {"results", ordered_json::array()}};
-  const auto& pl = constants::erf_listing5_published;
-  const auto& pa = constants::erf_as7125_published;
-
-  if (structure != "as7125") {
-    const std::vector<double> pub_small(std::begin(pl.small), std::end(pl.small));
-    const std::vector<double> pub_large(std::begin(pl.large), std::end(pl.large));
-    const Listing5Shape pub_shape{pub_small.size(), pub_large.size(), pl.split, pl.cutoff};
-    Listing5Fit chosen;
-    ordered_json order_table = ordered_json::array();
-    if (spec.max_error) {
-      // Smallest total degree meeting the budget, over splits b and degrees.
-      bool found = false;
-      for (double split : {0.5, 0.75, 1.0, 1.25, 1.5, 2.0}) {
-        for (std::size_t ns = 2; ns <= kMaxSmall; ++ns) {
-          fit_progress_note(fmt::format("listing5 split {}: {} small terms", split, ns));
-          const Listing5Fit small_only =
-              fit_listing5({ns, 2, split, pl.cutoff}, taylor_small(ns), pub_large, round);
-          if (small_only.small_error > *spec.max_error) continue;
-          for (std::size_t nl = 2; nl <= kMaxLarge; ++nl) {
-            fit_progress_note(fmt::format("listing5 split {}: {}+{} terms", split, ns, nl));
-            const Listing5Fit f = fit_listing5({ns, nl, split, pl.cutoff}, small_only.small, pub_large, round);
-            order_table.push_back({{"split", split}, {"small_terms", ns}, {"large_terms", nl},
-                                   {"max_error", f.max_error()}, {"operations", f.operations()}});
-            if (f.max_error() <= *spec.max_error) {
-              if (!found || f.operations() < chosen.operations()) chosen = f, found = true;
-              break;
-            }
-          }
-          break;  // larger ns only costs more for this split
-        }
-      }
-      if (!found) {
-        out.converged = false;
-        out.text += fmt::format("erf listing5: no model with up to {}+{} terms meets {:.3e}\n", kMaxSmall, kMaxLarge,
-                                *spec.max_error);
-        chosen = fit_listing5(pub_shape, pub_small, pub_large, round);
-      }
-    } else {
-      chosen = fit_listing5(pub_shape, pub_small, pub_large, round);
-    }
-    fit_progress_note("listing5: error of the chosen and published models (dense and float grids)");
-    const Listing5Fit published{pub_shape, pub_small, pub_large, 0, 0};
-    const auto exact_fit = max_error_dense([&](double x) { return listing5_eval(chosen, x); }, 6.0);
-    const auto exact_pub = max_error_dense([&](double x) { return listing5_eval(published, x); }, 6.0);
-    const auto float_fit = max_error_float([&](float x) { return listing5_eval_float(chosen, x); }, 4.0f, kFloatStride);
-    const auto float_pub = max_error_float([&](float x) { return listing5_eval_float(published, x); }, 4.0f, kFloatStride);
-    std::string variant = "listing5-" + precision_name(spec.precision);
-    if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
-    ordered_json coefficients = {{"split", chosen.shape.split}, {"cutoff", chosen.shape.cutoff},
-                                 {"small", to_json(chosen.small)}, {"large", to_json(chosen.large)}};
-    ordered_json achieved = {{"objective", exact_fit.first},
-                             {"max_abs_exact_arithmetic", exact_fit.first},
-                             {"max_abs_float_every_16th_float", float_fit.first}};
-    out.constant_sets.push_back(make_constant_set(
-        spec, "erf", variant,
-        fmt::format("Listing5Params<double, {}, {}>", chosen.small.size(), chosen.large.size()),
-        "erf(x) ≈ x*P(x^2) for |x| <= split; 1 - 2^(-a*Q(a)) for split < a=|x| < cutoff; sign(x) beyond",
-        coefficients,
-        fmt::format("minimax of |erf_listing5(x) - erf(x)| (Lawson IRLS){}", round ? ", coefficients rounded to float one at a time with re-fits" : ""),
-        achieved));
-    const ordered_json certificate = listing5_certificate(chosen);
-    out.constant_sets.back()["provenance"]["certificate"] = certificate;
-    ordered_json row = {{"structure", "listing5"}, {"variant", variant}, {"certificate", certificate}};
-    for (auto& [k, v] : coefficients.items()) row[k] = v;
-    row["max_abs"] = exact_fit.first;
-    row["worst_x"] = exact_fit.second;
-    row["max_abs_float"] = float_fit.first;
-    row["worst_x_float"] = float_fit.second;
-    row["operations"] = chosen.operations();
-    if (!order_table.empty()) row["model_order"] = order_table;
-    row["published"] = {{"max_abs", exact_pub.first}, {"worst_x", exact_pub.second},
-                        {"max_abs_float", float_pub.first}, {"worst_x_float", float_pub.second}, {"operations", 13}};
-    out.report["results"].push_back(row);
-    out.text += fmt::format("erf listing5 ({}): {}+{} terms, split {}: max abs {:.3e} exact, {:.3e} float; published "
-                            "{:.3e} exact, {:.3e} float; small piece within {:.2f}% of the best P (LP {:.3e})\n",
-                            variant, chosen.small.size(), chosen.large.size(), chosen.shape.split, exact_fit.first,
-                            float_fit.first, exact_pub.first, float_pub.first,
-                            certificate["within_percent_of_best_member"].get<double>(),
-                            certificate["lower_bound"].get<double>());
-  }
-
-  if (structure != "listing5") {
-    const std::vector<double> pub = {pa.p, pa.a[0], pa.a[1], pa.a[2]};
-    AsFit chosen;
-    ordered_json order_table = ordered_json::array();
-    if (spec.max_error) {
-      bool found = false;
-      std::vector<double> start = pub;
-      for (std::size_t n = 2; n <= kMaxTerms && !found; ++n) {
-        fit_progress_note(fmt::format("as7125: {} terms", n));
-        const AsFit f = fit_as(n, start, round);
-        order_table.push_back({{"terms", n}, {"max_error", f.error}, {"operations", n + 1}});
-        start = f.coefficients;
-        if (f.error <= *spec.max_error) chosen = f, found = true;
-      }
-      if (!found) {
-        out.converged = false;
-        out.text += fmt::format("erf as7125: no model with up to {} terms meets {:.3e}\n", kMaxTerms, *spec.max_error);
-        chosen = fit_as(3, pub, round);
-      }
-    } else {
-      chosen = fit_as(3, pub, round);
-    }
-    fit_progress_note("as7125: error of the chosen and published models (dense and float grids)");
-    const auto exact_fit = max_error_dense([&](double x) { return as_eval(chosen.coefficients, x); }, 6.0);
-    const auto exact_pub = max_error_dense([&](double x) { return as_eval(pub, x); }, 6.0);
-    const auto float_fit = max_error_float([&](float x) { return as_eval_float(chosen.coefficients, x); }, 4.0f, kFloatStride);
-    const auto float_pub = max_error_float([&](float x) { return as_eval_float(pub, x); }, 4.0f, kFloatStride);
-    std::string variant = "as7125-" + precision_name(spec.precision);
-    if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
-    ordered_json coefficients = {{"p", chosen.coefficients[0]},
-                                 {"a", to_json({chosen.coefficients.begin() + 1, chosen.coefficients.end()})}};
-    ordered_json achieved = {{"objective", exact_fit.first},
-                             {"max_abs_exact_arithmetic", exact_fit.first},
-                             {"max_abs_float_every_16th_float", float_fit.first}};
-    out.constant_sets.push_back(make_constant_set(
-        spec, "erf", variant, fmt::format("AbramowitzStegunParams<double, {}>", chosen.coefficients.size() - 1),
-        "erf(x) ≈ 1 - (a1 t + a2 t^2 + ...) exp(-x^2), t = 1/(1 + p x), x >= 0; odd", coefficients,
-        fmt::format("minimax of |erf_as(x) - erf(x)| on [0, 6] (Lawson IRLS){}", round ? ", coefficients rounded to float one at a time with re-fits" : ""),
-        achieved));
-    const ordered_json certificate = as_certificate(chosen);
-    out.constant_sets.back()["provenance"]["certificate"] = certificate;
-    ordered_json row = {{"structure", "as7125"}, {"variant", variant}, {"certificate", certificate}, {"p", chosen.coefficients[0]}};
-    for (std::size_t i = 1; i < chosen.coefficients.size(); ++i) row[fmt::format("a{}", i)] = chosen.coefficients[i];
-    row["max_abs"] = exact_fit.first;
-    row["worst_x"] = exact_fit.second;
-    row["max_abs_float"] = float_fit.first;
-    row["worst_x_float"] = float_fit.second;
-    if (!order_table.empty()) row["model_order"] = order_table;
-    row["published"] = {{"p", pa.p}, {"a1", pa.a[0]}, {"a2", pa.a[1]}, {"a3", pa.a[2]}, {"max_abs", exact_pub.first},
-                        {"worst_x", exact_pub.second}, {"max_abs_float", float_pub.first}};
-    out.report["results"].push_back(row);
-    out.text += fmt::format("erf as7125 ({}): {} terms: max abs {:.3e} exact, {:.3e} float; published {:.3e} exact, "
-                            "{:.3e} float; within {:.2f}% of the best a_i at this p (LP {:.3e})\n",
-                            variant, chosen.coefficients.size() - 1, exact_fit.first, float_fit.first, exact_pub.first,
-                            float_pub.first, certificate["within_percent_of_best_member"].get<double>(),
-                            certificate["lower_bound"].get<double>());
-  }
+  if (structure != "as7125") add_listing5(spec, round, out);
+  if (structure != "listing5") add_as7125(spec, round, out);
   return out;
 }
 

@@ -87,6 +87,57 @@ double max_abs(const Residuals& residuals, const std::vector<double>& v) {
   return m;
 }
 
+// One objective's problem: residuals, start, norm and what its constant set records.
+struct Problem {
+  Residuals residuals;
+  Parameters params;
+  FitOptions options;
+  std::vector<double> published;
+  std::string description, cpp_type, form, metric;
+};
+Problem problem_for(const std::string& objective, const FitSpec& spec) {
+  const double lambda_d_pub = constants::diffuse_lobe_published.lambda_d;
+  const auto& wang = constants::cosine_lobe_published;
+  Problem p;
+  if (objective == "sphere-ls" || objective == "hemisphere-ls") {
+    const bool sphere = objective == "sphere-ls";
+    for (const Node& n : nodes(sphere))
+      p.residuals.push_back(make_residual(NormalizedLobeResidual{n}, 1));
+    p.params = {{"lambda_d"}, {lambda_d_pub}, {}};
+    p.published = {lambda_d_pub};
+    p.options.norm = Norm::least_squares;
+    p.description = fmt::format("least squares: integral over the {} of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2",
+                                sphere ? "sphere" : "upper hemisphere");
+    p.cpp_type = "DiffuseLobeParams<double>";
+    p.form = "max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)";
+    p.metric = "integral_squared_error";
+  } else if (objective == "free-amplitude") {
+    for (const Node& n : nodes(true)) p.residuals.push_back(make_residual(FreeAmplitudeResidual{n}, 2));
+    p.params = {{"lambda", "amplitude"}, {wang.lambda, wang.amplitude}, {}};
+    p.published = {wang.lambda, wang.amplitude};
+    p.options.norm = Norm::least_squares;
+    p.description = "least squares: integral over the sphere of (max(cos,0) - amplitude*G(lambda))^2";
+    p.cpp_type = "CosineLobeParams<double>";
+    p.form = "max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere";
+    p.metric = "integral_squared_error";
+  } else {
+    std::vector<validate::Query> q;
+    for (double k : kappa_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count))
+      for (double c : cosine_grid(spec.cosine_count)) q.push_back({k, c});
+    for (const auto& r : validate::reference_engine().evaluate(q))
+      p.residuals.push_back(make_residual(VsglResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, 1));
+    p.params = {{"lambda_d"}, {lambda_d_pub}, {}};
+    p.published = {lambda_d_pub};
+    p.description = fmt::format("minimax of the vsgl2015 irradiance peak_rel error over {} kappa x {} cosines, kappa "
+                                "in [{}, {}]",
+                                spec.kappa_count, spec.cosine_count, spec.kappa_lo, spec.kappa_hi);
+    p.cpp_type = "DiffuseLobeParams<double>";
+    p.form = "max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A ≈ pi, Iwasaki product integral (vsgl2015)";
+    p.metric = "max_peak_rel";
+  }
+  return p;
+}
+
 }  // namespace
 
 FitOutcome fit_lambda_d(const FitSpec& spec) {
@@ -98,53 +149,15 @@ FitOutcome fit_lambda_d(const FitSpec& spec) {
           "lambda-d objectives are sphere-ls, hemisphere-ls, free-amplitude, irradiance; got '{}'", spec.objective));
     objectives = {spec.objective};
   }
-  const double lambda_d_pub = constants::diffuse_lobe_published.lambda_d;
-  const auto& wang = constants::cosine_lobe_published;
   FitOutcome out;
   out.report = {{"target", "lambda-d"}, {"results", ordered_json::array()}};
   for (const std::string& objective : objectives) {
-    Residuals residuals;
-    Parameters params;
-    FitOptions options;
-    std::vector<double> published;
-    std::string description, cpp_type, form, metric;
-    if (objective == "sphere-ls" || objective == "hemisphere-ls") {
-      const bool sphere = objective == "sphere-ls";
-      for (const Node& n : nodes(sphere))
-        residuals.push_back(make_residual(NormalizedLobeResidual{n}, 1));
-      params = {{"lambda_d"}, {lambda_d_pub}, {}};
-      published = {lambda_d_pub};
-      options.norm = Norm::least_squares;
-      description = fmt::format("least squares: integral over the {} of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2",
-                                sphere ? "sphere" : "upper hemisphere");
-      cpp_type = "DiffuseLobeParams<double>";
-      form = "max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)";
-      metric = "integral_squared_error";
-    } else if (objective == "free-amplitude") {
-      for (const Node& n : nodes(true)) residuals.push_back(make_residual(FreeAmplitudeResidual{n}, 2));
-      params = {{"lambda", "amplitude"}, {wang.lambda, wang.amplitude}, {}};
-      published = {wang.lambda, wang.amplitude};
-      options.norm = Norm::least_squares;
-      description = "least squares: integral over the sphere of (max(cos,0) - amplitude*G(lambda))^2";
-      cpp_type = "CosineLobeParams<double>";
-      form = "max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere";
-      metric = "integral_squared_error";
-    } else {
-      std::vector<validate::Query> q;
-      for (double k : kappa_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count))
-        for (double c : cosine_grid(spec.cosine_count)) q.push_back({k, c});
-      for (const auto& r : validate::reference_engine().evaluate(q))
-        residuals.push_back(make_residual(VsglResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, 1));
-      params = {{"lambda_d"}, {lambda_d_pub}, {}};
-      published = {lambda_d_pub};
-      description = fmt::format("minimax of the vsgl2015 irradiance peak_rel error over {} kappa x {} cosines, kappa "
-                                "in [{}, {}]",
-                                spec.kappa_count, spec.cosine_count, spec.kappa_lo, spec.kappa_hi);
-      cpp_type = "DiffuseLobeParams<double>";
-      form = "max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A ≈ pi, Iwasaki product integral (vsgl2015)";
-      metric = "max_peak_rel";
-    }
-    const FitResult result = fit(residuals, params, options);
+    Problem problem = problem_for(objective, spec);
+    const Residuals& residuals = problem.residuals;
+    const Parameters& params = problem.params;
+    const std::vector<double>& published = problem.published;
+    const std::string& metric = problem.metric;
+    const FitResult result = fit(residuals, params, problem.options);
     out.converged = out.converged && result.converged;
     auto value_of = [&](const std::vector<double>& v) {
       return metric == "max_peak_rel" ? max_abs(residuals, v) : cost(residuals, v);
@@ -160,7 +173,8 @@ FitOutcome fit_lambda_d(const FitSpec& spec) {
       variant += fmt::format("-k{}-{}", spec.kappa_lo, spec.kappa_hi);
     ordered_json achieved = {{"objective", value_of(result.values)}, {metric, value_of(result.values)}};
     out.constant_sets.push_back(
-        make_constant_set(spec, "lambda-d", variant, cpp_type, form, coefficients, description, achieved));
+        make_constant_set(spec, "lambda-d", variant, problem.cpp_type, problem.form, coefficients,
+                          problem.description, achieved));
     ordered_json row = {{"objective", objective}, {"variant", variant}};
     for (auto& [k, v] : coefficients.items()) row[k] = v;
     row[metric] = value_of(result.values);

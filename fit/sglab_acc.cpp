@@ -779,72 +779,76 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
   return set;
 }
 
-}  // namespace
+// The grids of one sglab-acc run: training (Ceres), dense training (the LP
+// and the certificate), and two measuring grids no fit uses.
+struct Grids {
+  std::vector<SglabAccSample> train, dense;
+  std::vector<validate::ReferencePoint> standard, held_out;
+  int held_k = 200, held_c = 401;
+};
 
-SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
-                                            const std::vector<SglabAccSample>& samples) {
-  return fit_coefficients_any(terms, degree, start, samples);
+Grids grids_for(const FitSpec& spec) {
+  Grids g;
+  auto& engine = validate::reference_engine();
+  for (const auto& r : engine.evaluate(training_grid(spec.kappa_lo, spec.kappa_hi)))
+    g.train.push_back({r.kappa, r.cosine, r.irradiance});
+  for (const auto& r : engine.evaluate(dense_training_grid(spec.kappa_lo, spec.kappa_hi)))
+    g.dense.push_back({r.kappa, r.cosine, r.irradiance});
+  g.standard = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count, spec.cosine_count));
+  g.held_out = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, g.held_k, g.held_c));
+  return g;
 }
 
-FitOutcome fit_sglab_acc(const FitSpec& spec) {
-  if (!spec.objective.empty() && spec.objective != "peak-rel")
-    throw std::invalid_argument(fmt::format("sglab-acc objective is 'peak-rel'; got '{}'", spec.objective));
-  const int held_k = 200, held_c = 401;
-  auto& engine = validate::reference_engine();
-  std::vector<SglabAccSample> train;
-  for (const auto& r : engine.evaluate(training_grid(spec.kappa_lo, spec.kappa_hi)))
-    train.push_back({r.kappa, r.cosine, r.irradiance});
-  std::vector<SglabAccSample> dense;  // the LP's and the certificate's rows
-  for (const auto& r : engine.evaluate(dense_training_grid(spec.kappa_lo, spec.kappa_hi)))
-    dense.push_back({r.kappa, r.cosine, r.irradiance});
-  const auto standard = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count, spec.cosine_count));
-  const auto held_out = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, held_k, held_c));
-
+// --max-error: the cheapest member meeting the budget, each warm-started from the previous one.
+FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
+  const auto& [train, dense, standard, held_out, held_k, held_c] = g;
   FitOutcome out;
-  if (spec.max_error) {
-    // Model order: cheapest member first, each warm-started from the previous one.
-    const double budget = *spec.max_error;
-    std::vector<MemberFit> fits;
-    const MemberFit* chosen = nullptr;
-    Floors floors;
-    fits.reserve(std::size(kFamily));  // `chosen` points into it
-    for (const Member m : kFamily) {
-      // A nested earlier member (or the stage-wise start: per-κ optima, then fade fits), then the joint minimax.
-      fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget), weighted(dense, budget),
-                             standard, held_out));
-      fits.back().cost = member_cost(m, spec.costs);
-      fits.back().floor = floors.floor(m.n, train);
-      if (fits.back().converged && fits.back().held_out.float_max <= budget && fits.back().held_out.never_worse <= 1) {
-        chosen = &fits.back();
-        break;
-      }
+  // Model order: cheapest member first, each warm-started from the previous one.
+  const double budget = *spec.max_error;
+  std::vector<MemberFit> fits;
+  const MemberFit* chosen = nullptr;
+  Floors floors;
+  fits.reserve(std::size(kFamily));  // `chosen` points into it
+  for (const Member m : kFamily) {
+    // A nested earlier member (or the stage-wise start: per-κ optima, then fade fits), then the joint minimax.
+    fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget), weighted(dense, budget),
+                           standard, held_out));
+    fits.back().cost = member_cost(m, spec.costs);
+    fits.back().floor = floors.floor(m.n, train);
+    if (fits.back().converged && fits.back().held_out.float_max <= budget && fits.back().held_out.never_worse <= 1) {
+      chosen = &fits.back();
+      break;
     }
-    out.report = {{"target", spec.target}, {"objective", "model-order"}, {"max_error", budget},
-                  {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"cost_source", cost_source(spec.costs)},
-                  {"members", ordered_json::array()}};
-    out.text = fmt::format("sglab-acc model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
-                           spec.kappa_lo, spec.kappa_hi, budget);
-    out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
-    out.text += kHeader;
-    for (const auto& f : fits) {
-      out.report["members"].push_back(member_report(f));
-      out.text += member_line(f, &f == chosen ? "  <- cheapest meeting the budget" : "");
-    }
-    if (!chosen) {
-      out.converged = false;
-      out.report["chosen"] = nullptr;
-      out.text += "  no member of the family meets the budget\n";
-      return out;
-    }
-    const std::string variant = fmt::format("n{}d{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d, spec.kappa_lo,
-                                            spec.kappa_hi, budget);
-    out.constant_sets.push_back(constant_set(spec, *chosen, variant, held_k, held_c, budget));
-    out.report["chosen"] = member_report(*chosen);
-    out.report["chosen"]["variant"] = variant;
+  }
+  out.report = {{"target", spec.target}, {"objective", "model-order"}, {"max_error", budget},
+                {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"cost_source", cost_source(spec.costs)},
+                {"members", ordered_json::array()}};
+  out.text = fmt::format("sglab-acc model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
+                         spec.kappa_lo, spec.kappa_hi, budget);
+  out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
+  out.text += kHeader;
+  for (const auto& f : fits) {
+    out.report["members"].push_back(member_report(f));
+    out.text += member_line(f, &f == chosen ? "  <- cheapest meeting the budget" : "");
+  }
+  if (!chosen) {
+    out.converged = false;
+    out.report["chosen"] = nullptr;
+    out.text += "  no member of the family meets the budget\n";
     return out;
   }
+  const std::string variant = fmt::format("n{}d{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d, spec.kappa_lo,
+                                          spec.kappa_hi, budget);
+  out.constant_sets.push_back(constant_set(spec, *chosen, variant, held_k, held_c, budget));
+  out.report["chosen"] = member_report(*chosen);
+  out.report["chosen"]["variant"] = variant;
+  return out;
+}
 
-  // The shipped ladder.
+// The shipped ladder, each rung warm-started from its committed set.
+FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
+  const auto& [train, dense, standard, held_out, held_k, held_c] = g;
+  FitOutcome out;
   out.report = {{"target", spec.target}, {"objective", "peak-rel"}, {"kappa_range", {spec.kappa_lo, spec.kappa_hi}},
                 {"cost_source", cost_source(spec.costs)}, {"ladder", ordered_json::array()}};
   out.text = fmt::format("sglab-acc ladder, kappa in [{}, {}] (float = float runtime vs double reference):\n",
@@ -875,6 +879,20 @@ FitOutcome fit_sglab_acc(const FitSpec& spec) {
     out.text += member_line(f, warm ? "  (warm start: committed JSON)" : "");
   }
   return out;
+}
+
+}  // namespace
+
+SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
+                                            const std::vector<SglabAccSample>& samples) {
+  return fit_coefficients_any(terms, degree, start, samples);
+}
+
+FitOutcome fit_sglab_acc(const FitSpec& spec) {
+  if (!spec.objective.empty() && spec.objective != "peak-rel")
+    throw std::invalid_argument(fmt::format("sglab-acc objective is 'peak-rel'; got '{}'", spec.objective));
+  const Grids g = grids_for(spec);
+  return spec.max_error ? fit_model_order(spec, g) : fit_ladder(spec, g);
 }
 
 }  // namespace sglab::fit

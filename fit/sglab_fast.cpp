@@ -214,6 +214,67 @@ std::vector<std::string> parameter_names() {
   return names;
 }
 
+
+// A polish of a converged set: one reweighting round, then the penalty form
+// for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short; a cold
+// start takes the engine's defaults.
+FitOptions fit_options(bool polish) {
+  FitOptions options;
+  if (polish) {
+    options.lawson_iterations = 1;
+    options.penalty_decades = 5;
+    options.solver_iterations = 50;
+  }
+  return options;
+}
+
+// The fitted set's errors on its training grid and on two grids no fit used.
+struct Measured {
+  double train_float = 0, held_float = 0, held_double = 0, std_float = 0, std_double = 0;
+  double worst_kappa = 0, worst_cosine = 0;  // of held_float
+};
+Measured measure(const SglabFastParams<double>& fitted, const std::vector<validate::ReferencePoint>& train, double lo,
+                 double hi) {
+  const auto held_out = reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
+  const auto standard = reference_grid(kappa_grid(lo, hi, 29), cosine_grid(41));
+  Measured m;
+  m.held_float = max_peak_rel<float>(fitted, held_out, &m.worst_kappa, &m.worst_cosine);
+  m.held_double = max_peak_rel<double>(fitted, held_out);
+  m.std_float = max_peak_rel<float>(fitted, standard);
+  m.std_double = max_peak_rel<double>(fitted, standard);
+  m.train_float = max_peak_rel<float>(fitted, train);
+  return m;
+}
+
+// The coefficients in SglabFastParams order: a, b, c, v (degree 4), q (monic: 4), kappa_max.
+ordered_json coefficients_json(const std::vector<double>& values, double hi) {
+  ordered_json coefficients;
+  std::size_t i = 0;
+  for (const char* poly : {"a", "b", "c", "v"}) {
+    coefficients[poly] = ordered_json::array();
+    for (std::size_t j = 0; j <= kDegree; ++j) coefficients[poly].push_back(values[i++]);
+  }
+  coefficients["q"] = ordered_json::array();
+  for (std::size_t j = 0; j < kDegree; ++j) coefficients["q"].push_back(values[i++]);
+  coefficients["kappa_max"] = hi;
+  return coefficients;
+}
+
+ordered_json achieved_json(double objective, double floor, const Measured& m, double lo, double hi) {
+  return {
+      {"objective", objective},
+      {"training_max_peak_rel_float", m.train_float},
+      {"per_kappa_floor", floor},
+      {"held_out_grid", fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]", kHeldOutKappas,
+                                    kHeldOutCosines, lo, hi)},
+      {"held_out_max_peak_rel_float", m.held_float},
+      {"held_out_max_peak_rel_double", m.held_double},
+      {"held_out_worst", {m.worst_kappa, m.worst_cosine}},
+      {"standard_max_peak_rel_float", m.std_float},
+      {"standard_max_peak_rel_double", m.std_double},
+  };
+}
+
 }  // namespace
 
 FitOutcome fit_sglab_fast(const FitSpec& spec) {
@@ -237,14 +298,6 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   std::optional<std::vector<double>> committed;
   if (!spec.cold_start) committed = committed_start(variant, lo, hi);
   params.values = committed ? *committed : rational_start(per, lo, hi);
-  FitOptions options;
-  if (committed) {
-    // A polish of a converged set: one reweighting round, then the penalty
-    // form for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short.
-    options.lawson_iterations = 1;
-    options.penalty_decades = 5;
-    options.solver_iterations = 50;
-  }
 
   // 3. Joint minimax on the runtime function.
   Residuals residuals;
@@ -253,45 +306,14 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
         make_residual(ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi}, kNumParams));
   double start_error = 0;
   for (double r : evaluate_residuals(residuals, params.values)) start_error = std::max(start_error, std::abs(r));
-  const FitResult result = fit(residuals, params, options);
-  const SglabFastParams<double> fitted = to_params(result.values, hi);
-
-  // Measurement on points never used in fitting.
-  const auto held_out = reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
-  const auto standard = reference_grid(kappa_grid(lo, hi, 29), cosine_grid(41));
-  double wk = 0, wc = 0;
-  const double held_float = max_peak_rel<float>(fitted, held_out, &wk, &wc);
-  const double held_double = max_peak_rel<double>(fitted, held_out);
-  const double std_float = max_peak_rel<float>(fitted, standard);
-  const double std_double = max_peak_rel<double>(fitted, standard);
-  const double train_float = max_peak_rel<float>(fitted, train);
-
-  ordered_json coefficients;
-  for (const char* poly : {"a", "b", "c", "v"}) coefficients[poly] = ordered_json::array();
-  {
-    std::size_t i = 0;
-    for (const char* poly : {"a", "b", "c", "v"})
-      for (std::size_t j = 0; j <= kDegree; ++j) coefficients[poly].push_back(result.values[i++]);
-    coefficients["q"] = ordered_json::array();
-    for (std::size_t j = 0; j < kDegree; ++j) coefficients["q"].push_back(result.values[i++]);
-  }
-  coefficients["kappa_max"] = hi;
+  const FitResult result = fit(residuals, params, fit_options(committed.has_value()));
+  const Measured m = measure(to_params(result.values, hi), train, lo, hi);
+  const ordered_json coefficients = coefficients_json(result.values, hi);
+  const ordered_json achieved = achieved_json(result.max_abs, floor, m, lo, hi);
 
   FitSpec recorded = spec;
   recorded.kappa_count = kTrainKappas;
   recorded.cosine_count = kTrainCosines;
-  ordered_json achieved = {
-      {"objective", result.max_abs},
-      {"training_max_peak_rel_float", train_float},
-      {"per_kappa_floor", floor},
-      {"held_out_grid", fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]", kHeldOutKappas,
-                                    kHeldOutCosines, lo, hi)},
-      {"held_out_max_peak_rel_float", held_float},
-      {"held_out_max_peak_rel_double", held_double},
-      {"held_out_worst", {wk, wc}},
-      {"standard_max_peak_rel_float", std_float},
-      {"standard_max_peak_rel_double", std_double},
-  };
   FitOutcome out;
   out.converged = result.converged;
   out.constant_sets.push_back(make_constant_set(
@@ -316,8 +338,8 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
       "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
       "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: float {:.4e}, "
       "double {:.4e}\n",
-      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs, kHeldOutKappas, kHeldOutCosines, held_float, wk, wc, held_double,
-      std_float, std_double);
+      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs, kHeldOutKappas,
+      kHeldOutCosines, m.held_float, m.worst_kappa, m.worst_cosine, m.held_double, m.std_float, m.std_double);
   return out;
 }
 

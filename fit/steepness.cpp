@@ -230,6 +230,43 @@ FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022, const std::vecto
   return out;
 }
 
+// The residuals of one objective: t(κ)/t*(κ) − 1 with t* the per-κ optimum on
+// 201 cosines (each t* appended to `t_opt`), or the irradiance peak_rel error
+// on the reference points.
+Residuals steepness_residuals(const std::string& objective, bool y2022, const std::vector<double>& kappas,
+                              const std::vector<validate::ReferencePoint>& ref, std::size_t parameters,
+                              std::vector<double>& t_opt) {
+  Residuals residuals;
+  if (objective == "optimal-t") {
+    // A denser cosine column for t*: 201 cosines.
+    const auto dense = cosine_grid(201);
+    for (double k : kappas) {
+      std::vector<validate::Query> column_q;
+      for (double c : dense) column_q.push_back({k, c});
+      const auto column = validate::reference_engine().evaluate(column_q);
+      const double guess = y2022 ? steepness2022(k) : steepness2024(k);
+      t_opt.push_back(optimal_steepness(y2022, column, guess));
+      residuals.push_back(make_residual(RelativeSteepnessResidual{y2022, k, t_opt.back()}, parameters));
+    }
+  } else {
+    for (const auto& r : ref)
+      residuals.push_back(make_residual(
+          IrradianceResidual{y2022, r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, parameters));
+  }
+  return residuals;
+}
+
+std::string describe_objective(const FitSpec& spec, const std::string& objective, bool y2022, std::size_t kappas,
+                               std::size_t cosines) {
+  return objective == "optimal-t"
+             ? fmt::format("minimax of t(kappa)/t*(kappa) - 1 over {} log-spaced kappa in [{}, {}]; t* minimaxes "
+                           "the {} over 201 cosines",
+                           kappas, spec.kappa_lo, spec.kappa_hi,
+                           y2022 ? "normalized hemispherical integral s" : "2024 interpolation factor")
+             : fmt::format("minimax of the {} irradiance peak_rel error over {} kappa x {} cosines, kappa in [{}, {}]",
+                           y2022 ? "tokuyoshi2022" : "tokuyoshi2024", kappas, cosines, spec.kappa_lo, spec.kappa_hi);
+}
+
 }  // namespace
 
 std::vector<double> optimal_steepness(const std::string& target, const std::vector<double>& kappas) {
@@ -265,24 +302,8 @@ FitOutcome fit_steepness(const FitSpec& spec) {
   Parameters params;
   params.names = names;
   params.values = published(y2022);
-  Residuals residuals;
   std::vector<double> t_opt;
-  if (objective == "optimal-t") {
-    // A denser cosine column for t*: 201 cosines.
-    const auto dense = cosine_grid(201);
-    for (double k : kappas) {
-      std::vector<validate::Query> column_q;
-      for (double c : dense) column_q.push_back({k, c});
-      const auto column = validate::reference_engine().evaluate(column_q);
-      const double guess = y2022 ? steepness2022(k) : steepness2024(k);
-      t_opt.push_back(optimal_steepness(y2022, column, guess));
-      residuals.push_back(make_residual(RelativeSteepnessResidual{y2022, k, t_opt.back()}, params.size()));
-    }
-  } else {
-    for (const auto& r : ref)
-      residuals.push_back(make_residual(
-          IrradianceResidual{y2022, r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, params.size()));
-  }
+  const Residuals residuals = steepness_residuals(objective, y2022, kappas, ref, params.size(), t_opt);
   const FitResult result = fit(residuals, params);
   const FitResult at_published = [&] {
     FitResult f;
@@ -301,15 +322,7 @@ FitOutcome fit_steepness(const FitSpec& spec) {
   }
   const double fit_irr = irradiance_error(y2022, result.values, ref);
   const double pub_irr = irradiance_error(y2022, params.values, ref);
-  const std::string objective_text =
-      objective == "optimal-t"
-          ? fmt::format("minimax of t(kappa)/t*(kappa) - 1 over {} log-spaced kappa in [{}, {}]; t* minimaxes the {} "
-                        "over 201 cosines",
-                        kappas.size(), spec.kappa_lo, spec.kappa_hi,
-                        y2022 ? "normalized hemispherical integral s" : "2024 interpolation factor")
-          : fmt::format("minimax of the {} irradiance peak_rel error over {} kappa x {} cosines, kappa in [{}, {}]",
-                        y2022 ? "tokuyoshi2022" : "tokuyoshi2024", kappas.size(), cosines.size(), spec.kappa_lo,
-                        spec.kappa_hi);
+  const std::string objective_text = describe_objective(spec, objective, y2022, kappas.size(), cosines.size());
   ordered_json achieved = {{"objective", result.max_abs}, {"irradiance_max_peak_rel", fit_irr}};
   FitOutcome out;
   out.converged = result.converged;
