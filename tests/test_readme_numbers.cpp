@@ -317,11 +317,6 @@ const Results& results() {
   return r;
 }
 
-// The "achieved" block of a constant set's provenance (`sglab fit` wrote it).
-nlohmann::json achieved(const std::string& set) {
-  return nlohmann::json::parse(slurp(kRoot / "data" / "constants" / (set + ".json"))).at("provenance").at("achieved");
-}
-
 // ---- prose: one row per stated number ---------------------------------------------
 
 // How a stated number relates to its source: the source rounded to the stated
@@ -548,29 +543,24 @@ TEST(ReadmeNumbers, EnvmapTableMatchesTheResults) {
   }
 }
 
-// sglab_acc.md: the fit's output (each member's errors as its constant set
-// records them), the held-out table and the GPU columns of the cost table
-// with every ratio to tokuyoshi2024.
+// sglab_acc.md: the fit report's cost column (the cost table's scalar ns
+// ratio; the rest of the report is the fitter's own output on a refit from the
+// committed sets, written verbatim by scripts/results.sh, so its errors move on
+// from the sets' provenance), the held-out table and the cost table with every
+// ratio to tokuyoshi2024.
 TEST(ResultsDocs, SglabAccMatchesTheResults) {
   const std::string doc = slurp(kResults / "sglab_acc.md");
   const Results& r = results();
   for (int n = 1; n <= 3; ++n) {
-    const auto a = achieved(fmt::format("sglab-acc-acc{}", n));
     const std::size_t line = doc.find(fmt::format("  N={} D=", n));
     ASSERT_NE(line, std::string::npos) << "sglab_acc.md has no fit row for N=" << n;
-    // N, D, coeffs, setup+eval ops, cost, weighted, standard(f), held-out(f), held-out(d), never-worse
-    // (floor@t24 is '-': no number).
+    // N, D, coeffs, setup+eval ops, cost, … (floor@t24 is '-': no number).
     const auto v = numbers_in(doc.substr(line, doc.find('\n', line) - line));
-    ASSERT_GE(v.size(), 11u);
+    ASSERT_GE(v.size(), 6u);
     const std::string what = fmt::format("sglab_acc.md fit row N={}", n);
     const double cost =
         r.ns_per_eval(fmt::format("sglab_acc{}", n), "scalar") / r.ns_per_eval("tokuyoshi2024", "scalar");
     expect_matches(v[5], cost, what + " cost (costs.json scalar ns ratio)");
-    expect_matches(v[6], a.at("objective"), what + " weighted");
-    expect_matches(v[7], a.at("standard_max_peak_rel_float"), what + " standard(f)");
-    expect_matches(v[8], a.at("held_out_max_peak_rel_float"), what + " held-out(f)");
-    expect_matches(v[9], a.at("held_out_max_peak_rel_double"), what + " held-out(d)");
-    expect_matches(v[10], a.at("held_out_never_worse_ratio"), what + " never-worse");
   }
   const auto held = table_after(doc, {"method", "float", "double", "worst κ (float)"});
   ASSERT_EQ(held.size(), 4u);
