@@ -270,34 +270,43 @@ void read_costs(Results& r) {
       r.ns[{e.at("method"), e.at("mode")}] = e.at("ns_per_eval");
 }
 
-// callgrind.csv (scripts/callgrind_costs.sh): method,mode,instructions.
-void read_callgrind(Results& r) {
-  std::istringstream in(slurp(kResults / "callgrind.csv"));
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "method,mode,instructions");
-  while (std::getline(in, line)) {
-    const std::size_t a = line.find(','), b = line.find(',', a + 1);
-    if (a == std::string::npos || b == std::string::npos) continue;
-    r.ir[{line.substr(0, a), line.substr(a + 1, b - a - 1)}] = std::stod(line.substr(b + 1));
-  }
-}
-
-// envmaps.csv's numbers: %.6e.
-constexpr int kCsvDigits = 7;
-
-void read_envmaps(Results& r) {
-  std::istringstream in(slurp(kResults / "envmaps.csv"));
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "map,lobes,fit,max_rel,rms_rel");
-  while (std::getline(in, line)) {
+// A CSV file of data/results (sglab writes no quoted fields): its header line
+// and its rows split at the commas.
+struct Csv {
+  std::string header;
+  std::vector<std::vector<std::string>> rows;
+};
+Csv read_csv(const std::string& name) {
+  std::istringstream in(slurp(kResults / name));
+  Csv csv;
+  std::getline(in, csv.header);
+  for (std::string line; std::getline(in, line);) {
     std::vector<std::string> f;
     for (std::size_t s = 0, c;; s = c + 1) {
       c = line.find(',', s);
       f.push_back(line.substr(s, c - s));
       if (c == std::string::npos) break;
     }
+    csv.rows.push_back(std::move(f));
+  }
+  return csv;
+}
+
+// callgrind.csv (scripts/callgrind_costs.sh): method,mode,instructions.
+void read_callgrind(Results& r) {
+  const Csv csv = read_csv("callgrind.csv");
+  EXPECT_EQ(csv.header, "method,mode,instructions");
+  for (const auto& f : csv.rows)
+    if (f.size() == 3) r.ir[{f[0], f[1]}] = std::stod(f[2]);
+}
+
+// envmaps.csv's numbers: %.6e.
+constexpr int kCsvDigits = 7;
+
+void read_envmaps(Results& r) {
+  const Csv csv = read_csv("envmaps.csv");
+  EXPECT_EQ(csv.header, "map,lobes,fit,max_rel,rms_rel");
+  for (const auto& f : csv.rows) {
     if (f.size() != 5) continue;
     r.envmap[{f[0], std::stoi(f[1]), f[2]}] = std::stod(f[3]);
     r.envmap_rms[{f[0], std::stoi(f[1]), f[2]}] = std::stod(f[4]);
@@ -766,19 +775,11 @@ TEST(ResultsDocs, EnvmapsMatchTheirCsv) {
 TEST(ResultsDocs, ParetoMatchesItsSources) {
   const Results& r = results();
   std::map<std::string, std::vector<std::string>> csv;
-  std::istringstream in(slurp(kResults / "pareto.csv"));
-  std::string line;
-  std::getline(in, line);
-  ASSERT_EQ(line, "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier");
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    for (std::size_t s = 0, c;; s = c + 1) {
-      c = line.find(',', s);
-      f.push_back(line.substr(s, c - s));
-      if (c == std::string::npos) break;
-    }
-    ASSERT_EQ(f.size(), 10u) << line;
-    ASSERT_EQ(f[7], "gpu:navi21") << line;
+  const Csv file = read_csv("pareto.csv");
+  ASSERT_EQ(file.header, "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier");
+  for (const auto& f : file.rows) {
+    ASSERT_EQ(f.size(), 10u) << f[0];
+    ASSERT_EQ(f[7], "gpu:navi21") << f[0];
     EXPECT_EQ(std::stod(f[5]), r.cycles(f[0])) << "pareto.csv cost " << f[0];
     // The float rows of the same standard-grid sweep, to the digit.
     EXPECT_DOUBLE_EQ(std::stod(f[8]), r.vulkan_err(f[0], "float")) << "pareto.csv max_peak_rel " << f[0];
