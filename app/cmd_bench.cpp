@@ -14,14 +14,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
-#include <tuple>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -29,9 +29,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "common/io.hpp"
 #include "report/cost.hpp"
 #include "report/cost_table.hpp"
-#include "common/io.hpp"
 #include "validate/table.hpp"
 
 namespace sglab::app {
@@ -47,10 +47,11 @@ struct BenchArgs {
   std::string command_line;  // as recorded in costs.json
 };
 
-double find_ns(const std::vector<report::Cost>& costs, report::CostKind kind, const std::string& method,
-               validate::FloatFormat f, report::CostMode mode) {
+double find_ns(const std::vector<report::Cost>& costs, report::CostKind kind,
+               const std::string& method, validate::FloatFormat f, report::CostMode mode) {
   for (const report::Cost& c : costs)
-    if (c.kind == kind && c.method == method && c.precision == f && c.mode == mode) return c.ns_per_eval;
+    if (c.kind == kind && c.method == method && c.precision == f && c.mode == mode)
+      return c.ns_per_eval;
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -58,16 +59,17 @@ double find_ns(const std::vector<report::Cost>& costs, report::CostKind kind, co
 // ratio, and for methods with the per-light split the float setup ns per
 // light and eval ns per shading point (empty otherwise).
 validate::Table summary_table(const std::vector<report::Cost>& costs) {
-  validate::Table t("Per method: ns/eval scalar and batch, batch speed-up, per-light setup ns/light and eval "
-                    "ns/point (methods with the split)",
-                    {{"kind"},
-                     {"method"},
-                     {"precision"},
-                     {"scalar_ns", 3},
-                     {"batch_ns", 3},
-                     {"batch_speedup", 3},
-                     {"setup_ns_per_light", 3},
-                     {"eval_ns_per_point", 3}});
+  validate::Table t(
+      "Per method: ns/eval scalar and batch, batch speed-up, per-light setup ns/light and eval "
+      "ns/point (methods with the split)",
+      {{"kind"},
+       {"method"},
+       {"precision"},
+       {"scalar_ns", 3},
+       {"batch_ns", 3},
+       {"batch_speedup", 3},
+       {"setup_ns_per_light", 3},
+       {"eval_ns_per_point", 3}});
   std::vector<std::tuple<report::CostKind, std::string, validate::FloatFormat>> keys;
   for (const report::Cost& c : costs) {
     const auto key = std::make_tuple(c.kind, c.method, c.precision);
@@ -79,8 +81,8 @@ validate::Table summary_table(const std::vector<report::Cost>& costs) {
   for (const auto& [kind, method, f] : keys) {
     const double scalar = find_ns(costs, kind, method, f, CostMode::scalar);
     const double batch = find_ns(costs, kind, method, f, CostMode::batch);
-    t.add_row({Table::text(report::to_string(kind)), Table::text(method), Table::text(validate::to_string(f)),
-               cell(scalar), cell(batch), cell(scalar / batch),
+    t.add_row({Table::text(report::to_string(kind)), Table::text(method),
+               Table::text(validate::to_string(f)), cell(scalar), cell(batch), cell(scalar / batch),
                cell(find_ns(costs, kind, method, f, CostMode::light_setup)),
                cell(find_ns(costs, kind, method, f, CostMode::light_eval))});
   }
@@ -121,13 +123,14 @@ class CollectingReporter : public benchmark::BenchmarkReporter {
 };
 
 // The cases --filter selects (all without one).
-std::vector<report::CostCase> selected_cases(const BenchArgs& args,
-                                            const std::shared_ptr<report::CostWorkload>& workload) {
+std::vector<report::CostCase> selected_cases(
+    const BenchArgs& args, const std::shared_ptr<report::CostWorkload>& workload) {
   std::regex filter;
   try {
     if (!args.filter.empty()) filter = std::regex(args.filter);
   } catch (const std::regex_error& e) {
-    throw InputError(fmt::format("--filter: '{}' is not a valid regex ({})", args.filter, e.what()));
+    throw InputError(
+        fmt::format("--filter: '{}' is not a valid regex ({})", args.filter, e.what()));
   }
   std::vector<report::CostCase> cases;
   for (auto& c : report::cost_cases(workload))
@@ -146,12 +149,13 @@ Timings time_cases(const std::vector<report::CostCase>& cases, const BenchArgs& 
   benchmark::ClearRegisteredBenchmarks();
   for (const report::CostCase& c : cases) {
     const report::CostCase* pc = &c;
-    benchmark::RegisterBenchmark(c.name().c_str(),
-                                 [pc](benchmark::State& state) {
-                                   for (auto _ : state) pc->run();
-                                   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
-                                                           static_cast<std::int64_t>(pc->evaluations));
-                                 })
+    benchmark::RegisterBenchmark(
+        c.name().c_str(),
+        [pc](benchmark::State& state) {
+          for (auto _ : state) pc->run();
+          state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                                  static_cast<std::int64_t>(pc->evaluations));
+        })
         ->Unit(benchmark::kNanosecond)
         ->UseRealTime()
         ->Threads(1)
@@ -168,23 +172,26 @@ Timings time_cases(const std::vector<report::CostCase>& cases, const BenchArgs& 
   for (const report::CostCase& c : cases) {
     const double ns = reporter.ns_per_iteration(c.name());
     if (ns < 0) throw std::runtime_error(fmt::format("bench: no result for {}", c.name()));
-    t.costs.push_back(
-        report::Cost{c.kind, c.method, c.refit, c.precision, c.mode, ns / static_cast<double>(c.evaluations)});
+    t.costs.push_back(report::Cost{c.kind, c.method, c.refit, c.precision, c.mode,
+                                   ns / static_cast<double>(c.evaluations)});
   }
   return t;
 }
 
 // Writes bench.{csv,md}, bench_summary.{csv,md} and costs.json (keeping the
 // GPU section `sglab gpucost` wrote) and prints the tables.
-void write_bench(const BenchArgs& args, const Timings& t, const std::optional<shader::gpu::Report>& kept_gpu_costs) {
+void write_bench(const BenchArgs& args, const Timings& t,
+                 const std::optional<shader::gpu::Report>& kept_gpu_costs) {
   const std::filesystem::path dir(args.out);
   const std::string timer = fmt::format(
-      "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry function "
-      "pointer per element, batch = batch pointer over all inputs, light_setup = ns per light, light_eval = ns "
+      "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry "
+      "function "
+      "pointer per element, batch = batch pointer over all inputs, light_setup = ns per light, "
+      "light_eval = ns "
       "per shading point",
       args.repetitions, args.min_time);
-  const validate::Table table =
-      report::cost_table(t.costs, fmt::format("ns per evaluation ({}; {})", timer, report::cost_input_description()));
+  const validate::Table table = report::cost_table(
+      t.costs, fmt::format("ns per evaluation ({}; {})", timer, report::cost_input_description()));
   const validate::Table summary = summary_table(t.costs);
 
   report::CostTable cost_table;
@@ -204,25 +211,33 @@ void write_bench(const BenchArgs& args, const Timings& t, const std::optional<sh
     fmt::print("{}\n", validate::to_json(table).dump(2));
     return;
   }
-  fmt::print("{}\n{}\nMachine: {}, {} cores; {} {} {}; 1-min load average {:.2f} at start, {:.2f} at end\n",
-             validate::to_markdown(summary), validate::to_markdown(table), cost_table.info.cpu, cost_table.info.cores,
-             cost_table.info.compiler_id, cost_table.info.compiler_version, cost_table.info.build_type, t.load_start,
-             t.load_end);
-  fmt::print("Written to {}: bench.{{csv,md}}, bench_summary.{{csv,md}}, costs.json\n", dir.string());
+  fmt::print(
+      "{}\n{}\nMachine: {}, {} cores; {} {} {}; 1-min load average {:.2f} at start, {:.2f} at "
+      "end\n",
+      validate::to_markdown(summary), validate::to_markdown(table), cost_table.info.cpu,
+      cost_table.info.cores, cost_table.info.compiler_id, cost_table.info.compiler_version,
+      cost_table.info.build_type, t.load_start, t.load_end);
+  fmt::print("Written to {}: bench.{{csv,md}}, bench_summary.{{csv,md}}, costs.json\n",
+             dir.string());
 }
 
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
-  auto* cmd = app.add_subcommand(
-      "bench", "ns per evaluation of every method and erf variant (float/double, scalar/batch), Google Benchmark");
+  auto* cmd = app.add_subcommand("bench",
+                                 "ns per evaluation of every method and erf variant (float/double, "
+                                 "scalar/batch), Google Benchmark");
   cmd->add_flag("--json", args->json, "print the table as JSON on stdout");
-  cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
-  cmd->add_option("--repetitions", args->repetitions, "repetitions per case; the median is reported")
+  cmd->add_option("--out", args->out, "output directory")
+      ->check(non_empty_path())
+      ->capture_default_str();
+  cmd->add_option("--repetitions", args->repetitions,
+                  "repetitions per case; the median is reported")
       ->check(count_in(1, std::numeric_limits<int>::max()))
       ->capture_default_str();
-  cmd->add_option("--filter", args->filter, "ECMAScript regex searched in kind/method/precision/mode");
+  cmd->add_option("--filter", args->filter,
+                  "ECMAScript regex searched in kind/method/precision/mode");
   cmd->add_option("--min-time", args->min_time, "seconds per repetition")->capture_default_str();
   cmd->callback([args, cmd] {
     args->command_line = "sglab bench";
@@ -235,11 +250,13 @@ void add_bench_command(CLI::App& app) {
     if (args->repetitions < 1)
       throw InputError(fmt::format("--repetitions: must be >= 1, got {}", args->repetitions));
     if (!(args->min_time > 0) || !(args->min_time <= 10))
-      throw InputError(fmt::format("--min-time: must be in (0, 10] seconds, got {}", args->min_time));
+      throw InputError(
+          fmt::format("--min-time: must be in (0, 10] seconds, got {}", args->min_time));
     // What `sglab gpucost` wrote into the same table stays (read before the
     // measurement, so a malformed table is reported at once).
     std::optional<shader::gpu::Report> kept_gpu_costs;
-    if (const auto existing = report::read_existing_cost_table(std::filesystem::path(args->out) / "costs.json"))
+    if (const auto existing =
+            report::read_existing_cost_table(std::filesystem::path(args->out) / "costs.json"))
       kept_gpu_costs = existing->gpu;
     const auto workload = report::make_cost_workload();
     const std::vector<report::CostCase> cases = selected_cases(*args, workload);

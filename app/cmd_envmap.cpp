@@ -19,17 +19,17 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
+#include <nlohmann/json.hpp>
 
 #include <sglab/registry.hpp>
 
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
-#include "envmap/envmap.hpp"
 #include "common/atomic_files.hpp"
-#include "report/envmap_report.hpp"
 #include "common/io.hpp"
+#include "envmap/envmap.hpp"
+#include "report/envmap_report.hpp"
 #include "report/pareto.hpp"
 
 namespace sglab::app {
@@ -66,11 +66,13 @@ json lobes_json(const std::vector<envmap::Lobe>& lobes) {
 }
 
 void print_lobes(const std::vector<envmap::Lobe>& lobes) {
-  fmt::print("  {:>3}  {:>28}  {:>10}  {:>36}\n", "#", "axis (x, y, z)", "sharpness", "amplitude (r, g, b)");
+  fmt::print("  {:>3}  {:>28}  {:>10}  {:>36}\n", "#", "axis (x, y, z)", "sharpness",
+             "amplitude (r, g, b)");
   for (std::size_t k = 0; k < lobes.size(); ++k) {
     const auto& l = lobes[k];
-    fmt::print("  {:>3}  {:>8.4f} {:>8.4f} {:>8.4f}    {:>10.4g}  {:>11.5g} {:>11.5g} {:>11.5g}\n", k, l.axis[0],
-               l.axis[1], l.axis[2], l.sharpness, l.amplitude[0], l.amplitude[1], l.amplitude[2]);
+    fmt::print("  {:>3}  {:>8.4f} {:>8.4f} {:>8.4f}    {:>10.4g}  {:>11.5g} {:>11.5g} {:>11.5g}\n",
+               k, l.axis[0], l.axis[1], l.axis[2], l.sharpness, l.amplitude[0], l.amplitude[1],
+               l.amplitude[2]);
   }
 }
 
@@ -109,7 +111,8 @@ void run_fit(const FitArgs& a, const std::string& command) {
   else if (a.objective == "irradiance")
     objective = envmap::Objective::irradiance;
   else
-    throw InputError(fmt::format("--objective: expected radiance or irradiance, got '{}'", a.objective));
+    throw InputError(
+        fmt::format("--objective: expected radiance or irradiance, got '{}'", a.objective));
   if (!a.out.empty()) io::check_output_path(a.out);
   const auto t0 = std::chrono::steady_clock::now();
   const envmap::Map map = envmap::read_map(a.file);
@@ -128,8 +131,10 @@ void run_fit(const FitArgs& a, const std::string& command) {
   const auto baseline = envmap::fit_baseline(work, a.lobes);
   const envmap::FitReport report = envmap::fit(work, exact_fit, options);
   progress.note("errors (reference engine)");
-  const auto e_base = envmap::irradiance_error(envmap::lobes_irradiance_exact(baseline, eval_normals), exact_eval);
-  const auto e_fit = envmap::irradiance_error(envmap::lobes_irradiance_exact(report.lobes, eval_normals), exact_eval);
+  const auto e_base =
+      envmap::irradiance_error(envmap::lobes_irradiance_exact(baseline, eval_normals), exact_eval);
+  const auto e_fit = envmap::irradiance_error(
+      envmap::lobes_irradiance_exact(report.lobes, eval_normals), exact_eval);
   progress.finish();
 
   json prov;
@@ -140,8 +145,9 @@ void run_fit(const FitArgs& a, const std::string& command) {
   prov["objective"] = a.objective;
   prov["fit_normals"] = options.fit_normals;
   prov["error_normals"] = a.normals;
-  prov["irradiance_error"] = "max and RMS over Fibonacci normals and RGB of |E_lobes - E_map| / max E_map; E_lobes "
-                             "exact (reference engine), E_map every pixel with its solid angle";
+  prov["irradiance_error"] =
+      "max and RMS over Fibonacci normals and RGB of |E_lobes - E_map| / max E_map; E_lobes "
+      "exact (reference engine), E_map every pixel with its solid angle";
   prov["max_rel"] = e_fit.max_rel;
   prov["rms_rel"] = e_fit.rms_rel;
   prov["baseline_max_rel"] = e_base.max_rel;
@@ -157,16 +163,20 @@ void run_fit(const FitArgs& a, const std::string& command) {
   if (a.json) {
     fmt::print("{}\n", scene.dump(2));
   } else {
-    fmt::print("map {}: {} x {}, fitted at {} x {}; {} lobes, {} objective ({} Ceres iterations{})\n", a.file,
-               map.width, map.height, work.width, work.height, a.lobes, a.objective, report.iterations,
-               report.converged ? ", converged" : ", stopped before convergence");
+    fmt::print(
+        "map {}: {} x {}, fitted at {} x {}; {} lobes, {} objective ({} Ceres iterations{})\n",
+        a.file, map.width, map.height, work.width, work.height, a.lobes, a.objective,
+        report.iterations, report.converged ? ", converged" : ", stopped before convergence");
     print_lobes(report.lobes);
-    fmt::print("irradiance error at {} Fibonacci normals (|E_lobes − E_map| / max E_map, lobes exact):\n", a.normals);
-    fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", "BakingLab baseline (fixed axes, NNLS)", e_base.max_rel,
-               e_base.rms_rel);
-    fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", fmt::format("sglab fit ({})", a.objective), e_fit.max_rel,
-               e_fit.rms_rel);
-    if (!a.out.empty()) fmt::print("wrote {} (sglab recommend --scene {} --budget E)\n", a.out, a.out);
+    fmt::print(
+        "irradiance error at {} Fibonacci normals (|E_lobes − E_map| / max E_map, lobes exact):\n",
+        a.normals);
+    fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", "BakingLab baseline (fixed axes, NNLS)",
+               e_base.max_rel, e_base.rms_rel);
+    fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", fmt::format("sglab fit ({})", a.objective),
+               e_fit.max_rel, e_fit.rms_rel);
+    if (!a.out.empty())
+      fmt::print("wrote {} (sglab recommend --scene {} --budget E)\n", a.out, a.out);
   }
   if (terminal()) fmt::print(stderr, "envmap fit: {:.2f} s\n", seconds_since(t0));
 }
@@ -177,7 +187,8 @@ void run_recommend(const RecommendArgs& a) {
     throw InputError(fmt::format("--budget: '{}' is not a finite number", a.budget));
   if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
   const auto precision = report::parse_precision(a.precision);
-  if (!precision) throw InputError(fmt::format("--precision: expected float or double, got '{}'", a.precision));
+  if (!precision)
+    throw InputError(fmt::format("--precision: expected float or double, got '{}'", a.precision));
   const auto t0 = std::chrono::steady_clock::now();
   const envmap::Map map = envmap::read_map(a.file);
   const envmap::Map work = envmap::working_copy(map);
@@ -192,8 +203,9 @@ void run_recommend(const RecommendArgs& a) {
   }
   const std::string cost_source = a.costs.fill(costs, *precision, 7, 0.01).text;
   io::Progress progress(fmt::format("envmap recommend {}", a.file), 0);
-  const report::EnvmapSelection sel = report::select_envmap_method(map, work, budget, a.max_lobes, a.normals, *precision, costs,
-                                               [&](const std::string& s) { progress.note(s); });
+  const report::EnvmapSelection sel =
+      report::select_envmap_method(map, work, budget, a.max_lobes, a.normals, *precision, costs,
+                                   [&](const std::string& s) { progress.note(s); });
   progress.finish();
 
   if (a.json) {
@@ -202,13 +214,15 @@ void run_recommend(const RecommendArgs& a) {
     doc["budget"] = budget;
     doc["precision"] = std::string(validate::to_string(*precision));
     doc["normals"] = a.normals;
-    doc["error"] = "max over normals and RGB of |E_method(lobes) - E_map| / max E_map (lobe fit + approximation)";
+    doc["error"] =
+        "max over normals and RGB of |E_method(lobes) - E_map| / max E_map (lobe fit + "
+        "approximation)";
     doc["cost"] = "lobes x the method's cost per evaluation (--cost; unit per row)";
     doc["cost_source"] = cost_source;
     auto pair = [](const std::optional<report::EnvmapCandidate>& c) -> json {
       if (!c) return nullptr;
-      return {{"lobes", c->lobes}, {"method", c->method}, {"error", c->error}, {"cost", c->cost},
-              {"cost_unit", c->cost_unit}, {"total_cost", c->total_cost}};
+      return {{"lobes", c->lobes}, {"method", c->method},       {"error", c->error},
+              {"cost", c->cost},   {"cost_unit", c->cost_unit}, {"total_cost", c->total_cost}};
     };
     doc["choice"] = pair(sel.choice);
     doc["runner_up"] = pair(sel.runner_up);
@@ -216,23 +230,27 @@ void run_recommend(const RecommendArgs& a) {
     for (const auto& c : sel.tried) tried.push_back(pair(c));
     doc["tried"] = std::move(tried);
     doc["lobe_fit_error"] = json::array();
-    for (const auto& [n, e] : sel.fit_error) doc["lobe_fit_error"].push_back({{"lobes", n}, {"max_rel", e}});
+    for (const auto& [n, e] : sel.fit_error)
+      doc["lobe_fit_error"].push_back({{"lobes", n}, {"max_rel", e}});
     fmt::print("{}\n", doc.dump(2));
   } else {
-    fmt::print("map {} ({} x {}): budget {} on the irradiance error (lobe fit + method, {}), {} normals\n", a.file,
-               map.width, map.height, budget, validate::to_string(*precision), a.normals);
-    fmt::print("error = max over normals and RGB of |E_method(lobes) − E_map| / max E_map; cost = lobes × cost per evaluation (--cost)\n\n");
-    fmt::print("  {:>5}  {:<24} {:>10} {:>9} {:>10}  {}\n", "lobes", "method", "error", "per eval", "per point",
-               "meets");
+    fmt::print(
+        "map {} ({} x {}): budget {} on the irradiance error (lobe fit + method, {}), {} normals\n",
+        a.file, map.width, map.height, budget, validate::to_string(*precision), a.normals);
+    fmt::print(
+        "error = max over normals and RGB of |E_method(lobes) − E_map| / max E_map; cost = lobes × "
+        "cost per evaluation (--cost)\n\n");
+    fmt::print("  {:>5}  {:<24} {:>10} {:>9} {:>10}  {}\n", "lobes", "method", "error", "per eval",
+               "per point", "meets");
     for (const auto& c : sel.tried)
-      fmt::print("  {:>5}  {:<24} {:>10.4g} {:>9.3g} {:>10.3g}  {}\n", c.lobes, c.method, c.error, c.cost,
-                 c.total_cost, c.error <= budget ? "yes" : "no");
+      fmt::print("  {:>5}  {:<24} {:>10.4g} {:>9.3g} {:>10.3g}  {}\n", c.lobes, c.method, c.error,
+                 c.cost, c.total_cost, c.error <= budget ? "yes" : "no");
     fmt::print("\n  lobe fit alone (exact SG irradiance):");
     for (const auto& [n, e] : sel.fit_error) fmt::print(" {} lobes {:.3g};", n, e);
     fmt::print("\n");
     auto describe = [](const report::EnvmapCandidate& c) {
-      return fmt::format("{} lobes with {} (error {:.4g}, {:.3g} {} per shading point)", c.lobes, c.method, c.error,
-                         c.total_cost, c.cost_unit);
+      return fmt::format("{} lobes with {} (error {:.4g}, {:.3g} {} per shading point)", c.lobes,
+                         c.method, c.error, c.total_cost, c.cost_unit);
     };
     if (sel.choice) {
       fmt::print("  choice:    {}\n", describe(*sel.choice));
@@ -251,14 +269,17 @@ void run_recommend(const RecommendArgs& a) {
 }  // namespace
 
 void add_envmap_command(CLI::App& app) {
-  auto* env = app.add_subcommand("envmap", "Real lighting: SG lobes fitted to HDR environment maps (OpenEXR, .hdr)");
+  auto* env = app.add_subcommand(
+      "envmap", "Real lighting: SG lobes fitted to HDR environment maps (OpenEXR, .hdr)");
   env->require_subcommand(1);
-  env->footer("Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth "
-              "φ = 2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
+  env->footer(
+      "Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth "
+      "φ = 2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
 
   {
     auto a = std::make_shared<DownsampleArgs>();
-    auto* cmd = env->add_subcommand("downsample", "Area-averaged copy of a map as float RGB OpenEXR");
+    auto* cmd =
+        env->add_subcommand("downsample", "Area-averaged copy of a map as float RGB OpenEXR");
     cmd->add_option("IN", a->in, "input map (OpenEXR or Radiance .hdr)")->required();
     cmd->add_option("OUT", a->out, "output OpenEXR file")->required()->check(non_empty_path());
     cmd->add_option("--width", a->width, "output width (divides the input width)")
@@ -272,7 +293,8 @@ void add_envmap_command(CLI::App& app) {
   }
   {
     auto a = std::make_shared<IrradianceArgs>();
-    auto* cmd = env->add_subcommand("irradiance", "The map's exact diffuse irradiance at Fibonacci normals, CSV");
+    auto* cmd = env->add_subcommand("irradiance",
+                                    "The map's exact diffuse irradiance at Fibonacci normals, CSV");
     cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
     cmd->add_option("--normals", a->normals, "number of Fibonacci normals")
         ->check(count_in(1, 1000000))
@@ -283,16 +305,19 @@ void add_envmap_command(CLI::App& app) {
       const auto e = envmap::irradiance(map, normals);
       std::string out = "nx,ny,nz,r,g,b\n";
       for (std::size_t k = 0; k < normals.size(); ++k)
-        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", normals[k][0], normals[k][1],
-                           normals[k][2], e[k][0], e[k][1], e[k][2]);
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", normals[k][0],
+                           normals[k][1], normals[k][2], e[k][0], e[k][1], e[k][2]);
       fmt::print("{}", out);
     });
   }
   {
     auto a = std::make_shared<FitArgs>();
-    auto* cmd = env->add_subcommand("fit", "SG lobes fitted to a map with Ceres; --out writes a scene file");
+    auto* cmd = env->add_subcommand(
+        "fit", "SG lobes fitted to a map with Ceres; --out writes a scene file");
     cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
-    cmd->add_option("--lobes", a->lobes, "number of SG lobes")->required()->check(count_in(0, 1 << 20));
+    cmd->add_option("--lobes", a->lobes, "number of SG lobes")
+        ->required()
+        ->check(count_in(0, 1 << 20));
     cmd->add_option("--objective", a->objective, "radiance or irradiance")->capture_default_str();
     cmd->add_option("--normals", a->normals, "Fibonacci normals the error is measured at")
         ->check(count_in(1, 100000))
@@ -305,9 +330,11 @@ void add_envmap_command(CLI::App& app) {
   {
     auto a = std::make_shared<RecommendArgs>();
     auto* cmd = env->add_subcommand(
-        "recommend", "Fewest lobes and cheapest irradiance method whose combined error meets a budget");
+        "recommend",
+        "Fewest lobes and cheapest irradiance method whose combined error meets a budget");
     cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
-    cmd->add_option("--budget", a->budget, "max irradiance error allowed, relative to the largest irradiance (> 0)")
+    cmd->add_option("--budget", a->budget,
+                    "max irradiance error allowed, relative to the largest irradiance (> 0)")
         ->required();
     cmd->add_option("--max-lobes", a->max_lobes, "largest lobe count tried")
         ->check(count_in(1, 256))
@@ -323,9 +350,11 @@ void add_envmap_command(CLI::App& app) {
   {
     auto a = std::make_shared<BaselinesArgs>();
     auto* cmd = env->add_subcommand(
-        "baselines", "Every map: BakingLab baseline vs radiance and irradiance fits, tables and figures");
+        "baselines",
+        "Every map: BakingLab baseline vs radiance and irradiance fits, tables and figures");
     cmd->add_option("--maps", a->maps, "folder of maps (default: data/envmaps of the project)");
-    cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")->check(non_empty_path());
+    cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")
+        ->check(non_empty_path());
     cmd->add_flag("--quick", a->quick, "12 lobes only, no curves or figures");
     cmd->callback([a] { report::run_envmap_baselines(a->maps, a->out, a->quick); });
   }

@@ -23,7 +23,8 @@
 namespace sglab::app {
 
 void add_eval_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("eval", "Evaluate one method at the kappa,cosine rows of a CSV file");
+  auto* cmd =
+      app.add_subcommand("eval", "Evaluate one method at the kappa,cosine rows of a CSV file");
   auto method = std::make_shared<std::string>();
   auto points = std::make_shared<std::string>();
   auto precision = std::make_shared<std::string>("float");
@@ -31,7 +32,8 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--method", *method, "method id (see `sglab methods`)")->required();
   cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")->required();
   cmd->add_option("--precision", *precision, "float | double")->capture_default_str();
-  cmd->add_option("--quantity", *quantity, "irradiance | hemispherical | normalized")->capture_default_str();
+  cmd->add_option("--quantity", *quantity, "irradiance | hemispherical | normalized")
+      ->capture_default_str();
   cmd->callback([method, points, precision, quantity] {
     if (*precision != "float" && *precision != "double")
       throw InputError(fmt::format("--precision must be float or double; got '{}'", *precision));
@@ -43,12 +45,14 @@ void add_eval_command(CLI::App& app) {
     else if (*quantity == "normalized")
       list = normalized_methods;
     else
-      throw InputError(fmt::format("--quantity must be irradiance, hemispherical or normalized; got '{}'", *quantity));
+      throw InputError(fmt::format(
+          "--quantity must be irradiance, hemispherical or normalized; got '{}'", *quantity));
     const Method* m = find_method(list, *method);
     if (!m) {
       std::string known;
       for (const Method& each : list) known += (known.empty() ? "" : ", ") + std::string(each.id);
-      throw InputError(fmt::format("unknown {} method '{}' (known: {})", *quantity, *method, known));
+      throw InputError(
+          fmt::format("unknown {} method '{}' (known: {})", *quantity, *method, known));
     }
     const bool in_float = *precision == "float";
     std::string out = "kappa,cosine,value\n";
@@ -63,13 +67,15 @@ void add_eval_command(CLI::App& app) {
         out += fmt::format("{:.17g},{:.17g},{:.9g}\n", q.kappa, q.cosine,
                            m->f32(static_cast<float>(q.cosine), static_cast<float>(q.kappa)));
       else
-        out += fmt::format("{:.17g},{:.17g},{:.17g}\n", q.kappa, q.cosine, m->f64(q.cosine, q.kappa));
+        out +=
+            fmt::format("{:.17g},{:.17g},{:.17g}\n", q.kappa, q.cosine, m->f64(q.cosine, q.kappa));
       if (out.size() >= (1 << 16)) write();
     };
     try {
       for_each_point(*points, row, in_float ? std::optional(io::kFloatFormat) : std::nullopt);
     } catch (const InputError&) {
-      if (rows > 0) write();  // every row before the bad one (nothing when the file itself is refused)
+      if (rows > 0)
+        write();  // every row before the bad one (nothing when the file itself is refused)
       std::fflush(stdout);
       throw;
     }

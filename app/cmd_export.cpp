@@ -14,26 +14,28 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "common/io.hpp"
+#include "export/gpu_cost.hpp"
+#include "export/shader_export.hpp"
 #include "fit/constants_io.hpp"
 #include "report/cost_table.hpp"
-#include "export/gpu_cost.hpp"
-#include "common/io.hpp"
-#include "export/shader_export.hpp"
 
 namespace sglab::app {
 
 namespace {
-
 
 // Objective, fit command, date and source of a constant set, on one line.
 std::string provenance_line(const fit::ordered_json& j) {
   const auto& p = j["provenance"];
   std::string prov;
   const auto add = [&](const std::string& s) { prov += (prov.empty() ? "" : "; ") + s; };
-  if (p.contains("objective") && p["objective"].is_string()) add("objective: " + p["objective"].get<std::string>());
-  if (p.contains("command") && p["command"].is_string()) add("fitted by `" + p["command"].get<std::string>() + "`");
+  if (p.contains("objective") && p["objective"].is_string())
+    add("objective: " + p["objective"].get<std::string>());
+  if (p.contains("command") && p["command"].is_string())
+    add("fitted by `" + p["command"].get<std::string>() + "`");
   if (p.contains("date") && p["date"].is_string()) add(p["date"].get<std::string>());
-  if (p.contains("source") && p["source"].is_string()) add("source: " + p["source"].get<std::string>());
+  if (p.contains("source") && p["source"].is_string())
+    add("source: " + p["source"].get<std::string>());
   // Older records cite internal working documents as "(seed NNN)"; exported
   // sources cite papers only.
   return std::regex_replace(prov, std::regex(R"( ?\(?(quoted in )?seed \d{3}\)?)"), "");
@@ -62,17 +64,17 @@ shader::ConstantSet read_constant_set(const std::string& path) {
   }
   s.provenance = fmt::format("from {}; {}", path, provenance_line(j));
   const auto& p = j["provenance"];
-  if (p.contains("achieved") && p["achieved"].is_object() && p["achieved"].contains("irradiance_max_peak_rel") &&
+  if (p.contains("achieved") && p["achieved"].is_object() &&
+      p["achieved"].contains("irradiance_max_peak_rel") &&
       p["achieved"]["irradiance_max_peak_rel"].is_number())
     s.achieved_irradiance_error = p["achieved"]["irradiance_max_peak_rel"].get<double>();
   return s;
 }
 
-
 // The error measured on Vulkan for `method` in the committed results
 // (data/results/vulkan_sweep.json, written by `sglab sweep --backend vulkan`).
-void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang, bool split,
-                      shader::Precision export_precision) {
+void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader::Language lang,
+                      bool split, shader::Precision export_precision) {
   const auto root = fit::find_project_root(std::filesystem::current_path());
   if (!root) return;  // not inside a checkout: the header names no measured error
   const auto file = *root / "data" / "results" / "vulkan_sweep.json";
@@ -80,15 +82,19 @@ void add_vulkan_error(shader::ErrorBudget& b, const std::string& method, shader:
   if (!std::filesystem::exists(file, ec)) return;
   try {
     const auto doc = nlohmann::json::parse(io::read_file(file));
-    const char* suffix = split ? "_split" : export_precision == shader::Precision::float16 ? "_half" : "";
-    const std::string precision = std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") + suffix;
+    const char* suffix = split                                            ? "_split"
+                         : export_precision == shader::Precision::float16 ? "_half"
+                                                                          : "";
+    const std::string precision =
+        std::string(lang == shader::Language::hlsl ? "vulkan_hlsl" : "vulkan") + suffix;
     for (const auto& rec : doc.at("results"))
-      if (rec.at("method") == method && rec.at("quantity") == "irradiance" && rec.at("precision") == precision &&
-          rec.at("max_peak_rel").is_number()) {
+      if (rec.at("method") == method && rec.at("quantity") == "irradiance" &&
+          rec.at("precision") == precision && rec.at("max_peak_rel").is_number()) {
         b.vulkan = rec["max_peak_rel"].get<double>();
-        b.vulkan_device = fmt::format("{}, {} export{}, data/results/vulkan_sweep.json",
-                                      doc.value("device", std::string("?")),
-                                      lang == shader::Language::hlsl ? "HLSL" : "GLSL", split ? " (split)" : "");
+        b.vulkan_device =
+            fmt::format("{}, {} export{}, data/results/vulkan_sweep.json",
+                        doc.value("device", std::string("?")),
+                        lang == shader::Language::hlsl ? "HLSL" : "GLSL", split ? " (split)" : "");
       }
   } catch (const std::exception& e) {
     throw std::runtime_error(fmt::format("{}: {}", file.string(), e.what()));
@@ -109,12 +115,13 @@ void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& export
   if (!path) return;
   const auto table = report::read_existing_cost_table(*path);
   if (!table || !table->gpu) return;
-  const std::string hash =
-      shader::gpu::spirv_hash(shader::gpu::export_shader(req.method, req.lang, exported, req.precision).spirv);
+  const std::string hash = shader::gpu::spirv_hash(
+      shader::gpu::export_shader(req.method, req.lang, exported, req.precision).spirv);
   for (shader::GpuCost& cost : req.gpu_cost)
     for (const shader::gpu::Row& row : table->gpu->rows)
-      if (row.family == cost.family && row.method == req.method && row.lang == req.lang && row.split == req.split &&
-          row.precision == shader::to_string(req.precision) && row.spirv_hash == hash)
+      if (row.family == cost.family && row.method == req.method && row.lang == req.lang &&
+          row.split == req.split && row.precision == shader::to_string(req.precision) &&
+          row.spirv_hash == hash)
         cost.inverse_throughput = row.stats.inverse_throughput;
   req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
 }
@@ -132,11 +139,13 @@ struct ExportArgs {
 void set_split(shader::ExportRequest& req) {
   const auto split = shader::split_methods();
   if (std::find(split.begin(), split.end(), req.method) == split.end())
-    throw InputError(fmt::format("--split: method '{}' has no per-light split; methods with one: {}", req.method,
-                                 fmt::join(split, ", ")));
+    throw InputError(
+        fmt::format("--split: method '{}' has no per-light split; methods with one: {}", req.method,
+                    fmt::join(split, ", ")));
   if (req.precision == shader::Precision::float16)
-    throw InputError("--split with --precision half: the per-light split export is float only (its light struct "
-                     "is std430 floats filled by the float runtime); use one or the other");
+    throw InputError(
+        "--split with --precision half: the per-light split export is float only (its light struct "
+        "is std430 floats filled by the float runtime); use one or the other");
   req.split = true;
   req.command += " --split";
 }
@@ -145,32 +154,41 @@ void set_split(shader::ExportRequest& req) {
 
 void add_export_command(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
-  auto* cmd = app.add_subcommand(
-      "export", "One irradiance method as self-contained GLSL 4.50, HLSL (SM6) or C++ source, constants baked in");
+  auto* cmd = app.add_subcommand("export",
+                                 "One irradiance method as self-contained GLSL 4.50, HLSL (SM6) or "
+                                 "C++ source, constants baked in");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or cpp")->required();
-  cmd->add_option("--method", args->method, "irradiance method id (see `sglab methods`)")->required();
+  cmd->add_option("--method", args->method, "irradiance method id (see `sglab methods`)")
+      ->required();
   cmd->add_option("--constants", args->constants,
-                  "constant-set JSON replacing the compiled-in set of the same type (e.g. one `sglab fit ... --out DIR` "
+                  "constant-set JSON replacing the compiled-in set of the same type (e.g. one "
+                  "`sglab fit ... --out DIR` "
                   "wrote)");
   cmd->add_flag("--split", args->split,
-                "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills it once per light, "
+                "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills "
+                "it once per light, "
                 "and sglab_irradiance_<ID>(light, float cosine) per pixel");
-  cmd->add_option("--precision", args->precision,
-                  "float, or half (16-bit floats: GLSL float16_t, HLSL half with 16-bit types; not for cpp)")
+  cmd->add_option(
+         "--precision", args->precision,
+         "float, or half (16-bit floats: GLSL float16_t, HLSL half with 16-bit types; not for cpp)")
       ->capture_default_str();
   cmd->callback([args] {
     const auto lang = shader::parse_language(args->lang);
-    if (!lang) throw InputError(fmt::format("--lang: expected glsl, hlsl or cpp, got '{}'", args->lang));
+    if (!lang)
+      throw InputError(fmt::format("--lang: expected glsl, hlsl or cpp, got '{}'", args->lang));
     const auto precision = shader::parse_precision(args->precision);
     if (!precision)
-      throw InputError(fmt::format("--precision: expected float or half, got '{}'", args->precision.substr(0, 40)));
+      throw InputError(fmt::format("--precision: expected float or half, got '{}'",
+                                   args->precision.substr(0, 40)));
     if (*precision == shader::Precision::float16 && *lang == shader::Language::cpp)
-      throw InputError("--precision half: the C++ export is float only (g++'s _Float16 may keep float "
-                       "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
+      throw InputError(
+          "--precision half: the C++ export is float only (g++'s _Float16 may keep float "
+          "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
     const auto known = shader::exportable_methods();
     if (std::find(known.begin(), known.end(), args->method) == known.end())
-      throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", args->method,
-                                   fmt::join(known, ", ")));
+      throw InputError(
+          fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}",
+                      args->method, fmt::join(known, ", ")));
     shader::ExportRequest req = shader::standard_request(*lang, args->method, *precision);
     if (args->split) set_split(req);
     // Provenance of the compiled-in sets from the JSON they were generated
@@ -202,8 +220,9 @@ void add_export_command(CLI::App& app) {
       }
     } catch (const std::invalid_argument& e) {
       // The method was checked above: what remains is about the --constants set.
-      throw InputError(args->constants.empty() ? std::string(e.what())
-                                               : fmt::format("--constants: {}: {}", args->constants, e.what()));
+      throw InputError(args->constants.empty()
+                           ? std::string(e.what())
+                           : fmt::format("--constants: {}: {}", args->constants, e.what()));
     }
     fmt::print("{}", result.source);
   });

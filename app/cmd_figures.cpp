@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "fit/targets.hpp"
 #include "report/cost_table.hpp"
 #include "report/figures.hpp"
-#include "fit/targets.hpp"
 
 namespace sglab::app {
 
@@ -27,15 +27,22 @@ struct FiguresArgs {
 
 void add_figures_command(CLI::App& app) {
   auto args = std::make_shared<FiguresArgs>();
-  auto* cmd = app.add_subcommand("figures", "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
-  cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
+  auto* cmd = app.add_subcommand("figures",
+                                 "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
+  cmd->add_option("--out", args->out, "output directory")
+      ->check(non_empty_path())
+      ->capture_default_str();
   cmd->add_option("--pareto", args->pareto,
-                  "Pareto CSV written by `sglab pareto`, repeatable: figure e draws one panel per cost source "
-                  "(--cost) in them, side by side (e.g. the GPU cost and the CPU batch one; skipped when absent)")
+                  "Pareto CSV written by `sglab pareto`, repeatable: figure e draws one panel per "
+                  "cost source "
+                  "(--cost) in them, side by side (e.g. the GPU cost and the CPU batch one; "
+                  "skipped when absent)")
       ->capture_default_str();
   cmd->add_option("--costs", args->costs,
-                  "cost table whose \"gpu\" section figure e tables beside a GPU panel (the other families' inverse "
-                  "throughput; default: data/results/costs.json of the project holding the working directory, if any)");
+                  "cost table whose \"gpu\" section figure e tables beside a GPU panel (the other "
+                  "families' inverse "
+                  "throughput; default: data/results/costs.json of the project holding the working "
+                  "directory, if any)");
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
   cmd->callback([args] {
     const auto start = std::chrono::steady_clock::now();
@@ -68,7 +75,8 @@ void add_figures_command(CLI::App& app) {
       fmt::print("{:<22} {}\n", f.id, files);
       if (!f.note.empty()) fmt::print("{:<22} note: {}\n", "", f.note);
     }
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fmt::print("Written to {} (index.md) in {:.1f} s\n", opt.out.string(), s);
   });
 }

@@ -5,8 +5,8 @@
 // `sglab fit all` runs every target at its standard settings.
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -15,14 +15,14 @@
 
 #include <fmt/format.h>
 
-#include "common/args.hpp"
 #include "app/commands.hpp"
-#include "fit/constants_io.hpp"
-#include "report/cost_table.hpp"
+#include "common/args.hpp"
 #include "common/io.hpp"
+#include "fit/constants_io.hpp"
 #include "fit/minimax.hpp"
 #include "fit/solver_log.hpp"
 #include "fit/targets.hpp"
+#include "report/cost_table.hpp"
 
 namespace sglab::app {
 
@@ -58,15 +58,18 @@ std::string taken_by(bool fit::FitTarget::*flag) { return " (" + users_of(flag) 
 // Any option the target does not take (fit::FitTarget) is refused, never
 // silently ignored; `all` passes --kappa, --cold-start and --costs on to the
 // targets that take them.
-void refuse_inapplicable(const std::string& target, const GivenOptions& given, const std::string& objective) {
+void refuse_inapplicable(const std::string& target, const GivenOptions& given,
+                         const std::string& objective) {
   using Flag = bool fit::FitTarget::*;
   const fit::FitTarget* row = fit::find_fit_target(target);
   if (!row && target != "all") return;  // unknown targets are reported by the caller
   const auto check = [&](bool is_given, Flag applies, const char* option) {
-    const bool all_takes = applies == &fit::FitTarget::kappa || applies == &fit::FitTarget::cold_start ||
+    const bool all_takes = applies == &fit::FitTarget::kappa ||
+                           applies == &fit::FitTarget::cold_start ||
                            applies == &fit::FitTarget::costs;
     if (!is_given || (row ? row->*applies : all_takes)) return;
-    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option, target, users_of(applies)));
+    throw InputError(fmt::format("{} does not apply to `fit {}` (it applies to: {})", option,
+                                 target, users_of(applies)));
   };
   check(given.precision, &fit::FitTarget::precision, "--precision");
   check(given.objective, &fit::FitTarget::objective, "--objective");
@@ -77,15 +80,19 @@ void refuse_inapplicable(const std::string& target, const GivenOptions& given, c
   check(given.costs, &fit::FitTarget::costs, "--costs");
   if (target == "lambda-d" && given.kappa && objective != "irradiance")
     throw InputError(
-        "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other lambda-d objectives are "
+        "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other "
+        "lambda-d objectives are "
         "integrals over the sphere, independent of κ)");
 }
 
-fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target, const std::string& command) {
+fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target,
+                       const std::string& command) {
   fit::FitSpec spec;
   spec.target = target;
   const auto precision = fit::parse_precision(o.precision);
-  if (!precision) throw InputError(fmt::format("--precision must be half, float or double; got '{}'", o.precision));
+  if (!precision)
+    throw InputError(
+        fmt::format("--precision must be half, float or double; got '{}'", o.precision));
   spec.precision = *precision;
   spec.objective = o.objective;
   spec.alpha_free = o.alpha_free;
@@ -124,8 +131,8 @@ fit::MethodCosts read_method_costs(const std::string& option) {
   }
   const report::CostTable table = report::read_cost_table(path);
   fit::MethodCosts costs;
-  costs.source = fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(), table.info.date, table.info.cpu,
-                             table.info.cores);
+  costs.source = fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(), table.info.date,
+                             table.info.cpu, table.info.cores);
   for (const auto& c : table.costs)
     if (c.kind == report::CostKind::irradiance && c.precision == validate::FloatFormat::binary32 &&
         c.mode == report::CostMode::scalar)
@@ -135,19 +142,21 @@ fit::MethodCosts read_method_costs(const std::string& option) {
 
 double achieved_objective(const fit::ordered_json& set) {
   const auto& prov = set["provenance"];
-  if (!prov.contains("achieved") || !prov["achieved"].contains("objective")) return std::numeric_limits<double>::infinity();
+  if (!prov.contains("achieved") || !prov["achieved"].contains("objective"))
+    return std::numeric_limits<double>::infinity();
   return prov["achieved"]["objective"].get<double>();
 }
 
 // The sets to write: each converged set unless an existing file in the output
 // folder is better (then only with --force). Appends a line per set to `log`.
-std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, const std::filesystem::path& out_dir,
-                                                bool force, std::string& log) {
+std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome,
+                                                const std::filesystem::path& out_dir, bool force,
+                                                std::string& log) {
   namespace fs = std::filesystem;
   std::vector<fit::ConstantSetFile> out;
   for (const auto& set : outcome.constant_sets) {
-    const fs::path path =
-        out_dir / fmt::format("{}-{}.json", set["target"].get<std::string>(), set["variant"].get<std::string>());
+    const fs::path path = out_dir / fmt::format("{}-{}.json", set["target"].get<std::string>(),
+                                                set["variant"].get<std::string>());
     if (!outcome.converged) {
       log += fmt::format("  not written: the fit did not converge ({})\n", path.string());
       continue;
@@ -157,8 +166,9 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, 
       try {
         const fit::ordered_json old = fit::load_constant_set(path);
         if (achieved_objective(old) < achieved_objective(set)) {
-          log += fmt::format("  kept {}: its objective {:.6e} beats the new {:.6e} (use --force to replace)\n",
-                             path.string(), achieved_objective(old), achieved_objective(set));
+          log += fmt::format(
+              "  kept {}: its objective {:.6e} beats the new {:.6e} (use --force to replace)\n",
+              path.string(), achieved_objective(old), achieved_objective(set));
           continue;
         }
       } catch (const fit::ConstantsError& e) {
@@ -176,8 +186,10 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome, 
 // the fit's text.
 fit::ordered_json diagnostics(std::size_t nonfinite, std::size_t messages, std::string& text) {
   if (nonfinite > 0)
-    text += fmt::format("  warning: {} residual evaluations were NaN or inf (a defect of the model on the search "
-                        "space)\n", nonfinite);
+    text += fmt::format(
+        "  warning: {} residual evaluations were NaN or inf (a defect of the model on the search "
+        "space)\n",
+        nonfinite);
   if (messages > 0)
     text += fmt::format("  warning: the solver logged {} messages; the latest: {}\n", messages,
                         fit::solver_messages().last);
@@ -215,11 +227,13 @@ std::vector<fit::FitSpec> fit_specs(const FitCliOptions& o) {
       }
   } else {
     if (!fit::find_fit_target(o.target))
-      throw InputError(fmt::format("unknown fit target '{}' (known: {}, all)", o.target, fit::fit_target_names()));
+      throw InputError(fmt::format("unknown fit target '{}' (known: {}, all)", o.target,
+                                   fit::fit_target_names()));
     specs.push_back(make_spec(o, o.target, command_of(o, o.target)));
   }
-  const bool needs_costs = std::any_of(specs.begin(), specs.end(),
-                                       [](const fit::FitSpec& s) { return fit::find_fit_target(s.target)->costs; });
+  const bool needs_costs = std::any_of(specs.begin(), specs.end(), [](const fit::FitSpec& s) {
+    return fit::find_fit_target(s.target)->costs;
+  });
   if (needs_costs) {
     const fit::MethodCosts costs = read_method_costs(o.costs);
     for (auto& s : specs) s.costs = costs;
@@ -230,7 +244,7 @@ std::vector<fit::FitSpec> fit_specs(const FitCliOptions& o) {
 // Where the results go.
 struct Destination {
   fs::path out_dir, header;
-  std::optional<fs::path> base_dir;      // the project's data/constants, if any
+  std::optional<fs::path> base_dir;       // the project's data/constants, if any
   std::vector<fit::SkippedFile> skipped;  // files of the folders read that are not constant sets
 };
 
@@ -259,10 +273,11 @@ Destination resolve_destination(const FitCliOptions& o) {
       try {
         fit::validate_header_sets(sets, files);
       } catch (const fit::ConstantsError& e) {
-        throw fit::ConstantsError(fmt::format(
-            "no sglab project at or above the working directory, so the header would hold only the sets in {}, "
-            "and {}: run inside a checkout, or use --dry-run",
-            d.out_dir.string(), e.what()));
+        throw fit::ConstantsError(
+            fmt::format("no sglab project at or above the working directory, so the header would "
+                        "hold only the sets in {}, "
+                        "and {}: run inside a checkout, or use --dry-run",
+                        d.out_dir.string(), e.what()));
       }
     }
   } catch (const fit::ConstantsError& e) {
@@ -281,7 +296,8 @@ struct FitRuns {
 
 // Runs every fit in turn (progress on a terminal); prints each fit's text
 // unless the output is JSON.
-FitRuns run_fits(const std::vector<fit::FitSpec>& specs, const FitCliOptions& o, const Destination& d) {
+FitRuns run_fits(const std::vector<fit::FitSpec>& specs, const FitCliOptions& o,
+                 const Destination& d) {
   FitRuns runs;
   io::Progress progress("fit", specs.size());
   for (const auto& spec : specs) {
@@ -289,19 +305,22 @@ FitRuns run_fits(const std::vector<fit::FitSpec>& specs, const FitCliOptions& o,
     const std::size_t nonfinite_before = fit::nonfinite_residual_evaluations();
     const std::size_t messages_before = fit::solver_messages().count;
     try {
-      io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);  // open-ended: counts Ceres solves
+      io::Progress solves(fmt::format("fit {}, solves", spec.target),
+                          0);  // open-ended: counts Ceres solves
       fit::FitProgressScope scope(solves);
       outcome = fit::run_fit(spec);
     } catch (const std::invalid_argument& e) {
       throw InputError(e.what());
     }
-    outcome.report["diagnostics"] = diagnostics(fit::nonfinite_residual_evaluations() - nonfinite_before,
-                                                fit::solver_messages().count - messages_before, outcome.text);
+    outcome.report["diagnostics"] =
+        diagnostics(fit::nonfinite_residual_evaluations() - nonfinite_before,
+                    fit::solver_messages().count - messages_before, outcome.text);
     runs.all_converged = runs.all_converged && outcome.converged;
     progress.advance();
     if (!o.json) fmt::print("{}", outcome.text);
     if (!o.dry_run)
-      for (auto& f : sets_to_write(outcome, d.out_dir, o.force, runs.log)) runs.to_write.push_back(std::move(f));
+      for (auto& f : sets_to_write(outcome, d.out_dir, o.force, runs.log))
+        runs.to_write.push_back(std::move(f));
     outcome.report["command"] = spec.command;
     runs.reports.push_back(outcome.report);
   }
@@ -333,48 +352,61 @@ fit::ordered_json write_results(FitRuns& runs, Destination& d) {
 
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
-  auto* cmd = app.add_subcommand("fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
+  auto* cmd = app.add_subcommand(
+      "fit", "Refit constants with Ceres and write data/constants/*.json + the runtime header");
   std::string targets_help = "what to fit:";
-  for (const auto& t : fit::fit_targets()) targets_help += fmt::format("\n  {:<15} {}", t.name, t.help);
+  for (const auto& t : fit::fit_targets())
+    targets_help += fmt::format("\n  {:<15} {}", t.name, t.help);
   targets_help += fmt::format("\n  {:<15} every target at its standard settings", "all");
   cmd->add_option("target", o->target, targets_help)->required();
   auto* precision = cmd->add_option("--precision", o->precision,
-                                    "working precision: half | float | double" + taken_by(&fit::FitTarget::precision))
+                                    "working precision: half | float | double" +
+                                        taken_by(&fit::FitTarget::precision))
                         ->capture_default_str();
-  auto* objective = cmd->add_option("--objective", o->objective,
-                                    "the target's objective (see the list above)" + taken_by(&fit::FitTarget::objective));
-  auto* kappa = cmd->add_option("--kappa", o->kappa,
-                                "κ range LO:HI of the fit (default 1e-3:1e4; LO must not round to 0 in the working "
-                                "precision; lambda-d only with --objective irradiance)" +
-                                    taken_by(&fit::FitTarget::kappa));
-  auto* max_error = cmd->add_option("--max-error", o->max_error,
-                                    "model order: the smallest model meeting this error (erf: degrees and split; "
-                                    "steepness: rational order of t; sglab-acc: the member)" +
-                                        taken_by(&fit::FitTarget::max_error));
-  auto* alpha_free = cmd->add_flag("--alpha-free", o->alpha_free,
-                                   "α free instead of tied by energy conservation" + taken_by(&fit::FitTarget::alpha_free));
-  auto* cold_start = cmd->add_flag("--cold-start", o->cold_start,
-                                   "fit from scratch instead of polishing the committed constant set" +
-                                       taken_by(&fit::FitTarget::cold_start));
+  auto* objective = cmd->add_option(
+      "--objective", o->objective,
+      "the target's objective (see the list above)" + taken_by(&fit::FitTarget::objective));
+  auto* kappa = cmd->add_option(
+      "--kappa", o->kappa,
+      "κ range LO:HI of the fit (default 1e-3:1e4; LO must not round to 0 in the working "
+      "precision; lambda-d only with --objective irradiance)" +
+          taken_by(&fit::FitTarget::kappa));
+  auto* max_error =
+      cmd->add_option("--max-error", o->max_error,
+                      "model order: the smallest model meeting this error (erf: degrees and split; "
+                      "steepness: rational order of t; sglab-acc: the member)" +
+                          taken_by(&fit::FitTarget::max_error));
+  auto* alpha_free = cmd->add_flag(
+      "--alpha-free", o->alpha_free,
+      "α free instead of tied by energy conservation" + taken_by(&fit::FitTarget::alpha_free));
+  auto* cold_start =
+      cmd->add_flag("--cold-start", o->cold_start,
+                    "fit from scratch instead of polishing the committed constant set" +
+                        taken_by(&fit::FitTarget::cold_start));
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
-  auto* costs = cmd->add_option("--costs", o->costs,
-                                "cost table written by `sglab bench` for the cost column (default: "
-                                "data/results/costs.json of the project holding the working directory, if any)" +
-                                    taken_by(&fit::FitTarget::costs));
+  auto* costs = cmd->add_option(
+      "--costs", o->costs,
+      "cost table written by `sglab bench` for the cost column (default: "
+      "data/results/costs.json of the project holding the working directory, if any)" +
+          taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--out", o->out_dir,
-                  "directory of constant-set JSON files (default: data/constants of the sglab project found at or "
+                  "directory of constant-set JSON files (default: data/constants of the sglab "
+                  "project found at or "
                   "above the working directory)")
       ->check(non_empty_path());
-  cmd->add_option("--header", o->header,
-                  "runtime header to regenerate (default: the project's include/sglab/constants.hpp when --out is "
-                  "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
-                  "checkout). The header holds the project's sets with those of --out in their place")
+  cmd->add_option(
+         "--header", o->header,
+         "runtime header to regenerate (default: the project's include/sglab/constants.hpp when "
+         "--out is "
+         "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
+         "checkout). The header holds the project's sets with those of --out in their place")
       ->check(non_empty_path());
   cmd->callback([o, precision, objective, kappa, max_error, alpha_free, cold_start, costs] {
-    const GivenOptions given{precision->count() > 0,  objective->count() > 0,  kappa->count() > 0,
-                             max_error->count() > 0,  alpha_free->count() > 0, cold_start->count() > 0,
+    const GivenOptions given{precision->count() > 0,  objective->count() > 0,
+                             kappa->count() > 0,      max_error->count() > 0,
+                             alpha_free->count() > 0, cold_start->count() > 0,
                              costs->count() > 0};
     refuse_inapplicable(o->target, given, o->objective);
     const std::vector<fit::FitSpec> specs = fit_specs(*o);
@@ -382,16 +414,20 @@ void add_fit_command(CLI::App& app) {
 
     const auto start = std::chrono::steady_clock::now();
     FitRuns runs = run_fits(specs, *o, dest);
-    const fit::ordered_json written = o->dry_run ? fit::ordered_json::array() : write_results(runs, dest);
+    const fit::ordered_json written =
+        o->dry_run ? fit::ordered_json::array() : write_results(runs, dest);
     // The report (stdout) is the same for the same inputs: no timing in it.
     // The time taken is a terminal's progress information.
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o->json) {
-      fit::ordered_json out = runs.reports.size() == 1 ? runs.reports[0] : fit::ordered_json{{"fits", runs.reports}};
+      fit::ordered_json out =
+          runs.reports.size() == 1 ? runs.reports[0] : fit::ordered_json{{"fits", runs.reports}};
       out["dry_run"] = o->dry_run;
       out["written"] = written;
       out["skipped"] = fit::ordered_json::array();
-      for (const auto& f : dest.skipped) out["skipped"].push_back({{"file", f.file.string()}, {"reason", f.reason}});
+      for (const auto& f : dest.skipped)
+        out["skipped"].push_back({{"file", f.file.string()}, {"reason", f.reason}});
       fmt::print("{}\n", out.dump(2));
     } else {
       fmt::print("{}", runs.log);
@@ -399,7 +435,8 @@ void add_fit_command(CLI::App& app) {
     }
     std::fflush(stdout);
     if (io::stderr_is_terminal()) fmt::print(stderr, "fit took {:.1f} s\n", secs);
-    if (!runs.all_converged) throw std::runtime_error("a fit did not converge (see above); nothing was written for it");
+    if (!runs.all_converged)
+      throw std::runtime_error("a fit did not converge (see above); nothing was written for it");
   });
 }
 

@@ -13,10 +13,10 @@
 #include <fmt/ranges.h>
 
 #include "app/commands.hpp"
+#include "common/io.hpp"
+#include "export/gpu_cost.hpp"
 #include "report/cost_source.hpp"
 #include "report/cost_table.hpp"
-#include "export/gpu_cost.hpp"
-#include "common/io.hpp"
 
 namespace sglab::app {
 
@@ -44,8 +44,9 @@ std::vector<std::string> checked_families(const std::vector<std::string>& asked)
     for (const gpu::Family& f : gpu::kDefaultFamilies) families.emplace_back(f.name);
   for (const std::string& f : asked) {
     if (!report::is_gpu_family_name(f))
-      throw InputError(fmt::format("--families: '{}' is not a chip name (lower-case letters and digits, e.g. navi21)",
-                                   f.substr(0, 40)));
+      throw InputError(fmt::format(
+          "--families: '{}' is not a chip name (lower-case letters and digits, e.g. navi21)",
+          f.substr(0, 40)));
     if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);
   }
   return families;
@@ -55,7 +56,8 @@ std::vector<shader::Precision> checked_precisions(const std::string& precision) 
   if (precision == "float") return {shader::Precision::float32};
   if (precision == "half") return {shader::Precision::float16};
   if (precision == "both") return {shader::Precision::float32, shader::Precision::float16};
-  throw InputError(fmt::format("--precision: expected float, half or both, got '{}'", precision.substr(0, 40)));
+  throw InputError(
+      fmt::format("--precision: expected float, half or both, got '{}'", precision.substr(0, 40)));
 }
 
 std::vector<std::string> checked_methods(const std::vector<std::string>& asked) {
@@ -63,8 +65,9 @@ std::vector<std::string> checked_methods(const std::vector<std::string>& asked) 
   if (asked.empty()) return known;
   for (const std::string& m : asked)
     if (std::find(known.begin(), known.end(), m) == known.end())
-      throw InputError(fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", m,
-                                   fmt::join(known, ", ")));
+      throw InputError(
+          fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}", m,
+                      fmt::join(known, ", ")));
   return asked;
 }
 
@@ -90,22 +93,24 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
   }
   table->gpu = report;
   report::write_cost_table(*table, table_path);
-  io::write_file_atomic(dir / "gpu_costs.md",
-                        fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
-                                    "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
-                                    "the sweep's compute wrapper minus the same wrapper around a trivial body "
-                                    "(VGPRs and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate "
-                                    "of the cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and "
-                                    "HLSL exports are the same code with the same control flow (a conditional "
-                                    "with a costly arm is an if, never ?:, which glslang's HLSL front end "
-                                    "evaluates on both sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse "
-                                    "throughputs within 5% on navi21 and gfx1100.\n\n{}",
-                                    report.driver, report.command, gpu::to_markdown(report)));
+  io::write_file_atomic(
+      dir / "gpu_costs.md",
+      fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
+                  "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
+                  "the sweep's compute wrapper minus the same wrapper around a trivial body "
+                  "(VGPRs and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate "
+                  "of the cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and "
+                  "HLSL exports are the same code with the same control flow (a conditional "
+                  "with a costly arm is an if, never ?:, which glslang's HLSL front end "
+                  "evaluates on both sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse "
+                  "throughputs within 5% on navi21 and gfx1100.\n\n{}",
+                  report.driver, report.command, gpu::to_markdown(report)));
 }
 
 // The (method, split) pairs to cost: unsplit rows for every method, then
 // split rows for those with a split form (as --form asks).
-std::vector<std::pair<std::string, bool>> costed_forms(const GpucostArgs& a, const std::vector<std::string>& methods) {
+std::vector<std::pair<std::string, bool>> costed_forms(const GpucostArgs& a,
+                                                       const std::vector<std::string>& methods) {
   const auto split_ids = shader::split_methods();
   std::vector<std::pair<std::string, bool>> forms;
   for (bool split : {false, true})
@@ -119,85 +124,106 @@ std::vector<std::pair<std::string, bool>> costed_forms(const GpucostArgs& a, con
 // Measures (or with --disasm disassembles) and prints / writes the results.
 // Throws gpu::Unavailable when RADV cannot create a null device.
 void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& families,
-                        const std::vector<shader::Language>& languages, const std::vector<std::string>& methods,
+                        const std::vector<shader::Language>& languages,
+                        const std::vector<std::string>& methods,
                         const std::vector<shader::Precision>& precisions) {
   const auto manifest = gpu::find_radv_manifest();
   if (!manifest)
-    throw gpu::Unavailable("no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
-                           "mesa-vulkan-drivers");
+    throw gpu::Unavailable(
+        "no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
+        "mesa-vulkan-drivers");
 
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
+  if (ec)
+    throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
   if (a.disasm) {
     const bool split = a.form == "split";
     const gpu::Shader s = split ? gpu::split_method_shader(methods[0], languages[0])
                                 : gpu::method_shader(methods[0], languages[0], precisions[0]);
-    const char* option = split ? " --form split" : precisions[0] == shader::Precision::float16 ? " --precision half" : "";
-    fmt::print("; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of the whole "
-               "pipeline: the sweep's compute wrapper ({}) around the export\n{}",
-               methods[0], families[0], shader::to_string(languages[0]), option,
-               split ? "one float load, the light struct at the workgroup's index, one float store"
-                     : "one float2 load, one float store",
-               gpu::disassemble(self, *manifest, families[0], s));
+    const char* option = split                                         ? " --form split"
+                         : precisions[0] == shader::Precision::float16 ? " --precision half"
+                                                                       : "";
+    fmt::print(
+        "; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of "
+        "the whole "
+        "pipeline: the sweep's compute wrapper ({}) around the export\n{}",
+        methods[0], families[0], shader::to_string(languages[0]), option,
+        split ? "one float load, the light struct at the workgroup's index, one float store"
+              : "one float2 load, one float store",
+        gpu::disassemble(self, *manifest, families[0], s));
     return;
   }
   const auto forms = costed_forms(a, methods);
   std::size_t exports = 0;
   for (shader::Precision precision : precisions)
-    for (const auto& [m, split] : forms) exports += split && precision == shader::Precision::float16 ? 0 : 1;
+    for (const auto& [m, split] : forms)
+      exports += split && precision == shader::Precision::float16 ? 0 : 1;
   io::Progress progress("gpucost", families.size() + exports * languages.size());
   std::vector<gpu::Shader> shaders;
   for (shader::Precision precision : precisions)
     for (shader::Language lang : languages) {
       shaders.push_back(gpu::baseline_shader(lang, precision));
       for (const auto& [m, split] : forms) {
-        if (split && precision == shader::Precision::float16) continue;  // the split export is float only
-        progress.note(fmt::format("export {}{} ({}, {})", m, split ? " --split" : "", shader::to_string(lang),
-                                  shader::to_string(precision)));
-        shaders.push_back(split ? gpu::split_method_shader(m, lang) : gpu::method_shader(m, lang, precision));
+        if (split && precision == shader::Precision::float16)
+          continue;  // the split export is float only
+        progress.note(fmt::format("export {}{} ({}, {})", m, split ? " --split" : "",
+                                  shader::to_string(lang), shader::to_string(precision)));
+        shaders.push_back(split ? gpu::split_method_shader(m, lang)
+                                : gpu::method_shader(m, lang, precision));
         progress.advance();
       }
     }
-  gpu::Report report = gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
-    progress.note(fmt::format("ACO, {}", family));
-    progress.advance();
-  });
+  gpu::Report report =
+      gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
+        progress.note(fmt::format("ACO, {}", family));
+        progress.advance();
+      });
   progress.finish();
   report.command = command_line(a);
   if (!a.out.empty()) write_outputs(report, a.out);
   if (a.json)
     fmt::print("{}\n", gpu::to_json(report).dump(2));
   else
-    fmt::print("GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler estimate)\n\n{}",
-               report.driver, gpu::to_markdown(report));
+    fmt::print(
+        "GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler "
+        "estimate)\n\n{}",
+        report.driver, gpu::to_markdown(report));
 }
 
 }  // namespace
 
 void add_gpucost_command(CLI::App& app) {
   auto args = std::make_shared<GpucostArgs>();
-  auto* cmd = app.add_subcommand(
-      "gpucost", "GPU cost of every exported method from AMD's shader compiler (ACO on Mesa's RADV null devices)");
+  auto* cmd = app.add_subcommand("gpucost",
+                                 "GPU cost of every exported method from AMD's shader compiler "
+                                 "(ACO on Mesa's RADV null devices)");
   cmd->add_option("--families,--family", args->families,
-                  "comma-separated AMD chips (RADV_FORCE_FAMILY names; default polaris10,vega10,navi10,navi21,gfx1100)")
+                  "comma-separated AMD chips (RADV_FORCE_FAMILY names; default "
+                  "polaris10,vega10,navi10,navi21,gfx1100)")
       ->delimiter(',');
-  cmd->add_option("--method", args->methods, "method id (repeatable; default every exportable method)");
+  cmd->add_option("--method", args->methods,
+                  "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
   cmd->add_option("--form", args->form,
-                  "unsplit, split (the per-pixel function of `sglab export --split`, rows with split = true, for the "
+                  "unsplit, split (the per-pixel function of `sglab export --split`, rows with "
+                  "split = true, for the "
                   "methods that have one) or both")
       ->capture_default_str();
-  cmd->add_option("--precision", args->precision,
-                  "float, half (`sglab export --precision half`, rows with precision \"half\") or both")
+  cmd->add_option(
+         "--precision", args->precision,
+         "float, half (`sglab export --precision half`, rows with precision \"half\") or both")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
-  cmd->add_option("--out", args->out, "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
+  cmd->add_option("--out", args->out,
+                  "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
       ->check(non_empty_path());
   cmd->add_flag("--skip-unavailable", args->skip_unavailable,
-                "when RADV cannot create a null device, say why and exit 0 without writing anything (sglab run)");
+                "when RADV cannot create a null device, say why and exit 0 without writing "
+                "anything (sglab run)");
   cmd->add_flag("--disasm", args->disasm,
-                "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl]) instead of the table");
+                "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl]) "
+                "instead of the table");
   cmd->add_option("--worker-family", args->worker_family)->group("");
   cmd->add_option("--worker-dir", args->worker_dir)->group("");
   cmd->callback([args] {
@@ -209,23 +235,28 @@ void add_gpucost_command(CLI::App& app) {
     const auto languages = checked_languages(args->lang);
     const auto methods = checked_methods(args->methods);
     if (args->form != "unsplit" && args->form != "split" && args->form != "both")
-      throw InputError(fmt::format("--form: expected unsplit, split or both, got '{}'", args->form.substr(0, 40)));
+      throw InputError(fmt::format("--form: expected unsplit, split or both, got '{}'",
+                                   args->form.substr(0, 40)));
     if (args->form == "split") {
       const auto split = shader::split_methods();
       for (const std::string& m : methods)
         if (std::find(split.begin(), split.end(), m) == split.end() && !args->methods.empty())
-          throw InputError(fmt::format("--form split: method '{}' has no per-light split; methods with one: {}", m,
-                                       fmt::join(split, ", ")));
+          throw InputError(
+              fmt::format("--form split: method '{}' has no per-light split; methods with one: {}",
+                          m, fmt::join(split, ", ")));
     }
     const auto precisions = checked_precisions(args->precision);
     if (args->form == "split" && args->precision == "half")
-      throw InputError("--form split with --precision half: the per-light split export is float only (its light "
-                       "struct is std430 floats filled by the float runtime); use --precision float");
-    if (args->disasm && (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
-                         precisions.size() != 1 ||
-                         args->json || !args->out.empty()))
-      throw InputError("--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one --precision, "
-                       "and no --json or --out (--form split: the split export)");
+      throw InputError(
+          "--form split with --precision half: the per-light split export is float only (its light "
+          "struct is std430 floats filled by the float runtime); use --precision float");
+    if (args->disasm &&
+        (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
+         precisions.size() != 1 || args->json || !args->out.empty()))
+      throw InputError(
+          "--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one "
+          "--precision, "
+          "and no --json or --out (--form split: the split export)");
     try {
       measure_and_report(*args, families, languages, methods, precisions);
     } catch (const gpu::Unavailable& e) {

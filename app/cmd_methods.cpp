@@ -20,10 +20,12 @@ namespace sglab::app {
 void add_methods_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("methods", "List every method id with its source and constants");
   auto json = std::make_shared<bool>(false);
-  cmd->add_flag("--json", *json, "print every method as JSON: id, origin, source, constant sets, per-light split");
+  cmd->add_flag("--json", *json,
+                "print every method as JSON: id, origin, source, constant sets, per-light split");
   cmd->callback([json] {
     if (*json) {
-      // {"irradiance": [{id, origin, source, constants: [...], per_light_split}], "hemispherical": [...],
+      // {"irradiance": [{id, origin, source, constants: [...], per_light_split}], "hemispherical":
+      // [...],
       //  "normalized": [...], "erf": [{id, source}]}
       auto constant_sets = [](std::string_view text) {
         nlohmann::ordered_json sets = nlohmann::ordered_json::array();
@@ -42,11 +44,12 @@ void add_methods_command(CLI::App& app) {
       auto list = [&](std::span<const Method> methods) {
         nlohmann::ordered_json a = nlohmann::ordered_json::array();
         for (const Method& m : methods)
-          a.push_back({{"id", std::string(m.id)},
-                       {"origin", std::string(to_string(m.origin))},
-                       {"source", std::string(m.source)},
-                       {"constants", constant_sets(m.constants)},
-                       {"per_light_split", m.light_setup32 != nullptr && m.light_eval32 != nullptr}});
+          a.push_back(
+              {{"id", std::string(m.id)},
+               {"origin", std::string(to_string(m.origin))},
+               {"source", std::string(m.source)},
+               {"constants", constant_sets(m.constants)},
+               {"per_light_split", m.light_setup32 != nullptr && m.light_eval32 != nullptr}});
         return a;
       };
       nlohmann::ordered_json out;
@@ -54,14 +57,16 @@ void add_methods_command(CLI::App& app) {
       out["hemispherical"] = list(hemispherical_methods);
       out["normalized"] = list(normalized_methods);
       out["erf"] = nlohmann::ordered_json::array();
-      for (const ErfVariant& v : erf_variants) out["erf"].push_back({{"id", std::string(v.id)}, {"source", std::string(v.source)}});
+      for (const ErfVariant& v : erf_variants)
+        out["erf"].push_back({{"id", std::string(v.id)}, {"source", std::string(v.source)}});
       fmt::print("{}\n", out.dump(2));
       return;
     }
     auto list = [](const char* title, std::span<const Method> methods) {
       fmt::print("{}:\n", title);
       for (const Method& m : methods)
-        fmt::print("  {:<18} {}{}\n", m.id, m.source, m.constants.empty() ? "" : fmt::format(" [{}]", m.constants));
+        fmt::print("  {:<18} {}{}\n", m.id, m.source,
+                   m.constants.empty() ? "" : fmt::format(" [{}]", m.constants));
     };
     list("irradiance", irradiance_methods);
     list("hemispherical", hemispherical_methods);
@@ -71,7 +76,8 @@ void add_methods_command(CLI::App& app) {
 }
 
 void add_table_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("table", "Print every irradiance method at one sharpness over a few cosines");
+  auto* cmd = app.add_subcommand(
+      "table", "Print every irradiance method at one sharpness over a few cosines");
   auto kappa = std::make_shared<double>(4.0);
   auto count = std::make_shared<int>(9);
   cmd->add_option("--kappa", *kappa, "SG sharpness κ (≥ 0)")->capture_default_str();
@@ -79,12 +85,15 @@ void add_table_command(CLI::App& app) {
       ->check(count_in(2, std::numeric_limits<int>::max()))
       ->capture_default_str();
   cmd->callback([kappa, count] {
-    if (!(std::isfinite(*kappa) && *kappa >= 0)) throw InputError(fmt::format("--kappa must be finite and >= 0, got {}", *kappa));
+    if (!(std::isfinite(*kappa) && *kappa >= 0))
+      throw InputError(fmt::format("--kappa must be finite and >= 0, got {}", *kappa));
     std::vector<validate::Query> queries;
     for (int i = 0; i < *count; ++i) queries.push_back({*kappa, -1.0 + 2.0 * i / (*count - 1)});
     const auto ref = validate::reference_engine().evaluate(queries);
-    fmt::print("Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision); last column: max |Ê − E|/E(1, κ)\n\n",
-               *kappa);
+    fmt::print(
+        "Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision); last column: "
+        "max |Ê − E|/E(1, κ)\n\n",
+        *kappa);
     fmt::print("| {:<22} |", "method \\ cosine");
     // Values in %.4e: five significant digits at every κ (E(c, κ) ≈ 2π/κ is
     // small for sharp lights, and a fixed number of decimals would print 0).

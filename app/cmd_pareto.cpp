@@ -15,9 +15,9 @@
 
 #include <fmt/format.h>
 
-#include "common/args.hpp"
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
+#include "common/args.hpp"
 #include "report/pareto.hpp"
 #include "validate/table.hpp"
 
@@ -36,38 +36,49 @@ struct ParetoArgs {
 
 void add_pareto_command(CLI::App& app) {
   auto args = std::make_shared<ParetoArgs>();
-  auto* cmd = app.add_subcommand("pareto", "Cost (GPU cycles or CPU ns/eval, --cost) against max peak_rel of every "
-                                           "irradiance method, with the Pareto frontier");
-  cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
+  auto* cmd =
+      app.add_subcommand("pareto",
+                         "Cost (GPU cycles or CPU ns/eval, --cost) against max peak_rel of every "
+                         "irradiance method, with the Pareto frontier");
+  cmd->footer(
+      "peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak "
+      "(docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->capture_default_str();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
-  cmd->add_option("--out", args->out, "output directory")->check(non_empty_path())->capture_default_str();
+  cmd->add_option("--out", args->out, "output directory")
+      ->check(non_empty_path())
+      ->capture_default_str();
   args->costs.add_to(cmd);
   cmd->callback([args] {
     double lo = 0, hi = 0;
     {
-      const auto parsed = io::parse_kappa_range(args->kappa, io::KappaRangeRules{});  // LO:HI, float
+      const auto parsed =
+          io::parse_kappa_range(args->kappa, io::KappaRangeRules{});  // LO:HI, float
       if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
       lo = std::get<io::KappaRange>(parsed).lo;
       hi = std::get<io::KappaRange>(parsed).hi;
     }
     const auto precision = report::parse_precision(args->precision);
     if (!precision)
-      throw InputError(fmt::format("--precision: expected float or double, got '{}'", args->precision));
+      throw InputError(
+          fmt::format("--precision: expected float or double, got '{}'", args->precision));
 
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
-    const report::CostSource cost = args->costs.source(*precision);  // a bad --cost before the sweep
+    const report::CostSource cost =
+        args->costs.source(*precision);  // a bad --cost before the sweep
     std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
-    const CostsOption::From source = args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
+    const CostsOption::From source =
+        args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
     report::mark_frontier(points);
 
-    const validate::Table table = report::pareto_table(points, *precision, lo, hi, cost, source.provenance);
+    const validate::Table table =
+        report::pareto_table(points, *precision, lo, hi, cost, source.provenance);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
     validate::write_table(table, dir, "pareto", {TableFormat::csv, TableFormat::markdown});
-    fmt::print("{}\nCost (--cost {}, in {}): {}\nWritten to {}: pareto.{{csv,md}}\n", validate::to_markdown(table),
-               cost.name(), cost.unit(), source.text, dir.string());
+    fmt::print("{}\nCost (--cost {}, in {}): {}\nWritten to {}: pareto.{{csv,md}}\n",
+               validate::to_markdown(table), cost.name(), cost.unit(), source.text, dir.string());
   });
 }
 

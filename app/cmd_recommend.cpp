@@ -20,11 +20,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "common/args.hpp"
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
-#include "report/pareto.hpp"
 #include "app/recommend_scene.hpp"
+#include "common/args.hpp"
+#include "report/pareto.hpp"
 
 namespace sglab::app {
 
@@ -55,15 +55,17 @@ nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
 }
 
 std::string describe(const report::MethodPoint& p) {
-  return fmt::format("{}{} (max peak_rel {:.4g}, {})", p.method,
-                     p.origin == Origin::published ? std::string() : fmt::format(" [{}]", to_string(p.origin)),
-                     p.max_peak_rel, report::cost_text(p));
+  return fmt::format(
+      "{}{} (max peak_rel {:.4g}, {})", p.method,
+      p.origin == Origin::published ? std::string() : fmt::format(" [{}]", to_string(p.origin)),
+      p.max_peak_rel, report::cost_text(p));
 }
 
 // The κ-range answer (the request, choice, runner-up, most accurate) with every candidate, as JSON.
 void print_recommendation_json(double lo, double hi, double budget, validate::FloatFormat precision,
-                               const std::vector<report::MethodPoint>& points, const report::Recommendation& r,
-                               const report::CostSource& cost, const CostsOption::From& source) {
+                               const std::vector<report::MethodPoint>& points,
+                               const report::Recommendation& r, const report::CostSource& cost,
+                               const CostsOption::From& source) {
   nlohmann::ordered_json doc;
   doc["kappa_lo"] = lo;
   doc["kappa_hi"] = hi;
@@ -79,7 +81,8 @@ void print_recommendation_json(double lo, double hi, double budget, validate::Fl
   nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
   for (const auto& p : points) {
     auto j = point_json(p);
-    j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) && p.max_peak_rel <= budget;
+    j["qualifies"] =
+        std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) && p.max_peak_rel <= budget;
     candidates.push_back(std::move(j));
   }
   doc["candidates"] = std::move(candidates);
@@ -90,7 +93,8 @@ void print_recommendation_json(double lo, double hi, double budget, validate::Fl
 void print_recommendation_text(double lo, double hi, double budget, validate::FloatFormat precision,
                                const report::Recommendation& r, const report::CostSource& cost,
                                const CostsOption::From& source) {
-  fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi, validate::to_string(precision), budget);
+  fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi,
+             validate::to_string(precision), budget);
   if (r.choice) {
     fmt::print("  choice:    {}\n", describe(*r.choice));
     if (r.runner_up)
@@ -104,19 +108,22 @@ void print_recommendation_text(double lo, double hi, double budget, validate::Fl
     else
       fmt::print("  no method has a finite error over this range.\n");
   }
-  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(), source.text,
-             report::kCostTieMargin * 100);
+  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(),
+             source.text, report::kCostTieMargin * 100);
 }
 
 // `sglab recommend`: the options checked, then the scene ranking or the κ-range answer.
 void run_recommend(const RecommendArgs& args) {
   double lo = 0, hi = 0, budget = 0;
-  if (args.kappa.empty() == args.scene.empty()) throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
+  if (args.kappa.empty() == args.scene.empty())
+    throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
   if (!report::parse_number(args.budget, budget))
     throw InputError(fmt::format("--budget: '{}' is not a finite number", args.budget));
   if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
   const auto precision = report::parse_precision(args.precision);
-  if (!precision) throw InputError(fmt::format("--precision: expected float or double, got '{}'", args.precision));
+  if (!precision)
+    throw InputError(
+        fmt::format("--precision: expected float or double, got '{}'", args.precision));
   if (!args.scene.empty()) {
     recommend_scene({args.scene, budget, *precision, args.normals, args.json, args.costs});
     return;
@@ -130,7 +137,8 @@ void run_recommend(const RecommendArgs& args) {
 
   const report::CostSource cost = args.costs.source(*precision);  // a bad --cost before the sweep
   std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
-  const CostsOption::From source = args.costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
+  const CostsOption::From source =
+      args.costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
   const report::Recommendation r = report::recommend(points, budget);
   if (args.json)
     print_recommendation_json(lo, hi, budget, *precision, points, r, cost, source);
@@ -142,16 +150,20 @@ void run_recommend(const RecommendArgs& args) {
 
 void add_recommend_command(CLI::App& app) {
   auto args = std::make_shared<RecommendArgs>();
-  auto* cmd = app.add_subcommand(
-      "recommend", "The cheapest irradiance method whose max peak_rel over a κ range (or error on a scene) meets an error budget");
+  auto* cmd = app.add_subcommand("recommend",
+                                 "The cheapest irradiance method whose max peak_rel over a κ range "
+                                 "(or error on a scene) meets an error budget");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI");
   cmd->add_option("--scene", args->scene,
-                  "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": [r, g, b]}, …]}: "
+                  "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": "
+                  "[r, g, b]}, …]}: "
                   "rank the methods by their error on the scene's irradiance instead");
   cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")
       ->check(count_in(1, 1000000))
       ->capture_default_str();
-  cmd->footer("peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak (docs/quantities.md)");
+  cmd->footer(
+      "peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak "
+      "(docs/quantities.md)");
   cmd->add_option("--budget", args->budget, "max peak_rel allowed (> 0)")->required();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
   cmd->add_flag("--json", args->json, "print the answer as JSON on stdout");

@@ -26,9 +26,9 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/points.hpp"
 #include "common/args.hpp"
 #include "common/io.hpp"
-#include "app/points.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::app {
@@ -36,7 +36,8 @@ namespace {
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -46,7 +47,8 @@ std::vector<std::string_view> split(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    fields.push_back(trim(line.substr(
+        start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -55,7 +57,8 @@ std::vector<std::string_view> split(std::string_view line) {
 
 }  // namespace
 
-std::size_t for_each_point(const std::string& path, const std::function<void(const validate::Query&)>& on_point,
+std::size_t for_each_point(const std::string& path,
+                           const std::function<void(const validate::Query&)>& on_point,
                            std::optional<io::NumberFormat> kappa_format) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -64,7 +67,8 @@ std::size_t for_each_point(const std::string& path, const std::function<void(con
   if (!in) throw InputError(fmt::format("{}: cannot open points file", path));
 
   std::size_t count = 0;
-  std::vector<char> buffer(kMaxPointsLineBytes + 2);  // one byte more than a line may have, and the NUL
+  std::vector<char> buffer(kMaxPointsLineBytes +
+                           2);  // one byte more than a line may have, and the NUL
   std::size_t line_number = 0;
   bool header_seen = false;
   while (true) {
@@ -77,7 +81,8 @@ std::size_t for_each_point(const std::string& path, const std::function<void(con
     ++line_number;
     std::string_view text(buffer.data(), extracted - (ended_by_newline ? 1 : 0));
     auto fail = [&](std::string_view why) {
-      return InputError(fmt::format("{}:{}: {} (line: {})", path, line_number, why, io::quote_escaped(text)));
+      return InputError(
+          fmt::format("{}:{}: {} (line: {})", path, line_number, why, io::quote_escaped(text)));
     };
     if (text.size() > kMaxPointsLineBytes)
       throw fail(fmt::format("line longer than {} bytes", kMaxPointsLineBytes));
@@ -103,52 +108,63 @@ std::size_t for_each_point(const std::string& path, const std::function<void(con
         throw fail(fmt::format("{} is not a number: {}", name, io::quote_escaped(f)));
     }
     const double kappa = value[0], cosine = value[1];
-    if (!(std::isfinite(kappa) && kappa >= 0)) throw fail(fmt::format("kappa must be finite and >= 0, got {}", kappa));
-    if (!(cosine >= -1 && cosine <= 1)) throw fail(fmt::format("cosine must be in [-1, 1], got {}", cosine));
+    if (!(std::isfinite(kappa) && kappa >= 0))
+      throw fail(fmt::format("kappa must be finite and >= 0, got {}", kappa));
+    if (!(cosine >= -1 && cosine <= 1))
+      throw fail(fmt::format("cosine must be in [-1, 1], got {}", cosine));
     if (kappa_format && io::exceeds_max_finite(kappa, *kappa_format))
-      throw fail(fmt::format("kappa {} exceeds the largest finite {} ({:g}), the precision it is evaluated in", kappa,
-                             kappa_format->name, kappa_format->max_finite));
+      throw fail(fmt::format(
+          "kappa {} exceeds the largest finite {} ({:g}), the precision it is evaluated in", kappa,
+          kappa_format->name, kappa_format->max_finite));
     if (kappa_format && io::rounds_to_zero(kappa, *kappa_format))
-      throw fail(fmt::format("kappa {} rounds to 0 in {}, the precision it is evaluated in (smallest positive {}: {:g})",
-                             kappa, kappa_format->name, kappa_format->name, kappa_format->denorm_min));
+      throw fail(
+          fmt::format("kappa {} rounds to 0 in {}, the precision it is evaluated in (smallest "
+                      "positive {}: {:g})",
+                      kappa, kappa_format->name, kappa_format->name, kappa_format->denorm_min));
     on_point(validate::Query{kappa, cosine});
     ++count;
   }
-  if (!header_seen) throw InputError(fmt::format("{}: empty file, expected the header \"kappa,cosine\"", path));
+  if (!header_seen)
+    throw InputError(fmt::format("{}: empty file, expected the header \"kappa,cosine\"", path));
   return count;
 }
 
 void add_reference_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "reference", "Reference H(c,κ), E(c,κ), s(c,κ) (docs/quantities.md) by quadrature at the points of a CSV file");
+  auto* cmd = app.add_subcommand("reference",
+                                 "Reference H(c,κ), E(c,κ), s(c,κ) (docs/quantities.md) by "
+                                 "quadrature at the points of a CSV file");
   auto points = std::make_shared<std::string>();
   auto precision = std::make_shared<std::string>("standard");
   cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")->required();
-  cmd->add_option("--precision", *precision, "standard (double quadrature) or high (50-digit, slow)")
+  cmd->add_option("--precision", *precision,
+                  "standard (double quadrature) or high (50-digit, slow)")
       ->check(CLI::IsMember({"standard", "high"}))
       ->capture_default_str();
   cmd->callback([points, precision] {
     // One pass: rows are evaluated and printed a chunk at a time, so memory
     // does not grow with the file; a bad row stops the command after the
     // rows before it are printed.
-    const auto mode = *precision == "high" ? validate::Precision::high : validate::Precision::standard;
+    const auto mode =
+        *precision == "high" ? validate::Precision::high : validate::Precision::standard;
     io::Progress progress("reference", 0);
     constexpr std::size_t kChunk = 4096;  // rows per engine call (each call runs in parallel)
     std::vector<validate::Query> chunk;
     chunk.reserve(kChunk);
-    std::string out = "kappa,cosine,hemispherical,irradiance,normalized\n";  // printed with the first rows
+    std::string out =
+        "kappa,cosine,hemispherical,irradiance,normalized\n";  // printed with the first rows
     const auto flush = [&] {
       const auto results = validate::reference_engine().evaluate(chunk, mode);
       for (const auto& r : results)
-        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", r.kappa, r.cosine, r.hemispherical,
-                           r.irradiance, r.normalized);
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", r.kappa, r.cosine,
+                           r.hemispherical, r.irradiance, r.normalized);
       std::fwrite(out.data(), 1, out.size(), stdout);
       out.clear();
       progress.advance(chunk.size());
       chunk.clear();
       // The engine caches every point it evaluates; a points file is read
       // once, so keep the cache from growing with the file.
-      if (validate::reference_engine().cache_size() > 8 * kChunk) validate::reference_engine().clear_cache();
+      if (validate::reference_engine().cache_size() > 8 * kChunk)
+        validate::reference_engine().clear_cache();
     };
     try {
       for_each_point(*points, [&](const validate::Query& q) {

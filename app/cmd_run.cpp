@@ -39,8 +39,8 @@
 
 #include "app/commands.hpp"
 #include "common/atomic_files.hpp"
-#include "report/cost_table.hpp"
 #include "common/io.hpp"
+#include "report/cost_table.hpp"
 
 namespace sglab::app {
 
@@ -63,7 +63,8 @@ std::string display_command(const std::vector<std::string>& arguments) {
   std::string out = "sglab";
   for (const std::string& a : arguments) {
     const bool plain = !a.empty() && std::all_of(a.begin(), a.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("-_./:=+,").find(c) != std::string_view::npos;
+      return std::isalnum(static_cast<unsigned char>(c)) ||
+             std::string_view("-_./:=+,").find(c) != std::string_view::npos;
     });
     if (plain) {
       out += " " + a;
@@ -83,7 +84,9 @@ class RedirectOutput {
   explicit RedirectOutput(const fs::path& log) {
     flush();
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", log.string(), std::strerror(errno)));
+    if (fd < 0)
+      throw std::runtime_error(
+          fmt::format("cannot write {}: {}", log.string(), std::strerror(errno)));
     saved_out_ = ::dup(STDOUT_FILENO);
     saved_err_ = ::dup(STDERR_FILENO);
     ::dup2(fd, STDOUT_FILENO);
@@ -129,13 +132,14 @@ int run_step(const std::vector<std::string>& arguments) {
   add_pareto_command(app);
   add_figures_command(app);
   add_envmap_command(app);
-  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
+  std::vector<std::string> reversed(arguments.rbegin(),
+                                    arguments.rend());  // CLI11 takes them last first
   return run_and_map_exit_code(app, [&] { app.parse(reversed); });
 }
 
 bool is_relative_target(std::string_view t) {
-  return !t.empty() && t.front() != '/' && t.front() != '#' && t.find("://") == std::string_view::npos &&
-         t.rfind("mailto:", 0) != 0;
+  return !t.empty() && t.front() != '/' && t.front() != '#' &&
+         t.find("://") == std::string_view::npos && t.rfind("mailto:", 0) != 0;
 }
 
 // `target` (relative to the folder `from`, itself relative to OUT) as a path
@@ -190,7 +194,8 @@ std::string rewrite_links(std::string_view line, const fs::path& from, Seen& see
             title = target.substr(sp);
             target = target.substr(0, sp);
           }
-          const std::string rebased = is_relative_target(target) ? rebase(target, from) : std::string(target);
+          const std::string rebased =
+              is_relative_target(target) ? rebase(target, from) : std::string(target);
           const bool duplicate = image && !seen.images.insert(rebased).second;
           seen.links.insert(rebased);
           out += fmt::format("{}[{}]({}{})", image && !duplicate ? "!" : "", text, rebased, title);
@@ -237,7 +242,8 @@ std::string inline_markdown(const std::string& text, const fs::path& from, Seen&
 }
 
 std::size_t count_lines(const std::string& s) {
-  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')) + (!s.empty() && s.back() != '\n');
+  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')) +
+         (!s.empty() && s.back() != '\n');
 }
 
 // The section of index.md for one step: its command and status, its Markdown
@@ -245,9 +251,10 @@ std::size_t count_lines(const std::string& s) {
 // other files it wrote that those do not link.
 std::string section(const fs::path& out, const Step& step, int status, double seconds, Seen& seen) {
   const std::string log = fmt::format("logs/{}.log", step.name);
-  std::string md = fmt::format("## {}\n\n`{}` — {} in {:.1f} s (log: [{}]({}))\n\n", step.name,
-                               display_command(step.arguments),
-                               status == 0 ? "ok" : fmt::format("FAILED (exit {})", status), seconds, log, log);
+  std::string md =
+      fmt::format("## {}\n\n`{}` — {} in {:.1f} s (log: [{}]({}))\n\n", step.name,
+                  display_command(step.arguments),
+                  status == 0 ? "ok" : fmt::format("FAILED (exit {})", status), seconds, log, log);
   const fs::path dir = out / step.dir;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return md;
@@ -266,9 +273,11 @@ std::string section(const fs::path& out, const Step& step, int status, double se
       const std::string text = io::read_file(f);
       const std::size_t lines = count_lines(text);
       if (lines > kInlineLines)
-        md += fmt::format("### {}\n\n[{}]({}) ({} lines, linked rather than inlined)\n\n", rel, rel, rel, lines);
+        md += fmt::format("### {}\n\n[{}]({}) ({} lines, linked rather than inlined)\n\n", rel, rel,
+                          rel, lines);
       else
-        md += fmt::format("### {}\n\n{}\n", rel, inline_markdown(text, fs::relative(f.parent_path(), out), seen));
+        md += fmt::format("### {}\n\n{}\n", rel,
+                          inline_markdown(text, fs::relative(f.parent_path(), out), seen));
     }
   }
   for (const fs::path& f : files) {
@@ -283,7 +292,8 @@ std::string section(const fs::path& out, const Step& step, int status, double se
   }
   if (!others.empty()) {
     md += "Other files:";
-    for (std::size_t i = 0; i < others.size(); ++i) md += fmt::format("{} [{}]({})", i ? "," : "", others[i], others[i]);
+    for (std::size_t i = 0; i < others.size(); ++i)
+      md += fmt::format("{} [{}]({})", i ? "," : "", others[i], others[i]);
     md += "\n\n";
   }
   return md;
@@ -296,26 +306,37 @@ std::string section(const fs::path& out, const Step& step, int status, double se
 std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped) {
   const auto in = [&root](const char* sub) { return (root / sub).string(); };
   std::vector<std::string> pareto = {"pareto", "--out", in("pareto")};
-  std::vector<std::string> pareto_cpu = {"pareto", "--cost", "cpu-batch", "--out", in("pareto-cpu")};
-  std::vector<std::string> figures = {"figures", "--out", in("figures"), "--pareto", in("pareto/pareto.csv"),
-                                      "--pareto", in("pareto-cpu/pareto.csv")};
+  std::vector<std::string> pareto_cpu = {"pareto", "--cost", "cpu-batch", "--out",
+                                         in("pareto-cpu")};
+  std::vector<std::string> figures = {"figures",
+                                      "--out",
+                                      in("figures"),
+                                      "--pareto",
+                                      in("pareto/pareto.csv"),
+                                      "--pareto",
+                                      in("pareto-cpu/pareto.csv")};
   if (!bench_skipped)
-    for (auto* step : {&pareto, &pareto_cpu, &figures}) step->insert(step->end(), {"--costs", in("bench/costs.json")});
+    for (auto* step : {&pareto, &pareto_cpu, &figures})
+      step->insert(step->end(), {"--costs", in("bench/costs.json")});
   std::vector<std::string> erf = {"erf"};
   if (!quick) erf.emplace_back("--exhaustive");
   erf.insert(erf.end(), {"--out", in("erf")});
   std::vector<std::string> envmap = {"envmap", "baselines", "--out", in("envmap")};
   if (quick) envmap.emplace_back("--quick");
   return {
-      {"fit", {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")}, "constants"},
+      {"fit",
+       {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")},
+       "constants"},
       {"sweep", {"sweep", "--backend", "auto", "--out", in("sweep")}, "sweep"},
       {"erf", erf, "erf"},
       {"stability", {"stability", "--out", in("stability")}, "stability"},
       {"claims", {"claims", "--out", in("claims")}, "claims"},
       {"bench", {"bench", "--out", in("bench")}, "bench"},
-      // GPU cost into the same cost table (skipped, with the reason, where RADV has no null device),
-      // both languages: each export's header states its own (sglab export).
-      {"gpucost", {"gpucost", "--skip-unavailable", "--lang", "both", "--out", in("bench")}, "bench"},
+      // GPU cost into the same cost table (skipped, with the reason, where RADV has no null
+      // device), both languages: each export's header states its own (sglab export).
+      {"gpucost",
+       {"gpucost", "--skip-unavailable", "--lang", "both", "--out", in("bench")},
+       "bench"},
       {"pareto", pareto, "pareto"},
       {"pareto-cpu", pareto_cpu, "pareto-cpu"},
       {"figures", figures, "figures"},
@@ -344,9 +365,11 @@ bool has_gpu_costs(const Step& step) {
 // symbolic link), on the same file system so that it can be renamed over it.
 fs::path staging_folder(const fs::path& out) {
   std::error_code ec;
-  const fs::path target = fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
+  const fs::path target =
+      fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
   const fs::path name = target.has_filename() ? target.filename() : target.parent_path().filename();
-  const fs::path parent = target.has_filename() ? target.parent_path() : target.parent_path().parent_path();
+  const fs::path parent =
+      target.has_filename() ? target.parent_path() : target.parent_path().parent_path();
   const fs::path staging = parent / fmt::format("{}.staging-{}", name.string(), ::getpid());
   fs::remove_all(staging);  // a leftover of a killed run with the same process id
   fs::create_directories(staging);
@@ -358,7 +381,8 @@ fs::path staging_folder(const fs::path& out) {
 // removed. Where the file system cannot exchange, two renames.
 void replace_folder(const fs::path& staging, const fs::path& out) {
   std::error_code ec;
-  const fs::path target = fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
+  const fs::path target =
+      fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
   if (!fs::exists(target, ec)) {
     fs::rename(staging, target);
     return;
@@ -389,13 +413,18 @@ int run_logged(const Step& step, const fs::path& log) {
 }  // namespace
 
 void add_run_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("run", "The main job: fit all, sweep, erf, stability, claims, bench, pareto, "
-                                        "figures into OUT with OUT/index.md");
+  auto* cmd =
+      app.add_subcommand("run",
+                         "The main job: fit all, sweep, erf, stability, claims, bench, pareto, "
+                         "figures into OUT with OUT/index.md");
   auto out = std::make_shared<std::string>("out");
   auto quick = std::make_shared<bool>(false);
   auto skip = std::make_shared<std::vector<std::string>>();
-  cmd->add_option("--out", *out, "output directory")->check(non_empty_path())->capture_default_str();
-  cmd->add_flag("--quick", *quick, "sample the erf check instead of every float; envmap fits at 12 lobes only");
+  cmd->add_option("--out", *out, "output directory")
+      ->check(non_empty_path())
+      ->capture_default_str();
+  cmd->add_flag("--quick", *quick,
+                "sample the erf check instead of every float; envmap fits at 12 lobes only");
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
   cmd->callback([out, quick, skip] {
     const fs::path root = *out;
@@ -411,7 +440,9 @@ void add_run_command(CLI::App& app) {
     const fs::path staging = staging_folder(root);
     const std::vector<Step> steps = run_steps(staging, *quick, skipped("bench"));
     fs::create_directories(staging / "logs");
-    std::string index = "# sglab results\n\nProduced by `sglab run`; every section names the command that made it.\n\n";
+    std::string index =
+        "# sglab results\n\nProduced by `sglab run`; every section names the command that made "
+        "it.\n\n";
     Seen seen;
     int failures = 0;
     const auto t0 = std::chrono::steady_clock::now();
@@ -419,23 +450,29 @@ void add_run_command(CLI::App& app) {
       const Step& step = steps[i];
       if (skipped(step.name)) continue;
       if (step.name == "pareto" && !has_gpu_costs(step)) {
-        const std::string why = "skipped: the cost table has no GPU costs (no RADV null device for gpucost, or its "
-                                "step skipped); pareto-cpu has the CPU cost";
+        const std::string why =
+            "skipped: the cost table has no GPU costs (no RADV null device for gpucost, or its "
+            "step skipped); pareto-cpu has the CPU cost";
         fmt::print("{:<10} {}\n", step.name, why);
-        index += fmt::format("## {}\n\n`{}` — {}\n\n", step.name, display_command(shown[i].arguments), why);
+        index += fmt::format("## {}\n\n`{}` — {}\n\n", step.name,
+                             display_command(shown[i].arguments), why);
         continue;
       }
       if (io::stderr_is_terminal()) fmt::print(stderr, "sglab run: {} ...\n", step.name);
       const auto start = std::chrono::steady_clock::now();
       const int status = run_logged(step, staging / "logs" / (step.name + ".log"));
-      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double secs =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print("{:<10} {:>7.1f} s  {}\n", step.name, secs,
-                 status == 0 ? "ok" : fmt::format("FAILED, see {}", (root / "logs" / (step.name + ".log")).string()));
+                 status == 0 ? "ok"
+                             : fmt::format("FAILED, see {}",
+                                           (root / "logs" / (step.name + ".log")).string()));
       std::fflush(stdout);
       if (status != 0) ++failures;
       index += section(staging, shown[i], status, secs, seen);
     }
-    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double total =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     index += fmt::format("Total: {:.1f} s.\n", total);
     io::write_file_atomic(staging / "index.md", index);
     replace_folder(staging, root);

@@ -81,24 +81,28 @@ std::string stability_json(const validate::StabilityReport& report, const valida
 }
 
 // The findings (and half ranges) on stdout, and whether sglab's own code fails on valid inputs.
-void print_stability_summary(const validate::StabilityReport& report, const validate::Table& findings,
-                             const std::optional<validate::Table>& half, const std::filesystem::path& dir) {
+void print_stability_summary(const validate::StabilityReport& report,
+                             const validate::Table& findings,
+                             const std::optional<validate::Table>& half,
+                             const std::filesystem::path& dir) {
   fmt::print("{}\n", validate::to_markdown(findings));
   if (half) fmt::print("{}\n", validate::to_markdown(*half));
   const auto own_failures = validate::own_failures_on_valid_inputs(report);
   if (own_failures.empty())
-    fmt::print("sglab's own primitives and methods (origin sglab or refit): no NaN / Inf / negative / out-of-range "
-               "output on valid inputs.\n");
+    fmt::print(
+        "sglab's own primitives and methods (origin sglab or refit): no NaN / Inf / negative / "
+        "out-of-range "
+        "output on valid inputs.\n");
   else
     for (const validate::StabilityRow* r : own_failures)
-      fmt::print("WARNING: {} ({}, origin {}) fails on valid inputs, e.g. {}\n", r->function,
-                 validate::to_string(r->precision), to_string(r->origin),
-                 [&] {
-                   for (std::size_t k = 0; k < validate::kFailureKinds; ++k)
-                     if (r->failures[k].count && r->is_failure(static_cast<validate::FailureKind>(k)))
-                       return r->failures[k].example;
-                   return std::string();
-                 }());
+      fmt::print(
+          "WARNING: {} ({}, origin {}) fails on valid inputs, e.g. {}\n", r->function,
+          validate::to_string(r->precision), to_string(r->origin), [&] {
+            for (std::size_t k = 0; k < validate::kFailureKinds; ++k)
+              if (r->failures[k].count && r->is_failure(static_cast<validate::FailureKind>(k)))
+                return r->failures[k].example;
+            return std::string();
+          }());
   fmt::print("Written to {}: stability.{{csv,md,json}}, findings.{{csv,md}}{}\n", dir.string(),
              half ? ", stability_half.{csv,md}" : "");
 }
@@ -117,7 +121,9 @@ void run_stability(const StabilityArgs& args, bool out_given) {
   if (write_files) {
     validate::write_table(full, dir, "stability", {TableFormat::csv, TableFormat::markdown});
     validate::write_table(findings, dir, "findings", {TableFormat::csv, TableFormat::markdown});
-    if (half) validate::write_table(*half, dir, "stability_half", {TableFormat::csv, TableFormat::markdown});
+    if (half)
+      validate::write_table(*half, dir, "stability_half",
+                            {TableFormat::csv, TableFormat::markdown});
   }
   const std::string json = stability_json(report, full, half);
   if (write_files) io::write_file_atomic(dir / "stability.json", json);
@@ -131,15 +137,20 @@ void run_stability(const StabilityArgs& args, bool out_given) {
 
 void add_stability_command(CLI::App& app) {
   auto args = std::make_shared<StabilityArgs>();
-  auto* cmd = app.add_subcommand(
-      "stability", "NaN / Inf / negative / out-of-range outputs of every function and method over special inputs");
-  auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
-                         ->check(non_empty_path())
-                         ->capture_default_str();
-  cmd->add_flag("--json", args->json, "print the full table as JSON on stdout; writes no file unless --out is given");
+  auto* cmd = app.add_subcommand("stability",
+                                 "NaN / Inf / negative / out-of-range outputs of every function "
+                                 "and method over special inputs");
+  auto* out_option =
+      cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+          ->check(non_empty_path())
+          ->capture_default_str();
+  cmd->add_flag("--json", args->json,
+                "print the full table as JSON on stdout; writes no file unless --out is given");
   cmd->add_flag("--half", args->half,
-                "also run every method's half export (`sglab export --precision half`) on the first Vulkan device and "
-                "report the κ range where half survives (stability_half.{csv,md}); exit 1 without a device with shaderFloat16");
+                "also run every method's half export (`sglab export --precision half`) on the "
+                "first Vulkan device and "
+                "report the κ range where half survives (stability_half.{csv,md}); exit 1 without "
+                "a device with shaderFloat16");
   cmd->callback([args, out_option] { run_stability(*args, out_option->count() > 0); });
 }
 

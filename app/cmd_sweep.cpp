@@ -1,10 +1,10 @@
-// `sglab sweep`: every method against the reference over the standard grid of docs/quantities.md (or
-// a custom one), in float and double, with the metrics of docs/quantities.md. Writes the
+// `sglab sweep`: every method against the reference over the standard grid of docs/quantities.md
+// (or a custom one), in float and double, with the metrics of docs/quantities.md. Writes the
 // summary, per-κ and per-point tables into --out and prints the summary.
 #include <algorithm>
 #include <charconv>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -20,12 +20,12 @@
 
 #include <sglab/registry.hpp>
 
-#include "common/args.hpp"
 #include "app/commands.hpp"
+#include "common/args.hpp"
 #include "common/io.hpp"
+#include "export/vulkan_runner.hpp"
 #include "validate/sweep.hpp"
 #include "validate/table.hpp"
-#include "export/vulkan_runner.hpp"
 
 namespace sglab::app {
 
@@ -46,7 +46,8 @@ void parse_kappa_option(const std::string& text, validate::SweepGrid& grid) {
   grid.kappa_count = r.count;
 }
 
-// --cosines N: at least 2 (the grid includes c = -1 and c = 1); the grid limit (SweepGrid::validate) bounds it.
+// --cosines N: at least 2 (the grid includes c = -1 and c = 1); the grid limit
+// (SweepGrid::validate) bounds it.
 void parse_cosines_option(const std::string& text, validate::SweepGrid& grid) {
   const auto n = io::parse_count(text, 2, std::numeric_limits<int>::max());
   if (const auto* why = std::get_if<std::string>(&n)) throw InputError("--cosines: " + *why);
@@ -58,10 +59,12 @@ std::vector<validate::SweepMethod> select_methods(const std::vector<std::string>
   if (ids.empty()) return all;
   std::vector<std::string> known;
   for (const auto& m : all)
-    if (std::find(known.begin(), known.end(), m.method.id) == known.end()) known.emplace_back(m.method.id);
+    if (std::find(known.begin(), known.end(), m.method.id) == known.end())
+      known.emplace_back(m.method.id);
   for (const std::string& id : ids)
     if (std::find(known.begin(), known.end(), id) == known.end())
-      throw InputError(fmt::format("--method: unknown method id '{}'; known ids: {}", id, fmt::join(known, ", ")));
+      throw InputError(fmt::format("--method: unknown method id '{}'; known ids: {}", id,
+                                   fmt::join(known, ", ")));
   std::vector<validate::SweepMethod> out;
   for (const auto& m : all)
     if (std::find(ids.begin(), ids.end(), m.method.id) != ids.end()) out.push_back(m);
@@ -71,9 +74,15 @@ std::vector<validate::SweepMethod> select_methods(const std::vector<std::string>
 // max over the grid of |x_device − x_float|/x(1, κ) for every device entry
 // that has a C++ float entry of the same method and quantity.
 validate::Table device_vs_float_table(const validate::SweepResult& r) {
-  validate::Table t("Vulkan device against the C++ runtime in float: max |x_device - x_float|/x(1, κ) over the grid",
-                    {{"method"}, {"quantity"}, {"precision"}, {"max_diff_peak_rel", 3}, {"worst_kappa", 4},
-                     {"worst_cosine", 4}});
+  validate::Table t(
+      "Vulkan device against the C++ runtime in float: max |x_device - x_float|/x(1, κ) over the "
+      "grid",
+      {{"method"},
+       {"quantity"},
+       {"precision"},
+       {"max_diff_peak_rel", 3},
+       {"worst_kappa", 4},
+       {"worst_cosine", 4}});
   for (const auto& e : r.entries) {
     if (!validate::is_device_format(e.precision)) continue;
     const auto* f = r.find(e.method, e.quantity, validate::FloatFormat::binary32);
@@ -90,8 +99,8 @@ validate::Table device_vs_float_table(const validate::SweepResult& r) {
         }
       }
     t.add_row({validate::Table::text(e.method), validate::Table::text(to_string(e.quantity)),
-               validate::Table::text(to_string(e.precision)), validate::Table::real(worst), validate::Table::real(wk),
-               validate::Table::real(wc)});
+               validate::Table::text(to_string(e.precision)), validate::Table::real(worst),
+               validate::Table::real(wk), validate::Table::real(wc)});
   }
   return t;
 }
@@ -102,8 +111,8 @@ struct SweepArgs {
   std::string out = "out/sweep";
   bool json = false;
   std::vector<std::string> methods;
-  std::vector<std::string> backends;  // cpu, vulkan
-  std::string lang = "both";          // shader language(s) of the vulkan backend
+  std::vector<std::string> backends;    // cpu, vulkan
+  std::string lang = "both";            // shader language(s) of the vulkan backend
   std::vector<std::string> precisions;  // float, half: the exports the vulkan backend runs
 };
 
@@ -112,7 +121,9 @@ std::vector<shader::Precision> checked_precisions(const std::vector<std::string>
   std::vector<shader::Precision> out;
   for (const std::string& p : asked) {
     const auto parsed = shader::parse_precision(p);
-    if (!parsed) throw InputError(fmt::format("--precision: expected float or half, got '{}'", p.substr(0, 40)));
+    if (!parsed)
+      throw InputError(
+          fmt::format("--precision: expected float or half, got '{}'", p.substr(0, 40)));
     if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
   }
   if (out.empty()) out.push_back(shader::Precision::float32);
@@ -132,13 +143,17 @@ std::vector<std::string> add_all_device_entries(validate::SweepResult& result,
   std::vector<std::string> skipped;
   for (auto precision : precisions) {
     if (precision == shader::Precision::float16 && !device.has_float16()) {
-      fmt::print(stderr, "sglab sweep: no half rows: {} offers no half arithmetic in shaders (shaderFloat16)\n",
-                 device.name());
+      fmt::print(
+          stderr,
+          "sglab sweep: no half rows: {} offers no half arithmetic in shaders (shaderFloat16)\n",
+          device.name());
       continue;
     }
-    for (auto lang : langs) skipped = shader::vulkan::add_device_entries(result, methods, lang, device, true, precision);
+    for (auto lang : langs)
+      skipped = shader::vulkan::add_device_entries(result, methods, lang, device, true, precision);
     if (precision == shader::Precision::float32)
-      for (auto lang : langs) shader::vulkan::add_split_device_entries(result, methods, lang, device);
+      for (auto lang : langs)
+        shader::vulkan::add_split_device_entries(result, methods, lang, device);
   }
   return skipped;
 }
@@ -180,12 +195,16 @@ std::unique_ptr<shader::vulkan::Device> open_device(Backends& b) {
 }
 
 // The device rows, in method-major order as the CPU entries.
-void add_vulkan_rows(validate::SweepResult& result, const std::vector<validate::SweepMethod>& methods,
-                     const std::vector<shader::Language>& langs, const std::vector<shader::Precision>& precisions,
+void add_vulkan_rows(validate::SweepResult& result,
+                     const std::vector<validate::SweepMethod>& methods,
+                     const std::vector<shader::Language>& langs,
+                     const std::vector<shader::Precision>& precisions,
                      shader::vulkan::Device& device, bool json) {
-  const std::vector<std::string> skipped = add_all_device_entries(result, methods, langs, precisions, device);
+  const std::vector<std::string> skipped =
+      add_all_device_entries(result, methods, langs, precisions, device);
   if (!skipped.empty() && !json)
-    fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n", fmt::join(skipped, ", "));
+    fmt::print(stderr, "sglab sweep: vulkan backend: not exportable, skipped: {}\n",
+               fmt::join(skipped, ", "));
   std::stable_sort(result.entries.begin(), result.entries.end(), [&](const auto& a, const auto& b) {
     auto rank = [&](const validate::SweepEntry& e) {
       for (std::size_t i = 0; i < methods.size(); ++i)
@@ -199,7 +218,8 @@ void add_vulkan_rows(validate::SweepResult& result, const std::vector<validate::
 // The tables into --out (when files are written), summary.json, and the
 // summary on stdout (as JSON with --json).
 void write_sweep_report(const SweepArgs& args, bool write_files, const validate::SweepGrid& grid,
-                        const validate::SweepResult& result, const Backends& b, const std::string& device_name) {
+                        const validate::SweepResult& result, const Backends& b,
+                        const std::string& device_name) {
   const validate::Table summary = validate::summary_table(result);
   const std::filesystem::path dir(args.out);
   using validate::TableFormat;
@@ -214,7 +234,8 @@ void write_sweep_report(const SweepArgs& args, bool write_files, const validate:
   std::optional<validate::Table> device_vs_float;
   if (b.vulkan && b.cpu) device_vs_float = device_vs_float_table(result);
   if (device_vs_float && write_files)
-    validate::write_table(*device_vs_float, dir, "device_vs_float", {TableFormat::csv, TableFormat::markdown});
+    validate::write_table(*device_vs_float, dir, "device_vs_float",
+                          {TableFormat::csv, TableFormat::markdown});
 
   nlohmann::ordered_json doc = nlohmann::ordered_json::object();
   doc["grid"] = {{"kappa_lo", grid.kappa_lo},
@@ -234,8 +255,9 @@ void write_sweep_report(const SweepArgs& args, bool write_files, const validate:
     fmt::print("{}", json);
   else
     fmt::print("{}\n{}Written to {}: summary.{{csv,md,json}}, per_kappa.{{csv,md}}, points.csv{}\n",
-               validate::to_markdown(summary), device_vs_float ? validate::to_markdown(*device_vs_float) + "\n" : "",
-               dir.string(), device_vs_float ? ", device_vs_float.{csv,md}" : "");
+               validate::to_markdown(summary),
+               device_vs_float ? validate::to_markdown(*device_vs_float) + "\n" : "", dir.string(),
+               device_vs_float ? ", device_vs_float.{csv,md}" : "");
 }
 
 // `sglab sweep`: the options checked, the CPU sweep, the device rows, the report.
@@ -254,7 +276,8 @@ void run_sweep(const SweepArgs& args, bool out_given) {
   const std::vector<shader::Language> langs = checked_languages(args.lang);
   const auto precisions = checked_precisions(args.precisions);
   if (!args.precisions.empty() && !b.vulkan && !b.vulkan_if_available)
-    throw InputError("--precision: chooses the exports of the vulkan backend; add --backend vulkan (or auto)");
+    throw InputError(
+        "--precision: chooses the exports of the vulkan backend; add --backend vulkan (or auto)");
 
   validate::SweepOptions options;
   if (!b.cpu) options.precisions.clear();
@@ -274,29 +297,42 @@ void run_sweep(const SweepArgs& args, bool out_given) {
 void add_sweep_command(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* cmd = app.add_subcommand(
-      "sweep", "Accuracy of every method against the reference over a (κ, c) grid, in float and double");
-  cmd->footer("peak_rel = |x̂ − x| / x(1, κ) for x = E, H or s: the error relative to the lobe's peak (docs/quantities.md)");
+      "sweep",
+      "Accuracy of every method against the reference over a (κ, c) grid, in float and double");
+  cmd->footer(
+      "peak_rel = |x̂ − x| / x(1, κ) for x = E, H or s: the error relative to the lobe's peak "
+      "(docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa,
-                  "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: the standard grid, 1e-3:1e4:29)");
-  cmd->add_option("--cosines", args->cosines,
-                  fmt::format("number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at "
-                              "most {} points",
-                              validate::SweepGrid::kMaxPoints));
-  auto* out_option = cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
-                         ->check(non_empty_path())
-                         ->capture_default_str();
-  cmd->add_flag("--json", args->json, "print the summary as JSON on stdout; writes no file unless --out is given");
+                  "κ grid LO:HI:N, N values log-spaced over [LO, HI] (default: the standard grid, "
+                  "1e-3:1e4:29)");
+  cmd->add_option(
+      "--cosines", args->cosines,
+      fmt::format(
+          "number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at "
+          "most {} points",
+          validate::SweepGrid::kMaxPoints));
+  auto* out_option =
+      cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
+          ->check(non_empty_path())
+          ->capture_default_str();
+  cmd->add_flag("--json", args->json,
+                "print the summary as JSON on stdout; writes no file unless --out is given");
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");
   cmd->add_option("--backend", args->backends,
-                  "cpu (the C++ runtime in float and double, default) and/or vulkan (each irradiance method's "
-                  "`sglab export` run as a compute shader on the first Vulkan device); auto = cpu, plus vulkan when "
+                  "cpu (the C++ runtime in float and double, default) and/or vulkan (each "
+                  "irradiance method's "
+                  "`sglab export` run as a compute shader on the first Vulkan device); auto = cpu, "
+                  "plus vulkan when "
                   "a device can be created; comma-separated or repeated")
       ->delimiter(',');
-  cmd->add_option("--lang", args->lang, "shader language(s) of the vulkan backend: glsl, hlsl or both")
+  cmd->add_option("--lang", args->lang,
+                  "shader language(s) of the vulkan backend: glsl, hlsl or both")
       ->capture_default_str();
-  cmd->add_option("--precision", args->precisions,
-                  "precision(s) of the exports the vulkan backend runs: float (default) and/or half "
-                  "(`sglab export --precision half`, rows vulkan_half and vulkan_hlsl_half); comma-separated")
+  cmd->add_option(
+         "--precision", args->precisions,
+         "precision(s) of the exports the vulkan backend runs: float (default) and/or half "
+         "(`sglab export --precision half`, rows vulkan_half and vulkan_hlsl_half); "
+         "comma-separated")
       ->delimiter(',');
   cmd->callback([args, out_option] { run_sweep(*args, out_option->count() > 0); });
 }

@@ -7,8 +7,8 @@
 #include <variant>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "common/args.hpp"
 #include "common/io.hpp"
@@ -26,7 +26,9 @@ using InputError = io::InputError;
 // checkout's default files.
 inline CLI::Validator non_empty_path() {
   return CLI::Validator(
-      [](std::string& value) { return value.empty() ? std::string("an empty path is not allowed") : std::string(); },
+      [](std::string& value) {
+        return value.empty() ? std::string("an empty path is not allowed") : std::string();
+      },
       "PATH", "non-empty path");
 }
 
@@ -43,7 +45,8 @@ inline std::vector<shader::Language> checked_languages(const std::string& lang) 
 // maps the outcome to the documented exit codes: 0 success (also --help,
 // --version), 1 failure, 2 bad input (InputError, or any command-line error
 // CLI11 finds). The one place where sglab's exit codes are decided.
-template <class Parse> int run_and_map_exit_code(CLI::App& app, Parse&& parse) {
+template <class Parse>
+int run_and_map_exit_code(CLI::App& app, Parse&& parse) {
   try {
     parse();
   } catch (const CLI::ParseError& e) {

@@ -12,8 +12,8 @@
 #include <variant>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "report/cost_source.hpp"
@@ -24,21 +24,26 @@ namespace sglab::app {
 
 struct CostsOption {
   std::string costs;  // empty: the project's data/results/costs.json
-  std::string cost;   // when --cost is not given: report::default_cost_source (cpu-batch with --live-timing)
+  std::string
+      cost;  // when --cost is not given: report::default_cost_source (cpu-batch with --live-timing)
   bool live_timing = false;
-  CLI::Option* cost_option = nullptr;  // whether --cost was given (an empty value is refused, not the default)
+  CLI::Option* cost_option =
+      nullptr;  // whether --cost was given (an empty value is refused, not the default)
 
   void add_to(CLI::App* cmd) {
     cost_option = cmd->add_option(
         "--cost", cost,
         "speed axis: gpu:FAMILY (ACO's inverse throughput of the GLSL export on that RADV family, "
-        "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab bench`). "
+        "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab "
+        "bench`). "
         "Default gpu:navi21; cpu-batch under --precision double or --live-timing");
     cmd->add_option("--costs", costs,
-                    "cost table written by `sglab bench` and `sglab gpucost` (default: data/results/costs.json of "
+                    "cost table written by `sglab bench` and `sglab gpucost` (default: "
+                    "data/results/costs.json of "
                     "the project holding the working directory)");
     cmd->add_flag("--live-timing", live_timing,
-                  "time the methods on this CPU now instead of reading a cost table (answers vary from run to run)");
+                  "time the methods on this CPU now instead of reading a cost table (answers vary "
+                  "from run to run)");
   }
 
   // The chosen source (parsed once); throws InputError (exit 2) naming --cost.
@@ -50,11 +55,13 @@ struct CostsOption {
     if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--cost: " + *why);
     const auto& s = std::get<report::CostSource>(parsed);
     if (s.kind == report::CostSourceKind::gpu && f != validate::FloatFormat::binary32)
-      throw InputError(fmt::format("--cost {}: the GPU cost is that of the float shader export; use --precision "
-                                   "float, or --cost cpu-batch / cpu-scalar",
-                                   s.name()));
+      throw InputError(
+          fmt::format("--cost {}: the GPU cost is that of the float shader export; use --precision "
+                      "float, or --cost cpu-batch / cpu-scalar",
+                      s.name()));
     if (s.kind == report::CostSourceKind::gpu && live_timing)
-      throw InputError(fmt::format("--cost {} and --live-timing exclude each other (live timing is CPU ns)", s.name()));
+      throw InputError(fmt::format(
+          "--cost {} and --live-timing exclude each other (live timing is CPU ns)", s.name()));
     return s;
   }
 
@@ -76,8 +83,8 @@ struct CostsOption {
     if (live_timing) {
       if (!costs.empty()) throw InputError("--costs and --live-timing exclude each other");
       report::fill_costs(points, f, s.cpu_mode(), repetitions, min_time);
-      const std::string provenance =
-          fmt::format("live timing now: median of {} repetitions (varies from run to run)", repetitions);
+      const std::string provenance = fmt::format(
+          "live timing now: median of {} repetitions (varies from run to run)", repetitions);
       return {fmt::format("{}, {}", s.describe(), provenance), provenance};
     }
     std::filesystem::path path = costs;
@@ -85,24 +92,29 @@ struct CostsOption {
       const auto found = report::default_cost_table_path();
       if (!found)
         throw InputError(
-            "no cost table: no project folder (with data/constants and include/sglab) above the working directory; "
+            "no cost table: no project folder (with data/constants and include/sglab) above the "
+            "working directory; "
             "pass --costs FILE (written by `sglab bench` and `sglab gpucost`) or --live-timing");
       path = *found;
     }
     const report::CostTable table = report::read_cost_table(path);
     const std::vector<std::string> missing = report::fill_costs(points, f, table, s);
     for (const std::string& m : missing)
-      fmt::print(stderr, "sglab: warning: cost table {} has no {} cost for method '{}' ({}); it is listed as \"no "
-                         "cost\" and left out of the ranking (run `sglab {}` to measure it)\n",
-                 path.string(), s.name(), m,
-                 s.kind == report::CostSourceKind::gpu ? "GLSL, float" : validate::to_string(f),
-                 s.kind == report::CostSourceKind::gpu ? "gpucost" : "bench");
+      fmt::print(
+          stderr,
+          "sglab: warning: cost table {} has no {} cost for method '{}' ({}); it is listed as \"no "
+          "cost\" and left out of the ranking (run `sglab {}` to measure it)\n",
+          path.string(), s.name(), m,
+          s.kind == report::CostSourceKind::gpu ? "GLSL, float" : validate::to_string(f),
+          s.kind == report::CostSourceKind::gpu ? "gpucost" : "bench");
     const std::string provenance =
         s.kind == report::CostSourceKind::gpu
             ? fmt::format("sglab gpucost, {}; a compiler estimate, not a timing", table.gpu->driver)
-            : fmt::format("sglab bench, {}; {}, {} cores; {} {} {}", table.info.date, table.info.cpu, table.info.cores,
-                          table.info.compiler_id, table.info.compiler_version, table.info.build_type);
-    return {fmt::format("{} from cost table {} ({})", s.describe(), path.string(), provenance), provenance};
+            : fmt::format("sglab bench, {}; {}, {} cores; {} {} {}", table.info.date,
+                          table.info.cpu, table.info.cores, table.info.compiler_id,
+                          table.info.compiler_version, table.info.build_type);
+    return {fmt::format("{} from cost table {} ({})", s.describe(), path.string(), provenance),
+            provenance};
   }
 };
 

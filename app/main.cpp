@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "fit/solver_log.hpp"
@@ -17,8 +17,10 @@ namespace {
 
 // The exit codes of every subcommand (README.md, "Exit codes").
 constexpr const char* kExitCodes =
-    "Exit codes: 0 success; 1 failure (a fit did not converge, a file could not be written, an internal error); "
-    "2 bad input (an unknown subcommand or option, a malformed value or file; the message names it). Command-line "
+    "Exit codes: 0 success; 1 failure (a fit did not converge, a file could not be written, an "
+    "internal error); "
+    "2 bad input (an unknown subcommand or option, a malformed value or file; the message names "
+    "it). Command-line "
     "errors that CLI11 finds (its own codes are 100-127) exit with 2 as well.";
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -46,10 +48,13 @@ std::optional<std::string> unknown_subcommand(CLI::App& app, int argc, char** ar
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
     if (sub->get_name() == word) return std::nullopt;
     names += (names.empty() ? "" : ", ") + sub->get_name();
-    if (const std::size_t d = edit_distance(word, sub->get_name()); d < best) best = d, nearest = sub->get_name();
+    if (const std::size_t d = edit_distance(word, sub->get_name()); d < best)
+      best = d, nearest = sub->get_name();
   }
   std::string quoted;
-  for (unsigned char c : word.substr(0, 64)) quoted += c >= 0x20 && c < 0x7f ? std::string(1, static_cast<char>(c)) : fmt::format("\\x{:02x}", c);
+  for (unsigned char c : word.substr(0, 64))
+    quoted +=
+        c >= 0x20 && c < 0x7f ? std::string(1, static_cast<char>(c)) : fmt::format("\\x{:02x}", c);
   return fmt::format("unknown subcommand '{}'{}; the subcommands are: {} (sglab --help)", quoted,
                      nearest.empty() ? "" : fmt::format(" (did you mean '{}'?)", nearest), names);
 }
@@ -57,10 +62,12 @@ std::optional<std::string> unknown_subcommand(CLI::App& app, int argc, char** ar
 }  // namespace
 
 int main(int argc, char** argv) {
-  sglab::fit::init_solver_logging(argc > 0 ? argv[0] : "sglab");  // glog once, before any solver runs
+  sglab::fit::init_solver_logging(argc > 0 ? argv[0]
+                                           : "sglab");  // glog once, before any solver runs
   CLI::App app{"sglab: refit, validate and compare spherical Gaussian diffuse lighting methods"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("sglab ") + SGLAB_VERSION, "print the version and exit");
+  app.set_version_flag("--version", std::string("sglab ") + SGLAB_VERSION,
+                       "print the version and exit");
   app.footer(kExitCodes);
   sglab::app::add_methods_command(app);
   sglab::app::add_table_command(app);

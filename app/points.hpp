@@ -27,7 +27,8 @@ inline constexpr std::size_t kMaxPointsLineBytes = 1024;
 // that does not survive rounding to it is refused as the κ-range parser
 // refuses one (common/args.hpp): above its largest finite value, or nonzero
 // and rounding to 0.
-std::size_t for_each_point(const std::string& path, const std::function<void(const validate::Query&)>& on_point,
+std::size_t for_each_point(const std::string& path,
+                           const std::function<void(const validate::Query&)>& on_point,
                            std::optional<io::NumberFormat> kappa_format = std::nullopt);
 
 }  // namespace sglab::app

@@ -80,10 +80,14 @@ void print_json(const SceneOutput& o) {
   doc["cost_source"] = o.cost.name();
   doc["cost_unit"] = std::string(o.cost.unit());
   doc["cost_from"] = o.source.text;
-  doc["error"] = "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the scene";
+  doc["error"] =
+      "max over normals and RGB channels of |E_approx - E_exact| / max exact irradiance of the "
+      "scene";
   auto point = [](const std::optional<report::MethodPoint>& p) -> nlohmann::ordered_json {
     if (!p) return nullptr;
-    return {{"method", p->method}, {"scene_error", number(p->max_peak_rel)}, {"cost", number(p->cost)},
+    return {{"method", p->method},
+            {"scene_error", number(p->max_peak_rel)},
+            {"cost", number(p->cost)},
             {"cost_unit", p->cost_unit}};
   };
   doc["choice"] = point(r.choice);
@@ -105,54 +109,68 @@ void print_json(const SceneOutput& o) {
                   {"range_max_peak_rel", number(m.max_peak_rel)},
                   {"meets_budget", m.max_peak_rel <= o.args.budget}});
   const auto& sufficient = o.ranking.sufficient;
-  doc["sglab_models_on_range"] = {{"kappa_lo", o.ranking.kappa_lo}, {"kappa_hi", o.ranking.kappa_hi}, {"models", sg},
-                                  {"sufficient", sufficient ? nlohmann::ordered_json(sufficient->method) : nullptr}};
+  doc["sglab_models_on_range"] = {
+      {"kappa_lo", o.ranking.kappa_lo},
+      {"kappa_hi", o.ranking.kappa_hi},
+      {"models", sg},
+      {"sufficient", sufficient ? nlohmann::ordered_json(sufficient->method) : nullptr}};
   fmt::print("{}\n", doc.dump(2));
 }
 
 void print_text(const SceneOutput& o) {
   const report::Recommendation& r = o.ranking.recommendation;
-  fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n", o.args.scene,
-             o.scene.lights.size(), o.scene.kappa_min(), o.scene.kappa_max(), o.normals,
-             validate::to_string(o.args.precision), o.args.budget);
-  fmt::print("error = max over normals and RGB channels of |Ê − E| / the scene's largest exact irradiance\n\n");
-  fmt::print("  {:<24} {:<10} {:>12} {:>12}  {}\n", "method", "origin", "scene error", "cost", "meets budget");
+  fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n",
+             o.args.scene, o.scene.lights.size(), o.scene.kappa_min(), o.scene.kappa_max(),
+             o.normals, validate::to_string(o.args.precision), o.args.budget);
+  fmt::print(
+      "error = max over normals and RGB channels of |Ê − E| / the scene's largest exact "
+      "irradiance\n\n");
+  fmt::print("  {:<24} {:<10} {:>12} {:>12}  {}\n", "method", "origin", "scene error", "cost",
+             "meets budget");
   for (const auto& p : o.points)
-    fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", p.method, to_string(p.origin), p.max_peak_rel,
-               report::cost_text(p), std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes" : "no");
+    fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", p.method, to_string(p.origin),
+               p.max_peak_rel, report::cost_text(p),
+               std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes" : "no");
   fmt::print("\n");
   if (r.choice) {
-    fmt::print("  choice:    {} (scene error {:.4g}, {})\n", r.choice->method, r.choice->max_peak_rel,
-               report::cost_text(*r.choice));
+    fmt::print("  choice:    {} (scene error {:.4g}, {})\n", r.choice->method,
+               r.choice->max_peak_rel, report::cost_text(*r.choice));
     if (r.runner_up)
-      fmt::print("  runner-up: {} (scene error {:.4g}, {})\n", r.runner_up->method, r.runner_up->max_peak_rel,
-                 report::cost_text(*r.runner_up));
+      fmt::print("  runner-up: {} (scene error {:.4g}, {})\n", r.runner_up->method,
+                 r.runner_up->max_peak_rel, report::cost_text(*r.runner_up));
   } else {
     fmt::print("  no method meets the budget on this scene.\n");
     if (r.most_accurate)
-      fmt::print("  most accurate: {} (scene error {:.4g})\n", r.most_accurate->method, r.most_accurate->max_peak_rel);
+      fmt::print("  most accurate: {} (scene error {:.4g})\n", r.most_accurate->method,
+                 r.most_accurate->max_peak_rel);
   }
-  fmt::print("\n  sglab models over the scene's κ range [{:.4g}, {:.4g}] (max peak_rel, 29 κ × 41 c):\n",
-             o.ranking.kappa_lo, o.ranking.kappa_hi);
+  fmt::print(
+      "\n  sglab models over the scene's κ range [{:.4g}, {:.4g}] (max peak_rel, 29 κ × 41 c):\n",
+      o.ranking.kappa_lo, o.ranking.kappa_hi);
   for (const auto& m : o.ranking.models_on_range)
-    fmt::print("    {:<22} {:.4g}{}\n", m.method, m.max_peak_rel, m.max_peak_rel <= o.args.budget ? "  meets the budget" : "");
+    fmt::print("    {:<22} {:.4g}{}\n", m.method, m.max_peak_rel,
+               m.max_peak_rel <= o.args.budget ? "  meets the budget" : "");
   if (o.ranking.sufficient)
-    fmt::print("  cheapest sglab model sufficient for the range: {}\n", o.ranking.sufficient->method);
+    fmt::print("  cheapest sglab model sufficient for the range: {}\n",
+               o.ranking.sufficient->method);
   else
     fmt::print("  no registered sglab model meets the budget over this κ range.\n");
-  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", o.cost.unit(), o.source.text,
-             report::kCostTieMargin * 100);
+  fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", o.cost.unit(),
+             o.source.text, report::kCostTieMargin * 100);
 }
 
 }  // namespace
 
 void recommend_scene(const SceneRecommendArgs& args) {
-  const report::CostSource cost = args.costs.source(args.precision);  // a bad --cost before any work
+  const report::CostSource cost =
+      args.costs.source(args.precision);  // a bad --cost before any work
   const validate::Scene scene = read_scene(args);
   const auto normals = validate::fibonacci_normals(args.normals);
   std::vector<report::MethodPoint> points = report::scene_points(scene, normals, args.precision);
-  const CostsOption::From source = args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
-  const report::SceneRanking ranking = report::rank_scene(points, scene, args.budget, args.precision);
+  const CostsOption::From source =
+      args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);
+  const report::SceneRanking ranking =
+      report::rank_scene(points, scene, args.budget, args.precision);
   const SceneOutput out{args, scene, normals.size(), cost, source, points, ranking};
   if (args.json)
     print_json(out);

@@ -22,7 +22,8 @@ sglab::validate::ErfFloatOptions options() {
   return o;
 }
 
-template <class F> void run(benchmark::State& state, F f) {
+template <class F>
+void run(benchmark::State& state, F f) {
   std::uint64_t points = 0;
   for (auto _ : state) {
     const auto r = sglab::validate::check_erf_float(f, options());
@@ -34,7 +35,9 @@ template <class F> void run(benchmark::State& state, F f) {
 
 const sglab::ErfVariant& variant(const char* id) { return *sglab::find_erf_variant(id); }
 
-void BM_CheckerOnly(benchmark::State& s) { run(s, [](float x) { return x < 1.0f ? x : 1.0f; }); }
+void BM_CheckerOnly(benchmark::State& s) {
+  run(s, [](float x) { return x < 1.0f ? x : 1.0f; });
+}
 void BM_Listing5Functor(benchmark::State& s) { run(s, sglab::ErfListing5{}); }
 void BM_Listing5Pointer(benchmark::State& s) { run(s, variant("listing5").f32); }
 void BM_AS7125Functor(benchmark::State& s) { run(s, sglab::ErfAS7125{}); }

@@ -11,12 +11,12 @@
 // pass, then light_eval32 per cosine: the per-shading-point cost), setup
 // (light_setup32 per κ: the per-light cost). Cost per evaluation =
 // (run with PASSES − run with 0 passes) / (PASSES × 4096).
+#include <cmath>
 #include <cstdlib>
 #include <random>
+#include <sglab/sglab.hpp>
 #include <string>
 #include <vector>
-#include <cmath>
-#include <sglab/sglab.hpp>
 int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr, "usage: method_cost METHOD PASSES [batch|scalar|eval|setup]\n");
@@ -41,10 +41,18 @@ int main(int argc, char** argv) {
   }
   float st[sglab::kLightStateFloats];
   for (int p = 0; p < passes; ++p) {
-    if (mode == "eval") { m->light_setup32(k[p % n], st); for (std::size_t i = 0; i < n; ++i) out[i] = m->light_eval32(st, c[i]); }
-    else if (mode == "setup") { for (std::size_t i = 0; i < n; ++i) { m->light_setup32(k[i], st); out[i] = st[0] + st[3]; } }
-    else if (mode == "scalar") { for (std::size_t i = 0; i < n; ++i) out[i] = m->f32(c[i], k[i]); }
-    else m->batch32(c.data(), k.data(), out.data(), n);
+    if (mode == "eval") {
+      m->light_setup32(k[p % n], st);
+      for (std::size_t i = 0; i < n; ++i) out[i] = m->light_eval32(st, c[i]);
+    } else if (mode == "setup") {
+      for (std::size_t i = 0; i < n; ++i) {
+        m->light_setup32(k[i], st);
+        out[i] = st[0] + st[3];
+      }
+    } else if (mode == "scalar") {
+      for (std::size_t i = 0; i < n; ++i) out[i] = m->f32(c[i], k[i]);
+    } else
+      m->batch32(c.data(), k.data(), out.data(), n);
     s += out[p % n];
   }
   std::printf("%g\n", s);

@@ -81,8 +81,8 @@ long long decimal_order(std::string_view text) {
       seen_point = true;
     } else if (c >= '0' && c <= '9') {
       if (!seen_nonzero && c != '0') seen_nonzero = true;
-      if (seen_nonzero && !seen_point) ++order;      // integer digits from the first nonzero one
-      if (!seen_nonzero && seen_point) --order;      // fraction zeros before it
+      if (seen_nonzero && !seen_point) ++order;  // integer digits from the first nonzero one
+      if (!seen_nonzero && seen_point) --order;  // fraction zeros before it
     }
   }
   return order + exponent;
@@ -93,7 +93,8 @@ long long decimal_order(std::string_view text) {
 std::variant<double, std::string> parse_decimal(std::string_view text) {
   bool nonzero = false;
   if (!plain_decimal(text, nonzero))
-    return fmt::format("{} is not a number (plain decimal expected, e.g. 1e-3 or 250)", quote_escaped(text));
+    return fmt::format("{} is not a number (plain decimal expected, e.g. 1e-3 or 250)",
+                       quote_escaped(text));
   double v = 0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec == std::errc::result_out_of_range || (ec == std::errc() && nonzero && v == 0)) {
@@ -108,18 +109,21 @@ std::variant<double, std::string> parse_decimal(std::string_view text) {
   return v;
 }
 
-std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, const KappaRangeRules& rules) {
+std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text,
+                                                        const KappaRangeRules& rules) {
   const std::string form = rules.with_count ? "LO:HI:N, e.g. 1e-3:1e4:29" : "LO:HI, e.g. 1e-3:1e4";
   std::vector<std::string_view> fields;
   for (std::size_t start = 0;;) {
     const auto colon = text.find(':', start);
-    fields.push_back(text.substr(start, colon == std::string_view::npos ? std::string_view::npos : colon - start));
+    fields.push_back(text.substr(
+        start, colon == std::string_view::npos ? std::string_view::npos : colon - start));
     if (colon == std::string_view::npos) break;
     start = colon + 1;
   }
   const std::size_t want = rules.with_count ? 3 : 2;
   if (fields.size() != want)
-    return fmt::format("expected {} ({} fields separated by ':'); got {}", form, want, quote_escaped(text));
+    return fmt::format("expected {} ({} fields separated by ':'); got {}", form, want,
+                       quote_escaped(text));
 
   double bound[2] = {0, 0};
   for (int i = 0; i < 2; ++i) {
@@ -130,24 +134,31 @@ std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, c
   }
   KappaRange r{bound[0], bound[1], 0};
   const NumberFormat& f = rules.format;
-  if (!(r.lo > 0)) return fmt::format("LO must be > 0 (κ values are log-spaced); got {}", quote_escaped(fields[0]));
+  if (!(r.lo > 0))
+    return fmt::format("LO must be > 0 (κ values are log-spaced); got {}",
+                       quote_escaped(fields[0]));
   if (!(r.hi >= r.lo))
-    return fmt::format("HI must be >= LO; got HI = {} < LO = {}", quote_escaped(fields[1]), quote_escaped(fields[0]));
+    return fmt::format("HI must be >= LO; got HI = {} < LO = {}", quote_escaped(fields[1]),
+                       quote_escaped(fields[0]));
   if (rounds_to_zero(r.lo, f))
-    return fmt::format("LO = {} rounds to 0 in {}, the precision κ is used in (smallest positive {}: {:g})",
-                       quote_escaped(fields[0]), f.name, f.name, f.denorm_min);
+    return fmt::format(
+        "LO = {} rounds to 0 in {}, the precision κ is used in (smallest positive {}: {:g})",
+        quote_escaped(fields[0]), f.name, f.name, f.denorm_min);
   if (exceeds_max_finite(r.hi, f))
     return fmt::format("HI = {} exceeds the largest finite {} ({:g}), the precision κ is used in",
                        quote_escaped(fields[1]), f.name, f.max_finite);
   if (rules.with_count) {
     const std::string_view n = fields[2];
-    const bool digits = !n.empty() && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (!digits) return fmt::format("N {} is not a positive integer (digits only)", quote_escaped(n));
+    const bool digits =
+        !n.empty() && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits)
+      return fmt::format("N {} is not a positive integer (digits only)", quote_escaped(n));
     int count = 0;
     const auto [ptr, ec] = std::from_chars(n.data(), n.data() + n.size(), count);
     if (ec == std::errc::result_out_of_range || (ec == std::errc() && count > rules.max_count))
       return fmt::format("N {} is out of range (at most {})", quote_escaped(n), rules.max_count);
-    if (ec != std::errc() || ptr != n.data() + n.size()) return fmt::format("N {} is not an integer", quote_escaped(n));
+    if (ec != std::errc() || ptr != n.data() + n.size())
+      return fmt::format("N {} is not an integer", quote_escaped(n));
     if (count < 1) return fmt::format("N must be >= 1; got {}", quote_escaped(n));
     if (count == 1 && r.lo != r.hi)
       return fmt::format("N = 1 needs LO = HI; got {}", quote_escaped(text));
@@ -156,9 +167,10 @@ std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, c
   return r;
 }
 
-std::variant<long long, std::string> parse_count(std::string_view text, long long min, long long max) {
-  const bool digits =
-      !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+std::variant<long long, std::string> parse_count(std::string_view text, long long min,
+                                                 long long max) {
+  const bool digits = !text.empty() && std::all_of(text.begin(), text.end(),
+                                                   [](char c) { return c >= '0' && c <= '9'; });
   if (!digits) return fmt::format("{} is not a whole number (digits only)", quote_escaped(text));
   long long value = 0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

@@ -47,7 +47,8 @@ struct NumberFormat {
 };
 inline constexpr NumberFormat kHalfFormat{"half", 0x1p-24, 65504.0};
 inline constexpr NumberFormat kFloatFormat{"float", 0x1p-149, 0x1.fffffep127};
-inline constexpr NumberFormat kDoubleFormat{"double", 0x0.0000000000001p-1022, 0x1.fffffffffffffp1023};
+inline constexpr NumberFormat kDoubleFormat{"double", 0x0.0000000000001p-1022,
+                                            0x1.fffffffffffffp1023};
 
 // Whether a nonzero `value` rounds to 0 in format f: it is at most half the
 // smallest subnormal (the halfway case rounds to even, i.e. to 0).
@@ -60,8 +61,8 @@ constexpr bool exceeds_max_finite(double value, const NumberFormat& f) {
 }
 
 struct KappaRangeRules {
-  bool with_count = false;               // LO:HI:N (true) or LO:HI (false)
-  NumberFormat format = kFloatFormat;    // the precision the κ values are used in
+  bool with_count = false;             // LO:HI:N (true) or LO:HI (false)
+  NumberFormat format = kFloatFormat;  // the precision the κ values are used in
   int max_count = kMaxKappaCount;
 };
 
@@ -72,7 +73,8 @@ struct KappaRange {
 
 // `text` as LO:HI or LO:HI:N under `rules`. On failure, the error message
 // (quoting the bad part escaped; the caller prefixes the option name).
-std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text, const KappaRangeRules& rules);
+std::variant<KappaRange, std::string> parse_kappa_range(std::string_view text,
+                                                        const KappaRangeRules& rules);
 
 // One plain decimal number (syntax above) as a double. On failure, why:
 // "is not a number" or "is out of range (...)".
@@ -83,7 +85,8 @@ std::variant<double, std::string> parse_decimal(std::string_view text);
 // text escaped; the caller prefixes the option name): "'-1' is not a whole
 // number (digits only)", "'2147483648' is out of range (at most 1000000)",
 // "must be at least 2, got '1'".
-std::variant<long long, std::string> parse_count(std::string_view text, long long min, long long max);
+std::variant<long long, std::string> parse_count(std::string_view text, long long min,
+                                                 long long max);
 
 // `count` values log-spaced over [lo, hi]: v_j = 10^(e_lo + (e_hi − e_lo)·j/(N − 1))
 // with e = log10, then made to start exactly at lo, end exactly at hi and be

@@ -62,18 +62,21 @@ struct Pending {
 void check_output_folder(const fs::path& dir) {
   if (dir.empty()) throw InputError("an empty output folder name (give a folder, e.g. --out out)");
   std::error_code ec;
-  const fs::file_status st = fs::status(dir, ec);  // follows symbolic links: a link to a folder is fine
+  const fs::file_status st =
+      fs::status(dir, ec);  // follows symbolic links: a link to a folder is fine
   if (st.type() == fs::file_type::not_found || st.type() == fs::file_type::directory) return;
   const std::string type = file_type_name(dir);
-  throw InputError(fmt::format("{}: is {}, not a folder; refusing to write into it", dir.string(),
-                               type == "a symbolic link" ? "a symbolic link to something that is not a folder" : type));
+  throw InputError(fmt::format(
+      "{}: is {}, not a folder; refusing to write into it", dir.string(),
+      type == "a symbolic link" ? "a symbolic link to something that is not a folder" : type));
 }
 
 void check_output_path(const fs::path& path) {
   if (path.empty()) throw InputError("an empty output file name");
   const std::string type = file_type_name(path);
   if (!type.empty() && type != "a regular file")
-    throw InputError(fmt::format("{}: is {}, not a regular file; refusing to replace it", path.string(), type));
+    throw InputError(
+        fmt::format("{}: is {}, not a regular file; refusing to replace it", path.string(), type));
   if (path.has_parent_path()) check_output_folder(path.parent_path());
 }
 
@@ -98,8 +101,8 @@ void write_all(const std::vector<FileView>& files) {
     fs::create_directories(parent, ec);
     if (ec) {
       discard_temporaries();
-      throw std::runtime_error(fmt::format("cannot write {}: cannot create directory {}: {}", f.path.string(),
-                                           parent.string(), ec.message()));
+      throw std::runtime_error(fmt::format("cannot write {}: cannot create directory {}: {}",
+                                           f.path.string(), parent.string(), ec.message()));
     }
     Pending p{f.path, temporary_for(f.path), std::nullopt, false};
     if (fs::is_regular_file(f.path, ec)) {
@@ -107,14 +110,15 @@ void write_all(const std::vector<FileView>& files) {
         p.previous = read_file(f.path);
       } catch (const std::exception&) {
         discard_temporaries();
-        throw std::runtime_error(fmt::format("cannot write {}: cannot read its current content ({})",
-                                             f.path.string(), os_reason(errno)));
+        throw std::runtime_error(
+            fmt::format("cannot write {}: cannot read its current content ({})", f.path.string(),
+                        os_reason(errno)));
       }
     }
     if (const int err = write_new_file(p.tmp, f.content)) {
       discard_temporaries();
-      throw std::runtime_error(fmt::format("cannot write {}: {} (temporary {})", f.path.string(), os_reason(err),
-                                           p.tmp.string()));
+      throw std::runtime_error(fmt::format("cannot write {}: {} (temporary {})", f.path.string(),
+                                           os_reason(err), p.tmp.string()));
     }
     pending.push_back(std::move(p));
   }
@@ -138,7 +142,8 @@ void write_all(const std::vector<FileView>& files) {
           restored += fmt::format(" {}", done.path.string());
         } else {
           ::unlink(tmp.c_str());
-          message += fmt::format("; could not restore {}: {}", done.path.string(), os_reason(e ? e : errno));
+          message += fmt::format("; could not restore {}: {}", done.path.string(),
+                                 os_reason(e ? e : errno));
         }
       } else {
         ::unlink(done.path.c_str());
@@ -158,6 +163,8 @@ void write_files_atomic(const std::vector<FileContent>& files) {
   write_all(views);
 }
 
-void write_file_atomic(const fs::path& path, std::string_view content) { write_all({{path, content}}); }
+void write_file_atomic(const fs::path& path, std::string_view content) {
+  write_all({{path, content}});
+}
 
 }  // namespace sglab::io

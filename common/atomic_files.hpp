@@ -21,10 +21,10 @@ struct FileContent {
 // destinations in order. Before anything is written, every destination is
 // checked (check_output_path): an empty path, a destination that exists and is
 // not a regular file, or a folder that exists and is not a folder is refused
-// with InputError (io.hpp; bad input, exit 2), naming the path and its type. When a temporary cannot be written nothing is
-// replaced; when a rename fails, the destinations already replaced get their
-// previous content back (or are removed when they did not exist before).
-// Throws std::runtime_error naming the destination file and the OS reason.
+// with InputError (io.hpp; bad input, exit 2), naming the path and its type. When a temporary
+// cannot be written nothing is replaced; when a rename fails, the destinations already replaced get
+// their previous content back (or are removed when they did not exist before). Throws
+// std::runtime_error naming the destination file and the OS reason.
 void write_files_atomic(const std::vector<FileContent>& files);
 
 // Refuses (InputError naming the path and what it is) an output path that is

@@ -36,9 +36,9 @@ std::string comment_text(std::string_view s) {
       ++i;
       continue;
     }
-    const bool invisible = (cp >= 0x80 && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029 || cp == 0x200e ||
-                           cp == 0x200f || cp == 0x061c || cp == 0xfeff || (cp >= 0x202a && cp <= 0x202e) ||
-                           (cp >= 0x2066 && cp <= 0x2069);
+    const bool invisible = (cp >= 0x80 && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029 ||
+                           cp == 0x200e || cp == 0x200f || cp == 0x061c || cp == 0xfeff ||
+                           (cp >= 0x202a && cp <= 0x202e) || (cp >= 0x2066 && cp <= 0x2069);
     if (invisible)
       out += fmt::format("\\u{{{:04x}}}", static_cast<std::uint32_t>(cp));
     else

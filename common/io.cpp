@@ -36,15 +36,24 @@ std::string file_type_name(const std::filesystem::path& path) {
   std::error_code ec;
   switch (fs::symlink_status(path, ec).type()) {
     case fs::file_type::not_found:
-    case fs::file_type::none: return "";
-    case fs::file_type::regular: return "a regular file";
-    case fs::file_type::directory: return "a directory";
-    case fs::file_type::symlink: return "a symbolic link";
-    case fs::file_type::block: return "a block device";
-    case fs::file_type::character: return "a character device";
-    case fs::file_type::fifo: return "a FIFO";
-    case fs::file_type::socket: return "a socket";
-    default: return "an unknown file type";
+    case fs::file_type::none:
+      return "";
+    case fs::file_type::regular:
+      return "a regular file";
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::symlink:
+      return "a symbolic link";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    default:
+      return "an unknown file type";
   }
 }
 
@@ -67,23 +76,29 @@ int read_at_most(int fd, std::size_t limit, std::string& out) {
 
 }  // namespace
 
-std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what) {
+std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes,
+                            std::string_view what) {
   namespace fs = std::filesystem;
   const std::string name = path.string();
   if (path.empty()) throw InputError(fmt::format("an empty file name for {}", what));
   std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);  // follows symbolic links: a link to a file is fine
-  if (st.type() == fs::file_type::not_found) throw InputError(fmt::format("{}: no such file ({})", name, what));
+  const fs::file_status st =
+      fs::status(path, ec);  // follows symbolic links: a link to a file is fine
+  if (st.type() == fs::file_type::not_found)
+    throw InputError(fmt::format("{}: no such file ({})", name, what));
   if (ec) throw InputError(fmt::format("{}: cannot read: {}", name, ec.message()));
   const auto refuse_type = [&](const std::string& type) {
-    return InputError(fmt::format("{}: is {}, not a regular file ({} must be one)", name, type, what));
+    return InputError(
+        fmt::format("{}: is {}, not a regular file ({} must be one)", name, type, what));
   };
   if (st.type() != fs::file_type::regular) {
     const std::string type = file_type_name(path);
-    throw refuse_type(type == "a symbolic link" ? "a symbolic link to " + file_type_name(fs::canonical(path, ec))
-                                                : type);
+    throw refuse_type(type == "a symbolic link"
+                          ? "a symbolic link to " + file_type_name(fs::canonical(path, ec))
+                          : type);
   }
-  // O_NONBLOCK: should a FIFO replace the file after the check, opening it does not wait for a writer.
+  // O_NONBLOCK: should a FIFO replace the file after the check, opening it does not wait for a
+  // writer.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
   if (fd < 0) throw InputError(fmt::format("{}: cannot read: {}", name, os_reason(errno)));
   struct stat info {};
@@ -92,7 +107,8 @@ std::string read_input_file(const std::filesystem::path& path, std::size_t max_b
     throw refuse_type("no longer a regular file");
   }
   const auto too_large = [&](std::uintmax_t size) {
-    return InputError(fmt::format("{}: {} bytes, more than the {} bytes {} may have", name, size, max_bytes, what));
+    return InputError(fmt::format("{}: {} bytes, more than the {} bytes {} may have", name, size,
+                                  max_bytes, what));
   };
   if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
     ::close(fd);
@@ -100,7 +116,8 @@ std::string read_input_file(const std::filesystem::path& path, std::size_t max_b
   }
   std::string text;
   text.reserve(static_cast<std::size_t>(info.st_size));
-  const int err = read_at_most(fd, max_bytes + 1, text);  // one byte more: the file may have grown since fstat
+  const int err =
+      read_at_most(fd, max_bytes + 1, text);  // one byte more: the file may have grown since fstat
   ::close(fd);
   if (err != 0) throw InputError(fmt::format("{}: cannot read: {}", name, os_reason(err)));
   if (text.size() > max_bytes) throw too_large(text.size());
@@ -115,7 +132,8 @@ std::optional<std::filesystem::path> find_project_root(const std::filesystem::pa
   fs::path dir = fs::absolute(start, ec);
   if (ec) return std::nullopt;
   for (;;) {
-    if (fs::is_directory(dir / "data" / "constants", ec) && fs::is_directory(dir / "include" / "sglab", ec))
+    if (fs::is_directory(dir / "data" / "constants", ec) &&
+        fs::is_directory(dir / "include" / "sglab", ec))
       return dir;
     if (!dir.has_parent_path() || dir.parent_path() == dir) return std::nullopt;
     dir = dir.parent_path();
@@ -123,7 +141,8 @@ std::optional<std::filesystem::path> find_project_root(const std::filesystem::pa
 }
 
 int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
-                const std::filesystem::path& output, const std::optional<std::vector<std::string>>& environment) {
+                const std::filesystem::path& output,
+                const std::optional<std::vector<std::string>>& environment) {
   if (argv.empty()) return -1;
   posix_spawn_file_actions_t actions;
   if (posix_spawn_file_actions_init(&actions) != 0) return -1;
@@ -131,12 +150,14 @@ int run_program(const std::vector<std::string>& argv, const std::filesystem::pat
   // opened inside it.
   if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.empty() ? "/dev/null" : output.c_str(),
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO,
+                                   output.empty() ? "/dev/null" : output.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   // A program named by a relative path is resolved before the chdir.
   std::string program = argv[0];
-  if (!cwd.empty() && program.find('/') != std::string::npos) program = std::filesystem::absolute(program).string();
+  if (!cwd.empty() && program.find('/') != std::string::npos)
+    program = std::filesystem::absolute(program).string();
   std::vector<char*> args;
   args.push_back(program.data());
   for (std::size_t i = 1; i < argv.size(); ++i) args.push_back(const_cast<char*>(argv[i].c_str()));
@@ -147,7 +168,8 @@ int run_program(const std::vector<std::string>& argv, const std::filesystem::pat
     env.push_back(nullptr);
   }
   pid_t pid = 0;
-  const int rc = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environment ? env.data() : environ);
+  const int rc = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(),
+                                environment ? env.data() : environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
   int status = 0;
@@ -187,7 +209,9 @@ struct Progress::Impl {
   // Redraws if due; the caller holds `mutex`.
   void draw(std::size_t count, bool force) {
     const auto now = std::chrono::steady_clock::now();
-    if (!force && drawn && now - last < std::chrono::milliseconds(100) && (total == 0 || count < total)) return;
+    if (!force && drawn && now - last < std::chrono::milliseconds(100) &&
+        (total == 0 || count < total))
+      return;
     last = now;
     drawn = true;
     const double secs = std::chrono::duration<double>(now - start).count();
@@ -203,7 +227,8 @@ struct Progress::Impl {
   }
 };
 
-Progress::Progress(std::string label, std::size_t total) : Progress(std::move(label), total, ProgressSink::standard_error()) {}
+Progress::Progress(std::string label, std::size_t total)
+    : Progress(std::move(label), total, ProgressSink::standard_error()) {}
 
 Progress::Progress(std::string label, std::size_t total, ProgressSink sink) : impl_(new Impl) {
   impl_->label = std::move(label);

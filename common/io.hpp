@@ -46,7 +46,8 @@ std::string file_type_name(const std::filesystem::path& path);
 // read, so /dev/zero, a FIFO or a huge file cannot exhaust memory or block.
 // Throws InputError naming the path and what is wrong (missing, unreadable,
 // not a regular file and what it is, too large).
-std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what);
+std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes,
+                            std::string_view what);
 
 // Where a Progress line goes: `terminal` says whether anything is drawn at
 // all, `write` receives every redraw. standard_error() is stderr, drawn only

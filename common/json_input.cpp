@@ -47,13 +47,16 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
   }
   bool end_object() override { return close(); }
   bool end_array() override { return close(); }
-  bool parse_error(std::size_t, const std::string& last_token, const nlohmann::detail::exception& e) override {
-    if (e.id == 406) {  // out_of_range.406: a number beyond the largest double, said as parse_decimal says it
+  bool parse_error(std::size_t, const std::string& last_token,
+                   const nlohmann::detail::exception& e) override {
+    if (e.id == 406) {  // out_of_range.406: a number beyond the largest double, said as
+                        // parse_decimal says it
       const auto checked = io::parse_decimal(last_token);
       if (const auto* why = std::get_if<std::string>(&checked)) return stop(*why);
     }
     std::string what = e.what();
-    if (const auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);  // drop "[json.exception...]"
+    if (const auto pos = what.find("] "); pos != std::string::npos)
+      what = what.substr(pos + 2);  // drop "[json.exception...]"
     // The library quotes the whole last token (a 50 MB string, control bytes
     // as <U+0001>): quote it escaped and shortened instead.
     const std::string quoted = "last read: '" + last_token + "'";
@@ -62,7 +65,8 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
     return stop(what.substr(0, 4 * io::kMaxQuotedChars + 200));
   }
 
-  // The key path of the current position, e.g. provenance.achieved.objective or coefficients.small[3].
+  // The key path of the current position, e.g. provenance.achieved.objective or
+  // coefficients.small[3].
   std::string path() const {
     std::string p;
     for (std::size_t i = 0; i < stack_.size(); ++i) {
@@ -112,8 +116,9 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
     return true;
   }
 
-  std::vector<ordered_json*> stack_;  // open containers (pointers stay valid: only the innermost grows)
-  std::vector<std::string> keys_;     // the current key of each open object
+  std::vector<ordered_json*>
+      stack_;  // open containers (pointers stay valid: only the innermost grows)
+  std::vector<std::string> keys_;  // the current key of each open object
 };
 
 }  // namespace
@@ -123,12 +128,13 @@ nlohmann::ordered_json parse_json_strict(std::string_view text, std::string_view
   const bool ok =
       ordered_json::sax_parse(text, &builder, ordered_json::input_format_t::json, /*strict=*/true);
   if (!ok || !builder.error.empty())
-    throw InputError(
-        fmt::format("{}: malformed JSON: {}", source, builder.error.empty() ? "parse failed" : builder.error));
+    throw InputError(fmt::format("{}: malformed JSON: {}", source,
+                                 builder.error.empty() ? "parse failed" : builder.error));
   return std::move(builder.root);
 }
 
-nlohmann::ordered_json read_json_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what) {
+nlohmann::ordered_json read_json_file(const std::filesystem::path& path, std::size_t max_bytes,
+                                      std::string_view what) {
   return parse_json_strict(read_input_file(path, max_bytes, what), path.string());
 }
 

@@ -26,6 +26,7 @@ inline constexpr int kMaxJsonDepth = 64;
 nlohmann::ordered_json parse_json_strict(std::string_view text, std::string_view source);
 
 // read_input_file(path, max_bytes, what) (io.hpp) then parse_json_strict.
-nlohmann::ordered_json read_json_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what);
+nlohmann::ordered_json read_json_file(const std::filesystem::path& path, std::size_t max_bytes,
+                                      std::string_view what);
 
 }  // namespace sglab::io

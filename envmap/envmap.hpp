@@ -32,7 +32,9 @@ using Vec3 = validate::Vec3;
 struct Map {
   std::size_t width = 0, height = 0;
   std::vector<float> rgb;  // width·height·3
-  float at(std::size_t i, std::size_t j, std::size_t ch) const { return rgb[(j * width + i) * 3 + ch]; }
+  float at(std::size_t i, std::size_t j, std::size_t ch) const {
+    return rgb[(j * width + i) * 3 + ch];
+  }
 };
 
 // Largest map read: 2^27 pixels (16384 × 8192; 1.5 GiB as float RGB), and
@@ -90,9 +92,9 @@ std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals);
 // ---- SG fits ------------------------------------------------------------------
 
 struct Lobe {
-  Vec3 axis;          // unit
-  double sharpness;   // κ
-  Vec3 amplitude;     // RGB ≥ 0, in the map's radiance units
+  Vec3 axis;         // unit
+  double sharpness;  // κ
+  Vec3 amplitude;    // RGB ≥ 0, in the map's radiance units
 };
 
 enum class Objective { radiance, irradiance };
@@ -144,12 +146,14 @@ inline constexpr std::size_t kEvalNormals = 2000;
 // Single-threaded Ceres (the same input gives the same bytes); run fits in
 // parallel over maps or lobe counts. Throws io::InputError for 0 lobes or more
 // than max_lobes(work).
-FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals, const FitOptions& options);
+FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
+              const FitOptions& options);
 
 // The lobes as a scene (validate/scene.hpp) and their exact irradiance at the
 // normals (reference engine), RGB in the map's units.
 validate::Scene to_scene(const std::vector<Lobe>& lobes);
-std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes, const std::vector<Vec3>& normals);
+std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes,
+                                         const std::vector<Vec3>& normals);
 
 // Max and RMS over normals and channels of |approx − exact|, divided by the
 // largest exact irradiance (max over normals and channels).

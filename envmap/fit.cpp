@@ -131,15 +131,16 @@ IrrValue sg_irradiance_d(double c, double kappa) {
   IrrValue v;
   v.e = m.f64(c, kappa);
   v.de_dc = (m.f64(c1, kappa) - m.f64(c0, kappa)) / (c1 - c0);
-  v.de_dk = (m.f64(c, kappa + hk) - m.f64(c, std::max(0.0, kappa - hk))) / (kappa + hk - std::max(0.0, kappa - hk));
+  v.de_dk = (m.f64(c, kappa + hk) - m.f64(c, std::max(0.0, kappa - hk))) /
+            (kappa + hk - std::max(0.0, kappa - hk));
   return v;
 }
 
 // Irradiance residuals of a chunk of normals: (Σ_k a_k Ê(a_k·n, κ_k) − E(n)) / π.
 class NormalsCost final : public ceres::CostFunction {
  public:
-  NormalsCost(const std::vector<Vec3>& normals, const std::vector<Vec3>& target, std::size_t first, std::size_t count,
-              std::size_t lobes)
+  NormalsCost(const std::vector<Vec3>& normals, const std::vector<Vec3>& target, std::size_t first,
+              std::size_t count, std::size_t lobes)
       : normals_(normals), target_(target), first_(first), count_(count), lobes_(lobes) {
     set_num_residuals(static_cast<int>(3 * count));
     for (std::size_t k = 0; k < lobes; ++k) {
@@ -222,7 +223,8 @@ SolveOutcome solve(ceres::Problem& problem, int max_iterations) {
   o.minimizer_progress_to_stdout = false;
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);
-  return {static_cast<int>(summary.iterations.size()), summary.termination_type == ceres::CONVERGENCE};
+  return {static_cast<int>(summary.iterations.size()),
+          summary.termination_type == ceres::CONVERGENCE};
 }
 
 // BakingLab's spiral and shared sharpness (fit_baseline's comment).
@@ -237,11 +239,15 @@ Params baseline_params(std::size_t n, double kmax) {
   }
   double min_dp = n > 1 ? 1.0 : 0.0;  // one lobe: as if its neighbour were 90° away
   for (std::size_t k = 1; k < n; ++k) {
-    std::array<double, 3> h{p.axis[k][0] + p.axis[0][0], p.axis[k][1] + p.axis[0][1], p.axis[k][2] + p.axis[0][2]};
+    std::array<double, 3> h{p.axis[k][0] + p.axis[0][0], p.axis[k][1] + p.axis[0][1],
+                            p.axis[k][2] + p.axis[0][2]};
     const double len = std::hypot(h[0], h[1], h[2]);
-    if (len > 0) min_dp = std::min(min_dp, (h[0] * p.axis[0][0] + h[1] * p.axis[0][1] + h[2] * p.axis[0][2]) / len);
+    if (len > 0)
+      min_dp =
+          std::min(min_dp, (h[0] * p.axis[0][0] + h[1] * p.axis[0][1] + h[2] * p.axis[0][2]) / len);
   }
-  const double kappa = std::clamp(std::log(0.65) * static_cast<double>(n) / (min_dp - 1), kKappaMin, kmax);
+  const double kappa =
+      std::clamp(std::log(0.65) * static_cast<double>(n) / (min_dp - 1), kKappaMin, kmax);
   p.kappa.assign(n, kappa);
   p.amp.assign(n, {0.0, 0.0, 0.0});
   return p;
@@ -254,7 +260,8 @@ void add_radiance_residuals(ceres::Problem& problem, const Samples& s, Params& p
     blocks.push_back(&p.kappa[k]);
     blocks.push_back(p.amp[k].data());
   }
-  for (std::size_t j = 0; j < s.height; ++j) problem.AddResidualBlock(new RowCost(s, j, p.size()), nullptr, blocks);
+  for (std::size_t j = 0; j < s.height; ++j)
+    problem.AddResidualBlock(new RowCost(s, j, p.size()), nullptr, blocks);
 }
 
 // Radiance NNLS with fixed axes and sharpness: amplitudes ≥ 0 (the baseline, and
@@ -285,14 +292,17 @@ std::vector<Lobe> lobes_of(const Params& p, double scale) {
 void check_lobe_count(const Map& work, std::size_t lobes) {
   if (lobes == 0) throw InputError("--lobes 0: at least one lobe is needed");
   if (lobes > max_lobes(work))
-    throw InputError(fmt::format("--lobes {}: more than the map supports (at most {} for a {} x {} working copy: one "
-                                 "lobe per 32 pixels, at most 256)",
-                                 lobes, max_lobes(work), work.width, work.height));
+    throw InputError(fmt::format(
+        "--lobes {}: more than the map supports (at most {} for a {} x {} working copy: one "
+        "lobe per 32 pixels, at most 256)",
+        lobes, max_lobes(work), work.width, work.height));
 }
 
 const char* to_string(Objective o) { return o == Objective::radiance ? "radiance" : "irradiance"; }
 
-std::size_t max_lobes(const Map& work) { return std::min<std::size_t>(256, work.width * work.height / 32); }
+std::size_t max_lobes(const Map& work) {
+  return std::min<std::size_t>(256, work.width * work.height / 32);
+}
 
 std::vector<Lobe> fit_baseline(const Map& work, std::size_t lobes) {
   check_lobe_count(work, lobes);
@@ -302,7 +312,8 @@ std::vector<Lobe> fit_baseline(const Map& work, std::size_t lobes) {
   return lobes_of(p, s.scale);
 }
 
-FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals, const FitOptions& options) {
+FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
+              const FitOptions& options) {
   check_lobe_count(work, options.lobes);
   const Samples s = samples_of(work);
   const double kmax = kappa_max(s);
@@ -310,7 +321,8 @@ FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals, co
   // start of the irradiance objective, on a 64 × 32 copy (4× fewer residuals
   // for a 128 × 64 map; the irradiance stage refines every parameter anyway).
   const bool coarse = options.objective == Objective::irradiance && work.width > kCoarseWidth &&
-                      work.width % kCoarseWidth == 0 && options.lobes <= kCoarseWidth * kCoarseWidth / 64;
+                      work.width % kCoarseWidth == 0 &&
+                      options.lobes <= kCoarseWidth * kCoarseWidth / 64;
   const Samples rs = coarse ? samples_of(downsample(work, kCoarseWidth)) : s;
   Params p = baseline_params(options.lobes, kappa_max(rs));
   solve_amplitudes(rs, p);
@@ -341,8 +353,9 @@ FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals, co
     }
     const std::size_t chunk = 64;
     for (std::size_t m = 0; m < normals.size(); m += chunk)
-      problem.AddResidualBlock(new NormalsCost(normals, target, m, std::min(chunk, normals.size() - m), p.size()),
-                               nullptr, blocks);
+      problem.AddResidualBlock(
+          new NormalsCost(normals, target, m, std::min(chunk, normals.size() - m), p.size()),
+          nullptr, blocks);
     configure(problem, p, kmax, false);
     const SolveOutcome o = solve(problem, options.max_iterations);
     report.iterations += o.iterations;
@@ -358,7 +371,8 @@ validate::Scene to_scene(const std::vector<Lobe>& lobes) {
   return scene;
 }
 
-std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes, const std::vector<Vec3>& normals) {
+std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes,
+                                         const std::vector<Vec3>& normals) {
   double largest = 0;
   for (const Lobe& l : lobes)
     for (double a : l.amplitude) largest = std::max(largest, a);
@@ -378,8 +392,10 @@ Map reconstruct(const std::vector<Lobe>& lobes, std::size_t width, std::size_t h
     for (std::size_t i = 0; i < width; ++i) {
       const Vec3 om = pixel_direction(m, i, j);
       for (const Lobe& l : lobes) {
-        const double g = std::exp(l.sharpness * (l.axis[0] * om[0] + l.axis[1] * om[1] + l.axis[2] * om[2] - 1));
-        for (std::size_t ch = 0; ch < 3; ++ch) m.rgb[(j * width + i) * 3 + ch] += static_cast<float>(l.amplitude[ch] * g);
+        const double g =
+            std::exp(l.sharpness * (l.axis[0] * om[0] + l.axis[1] * om[1] + l.axis[2] * om[2] - 1));
+        for (std::size_t ch = 0; ch < 3; ++ch)
+          m.rgb[(j * width + i) * 3 + ch] += static_cast<float>(l.amplitude[ch] * g);
       }
     }
   return m;

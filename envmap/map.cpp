@@ -38,11 +38,13 @@ Map read_exr(const std::string& name) {
   const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
   if (w <= 0 || h <= 0) throw InputError(fmt::format("{}: empty data window", name));
   if (static_cast<double>(w) * static_cast<double>(h) > static_cast<double>(kMaxPixels))
-    throw InputError(fmt::format("{}: {} x {} pixels, at most {} pixels are read", name, w, h, kMaxPixels));
+    throw InputError(
+        fmt::format("{}: {} x {} pixels, at most {} pixels are read", name, w, h, kMaxPixels));
   const Imf::ChannelList& channels = file.header().channels();
   for (std::size_t ch = 0; ch < 3; ++ch)
     if (!channels.findChannel(channel_name(ch)))
-      throw InputError(fmt::format("{}: no {} channel (an RGB map needs channels R, G and B)", name, channel_name(ch)));
+      throw InputError(fmt::format("{}: no {} channel (an RGB map needs channels R, G and B)", name,
+                                   channel_name(ch)));
   Map map;
   map.width = static_cast<std::size_t>(w);
   map.height = static_cast<std::size_t>(h);
@@ -52,10 +54,12 @@ Map read_exr(const std::string& name) {
   // The slice base is the address of pixel (0, 0) of the display, which the
   // data window may not contain: offset from the first pixel we hold.
   char* first = reinterpret_cast<char*>(map.rgb.data());
-  const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) +
-                                static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
+  const std::ptrdiff_t offset =
+      static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) +
+      static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
   for (std::size_t ch = 0; ch < 3; ++ch)
-    fb.insert(channel_name(ch), Imf::Slice(Imf::FLOAT, first - offset + ch * sizeof(float), xs, ys));
+    fb.insert(channel_name(ch),
+              Imf::Slice(Imf::FLOAT, first - offset + ch * sizeof(float), xs, ys));
   file.setFrameBuffer(fb);
   file.readPixels(dw.min.y, dw.max.y);
   return map;
@@ -64,11 +68,15 @@ Map read_exr(const std::string& name) {
 Map read_hdr(const std::string& name) {
   int w = 0, h = 0, n = 0;
   if (!stbi_info(name.c_str(), &w, &h, &n))
-    throw InputError(fmt::format("{}: unreadable Radiance HDR file ({})", name, stbi_failure_reason()));
+    throw InputError(
+        fmt::format("{}: unreadable Radiance HDR file ({})", name, stbi_failure_reason()));
   if (static_cast<double>(w) * static_cast<double>(h) > static_cast<double>(kMaxPixels))
-    throw InputError(fmt::format("{}: {} x {} pixels, at most {} pixels are read", name, w, h, kMaxPixels));
+    throw InputError(
+        fmt::format("{}: {} x {} pixels, at most {} pixels are read", name, w, h, kMaxPixels));
   float* data = stbi_loadf(name.c_str(), &w, &h, &n, 3);
-  if (!data) throw InputError(fmt::format("{}: unreadable Radiance HDR file ({})", name, stbi_failure_reason()));
+  if (!data)
+    throw InputError(
+        fmt::format("{}: unreadable Radiance HDR file ({})", name, stbi_failure_reason()));
   Map map;
   map.width = static_cast<std::size_t>(w);
   map.height = static_cast<std::size_t>(h);
@@ -81,11 +89,12 @@ Map read_hdr(const std::string& name) {
 
 void check_map(Map& map, const std::string& source) {
   if (map.width != 2 * map.height)
-    throw InputError(fmt::format("{}: {} x {} pixels is not a 2:1 equirectangular map (width must be twice the height)",
-                                 source, map.width, map.height));
+    throw InputError(fmt::format(
+        "{}: {} x {} pixels is not a 2:1 equirectangular map (width must be twice the height)",
+        source, map.width, map.height));
   if (map.height < kMinHeight)
-    throw InputError(fmt::format("{}: {} x {} pixels, at least {} x {} needed", source, map.width, map.height,
-                                 2 * kMinHeight, kMinHeight));
+    throw InputError(fmt::format("{}: {} x {} pixels, at least {} x {} needed", source, map.width,
+                                 map.height, 2 * kMinHeight, kMinHeight));
   double integral = 0;  // Σ ΔΩ (r + g + b)
   for (std::size_t j = 0; j < map.height; ++j) {
     const double om = pixel_solid_angle(map, j);
@@ -93,14 +102,17 @@ void check_map(Map& map, const std::string& source) {
       for (std::size_t ch = 0; ch < 3; ++ch) {
         const float v = map.at(i, j, ch);
         if (std::isnan(v))
-          throw InputError(fmt::format("{}: pixel ({}, {}) channel {} is NaN", source, i, j, channel_name(ch)));
+          throw InputError(
+              fmt::format("{}: pixel ({}, {}) channel {} is NaN", source, i, j, channel_name(ch)));
         if (std::isinf(v))
-          throw InputError(fmt::format("{}: pixel ({}, {}) channel {} is infinite", source, i, j, channel_name(ch)));
+          throw InputError(fmt::format("{}: pixel ({}, {}) channel {} is infinite", source, i, j,
+                                       channel_name(ch)));
         integral += om * std::max(0.0f, v);
       }
   }
   const double mean = integral / (3 * 4 * M_PI);
-  if (!(mean > 0)) throw InputError(fmt::format("{}: no pixel is positive (the map is dark)", source));
+  if (!(mean > 0))
+    throw InputError(fmt::format("{}: no pixel is positive (the map is dark)", source));
   // Lossy encoders leave tiny negative values around dark pixels (every one of
   // Blender's studio-light worlds has some, down to −1.8 % of its mean): those down to
   // −kNegativeTolerance × the mean radiance are taken as 0; anything more
@@ -112,9 +124,10 @@ void check_map(Map& map, const std::string& source) {
         float& v = map.rgb[(j * map.width + i) * 3 + ch];
         if (v >= 0) continue;
         if (v < floor)
-          throw InputError(fmt::format("{}: pixel ({}, {}) channel {} is negative ({}, below {:.3g} = -{} x the mean "
-                                       "radiance {:.4g})",
-                                       source, i, j, channel_name(ch), v, floor, kNegativeTolerance, mean));
+          throw InputError(fmt::format(
+              "{}: pixel ({}, {}) channel {} is negative ({}, below {:.3g} = -{} x the mean "
+              "radiance {:.4g})",
+              source, i, j, channel_name(ch), v, floor, kNegativeTolerance, mean));
         v = 0;
       }
 }
@@ -123,9 +136,11 @@ Map read_map(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) throw InputError(fmt::format("{}: no such file", name));
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(fmt::format("{}: no such file", name));
   if (!std::filesystem::is_regular_file(status))
-    throw InputError(fmt::format("{}: not a regular file (it is {})", name, io::file_type_name(path)));
+    throw InputError(
+        fmt::format("{}: not a regular file (it is {})", name, io::file_type_name(path)));
   Map map;
   try {
     if (Imf::isOpenExrFile(name.c_str()))
@@ -133,7 +148,8 @@ Map read_map(const std::filesystem::path& path) {
     else if (stbi_is_hdr(name.c_str()))
       map = read_hdr(name);
     else
-      throw InputError(fmt::format("{}: not an HDR image (neither OpenEXR nor Radiance .hdr)", name));
+      throw InputError(
+          fmt::format("{}: not an HDR image (neither OpenEXR nor Radiance .hdr)", name));
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {
@@ -150,7 +166,8 @@ void write_exr(const std::filesystem::path& path, const Map& map) {
   {
     Imf::Header header(static_cast<int>(map.width), static_cast<int>(map.height));
     header.compression() = Imf::ZIP_COMPRESSION;
-    for (std::size_t ch = 0; ch < 3; ++ch) header.channels().insert(channel_name(ch), Imf::Channel(Imf::FLOAT));
+    for (std::size_t ch = 0; ch < 3; ++ch)
+      header.channels().insert(channel_name(ch), Imf::Channel(Imf::FLOAT));
     Imf::StdOSStream os;
     {
       Imf::OutputFile out(os, header);
@@ -169,7 +186,8 @@ void write_exr(const std::filesystem::path& path, const Map& map) {
 
 double pixel_solid_angle(const Map& map, std::size_t row) {
   const double h = static_cast<double>(map.height);
-  const double t0 = M_PI * static_cast<double>(row) / h, t1 = M_PI * static_cast<double>(row + 1) / h;
+  const double t0 = M_PI * static_cast<double>(row) / h,
+               t1 = M_PI * static_cast<double>(row + 1) / h;
   return 2 * M_PI / static_cast<double>(map.width) * (std::cos(t0) - std::cos(t1));
 }
 
@@ -182,16 +200,18 @@ Vec3 pixel_direction(const Map& map, std::size_t i, std::size_t j) {
 Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j) {
   const double h = static_cast<double>(map.height), w = static_cast<double>(map.width);
   const double t0 = M_PI * static_cast<double>(j) / h, t1 = M_PI * static_cast<double>(j + 1) / h;
-  const double p0 = 2 * M_PI * static_cast<double>(i) / w, p1 = 2 * M_PI * static_cast<double>(i + 1) / w;
+  const double p0 = 2 * M_PI * static_cast<double>(i) / w,
+               p1 = 2 * M_PI * static_cast<double>(i + 1) / w;
   const double s2 = (t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4;  // ∫ sin²θ dθ
-  const double sc = (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;  // ∫ sinθ cosθ dθ
+  const double sc =
+      (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;  // ∫ sinθ cosθ dθ
   return {s2 * (std::sin(p1) - std::sin(p0)), s2 * (std::cos(p1) - std::cos(p0)), sc * (p1 - p0)};
 }
 
 Map downsample(const Map& map, std::size_t width) {
   if (width < 2 * kMinHeight || width > map.width || map.width % width != 0)
-    throw InputError(fmt::format("--width {}: must divide the map's width {} and be at least {}", width, map.width,
-                                 2 * kMinHeight));
+    throw InputError(fmt::format("--width {}: must divide the map's width {} and be at least {}",
+                                 width, map.width, 2 * kMinHeight));
   const std::size_t f = map.width / width;
   Map out;
   out.width = width;
@@ -206,7 +226,8 @@ Map downsample(const Map& map, std::size_t width) {
       for (std::size_t ch = 0; ch < 3; ++ch) {
         double sum = 0;
         for (std::size_t b = 0; b < f; ++b)
-          for (std::size_t a = 0; a < f; ++a) sum += omega[oj * f + b] * map.at(oi * f + a, oj * f + b, ch);
+          for (std::size_t a = 0; a < f; ++a)
+            sum += omega[oj * f + b] * map.at(oi * f + a, oj * f + b, ch);
         out.rgb[(oj * out.width + oi) * 3 + ch] = static_cast<float>(sum / total);
       }
   });
@@ -221,7 +242,8 @@ Map working_copy(const Map& map, std::size_t max_width) {
 }
 
 std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
-  const std::size_t n = map.width * map.height, W = map.width, H = map.height, S = kHorizonSubdivision;
+  const std::size_t n = map.width * map.height, W = map.width, H = map.height,
+                    S = kHorizonSubdivision;
   std::vector<Vec3> moment(n), centre(n);
   tbb::parallel_for(std::size_t{0}, H, [&](std::size_t j) {
     for (std::size_t i = 0; i < W; ++i) {
@@ -232,7 +254,8 @@ std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
   // A pixel lies within ρ = Δθ/2 + Δφ/2 of its centre ω_c (along the meridian,
   // then along the parallel, whose arc is at least the great circle's), so
   // n·ω > 0 on all of it when n·ω_c > sin ρ and n·ω < 0 when n·ω_c < −sin ρ.
-  const double sin_rho = std::sin(M_PI / (2 * static_cast<double>(H)) + M_PI / static_cast<double>(W));
+  const double sin_rho =
+      std::sin(M_PI / (2 * static_cast<double>(H)) + M_PI / static_cast<double>(W));
   // The pixels between: S × S sub-pixels, each with its own moment
   // (the closed form of pixel_moment, from per-sub-row and per-sub-column factors).
   std::vector<double> s2(H * S), sc(H * S), dsin(W * S), dcos(W * S);
@@ -268,7 +291,8 @@ std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
           const std::size_t row = j * S + a;
           for (std::size_t bb = 0; bb < S; ++bb) {
             const std::size_t col = i * S + bb;
-            const double x = nv[0] * s2[row] * dsin[col] + nv[1] * s2[row] * dcos[col] + nv[2] * sc[row] * dphi_sub;
+            const double x = nv[0] * s2[row] * dsin[col] + nv[1] * s2[row] * dcos[col] +
+                             nv[2] * sc[row] * dphi_sub;
             if (x > 0) w += x;
           }
         }
@@ -291,12 +315,14 @@ ErrorStats irradiance_error(const std::vector<Vec3>& approx, const std::vector<V
   for (std::size_t i = 0; i < exact.size() && i < approx.size(); ++i)
     for (std::size_t ch = 0; ch < 3; ++ch) {
       const double d = std::abs(approx[i][ch] - exact[i][ch]);
-      if (!std::isfinite(d)) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      if (!std::isfinite(d))
+        return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
       worst = std::max(worst, d);
       sq += d * d;
       ++count;
     }
-  return {worst / peak, std::sqrt(sq / static_cast<double>(std::max<std::size_t>(count, 1))) / peak};
+  return {worst / peak,
+          std::sqrt(sq / static_cast<double>(std::max<std::size_t>(count, 1))) / peak};
 }
 
 }  // namespace sglab::envmap

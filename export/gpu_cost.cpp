@@ -50,7 +50,8 @@ class ScratchDir {
   ScratchDir() {
     std::string templ = (fs::temp_directory_path() / "sglab-gpucost-XXXXXX").string();
     if (!::mkdtemp(templ.data()))
-      throw std::runtime_error(fmt::format("gpucost: cannot create a temporary folder {}: {}", templ, std::strerror(errno)));
+      throw std::runtime_error(fmt::format("gpucost: cannot create a temporary folder {}: {}",
+                                           templ, std::strerror(errno)));
     path_ = templ;
   }
   ~ScratchDir() {
@@ -75,7 +76,8 @@ void write_spirv(const fs::path& path, const std::vector<std::uint32_t>& words) 
 std::vector<std::uint32_t> read_spirv(const fs::path& path) {
   const std::string bytes = io::read_file(path);
   if (bytes.size() % sizeof(std::uint32_t))
-    throw std::runtime_error(fmt::format("{}: not SPIR-V (size not a multiple of 4)", path.string()));
+    throw std::runtime_error(
+        fmt::format("{}: not SPIR-V (size not a multiple of 4)", path.string()));
   std::vector<std::uint32_t> words(bytes.size() / sizeof(std::uint32_t));
   std::memcpy(words.data(), bytes.data(), bytes.size());
   return words;
@@ -86,7 +88,8 @@ std::string log_tail(const fs::path& log) {
   std::ifstream in(log);
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line.find("not a conformant Vulkan implementation") != std::string::npos) continue;
+    if (line.empty() || line.find("not a conformant Vulkan implementation") != std::string::npos)
+      continue;
     lines.push_back(line.substr(0, 300));
     if (lines.size() > 6) lines.erase(lines.begin());
   }
@@ -98,9 +101,11 @@ std::string log_tail(const fs::path& log) {
 Statistics from_driver(const std::vector<vulkan::PipelineStatistic>& raw) {
   Statistics s;
   for (const StatisticName& n : kStatistics) {
-    const auto it = std::find_if(raw.begin(), raw.end(), [&](const auto& r) { return r.name == n.aco; });
+    const auto it =
+        std::find_if(raw.begin(), raw.end(), [&](const auto& r) { return r.name == n.aco; });
     if (it == raw.end())
-      throw Unavailable(fmt::format("the driver reports no \"{}\" statistic: not RADV's ACO compiler?", n.aco));
+      throw Unavailable(
+          fmt::format("the driver reports no \"{}\" statistic: not RADV's ACO compiler?", n.aco));
     s.*n.member = static_cast<std::int64_t>(it->value);
   }
   return s;
@@ -108,7 +113,8 @@ Statistics from_driver(const std::vector<vulkan::PipelineStatistic>& raw) {
 
 json stats_json(const Statistics& s) {
   json j;
-  for (std::size_t i = 0; i < std::size(kStatistics); ++i) j[kJsonKeys[i]] = s.*kStatistics[i].member;
+  for (std::size_t i = 0; i < std::size(kStatistics); ++i)
+    j[kJsonKeys[i]] = s.*kStatistics[i].member;
   return j;
 }
 
@@ -140,18 +146,21 @@ std::string upper(std::string_view s) {
 Shader baseline_shader(shader::Language lang, shader::Precision precision) {
   const bool half = precision == shader::Precision::float16;
   const std::string type = half ? (lang == shader::Language::glsl ? "float16_t" : "half") : "float";
-  const std::string body = fmt::format("{}{} {}({} cosine, {} kappa) {{ return cosine + kappa; }}\n",
-                                       half && lang == shader::Language::glsl
-                                           ? "#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n"
-                                           : "",
-                                       type, kBaselineEntry, type, type);
+  const std::string body =
+      fmt::format("{}{} {}({} cosine, {} kappa) {{ return cosine + kappa; }}\n",
+                  half && lang == shader::Language::glsl
+                      ? "#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n"
+                      : "",
+                  type, kBaselineEntry, type, type);
   return {std::string(kBaseline), lang,
-          vulkan::compile_compute(lang, shader::compute_shader(lang, body, kBaselineEntry, precision), precision),
+          vulkan::compile_compute(
+              lang, shader::compute_shader(lang, body, kBaselineEntry, precision), precision),
           false, precision};
 }
 
 Shader method_shader(std::string_view method, shader::Language lang, shader::Precision precision) {
-  return export_shader(method, lang, shader::export_source(shader::standard_request(lang, method, precision)),
+  return export_shader(method, lang,
+                       shader::export_source(shader::standard_request(lang, method, precision)),
                        precision);
 }
 
@@ -161,14 +170,16 @@ Shader split_method_shader(std::string_view method, shader::Language lang) {
   return export_shader(method, lang, shader::export_source(request));
 }
 
-Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported,
-                     shader::Precision precision) {
+Shader export_shader(std::string_view method, shader::Language lang,
+                     const shader::ExportResult& exported, shader::Precision precision) {
   const bool split = !exported.light_struct.empty();
   if (split && precision != shader::Precision::float32)
     throw std::invalid_argument("gpu::export_shader: the split export is float only");
-  const std::string source = split ? shader::split_compute_shader(lang, exported.source, exported)
-                                   : shader::compute_shader(lang, exported.source, exported.entry_point, precision);
-  return {std::string(method), lang, vulkan::compile_compute(lang, source, precision), split, precision};
+  const std::string source =
+      split ? shader::split_compute_shader(lang, exported.source, exported)
+            : shader::compute_shader(lang, exported.source, exported.entry_point, precision);
+  return {std::string(method), lang, vulkan::compile_compute(lang, source, precision), split,
+          precision};
 }
 
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {
@@ -193,11 +204,14 @@ std::optional<fs::path> find_radv_manifest() {
     if (!dir.empty()) dirs.push_back(fs::path(dir) / "vulkan" / "icd.d");
     rest = colon == std::string_view::npos ? std::string_view{} : rest.substr(colon + 1);
   }
-  for (const char* d : {"/usr/local/share/vulkan/icd.d", "/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"})
+  for (const char* d :
+       {"/usr/local/share/vulkan/icd.d", "/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"})
     dirs.emplace_back(d);
   std::error_code ec;
   for (const fs::path& dir : dirs)
-    if (const fs::path p = dir / fmt::format("radeon_icd.{}.json", arch); fs::is_regular_file(p, ec)) return p;
+    if (const fs::path p = dir / fmt::format("radeon_icd.{}.json", arch);
+        fs::is_regular_file(p, ec))
+      return p;
   return std::nullopt;
 }
 
@@ -225,10 +239,12 @@ Measured measure_here(std::string_view family, const std::vector<Shader>& shader
   }
   // "Null hardware (RADV NAVI21)": the driver honoured the family.
   if (device->driver_name() != "radv" || device->name().find(upper(family)) == std::string::npos)
-    throw Unavailable(fmt::format("expected RADV's null device for family '{}', the loader gave '{}' (driver '{}')",
-                                  family, device->name(), device->driver_name()));
+    throw Unavailable(fmt::format(
+        "expected RADV's null device for family '{}', the loader gave '{}' (driver '{}')", family,
+        device->name(), device->driver_name()));
   if (!device->has_pipeline_statistics())
-    throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", device->name()));
+    throw Unavailable(
+        fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", device->name()));
   Measured m;
   m.driver = fmt::format("{} {}", device->driver_name(), device->driver_info());
   for (const Shader& s : shaders)
@@ -241,8 +257,9 @@ void run_worker(std::string_view family, const fs::path& dir) {
   const bool disassemble = manifest.at("disassemble").get<bool>();
   std::vector<Shader> shaders;
   for (std::size_t i = 0; i < manifest.at("shaders").size(); ++i)
-    shaders.push_back({manifest.at("shaders")[i].at("method").get<std::string>(), shader::Language::glsl,
-                       read_spirv(dir / shader_file(i)), manifest.at("shaders")[i].value("split", false)});
+    shaders.push_back({manifest.at("shaders")[i].at("method").get<std::string>(),
+                       shader::Language::glsl, read_spirv(dir / shader_file(i)),
+                       manifest.at("shaders")[i].value("split", false)});
   json out;
   try {
     const Measured m = measure_here(family, shaders);
@@ -254,7 +271,8 @@ void run_worker(std::string_view family, const fs::path& dir) {
       out["assembly"] = json::array();
       for (const Shader& s : shaders) {
         std::string text;
-        for (auto& [name, representation] : device.pipeline_representations(s.spirv, s.split ? 3 : 2))
+        for (auto& [name, representation] :
+             device.pipeline_representations(s.spirv, s.split ? 3 : 2))
           if (name == "Assembly") text = std::move(representation);
         out["assembly"].push_back(text);
       }
@@ -283,25 +301,28 @@ json run_family(const fs::path& self, const fs::path& manifest, const std::strin
                         json{{"shaders", list}, {"disassemble", disassemble}}.dump() + "\n");
   const fs::path log = scratch.path() / fmt::format("log-{}.txt", family);
   const fs::path result = scratch.path() / fmt::format("result-{}.json", family);
-  const int rc = io::run_program(
-      {self.string(), "gpucost", "--worker-family", family, "--worker-dir", scratch.path().string()}, {}, log,
-      family_environment(manifest, family));
+  const int rc = io::run_program({self.string(), "gpucost", "--worker-family", family,
+                                  "--worker-dir", scratch.path().string()},
+                                 {}, log, family_environment(manifest, family));
   std::error_code ec;
   if (rc != 0 || !fs::is_regular_file(result, ec))
     throw std::runtime_error(
-        fmt::format("gpucost: the process measuring family '{}' failed (exit {}){}", family, rc, log_tail(log)));
+        fmt::format("gpucost: the process measuring family '{}' failed (exit {}){}", family, rc,
+                    log_tail(log)));
   json r = json::parse(io::read_file(result));
   if (r.contains("unavailable")) throw Unavailable(r.at("unavailable").get<std::string>());
   if (!r.contains("stats") || r.at("stats").size() != shaders.size() ||
       (disassemble && (!r.contains("assembly") || r.at("assembly").size() != shaders.size())))
-    throw std::runtime_error(fmt::format("gpucost worker for '{}': wrong number of results", family));
+    throw std::runtime_error(
+        fmt::format("gpucost worker for '{}': wrong number of results", family));
   return r;
 }
 
 }  // namespace
 
-Report measure(const fs::path& self, const fs::path& manifest, const std::vector<std::string>& families,
-               const std::vector<Shader>& shaders, const std::function<void(std::string_view)>& progress) {
+Report measure(const fs::path& self, const fs::path& manifest,
+               const std::vector<std::string>& families, const std::vector<Shader>& shaders,
+               const std::function<void(std::string_view)>& progress) {
   Report report;
   for (const std::string& family : families) {
     if (progress) progress(family);
@@ -310,17 +331,19 @@ Report measure(const fs::path& self, const fs::path& manifest, const std::vector
     const std::string where = fmt::format("gpucost worker for '{}'", family);
     std::map<std::pair<shader::Language, shader::Precision>, Statistics> baseline;
     for (std::size_t i = 0; i < shaders.size(); ++i) {
-      const Statistics s = stats_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
+      const Statistics s =
+          stats_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
       const auto key = std::make_pair(shaders[i].lang, shaders[i].precision);
       if (shaders[i].method == kBaseline) {
         baseline[key] = s;
         continue;
       }
       if (!baseline.count(key))
-        throw std::logic_error("gpu::measure: a language and precision's baseline must come before its methods");
+        throw std::logic_error(
+            "gpu::measure: a language and precision's baseline must come before its methods");
       report.rows.push_back({shaders[i].method, family, shaders[i].lang, shaders[i].split,
-                             std::string(shader::to_string(shaders[i].precision)), subtract(s, baseline[key]),
-                             spirv_hash(shaders[i].spirv)});
+                             std::string(shader::to_string(shaders[i].precision)),
+                             subtract(s, baseline[key]), spirv_hash(shaders[i].spirv)});
     }
   }
   return report;
@@ -339,14 +362,21 @@ json to_json(const Report& report) {
   j["driver"] = report.driver;
   j["command"] = report.command;
   j["wrapper"] =
-      "the sweep's compute wrapper (one float2 load, one float store, 64 threads), minus the same wrapper around "
-      "`return cosine + kappa;`; vgprs and sgprs are the whole pipeline's. Rows with split = true: the per-pixel "
-      "function of the split export in the split wrapper (one float load, the light struct loaded at the "
-      "workgroup's index, one float store), minus the same baseline: the struct's loads count as the function's";
+      "the sweep's compute wrapper (one float2 load, one float store, 64 threads), minus the same "
+      "wrapper around "
+      "`return cosine + kappa;`; vgprs and sgprs are the whole pipeline's. Rows with split = true: "
+      "the per-pixel "
+      "function of the split export in the split wrapper (one float load, the light struct loaded "
+      "at the "
+      "workgroup's index, one float store), minus the same baseline: the struct's loads count as "
+      "the function's";
   j["rows"] = json::array();
   for (const Row& r : report.rows) {
-    json row = {{"method", r.method},          {"family", r.family},   {"lang", std::string(shader::to_string(r.lang))},
-                {"split", r.split},            {"precision", r.precision}};
+    json row = {{"method", r.method},
+                {"family", r.family},
+                {"lang", std::string(shader::to_string(r.lang))},
+                {"split", r.split},
+                {"precision", r.precision}};
     row.update(stats_json(r.stats));
     row["spirv_hash"] = r.spirv_hash;
     j["rows"].push_back(std::move(row));
@@ -398,12 +428,15 @@ std::string to_markdown(const Report& report) {
       for (const Family& f : kDefaultFamilies)
         if (family == f.name) generation = fmt::format(" ({})", f.generation);
       out += fmt::format("{}## {}{}\n\n", out.empty() ? "" : "\n", family, generation);
-      out += "| method | lang | instructions | inverse throughput | latency | VGPRs | SGPRs | code size | branches |\n";
+      out +=
+          "| method | lang | instructions | inverse throughput | latency | VGPRs | SGPRs | code "
+          "size | branches |\n";
       out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     }
-    out += fmt::format("| {}{} | {}{} | {} | {} | {} | {} | {} | {} | {} |\n", r.method, r.split ? " (split)" : "",
-                       shader::to_string(r.lang), r.precision == "half" ? " half" : "",
-                       r.stats.instructions, r.stats.inverse_throughput, r.stats.latency, r.stats.vgprs, r.stats.sgprs,
+    out += fmt::format("| {}{} | {}{} | {} | {} | {} | {} | {} | {} | {} |\n", r.method,
+                       r.split ? " (split)" : "", shader::to_string(r.lang),
+                       r.precision == "half" ? " half" : "", r.stats.instructions,
+                       r.stats.inverse_throughput, r.stats.latency, r.stats.vgprs, r.stats.sgprs,
                        r.stats.code_size, r.stats.branches);
   }
   return out;

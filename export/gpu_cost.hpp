@@ -50,8 +50,11 @@ struct Family {
   const char* name;        // RADV_FORCE_FAMILY value
   const char* generation;  // "GCN4", "RDNA2", …
 };
-inline constexpr Family kDefaultFamilies[] = {
-    {"polaris10", "GCN4"}, {"vega10", "GCN5"}, {"navi10", "RDNA1"}, {"navi21", "RDNA2"}, {"gfx1100", "RDNA3"}};
+inline constexpr Family kDefaultFamilies[] = {{"polaris10", "GCN4"},
+                                              {"vega10", "GCN5"},
+                                              {"navi10", "RDNA1"},
+                                              {"navi21", "RDNA2"},
+                                              {"gfx1100", "RDNA3"}};
 
 // ACO's statistics of one compiled function (after the wrapper's are
 // subtracted, except vgprs and sgprs, which are the pipeline's).
@@ -82,7 +85,8 @@ inline constexpr std::string_view kBaseline = "(wrapper)";
 // The wrapper with its trivial body, `return cosine + kappa;` (both inputs
 // used, so the loads are the same as for a real method), in `lang` (in half
 // arithmetic for `precision` half).
-Shader baseline_shader(shader::Language lang, shader::Precision precision = shader::Precision::float32);
+Shader baseline_shader(shader::Language lang,
+                       shader::Precision precision = shader::Precision::float32);
 // The standard export of `method` in the wrapper, compiled to SPIR-V.
 Shader method_shader(std::string_view method, shader::Language lang,
                      shader::Precision precision = shader::Precision::float32);
@@ -92,7 +96,8 @@ Shader split_method_shader(std::string_view method, shader::Language lang);
 // An export (its source and entry point; comments do not reach the SPIR-V) in
 // the wrapper (the split wrapper for a split export), compiled to SPIR-V: what
 // `gpucost` costs for it.
-Shader export_shader(std::string_view method, shader::Language lang, const shader::ExportResult& exported,
+Shader export_shader(std::string_view method, shader::Language lang,
+                     const shader::ExportResult& exported,
                      shader::Precision precision = shader::Precision::float32);
 
 // 64-bit FNV-1a of the SPIR-V words, as 16 hex digits: which code was costed.
@@ -102,15 +107,15 @@ struct Row {
   std::string method;
   std::string family;
   shader::Language lang = shader::Language::glsl;
-  bool split = false;             // the per-pixel function of the split form (Shader::split)
+  bool split = false;  // the per-pixel function of the split form (Shader::split)
   std::string precision = "float";
   Statistics stats;
   std::string spirv_hash;
 };
 
 struct Report {
-  std::string driver;   // e.g. "radv Mesa 22.3.6"
-  std::string command;  // how it was produced
+  std::string driver;     // e.g. "radv Mesa 22.3.6"
+  std::string command;    // how it was produced
   std::vector<Row> rows;  // family-major, in the order asked for
 };
 
@@ -121,7 +126,8 @@ std::optional<std::filesystem::path> find_radv_manifest();
 
 // The environment a family's process runs with: the radeon driver only,
 // the family, no implicit layers, no on-disk shader cache.
-std::vector<std::string> family_environment(const std::filesystem::path& manifest, std::string_view family);
+std::vector<std::string> family_environment(const std::filesystem::path& manifest,
+                                            std::string_view family);
 
 // In this process, whose environment already selects RADV and the family:
 // the raw statistics of each shader (nothing subtracted) and the driver's

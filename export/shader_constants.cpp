@@ -6,10 +6,18 @@
 namespace sglab::shader::detail {
 
 ConstantSet named(std::string cpp_name, const ClampedCosineParams<double>& p) {
-  return {"ClampedCosineParams<double>", std::move(cpp_name), {{"lambda", {p.lambda}}, {"alpha", {p.alpha}}}, {}, {}};
+  return {"ClampedCosineParams<double>",
+          std::move(cpp_name),
+          {{"lambda", {p.lambda}}, {"alpha", {p.alpha}}},
+          {},
+          {}};
 }
 ConstantSet named(std::string cpp_name, const Steepness2022Params<double>& p) {
-  return {"Steepness2022Params<double>", std::move(cpp_name), {{"A", {p.A}}, {"B", {p.B}}, {"C", {p.C}}}, {}, {}};
+  return {"Steepness2022Params<double>",
+          std::move(cpp_name),
+          {{"A", {p.A}}, {"B", {p.B}}, {"C", {p.C}}},
+          {},
+          {}};
 }
 ConstantSet named(std::string cpp_name, const Steepness2024Params<double>& p) {
   return {"Steepness2024Params<double>",
@@ -19,7 +27,11 @@ ConstantSet named(std::string cpp_name, const Steepness2024Params<double>& p) {
           {}};
 }
 ConstantSet named(std::string cpp_name, const CosineLobeParams<double>& p) {
-  return {"CosineLobeParams<double>", std::move(cpp_name), {{"lambda", {p.lambda}}, {"amplitude", {p.amplitude}}}, {}, {}};
+  return {"CosineLobeParams<double>",
+          std::move(cpp_name),
+          {{"lambda", {p.lambda}}, {"amplitude", {p.amplitude}}},
+          {},
+          {}};
 }
 ConstantSet named(std::string cpp_name, const DiffuseLobeParams<double>& p) {
   return {"DiffuseLobeParams<double>", std::move(cpp_name), {{"lambda_d", {p.lambda_d}}}, {}, {}};
@@ -44,7 +56,12 @@ ConstantSet named(std::string cpp_name, const SglabFastParams<double>& p) {
   const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
   return {"SglabFastParams<double>",
           std::move(cpp_name),
-          {{"a", vec(p.a)}, {"b", vec(p.b)}, {"c", vec(p.c)}, {"v", vec(p.v)}, {"q", vec(p.q)}, {"kappa_max", {p.kappa_max}}},
+          {{"a", vec(p.a)},
+           {"b", vec(p.b)},
+           {"c", vec(p.c)},
+           {"v", vec(p.v)},
+           {"q", vec(p.q)},
+           {"kappa_max", {p.kappa_max}}},
           {},
           {}};
 }
@@ -52,7 +69,8 @@ ConstantSet named(std::string cpp_name, const SglabFastParams<double>& p) {
 const std::vector<double>& member(const ConstantSet& set, std::string_view name) {
   for (const auto& [n, v] : set.members)
     if (n == name) return v;
-  throw std::invalid_argument(fmt::format("constant set {} ({}) has no member '{}'", set.cpp_name, set.cpp_type, name));
+  throw std::invalid_argument(
+      fmt::format("constant set {} ({}) has no member '{}'", set.cpp_name, set.cpp_type, name));
 }
 
 const ConstantSet& slot(const Slots& slots, std::string_view role) {
@@ -68,9 +86,13 @@ void check_finite_in_float(const ConstantSet& set) {
   for (const auto& [name, values] : set.members)
     for (std::size_t i = 0; i < values.size(); ++i)
       if (!std::isfinite(static_cast<float>(values[i])))
-        throw std::invalid_argument(fmt::format(
-            "constant set {}: key '{}': {} is not finite in float, the precision of the exported code", set.cpp_name,
-            values.size() == 1 ? "coefficients." + name : fmt::format("coefficients.{}[{}]", name, i), values[i]));
+        throw std::invalid_argument(
+            fmt::format("constant set {}: key '{}': {} is not finite in float, the precision of "
+                        "the exported code",
+                        set.cpp_name,
+                        values.size() == 1 ? "coefficients." + name
+                                           : fmt::format("coefficients.{}[{}]", name, i),
+                        values[i]));
 }
 
 // A half export writes every coefficient as a half literal (methods without a
@@ -80,10 +102,13 @@ void check_finite_in_half(const ConstantSet& set) {
   for (const auto& [name, values] : set.members)
     for (std::size_t i = 0; i < values.size(); ++i)
       if (!std::isfinite(static_cast<float>(static_cast<_Float16>(static_cast<float>(values[i])))))
-        throw std::invalid_argument(fmt::format(
-            "constant set {}: key '{}': {} is not finite in half (largest 65504), the precision of the exported code",
-            set.cpp_name, values.size() == 1 ? "coefficients." + name : fmt::format("coefficients.{}[{}]", name, i),
-            values[i]));
+        throw std::invalid_argument(
+            fmt::format("constant set {}: key '{}': {} is not finite in half (largest 65504), the "
+                        "precision of the exported code",
+                        set.cpp_name,
+                        values.size() == 1 ? "coefficients." + name
+                                           : fmt::format("coefficients.{}[{}]", name, i),
+                        values[i]));
 }
 
 }  // namespace sglab::shader::detail

@@ -16,7 +16,8 @@ namespace detail {
 
 namespace {
 const Tier kTiers[] = {
-    {"as7125", "[AS1964] 7.1.25 form with sglab's float refit erf_as7125_float (erfc = t P(t) e^{-x^2})",
+    {"as7125",
+     "[AS1964] 7.1.25 form with sglab's float refit erf_as7125_float (erfc = t P(t) e^{-x^2})",
      [] { return named("erf_as7125_float", constants::erf_as7125_float); }},
     {"listing5",
      "[Tokuyoshi2022] Listing 5 form with sglab's float refit erf_listing5_float "
@@ -38,7 +39,8 @@ bool is_as(const ConstantSet& s) { return s.cpp_type.rfind("AbramowitzStegunPara
 
 // The C++ twin of the exported erf/erfc (same structure, same float
 // arithmetic), for measuring the elementary error in-process.
-template <class T> T horner_v(T x, const std::vector<double>& c) {
+template <class T>
+T horner_v(T x, const std::vector<double>& c) {
   T y = T(static_cast<float>(c.back()));
   for (std::size_t i = c.size() - 1; i-- > 0;) y = y * x + T(static_cast<float>(c[i]));
   return y;
@@ -56,7 +58,7 @@ float twin_erf(const ConstantSet& s, float x) {
   const float a = std::fabs(x);
   float y;
   if (is_listing5(s)) {
-    y = a >= float(member(s, "cutoff")[0])  ? 1.0f
+    y = a >= float(member(s, "cutoff")[0]) ? 1.0f
         : a > float(member(s, "split")[0]) ? 1.0f - std::exp2(-a * horner_v(a, member(s, "large")))
                                            : a * horner_v(a * a, member(s, "small"));
   } else {
@@ -103,16 +105,19 @@ ElementaryError measure(const ConstantSet* erf_set) {
     const int n = 400000;
     for (int i = 0; i <= n; ++i) {
       const float x = float(-6.0 + 12.0 * i / n);
-      e.erf_abs = std::max(e.erf_abs, std::fabs(double(twin_erf(*erf_set, x)) - std::erf(double(x))));
+      e.erf_abs =
+          std::max(e.erf_abs, std::fabs(double(twin_erf(*erf_set, x)) - std::erf(double(x))));
     }
     for (int i = 0; i <= n; ++i) {
       const float x = float(-6.0 + 16.0 * i / n);
-      e.erfc_abs = std::max(e.erfc_abs, std::fabs(double(twin_erfc(*erf_set, x)) - std::erfc(double(x))));
+      e.erfc_abs =
+          std::max(e.erfc_abs, std::fabs(double(twin_erfc(*erf_set, x)) - std::erfc(double(x))));
     }
     for (int i = 0; i <= n; ++i) {  // log-spaced 1e-6 … 1
       const float x = float(std::pow(10.0, -6.0 + 6.0 * i / n));
       const double ref = std::erf(double(x));
-      e.erf_rel_small = std::max(e.erf_rel_small, std::fabs(double(twin_erf(*erf_set, x)) - ref) / ref);
+      e.erf_rel_small =
+          std::max(e.erf_rel_small, std::fabs(double(twin_erf(*erf_set, x)) - ref) / ref);
     }
   }
   for (int i = 0; i <= 200000; ++i) {
@@ -120,21 +125,24 @@ ElementaryError measure(const ConstantSet* erf_set) {
     const float x = i == 0 ? 0.0f : -float(std::pow(10.0, -7.0 + 9.0 * i / 200000));
     const double xd = x;
     const double ref = xd == 0 ? 1.0 : std::expm1(xd) / xd;
-    e.expm1_over_x_rel = std::max(e.expm1_over_x_rel, std::fabs(double(twin_expm1_over_x(x)) - ref) / ref);
+    e.expm1_over_x_rel =
+        std::max(e.expm1_over_x_rel, std::fabs(double(twin_expm1_over_x(x)) - ref) / ref);
   }
   return e;
 }
 
 std::string helper_expm1(const Ctx& c, const Slots&) {
-  return subst(fmt::format(R"(// (e^x - 1)/x: Taylor series sum x^n/(n+1)!, n <= 10, for |x| < 1 (first omitted
+  return subst(
+      fmt::format(
+          R"(// (e^x - 1)/x: Taylor series sum x^n/(n+1)!, n <= 10, for |x| < 1 (first omitted
 // term < 2.1e-9), (e^x - 1)/x beyond (no expm1 in shading languages).
 {{INLINE}}float {{P}}expm1_over_x(float x) {{
   if (abs(x) < 1.0f) return {};
   return (exp(x) - 1.0f) / x;
 }}
 )",
-                           horner_text("x", literals(expm1_over_x_series()))),
-               c);
+          horner_text("x", literals(expm1_over_x_series()))),
+      c);
 }
 
 std::string helper_erf(const Ctx& c, const Slots& slots) {
@@ -144,7 +152,8 @@ std::string helper_erf(const Ctx& c, const Slots& slots) {
     const auto split = names(c, "erf", s, "split")[0], cutoff = names(c, "erf", s, "cutoff")[0];
     const auto P = horner_text("a * a", names(c, "erf", s, "small"));
     const auto Q = horner_text("a", names(c, "erf", s, "large"));
-    text = fmt::format(R"(// erf/erfc, [Tokuyoshi2022] Listing 5 structure: erf = x P(x^2) for |x| <= split,
+    text = fmt::format(
+        R"(// erf/erfc, [Tokuyoshi2022] Listing 5 structure: erf = x P(x^2) for |x| <= split,
 // erfc(|x|) = 2^(-|x| Q(|x|)) for split < |x| < cutoff (no 1 - erf cancellation), 0 beyond.
 {{INLINE}}float {{P}}erfc_pos(float a) {{
   if (a >= {1}) return 0.0f;
@@ -163,10 +172,11 @@ std::string helper_erf(const Ctx& c, const Slots& slots) {
   return x < 0.0f ? -y : y;
 }}
 )",
-                       split, cutoff, P, Q);
+        split, cutoff, P, Q);
   } else if (is_as(s)) {
     const auto p = names(c, "erf", s, "p")[0];
-    text = fmt::format(R"(// erf/erfc, [AS1964] 7.1.25 structure: erfc(a) = t P(t) e^(-a^2), t = 1/(1 + p a), a >= 0.
+    text = fmt::format(
+        R"(// erf/erfc, [AS1964] 7.1.25 structure: erfc(a) = t P(t) e^(-a^2), t = 1/(1 + p a), a >= 0.
 {{INLINE}}float {{P}}erfc_pos(float a) {{
   float t = 1.0f / (1.0f + {} * a);
   return t * {} * exp(-a * a);
@@ -176,9 +186,10 @@ std::string helper_erf(const Ctx& c, const Slots& slots) {
   return x < 0.0f ? -y : y;
 }}
 )",
-                       p, horner_text("t", names(c, "erf", s, "a")));
+        p, horner_text("t", names(c, "erf", s, "a")));
   } else {
-    throw std::invalid_argument(fmt::format("shader export: no erf code for constant type {}", s.cpp_type));
+    throw std::invalid_argument(
+        fmt::format("shader export: no erf code for constant type {}", s.cpp_type));
   }
   text += R"({INLINE}float {P}erfc(float x) {
   float r = {P}erfc_pos(abs(x));

@@ -19,9 +19,12 @@ namespace sglab::shader {
 
 std::string_view to_string(Language lang) {
   switch (lang) {
-    case Language::glsl: return "glsl";
-    case Language::hlsl: return "hlsl";
-    case Language::cpp: return "cpp";
+    case Language::glsl:
+      return "glsl";
+    case Language::hlsl:
+      return "hlsl";
+    case Language::cpp:
+      return "cpp";
   }
   return "?";
 }
@@ -73,11 +76,12 @@ struct float2 {
 inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 )",
-               c);
+                                                                       c);
 }
 
 // The vector form of the entry point (every export).
-constexpr std::string_view kVectorForm = R"(// Vector form: light axis v (unit), sharpness kappa, surface normal n (unit).
+constexpr std::string_view kVectorForm =
+    R"(// Vector form: light axis v (unit), sharpness kappa, surface normal n (unit).
 {INLINE}float {ENTRY}({VEC3} axis, float sharpness, {VEC3} normal) {
   return {ENTRY}(clamp(dot(axis, normal), -1.0f, 1.0f), sharpness);
 }
@@ -110,39 +114,50 @@ std::string half_code(const Ctx& c, const ShaderMethod& m, const Slots& slots) {
 
 // The header lines of a half export: what is half and what is not.
 std::string half_header(const ShaderMethod& m, Language lang) {
-  std::string h = lang == Language::glsl
-                      ? "// Precision: half (binary16, float16_t through GL_EXT_shader_explicit_arithmetic_types_float16);\n"
-                      : "// Precision: half (binary16, `half` with 16-bit types: DXC -enable-16bit-types, glslang "
-                        "--hlsl-enable-16bit-types);\n";
+  std::string h = lang == Language::glsl ? "// Precision: half (binary16, float16_t through "
+                                           "GL_EXT_shader_explicit_arithmetic_types_float16);\n"
+                                         : "// Precision: half (binary16, `half` with 16-bit "
+                                           "types: DXC -enable-16bit-types, glslang "
+                                           "--hlsl-enable-16bit-types);\n";
   if (const HalfForm* form = find_half_form(m.id))
     h += fmt::format("//   the method's half form: {}.\n", form->description);
   else
     h += "//   every operation and constant in half.\n";
   if (lang == Language::hlsl)
-    h += "//   glslang's HLSL intrinsics take float only: exp, exp2, sqrt run in float, rounded once to half.\n";
-  return h + "//   binary16 has 11 bits and normal values 6.1e-5 ... 65504: e^-kappa underflows above kappa ~ 17\n"
-             "//   and 1/kappa^2 overflows below kappa ~ 4e-3 wherever a method forms them, and kappa above\n"
-             "//   65504 is infinite (`sglab stability --half` measures the kappa range each method survives).\n";
+    h += "//   glslang's HLSL intrinsics take float only: exp, exp2, sqrt run in float, rounded "
+         "once to half.\n";
+  return h +
+         "//   binary16 has 11 bits and normal values 6.1e-5 ... 65504: e^-kappa underflows above "
+         "kappa ~ 17\n"
+         "//   and 1/kappa^2 overflows below kappa ~ 4e-3 wherever a method forms them, and kappa "
+         "above\n"
+         "//   65504 is infinite (`sglab stability --half` measures the kappa range each method "
+         "survives).\n";
 }
 
-std::string fmt_error(std::optional<double> e) { return e ? fmt::format("{:.3g}", *e) : std::string("not measured"); }
+std::string fmt_error(std::optional<double> e) {
+  return e ? fmt::format("{:.3g}", *e) : std::string("not measured");
+}
 
 // The header line of the GPU cost: each family's figure, or "not measured".
 std::string gpu_cost_line(const ExportRequest& request) {
   std::string costs;
   bool measured = false;
   for (const GpuCost& g : request.gpu_cost) {
-    costs += fmt::format("{}{} {}", costs.empty() ? "" : ", ", g.family,
-                         g.inverse_throughput ? fmt::format("{}", *g.inverse_throughput) : "not measured");
+    costs += fmt::format(
+        "{}{} {}", costs.empty() ? "" : ", ", g.family,
+        g.inverse_throughput ? fmt::format("{}", *g.inverse_throughput) : "not measured");
     measured = measured || g.inverse_throughput.has_value();
   }
   if (!measured)
-    return fmt::format("// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`): not measured{}\n",
-                       request.gpu_cost_source.empty()
-                           ? std::string()
-                           : fmt::format(" for this code in {}", io::comment_text(request.gpu_cost_source)));
-  return fmt::format("// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`; {}): {}\n",
-                     io::comment_text(request.gpu_cost_source), io::comment_text(costs));
+    return fmt::format(
+        "// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`): not measured{}\n",
+        request.gpu_cost_source.empty()
+            ? std::string()
+            : fmt::format(" for this code in {}", io::comment_text(request.gpu_cost_source)));
+  return fmt::format(
+      "// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`; {}): {}\n",
+      io::comment_text(request.gpu_cost_source), io::comment_text(costs));
 }
 }  // namespace
 
@@ -169,8 +184,11 @@ ErrorBudget runtime_budget(std::string_view method) {
   options.progress = false;
   const std::vector<validate::SweepMethod> one{{validate::Quantity::irradiance, *m}};
   const validate::SweepResult r = sweep(validate::SweepGrid{}, one, options);
-  if (const validate::SweepEntry* e = r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary64)) b.model = e->summary.peak_rel.max;
-  if (const validate::SweepEntry* e = r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary32))
+  if (const validate::SweepEntry* e =
+          r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary64))
+    b.model = e->summary.peak_rel.max;
+  if (const validate::SweepEntry* e =
+          r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary32))
     b.float_cpp = e->summary.peak_rel.max;
   return b;
 }
@@ -207,8 +225,9 @@ Slots request_slots(const ExportRequest& request, const ShaderMethod& m, ExportR
         for (const auto& [name, values] : set.members) {
           const auto& nv = member(o, name);  // throws when a member is missing
           if (nv.size() != values.size())
-            throw std::invalid_argument(fmt::format("constant set {}: member '{}' has {} values, {} expects {}",
-                                                    o.cpp_name, name, nv.size(), o.cpp_type, values.size()));
+            throw std::invalid_argument(
+                fmt::format("constant set {}: member '{}' has {} values, {} expects {}", o.cpp_name,
+                            name, nv.size(), o.cpp_type, values.size()));
         }
         set = o;
         used = true;
@@ -216,8 +235,9 @@ Slots request_slots(const ExportRequest& request, const ShaderMethod& m, ExportR
     if (!used) {
       std::string types;
       for (const auto& [role, set] : slots) types += (types.empty() ? "" : ", ") + set.cpp_type;
-      throw std::invalid_argument(fmt::format("constant set {} has type {}; method {} uses {}", o.cpp_name, o.cpp_type,
-                                              request.method, types.empty() ? "no constants" : types));
+      throw std::invalid_argument(fmt::format("constant set {} has type {}; method {} uses {}",
+                                              o.cpp_name, o.cpp_type, request.method,
+                                              types.empty() ? "no constants" : types));
     }
   }
   return slots;
@@ -233,19 +253,23 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
                    : request.lang == Language::hlsl ? "HLSL, Shader Model 6"
                                                     : "C++",
                    request.split ? ", per-light split" : "");
-  h += fmt::format("// Irradiance E(c, kappa) = integral of exp(kappa (w.v - 1)) max(w.n, 0) dw, c = v.n, of a\n"
-                   "// unit-amplitude SG light of sharpness kappa >= 0.\n");
+  h += fmt::format(
+      "// Irradiance E(c, kappa) = integral of exp(kappa (w.v - 1)) max(w.n, 0) dw, c = v.n, of a\n"
+      "// unit-amplitude SG light of sharpness kappa >= 0.\n");
   h += fmt::format("// Source: {}.\n", m.citation);
   h += "// Constants:\n";
   for (const auto& [role, set] : slots) {
     std::string prov = set.provenance;
     if (prov.empty()) {
       prov = "compiled in from include/sglab/constants.hpp";
-      if (auto it = request.provenance.find(set.cpp_name); it != request.provenance.end()) prov += "; " + it->second;
+      if (auto it = request.provenance.find(set.cpp_name); it != request.provenance.end())
+        prov += "; " + it->second;
     }
-    h += fmt::format("//   {}: {} ({})\n", role, io::comment_text(set.cpp_name), io::comment_text(prov));
+    h += fmt::format("//   {}: {} ({})\n", role, io::comment_text(set.cpp_name),
+                     io::comment_text(prov));
   }
-  if (!result.tier.id.empty()) h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
+  if (!result.tier.id.empty())
+    h += fmt::format("// erf/erfc: tier '{}': {}.\n", result.tier.id, result.tier.description);
   h += request.overrides.empty()
            ? "// Error budget (max |E~ - E|/E(1, kappa), kappa in [1e-3, 1e4], 41 cosines):\n"
            : "// Error budget (max |E~ - E|/E(1, kappa)):\n";
@@ -253,17 +277,22 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
     h += fmt::format("//   model (double precision vs reference): {}\n", fmt_error(b.model));
     h += fmt::format("//   C++ float runtime vs reference:        {}\n", fmt_error(b.float_cpp));
   } else {
-    h += fmt::format("//   model (as recorded by the constant set's fit, over its own kappa range): {}\n", fmt_error(b.model));
+    h += fmt::format(
+        "//   model (as recorded by the constant set's fit, over its own kappa range): {}\n",
+        fmt_error(b.model));
   }
   if (has_erf)
-    h += fmt::format("//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
-                     "(e^x - 1)/x rel {:.2g}\n",
-                     b.elementary.erf_abs, b.elementary.erf_rel_small, b.elementary.erfc_abs,
-                     b.elementary.expm1_over_x_rel);
+    h += fmt::format(
+        "//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
+        "(e^x - 1)/x rel {:.2g}\n",
+        b.elementary.erf_abs, b.elementary.erf_rel_small, b.elementary.erfc_abs,
+        b.elementary.expm1_over_x_rel);
   else
-    h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n", b.elementary.expm1_over_x_rel);
+    h += fmt::format("//   elementary, float: (e^x - 1)/x rel {:.2g}\n",
+                     b.elementary.expm1_over_x_rel);
   if (b.vulkan)
-    h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device), fmt_error(b.vulkan));
+    h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device),
+                     fmt_error(b.vulkan));
   if (request.lang != Language::cpp) h += gpu_cost_line(request);
   if (request.precision == Precision::float16) h += half_header(m, request.lang);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));
@@ -288,22 +317,24 @@ std::string split_functions(const Ctx& c, const SplitForm& form, const Slots& sl
   const std::vector<LightField> fields = form.fields(slots);
   std::string body;
   for (Helper helper : form.helpers) body += helper(c, slots) + "\n";
-  body += fmt::format("// {}: the per-light state of {}, {} floats. std430 layout (floats only): field k\n"
-                      "// at byte offset 4k, struct size {} bytes, array stride {} bytes. {}.\n",
-                      light, form.id, fields.size(), 4 * fields.size(), 4 * fields.size(),
-                      form.runtime.empty()
-                          ? "The C++ runtime has no split of this method: fill it with sglab_light_" + c.id +
-                                " (the C++ export on the host, or a shader pre-pass)"
-                          : fmt::format("The same floats, in the same order, as the C++ runtime's {} (the state "
-                                        "of registry.hpp light_setup32), so the host can fill it from the runtime",
-                                        form.runtime));
+  body += fmt::format(
+      "// {}: the per-light state of {}, {} floats. std430 layout (floats only): field k\n"
+      "// at byte offset 4k, struct size {} bytes, array stride {} bytes. {}.\n",
+      light, form.id, fields.size(), 4 * fields.size(), 4 * fields.size(),
+      form.runtime.empty()
+          ? "The C++ runtime has no split of this method: fill it with sglab_light_" + c.id +
+                " (the C++ export on the host, or a shader pre-pass)"
+          : fmt::format("The same floats, in the same order, as the C++ runtime's {} (the state "
+                        "of registry.hpp light_setup32), so the host can fill it from the runtime",
+                        form.runtime));
   body += "struct " + light + " {\n";
   for (std::size_t i = 0; i < fields.size(); ++i)
     body += fmt::format("  float {};  // offset {}: {}\n", fields[i].name, 4 * i, fields[i].doc);
   body += "};\n\n";
-  body += fmt::format("// Per light (once per frame): everything of {} that depends on kappa alone.\n", form.id);
-  body += fmt::format("{}{} sglab_light_{}(float kappa) {{\n  {} light;\n", c.lang == Language::cpp ? "inline " : "",
-                      light, c.id, light);
+  body += fmt::format(
+      "// Per light (once per frame): everything of {} that depends on kappa alone.\n", form.id);
+  body += fmt::format("{}{} sglab_light_{}(float kappa) {{\n  {} light;\n",
+                      c.lang == Language::cpp ? "inline " : "", light, c.id, light);
   body += form.light_body(c, slots);
   body += "  return light;\n}\n\n";
   body += "// Per pixel: the irradiance at cosine c = v.n from the light's state.\n";
@@ -316,7 +347,8 @@ std::string split_functions(const Ctx& c, const SplitForm& form, const Slots& sl
 }  // namespace
 
 std::string light_struct_name(std::string_view method) {
-  return "SglabLight_" + entry_point_name(method).substr(std::string_view("sglab_irradiance_").size());
+  return "SglabLight_" +
+         entry_point_name(method).substr(std::string_view("sglab_irradiance_").size());
 }
 
 std::vector<std::string> split_methods() {
@@ -331,19 +363,22 @@ ExportResult export_source(const ExportRequest& request) {
   if (!m) {
     std::string known;
     for (const auto& id : exportable_methods()) known += (known.empty() ? "" : ", ") + id;
-    throw std::invalid_argument(
-        fmt::format("unknown or non-exportable method '{}'; exportable: {}", request.method, known));
+    throw std::invalid_argument(fmt::format("unknown or non-exportable method '{}'; exportable: {}",
+                                            request.method, known));
   }
   const SplitForm* form = request.split ? find_split_form(m->id) : nullptr;
   if (request.split && !form)
-    throw std::invalid_argument(fmt::format("method '{}' has no per-light split (--split); methods with one: {}",
-                                            request.method, fmt::format("{}", fmt::join(split_methods(), ", "))));
+    throw std::invalid_argument(
+        fmt::format("method '{}' has no per-light split (--split); methods with one: {}",
+                    request.method, fmt::format("{}", fmt::join(split_methods(), ", "))));
   if (request.split && request.precision == Precision::float16)
-    throw std::invalid_argument("--split with --precision half: the per-light split export is float only (its light "
-                                "struct is std430 floats filled by the float runtime); use one or the other");
+    throw std::invalid_argument(
+        "--split with --precision half: the per-light split export is float only (its light "
+        "struct is std430 floats filled by the float runtime); use one or the other");
   if (request.precision == Precision::float16 && request.lang == Language::cpp)
-    throw std::invalid_argument("--precision half: the C++ export is float only (g++'s _Float16 may keep float "
-                                "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
+    throw std::invalid_argument(
+        "--precision half: the C++ export is float only (g++'s _Float16 may keep float "
+        "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
   ExportResult result;
   result.budget = request.budget;
   const Slots slots = request_slots(request, *m, result);
@@ -354,7 +389,9 @@ ExportResult export_source(const ExportRequest& request) {
   }
   result.budget.elementary = erf_set ? measure(erf_set) : measure_elementary("");
 
-  Ctx c{request.lang, entry_point_name(request.method).substr(std::string_view("sglab_irradiance_").size()), {}};
+  Ctx c{request.lang,
+        entry_point_name(request.method).substr(std::string_view("sglab_irradiance_").size()),
+        {}};
   c.prefix = "sglab_" + c.id + "_";
   result.entry_point = "sglab_irradiance_" + c.id;
   if (form) {
@@ -376,8 +413,8 @@ ExportResult export_source(const ExportRequest& request) {
     body += subst("\n}  // namespace sglab_export_{ID}\nusing sglab_export_{ID}::{ENTRY};\n", c);
     if (form) {
       // Its own namespace, so that a program may hold the split and the unsplit export of a method.
-      body += "using sglab_export_{ID}::" + result.light_function + ";\nusing sglab_export_{ID}::" +
-              result.light_struct + ";\n";
+      body += "using sglab_export_{ID}::" + result.light_function +
+              ";\nusing sglab_export_{ID}::" + result.light_struct + ";\n";
       body = replace_all(body, "sglab_export_{ID}", "sglab_export_{ID}_split");
     }
   }

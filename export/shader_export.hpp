@@ -66,19 +66,19 @@ struct ElementaryTier {
 // Measured error of the exported elementary functions, evaluated in float by
 // the C++ twin of the shader code against std:: functions in double.
 struct ElementaryError {
-  double erf_abs = 0;         // max |erf~(x) − erf(x)|, x ∈ [−6, 6]
-  double erf_rel_small = 0;   // max relative error of erf~ for 1e−6 ≤ |x| ≤ 1
-  double erfc_abs = 0;        // max |erfc~(x) − erfc(x)|, x ∈ [−6, 10]
+  double erf_abs = 0;           // max |erf~(x) − erf(x)|, x ∈ [−6, 6]
+  double erf_rel_small = 0;     // max relative error of erf~ for 1e−6 ≤ |x| ≤ 1
+  double erfc_abs = 0;          // max |erfc~(x) − erfc(x)|, x ∈ [−6, 10]
   double expm1_over_x_rel = 0;  // max relative error of (e^x − 1)/x, x ∈ [−100, 0]
   double max_abs() const { return erf_abs > erfc_abs ? erf_abs : erfc_abs; }
 };
 
 // The error budget printed in the header comment and by `sglab export`.
 struct ErrorBudget {
-  std::optional<double> model;     // double-precision runtime vs reference (max peak_rel)
-  std::optional<double> float_cpp; // float runtime vs reference (max peak_rel)
-  ElementaryError elementary;      // of the tier used (erf-free methods: expm1 only)
-  std::optional<double> vulkan;    // measured on a Vulkan device, from a committed results file
+  std::optional<double> model;      // double-precision runtime vs reference (max peak_rel)
+  std::optional<double> float_cpp;  // float runtime vs reference (max peak_rel)
+  ElementaryError elementary;       // of the tier used (erf-free methods: expm1 only)
+  std::optional<double> vulkan;     // measured on a Vulkan device, from a committed results file
   std::string vulkan_device;
 };
 
@@ -156,7 +156,8 @@ ErrorBudget runtime_budget(std::string_view method);
 // The request `sglab export --lang L --method ID` makes with the compiled-in
 // constants: runtime budget filled in, command written out.
 // With `precision` half: `sglab export ... --precision half`.
-ExportRequest standard_request(Language lang, std::string_view method, Precision precision = Precision::float32);
+ExportRequest standard_request(Language lang, std::string_view method,
+                               Precision precision = Precision::float32);
 
 // The measured error of one tier's elementary functions (cached).
 ElementaryError measure_elementary(std::string_view tier_id);
@@ -171,19 +172,21 @@ ElementaryTier choose_tier(std::optional<double> model_error);
 // group. Used by the Vulkan backend of `sglab sweep`. For a half export the
 // buffers stay float: the wrapper converts (cosine, kappa) to half before the
 // call and the result back to float after it.
-std::string compute_shader(Language lang, std::string_view exported_source, std::string_view entry_point,
-                           Precision precision = Precision::float32);
+std::string compute_shader(Language lang, std::string_view exported_source,
+                           std::string_view entry_point, Precision precision = Precision::float32);
 
 // The wrapper of a split export's per-pixel function: binding 0 holds the
 // cosines (float), binding 2 the lights (the export's struct, std430), binding
 // 1 receives result[l * n + i] = sglab_irradiance_<ID>(lights[l], cosines[i])
 // for the n cosines; dispatched as (ceil(n / 64), number of lights, 1)
 // workgroups of 64 threads, so the light index is the workgroup's (uniform).
-std::string split_compute_shader(Language lang, std::string_view exported_source, const ExportResult& exported);
+std::string split_compute_shader(Language lang, std::string_view exported_source,
+                                 const ExportResult& exported);
 
 // The pre-pass of a split export: binding 0 holds kappas (float), binding 1
 // receives lights[i] = sglab_light_<ID>(kappas[i]) (light_floats floats each),
 // 64 threads per group.
-std::string light_compute_shader(Language lang, std::string_view exported_source, const ExportResult& exported);
+std::string light_compute_shader(Language lang, std::string_view exported_source,
+                                 const ExportResult& exported);
 
 }  // namespace sglab::shader

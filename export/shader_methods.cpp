@@ -32,7 +32,8 @@ std::string helper_product(const Ctx& c, const Slots&) {
 }
 
 std::string helper_steepness2022(const Ctx& c, const Slots&) {
-  return subst(R"(// t(kappa) = kappa sqrt((0.5 kappa + A)/((kappa + B) kappa + C)) ([Tokuyoshi2022] Eq. 6),
+  return subst(
+      R"(// t(kappa) = kappa sqrt((0.5 kappa + A)/((kappa + B) kappa + C)) ([Tokuyoshi2022] Eq. 6),
 // in powers of 1/kappa for kappa >= 1 so that nothing overflows.
 {INLINE}float {P}steepness(float kappa) {
   if (kappa < 1.0f)
@@ -41,11 +42,12 @@ std::string helper_steepness2022(const Ctx& c, const Slots&) {
   return sqrt(kappa) * sqrt((0.5f + {P}steepness_A * r) / (1.0f + ({P}steepness_B + {P}steepness_C * r) * r));
 }
 )",
-               c);
+      c);
 }
 
 std::string helper_steepness2024(const Ctx& c, const Slots&) {
-  return subst(R"(// t(kappa) = kappa sqrt(0.5((kappa + A) kappa + B)/(((kappa + C) kappa + D) kappa + E))
+  return subst(
+      R"(// t(kappa) = kappa sqrt(0.5((kappa + A) kappa + B)/(((kappa + C) kappa + D) kappa + E))
 // ([Tokuyoshi2024] Listing 7), in powers of 1/kappa for kappa >= 1.
 {INLINE}float {P}steepness(float kappa) {
   if (kappa < 1.0f)
@@ -56,11 +58,12 @@ std::string helper_steepness2024(const Ctx& c, const Slots&) {
                             (1.0f + ({P}steepness_C + ({P}steepness_D + {P}steepness_E * r) * r) * r));
 }
 )",
-               c);
+      c);
 }
 
 std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
-  return subst(R"(// H~(c, kappa) = 2 pi lerp(e^-kappa, 1, s~) (1 - e^-kappa)/kappa, s~ = 1/2 + erf(t c)/(2 erf(t))
+  return subst(
+      R"(// H~(c, kappa) = 2 pi lerp(e^-kappa, 1, s~) (1 - e^-kappa)/kappa, s~ = 1/2 + erf(t c)/(2 erf(t))
 // ([Tokuyoshi2022] Eq. 5-6, Listing 3); the ratio is c below t = 2^-13.
 {INLINE}float {P}hemispherical(float cosine, float kappa) {
   float t = {P}steepness(kappa);
@@ -75,11 +78,13 @@ std::string helper_hemispherical2022(const Ctx& c, const Slots&) {
   return 6.28318548f * (e + s * (1.0f - e)) * {P}expm1_over_x(-kappa);
 }
 )",
-               c);
+      c);
 }
 
 std::string helper_poles2024(const Ctx& c, const Slots&) {
-  return subst(fmt::format(R"(// Exact poles (E(-1, kappa), E(+1, kappa))/2 pi (sglab/closed_forms.hpp), series at kappa < 1;
+  return subst(
+      fmt::format(
+          R"(// Exact poles (E(-1, kappa), E(+1, kappa))/2 pi (sglab/closed_forms.hpp), series at kappa < 1;
 // beyond, upper = (1 - m)/kappa and lower = e (m - e)/kappa share e = e^-kappa and
 // m = (1 - e)/kappa (one branch, one exp for both).
 {{INLINE}}{{VEC2}} {{P}}poles_over_two_pi(float kappa) {{
@@ -89,13 +94,14 @@ std::string helper_poles2024(const Ctx& c, const Slots&) {
   return {{VEC2}}(e * ((m - e) / kappa), (1.0f - m) / kappa);
 }}
 )",
-                           horner_text("kappa", literals(pole_series(true))),
-                           horner_text("kappa", literals(pole_series(false)))),
-               c);
+          horner_text("kappa", literals(pole_series(true))),
+          horner_text("kappa", literals(pole_series(false)))),
+      c);
 }
 
 std::string helper_lerp2024(const Ctx& c, const Slots&) {
-  return subst(R"(// f = 1/2 (c erfc(-t c) + erfc(t)) - e^(-t^2 c^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t),
+  return subst(
+      R"(// f = 1/2 (c erfc(-t c) + erfc(t)) - e^(-t^2 c^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t),
 // saturated ([Tokuyoshi2024] Listing 7); t = t(kappa) >= 0, so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
@@ -106,11 +112,12 @@ std::string helper_lerp2024(const Ctx& c, const Slots&) {
   return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
 }
 )",
-               c);
+      c);
 }
 
 std::string helper_meder2018(const Ctx& c, const Slots&) {
-  return subst(R"(// [Meder2018] normalized logistic hemispherical integral, t(kappa) = sqrt(kappa) (a2 kappa^2 + a1 kappa)/
+  return subst(
+      R"(// [Meder2018] normalized logistic hemispherical integral, t(kappa) = sqrt(kappa) (a2 kappa^2 + a1 kappa)/
 // (kappa^2 + b1 kappa + b0) as published, s = sigma(t c) (1 - e^(-t(1+c)))/(1 - e^(-t)), evaluated as
 // sglab/hemispherical.hpp normalized_meder2018: sigma from e^(-t|c|), the ratio as
 // (1 + c) E(-t(1+c))/E(-t) with E(x) = (e^x - 1)/x (no 0/0 at t = 0).
@@ -126,7 +133,7 @@ std::string helper_meder2018(const Ctx& c, const Slots&) {
   return 6.28318548f * (em + s * (1.0f - em)) * {P}expm1_over_x(-kappa);
 }
 )",
-               c);
+      c);
 }
 
 std::string helper_hill(const Ctx& c, const Slots&) {
@@ -156,17 +163,21 @@ std::string helper_hill(const Ctx& c, const Slots&) {
 std::pair<std::size_t, std::size_t> sglab_acc_shape(const ConstantSet& s) {
   std::size_t n = 0, d = 0;
   char tail = 0;
-  const bool typed = std::sscanf(s.cpp_type.c_str(), "SglabAccParams<double, %zu, %zu%c", &n, &d, &tail) == 3 &&
-                     tail == '>';
-  if (!typed || n == 0 || member(s, "num").size() != n * (d + 1) || member(s, "steep").size() != 5 ||
-      member(s, "scale").size() != 1)
-    throw std::invalid_argument(fmt::format("constant set {}: member sizes do not form SglabAccParams", s.cpp_name));
+  const bool typed =
+      std::sscanf(s.cpp_type.c_str(), "SglabAccParams<double, %zu, %zu%c", &n, &d, &tail) == 3 &&
+      tail == '>';
+  if (!typed || n == 0 || member(s, "num").size() != n * (d + 1) ||
+      member(s, "steep").size() != 5 || member(s, "scale").size() != 1)
+    throw std::invalid_argument(
+        fmt::format("constant set {}: member sizes do not form SglabAccParams", s.cpp_name));
   return {n, d};
 }
 
 std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
   const auto s = names(c, "model", slot(slots, "model"), "steep");
-  return subst(fmt::format(R"(// t(kappa) = kappa sqrt(0.5((kappa + s0) kappa + s1)/(((kappa + s2) kappa + s3) kappa + s4))
+  return subst(
+      fmt::format(
+          R"(// t(kappa) = kappa sqrt(0.5((kappa + s0) kappa + s1)/(((kappa + s2) kappa + s3) kappa + s4))
 // ([Tokuyoshi2024] Listing 7 form, sglab's coefficients), in powers of 1/kappa for kappa >= 1.
 {{INLINE}}float {{P}}steepness(float kappa) {{
   if (kappa < 1.0f)
@@ -175,8 +186,8 @@ std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
   return sqrt(kappa) * sqrt(0.5f * (1.0f + ({0} + {1} * r) * r) / (1.0f + ({2} + ({3} + {4} * r) * r) * r));
 }}
 )",
-                           s[0], s[1], s[2], s[3], s[4]),
-               c);
+          s[0], s[1], s[2], s[3], s[4]),
+      c);
 }
 
 // sglab_acc<N>: b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc.hpp
@@ -192,7 +203,8 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
     products += fmt::format("  float p{} = {};\n", j, horner_text("u", poly));
     b.push_back(fmt::format("p{}", j));
   }
-  const std::string text = fmt::format(R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades for
+  const std::string text = fmt::format(
+      R"(// b_j = u (1 - u)^3 P_j(u), u = t/(t + s), P_j of degree {}: the correction fades for
 // small and for large kappa; and the correction polynomial sum_j b_j z2^j (sglab/sglab_acc.hpp),
 // with the common factor u (1 - u)^3 applied once.
 {{INLINE}}float {{P}}correction(float t, float z2) {{
@@ -203,12 +215,13 @@ std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
 {}  return fade * ({});
 }}
 )",
-                                       d, scale[0], scale[0], products, horner_text("z2", b));
+      d, scale[0], scale[0], products, horner_text("z2", b));
   return subst(text, c);
 }
 
 std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
-  return subst(R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
+  return subst(
+      R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
 // Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
 // with sglab's fitted even correction (sglab/sglab_acc.hpp). Where e^(-z^2) has underflowed
 // the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
@@ -227,7 +240,7 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   return clamp(f + corr, 0.0f, 1.0f);
 }
 )",
-               c);
+      c);
 }
 
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
@@ -238,7 +251,9 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
     const auto all = pole_series(false);
     series.assign(all.begin(), all.begin() + 6);
   }
-  return subst(fmt::format(R"(// E(1, kappa)/2 pi = (kappa - 1 + e^-kappa)/kappa^2: Taylor series below kappa = 1/4,
+  return subst(
+      fmt::format(
+          R"(// E(1, kappa)/2 pi = (kappa - 1 + e^-kappa)/kappa^2: Taylor series below kappa = 1/4,
 // (1 - (1 - e^-kappa)/kappa)/kappa from there on, e^-kappa's argument stopped at 80
 // (sglab/sglab_fast.hpp upper_over_two_pi_fast).
 {{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
@@ -262,9 +277,9 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   return 0.5f * (s + abs(s));
 }}
 )",
-                           horner_text("kappa", literals(series)), names(c, "model", set, "kappa_max")[0],
-                           poly("q"), poly("a"), poly("b"), poly("c"), poly("v")),
-               c);
+          horner_text("kappa", literals(series)), names(c, "model", set, "kappa_max")[0], poly("q"),
+          poly("a"), poly("b"), poly("c"), poly("v")),
+      c);
 }
 
 // The half form of sglab_fast: its κ-only part (E(1, κ) and the rational A, B,
@@ -296,8 +311,8 @@ std::string helper_sglab_fast_half(const Ctx& c, const Slots& slots) {
   return {0}(0.5) * (s + {1}(s));
 }}
 )",
-                           h, abs16, names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"),
-                           poly("c"), poly("v")),
+                           h, abs16, names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"),
+                           poly("b"), poly("c"), poly("v")),
                c);
 }
 
@@ -323,14 +338,16 @@ constexpr std::string_view kBodyTokuyoshi2022 = R"(  float lambda = {P}clamped_c
   float q = {P}hemispherical(cosine, kappa);
   return max(alpha * p - alpha * q, 0.0f);
 )";
-constexpr std::string_view kBodyTokuyoshi2024 = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
+constexpr std::string_view kBodyTokuyoshi2024 =
+    R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
   {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
   return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
 // [Wang2009] a e^{d - kappa - lambda} 2 pi (1 - e^{-2d})/d, d = |kappa v + lambda n|, through the
 // stable product (sglab/sg.hpp sg_inner_product): d - kappa - lambda without cancellation and
 // S(d) = 4 pi (e^{-2d} - 1)/(-2d) with its d -> 0 limit.
-constexpr std::string_view kBodyWang2009 = R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}cosine_lobe_lambda);
+constexpr std::string_view kBodyWang2009 =
+    R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}cosine_lobe_lambda);
   float s = 12.566371f * {P}expm1_over_x(-2.0f * prod.x);
   return max({P}cosine_lobe_amplitude * (exp(prod.y) * s), 0.0f);
 )";
@@ -341,21 +358,27 @@ constexpr std::string_view kBodyVsgl2015 = R"(  float sum = kappa + {P}diffuse_l
 )";
 
 const std::vector<Helper>& helpers2022() {
-  static const std::vector<Helper> list = {helper_expm1, helper_erf, helper_steepness2022, helper_product, helper_hemispherical2022};
+  static const std::vector<Helper> list = {helper_expm1, helper_erf, helper_steepness2022,
+                                           helper_product, helper_hemispherical2022};
   return list;
 }
 const std::vector<Helper>& helpers2024() {
-  static const std::vector<Helper> list = {helper_expm1, helper_erf, helper_steepness2024, helper_poles2024, helper_lerp2024};
+  static const std::vector<Helper> list = {helper_expm1, helper_erf, helper_steepness2024,
+                                           helper_poles2024, helper_lerp2024};
   return list;
 }
 
-constexpr std::string_view kBodySglabAcc = R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
+constexpr std::string_view kBodySglabAcc =
+    R"(  float f = {P}lerp_factor(cosine, {P}steepness(kappa));
   {VEC2} poles = {P}poles_over_two_pi(kappa);  // (lower, upper)
   return 6.28318548f * (poles.x + f * (poles.y - poles.x));
 )";
-const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
-                                              helper_sglab_acc_steepness, helper_poles2024,
-                                              helper_sglab_acc_correction, helper_sglab_acc_lerp};
+const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,
+                                              helper_erf,
+                                              helper_sglab_acc_steepness,
+                                              helper_poles2024,
+                                              helper_sglab_acc_correction,
+                                              helper_sglab_acc_lerp};
 
 // THE table: one entry per exportable method. To add a method (e.g. one of
 // sglab's own models): append {id, citation, its constant slots as
@@ -363,26 +386,56 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,        helper_erf,
 // helpers it calls, and the body in the shading-language subset used here
 // (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?: with cheap arms and if/else
 // where an arm costs (glslang's HLSL front end evaluates both arms of ?:),
-// {VEC3}, {VEC2}; constants as {P}<role>_<member>)}. A constant set of a parameter type not yet listed
-// above also needs a named() overload. tests/test_shader_export.cpp then
-// compiles it to SPIR-V (GLSL and HLSL), compiles the C++ form and runs the
-// shader forms on Vulkan against the runtime.
+// {VEC3}, {VEC2}; constants as {P}<role>_<member>)}. A constant set of a parameter type not yet
+// listed above also needs a named() overload. tests/test_shader_export.cpp then compiles it to
+// SPIR-V (GLSL and HLSL), compiles the C++ form and runs the shader forms on Vulkan against the
+// runtime.
 const std::vector<ShaderMethod>& shader_methods() {
   static const std::vector<ShaderMethod> table = {
       {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
-       [] { return Slots{{"cosine_lobe", named("cosine_lobe_published", constants::cosine_lobe_published)}}; }, ErfUse::none, kHelpersWang2009, kBodyWang2009},
-      {"punctual", "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa", [] { return Slots{}; },
-       ErfUse::none, {}, "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
-      {"hill", "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
-       [] { return Slots{{"hill", named("hill_published", constants::hill_published)}}; }, ErfUse::none, {helper_hill},
+       [] {
+         return Slots{
+             {"cosine_lobe", named("cosine_lobe_published", constants::cosine_lobe_published)}};
+       },
+       ErfUse::none, kHelpersWang2009, kBodyWang2009},
+      {"punctual",
+       "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa",
+       [] { return Slots{}; },
+       ErfUse::none,
+       {},
+       "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
+      {"hill",
+       "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
+       [] {
+         return Slots{{"hill", named("hill_published", constants::hill_published)}};
+       },
+       ErfUse::none,
+       {helper_hill},
        "  return {P}hill_normalized(cosine, kappa) * (6.28318548f / kappa);\n"},
-      {"hill_exact", "[Pettineo2016] Hill's fitted curve times the exact SG integral",
-       [] { return Slots{{"hill", named("hill_published", constants::hill_published)}}; }, ErfUse::none, {helper_expm1, helper_hill},
-       "  return {P}hill_normalized(cosine, kappa) * (12.566371f * {P}expm1_over_x(-2.0f * kappa));\n"},
-      {"vsgl2015", "[Tokuyoshi2015] diffuse SG lambda_d = 2 with the [Iwasaki2012] product integral",
-       [] { return Slots{{"diffuse_lobe", named("diffuse_lobe_published", constants::diffuse_lobe_published)}}; }, ErfUse::none, {}, kBodyVsgl2015},
-      {"meder2018", "[Meder2018] logistic hemispherical integral with an SG cosine fit",
-       [] { return Slots{{"meder", named("meder2018_published", constants::meder2018_published)}}; }, ErfUse::none,
+      {"hill_exact",
+       "[Pettineo2016] Hill's fitted curve times the exact SG integral",
+       [] {
+         return Slots{{"hill", named("hill_published", constants::hill_published)}};
+       },
+       ErfUse::none,
+       {helper_expm1, helper_hill},
+       "  return {P}hill_normalized(cosine, kappa) * (12.566371f * {P}expm1_over_x(-2.0f * "
+       "kappa));\n"},
+      {"vsgl2015",
+       "[Tokuyoshi2015] diffuse SG lambda_d = 2 with the [Iwasaki2012] product integral",
+       [] {
+         return Slots{
+             {"diffuse_lobe", named("diffuse_lobe_published", constants::diffuse_lobe_published)}};
+       },
+       ErfUse::none,
+       {},
+       kBodyVsgl2015},
+      {"meder2018",
+       "[Meder2018] logistic hemispherical integral with an SG cosine fit",
+       [] {
+         return Slots{{"meder", named("meder2018_published", constants::meder2018_published)}};
+       },
+       ErfUse::none,
        {helper_expm1, helper_product, helper_meder2018},
        R"(  {VEC3} prod = {P}product_with_normal(cosine, kappa, {P}meder_sharpness);
   float upper = exp(prod.y) * {P}hemispherical(prod.z, prod.x);
@@ -390,47 +443,84 @@ const std::vector<ShaderMethod>& shader_methods() {
 )"},
       {"tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, Listings 1-4",
        [] {
-         return Slots{{"clamped_cosine", named("clamped_cosine_published", constants::clamped_cosine_published)},
-                      {"steepness", named("steepness2022_published", constants::steepness2022_published)}};
+         return Slots{
+             {"clamped_cosine",
+              named("clamped_cosine_published", constants::clamped_cosine_published)},
+             {"steepness", named("steepness2022_published", constants::steepness2022_published)}};
        },
        ErfUse::tiered, helpers2022(), kBodyTokuyoshi2022},
       {"tokuyoshi2024", "[Tokuyoshi2024] supplementary Listings 6-7",
-       [] { return Slots{{"steepness", named("steepness2024_published", constants::steepness2024_published)}}; }, ErfUse::tiered, helpers2024(),
-       kBodyTokuyoshi2024},
+       [] {
+         return Slots{
+             {"steepness", named("steepness2024_published", constants::steepness2024_published)}};
+       },
+       ErfUse::tiered, helpers2024(), kBodyTokuyoshi2024},
       {"tokuyoshi2022_listing5", "[Tokuyoshi2022] Eq. 3-6, Listings 1-5 (its own Listing 5 erf)",
        [] {
-         return Slots{{"clamped_cosine", named("clamped_cosine_published", constants::clamped_cosine_published)},
-                      {"steepness", named("steepness2022_published", constants::steepness2022_published)},
-                      {"erf", named("erf_listing5_published", constants::erf_listing5_published)}};
+         return Slots{
+             {"clamped_cosine",
+              named("clamped_cosine_published", constants::clamped_cosine_published)},
+             {"steepness", named("steepness2022_published", constants::steepness2022_published)},
+             {"erf", named("erf_listing5_published", constants::erf_listing5_published)}};
        },
        ErfUse::own, helpers2022(), kBodyTokuyoshi2022},
       {"tokuyoshi2022_refit", "[Tokuyoshi2022] Eq. 3-6 with sglab's refitted constants",
        [] {
-         return Slots{{"clamped_cosine", named("clamped_cosine_float", constants::clamped_cosine_float)},
-                      {"steepness", named("steepness2022_irradiance", constants::steepness2022_irradiance)}};
+         return Slots{
+             {"clamped_cosine", named("clamped_cosine_float", constants::clamped_cosine_float)},
+             {"steepness", named("steepness2022_irradiance", constants::steepness2022_irradiance)}};
        },
        ErfUse::tiered, helpers2022(), kBodyTokuyoshi2022},
       {"tokuyoshi2024_refit", "[Tokuyoshi2024] Listings 6-7 with sglab's refitted t(kappa)",
-       [] { return Slots{{"steepness", named("steepness2024_irradiance", constants::steepness2024_irradiance)}}; }, ErfUse::tiered, helpers2024(),
-       kBodyTokuyoshi2024},
-      {"vsgl2015_refit", "[Tokuyoshi2015] with sglab's refitted lambda_d",
-       [] { return Slots{{"diffuse_lobe", named("lambda_d_diffuse_lobe_irradiance", constants::lambda_d_diffuse_lobe_irradiance)}}; }, ErfUse::none, {},
+       [] {
+         return Slots{
+             {"steepness", named("steepness2024_irradiance", constants::steepness2024_irradiance)}};
+       },
+       ErfUse::tiered, helpers2024(), kBodyTokuyoshi2024},
+      {"vsgl2015_refit",
+       "[Tokuyoshi2015] with sglab's refitted lambda_d",
+       [] {
+         return Slots{{"diffuse_lobe", named("lambda_d_diffuse_lobe_irradiance",
+                                             constants::lambda_d_diffuse_lobe_irradiance)}};
+       },
+       ErfUse::none,
+       {},
        kBodyVsgl2015},
       {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
-       [] { return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude", constants::lambda_d_cosine_lobe_free_amplitude)}}; }, ErfUse::none, kHelpersWang2009,
-       kBodyWang2009},
-      {"sglab_fast", "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
-       [] { return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}}; }, ErfUse::none, {helper_sglab_fast},
+       [] {
+         return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude",
+                                            constants::lambda_d_cosine_lobe_free_amplitude)}};
+       },
+       ErfUse::none, kHelpersWang2009, kBodyWang2009},
+      {"sglab_fast",
+       "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
+       [] {
+         return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}};
+       },
+       ErfUse::none,
+       {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
-      {"sglab_acc1", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 1, D = 3 (sglab_acc.hpp)",
-       [] { return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}}; }, ErfUse::tiered, kHelpersSglabAcc,
-       kBodySglabAcc},
-      {"sglab_acc2", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 2, D = 3 (sglab_acc.hpp)",
-       [] { return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}}; }, ErfUse::tiered, kHelpersSglabAcc,
-       kBodySglabAcc},
-      {"sglab_acc3", "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 3, D = 4 (sglab_acc.hpp)",
-       [] { return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}}; }, ErfUse::tiered, kHelpersSglabAcc,
-       kBodySglabAcc},
+      {"sglab_acc1",
+       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 1, D "
+       "= 3 (sglab_acc.hpp)",
+       [] {
+         return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}};
+       },
+       ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
+      {"sglab_acc2",
+       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 2, D "
+       "= 3 (sglab_acc.hpp)",
+       [] {
+         return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}};
+       },
+       ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
+      {"sglab_acc3",
+       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 3, D "
+       "= 4 (sglab_acc.hpp)",
+       [] {
+         return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}};
+       },
+       ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
   };
   return table;
 }

@@ -43,15 +43,16 @@ std::string light_sglab_fast(const Ctx& c, const Slots& slots) {
   light.c_ramp = {} * inv_q * e1;
   light.v = {} * inv_q;
 )",
-                           names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"), poly("c"),
-                           poly("v")),
+                           names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"),
+                           poly("c"), poly("v")),
                c);
 }
 std::string pixel_sglab_fast(const Ctx& c, const Slots&) {
-  return subst(R"(  float s = light.a + light.b * cosine + light.c_ramp * {P}ramp(light.v * cosine + 0.5f);
+  return subst(
+      R"(  float s = light.a + light.b * cosine + light.c_ramp * {P}ramp(light.v * cosine + 0.5f);
   return 0.5f * (s + abs(s));
 )",
-               c);
+      c);
 }
 
 std::vector<LightField> fields_sglab_acc(const Slots& slots) {
@@ -62,7 +63,8 @@ std::vector<LightField> fields_sglab_acc(const Slots& slots) {
                                {"lower", "E(-1, kappa)/2 pi"},
                                {"upper", "E(+1, kappa)/2 pi"}};
   const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
-  for (std::size_t j = 0; j < n; ++j) f.push_back({fmt::format("b{}", j), fmt::format("correction coefficient b_{}(kappa)", j)});
+  for (std::size_t j = 0; j < n; ++j)
+    f.push_back({fmt::format("b{}", j), fmt::format("correction coefficient b_{}(kappa)", j)});
   return f;
 }
 // sglab_acc.hpp sglab_acc_light: t and the poles as tokuyoshi2024's setup, the tail scale
@@ -120,7 +122,8 @@ std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
 // alpha p - alpha q cancels heavily at small kappa, so H is formed by the very
 // operations of the unsplit export (helper_hemispherical2022): the same float result.
 std::vector<LightField> fields_tokuyoshi2022(const Slots&) {
-  return {{"kappa", "the sharpness kappa (the product with the clamped-cosine SG depends on the cosine)"},
+  return {{"kappa",
+           "the sharpness kappa (the product with the clamped-cosine SG depends on the cosine)"},
           {"t", "steepness t(kappa) ([Tokuyoshi2022] Eq. 6)"},
           {"erf_t", "erf(t)"},
           {"e", "e^-kappa"},
@@ -157,15 +160,20 @@ std::string pixel_tokuyoshi2022(const Ctx& c, const Slots&) {
 // the integral factor, per pixel the operations of the unsplit export
 // (helper_hill), so the values are the same floats.
 std::vector<LightField> fields_punctual(const Slots&) { return {{"s", "2 pi/kappa"}}; }
-std::string light_punctual(const Ctx&, const Slots&) { return "  light.s = 6.28318548f / kappa;\n"; }
-std::string pixel_punctual(const Ctx&, const Slots&) { return "  return clamp(cosine, 0.0f, 1.0f) * light.s;\n"; }
+std::string light_punctual(const Ctx&, const Slots&) {
+  return "  light.s = 6.28318548f / kappa;\n";
+}
+std::string pixel_punctual(const Ctx&, const Slots&) {
+  return "  return clamp(cosine, 0.0f, 1.0f) * light.s;\n";
+}
 
 std::vector<LightField> fields_hill(const Slots&) {
-  return {{"scale", "1 + 2 e^-2kappa - 1/kappa"},
-          {"bias", "(e^-kappa - e^-2kappa)/kappa - e^-2kappa"},
-          {"x", "sqrt(1 - scale)"},
-          {"x1", "x/(4 c0)"},
-          {"s", "the integral factor: 2 pi/kappa (hill), 4 pi (1 - e^-2kappa)/(2 kappa) (hill_exact)"}};
+  return {
+      {"scale", "1 + 2 e^-2kappa - 1/kappa"},
+      {"bias", "(e^-kappa - e^-2kappa)/kappa - e^-2kappa"},
+      {"x", "sqrt(1 - scale)"},
+      {"x1", "x/(4 c0)"},
+      {"s", "the integral factor: 2 pi/kappa (hill), 4 pi (1 - e^-2kappa)/(2 kappa) (hill_exact)"}};
 }
 std::string light_hill(const Ctx& c, const Slots&, std::string_view integral) {
   return subst(fmt::format(R"(  float c0 = {{P}}hill_c0;
@@ -182,7 +190,9 @@ std::string light_hill(const Ctx& c, const Slots&, std::string_view integral) {
                            integral),
                c);
 }
-std::string light_hill_approx(const Ctx& c, const Slots& s) { return light_hill(c, s, "6.28318548f / kappa"); }
+std::string light_hill_approx(const Ctx& c, const Slots& s) {
+  return light_hill(c, s, "6.28318548f / kappa");
+}
 std::string light_hill_exact(const Ctx& c, const Slots& s) {
   return light_hill(c, s, "12.566371f * {P}expm1_over_x(-2.0f * kappa)");
 }
@@ -212,14 +222,20 @@ std::string pixel_vsgl2015(const Ctx&, const Slots&) {
 // THE table of split forms, by method id (every other method: no split).
 const std::vector<SplitForm>& split_forms() {
   static const std::vector<SplitForm> table = [] {
-    const SplitForm t2024{"tokuyoshi2024", "sglab::Tokuyoshi2024Light<float> (sglab/irradiance.hpp tokuyoshi2024_light)",
-                          fields_tokuyoshi2024, helpers2024(), light_tokuyoshi2024, pixel_tokuyoshi2024};
-    const SplitForm t2022{"tokuyoshi2022", "", fields_tokuyoshi2022, helpers2022(), light_tokuyoshi2022,
-                          pixel_tokuyoshi2022};
-    const SplitForm acc{"sglab_acc", "sglab::SglabAccLight<float, N> (sglab/sglab_acc.hpp sglab_acc_light)",
-                        fields_sglab_acc,
-                        {helper_expm1, helper_erf, helper_sglab_acc_steepness, helper_poles2024},
-                        light_sglab_acc, pixel_sglab_acc};
+    const SplitForm t2024{
+        "tokuyoshi2024",
+        "sglab::Tokuyoshi2024Light<float> (sglab/irradiance.hpp tokuyoshi2024_light)",
+        fields_tokuyoshi2024,
+        helpers2024(),
+        light_tokuyoshi2024,
+        pixel_tokuyoshi2024};
+    const SplitForm t2022{"tokuyoshi2022",      "",
+                          fields_tokuyoshi2022, helpers2022(),
+                          light_tokuyoshi2022,  pixel_tokuyoshi2022};
+    const SplitForm acc{
+        "sglab_acc",      "sglab::SglabAccLight<float, N> (sglab/sglab_acc.hpp sglab_acc_light)",
+        fields_sglab_acc, {helper_expm1, helper_erf, helper_sglab_acc_steepness, helper_poles2024},
+        light_sglab_acc,  pixel_sglab_acc};
     const SplitForm vsgl{"vsgl2015", "", fields_vsgl2015, {}, light_vsgl2015, pixel_vsgl2015};
     std::vector<SplitForm> v = {
         {"punctual", "", fields_punctual, {}, light_punctual, pixel_punctual},
@@ -227,12 +243,18 @@ const std::vector<SplitForm>& split_forms() {
         {"hill_exact", "", fields_hill, {helper_expm1}, light_hill_exact, pixel_hill},
         vsgl};
     v.push_back(vsgl), v.back().id = "vsgl2015_refit";
-    for (std::string_view id : {"tokuyoshi2024", "tokuyoshi2024_refit"}) v.push_back(t2024), v.back().id = id;
+    for (std::string_view id : {"tokuyoshi2024", "tokuyoshi2024_refit"})
+      v.push_back(t2024), v.back().id = id;
     for (std::string_view id : {"tokuyoshi2022", "tokuyoshi2022_listing5", "tokuyoshi2022_refit"})
       v.push_back(t2022), v.back().id = id;
-    v.push_back({"sglab_fast", "sglab::SglabFastLight<float> (sglab/sglab_fast.hpp sglab_fast_light)",
-                 fields_sglab_fast, {helper_sglab_fast}, light_sglab_fast, pixel_sglab_fast});
-    for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"}) v.push_back(acc), v.back().id = id;
+    v.push_back({"sglab_fast",
+                 "sglab::SglabFastLight<float> (sglab/sglab_fast.hpp sglab_fast_light)",
+                 fields_sglab_fast,
+                 {helper_sglab_fast},
+                 light_sglab_fast,
+                 pixel_sglab_fast});
+    for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"})
+      v.push_back(acc), v.back().id = id;
     return v;
   }();
   return table;

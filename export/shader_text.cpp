@@ -51,24 +51,29 @@ std::string subst(std::string_view tmpl, const Ctx& c) {
 }
 
 // The constant names of a slot: {P}<role>_<member>, arrays <member><i>.
-std::vector<std::string> names(const Ctx& c, std::string_view role, const ConstantSet& s, std::string_view m) {
+std::vector<std::string> names(const Ctx& c, std::string_view role, const ConstantSet& s,
+                               std::string_view m) {
   const auto& v = member(s, m);
   std::vector<std::string> out;
   if (v.size() == 1) {
     out.push_back(fmt::format("{}{}_{}", c.prefix, role, m));
   } else {
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(fmt::format("{}{}_{}{}", c.prefix, role, m, i));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(fmt::format("{}{}_{}{}", c.prefix, role, m, i));
   }
   return out;
 }
 
 std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSet& s) {
-  const char* kw = c.lang == Language::glsl ? "const float" : c.lang == Language::hlsl ? "static const float"
-                                                                                       : "inline constexpr float";
-  std::string out = fmt::format("// {}: {} {}\n", role, io::comment_text(s.cpp_type), io::comment_text(s.cpp_name));
+  const char* kw = c.lang == Language::glsl   ? "const float"
+                   : c.lang == Language::hlsl ? "static const float"
+                                              : "inline constexpr float";
+  std::string out = fmt::format("// {}: {} {}\n", role, io::comment_text(s.cpp_type),
+                                io::comment_text(s.cpp_name));
   for (const auto& [m, v] : s.members) {
     const auto n = names(c, role, s, m);
-    for (std::size_t i = 0; i < v.size(); ++i) out += fmt::format("{} {} = {};\n", kw, n[i], lit(v[i]));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out += fmt::format("{} {} = {};\n", kw, n[i], lit(v[i]));
   }
   return out;
 }
@@ -88,7 +93,8 @@ std::string half_literal(std::string_view digits, Language lang) {
   const float f = std::strtof(std::string(digits).c_str(), nullptr);
   const auto h = static_cast<_Float16>(f);
   if (!std::isfinite(static_cast<float>(h)))
-    throw std::invalid_argument(fmt::format("literal {} is not finite in half (largest 65504)", digits));
+    throw std::invalid_argument(
+        fmt::format("literal {} is not finite in half (largest 65504)", digits));
   std::string s = fmt::format("{:.9g}", static_cast<float>(h));
   if (s.find('.') == std::string::npos) {
     const auto e = s.find('e');
@@ -114,7 +120,8 @@ std::size_t number_end(std::string_view text, std::size_t i) {
 
 // The HLSL intrinsics an export calls, which glslang's HLSL front end (12.0)
 // declares for float only: a half export calls {P}h_<name> (hlsl_half_prelude).
-constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2", "sqrt", "abs", "min", "max", "clamp", "dot"};
+constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2", "sqrt",  "abs",
+                                                    "min", "max",  "clamp", "dot"};
 
 // One identifier of the code translated to half: float and the vector types
 // become half types; in HLSL the intrinsics become the prelude's functions.
@@ -123,8 +130,9 @@ std::string half_identifier(std::string_view id, bool call, const Ctx& c) {
   if (id == "float") return std::string(half_type(c.lang));
   if (id == "vec2" || id == "float2") return glsl ? "f16vec2" : "half2";
   if (id == "vec3" || id == "float3") return glsl ? "f16vec3" : "half3";
-  if (!glsl && call && std::find(std::begin(kHlslHalfIntrinsics), std::end(kHlslHalfIntrinsics), id) !=
-                           std::end(kHlslHalfIntrinsics))
+  if (!glsl && call &&
+      std::find(std::begin(kHlslHalfIntrinsics), std::end(kHlslHalfIntrinsics), id) !=
+          std::end(kHlslHalfIntrinsics))
     return c.prefix + "h_" + std::string(id);
   return std::string(id);
 }
@@ -137,14 +145,17 @@ std::string to_half_code(std::string_view text, const Ctx& c) {
   std::size_t i = 0;
   while (i < text.size()) {
     const char ch = text[i];
-    if (ch == '/' && i + 1 < text.size() && text[i + 1] == '/') {  // comment: to the end of the line
+    if (ch == '/' && i + 1 < text.size() &&
+        text[i + 1] == '/') {  // comment: to the end of the line
       const std::size_t end = std::min(text.find('\n', i), text.size());
       out.append(text.substr(i, end - i));
       i = end;
     } else if (is_digit(ch) || (ch == '.' && i + 1 < text.size() && is_digit(text[i + 1]))) {
       const std::size_t j = number_end(text, i);
-      const bool is_float = j < text.size() && text[j] == 'f' && (j + 1 == text.size() || !ident_char(text[j + 1]));
-      out += is_float ? half_literal(text.substr(i, j - i), c.lang) : std::string(text.substr(i, j - i));
+      const bool is_float =
+          j < text.size() && text[j] == 'f' && (j + 1 == text.size() || !ident_char(text[j + 1]));
+      out += is_float ? half_literal(text.substr(i, j - i), c.lang)
+                      : std::string(text.substr(i, j - i));
       i = is_float ? j + 1 : j;
     } else if (ident_char(ch)) {
       std::size_t j = i;

@@ -29,7 +29,8 @@ std::string replace_all(std::string s, std::string_view from, std::string_view t
 std::string subst(std::string_view tmpl, const Ctx& c);
 
 // The constant names of a slot: {P}<role>_<member>, arrays <member><i>.
-std::vector<std::string> names(const Ctx& c, std::string_view role, const ConstantSet& s, std::string_view m);
+std::vector<std::string> names(const Ctx& c, std::string_view role, const ConstantSet& s,
+                               std::string_view m);
 // The declarations of a slot's constants, one per value.
 std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSet& s);
 

@@ -33,7 +33,8 @@ std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_vi
   const char* text = source.data();
   const int length = static_cast<int>(source.size());
   sh.setStringsWithLengths(&text, &length, 1);
-  sh.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+  sh.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, EShLangCompute,
+                 glslang::EShClientVulkan, 100);
   sh.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
   sh.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
   if (hlsl) {
@@ -41,17 +42,17 @@ std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_vi
     sh.setSourceEntryPoint("main");
   }
   const bool half16 = hlsl && precision == shader::Precision::float16;
-  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules |
-                                                 (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
-                                                 (half16 ? EShMsgHlslEnable16BitTypes : EShMsgDefault));
+  const auto messages = static_cast<EShMessages>(
+      EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
+      (half16 ? EShMsgHlslEnable16BitTypes : EShMsgDefault));
   if (!sh.parse(GetDefaultResources(), hlsl ? 100 : 450, false, messages))
-    throw CompileError(fmt::format("{} compile failed:\n{}{}", shader::to_string(lang), sh.getInfoLog(),
-                                   sh.getInfoDebugLog()));
+    throw CompileError(fmt::format("{} compile failed:\n{}{}", shader::to_string(lang),
+                                   sh.getInfoLog(), sh.getInfoDebugLog()));
   glslang::TProgram program;
   program.addShader(&sh);
   if (!program.link(messages))
-    throw CompileError(fmt::format("{} link failed:\n{}{}", shader::to_string(lang), program.getInfoLog(),
-                                   program.getInfoDebugLog()));
+    throw CompileError(fmt::format("{} link failed:\n{}{}", shader::to_string(lang),
+                                   program.getInfoLog(), program.getInfoDebugLog()));
   std::vector<std::uint32_t> spirv;
   glslang::SpvOptions options;
   options.validate = true;
@@ -60,14 +61,16 @@ std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_vi
   return spirv;
 }
 
-void check_compiles(shader::Language lang, std::string_view exported_source, shader::Precision precision) {
+void check_compiles(shader::Language lang, std::string_view exported_source,
+                    shader::Precision precision) {
   // An export defines functions only; it is checked inside the compute
   // shader that calls its scalar entry point.
   const std::string type = precision == shader::Precision::float16
                                ? (lang == shader::Language::glsl ? "float16_t " : "half ")
                                : "float ";
   const auto pos = exported_source.find(type + "sglab_irradiance_");
-  if (pos == std::string_view::npos) throw CompileError("no sglab_irradiance_ entry point in the source");
+  if (pos == std::string_view::npos)
+    throw CompileError("no sglab_irradiance_ entry point in the source");
   const auto end = exported_source.find('(', pos);
   const std::string entry(exported_source.substr(pos + type.size(), end - pos - type.size()));
   compile_compute(lang, shader::compute_shader(lang, exported_source, entry, precision), precision);
@@ -78,14 +81,17 @@ void check_compiles(shader::Language lang, std::string_view exported_source, sha
 namespace {
 
 // A zero-initialized Vulkan create-info structure of type t.
-template <class T> T make(VkStructureType t) {
+template <class T>
+T make(VkStructureType t) {
   T x{};
   x.sType = t;
   return x;
 }
 
 void check(VkResult r, const char* what) {
-  if (r != VK_SUCCESS) throw std::runtime_error(fmt::format("Vulkan: {} failed (VkResult {})", what, static_cast<int>(r)));
+  if (r != VK_SUCCESS)
+    throw std::runtime_error(
+        fmt::format("Vulkan: {} failed (VkResult {})", what, static_cast<int>(r)));
 }
 
 // A host-visible, host-coherent storage buffer with its memory.
@@ -113,8 +119,8 @@ struct ComputePipeline {
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
 
-  ComputePipeline(VkDevice device, const std::vector<std::uint32_t>& spirv, VkPipelineCreateFlags flags = 0,
-                  std::uint32_t binding_count = 2)
+  ComputePipeline(VkDevice device, const std::vector<std::uint32_t>& spirv,
+                  VkPipelineCreateFlags flags = 0, std::uint32_t binding_count = 2)
       : dev(device) {
     auto smci = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     smci.codeSize = spirv.size() * sizeof(std::uint32_t);
@@ -127,10 +133,12 @@ struct ComputePipeline {
       bindings[i].descriptorCount = 1;
       bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
-    auto dslci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    auto dslci =
+        make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     dslci.bindingCount = binding_count;
     dslci.pBindings = bindings.data();
-    check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
+    check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &set_layout),
+          "vkCreateDescriptorSetLayout");
     auto plci = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     plci.setLayoutCount = 1;
     plci.pSetLayouts = &set_layout;
@@ -142,7 +150,8 @@ struct ComputePipeline {
     cpci.stage.module = module;
     cpci.stage.pName = "main";
     cpci.layout = pipeline_layout;
-    check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpci, nullptr, &pipeline), "vkCreateComputePipelines");
+    check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpci, nullptr, &pipeline),
+          "vkCreateComputePipelines");
   }
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;
@@ -193,14 +202,17 @@ struct Device::Impl {
     check(vkCreateBuffer(device, &info, nullptr, &b.buffer), "vkCreateBuffer");
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, b.buffer, &req);
-    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    const VkMemoryPropertyFlags want =
+        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     std::optional<std::uint32_t> type;
     for (std::uint32_t i = 0; i < memory_properties.memoryTypeCount; ++i)
-      if ((req.memoryTypeBits & (1u << i)) && (memory_properties.memoryTypes[i].propertyFlags & want) == want) {
+      if ((req.memoryTypeBits & (1u << i)) &&
+          (memory_properties.memoryTypes[i].propertyFlags & want) == want) {
         type = i;
         break;
       }
-    if (!type) throw std::runtime_error("Vulkan: no host-visible coherent memory type for a storage buffer");
+    if (!type)
+      throw std::runtime_error("Vulkan: no host-visible coherent memory type for a storage buffer");
     auto alloc = make<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = *type;
@@ -222,8 +234,8 @@ namespace {
 
 // A descriptor set of `layout` from a new pool (left in `pool` for the caller
 // to destroy) whose binding i is buffers[i], whole.
-VkDescriptorSet descriptor_set(VkDevice dev, VkDescriptorSetLayout layout, const std::vector<Buffer>& buffers,
-                               VkDescriptorPool& pool) {
+VkDescriptorSet descriptor_set(VkDevice dev, VkDescriptorSetLayout layout,
+                               const std::vector<Buffer>& buffers, VkDescriptorPool& pool) {
   const auto n = static_cast<std::uint32_t>(buffers.size());
   VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, n};
   auto dpci = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
@@ -265,9 +277,10 @@ void Device::Impl::create_instance() {
   auto ici = make<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
   ici.pApplicationInfo = &app;
   if (VkResult r = vkCreateInstance(&ici, nullptr, &instance); r != VK_SUCCESS)
-    throw Unavailable(fmt::format("no Vulkan instance (vkCreateInstance returned {}): is a Vulkan driver installed "
-                                  "(e.g. mesa-vulkan-drivers for lavapipe)?",
-                                  static_cast<int>(r)));
+    throw Unavailable(fmt::format(
+        "no Vulkan instance (vkCreateInstance returned {}): is a Vulkan driver installed "
+        "(e.g. mesa-vulkan-drivers for lavapipe)?",
+        static_cast<int>(r)));
 }
 
 void Device::Impl::pick_compute_device() {
@@ -288,7 +301,8 @@ void Device::Impl::pick_compute_device() {
       }
     if (physical) break;
   }
-  if (!physical) throw Unavailable(fmt::format("no Vulkan device with a compute queue ({} devices)", count));
+  if (!physical)
+    throw Unavailable(fmt::format("no Vulkan device with a compute queue ({} devices)", count));
 }
 
 void Device::Impl::read_properties() {
@@ -296,7 +310,8 @@ void Device::Impl::read_properties() {
   vkGetPhysicalDeviceProperties(physical, &props);
   name = props.deviceName;
   if (props.apiVersion >= VK_API_VERSION_1_2) {
-    auto driver = make<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
+    auto driver =
+        make<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
     auto props2 = make<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
     props2.pNext = &driver;
     vkGetPhysicalDeviceProperties2(physical, &props2);
@@ -312,16 +327,18 @@ void Device::Impl::create_device() {
   std::uint32_t extension_count = 0;
   vkEnumerateDeviceExtensionProperties(physical, nullptr, &extension_count, nullptr);
   std::vector<VkExtensionProperties> extensions(extension_count);
-  if (extension_count) vkEnumerateDeviceExtensionProperties(physical, nullptr, &extension_count, extensions.data());
+  if (extension_count)
+    vkEnumerateDeviceExtensionProperties(physical, nullptr, &extension_count, extensions.data());
   constexpr const char* kStatistics = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
   const auto has_extension = [&](const char* extension) {
-    return std::any_of(extensions.begin(), extensions.end(),
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, extension) == 0; });
+    return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+      return std::strcmp(e.extensionName, extension) == 0;
+    });
   };
   statistics = has_extension(kStatistics);
   // Half arithmetic in shaders, where offered (lavapipe and RADV do).
-  auto float16_feature =
-      make<VkPhysicalDeviceShaderFloat16Int8FeaturesKHR>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES_KHR);
+  auto float16_feature = make<VkPhysicalDeviceShaderFloat16Int8FeaturesKHR>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES_KHR);
   constexpr const char* kFloat16 = VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME;
   if (has_extension(kFloat16)) {
     auto features2 = make<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
@@ -367,9 +384,11 @@ void Device::Impl::load_statistics_functions() {
         vkGetDeviceProcAddr(device, "vkGetPipelineExecutablePropertiesKHR"));
     get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
         vkGetDeviceProcAddr(device, "vkGetPipelineExecutableStatisticsKHR"));
-    get_executable_representations = reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
-        vkGetDeviceProcAddr(device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
-    statistics = get_executable_properties && get_executable_statistics && get_executable_representations;
+    get_executable_representations =
+        reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
+            vkGetDeviceProcAddr(device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
+    statistics =
+        get_executable_properties && get_executable_statistics && get_executable_representations;
   }
 }
 
@@ -389,15 +408,18 @@ std::string Device::driver_info() const { return impl_->driver_info; }
 bool Device::has_pipeline_statistics() const { return impl_->statistics; }
 bool Device::has_float16() const { return impl_->float16; }
 
-std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& pairs) {
-  if (pairs.empty() || pairs.size() % 2) throw std::invalid_argument("Device::run: need a non-empty list of pairs");
+std::vector<float> Device::run(const std::vector<std::uint32_t>& spirv,
+                               const std::vector<float>& pairs) {
+  if (pairs.empty() || pairs.size() % 2)
+    throw std::invalid_argument("Device::run: need a non-empty list of pairs");
   const std::size_t n = pairs.size() / 2;
   return dispatch(spirv, {pairs}, n, static_cast<std::uint32_t>((n + 63) / 64));
 }
 
 std::vector<float> Device::dispatch(const std::vector<std::uint32_t>& spirv,
-                                    const std::vector<std::vector<float>>& inputs, std::size_t out_floats,
-                                    std::uint32_t groups_x, std::uint32_t groups_y) {
+                                    const std::vector<std::vector<float>>& inputs,
+                                    std::size_t out_floats, std::uint32_t groups_x,
+                                    std::uint32_t groups_y) {
   Impl& d = *impl_;
   if (inputs.empty() || out_floats == 0 ||
       std::any_of(inputs.begin(), inputs.end(), [](const auto& in) { return in.empty(); }))
@@ -445,13 +467,14 @@ std::vector<float> Device::dispatch(const std::vector<std::uint32_t>& spirv,
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
-  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline_layout, 0, 1, &set, 0, nullptr);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline_layout, 0, 1, &set, 0,
+                          nullptr);
   vkCmdDispatch(cb, groups_x, groups_y, 1);
   auto barrier = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                       nullptr, 0, nullptr);
+  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                       &barrier, 0, nullptr, 0, nullptr);
   check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
   auto fci = make<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
   check(vkCreateFence(dev, &fci, nullptr, &o.fence), "vkCreateFence");
@@ -472,15 +495,18 @@ std::vector<float> Device::dispatch(const std::vector<std::uint32_t>& spirv,
 namespace {
 
 // The one compute executable of a pipeline built with `flags`.
-VkPipelineExecutableInfoKHR compute_executable(VkDevice device, VkPipeline pipeline,
-                                               PFN_vkGetPipelineExecutablePropertiesKHR get_properties) {
+VkPipelineExecutableInfoKHR compute_executable(
+    VkDevice device, VkPipeline pipeline, PFN_vkGetPipelineExecutablePropertiesKHR get_properties) {
   auto info = make<VkPipelineInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR);
   info.pipeline = pipeline;
   std::uint32_t executables = 0;
-  check(get_properties(device, &info, &executables, nullptr), "vkGetPipelineExecutablePropertiesKHR");
+  check(get_properties(device, &info, &executables, nullptr),
+        "vkGetPipelineExecutablePropertiesKHR");
   if (executables != 1)
-    throw std::runtime_error(fmt::format("Vulkan: expected one compute executable, the driver reports {}", executables));
-  auto executable = make<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
+    throw std::runtime_error(
+        fmt::format("Vulkan: expected one compute executable, the driver reports {}", executables));
+  auto executable =
+      make<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
   executable.pipeline = pipeline;
   executable.executableIndex = 0;
   return executable;
@@ -492,14 +518,18 @@ std::vector<PipelineStatistic> Device::pipeline_statistics(const std::vector<std
                                                            std::uint32_t bindings) {
   Impl& d = *impl_;
   if (!d.statistics)
-    throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
+    throw Unavailable(
+        fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
   ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR, bindings);
   const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
   std::uint32_t count = 0;
-  check(d.get_executable_statistics(d.device, &executable, &count, nullptr), "vkGetPipelineExecutableStatisticsKHR");
+  check(d.get_executable_statistics(d.device, &executable, &count, nullptr),
+        "vkGetPipelineExecutableStatisticsKHR");
   std::vector<VkPipelineExecutableStatisticKHR> raw(
-      count, make<VkPipelineExecutableStatisticKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR));
-  check(d.get_executable_statistics(d.device, &executable, &count, raw.data()), "vkGetPipelineExecutableStatisticsKHR");
+      count,
+      make<VkPipelineExecutableStatisticKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR));
+  check(d.get_executable_statistics(d.device, &executable, &count, raw.data()),
+        "vkGetPipelineExecutableStatisticsKHR");
   std::vector<PipelineStatistic> out;
   for (const auto& st : raw) {
     if (st.format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR)
@@ -514,8 +544,10 @@ std::vector<std::pair<std::string, std::string>> Device::pipeline_representation
     const std::vector<std::uint32_t>& spirv, std::uint32_t bindings) {
   Impl& d = *impl_;
   if (!d.statistics)
-    throw Unavailable(fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
-  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR, bindings);
+    throw Unavailable(
+        fmt::format("{} does not offer VK_KHR_pipeline_executable_properties", d.name));
+  ComputePipeline p(d.device, spirv, VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR,
+                    bindings);
   const auto executable = compute_executable(d.device, p.pipeline, d.get_executable_properties);
   std::uint32_t count = 0;
   check(d.get_executable_representations(d.device, &executable, &count, nullptr),
@@ -542,12 +574,14 @@ std::vector<std::pair<std::string, std::string>> Device::pipeline_representation
   return out;
 }
 
-std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
+std::vector<std::string> add_device_entries(validate::SweepResult& r,
+                                            std::span<const validate::SweepMethod> methods,
                                             shader::Language lang, Device& device, bool keep_points,
                                             shader::Precision precision) {
   const bool half = precision == shader::Precision::float16;
   if (half && !device.has_float16())
-    throw Unavailable(fmt::format("{} offers no half arithmetic in shaders (shaderFloat16)", device.name()));
+    throw Unavailable(
+        fmt::format("{} offers no half arithmetic in shaders (shaderFloat16)", device.name()));
   const auto exportable = shader::exportable_methods();
   std::vector<float> pairs;
   pairs.reserve(2 * r.kappas.size() * r.cosines.size());
@@ -564,9 +598,10 @@ std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<
       skipped.push_back(fmt::format("{} ({})", id, to_string(sm.quantity)));
       continue;
     }
-    const shader::ExportResult ex = shader::export_source(shader::standard_request(lang, id, precision));
-    const auto spirv =
-        compile_compute(lang, shader::compute_shader(lang, ex.source, ex.entry_point, precision), precision);
+    const shader::ExportResult ex =
+        shader::export_source(shader::standard_request(lang, id, precision));
+    const auto spirv = compile_compute(
+        lang, shader::compute_shader(lang, ex.source, ex.entry_point, precision), precision);
     const std::vector<float> out = device.run(spirv, pairs);
     const std::vector<double> values(out.begin(), out.end());
     const bool hlsl = lang == shader::Language::hlsl;
@@ -585,12 +620,14 @@ std::vector<float> device_lights(const shader::ExportResult& ex, shader::Languag
                          static_cast<std::uint32_t>((kappas.size() + 63) / 64));
 }
 
-std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& ex, shader::Language lang,
-                                const std::vector<float>& kappas, Device& device) {
+std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& ex,
+                                shader::Language lang, const std::vector<float>& kappas,
+                                Device& device) {
   const std::size_t n = ex.light_floats;
   if (n == 0 || n > kLightStateFloats)
-    throw std::invalid_argument(fmt::format("split_lights: {} is not a split export of at most {} floats",
-                                            ex.entry_point, kLightStateFloats));
+    throw std::invalid_argument(
+        fmt::format("split_lights: {} is not a split export of at most {} floats", ex.entry_point,
+                    kLightStateFloats));
   if (!method.light_setup32) return device_lights(ex, lang, kappas, device);
   std::vector<float> lights;
   lights.reserve(kappas.size() * n);
@@ -602,38 +639,46 @@ std::vector<float> split_lights(const sglab::Method& method, const shader::Expor
   return lights;
 }
 
-std::vector<float> run_split(const shader::ExportResult& ex, shader::Language lang, const std::vector<float>& lights,
-                             const std::vector<float>& cosines, Device& device) {
+std::vector<float> run_split(const shader::ExportResult& ex, shader::Language lang,
+                             const std::vector<float>& lights, const std::vector<float>& cosines,
+                             Device& device) {
   if (ex.light_floats == 0 || lights.size() % ex.light_floats)
-    throw std::invalid_argument(fmt::format("run_split: {} lights of {} floats expected", ex.light_struct, ex.light_floats));
+    throw std::invalid_argument(fmt::format("run_split: {} lights of {} floats expected",
+                                            ex.light_struct, ex.light_floats));
   const std::size_t count = lights.size() / ex.light_floats;
   const auto spirv = compile_compute(lang, shader::split_compute_shader(lang, ex.source, ex));
   // One row of workgroups per light: the sweep has at most SweepGrid::kMaxPoints / 2 = 50,000
   // kappas, within the 65,535 workgroups every Vulkan device offers in y.
   return device.dispatch(spirv, {cosines, lights}, count * cosines.size(),
-                         static_cast<std::uint32_t>((cosines.size() + 63) / 64), static_cast<std::uint32_t>(count));
+                         static_cast<std::uint32_t>((cosines.size() + 63) / 64),
+                         static_cast<std::uint32_t>(count));
 }
 
 std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
                                                   std::span<const validate::SweepMethod> methods,
-                                                  shader::Language lang, Device& device, bool keep_points) {
+                                                  shader::Language lang, Device& device,
+                                                  bool keep_points) {
   const auto split = shader::split_methods();
-  const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()), cosines(r.cosines.begin(), r.cosines.end());
+  const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()),
+      cosines(r.cosines.begin(), r.cosines.end());
   std::vector<std::string> skipped;
   for (const validate::SweepMethod& sm : methods) {
     const std::string id(sm.method.id);
-    if (sm.quantity != validate::Quantity::irradiance || std::find(split.begin(), split.end(), id) == split.end()) {
+    if (sm.quantity != validate::Quantity::irradiance ||
+        std::find(split.begin(), split.end(), id) == split.end()) {
       skipped.push_back(fmt::format("{} ({})", id, to_string(sm.quantity)));
       continue;
     }
     shader::ExportRequest request = shader::standard_request(lang, id);
     request.split = true;
     const shader::ExportResult ex = shader::export_source(request);
-    const std::vector<float> out = run_split(ex, lang, split_lights(sm.method, ex, lang, kappas, device), cosines, device);
+    const std::vector<float> out =
+        run_split(ex, lang, split_lights(sm.method, ex, lang, kappas, device), cosines, device);
     const std::vector<double> values(out.begin(), out.end());
     r.entries.push_back(sweep_entry(r, sm,
-                                    lang == shader::Language::hlsl ? validate::FloatFormat::vulkan_hlsl_split
-                                                                   : validate::FloatFormat::vulkan_split,
+                                    lang == shader::Language::hlsl
+                                        ? validate::FloatFormat::vulkan_hlsl_split
+                                        : validate::FloatFormat::vulkan_split,
                                     values, keep_points));
   }
   return skipped;

@@ -31,8 +31,9 @@ struct CompileError : std::runtime_error {
 // GLSL (#version 450) or HLSL (entry point `main`) compute shader → SPIR-V 1.0
 // for Vulkan 1.0; HLSL with `precision` half is read with 16-bit types (`half`
 // is binary16). Throws CompileError with the info log.
-std::vector<std::uint32_t> compile_compute(shader::Language lang, std::string_view source,
-                                           shader::Precision precision = shader::Precision::float32);
+std::vector<std::uint32_t> compile_compute(
+    shader::Language lang, std::string_view source,
+    shader::Precision precision = shader::Precision::float32);
 
 // Checks that a shader-language export compiles on its own: GLSL as a
 // compute-stage translation unit (it has no main, so parse only), HLSL
@@ -79,19 +80,21 @@ class Device {
                                                      std::uint32_t bindings = 2);
   // The same pipeline's internal representations as text, by the driver's
   // name for each (RADV: "NIR Shader(s)", "ACO IR", "Assembly").
-  std::vector<std::pair<std::string, std::string>> pipeline_representations(const std::vector<std::uint32_t>& spirv,
-                                                                            std::uint32_t bindings = 2);
+  std::vector<std::pair<std::string, std::string>> pipeline_representations(
+      const std::vector<std::uint32_t>& spirv, std::uint32_t bindings = 2);
 
   // Runs a compute shader built by shader::compute_shader over the points:
   // binding 0 holds (cosine, kappa) pairs as float2, binding 1 receives one
   // float per point. Throws std::runtime_error naming the failed call.
-  std::vector<float> run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& cosine_kappa_pairs);
+  std::vector<float> run(const std::vector<std::uint32_t>& spirv,
+                         const std::vector<float>& cosine_kappa_pairs);
 
   // Runs any compute shader over storage buffers of floats: binding 1
   // receives `out_floats` floats, `inputs` fill bindings 0, 2, 3, … in that
   // order; `groups` workgroups in x and y. Throws std::runtime_error naming the failed call.
-  std::vector<float> dispatch(const std::vector<std::uint32_t>& spirv, const std::vector<std::vector<float>>& inputs,
-                              std::size_t out_floats, std::uint32_t groups_x, std::uint32_t groups_y = 1);
+  std::vector<float> dispatch(const std::vector<std::uint32_t>& spirv,
+                              const std::vector<std::vector<float>>& inputs, std::size_t out_floats,
+                              std::uint32_t groups_x, std::uint32_t groups_y = 1);
 
  private:
   struct Impl;
@@ -105,9 +108,10 @@ class Device {
 // Returns the ids that were skipped because they cannot be exported.
 // With `precision` half: the half exports (`--precision half`), as `vulkan_half`
 // / `vulkan_hlsl_half`; throws Unavailable when the device has no shaderFloat16.
-std::vector<std::string> add_device_entries(validate::SweepResult& r, std::span<const validate::SweepMethod> methods,
-                                            shader::Language lang, Device& device, bool keep_points = true,
-                                            shader::Precision precision = shader::Precision::float32);
+std::vector<std::string> add_device_entries(
+    validate::SweepResult& r, std::span<const validate::SweepMethod> methods, shader::Language lang,
+    Device& device, bool keep_points = true,
+    shader::Precision precision = shader::Precision::float32);
 
 // The lights of a split export for the given kappas, light_floats floats
 // each, from its sglab_light_<ID> run on `device` (shader::light_compute_shader).
@@ -118,13 +122,15 @@ std::vector<float> device_lights(const shader::ExportResult& exported, shader::L
 // whose state the struct is) where the runtime splits the method, otherwise
 // from sglab_light_<ID> run on `device` (shader::light_compute_shader).
 std::vector<float> split_lights(const sglab::Method& method, const shader::ExportResult& exported,
-                                shader::Language lang, const std::vector<float>& kappas, Device& device);
+                                shader::Language lang, const std::vector<float>& kappas,
+                                Device& device);
 
 // The per-pixel function of a split export on `device` for every light
 // (light_floats floats each) and cosine: values[l * cosines.size() + i]
 // (shader::split_compute_shader).
 std::vector<float> run_split(const shader::ExportResult& exported, shader::Language lang,
-                             const std::vector<float>& lights, const std::vector<float>& cosines, Device& device);
+                             const std::vector<float>& lights, const std::vector<float>& cosines,
+                             Device& device);
 
 // Adds a `vulkan_split` (GLSL) or `vulkan_hlsl_split` (HLSL) entry to r for
 // every irradiance method of `methods` with a split export: the lights filled
@@ -133,6 +139,7 @@ std::vector<float> run_split(const shader::ExportResult& exported, shader::Langu
 // were skipped because they have no split form.
 std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
                                                   std::span<const validate::SweepMethod> methods,
-                                                  shader::Language lang, Device& device, bool keep_points = true);
+                                                  shader::Language lang, Device& device,
+                                                  bool keep_points = true);
 
 }  // namespace sglab::shader::vulkan

@@ -23,17 +23,18 @@
 #include <sglab/sglab.hpp>
 
 #include "fit/half.hpp"
-#include "validate/metrics.hpp"
 #include "fit/minimax.hpp"
-#include "validate/reference.hpp"
 #include "fit/targets.hpp"
+#include "validate/metrics.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::fit {
 
 namespace {
 
 // (e^λ − 1)/λ − 1 = λ Σ_{n≥0} λ^n/(n + 2)!  without cancellation.
-template <class T> T expm1_over_x_minus_one(const T& lambda) {
+template <class T>
+T expm1_over_x_minus_one(const T& lambda) {
   using std::expm1;
   if (lambda > T(0.1)) return expm1(lambda) / lambda - T(1);
   T term = T(0.5), sum = T(0);
@@ -45,13 +46,17 @@ template <class T> T expm1_over_x_minus_one(const T& lambda) {
 }
 
 // α(λ) from energy conservation: α · 2π((e^λ − 1)/λ − 1) = π.
-template <class T> T energy_alpha(const T& lambda) { return T(1) / (T(2) * expm1_over_x_minus_one(lambda)); }
+template <class T>
+T energy_alpha(const T& lambda) {
+  return T(1) / (T(2) * expm1_over_x_minus_one(lambda));
+}
 
 // The tied cosine-fit error α(λ)(e^{λu} − 1) − u without cancellation: with
 // 1/α = 2λ Σ_{n≥0} λ^n/(n + 2)!, it equals α Σ_{n≥2} λ^n (u^n/n! − 2u/(n + 1)!)
 // (the n = 1 terms cancel exactly). The direct form loses about 4 of the
 // digits that locate the optimum of the float fit.
-template <class T> T tied_error(const T& lambda, double u) {
+template <class T>
+T tied_error(const T& lambda, double u) {
   using std::expm1;
   const T alpha = energy_alpha(lambda);
   if (lambda > T(0.1)) return alpha * expm1(lambda * T(u)) - T(u);
@@ -70,7 +75,8 @@ template <class T> T tied_error(const T& lambda, double u) {
 struct CosineResidual {
   double u, eps_signed;
   bool alpha_free;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     using std::exp;
     using std::expm1;
     const T lambda = exp(p[0][0]);
@@ -82,8 +88,8 @@ struct CosineResidual {
 };
 
 struct Objective {
-  double approximation;  // max |α(e^{λu} − 1) − u|
-  double rounding_model; // α ε
+  double approximation;   // max |α(e^{λu} − 1) − u|
+  double rounding_model;  // α ε
   double total() const { return approximation + rounding_model; }
 };
 
@@ -100,7 +106,8 @@ std::vector<double> u_grid() {
 struct TiedObjective {
   double eps;
   std::vector<double> u;
-  template <class T> bool operator()(const T* s, T* cost) const {
+  template <class T>
+  bool operator()(const T* s, T* cost) const {
     using std::abs;
     using std::exp;
     using std::expm1;
@@ -131,10 +138,11 @@ double minimize_tied(double eps, double log_lambda0) {
   double lo = log_lambda0 - 0.5, hi = log_lambda0 + 0.5;
   while (slope(lo) > 0 && lo > -200) lo -= 1;
   while (slope(hi) < 0 && hi < 5) hi += 1;
-  if (!(slope(lo) <= 0 && slope(hi) >= 0)) return log_lambda0;  // no bracket: keep the minimax point
+  if (!(slope(lo) <= 0 && slope(hi) >= 0))
+    return log_lambda0;  // no bracket: keep the minimax point
   std::uintmax_t iterations = 200;
-  const auto [a, b] = boost::math::tools::toms748_solve(slope, lo, hi, boost::math::tools::eps_tolerance<double>(),
-                                                        iterations);
+  const auto [a, b] = boost::math::tools::toms748_solve(
+      slope, lo, hi, boost::math::tools::eps_tolerance<double>(), iterations);
   return 0.5 * (a + b);
 }
 
@@ -144,7 +152,8 @@ double minimize_tied(double eps, double log_lambda0) {
 Objective objective(double lambda, double alpha, double eps) {
   Objective o{0, alpha * eps};
   for (double u : u_grid()) {
-    const long double e = static_cast<long double>(alpha) * std::expm1(static_cast<long double>(lambda) * u) - u;
+    const long double e =
+        static_cast<long double>(alpha) * std::expm1(static_cast<long double>(lambda) * u) - u;
     o.approximation = std::max(o.approximation, static_cast<double>(std::abs(e)));
   }
   return o;
@@ -152,13 +161,17 @@ Objective objective(double lambda, double alpha, double eps) {
 
 // max over the u grid of |fl_P(α(e^{λu} − 1)) − α(e^{λu} − 1)|: the rounding
 // error of the cosine representation evaluated as written in precision P.
-template <class P> double measured_cosine_rounding(double lambda, double alpha) {
+template <class P>
+double measured_cosine_rounding(double lambda, double alpha) {
   using std::exp;
   double worst = 0;
   for (double u : u_grid()) {
     const P v = P(alpha) * (exp(P(lambda) * P(u)) - P(1));
-    const long double exact = static_cast<long double>(alpha) * std::expm1(static_cast<long double>(lambda) * u);
-    worst = std::max(worst, static_cast<double>(std::abs(static_cast<long double>(static_cast<double>(v)) - exact)));
+    const long double exact =
+        static_cast<long double>(alpha) * std::expm1(static_cast<long double>(lambda) * u);
+    worst = std::max(
+        worst,
+        static_cast<double>(std::abs(static_cast<long double>(static_cast<double>(v)) - exact)));
   }
   return worst;
 }
@@ -172,7 +185,8 @@ double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
   const auto cosines = cosine_grid(spec.cosine_count);
   std::vector<validate::Query> queries;
   for (double k : kappas)
-    for (double c : cosines) queries.push_back({static_cast<double>(P(k)), static_cast<double>(P(c))});
+    for (double c : cosines)
+      queries.push_back({static_cast<double>(P(k)), static_cast<double>(P(c))});
   const auto ref = validate::reference_engine().evaluate(queries);
   std::vector<double> values, references, peaks;
   for (const auto& r : ref) {
@@ -186,18 +200,24 @@ double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
 
 double measured_cosine_rounding(WorkingPrecision p, double lambda, double alpha) {
   switch (p) {
-    case WorkingPrecision::half: return measured_cosine_rounding<Half>(lambda, alpha);
-    case WorkingPrecision::single: return measured_cosine_rounding<float>(lambda, alpha);
-    case WorkingPrecision::dbl: return measured_cosine_rounding<double>(lambda, alpha);
+    case WorkingPrecision::half:
+      return measured_cosine_rounding<Half>(lambda, alpha);
+    case WorkingPrecision::single:
+      return measured_cosine_rounding<float>(lambda, alpha);
+    case WorkingPrecision::dbl:
+      return measured_cosine_rounding<double>(lambda, alpha);
   }
   return 0;
 }
 
 double irradiance_peak_rel(const FitSpec& spec, WorkingPrecision p, double lambda, double alpha) {
   switch (p) {
-    case WorkingPrecision::half: return irradiance_peak_rel<Half>(spec, lambda, alpha);
-    case WorkingPrecision::single: return irradiance_peak_rel<float>(spec, lambda, alpha);
-    case WorkingPrecision::dbl: return irradiance_peak_rel<double>(spec, lambda, alpha);
+    case WorkingPrecision::half:
+      return irradiance_peak_rel<Half>(spec, lambda, alpha);
+    case WorkingPrecision::single:
+      return irradiance_peak_rel<float>(spec, lambda, alpha);
+    case WorkingPrecision::dbl:
+      return irradiance_peak_rel<double>(spec, lambda, alpha);
   }
   return 0;
 }
@@ -212,7 +232,8 @@ ordered_json describe(const FitSpec& spec, double lambda, double alpha) {
   j["rounding_error_model"] = o.rounding_model;
   j["rounding_error_measured"] = measured_cosine_rounding(spec.precision, lambda, alpha);
   j["irradiance_max_peak_rel"] = irradiance_peak_rel(spec, spec.precision, lambda, alpha);
-  j["irradiance_max_peak_rel_double"] = irradiance_peak_rel(spec, WorkingPrecision::dbl, lambda, alpha);
+  j["irradiance_max_peak_rel_double"] =
+      irradiance_peak_rel(spec, WorkingPrecision::dbl, lambda, alpha);
   return j;
 }
 
@@ -220,8 +241,8 @@ ordered_json describe(const FitSpec& spec, double lambda, double alpha) {
 
 FitOutcome fit_clamped_cosine(const FitSpec& spec) {
   if (!spec.objective.empty() && spec.objective != "approximation+rounding")
-    throw std::invalid_argument(
-        fmt::format("clamped-cosine has one objective, 'approximation+rounding'; got '{}'", spec.objective));
+    throw std::invalid_argument(fmt::format(
+        "clamped-cosine has one objective, 'approximation+rounding'; got '{}'", spec.objective));
   const double eps = machine_epsilon(spec.precision);
   // Start at the leading-order balance: the error ≈ λ/6 at u = 1 and α ≈ 1/λ,
   // so λ/6 + ε/λ is smallest at λ = √(6ε).
@@ -243,7 +264,8 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec) {
   Residuals residuals;
   for (double u : u_grid())
     for (double sign : {-1.0, 1.0})
-      residuals.push_back(make_residual(CosineResidual{u, sign * eps, spec.alpha_free}, params.size()));
+      residuals.push_back(
+          make_residual(CosineResidual{u, sign * eps, spec.alpha_free}, params.size()));
   FitOptions options;
   options.projected_line_search = false;  // the box above is a guard, never active (see FitOptions)
   // Tied α: one parameter, polished below by a gradient method that finds the
@@ -267,34 +289,41 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec) {
   out.converged = result.converged;
   ordered_json fitted = describe(spec, lambda, alpha);
   ordered_json published = describe(spec, pub.lambda, pub.alpha);
-  const std::string variant = precision_name(spec.precision) + (spec.alpha_free ? "-alpha-free" : "");
+  const std::string variant =
+      precision_name(spec.precision) + (spec.alpha_free ? "-alpha-free" : "");
   ordered_json achieved = {{"objective", fitted["objective"]},
                            {"approximation_error", fitted["approximation_error"]},
                            {"rounding_error_model", fitted["rounding_error_model"]},
                            {"rounding_error_measured", fitted["rounding_error_measured"]},
                            {"irradiance_max_peak_rel", fitted["irradiance_max_peak_rel"]}};
-  out.constant_sets.push_back(make_constant_set(
-      spec, "clamped-cosine", variant, "ClampedCosineParams<double>",
-      "max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere",
-      ordered_json{{"lambda", lambda}, {"alpha", alpha}},
-      fmt::format("minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = {} machine epsilon ({}); alpha {}",
-                  precision_name(spec.precision), eps,
-                  spec.alpha_free ? "free" : "tied by energy conservation"),
-      achieved));
-  out.report = {{"target", "clamped-cosine"}, {"variant", variant}, {"precision", precision_name(spec.precision)},
-                {"alpha_free", spec.alpha_free}, {"converged", result.converged}};
+  out.constant_sets.push_back(
+      make_constant_set(spec, "clamped-cosine", variant, "ClampedCosineParams<double>",
+                        "max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere",
+                        ordered_json{{"lambda", lambda}, {"alpha", alpha}},
+                        fmt::format("minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, "
+                                    "eps = {} machine epsilon ({}); alpha {}",
+                                    precision_name(spec.precision), eps,
+                                    spec.alpha_free ? "free" : "tied by energy conservation"),
+                        achieved));
+  out.report = {{"target", "clamped-cosine"},
+                {"variant", variant},
+                {"precision", precision_name(spec.precision)},
+                {"alpha_free", spec.alpha_free},
+                {"converged", result.converged}};
   for (auto& [k, v] : fitted.items()) out.report[k] = v;
   out.report["published"] = published;
   out.text = fmt::format(
       "clamped-cosine ({}, alpha {}): lambda = {:.17g}, alpha = {:.17g}\n"
-      "  objective {:.4e} = approximation {:.4e} + rounding model {:.4e}; measured rounding {:.4e}\n"
+      "  objective {:.4e} = approximation {:.4e} + rounding model {:.4e}; measured rounding "
+      "{:.4e}\n"
       "  irradiance max peak_rel in {} {:.4e} (in double {:.4e})\n"
       "  published lambda = {:.17g}, alpha = {:.17g}: objective {:.4e}, irradiance {:.4e}\n",
-      precision_name(spec.precision), spec.alpha_free ? "free" : "tied", lambda, alpha, fitted["objective"].get<double>(),
-      fitted["approximation_error"].get<double>(), fitted["rounding_error_model"].get<double>(),
-      fitted["rounding_error_measured"].get<double>(), precision_name(spec.precision),
-      fitted["irradiance_max_peak_rel"].get<double>(), fitted["irradiance_max_peak_rel_double"].get<double>(),
-      pub.lambda, pub.alpha, published["objective"].get<double>(), published["irradiance_max_peak_rel"].get<double>());
+      precision_name(spec.precision), spec.alpha_free ? "free" : "tied", lambda, alpha,
+      fitted["objective"].get<double>(), fitted["approximation_error"].get<double>(),
+      fitted["rounding_error_model"].get<double>(), fitted["rounding_error_measured"].get<double>(),
+      precision_name(spec.precision), fitted["irradiance_max_peak_rel"].get<double>(),
+      fitted["irradiance_max_peak_rel_double"].get<double>(), pub.lambda, pub.alpha,
+      published["objective"].get<double>(), published["irradiance_max_peak_rel"].get<double>());
   return out;
 }
 

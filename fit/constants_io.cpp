@@ -17,17 +17,20 @@ namespace sglab::fit {
 
 namespace fs = std::filesystem;
 
-std::optional<fs::path> find_project_root(const fs::path& start) { return io::find_project_root(start); }
+std::optional<fs::path> find_project_root(const fs::path& start) {
+  return io::find_project_root(start);
+}
 
 fs::path project_root() {
   std::error_code ec;
   const fs::path cwd = fs::current_path(ec);
   if (!ec)
     if (auto root = find_project_root(cwd)) return *root;
-  throw ConstantsError(fmt::format(
-      "no sglab project found at or above {} (a folder holding both data/constants and include/sglab); run sglab "
-      "inside a checkout or name the files with --dir/--out and --header",
-      ec ? std::string("the working directory") : cwd.string()));
+  throw ConstantsError(
+      fmt::format("no sglab project found at or above {} (a folder holding both data/constants and "
+                  "include/sglab); run sglab "
+                  "inside a checkout or name the files with --dir/--out and --header",
+                  ec ? std::string("the working directory") : cwd.string()));
 }
 
 fs::path default_constants_dir() { return project_root() / "data" / "constants"; }
@@ -41,7 +44,8 @@ bool same_folder(const fs::path& a, const fs::path& b) {
   return !ea && !eb && ca == cb;
 }
 
-// A constants file, bounded (io::read_input_file: a regular file of at most kMaxConstantsFileBytes).
+// A constants file, bounded (io::read_input_file: a regular file of at most
+// kMaxConstantsFileBytes).
 std::string read_text(const fs::path& file) {
   try {
     return io::read_input_file(file, kMaxConstantsFileBytes, "a constants file");
@@ -58,7 +62,8 @@ fs::path default_header_for(const fs::path& dir) {
     const fs::path cwd = fs::current_path(ec);
     return ec ? std::nullopt : find_project_root(cwd);
   }();
-  if (root && same_folder(dir, *root / "data" / "constants")) return *root / "include" / "sglab" / "constants.hpp";
+  if (root && same_folder(dir, *root / "data" / "constants"))
+    return *root / "include" / "sglab" / "constants.hpp";
   return dir / "constants.hpp";
 }
 
@@ -73,7 +78,8 @@ namespace {
 
 // The constant set in `file`, or nullopt (and `file` noted in `skipped`, or
 // on stderr) when the file is not one by its format tag.
-std::optional<ordered_json> load_if_constant_set(const fs::path& file, std::vector<SkippedFile>* skipped) {
+std::optional<ordered_json> load_if_constant_set(const fs::path& file,
+                                                 std::vector<SkippedFile>* skipped) {
   const std::string text = read_text(file);
   if (const auto why = why_not_a_constant_set(text)) {
     if (skipped)
@@ -89,7 +95,8 @@ std::optional<ordered_json> load_if_constant_set(const fs::path& file, std::vect
 
 }  // namespace
 
-std::vector<ConstantSetFile> load_constant_set_files(const fs::path& dir, std::vector<SkippedFile>* skipped) {
+std::vector<ConstantSetFile> load_constant_set_files(const fs::path& dir,
+                                                     std::vector<SkippedFile>* skipped) {
   std::vector<fs::path> files;
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -121,8 +128,9 @@ std::string number(const ordered_json& v) {
 }
 
 std::string comment_line(const std::string& key, const ordered_json& value) {
-  const std::string text =
-      value.is_string() ? value.get<std::string>() : value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+  const std::string text = value.is_string()
+                               ? value.get<std::string>()
+                               : value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
   return fmt::format("//   {}: {}\n", comment_text(key), comment_text(text));
 }
 
@@ -139,10 +147,12 @@ std::string render_constants_header(const std::vector<ordered_json>& sets) {
     const std::string where = set["cpp_name"].get<std::string>();
     const ResolvedType type = resolve_cpp_type(set["cpp_type"].get<std::string>(), where);
     out += fmt::format("\n// {} / {}: {}\n", comment_text(set["target"].get<std::string>()),
-                       comment_text(set["variant"].get<std::string>()), comment_text(set["form"].get<std::string>()));
+                       comment_text(set["variant"].get<std::string>()),
+                       comment_text(set["form"].get<std::string>()));
     for (const auto& [key, value] : set["provenance"].items()) out += comment_line(key, value);
     std::string init;
-    for (const auto& [name, length] : type.members) {  // declaration order: designated initializers need it
+    for (const auto& [name, length] :
+         type.members) {  // declaration order: designated initializers need it
       const ordered_json& value = set["coefficients"].at(name);
       if (!init.empty()) init += ",\n";
       if (length > 0) {
@@ -153,7 +163,8 @@ std::string render_constants_header(const std::vector<ordered_json>& sets) {
         init += fmt::format("    .{} = {}", name, number(value));
       }
     }
-    out += fmt::format("inline constexpr {} {}{{\n{}}};\n", type.canonical, set["cpp_name"].get<std::string>(), init);
+    out += fmt::format("inline constexpr {} {}{{\n{}}};\n", type.canonical,
+                       set["cpp_name"].get<std::string>(), init);
   }
   out += "\n}  // namespace sglab::constants\n";
   return out;
@@ -180,13 +191,14 @@ std::size_t write_constants_header(const fs::path& dir, const fs::path& header) 
   return files.size();
 }
 
-std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, const fs::path& out_dir,
-                                  const std::optional<fs::path>& base_dir, const fs::path& header,
-                                  std::vector<SkippedFile>* skipped) {
+std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets,
+                                  const fs::path& out_dir, const std::optional<fs::path>& base_dir,
+                                  const fs::path& header, std::vector<SkippedFile>* skipped) {
   // By file name: base, then what out_dir already has, then the new sets.
   std::map<std::string, ConstantSetFile> merged;
   if (base_dir && !same_folder(*base_dir, out_dir))
-    for (auto& f : load_constant_set_files(*base_dir, skipped)) merged[f.file.filename().string()] = std::move(f);
+    for (auto& f : load_constant_set_files(*base_dir, skipped))
+      merged[f.file.filename().string()] = std::move(f);
   std::error_code ec;
   if (fs::exists(out_dir, ec)) {
     // Files the new sets replace are not loaded: a malformed one may be overwritten.
@@ -194,9 +206,11 @@ std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, 
     for (const auto& n : new_sets) replaced.push_back(n.file.filename());
     for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
       const fs::path& p = it->path();
-      if (p.extension() != ".json" || std::find(replaced.begin(), replaced.end(), p.filename()) != replaced.end())
+      if (p.extension() != ".json" ||
+          std::find(replaced.begin(), replaced.end(), p.filename()) != replaced.end())
         continue;
-      if (auto set = load_if_constant_set(p, skipped)) merged[p.filename().string()] = {p, std::move(*set)};
+      if (auto set = load_if_constant_set(p, skipped))
+        merged[p.filename().string()] = {p, std::move(*set)};
     }
     if (ec) throw ConstantsError(fmt::format("cannot list {}: {}", out_dir.string(), ec.message()));
   }

@@ -2,12 +2,11 @@
 // runtime header include/sglab/constants.hpp generated from them.
 //
 // Each JSON file holds one constant set: its format tag ("format":
-// "sglab-constants", "version": 1; files without it are not read), target, variant, the C++ name and
-// parameter type it becomes in the header, the functional form, the
-// coefficients (at full double precision, named by the members of the
-// parameter struct of include/sglab/params.hpp) and its provenance. What a set
-// may contain is fit/constants_schema.hpp; every file is checked against it
-// when loaded, and a header is only written from a complete, valid collection.
+// "sglab-constants", "version": 1; files without it are not read), target, variant, the C++ name
+// and parameter type it becomes in the header, the functional form, the coefficients (at full
+// double precision, named by the members of the parameter struct of include/sglab/params.hpp) and
+// its provenance. What a set may contain is fit/constants_schema.hpp; every file is checked against
+// it when loaded, and a header is only written from a complete, valid collection.
 #pragma once
 
 #include <filesystem>
@@ -70,7 +69,8 @@ std::string render_constants_header(const std::vector<ordered_json>& sets);
 // Regenerates `header` from the sets in `dir` after checking that they are
 // complete (validate_header_sets); writes nothing otherwise. Returns the
 // number of sets.
-std::size_t write_constants_header(const std::filesystem::path& dir, const std::filesystem::path& header);
+std::size_t write_constants_header(const std::filesystem::path& dir,
+                                   const std::filesystem::path& header);
 
 // Writes `new_sets` (each with its destination file in `out_dir`) and the
 // header generated from: the sets of `base_dir` (when given and not out_dir),
@@ -80,8 +80,10 @@ std::size_t write_constants_header(const std::filesystem::path& dir, const std::
 // the header.
 // Files of base_dir and out_dir that are not constant sets are left alone and
 // reported as load_constant_set_files does.
-std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets, const std::filesystem::path& out_dir,
+std::size_t write_sets_and_header(const std::vector<ConstantSetFile>& new_sets,
+                                  const std::filesystem::path& out_dir,
                                   const std::optional<std::filesystem::path>& base_dir,
-                                  const std::filesystem::path& header, std::vector<SkippedFile>* skipped = nullptr);
+                                  const std::filesystem::path& header,
+                                  std::vector<SkippedFile>* skipped = nullptr);
 
 }  // namespace sglab::fit

@@ -111,7 +111,9 @@ class LengthExpression {
   std::optional<long long> atom() {
     skip();
     const std::size_t start = pos_;
-    while (pos_ < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_')) ++pos_;
+    while (pos_ < text_.size() &&
+           (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_'))
+      ++pos_;
     const std::string_view token = text_.substr(start, pos_ - start);
     if (token.empty()) return std::nullopt;
     if (std::isdigit(static_cast<unsigned char>(token[0]))) {
@@ -175,15 +177,19 @@ class LengthExpression {
 
 bool plain_identifier(std::string_view s) {
   if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) return false;
-  return std::all_of(s.begin(), s.end(),
-                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
 }
 
 // target and variant: they name files (<target>-<variant>.json) and appear in comments.
 bool is_name(std::string_view s) {
-  if (s.empty() || s.size() > kMaxIdentifierLength || !std::isalnum(static_cast<unsigned char>(s[0]))) return false;
+  if (s.empty() || s.size() > kMaxIdentifierLength ||
+      !std::isalnum(static_cast<unsigned char>(s[0])))
+    return false;
   return std::all_of(s.begin(), s.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' || c == '+';
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ||
+           c == '+';
   });
 }
 
@@ -196,19 +202,42 @@ const ordered_json* find(const ordered_json& object, std::string_view key) {
 
 bool is_cpp_identifier(std::string_view s) {
   static constexpr std::string_view keywords[] = {
-      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
-      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
-      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
-      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
-      "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
-      "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
-      "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq", "final",
-      "override", "import", "module"};
+      "alignas",       "alignof",     "and",
+      "and_eq",        "asm",         "auto",
+      "bitand",        "bitor",       "bool",
+      "break",         "case",        "catch",
+      "char",          "char8_t",     "char16_t",
+      "char32_t",      "class",       "compl",
+      "concept",       "const",       "consteval",
+      "constexpr",     "constinit",   "const_cast",
+      "continue",      "co_await",    "co_return",
+      "co_yield",      "decltype",    "default",
+      "delete",        "do",          "double",
+      "dynamic_cast",  "else",        "enum",
+      "explicit",      "export",      "extern",
+      "false",         "float",       "for",
+      "friend",        "goto",        "if",
+      "inline",        "int",         "long",
+      "mutable",       "namespace",   "new",
+      "noexcept",      "not",         "not_eq",
+      "nullptr",       "operator",    "or",
+      "or_eq",         "private",     "protected",
+      "public",        "register",    "reinterpret_cast",
+      "requires",      "return",      "short",
+      "signed",        "sizeof",      "static",
+      "static_assert", "static_cast", "struct",
+      "switch",        "template",    "this",
+      "thread_local",  "throw",       "true",
+      "try",           "typedef",     "typeid",
+      "typename",      "union",       "unsigned",
+      "using",         "virtual",     "void",
+      "volatile",      "wchar_t",     "while",
+      "xor",           "xor_eq",      "final",
+      "override",      "import",      "module"};
   if (!plain_identifier(s) || s.size() > kMaxIdentifierLength) return false;
   if (s.find("__") != std::string_view::npos) return false;  // reserved
-  if (s[0] == '_' && s.size() > 1 && std::isupper(static_cast<unsigned char>(s[1]))) return false;  // reserved
+  if (s[0] == '_' && s.size() > 1 && std::isupper(static_cast<unsigned char>(s[1])))
+    return false;  // reserved
   return std::find(std::begin(keywords), std::end(keywords), s) == std::end(keywords);
 }
 
@@ -224,14 +253,16 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where) {
                                [&](const ParamStruct& p) { return p.name == name; });
   if (it == param_structs().end()) {
     std::string known;
-    for (const auto& p : param_structs()) known += (known.empty() ? "" : ", ") + std::string(p.name);
+    for (const auto& p : param_structs())
+      known += (known.empty() ? "" : ", ") + std::string(p.name);
     throw bad(fmt::format("unknown parameter struct (known: {})", known));
   }
   std::vector<std::string_view> args;
   std::string_view inner = text.substr(open + 1, text.size() - open - 2);
   for (std::size_t start = 0;;) {
     const auto comma = inner.find(',', start);
-    std::string_view arg = inner.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    std::string_view arg = inner.substr(
+        start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     while (!arg.empty() && arg.front() == ' ') arg.remove_prefix(1);
     while (!arg.empty() && arg.back() == ' ') arg.remove_suffix(1);
     args.push_back(arg);
@@ -240,19 +271,20 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where) {
   }
   if (args[0] != "double") throw bad("the scalar type must be double");
   if (args.size() != it->size_params.size() + 1)
-    throw bad(fmt::format("{} takes {} size parameter(s) after double, got {}", name, it->size_params.size(),
-                          args.size() - 1));
+    throw bad(fmt::format("{} takes {} size parameter(s) after double, got {}", name,
+                          it->size_params.size(), args.size() - 1));
   ResolvedType r;
   r.canonical = std::string(name) + "<double";
   std::map<std::string, long long, std::less<>> vars;
   for (std::size_t i = 0; i < it->size_params.size(); ++i) {
     const std::string_view a = args[i + 1];
     long long v = -1;
-    const bool digits = !a.empty() && std::all_of(a.begin(), a.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool digits =
+        !a.empty() && std::all_of(a.begin(), a.end(), [](char c) { return c >= '0' && c <= '9'; });
     if (digits) std::from_chars(a.data(), a.data() + a.size(), v);
     if (!digits || v < 0 || v > static_cast<long long>(kMaxArrayLength))
-      throw bad(fmt::format("size parameter {} must be an integer in [0, {}], got {}", it->size_params[i],
-                            kMaxArrayLength, q(a)));
+      throw bad(fmt::format("size parameter {} must be an integer in [0, {}], got {}",
+                            it->size_params[i], kMaxArrayLength, q(a)));
     vars.emplace(std::string(it->size_params[i]), v);
     r.canonical += fmt::format(", {}", v);
   }
@@ -263,11 +295,12 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where) {
       r.members.emplace_back(std::string(m), 0);
       continue;
     }
-    const auto length = LengthExpression(m.substr(bracket + 1, m.size() - bracket - 2), vars).evaluate();
+    const auto length =
+        LengthExpression(m.substr(bracket + 1, m.size() - bracket - 2), vars).evaluate();
     if (!length) throw bad(fmt::format("internal: cannot evaluate the length of member {}", m));
     if (*length < 1 || *length > static_cast<long long>(kMaxArrayLength))
-      throw bad(fmt::format("member {} would have {} elements (must be 1 to {})", m.substr(0, bracket), *length,
-                            kMaxArrayLength));
+      throw bad(fmt::format("member {} would have {} elements (must be 1 to {})",
+                            m.substr(0, bracket), *length, kMaxArrayLength));
     r.members.emplace_back(std::string(m.substr(0, bracket)), static_cast<std::size_t>(*length));
   }
   return r;
@@ -275,8 +308,8 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where) {
 
 ordered_json parse_untrusted_json(std::string_view text, const std::string& file) {
   if (text.size() > kMaxConstantsFileBytes)
-    throw ConstantsError(fmt::format("{}: {} bytes, more than the {} a constants file may have", file, text.size(),
-                                     kMaxConstantsFileBytes));
+    throw ConstantsError(fmt::format("{}: {} bytes, more than the {} a constants file may have",
+                                     file, text.size(), kMaxConstantsFileBytes));
   try {
     return io::parse_json_strict(text, file);
   } catch (const io::InputError& e) {
@@ -290,14 +323,17 @@ std::optional<std::string> why_not_a_constant_set(std::string_view text) {
   try {
     const ordered_json v = parse_untrusted_json(text, "");
     if (const ordered_json* format = v.is_object() ? find(v, "format") : nullptr) {
-      if (format->is_string() && format->get<std::string>() == kConstantSetFormat) return std::nullopt;
+      if (format->is_string() && format->get<std::string>() == kConstantSetFormat)
+        return std::nullopt;
       return fmt::format("its \"format\" is {}, not {}", format->dump(), tag);
     }
-    why = v.is_object() ? "a JSON object without \"format\"" : fmt::format("a JSON {}, not an object", v.type_name());
+    why = v.is_object() ? "a JSON object without \"format\""
+                        : fmt::format("a JSON {}, not an object", v.type_name());
   } catch (const ConstantsError&) {
     why = text.empty() ? "empty, not JSON" : "not JSON";
   }
-  if (text.find(tag) != std::string_view::npos) return std::nullopt;  // a damaged set: validated, then refused
+  if (text.find(tag) != std::string_view::npos)
+    return std::nullopt;  // a damaged set: validated, then refused
   return fmt::format("{} (a constant set has \"format\": {})", why, tag);
 }
 
@@ -307,29 +343,38 @@ namespace {
 void validate_provenance(const ordered_json& set, const std::string& file) {
   const ordered_json* provenance = find(set, "provenance");
   if (!provenance) fail(file, "provenance", "missing");
-  if (!provenance->is_object()) fail(file, "provenance", fmt::format("must be an object, got {}", provenance->type_name()));
+  if (!provenance->is_object())
+    fail(file, "provenance", fmt::format("must be an object, got {}", provenance->type_name()));
   for (const char* key : {"objective", "source", "command", "tool", "date", "precision"})
     if (const ordered_json* v = find(*provenance, key); v && !v->is_string())
-      fail(file, std::string("provenance.") + key, fmt::format("must be a string, got {}", v->type_name()));
+      fail(file, std::string("provenance.") + key,
+           fmt::format("must be a string, got {}", v->type_name()));
   for (const char* key : {"grid", "achieved"})
     if (const ordered_json* v = find(*provenance, key); v && !v->is_object())
-      fail(file, std::string("provenance.") + key, fmt::format("must be an object, got {}", v->type_name()));
+      fail(file, std::string("provenance.") + key,
+           fmt::format("must be an object, got {}", v->type_name()));
   if (const ordered_json* v = find(*provenance, "kappa_range");
       v && !(v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number()))
     fail(file, "provenance.kappa_range", "must be an array of two numbers [LO, HI]");
   if (const ordered_json* a = find(*provenance, "achieved"))
     if (const ordered_json* v = find(*a, "objective"); v && !v->is_number())
-      fail(file, "provenance.achieved.objective", fmt::format("must be a number, got {}", v->type_name()));
+      fail(file, "provenance.achieved.objective",
+           fmt::format("must be a number, got {}", v->type_name()));
   // A fit's certificate (fit/sglab_acc.cpp): its kind and grid, the max
   // achieved and the lower bound for the family, both finite numbers.
   if (const ordered_json* c = find(*provenance, "certificate")) {
-    if (!c->is_object()) fail(file, "provenance.certificate", fmt::format("must be an object, got {}", c->type_name()));
+    if (!c->is_object())
+      fail(file, "provenance.certificate",
+           fmt::format("must be an object, got {}", c->type_name()));
     for (const char* key : {"kind", "grid"})
       if (const ordered_json* v = find(*c, key); !v || !v->is_string())
-        fail(file, std::string("provenance.certificate.") + key, v ? fmt::format("must be a string, got {}", v->type_name()) : "missing");
+        fail(file, std::string("provenance.certificate.") + key,
+             v ? fmt::format("must be a string, got {}", v->type_name()) : "missing");
     for (const char* key : {"achieved", "lower_bound"})
-      if (const ordered_json* v = find(*c, key); !v || !v->is_number() || !std::isfinite(v->get<double>()))
-        fail(file, std::string("provenance.certificate.") + key, v ? "must be a finite number" : "missing");
+      if (const ordered_json* v = find(*c, key);
+          !v || !v->is_number() || !std::isfinite(v->get<double>()))
+        fail(file, std::string("provenance.certificate.") + key,
+             v ? "must be a finite number" : "missing");
   }
 }
 }  // namespace
@@ -337,13 +382,17 @@ void validate_provenance(const ordered_json& set, const std::string& file) {
 void validate_constant_set(const ordered_json& set, const std::string& file) {
   if (!set.is_object()) fail(file, "", "not a JSON object");
   const ordered_json* format = find(set, "format");
-  if (!format) fail(file, "format", fmt::format("missing: a constant set has \"format\": \"{}\"", kConstantSetFormat));
+  if (!format)
+    fail(file, "format",
+         fmt::format("missing: a constant set has \"format\": \"{}\"", kConstantSetFormat));
   if (!format->is_string() || format->get<std::string>() != kConstantSetFormat)
     fail(file, "format", fmt::format("must be \"{}\", got {}", kConstantSetFormat, format->dump()));
   const ordered_json* version = find(set, "version");
   if (!version || !version->is_number_integer() || version->get<long long>() != kConstantSetVersion)
-    fail(file, "version", fmt::format("must be {} (the version of the format this sglab reads){}", kConstantSetVersion,
-                                      version ? ", got " + version->dump() : std::string(", missing")));
+    fail(file, "version",
+         fmt::format("must be {} (the version of the format this sglab reads){}",
+                     kConstantSetVersion,
+                     version ? ", got " + version->dump() : std::string(", missing")));
   const auto string_field = [&](const char* key) -> std::string {
     const ordered_json* v = find(set, key);
     if (!v) fail(file, key, "missing");
@@ -356,7 +405,8 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
   for (const auto& [key, value] : {std::pair{"target", &target}, std::pair{"variant", &variant}})
     if (!is_name(*value))
       fail(file, key,
-           fmt::format("{} is not a name (letters, digits, '-', '_', '.', '+', starting with a letter or digit, at "
+           fmt::format("{} is not a name (letters, digits, '-', '_', '.', '+', starting with a "
+                       "letter or digit, at "
                        "most {} characters)",
                        q(*value), kMaxIdentifierLength));
   if (!is_cpp_identifier(cpp_name))
@@ -365,7 +415,8 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
 
   const ordered_json* coefficients = find(set, "coefficients");
   if (!coefficients) fail(file, "coefficients", "missing");
-  if (!coefficients->is_object()) fail(file, "coefficients", fmt::format("must be an object, got {}", coefficients->type_name()));
+  if (!coefficients->is_object())
+    fail(file, "coefficients", fmt::format("must be an object, got {}", coefficients->type_name()));
   for (const auto& [name, value] : coefficients->items()) {
     const auto member = std::find_if(type.members.begin(), type.members.end(),
                                      [&](const auto& m) { return m.first == name; });
@@ -373,7 +424,8 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
     if (member == type.members.end()) {
       std::string known;
       for (const auto& m : type.members) known += (known.empty() ? "" : ", ") + m.first;
-      fail(file, key, fmt::format("{} has no member of this name (members: {})", type.canonical, known));
+      fail(file, key,
+           fmt::format("{} has no member of this name (members: {})", type.canonical, known));
     }
     const auto check_number = [&](const ordered_json& v, const std::string& k) {
       if (!v.is_number()) fail(file, k, fmt::format("must be a number, got {}", v.type_name()));
@@ -383,37 +435,48 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
       check_number(value, key);
     } else {
       if (!value.is_array())
-        fail(file, key, fmt::format("must be an array of {} numbers, got {}", member->second, value.type_name()));
+        fail(file, key,
+             fmt::format("must be an array of {} numbers, got {}", member->second,
+                         value.type_name()));
       if (value.size() != member->second)
-        fail(file, key, fmt::format("has {} values; {} needs {}", value.size(), type.canonical, member->second));
-      for (std::size_t i = 0; i < value.size(); ++i) check_number(value[i], fmt::format("{}[{}]", key, i));
+        fail(file, key,
+             fmt::format("has {} values; {} needs {}", value.size(), type.canonical,
+                         member->second));
+      for (std::size_t i = 0; i < value.size(); ++i)
+        check_number(value[i], fmt::format("{}[{}]", key, i));
     }
   }
   for (const auto& [name, length] : type.members)
     if (!coefficients->contains(name))
-      fail(file, "coefficients." + name, fmt::format("missing: {} needs every member", type.canonical));
+      fail(file, "coefficients." + name,
+           fmt::format("missing: {} needs every member", type.canonical));
 
   validate_provenance(set, file);
 }
 
-void validate_header_sets(const std::vector<ordered_json>& sets, const std::vector<std::string>& files) {
+void validate_header_sets(const std::vector<ordered_json>& sets,
+                          const std::vector<std::string>& files) {
   std::map<std::string, std::size_t> by_name;
   for (std::size_t i = 0; i < sets.size(); ++i) {
     const std::string name = sets[i]["cpp_name"].get<std::string>();
     const auto [it, fresh] = by_name.emplace(name, i);
     if (!fresh)
-      fail(files[i], "cpp_name", fmt::format("{} is also the cpp_name of {}", q(name), files[it->second]));
+      fail(files[i], "cpp_name",
+           fmt::format("{} is also the cpp_name of {}", q(name), files[it->second]));
   }
   for (const RequiredSet& r : required_sets()) {
     const auto it = by_name.find(std::string(r.cpp_name));
     if (it == by_name.end())
-      throw ConstantsError(fmt::format(
-          "no constant set has cpp_name {} ({}), which the runtime and tools use; the header would not compile",
-          q(r.cpp_name), r.cpp_type));
+      throw ConstantsError(
+          fmt::format("no constant set has cpp_name {} ({}), which the runtime and tools use; the "
+                      "header would not compile",
+                      q(r.cpp_name), r.cpp_type));
     const std::string& file = files[it->second];
-    const std::string have = resolve_cpp_type(sets[it->second]["cpp_type"].get<std::string>(), file).canonical;
+    const std::string have =
+        resolve_cpp_type(sets[it->second]["cpp_type"].get<std::string>(), file).canonical;
     if (have != r.cpp_type)
-      fail(file, "cpp_type", fmt::format("{} is {}, but the code uses it as {}", r.cpp_name, have, r.cpp_type));
+      fail(file, "cpp_type",
+           fmt::format("{} is {}, but the code uses it as {}", r.cpp_name, have, r.cpp_type));
   }
 }
 

@@ -46,7 +46,8 @@ struct ConstantsError : std::runtime_error {
 inline constexpr std::size_t kMaxConstantsFileBytes = 1 << 20;  // 1 MiB (a set is a few KB)
 inline constexpr int kMaxJsonDepth = io::kMaxJsonDepth;         // nesting of objects and arrays
 inline constexpr std::size_t kMaxArrayLength = 64;              // size parameters and array members
-inline constexpr std::size_t kMaxIdentifierLength = 128;        // cpp_name, target, variant, coefficient names
+inline constexpr std::size_t kMaxIdentifierLength =
+    128;  // cpp_name, target, variant, coefficient names
 
 // The format tag of a constant set: its top-level members "format" and
 // "version" (written first by the fits).
@@ -92,16 +93,17 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where);
 ordered_json parse_untrusted_json(std::string_view text, const std::string& file);
 
 // Checks one set against the schema: the format tag (kConstantSetFormat,
-// kConstantSetVersion); known top-level fields of the right types; target, variant and cpp_name identifiers; cpp_type known; every
-// member of the struct given, no other coefficient, array lengths right,
-// values finite; provenance an object whose well-known fields have the right
-// type. Throws ConstantsError naming `file` and the key.
+// kConstantSetVersion); known top-level fields of the right types; target, variant and cpp_name
+// identifiers; cpp_type known; every member of the struct given, no other coefficient, array
+// lengths right, values finite; provenance an object whose well-known fields have the right type.
+// Throws ConstantsError naming `file` and the key.
 void validate_constant_set(const ordered_json& set, const std::string& file);
 
 // Checks a complete collection for the header (each already validated):
 // every required set present with its type, cpp_names unique.
 // `files[i]` names where sets[i] came from. Throws ConstantsError.
-void validate_header_sets(const std::vector<ordered_json>& sets, const std::vector<std::string>& files);
+void validate_header_sets(const std::vector<ordered_json>& sets,
+                          const std::vector<std::string>& files);
 
 // Text fields are escaped into the header's comments by the one escaping
 // function that the shader exports use too (common/comment_text.hpp).

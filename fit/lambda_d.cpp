@@ -10,14 +10,14 @@
 // the integral itself.
 #include <cmath>
 
-#include <boost/math/quadrature/gauss.hpp>
 #include <fmt/format.h>
+#include <boost/math/quadrature/gauss.hpp>
 
 #include <sglab/sglab.hpp>
 
 #include "fit/minimax.hpp"
-#include "validate/reference.hpp"
 #include "fit/targets.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::fit {
 
@@ -49,11 +49,13 @@ std::vector<Node> nodes(bool sphere) {
 // √w (cos⁺/π − G(λ)/S(λ)), λ = p[0].
 struct NormalizedLobeResidual {
   Node node;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     using std::sqrt;
     const T lambda = p[0][0];
     const T cos_plus = T(node.u > 0 ? node.u : 0.0);
-    r[0] = T(std::sqrt(node.w)) * (cos_plus / pi_v<T>() - sg_evaluate(T(node.u), lambda) / sphere_integral(lambda));
+    r[0] = T(std::sqrt(node.w)) *
+           (cos_plus / pi_v<T>() - sg_evaluate(T(node.u), lambda) / sphere_integral(lambda));
     return true;
   }
 };
@@ -61,7 +63,8 @@ struct NormalizedLobeResidual {
 // √w (cos⁺ − a G(λ)), λ = p[0], a = p[1].
 struct FreeAmplitudeResidual {
   Node node;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     const T cos_plus = T(node.u > 0 ? node.u : 0.0);
     r[0] = T(std::sqrt(node.w)) * (cos_plus - p[1][0] * sg_evaluate(T(node.u), p[0][0]));
     return true;
@@ -70,8 +73,11 @@ struct FreeAmplitudeResidual {
 
 struct VsglResidual {
   double kappa, cosine, reference, peak;
-  template <class T> bool operator()(T const* const* p, T* r) const {
-    r[0] = (irradiance_vsgl2015(T(cosine), T(kappa), DiffuseLobeParams<T>{p[0][0]}) - T(reference)) / T(peak);
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    r[0] =
+        (irradiance_vsgl2015(T(cosine), T(kappa), DiffuseLobeParams<T>{p[0][0]}) - T(reference)) /
+        T(peak);
     return true;
   }
 };
@@ -106,17 +112,20 @@ Problem problem_for(const std::string& objective, const FitSpec& spec) {
     p.params = {{"lambda_d"}, {lambda_d_pub}, {}};
     p.published = {lambda_d_pub};
     p.options.norm = Norm::least_squares;
-    p.description = fmt::format("least squares: integral over the {} of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2",
-                                sphere ? "sphere" : "upper hemisphere");
+    p.description = fmt::format(
+        "least squares: integral over the {} of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2",
+        sphere ? "sphere" : "upper hemisphere");
     p.cpp_type = "DiffuseLobeParams<double>";
     p.form = "max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)";
     p.metric = "integral_squared_error";
   } else if (objective == "free-amplitude") {
-    for (const Node& n : nodes(true)) p.residuals.push_back(make_residual(FreeAmplitudeResidual{n}, 2));
+    for (const Node& n : nodes(true))
+      p.residuals.push_back(make_residual(FreeAmplitudeResidual{n}, 2));
     p.params = {{"lambda", "amplitude"}, {wang.lambda, wang.amplitude}, {}};
     p.published = {wang.lambda, wang.amplitude};
     p.options.norm = Norm::least_squares;
-    p.description = "least squares: integral over the sphere of (max(cos,0) - amplitude*G(lambda))^2";
+    p.description =
+        "least squares: integral over the sphere of (max(cos,0) - amplitude*G(lambda))^2";
     p.cpp_type = "CosineLobeParams<double>";
     p.form = "max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere";
     p.metric = "integral_squared_error";
@@ -125,14 +134,18 @@ Problem problem_for(const std::string& objective, const FitSpec& spec) {
     for (double k : kappa_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count))
       for (double c : cosine_grid(spec.cosine_count)) q.push_back({k, c});
     for (const auto& r : validate::reference_engine().evaluate(q))
-      p.residuals.push_back(make_residual(VsglResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, 1));
+      p.residuals.push_back(make_residual(
+          VsglResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, 1));
     p.params = {{"lambda_d"}, {lambda_d_pub}, {}};
     p.published = {lambda_d_pub};
-    p.description = fmt::format("minimax of the vsgl2015 irradiance peak_rel error over {} kappa x {} cosines, kappa "
-                                "in [{}, {}]",
-                                spec.kappa_count, spec.cosine_count, spec.kappa_lo, spec.kappa_hi);
+    p.description = fmt::format(
+        "minimax of the vsgl2015 irradiance peak_rel error over {} kappa x {} cosines, kappa "
+        "in [{}, {}]",
+        spec.kappa_count, spec.cosine_count, spec.kappa_lo, spec.kappa_hi);
     p.cpp_type = "DiffuseLobeParams<double>";
-    p.form = "max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A ≈ pi, Iwasaki product integral (vsgl2015)";
+    p.form =
+        "max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A ≈ pi, Iwasaki product integral "
+        "(vsgl2015)";
     p.metric = "max_peak_rel";
   }
   return p;
@@ -141,12 +154,14 @@ Problem problem_for(const std::string& objective, const FitSpec& spec) {
 }  // namespace
 
 FitOutcome fit_lambda_d(const FitSpec& spec) {
-  const std::vector<std::string> all = {"sphere-ls", "hemisphere-ls", "free-amplitude", "irradiance"};
+  const std::vector<std::string> all = {"sphere-ls", "hemisphere-ls", "free-amplitude",
+                                        "irradiance"};
   std::vector<std::string> objectives = all;
   if (!spec.objective.empty()) {
     if (std::find(all.begin(), all.end(), spec.objective) == all.end())
       throw std::invalid_argument(fmt::format(
-          "lambda-d objectives are sphere-ls, hemisphere-ls, free-amplitude, irradiance; got '{}'", spec.objective));
+          "lambda-d objectives are sphere-ls, hemisphere-ls, free-amplitude, irradiance; got '{}'",
+          spec.objective));
     objectives = {spec.objective};
   }
   FitOutcome out;
@@ -168,22 +183,26 @@ FitOutcome fit_lambda_d(const FitSpec& spec) {
       pub[params.names[i]] = published[i];
     }
     pub[metric] = value_of(published);
-    std::string variant = (objective == "free-amplitude" ? "cosine-lobe-" : "diffuse-lobe-") + objective;
+    std::string variant =
+        (objective == "free-amplitude" ? "cosine-lobe-" : "diffuse-lobe-") + objective;
     if (spec.kappa_range_given && objective == "irradiance")
       variant += fmt::format("-k{}-{}", spec.kappa_lo, spec.kappa_hi);
-    ordered_json achieved = {{"objective", value_of(result.values)}, {metric, value_of(result.values)}};
-    out.constant_sets.push_back(
-        make_constant_set(spec, "lambda-d", variant, problem.cpp_type, problem.form, coefficients,
-                          problem.description, achieved));
+    ordered_json achieved = {{"objective", value_of(result.values)},
+                             {metric, value_of(result.values)}};
+    out.constant_sets.push_back(make_constant_set(spec, "lambda-d", variant, problem.cpp_type,
+                                                  problem.form, coefficients, problem.description,
+                                                  achieved));
     ordered_json row = {{"objective", objective}, {"variant", variant}};
     for (auto& [k, v] : coefficients.items()) row[k] = v;
     row[metric] = value_of(result.values);
     // S(λd) beside π: [Tokuyoshi2015] assumes A(λd) ≈ π.
-    if (coefficients.contains("lambda_d")) row["sphere_integral"] = sphere_integral(result.values[0]);
+    if (coefficients.contains("lambda_d"))
+      row["sphere_integral"] = sphere_integral(result.values[0]);
     row["published"] = pub;
     out.report["results"].push_back(row);
-    out.text += fmt::format("lambda-d {:<15} {}  {} {:.4e} (published {} {:.4e})\n", objective, coefficients.dump(),
-                            metric, value_of(result.values), pub.dump(), pub[metric].get<double>());
+    out.text += fmt::format("lambda-d {:<15} {}  {} {:.4e} (published {} {:.4e})\n", objective,
+                            coefficients.dump(), metric, value_of(result.values), pub.dump(),
+                            pub[metric].get<double>());
   }
   return out;
 }

@@ -22,14 +22,18 @@ void check_problem(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eig
   const auto m = a.rows(), n = a.cols();
   if (n == 0) throw std::invalid_argument("lp_minimax: the problem has no unknown (0 columns)");
   if (y.size() != m || w.size() != m)
-    throw std::invalid_argument(fmt::format("lp_minimax: A has {} rows but y has {} and w {}", m, y.size(), w.size()));
-  if (m < n + 1)
     throw std::invalid_argument(
-        fmt::format("lp_minimax: {} rows for {} unknowns: at least {} are needed (the minimax would be 0)", m, n, n + 1));
-  if (!a.allFinite() || !y.allFinite()) throw std::invalid_argument("lp_minimax: A or y has a non-finite entry");
+        fmt::format("lp_minimax: A has {} rows but y has {} and w {}", m, y.size(), w.size()));
+  if (m < n + 1)
+    throw std::invalid_argument(fmt::format(
+        "lp_minimax: {} rows for {} unknowns: at least {} are needed (the minimax would be 0)", m,
+        n, n + 1));
+  if (!a.allFinite() || !y.allFinite())
+    throw std::invalid_argument("lp_minimax: A or y has a non-finite entry");
   for (Eigen::Index i = 0; i < m; ++i)
     if (!(w[i] > 0) || !std::isfinite(w[i]))
-      throw std::invalid_argument(fmt::format("lp_minimax: weight {} of row {} is not positive and finite", w[i], i));
+      throw std::invalid_argument(
+          fmt::format("lp_minimax: weight {} of row {} is not positive and finite", w[i], i));
   // Columns scaled to unit max norm, then a rank-revealing QR: dependent
   // columns leave x undetermined (the LP would return one of many).
   const Eigen::VectorXd norms = a.cwiseAbs().colwise().maxCoeff().transpose();
@@ -38,13 +42,14 @@ void check_problem(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eig
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a * norms.cwiseInverse().asDiagonal());
   qr.setThreshold(1e-13);
   if (qr.rank() < n)
-    throw std::invalid_argument(
-        fmt::format("lp_minimax: the {} columns are linearly dependent (rank {}): x is not determined", n, qr.rank()));
+    throw std::invalid_argument(fmt::format(
+        "lp_minimax: the {} columns are linearly dependent (rank {}): x is not determined", n,
+        qr.rank()));
 }
 
 // |(A x − y)_i| / w_i for every row.
-Eigen::VectorXd weighted_residuals(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
-                                   const Eigen::VectorXd& x) {
+Eigen::VectorXd weighted_residuals(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                                   const Eigen::VectorXd& w, const Eigen::VectorXd& x) {
   return (a * x - y).cwiseQuotient(w);
 }
 
@@ -56,8 +61,8 @@ constexpr double kNegligible = 1e-15;
 // The LP on `rows`: unknowns x (free; columns scaled to unit max norm on
 // these rows) and E ≥ 0; per row two constraints, A'x − E ≤ y' and
 // A'x + E ≥ y', with A' = A/w, y' = y/w ([Cheney1966] ch. 2). Minimize E.
-LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
-                         const std::vector<std::size_t>& rows) {
+LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                         const Eigen::VectorXd& w, const std::vector<std::size_t>& rows) {
   const int n = int(a.cols()), m = int(rows.size());
   Eigen::MatrixXd as(m, n);
   Eigen::VectorXd ys(m);
@@ -86,9 +91,11 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
       }
     start.push_back(CoinBigIndex(index.size()));
   }
-  for (int r = 0; r < m; ++r) index.push_back(2 * r), value.push_back(-1), index.push_back(2 * r + 1), value.push_back(1);
+  for (int r = 0; r < m; ++r)
+    index.push_back(2 * r), value.push_back(-1), index.push_back(2 * r + 1), value.push_back(1);
   start.push_back(CoinBigIndex(index.size()));
-  std::vector<double> col_lo(std::size_t(n + 1), -COIN_DBL_MAX), col_hi(std::size_t(n + 1), COIN_DBL_MAX);
+  std::vector<double> col_lo(std::size_t(n + 1), -COIN_DBL_MAX),
+      col_hi(std::size_t(n + 1), COIN_DBL_MAX);
   col_lo[std::size_t(n)] = 0;
   std::vector<double> obj(std::size_t(n + 1), 0.0);
   obj[std::size_t(n)] = 1;
@@ -105,8 +112,8 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
   for (int attempt = 0; attempt < 3; ++attempt) {
     lp = ClpSimplex();
     lp.setLogLevel(0);
-    lp.loadProblem(n + 1, 2 * m, start.data(), index.data(), value.data(), col_lo.data(), col_hi.data(), obj.data(),
-                   row_lo.data(), row_hi.data());
+    lp.loadProblem(n + 1, 2 * m, start.data(), index.data(), value.data(), col_lo.data(),
+                   col_hi.data(), obj.data(), row_lo.data(), row_hi.data());
     lp.setPrimalTolerance(1e-10);
     lp.setDualTolerance(1e-10);
     if (attempt == 0) lp.dual();
@@ -115,8 +122,10 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
     if (lp.status() == 0 && lp.secondaryStatus() == 0) break;
   }
   if (lp.status() != 0 || lp.secondaryStatus() != 0)
-    throw std::runtime_error(fmt::format("lp_minimax: CLP stopped without an optimum (status {}, secondary status {}, "
-                                         "{} rows, {} unknowns)", lp.status(), lp.secondaryStatus(), m, n));
+    throw std::runtime_error(
+        fmt::format("lp_minimax: CLP stopped without an optimum (status {}, secondary status {}, "
+                    "{} rows, {} unknowns)",
+                    lp.status(), lp.secondaryStatus(), m, n));
   LpMinimaxResult out;
   out.x.resize(n);
   const double* sol = lp.getColSolution();
@@ -128,16 +137,19 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, con
 
 // Rows to add: the largest local maxima of |r| above `level` not yet in the
 // working set, `per_round` at most, each with `neighbours` rows on either side.
-std::vector<std::size_t> rows_to_add(const Eigen::VectorXd& r, double level, const std::vector<bool>& in_set,
-                                     const LpMinimaxOptions& o, std::size_t per_round) {
+std::vector<std::size_t> rows_to_add(const Eigen::VectorXd& r, double level,
+                                     const std::vector<bool>& in_set, const LpMinimaxOptions& o,
+                                     std::size_t per_round) {
   std::vector<std::size_t> add;
   std::size_t taken = 0;
   const auto m = std::size_t(r.size());
   for (std::size_t i : extrema(r, level).rows) {
     if (taken == per_round) break;
     bool any = false;
-    for (std::size_t k = i >= o.neighbours ? i - o.neighbours : 0; k <= std::min(m - 1, i + o.neighbours); ++k)
-      if (!in_set[k] && std::find(add.begin(), add.end(), k) == add.end()) add.push_back(k), any = true;
+    for (std::size_t k = i >= o.neighbours ? i - o.neighbours : 0;
+         k <= std::min(m - 1, i + o.neighbours); ++k)
+      if (!in_set[k] && std::find(add.begin(), add.end(), k) == add.end())
+        add.push_back(k), any = true;
     taken += any;
   }
   return add;
@@ -156,28 +168,31 @@ Extrema extrema(const Eigen::VectorXd& r, double level) {
   }
   for (std::size_t k = 1; k < peaks.size(); ++k)
     out.alternations += (r[Eigen::Index(peaks[k])] > 0) != (r[Eigen::Index(peaks[k - 1])] > 0);
-  std::stable_sort(peaks.begin(), peaks.end(),
-                   [&](std::size_t p, std::size_t q) { return std::abs(r[Eigen::Index(p)]) > std::abs(r[Eigen::Index(q)]); });
+  std::stable_sort(peaks.begin(), peaks.end(), [&](std::size_t p, std::size_t q) {
+    return std::abs(r[Eigen::Index(p)]) > std::abs(r[Eigen::Index(q)]);
+  });
   out.rows = std::move(peaks);
   return out;
 }
 
-LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
-                              const std::vector<std::size_t>& rows) {
+LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                              const Eigen::VectorXd& w, const std::vector<std::size_t>& rows) {
   check_problem(a, y, w);
   for (std::size_t i : rows)
-    if (i >= std::size_t(a.rows())) throw std::invalid_argument(fmt::format("lp_minimax: row {} out of range", i));
+    if (i >= std::size_t(a.rows()))
+      throw std::invalid_argument(fmt::format("lp_minimax: row {} out of range", i));
   LpMinimaxResult out = solve_lp(a, y, w, rows);
   const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x).cwiseAbs();
   out.achieved = r.maxCoeff(&out.worst);
   return out;
 }
 
-LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
-                           const LpMinimaxOptions& options) {
+LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                           const Eigen::VectorXd& w, const LpMinimaxOptions& options) {
   check_problem(a, y, w);
   const auto m = std::size_t(a.rows()), n = std::size_t(a.cols());
-  const std::size_t first = std::min(m, options.initial_rows ? options.initial_rows : std::max<std::size_t>(32, 4 * (n + 1)));
+  const std::size_t first = std::min(
+      m, options.initial_rows ? options.initial_rows : std::max<std::size_t>(32, 4 * (n + 1)));
   const std::size_t per_round = options.peaks_per_round ? options.peaks_per_round : 2 * (n + 1);
   std::vector<bool> in_set(m, false);
   std::vector<std::size_t> rows;
@@ -186,7 +201,8 @@ LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, c
     if (!in_set[i]) in_set[i] = true, rows.push_back(i);
   }
   // Rounding of the residuals themselves: below it the two bounds cannot be told apart.
-  const double rounding = 64 * std::numeric_limits<double>::epsilon() * y.cwiseQuotient(w).cwiseAbs().maxCoeff();
+  const double rounding =
+      64 * std::numeric_limits<double>::epsilon() * y.cwiseQuotient(w).cwiseAbs().maxCoeff();
   LpMinimaxResult best;
   for (int round = 1;; ++round) {
     std::sort(rows.begin(), rows.end());
@@ -210,7 +226,8 @@ LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, c
 
 double max_abs_residual(const std::vector<double>& r) {
   double m = 0;
-  for (double x : r) m = std::isfinite(x) ? std::max(m, std::abs(x)) : std::numeric_limits<double>::infinity();
+  for (double x : r)
+    m = std::isfinite(x) ? std::max(m, std::abs(x)) : std::numeric_limits<double>::infinity();
   return m;
 }
 
@@ -220,7 +237,8 @@ LinearSubproblem linear_subproblem(const Residuals& residuals, const std::vector
   std::vector<const double*> blocks(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) blocks[i] = &values[i];
   std::vector<double> column(linear.size());
-  std::vector<double*> jacobians(values.size(), nullptr);  // only the linear blocks are differentiated
+  std::vector<double*> jacobians(values.size(),
+                                 nullptr);  // only the linear blocks are differentiated
   for (std::size_t c = 0; c < linear.size(); ++c) jacobians[linear[c]] = &column[c];
   Eigen::VectorXd x0(k);
   for (Eigen::Index c = 0; c < k; ++c) x0[c] = values[linear[std::size_t(c)]];

@@ -30,7 +30,8 @@ struct LpMinimaxOptions {
   // rounding of the residuals, 64 ε max|y_i/w_i|).
   double relative_gap = 1e-6;
   int max_rounds = 40;
-  std::size_t initial_rows = 0;  // rows of the first working set (evenly spread); 0: 4(n + 1), at least 32
+  std::size_t initial_rows =
+      0;  // rows of the first working set (evenly spread); 0: 4(n + 1), at least 32
   std::size_t peaks_per_round = 0;  // largest local maxima added per round; 0: 2(n + 1)
   std::size_t neighbours = 1;       // rows on each side of a peak added with it
 };
@@ -52,14 +53,14 @@ struct LpMinimaxResult {
 // columns + 1, a non-finite entry, a weight that is not positive and finite,
 // or columns that are linearly dependent (x not determined); and
 // std::runtime_error when CLP does not reach an optimum.
-LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
-                           const LpMinimaxOptions& options = {});
+LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                           const Eigen::VectorXd& w, const LpMinimaxOptions& options = {});
 
 // The LP optimum (and its x) on exactly the rows `rows` of the problem: the
 // building block of the exchange, a lower bound of the minimax on any
 // superset of the rows.
-LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
-                              const std::vector<std::size_t>& rows);
+LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                              const Eigen::VectorXd& w, const std::vector<std::size_t>& rows);
 
 // The indices of the local maxima of |r_i| (r_i ≥ each neighbour in row
 // order) that exceed `level`, largest first, and the count of alternations

@@ -7,13 +7,15 @@
 
 namespace sglab::fit {
 
-std::vector<double> evaluate_residuals(const Residuals& residuals, const std::vector<double>& values) {
+std::vector<double> evaluate_residuals(const Residuals& residuals,
+                                       const std::vector<double>& values) {
   std::vector<const double*> blocks(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) blocks[i] = &values[i];
   std::vector<double> out(residuals.size());
   for (std::size_t i = 0; i < residuals.size(); ++i) {
     double r = std::numeric_limits<double>::quiet_NaN();
-    if (!residuals[i]->Evaluate(blocks.data(), &r, nullptr)) r = std::numeric_limits<double>::quiet_NaN();
+    if (!residuals[i]->Evaluate(blocks.data(), &r, nullptr))
+      r = std::numeric_limits<double>::quiet_NaN();
     out[i] = r;
   }
   return out;
@@ -55,7 +57,8 @@ void count_solve() {
 }
 
 // The box of `params` on the free parameter blocks of `problem`.
-void set_bounds(ceres::Problem& problem, const Parameters& params, const std::vector<double*>& blocks) {
+void set_bounds(ceres::Problem& problem, const Parameters& params,
+                const std::vector<double*>& blocks) {
   for (std::size_t i = 0; i < params.size(); ++i) {
     if (params.is_fixed(i) || !problem.HasParameterBlock(blocks[i])) continue;
     if (i < params.lower.size()) problem.SetParameterLowerBound(blocks[i], 0, params.lower[i]);
@@ -79,8 +82,9 @@ void summarize(const std::vector<double>& r, FitResult& result) {
 }
 
 // One weighted least-squares solve from `values`; returns Ceres' verdict.
-bool solve_weighted(const Residuals& residuals, const Parameters& params, const std::vector<double>& weights,
-                    std::vector<double>& values, const FitOptions& options) {
+bool solve_weighted(const Residuals& residuals, const Parameters& params,
+                    const std::vector<double>& weights, std::vector<double>& values,
+                    const FitOptions& options) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
@@ -89,11 +93,13 @@ bool solve_weighted(const Residuals& residuals, const Parameters& params, const 
   for (std::size_t i = 0; i < values.size(); ++i) blocks[i] = &values[i];
   for (std::size_t i = 0; i < residuals.size(); ++i) {
     if (weights[i] <= 0) continue;
-    problem.AddResidualBlock(residuals[i].get(), new ceres::ScaledLoss(nullptr, weights[i], ceres::TAKE_OWNERSHIP),
+    problem.AddResidualBlock(residuals[i].get(),
+                             new ceres::ScaledLoss(nullptr, weights[i], ceres::TAKE_OWNERSHIP),
                              blocks);
   }
   for (std::size_t i = 0; i < values.size(); ++i)
-    if (params.is_fixed(i) && problem.HasParameterBlock(blocks[i])) problem.SetParameterBlockConstant(blocks[i]);
+    if (params.is_fixed(i) && problem.HasParameterBlock(blocks[i]))
+      problem.SetParameterBlockConstant(blocks[i]);
   set_bounds(problem, params, blocks);
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::DENSE_QR;
@@ -149,23 +155,26 @@ class PenaltyResidual final : public ceres::CostFunction {
 
 struct ScaledBound {
   double w;
-  template <class T> bool operator()(const T* E, T* r) const {
+  template <class T>
+  bool operator()(const T* E, T* r) const {
     r[0] = T(w) * E[0];
     return true;
   }
 };
 
-bool solve_penalty(const Residuals& residuals, const Parameters& params, std::vector<double>& values, double& bound,
-                   double mu, const FitOptions& options) {
+bool solve_penalty(const Residuals& residuals, const Parameters& params,
+                   std::vector<double>& values, double& bound, double mu,
+                   const FitOptions& options) {
   ceres::Problem problem;
   std::vector<double*> blocks(values.size() + 1);
   for (std::size_t i = 0; i < values.size(); ++i) blocks[i] = &values[i];
   blocks[values.size()] = &bound;
   const double scale = 1 / std::max(bound, 1e-300);
   for (const auto& r : residuals)
-    problem.AddResidualBlock(new PenaltyResidual(r.get(), values.size(), std::sqrt(mu) * scale), nullptr, blocks);
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScaledBound, 1, 1>(new ScaledBound{scale}), nullptr,
-                           &bound);
+    problem.AddResidualBlock(new PenaltyResidual(r.get(), values.size(), std::sqrt(mu) * scale),
+                             nullptr, blocks);
+  problem.AddResidualBlock(
+      new ceres::AutoDiffCostFunction<ScaledBound, 1, 1>(new ScaledBound{scale}), nullptr, &bound);
   for (std::size_t i = 0; i < values.size(); ++i)
     if (params.is_fixed(i)) problem.SetParameterBlockConstant(blocks[i]);
   set_bounds(problem, params, blocks);
@@ -187,14 +196,16 @@ bool solve_penalty(const Residuals& residuals, const Parameters& params, std::ve
 
 }  // namespace
 
-std::unique_ptr<ceres::CostFunction> make_checked_residual(std::unique_ptr<ceres::CostFunction> inner,
-                                                           std::atomic<std::size_t>* counter) {
-  return std::make_unique<CheckedResidual>(std::move(inner), counter ? *counter : g_nonfinite_evaluations);
+std::unique_ptr<ceres::CostFunction> make_checked_residual(
+    std::unique_ptr<ceres::CostFunction> inner, std::atomic<std::size_t>* counter) {
+  return std::make_unique<CheckedResidual>(std::move(inner),
+                                           counter ? *counter : g_nonfinite_evaluations);
 }
 
 std::size_t nonfinite_residual_evaluations() { return g_nonfinite_evaluations.load(); }
 
-FitProgressScope::FitProgressScope(io::Progress& progress) : previous_(g_fit_progress.exchange(&progress)) {}
+FitProgressScope::FitProgressScope(io::Progress& progress)
+    : previous_(g_fit_progress.exchange(&progress)) {}
 FitProgressScope::~FitProgressScope() { g_fit_progress.store(previous_); }
 
 void fit_progress_note(std::string status) {
@@ -207,7 +218,8 @@ FitResult fit(const Residuals& residuals, const Parameters& params, const FitOpt
   summarize(evaluate_residuals(residuals, best.values), best);
   const std::size_t n = residuals.size();
   // Scale weights to the start point's residuals so Ceres' tolerances are relative.
-  const double scale = best.max_abs > 0 && std::isfinite(best.max_abs) ? 1 / (best.max_abs * best.max_abs) : 1.0;
+  const double scale =
+      best.max_abs > 0 && std::isfinite(best.max_abs) ? 1 / (best.max_abs * best.max_abs) : 1.0;
   std::vector<double> weights(n, scale / static_cast<double>(n));
   std::vector<double> values = params.values;
   const int rounds = options.norm == Norm::minimax ? options.lawson_iterations : 1;
@@ -231,7 +243,8 @@ FitResult fit(const Residuals& residuals, const Parameters& params, const FitOpt
     for (std::size_t i = 0; i < n; ++i) total += weights[i] * std::abs(r[i]);
     if (!(total > 0) || !std::isfinite(total)) break;
     for (std::size_t i = 0; i < n; ++i)
-      weights[i] = std::max(weights[i] * std::abs(r[i]) / total, 1e-12 / static_cast<double>(n)) * scale;
+      weights[i] =
+          std::max(weights[i] * std::abs(r[i]) / total, 1e-12 / static_cast<double>(n)) * scale;
   }
   if (options.norm == Norm::minimax && any_usable) {
     // Polish with the penalty form of the epigraph problem, μ raised by
@@ -252,7 +265,8 @@ FitResult fit(const Residuals& residuals, const Parameters& params, const FitOpt
   return best;
 }
 
-FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params, const FitOptions& options) {
+FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params,
+                               const FitOptions& options) {
   FitResult result = fit(residuals, params, options);
   params.values = result.values;
   params.fixed.resize(params.size(), false);
@@ -260,7 +274,8 @@ FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params, co
     if (params.fixed[i]) continue;
     params.values[i] = static_cast<double>(static_cast<float>(params.values[i]));
     params.fixed[i] = true;
-    const bool any_free = std::find(params.fixed.begin(), params.fixed.end(), false) != params.fixed.end();
+    const bool any_free =
+        std::find(params.fixed.begin(), params.fixed.end(), false) != params.fixed.end();
     if (any_free) {
       result = fit(residuals, params, options);
       params.values = result.values;

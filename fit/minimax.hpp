@@ -53,8 +53,8 @@ struct FitOptions {
 
 struct FitResult {
   std::vector<double> values;
-  double max_abs = 0;    // max |r_i| at `values`
-  std::size_t worst = 0; // index of that residual
+  double max_abs = 0;     // max |r_i| at `values`
+  std::size_t worst = 0;  // index of that residual
   double rms = 0;
   bool converged = false;
   int rounds = 0;
@@ -63,8 +63,8 @@ struct FitResult {
 // `inner` with the same parameter blocks and residuals, counting each
 // evaluation whose residual or Jacobian entry is NaN or ±inf in `counter`
 // (null: the process-wide count below).
-std::unique_ptr<ceres::CostFunction> make_checked_residual(std::unique_ptr<ceres::CostFunction> inner,
-                                                           std::atomic<std::size_t>* counter = nullptr);
+std::unique_ptr<ceres::CostFunction> make_checked_residual(
+    std::unique_ptr<ceres::CostFunction> inner, std::atomic<std::size_t>* counter = nullptr);
 
 // Residual evaluations in this process so far (every fit, every solve, the
 // trial steps Ceres rejects included) that gave a NaN or ±inf residual or
@@ -78,7 +78,8 @@ std::size_t nonfinite_residual_evaluations();
 // writing one residual from the N scalar parameters p[0][0] … p[N−1][0].
 // Every residual is wrapped so that an evaluation giving a non-finite value
 // or derivative is counted (nonfinite_residual_evaluations below).
-template <class F> std::unique_ptr<ceres::CostFunction> make_residual(F functor, std::size_t num_parameters) {
+template <class F>
+std::unique_ptr<ceres::CostFunction> make_residual(F functor, std::size_t num_parameters) {
   auto cost = std::make_unique<ceres::DynamicAutoDiffCostFunction<F, 4>>(new F(std::move(functor)));
   for (std::size_t i = 0; i < num_parameters; ++i) cost->AddParameterBlock(1);
   cost->SetNumResiduals(1);
@@ -88,7 +89,8 @@ template <class F> std::unique_ptr<ceres::CostFunction> make_residual(F functor,
 using Residuals = std::vector<std::unique_ptr<ceres::CostFunction>>;
 
 // Residual values at `values` (NaN where a residual cannot be evaluated).
-std::vector<double> evaluate_residuals(const Residuals& residuals, const std::vector<double>& values);
+std::vector<double> evaluate_residuals(const Residuals& residuals,
+                                       const std::vector<double>& values);
 
 // Least squares or minimax fit from params.values (the start point). Fixed
 // parameters stay at their values. Deterministic: same inputs, same digits.
@@ -98,7 +100,8 @@ FitResult fit(const Residuals& residuals, const Parameters& params, const FitOpt
 // Rounds every free parameter to float, one at a time in order, re-fitting
 // the remaining free ones after each rounding (for coefficients that a float
 // shader will store).
-FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params, const FitOptions& options = {});
+FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params,
+                               const FitOptions& options = {});
 
 // Progress of a long fit. While a FitProgressScope is alive, every solve that
 // fit() makes advances its Progress, and fit_progress_note() sets the text

@@ -49,11 +49,11 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_acc.hpp>
 
+#include "fit/constants_io.hpp"
 #include "fit/lp_minimax.hpp"
 #include "fit/minimax.hpp"
-#include "validate/reference.hpp"
-#include "fit/constants_io.hpp"
 #include "fit/targets.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::fit {
 
@@ -67,25 +67,32 @@ struct Member {
 // the one list of the members that are instantiated (with_member below).
 constexpr Member kFamily[] = {{1, 2}, {1, 3}, {2, 2}, {2, 3}, {3, 3}, {3, 4}, {4, 4}};
 
-template <std::size_t V> using Size = std::integral_constant<std::size_t, V>;
+template <std::size_t V>
+using Size = std::integral_constant<std::size_t, V>;
 
 // f(Size<N>{}, Size<D>{}) for the member m = {N, D} of kFamily: the one bridge
 // from a runtime member to the templated code (a fold over kFamily's indices).
-template <class F> auto with_member(Member m, F&& f) {
+template <class F>
+auto with_member(Member m, F&& f) {
   using R = decltype(f(Size<kFamily[0].n>{}, Size<kFamily[0].d>{}));
-  return [&]<std::size_t... I>(std::index_sequence<I...>) -> R {
+  return [&]<std::size_t... I>(std::index_sequence<I...>)->R {
     std::optional<R> r;
-    ((m.n == kFamily[I].n && m.d == kFamily[I].d && (r.emplace(f(Size<kFamily[I].n>{}, Size<kFamily[I].d>{})), true)) ||
+    ((m.n == kFamily[I].n && m.d == kFamily[I].d &&
+      (r.emplace(f(Size<kFamily[I].n>{}, Size<kFamily[I].d>{})), true)) ||
      ...);
     if (!r) throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", m.n, m.d));
     return std::move(*r);
-  }(std::make_index_sequence<std::size(kFamily)>{});
+  }
+  (std::make_index_sequence<std::size(kFamily)>{});
 }
 
 // f(Size<N>{}) for the number of terms N of a member of kFamily.
-template <class F> auto with_terms(std::size_t n, F&& f) {
-  const Member* m = std::find_if(std::begin(kFamily), std::end(kFamily), [n](Member e) { return e.n == n; });
-  if (m == std::end(kFamily)) throw std::invalid_argument(fmt::format("sglab-acc: no member with N={}", n));
+template <class F>
+auto with_terms(std::size_t n, F&& f) {
+  const Member* m =
+      std::find_if(std::begin(kFamily), std::end(kFamily), [n](Member e) { return e.n == n; });
+  if (m == std::end(kFamily))
+    throw std::invalid_argument(fmt::format("sglab-acc: no member with N={}", n));
   return with_member(*m, [&](auto terms, auto) { return f(terms); });
 }
 // The shipped ladder: id suffix and member.
@@ -94,7 +101,8 @@ struct Rung {
   Member member;
   double target;  // T of the weight w(κ): the max peak_rel error aimed at
 };
-constexpr Rung kLadder[] = {{"acc1", {1, 3}, 2.4e-4}, {"acc2", {2, 3}, 6.5e-5}, {"acc3", {3, 4}, 2.8e-5}};
+constexpr Rung kLadder[] = {
+    {"acc1", {1, 3}, 2.4e-4}, {"acc2", {2, 3}, 6.5e-5}, {"acc3", {3, 4}, 2.8e-5}};
 
 // The cost of a member: float scalar ns/eval of the runtime method of the
 // same form (N, D), the shipped sglab_acc<k> (its cost does not depend on
@@ -122,9 +130,7 @@ std::optional<double> member_cost(Member m, const MethodCosts& costs) {
 struct Operations {
   int setup, eval;
 };
-Operations operations(Member m) {
-  return {1 + 5 + int(m.n * m.d + m.n), int(m.n) - 1 + 4};
-}
+Operations operations(Member m) { return {1 + 5 + int(m.n * m.d + m.n), int(m.n) - 1 + 4}; }
 
 // The search space of every solve below, a box (Ceres keeps each trial point
 // inside it): log coefficients (names starting with "log") in [−200, 50],
@@ -151,7 +157,8 @@ void bound(Parameters& p) {
 // Parameters: log steep[5], num[N(D+1)], then log scale: the steepness
 // coefficients and the scale stay positive by construction (t(κ) real,
 // b_j(κ) finite for every κ ≥ 0).
-template <class T, std::size_t N, std::size_t D> SglabAccParams<T, N, D> unpack(T const* const* p) {
+template <class T, std::size_t N, std::size_t D>
+SglabAccParams<T, N, D> unpack(T const* const* p) {
   using std::exp;
   SglabAccParams<T, N, D> q{};
   for (std::size_t i = 0; i < 5; ++i) q.steep[i] = exp(p[i][0]);
@@ -160,11 +167,12 @@ template <class T, std::size_t N, std::size_t D> SglabAccParams<T, N, D> unpack(
   return q;
 }
 
-
 // The peak_rel error divided by the sample's weight (SglabAccSample::weight).
-template <std::size_t N, std::size_t D> struct PeakRelResidual {
+template <std::size_t N, std::size_t D>
+struct PeakRelResidual {
   double kappa, cosine, reference, peak, weight;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     const SglabAccParams<T, N, D> q = unpack<T, N, D>(p);
     r[0] = (irradiance_sglab_acc(T(cosine), T(kappa), q) - T(reference)) / T(peak * weight);
     return true;
@@ -242,13 +250,16 @@ struct Measured {
 
 // The float error of tokuyoshi2024 (published constants) at one reference point.
 double error_tokuyoshi2024_float(double kappa, double cosine, double reference) {
-  return std::abs(double(irradiance_tokuyoshi2024(float(cosine), float(kappa))) - reference) / irradiance_upper(kappa);
+  return std::abs(double(irradiance_tokuyoshi2024(float(cosine), float(kappa))) - reference) /
+         irradiance_upper(kappa);
 }
 
 template <std::size_t N, std::size_t D>
-Measured measure(const SglabAccParams<double, N, D>& p, const std::vector<validate::ReferencePoint>& ref) {
+Measured measure(const SglabAccParams<double, N, D>& p,
+                 const std::vector<validate::ReferencePoint>& ref) {
   Measured m;
-  double at_kappa = 0, base_at_kappa = 0;  // max over c at the current κ: the member, tokuyoshi2024 (float)
+  double at_kappa = 0,
+         base_at_kappa = 0;  // max over c at the current κ: the member, tokuyoshi2024 (float)
   const auto close_kappa = [&](double kappa) {
     const double ratio = at_kappa / std::max(base_at_kappa, 1e-6);
     if (!(ratio <= m.never_worse)) m.never_worse = ratio, m.never_worse_kappa = kappa;
@@ -259,12 +270,17 @@ Measured measure(const SglabAccParams<double, N, D>& p, const std::vector<valida
     const double peak = irradiance_upper(r.kappa);
     const double ed = irradiance_sglab_acc(r.cosine, r.kappa, p);
     const float ef = irradiance_sglab_acc(float(r.cosine), float(r.kappa), p);
-    const double errd = std::abs(ed - r.irradiance) / peak, errf = std::abs(double(ef) - r.irradiance) / peak;
-    m.double_max = std::isfinite(errd) ? std::max(m.double_max, errd) : std::numeric_limits<double>::infinity();
-    if (!(errf <= m.float_max)) m.float_max = std::isfinite(errf) ? errf : std::numeric_limits<double>::infinity(),
-                                m.float_kappa = r.kappa, m.float_cosine = r.cosine;
-    at_kappa = std::isfinite(errf) ? std::max(at_kappa, errf) : std::numeric_limits<double>::infinity();
-    base_at_kappa = std::max(base_at_kappa, error_tokuyoshi2024_float(r.kappa, r.cosine, r.irradiance));
+    const double errd = std::abs(ed - r.irradiance) / peak,
+                 errf = std::abs(double(ef) - r.irradiance) / peak;
+    m.double_max = std::isfinite(errd) ? std::max(m.double_max, errd)
+                                       : std::numeric_limits<double>::infinity();
+    if (!(errf <= m.float_max))
+      m.float_max = std::isfinite(errf) ? errf : std::numeric_limits<double>::infinity(),
+      m.float_kappa = r.kappa, m.float_cosine = r.cosine;
+    at_kappa =
+        std::isfinite(errf) ? std::max(at_kappa, errf) : std::numeric_limits<double>::infinity();
+    base_at_kappa =
+        std::max(base_at_kappa, error_tokuyoshi2024_float(r.kappa, r.cosine, r.irradiance));
     if (i + 1 == ref.size() || ref[i + 1].kappa != r.kappa) close_kappa(r.kappa);
   }
   return m;
@@ -274,9 +290,11 @@ Measured measure(const SglabAccParams<double, N, D>& p, const std::vector<valida
 // grid (dense_training_grid), in the units of the fit's objective, peak_rel/w(κ):
 // achieved ≥ lower_bound ≥ per_kappa_floor.
 struct Certificate {
-  double achieved = 0;     // max at the final coefficients (double), every row
-  double lower_bound = 0;  // LP optimum at the fitted steepness t(κ) and scale s: the best member with those
-  double per_kappa_floor = 0;           // max over κ of the optimum with b_j(κ) free at each κ, t(κ) as fitted
+  double achieved = 0;  // max at the final coefficients (double), every row
+  double lower_bound =
+      0;  // LP optimum at the fitted steepness t(κ) and scale s: the best member with those
+  double per_kappa_floor =
+      0;  // max over κ of the optimum with b_j(κ) free at each κ, t(κ) as fitted
   double per_kappa_floor_peak_rel = 0;  // the same without the weight w(κ) (plain max peak_rel)
   std::size_t rows = 0, kappas = 0, working_rows = 0;
   int rounds = 0;
@@ -287,14 +305,16 @@ struct MemberFit {
   Member member;
   Certificate certificate;
   std::vector<double> values;  // steep[5], num, scale (itself, not its log)
-  double train = 0;            // the fit objective: max of peak_rel/w(κ) on the training grid (double)
+  double train = 0;  // the fit objective: max of peak_rel/w(κ) on the training grid (double)
   Measured standard, held_out;
-  std::optional<double> cost;  // float scalar ns/eval over tokuyoshi2024's, from the cost table (member_cost)
-  double floor = 0;            // max over κ of the per-κ optimum at the refitted 2024 t(κ) (0: not computed)
+  std::optional<double>
+      cost;          // float scalar ns/eval over tokuyoshi2024's, from the cost table (member_cost)
+  double floor = 0;  // max over κ of the per-κ optimum at the refitted 2024 t(κ) (0: not computed)
   bool converged = false;
 };
 
-template <std::size_t N, std::size_t D> SglabAccParams<double, N, D> params_of(const std::vector<double>& v) {
+template <std::size_t N, std::size_t D>
+SglabAccParams<double, N, D> params_of(const std::vector<double>& v) {
   SglabAccParams<double, N, D> p{};
   for (std::size_t i = 0; i < 5; ++i) p.steep[i] = v[i];
   for (std::size_t i = 0; i < N * (D + 1); ++i) p.num[i] = v[5 + i];
@@ -303,17 +323,19 @@ template <std::size_t N, std::size_t D> SglabAccParams<double, N, D> params_of(c
 }
 
 // The residuals of member (N, D) on `samples`, of the parameters log steep[5], num, log scale.
-template <std::size_t N, std::size_t D> Residuals member_residuals(const std::vector<SglabAccSample>& samples) {
+template <std::size_t N, std::size_t D>
+Residuals member_residuals(const std::vector<SglabAccSample>& samples) {
   Residuals residuals;
   for (const auto& r : samples)
-    residuals.push_back(make_residual(PeakRelResidual<N, D>{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), r.weight},
-                                      5 + N * (D + 1) + 1));
+    residuals.push_back(make_residual(
+        PeakRelResidual<N, D>{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), r.weight},
+        5 + N * (D + 1) + 1));
   return residuals;
 }
 
 template <std::size_t N, std::size_t D>
-SglabAccFit fit_coefficients(const std::vector<double>& start, const std::vector<SglabAccSample>& samples,
-                             bool polish_only) {
+SglabAccFit fit_coefficients(const std::vector<double>& start,
+                             const std::vector<SglabAccSample>& samples, bool polish_only) {
   Parameters params;
   for (std::size_t i = 0; i < 5; ++i) params.names.push_back(fmt::format("log_steep{}", i));
   for (std::size_t i = 0; i < N * (D + 1); ++i) params.names.push_back(fmt::format("num{}", i));
@@ -344,9 +366,11 @@ SglabAccFit fit_coefficients(const std::vector<double>& start, const std::vector
 // minimax of the peak_rel error over that κ's training cosines. Linear in the
 // b_j, so the optimum is unique and smooth in κ (a good start for stage 2);
 // its max over κ is the family's floor at that steepness.
-template <std::size_t N> struct PerKappaResidual {
+template <std::size_t N>
+struct PerKappaResidual {
   double t, cosine, reference, peak, lower, upper;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     using std::erfc;
     SglabAccLight<T, N> l;
     l.t = T(t);
@@ -366,7 +390,8 @@ struct KappaOptimum {
   std::vector<double> b;
 };
 
-template <std::size_t N> std::vector<KappaOptimum> per_kappa_optima(const std::vector<SglabAccSample>& samples) {
+template <std::size_t N>
+std::vector<KappaOptimum> per_kappa_optima(const std::vector<SglabAccSample>& samples) {
   std::vector<KappaOptimum> out;
   std::vector<double> b;
   for (std::size_t i = 0; i < samples.size();) {
@@ -375,14 +400,15 @@ template <std::size_t N> std::vector<KappaOptimum> per_kappa_optima(const std::v
     const double k = samples[i].kappa;
     const double t = steepness2024(k, constants::steepness2024_irradiance);
     Parameters params;
-    for (std::size_t j = 0; j < N; ++j) params.names.push_back(fmt::format("b{}", j)), params.values.push_back(0.0);
+    for (std::size_t j = 0; j < N; ++j)
+      params.names.push_back(fmt::format("b{}", j)), params.values.push_back(0.0);
     bound(params);
     Residuals residuals;
     for (std::size_t s = i; s < end; ++s)
-      residuals.push_back(make_residual(PerKappaResidual<N>{t, samples[s].cosine, samples[s].irradiance,
-                                                            irradiance_upper(k), irradiance_lower_over_two_pi(k),
-                                                            irradiance_upper_over_two_pi(k)},
-                                        params.size()));
+      residuals.push_back(make_residual(
+          PerKappaResidual<N>{t, samples[s].cosine, samples[s].irradiance, irradiance_upper(k),
+                              irradiance_lower_over_two_pi(k), irradiance_upper_over_two_pi(k)},
+          params.size()));
     FitOptions options;
     options.lawson_iterations = 10;
     options.penalty_decades = 6;
@@ -398,10 +424,12 @@ template <std::size_t N> std::vector<KappaOptimum> per_kappa_optima(const std::v
 // Stage 2a — t(κ): the 2024 rational form (log coefficients) by least squares on log t − log t*.
 struct LogSteepnessResidual {
   double kappa, log_t, weight;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     using std::exp;
     using std::log;
-    const Steepness2024Params<T> s{exp(p[0][0]), exp(p[1][0]), exp(p[2][0]), exp(p[3][0]), exp(p[4][0])};
+    const Steepness2024Params<T> s{exp(p[0][0]), exp(p[1][0]), exp(p[2][0]), exp(p[3][0]),
+                                   exp(p[4][0])};
     r[0] = T(weight) * (log(steepness2024(T(kappa), s)) - T(log_t));
     return true;
   }
@@ -410,11 +438,13 @@ struct LogSteepnessResidual {
 // Stage 2b — b_j(κ) = u(1 − u)³ P_j(u), u = t/(t + s) (log scale), least
 // squares on the per-κ optima (at their steepness t) weighted by the
 // sensitivity of peak_rel to f, (Ē(1) − Ē(−1))/Ē(1).
-template <std::size_t N, std::size_t D> struct FadeResidual {
+template <std::size_t N, std::size_t D>
+struct FadeResidual {
   double t, weight;
   std::size_t j;
   double target;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     SglabAccParams<T, N, D> q{};
     for (std::size_t i = 0; i < N * (D + 1); ++i) q.num[i] = p[i][0];
     q.scale = exp(p[N * (D + 1)][0]);
@@ -426,7 +456,8 @@ template <std::size_t N, std::size_t D> struct FadeResidual {
 };
 
 // Start values (steep[5], num, scale) for member (N, D) from the per-κ optima.
-template <std::size_t N, std::size_t D> std::vector<double> staged_start(const std::vector<KappaOptimum>& optima) {
+template <std::size_t N, std::size_t D>
+std::vector<double> staged_start(const std::vector<KappaOptimum>& optima) {
   FitOptions ls;
   ls.norm = Norm::least_squares;
   ls.solver_iterations = 200;
@@ -437,19 +468,24 @@ template <std::size_t N, std::size_t D> std::vector<double> staged_start(const s
   bound(steep);
   Residuals rs;
   for (const auto& o : optima) {
-    const double w = 1 - irradiance_lower_over_two_pi(o.kappa) / irradiance_upper_over_two_pi(o.kappa);
+    const double w =
+        1 - irradiance_lower_over_two_pi(o.kappa) / irradiance_upper_over_two_pi(o.kappa);
     rs.push_back(make_residual(LogSteepnessResidual{o.kappa, std::log(o.t), w}, 5));
   }
   const FitResult ft = fit(rs, steep, ls);
   Parameters fade;
-  for (std::size_t i = 0; i < N * (D + 1); ++i) fade.names.push_back(fmt::format("num{}", i)), fade.values.push_back(0.0);
+  for (std::size_t i = 0; i < N * (D + 1); ++i)
+    fade.names.push_back(fmt::format("num{}", i)), fade.values.push_back(0.0);
   fade.names.push_back("log_scale");
-  fade.values.push_back(std::log(2.0));  // u = 1/2 at t = 2 (κ ≈ 8), the middle of the 2024 form's residual
+  fade.values.push_back(
+      std::log(2.0));  // u = 1/2 at t = 2 (κ ≈ 8), the middle of the 2024 form's residual
   bound(fade);
   Residuals rr;
   for (const auto& o : optima) {
-    const double w = 1 - irradiance_lower_over_two_pi(o.kappa) / irradiance_upper_over_two_pi(o.kappa);
-    for (std::size_t j = 0; j < N; ++j) rr.push_back(make_residual(FadeResidual<N, D>{o.t, w, j, o.b[j]}, fade.size()));
+    const double w =
+        1 - irradiance_lower_over_two_pi(o.kappa) / irradiance_upper_over_two_pi(o.kappa);
+    for (std::size_t j = 0; j < N; ++j)
+      rr.push_back(make_residual(FadeResidual<N, D>{o.t, w, j, o.b[j]}, fade.size()));
   }
   // Polynomials first (linear, scale fixed), then everything.
   Parameters num_only = fade;
@@ -478,8 +514,8 @@ std::vector<double> log_parameters(std::vector<double> v) {
 // with `achieved` taken on the model itself (the clamp of f̂ to [0, 1] lies
 // outside the linear part).
 template <std::size_t N, std::size_t D>
-std::pair<std::vector<double>, LpMinimaxResult> best_numerators(const std::vector<double>& values,
-                                                                const std::vector<SglabAccSample>& samples) {
+std::pair<std::vector<double>, LpMinimaxResult> best_numerators(
+    const std::vector<double>& values, const std::vector<SglabAccSample>& samples) {
   const Residuals residuals = member_residuals<N, D>(samples);
   std::vector<std::size_t> linear(N * (D + 1));
   std::iota(linear.begin(), linear.end(), std::size_t(5));
@@ -496,7 +532,8 @@ std::pair<std::vector<double>, LpMinimaxResult> best_numerators(const std::vecto
 // t(κ) fixed; no member with that t(κ) does better at that κ, whatever its
 // fade, scale or degree. Returns the max over κ weighted (÷ w(κ)) and plain.
 template <std::size_t N>
-std::pair<double, double> per_kappa_floor(const std::vector<double>& steep, const std::vector<SglabAccSample>& samples) {
+std::pair<double, double> per_kappa_floor(const std::vector<double>& steep,
+                                          const std::vector<SglabAccSample>& samples) {
   const Steepness2024Params<double> sp{steep[0], steep[1], steep[2], steep[3], steep[4]};
   double weighted = 0, plain = 0;
   for (std::size_t i = 0; i < samples.size();) {
@@ -506,14 +543,15 @@ std::pair<double, double> per_kappa_floor(const std::vector<double>& steep, cons
     Residuals residuals;
     std::vector<std::size_t> rows;
     for (std::size_t s = i; s < end; ++s, rows.push_back(rows.size()))
-      residuals.push_back(make_residual(PerKappaResidual<N>{t, samples[s].cosine, samples[s].irradiance,
-                                                            irradiance_upper(k), irradiance_lower_over_two_pi(k),
-                                                            irradiance_upper_over_two_pi(k)},
-                                        N));
+      residuals.push_back(make_residual(
+          PerKappaResidual<N>{t, samples[s].cosine, samples[s].irradiance, irradiance_upper(k),
+                              irradiance_lower_over_two_pi(k), irradiance_upper_over_two_pi(k)},
+          N));
     std::vector<std::size_t> linear(N);
     std::iota(linear.begin(), linear.end(), std::size_t(0));
     const LinearSubproblem sub = linear_subproblem(residuals, std::vector<double>(N, 0.0), linear);
-    const double f = lp_minimax_on(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()), rows).lower_bound;
+    const double f =
+        lp_minimax_on(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()), rows).lower_bound;
     plain = std::max(plain, f);
     weighted = std::max(weighted, f / samples[i].weight);
     i = end;
@@ -526,14 +564,16 @@ std::pair<double, double> per_kappa_floor(const std::vector<double>& steep, cons
 constexpr int kAlternations = 3;
 
 SglabAccFit fit_coefficients_any(std::size_t n, std::size_t d, const std::vector<double>& start,
-                                 const std::vector<SglabAccSample>& samples, bool polish_only = false) {
+                                 const std::vector<SglabAccSample>& samples,
+                                 bool polish_only = false) {
   return with_member({n, d}, [&](auto N, auto D) {
     return fit_coefficients<decltype(N)::value, decltype(D)::value>(start, samples, polish_only);
   });
 }
 
 template <std::size_t N, std::size_t D>
-MemberFit measure_member(const SglabAccFit& f, const std::vector<validate::ReferencePoint>& standard,
+MemberFit measure_member(const SglabAccFit& f,
+                         const std::vector<validate::ReferencePoint>& standard,
                          const std::vector<validate::ReferencePoint>& held_out) {
   MemberFit out;
   out.member = {N, D};
@@ -563,9 +603,12 @@ struct Floors {
   }
 };
 
-std::vector<double> staged_start_any(Member m, Floors& floors, const std::vector<SglabAccSample>& train) {
+std::vector<double> staged_start_any(Member m, Floors& floors,
+                                     const std::vector<SglabAccSample>& train) {
   const auto& optima = floors.get(m.n, train);
-  return with_member(m, [&](auto N, auto D) { return staged_start<decltype(N)::value, decltype(D)::value>(optima); });
+  return with_member(m, [&](auto N, auto D) {
+    return staged_start<decltype(N)::value, decltype(D)::value>(optima);
+  });
 }
 
 // Member (N, D) from `start`: Ceres (fit_coefficients) on the training grid,
@@ -573,7 +616,8 @@ std::vector<double> staged_start_any(Member m, Floors& floors, const std::vector
 // polishes; measured on the standard and held-out grids, and certified.
 template <std::size_t N, std::size_t D>
 MemberFit certified_fit(const std::vector<double>& start, const std::vector<SglabAccSample>& train,
-                        const std::vector<SglabAccSample>& dense, const std::vector<validate::ReferencePoint>& standard,
+                        const std::vector<SglabAccSample>& dense,
+                        const std::vector<validate::ReferencePoint>& standard,
                         const std::vector<validate::ReferencePoint>& held_out, bool polish_only) {
   // Round 0: the LP at the start's t(κ) and s (a refit from a committed set
   // is never worse than it); then Ceres and the LP in turn while they gain.
@@ -586,22 +630,27 @@ MemberFit certified_fit(const std::vector<double>& start, const std::vector<Sgla
     values = std::move(next), lp = next_lp;
   }
   f.values = values;
-  f.max_abs = max_abs_residual(evaluate_residuals(member_residuals<N, D>(train), log_parameters(values)));
+  f.max_abs =
+      max_abs_residual(evaluate_residuals(member_residuals<N, D>(train), log_parameters(values)));
   MemberFit out = measure_member<N, D>(f, standard, held_out);
   const auto [floor_weighted, floor_plain] =
       per_kappa_floor<N>(std::vector<double>(values.begin(), values.begin() + 5), dense);
   std::size_t kappas = 0;
-  for (std::size_t i = 0; i < dense.size(); ++i) kappas += i == 0 || dense[i].kappa != dense[i - 1].kappa;
-  out.certificate = {lp.achieved, lp.lower_bound, floor_weighted, floor_plain, dense.size(), kappas,
-                     lp.working_rows, lp.rounds, lp.converged};
+  for (std::size_t i = 0; i < dense.size(); ++i)
+    kappas += i == 0 || dense[i].kappa != dense[i - 1].kappa;
+  out.certificate = {lp.achieved, lp.lower_bound,  floor_weighted, floor_plain, dense.size(),
+                     kappas,      lp.working_rows, lp.rounds,      lp.converged};
   return out;
 }
 
-MemberFit fit_any(Member m, const std::vector<double>& start, const std::vector<SglabAccSample>& train,
-                  const std::vector<SglabAccSample>& dense, const std::vector<validate::ReferencePoint>& standard,
+MemberFit fit_any(Member m, const std::vector<double>& start,
+                  const std::vector<SglabAccSample>& train,
+                  const std::vector<SglabAccSample>& dense,
+                  const std::vector<validate::ReferencePoint>& standard,
                   const std::vector<validate::ReferencePoint>& held_out, bool polish_only = false) {
   return with_member(m, [&](auto N, auto D) {
-    return certified_fit<decltype(N)::value, decltype(D)::value>(start, train, dense, standard, held_out, polish_only);
+    return certified_fit<decltype(N)::value, decltype(D)::value>(start, train, dense, standard,
+                                                                 held_out, polish_only);
   });
 }
 
@@ -617,7 +666,8 @@ std::vector<double> start_for(Member m, const std::vector<MemberFit>& earlier, F
     std::vector<double> v(it->values.begin(), it->values.begin() + 5);
     v.resize(5 + m.n * (m.d + 1), 0.0);
     for (std::size_t j = 0; j < e.n; ++j)
-      for (std::size_t k = 0; k <= e.d; ++k) v[5 + j * (m.d + 1) + k] = it->values[5 + j * (e.d + 1) + k];
+      for (std::size_t k = 0; k <= e.d; ++k)
+        v[5 + j * (m.d + 1) + k] = it->values[5 + j * (e.d + 1) + k];
     v.push_back(it->values.back());  // scale
     return v;
   }
@@ -639,7 +689,8 @@ std::optional<std::vector<double>> committed(const std::string& variant, Member 
   const auto path = *root / "data" / "constants" / fmt::format("sglab-acc-{}.json", variant);
   if (!std::filesystem::exists(path)) return std::nullopt;
   try {
-    const ordered_json set = load_constant_set(path);  // bounded and strict, as every constants file
+    const ordered_json set =
+        load_constant_set(path);  // bounded and strict, as every constants file
     const auto& c = set.at("coefficients");
     std::vector<double> v = c.at("steep").get<std::vector<double>>();
     const auto num = c.at("num").get<std::vector<double>>();
@@ -655,9 +706,12 @@ std::optional<std::vector<double>> committed(const std::string& variant, Member 
 // What the cost column is and where it comes from (the report says which).
 std::string cost_source(const MethodCosts& costs) {
   if (costs.source.empty())
-    return "none (no cost table; `sglab bench` writes data/results/costs.json): operation counts only";
-  return "float scalar ns/eval of the shipped method of the same form over tokuyoshi2024's (CPU), from the cost "
-         "table " + costs.source + "; '-' where no shipped method has the form";
+    return "none (no cost table; `sglab bench` writes data/results/costs.json): operation counts "
+           "only";
+  return "float scalar ns/eval of the shipped method of the same form over tokuyoshi2024's (CPU), "
+         "from the cost "
+         "table " +
+         costs.source + "; '-' where no shipped method has the form";
 }
 
 // The training samples weighted for target T: w(κ) = min(T, max(e₂₀₂₄(κ), 8e−7)),
@@ -668,7 +722,8 @@ std::vector<SglabAccSample> weighted(std::vector<SglabAccSample> samples, double
     std::size_t end = i;
     double base = 0;
     for (; end < samples.size() && samples[end].kappa == samples[i].kappa; ++end)
-      base = std::max(base, error_tokuyoshi2024_float(samples[end].kappa, samples[end].cosine, samples[end].irradiance));
+      base = std::max(base, error_tokuyoshi2024_float(samples[end].kappa, samples[end].cosine,
+                                                      samples[end].irradiance));
     for (; i < end; ++i) samples[i].weight = std::min(target, std::max(base, 8e-7));
   }
   return samples;
@@ -676,32 +731,40 @@ std::vector<SglabAccSample> weighted(std::vector<SglabAccSample> samples, double
 
 // The certificate (Certificate) as the report and the constant set carry it.
 ordered_json certificate_json(const Certificate& c) {
-  return {{"kind", "lp_at_fitted_steepness"},
-          {"what", "lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) "
-                   "and scale s, the best member with those; achieved: the max at the shipped coefficients; both of "
-                   "max peak_rel/w(kappa) (double) on the grid below"},
-          {"grid", fmt::format("dense training grid: {} kappa x (c = 0, {} offset cosines, c = +-z_k/t, z_k = "
-                               "0.05..3.15), {} points, never a measuring grid",
-                               c.kappas, kDenseUniform, c.rows)},
-          {"achieved", c.achieved},
-          {"lower_bound", c.lower_bound},
-          {"within_percent_of_best_member", 100 * (c.achieved / c.lower_bound - 1)},
-          {"per_kappa_floor",
-           {{"kind", "b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better"},
-            {"weighted", c.per_kappa_floor},
-            {"max_peak_rel", c.per_kappa_floor_peak_rel}}},
-          {"lp", {{"working_rows", c.working_rows}, {"rounds", c.rounds}, {"converged", c.converged}}}};
+  return {
+      {"kind", "lp_at_fitted_steepness"},
+      {"what",
+       "lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted "
+       "t(kappa) "
+       "and scale s, the best member with those; achieved: the max at the shipped coefficients; "
+       "both of "
+       "max peak_rel/w(kappa) (double) on the grid below"},
+      {"grid",
+       fmt::format("dense training grid: {} kappa x (c = 0, {} offset cosines, c = +-z_k/t, z_k = "
+                   "0.05..3.15), {} points, never a measuring grid",
+                   c.kappas, kDenseUniform, c.rows)},
+      {"achieved", c.achieved},
+      {"lower_bound", c.lower_bound},
+      {"within_percent_of_best_member", 100 * (c.achieved / c.lower_bound - 1)},
+      {"per_kappa_floor",
+       {{"kind",
+         "b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does "
+         "better"},
+        {"weighted", c.per_kappa_floor},
+        {"max_peak_rel", c.per_kappa_floor_peak_rel}}},
+      {"lp", {{"working_rows", c.working_rows}, {"rounds", c.rounds}, {"converged", c.converged}}}};
 }
 
 std::string member_name(Member m) { return fmt::format("N={} D={}", m.n, m.d); }
 
 // "within x% of the best member" (the certificate's achieved over its lower bound).
 std::string within_text(const Certificate& c) {
-  return fmt::format("achieved {:.4e} (weighted, dense training grid), within {:.2f}% of the best member at the "
-                     "fitted steepness and scale ({:.4e}, LP); per-kappa floor at that steepness {:.4e} "
-                     "(max peak_rel {:.3e})",
-                     c.achieved, 100 * (c.achieved / c.lower_bound - 1), c.lower_bound, c.per_kappa_floor,
-                     c.per_kappa_floor_peak_rel);
+  return fmt::format(
+      "achieved {:.4e} (weighted, dense training grid), within {:.2f}% of the best member at the "
+      "fitted steepness and scale ({:.4e}, LP); per-kappa floor at that steepness {:.4e} "
+      "(max peak_rel {:.3e})",
+      c.achieved, 100 * (c.achieved / c.lower_bound - 1), c.lower_bound, c.per_kappa_floor,
+      c.per_kappa_floor_peak_rel);
 }
 
 ordered_json member_report(const MemberFit& f) {
@@ -729,35 +792,48 @@ ordered_json member_report(const MemberFit& f) {
 std::string member_line(const MemberFit& f, const char* mark) {
   const Operations ops = operations(f.member);
   const Certificate& c = f.certificate;
-  return fmt::format("  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}   {:.3e}  {:.3e} "
-                     "{:>6.2f}%  {:.3e}  {:.3e}{}\n",
-                     member_name(f.member), f.values.size(), ops.setup, ops.eval,
-                     f.cost ? fmt::format("{:.3f}", *f.cost) : "-",
-                     f.floor > 0 ? fmt::format("{:.2e}", f.floor) : "-", f.train, f.standard.float_max,
-                     f.held_out.float_max, f.held_out.double_max, f.held_out.never_worse, c.achieved, c.lower_bound,
-                     100 * (c.achieved / c.lower_bound - 1), c.per_kappa_floor, c.per_kappa_floor_peak_rel, mark);
+  return fmt::format(
+      "  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}   {:.3e}  "
+      "{:.3e} "
+      "{:>6.2f}%  {:.3e}  {:.3e}{}\n",
+      member_name(f.member), f.values.size(), ops.setup, ops.eval,
+      f.cost ? fmt::format("{:.3f}", *f.cost) : "-",
+      f.floor > 0 ? fmt::format("{:.2e}", f.floor) : "-", f.train, f.standard.float_max,
+      f.held_out.float_max, f.held_out.double_max, f.held_out.never_worse, c.achieved,
+      c.lower_bound, 100 * (c.achieved / c.lower_bound - 1), c.per_kappa_floor,
+      c.per_kappa_floor_peak_rel, mark);
 }
 
 // The last five columns are the certificate (certificate_json), weighted,
 // on the dense training grid: achieved, the LP bound (best member at the
 // fitted steepness and scale), how far above it, the per-κ floor weighted and plain.
 const char* kHeader =
-    "  member    coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) held-out(f) held-out(d) "
+    "  member    coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) held-out(f) "
+    "held-out(d) "
     "never-worse  dense      LP bound    within  floor/k(w)  floor/k(peak_rel)\n";
 
-ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::string& variant, int held_k, int held_c,
-                          double target) {
+ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::string& variant,
+                          int held_k, int held_c, double target) {
   const std::string form =
-      "E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; "
-      "t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; "
-      "b_j = u*(1 - u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)";
+      "E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j "
+      "b_j*z^(2j), z = t*c; "
+      "t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) "
+      "with s = steep; "
+      "b_j = u*(1 - u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + "
+      "scale)";
   const std::string objective = fmt::format(
-      "minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) divided by w(kappa) = min(T, max(e2024(kappa), "
-      "8e-7)), T = {:g}, e2024(kappa) the float error of tokuyoshi2024 at kappa (never worse than it), on a training "
-      "grid of {} kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 "
-      "offset cosines, c = +-z_k/t, z_k = 0.1..3.1), {} points in all, kappa in [{}, {}] (Ceres, every parameter); "
-      "alternating with the exact minimax of the coefficients of every P_j at the fitted t(kappa) and s (a linear "
-      "program, COIN-OR CLP) on the dense training grid of the certificate, whose max is the objective",
+      "minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) divided by w(kappa) = "
+      "min(T, max(e2024(kappa), "
+      "8e-7)), T = {:g}, e2024(kappa) the float error of tokuyoshi2024 at kappa (never worse than "
+      "it), on a training "
+      "grid of {} kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus "
+      "the ends) x (c = 0, 24 "
+      "offset cosines, c = +-z_k/t, z_k = 0.1..3.1), {} points in all, kappa in [{}, {}] (Ceres, "
+      "every parameter); "
+      "alternating with the exact minimax of the coefficients of every P_j at the fitted t(kappa) "
+      "and s (a linear "
+      "program, COIN-OR CLP) on the dense training grid of the certificate, whose max is the "
+      "objective",
       target, training_kappas(spec.kappa_lo, spec.kappa_hi, 40).size(),
       training_grid(spec.kappa_lo, spec.kappa_hi).size(), spec.kappa_lo, spec.kappa_hi);
   ordered_json achieved = {
@@ -766,15 +842,18 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
       {"standard_grid", fmt::format("{} kappa x {} cosines", spec.kappa_count, spec.cosine_count)},
       {"standard_max_peak_rel_float", f.standard.float_max},
       {"standard_max_peak_rel_double", f.standard.double_max},
-      {"held_out_grid", fmt::format("{} kappa x {} cosines, never used in fitting", held_k, held_c)},
+      {"held_out_grid",
+       fmt::format("{} kappa x {} cosines, never used in fitting", held_k, held_c)},
       {"held_out_max_peak_rel_float", f.held_out.float_max},
       {"held_out_max_peak_rel_double", f.held_out.double_max},
       {"held_out_never_worse_ratio", f.held_out.never_worse},
-      {"extra_operations_vs_tokuyoshi2024", fmt::format("setup {} (one division), eval {} multiply-adds",
-                                                        operations(f.member).setup, operations(f.member).eval)}};
-  ordered_json set = make_constant_set(spec, "sglab-acc", variant,
-                                       fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
-                                       coefficients_json(f), objective, achieved);
+      {"extra_operations_vs_tokuyoshi2024",
+       fmt::format("setup {} (one division), eval {} multiply-adds", operations(f.member).setup,
+                   operations(f.member).eval)}};
+  ordered_json set =
+      make_constant_set(spec, "sglab-acc", variant,
+                        fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
+                        coefficients_json(f), objective, achieved);
   set["provenance"]["certificate"] = certificate_json(f.certificate);
   return set;
 }
@@ -794,7 +873,8 @@ Grids grids_for(const FitSpec& spec) {
     g.train.push_back({r.kappa, r.cosine, r.irradiance});
   for (const auto& r : engine.evaluate(dense_training_grid(spec.kappa_lo, spec.kappa_hi)))
     g.dense.push_back({r.kappa, r.cosine, r.irradiance});
-  g.standard = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count, spec.cosine_count));
+  g.standard = engine.evaluate(
+      measuring_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count, spec.cosine_count));
   g.held_out = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, g.held_k, g.held_c));
   return g;
 }
@@ -810,21 +890,27 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
   Floors floors;
   fits.reserve(std::size(kFamily));  // `chosen` points into it
   for (const Member m : kFamily) {
-    // A nested earlier member (or the stage-wise start: per-κ optima, then fade fits), then the joint minimax.
-    fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget), weighted(dense, budget),
-                           standard, held_out));
+    // A nested earlier member (or the stage-wise start: per-κ optima, then fade fits), then the
+    // joint minimax.
+    fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget),
+                           weighted(dense, budget), standard, held_out));
     fits.back().cost = member_cost(m, spec.costs);
     fits.back().floor = floors.floor(m.n, train);
-    if (fits.back().converged && fits.back().held_out.float_max <= budget && fits.back().held_out.never_worse <= 1) {
+    if (fits.back().converged && fits.back().held_out.float_max <= budget &&
+        fits.back().held_out.never_worse <= 1) {
       chosen = &fits.back();
       break;
     }
   }
-  out.report = {{"target", spec.target}, {"objective", "model-order"}, {"max_error", budget},
-                {"kappa_range", {spec.kappa_lo, spec.kappa_hi}}, {"cost_source", cost_source(spec.costs)},
+  out.report = {{"target", spec.target},
+                {"objective", "model-order"},
+                {"max_error", budget},
+                {"kappa_range", {spec.kappa_lo, spec.kappa_hi}},
+                {"cost_source", cost_source(spec.costs)},
                 {"members", ordered_json::array()}};
-  out.text = fmt::format("sglab-acc model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
-                         spec.kappa_lo, spec.kappa_hi, budget);
+  out.text = fmt::format(
+      "sglab-acc model order, kappa in [{}, {}], budget {:.3e} (held-out float max peak_rel):\n",
+      spec.kappa_lo, spec.kappa_hi, budget);
   out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
   out.text += kHeader;
   for (const auto& f : fits) {
@@ -837,8 +923,8 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
     out.text += "  no member of the family meets the budget\n";
     return out;
   }
-  const std::string variant = fmt::format("n{}d{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d, spec.kappa_lo,
-                                          spec.kappa_hi, budget);
+  const std::string variant = fmt::format("n{}d{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d,
+                                          spec.kappa_lo, spec.kappa_hi, budget);
   out.constant_sets.push_back(constant_set(spec, *chosen, variant, held_k, held_c, budget));
   out.report["chosen"] = member_report(*chosen);
   out.report["chosen"]["variant"] = variant;
@@ -849,10 +935,14 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
 FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
   const auto& [train, dense, standard, held_out, held_k, held_c] = g;
   FitOutcome out;
-  out.report = {{"target", spec.target}, {"objective", "peak-rel"}, {"kappa_range", {spec.kappa_lo, spec.kappa_hi}},
-                {"cost_source", cost_source(spec.costs)}, {"ladder", ordered_json::array()}};
-  out.text = fmt::format("sglab-acc ladder, kappa in [{}, {}] (float = float runtime vs double reference):\n",
-                         spec.kappa_lo, spec.kappa_hi);
+  out.report = {{"target", spec.target},
+                {"objective", "peak-rel"},
+                {"kappa_range", {spec.kappa_lo, spec.kappa_hi}},
+                {"cost_source", cost_source(spec.costs)},
+                {"ladder", ordered_json::array()}};
+  out.text = fmt::format(
+      "sglab-acc ladder, kappa in [{}, {}] (float = float runtime vs double reference):\n",
+      spec.kappa_lo, spec.kappa_hi);
   out.text += fmt::format("  cost: {}\n", cost_source(spec.costs));
   out.text += kHeader;
   Floors floors;
@@ -862,8 +952,8 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
     if (spec.kappa_range_given) variant += fmt::format("-k{}-{}", spec.kappa_lo, spec.kappa_hi);
     const auto warm = committed(variant, rung.member);
     MemberFit f = fit_any(rung.member, warm ? *warm : start_for(rung.member, done, floors, train),
-                          weighted(train, rung.target), weighted(dense, rung.target), standard, held_out,
-                          warm.has_value());
+                          weighted(train, rung.target), weighted(dense, rung.target), standard,
+                          held_out, warm.has_value());
     done.push_back(f);
     f.cost = member_cost(rung.member, spec.costs);
     if (!warm) f.floor = floors.floor(rung.member.n, train);
@@ -883,14 +973,16 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
 
 }  // namespace
 
-SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
-                                            const std::vector<SglabAccSample>& samples) {
+SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree,
+                                       const std::vector<double>& start,
+                                       const std::vector<SglabAccSample>& samples) {
   return fit_coefficients_any(terms, degree, start, samples);
 }
 
 FitOutcome fit_sglab_acc(const FitSpec& spec) {
   if (!spec.objective.empty() && spec.objective != "peak-rel")
-    throw std::invalid_argument(fmt::format("sglab-acc objective is 'peak-rel'; got '{}'", spec.objective));
+    throw std::invalid_argument(
+        fmt::format("sglab-acc objective is 'peak-rel'; got '{}'", spec.objective));
   const Grids g = grids_for(spec);
   return spec.max_error ? fit_model_order(spec, g) : fit_ladder(spec, g);
 }

@@ -25,17 +25,17 @@
 #include <limits>
 #include <optional>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_fast.hpp>
 
-#include "fit/constants_io.hpp"
 #include "common/io.hpp"
+#include "fit/constants_io.hpp"
 #include "fit/minimax.hpp"
-#include "validate/reference.hpp"
 #include "fit/targets.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab::fit {
 
@@ -65,7 +65,8 @@ std::vector<validate::ReferencePoint> reference_grid(const std::vector<double>& 
 // Stage 1 residual: peak_rel of E(1)·max(0, s) at one (κ, c), shape values as parameters.
 struct ShapeResidual {
   double cosine, normalized;  // E(c, κ)/E(1, κ)
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     r[0] = max0(sglab_fast_shape(T(cosine), p[0][0], p[1][0], p[2][0], p[3][0])) - T(normalized);
     return true;
   }
@@ -74,7 +75,8 @@ struct ShapeResidual {
 // Stage 3 residual: peak_rel of the runtime function with all coefficients as parameters.
 struct ModelResidual {
   double kappa, cosine, reference, peak, kappa_max;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     SglabFastParams<T> params{};
     std::size_t i = 0;
     for (auto* poly : {params.a, params.b, params.c, params.v})
@@ -97,8 +99,10 @@ SglabFastParams<double> to_params(const std::vector<double>& v, double kappa_max
 }
 
 // Max peak_rel over `ref` of the runtime function in precision T.
-template <class T> double max_peak_rel(const SglabFastParams<double>& p, const std::vector<validate::ReferencePoint>& ref,
-                                       double* where_kappa = nullptr, double* where_cosine = nullptr) {
+template <class T>
+double max_peak_rel(const SglabFastParams<double>& p,
+                    const std::vector<validate::ReferencePoint>& ref, double* where_kappa = nullptr,
+                    double* where_cosine = nullptr) {
   double m = 0;
   for (const auto& r : ref) {
     const double e = irradiance_sglab_fast(T(r.cosine), T(r.kappa), p);
@@ -118,7 +122,8 @@ struct PerKappa {
 };
 
 // Stage 1, from the largest κ down, each start the previous optimum.
-std::vector<PerKappa> per_kappa_optimum(const std::vector<double>& kappas, const std::vector<double>& cosines,
+std::vector<PerKappa> per_kappa_optimum(const std::vector<double>& kappas,
+                                        const std::vector<double>& cosines,
                                         const std::vector<validate::ReferencePoint>& ref) {
   std::vector<PerKappa> out(kappas.size());
   std::vector<double> start;
@@ -148,7 +153,8 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
   std::vector<double> q = {1.0};  // ascending, monic
   const double a = std::log10(lo), b = std::log10(hi);
   for (std::size_t i = 0; i < kDegree; ++i) {
-    const double root = std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
+    const double root =
+        std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
     std::vector<double> next(q.size() + 1, 0.0);
     for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
     q = next;
@@ -164,7 +170,10 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
     Eigen::VectorXd y(per.size());
     for (std::size_t i = 0; i < per.size(); ++i) {
       const double k = per[i].kappa;
-      const double target = which == 0 ? per[i].A : which == 1 ? per[i].B : which == 2 ? per[i].C : per[i].V;
+      const double target = which == 0   ? per[i].A
+                            : which == 1 ? per[i].B
+                            : which == 2 ? per[i].C
+                                         : per[i].V;
       // s changes by about C·δV where V is off by δV: weight V's error by |C|.
       const double w = which == 3 ? std::max(std::abs(per[i].C), 1e-6) : 1.0;
       double kp = 1;
@@ -182,7 +191,8 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
 }
 
 // The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
-std::optional<std::vector<double>> committed_start(const std::string& variant, double lo, double hi) {
+std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
+                                                   double hi) {
   // Warm start from the project around the working directory, if any.
   const auto root = find_project_root(std::filesystem::current_path());
   if (!root) return std::nullopt;
@@ -214,7 +224,6 @@ std::vector<std::string> parameter_names() {
   return names;
 }
 
-
 // A polish of a converged set: one reweighting round, then the penalty form
 // for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short; a cold
 // start takes the engine's defaults.
@@ -233,9 +242,10 @@ struct Measured {
   double train_float = 0, held_float = 0, held_double = 0, std_float = 0, std_double = 0;
   double worst_kappa = 0, worst_cosine = 0;  // of held_float
 };
-Measured measure(const SglabFastParams<double>& fitted, const std::vector<validate::ReferencePoint>& train, double lo,
-                 double hi) {
-  const auto held_out = reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
+Measured measure(const SglabFastParams<double>& fitted,
+                 const std::vector<validate::ReferencePoint>& train, double lo, double hi) {
+  const auto held_out =
+      reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
   const auto standard = reference_grid(kappa_grid(lo, hi, 29), cosine_grid(41));
   Measured m;
   m.held_float = max_peak_rel<float>(fitted, held_out, &m.worst_kappa, &m.worst_cosine);
@@ -260,13 +270,14 @@ ordered_json coefficients_json(const std::vector<double>& values, double hi) {
   return coefficients;
 }
 
-ordered_json achieved_json(double objective, double floor, const Measured& m, double lo, double hi) {
+ordered_json achieved_json(double objective, double floor, const Measured& m, double lo,
+                           double hi) {
   return {
       {"objective", objective},
       {"training_max_peak_rel_float", m.train_float},
       {"per_kappa_floor", floor},
-      {"held_out_grid", fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]", kHeldOutKappas,
-                                    kHeldOutCosines, lo, hi)},
+      {"held_out_grid", fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]",
+                                    kHeldOutKappas, kHeldOutCosines, lo, hi)},
       {"held_out_max_peak_rel_float", m.held_float},
       {"held_out_max_peak_rel_double", m.held_double},
       {"held_out_worst", {m.worst_kappa, m.worst_cosine}},
@@ -279,7 +290,8 @@ ordered_json achieved_json(double objective, double floor, const Measured& m, do
 
 FitOutcome fit_sglab_fast(const FitSpec& spec) {
   if (!spec.objective.empty() && spec.objective != "irradiance")
-    throw std::invalid_argument(fmt::format("sglab-fast has the one objective 'irradiance'; got '{}'", spec.objective));
+    throw std::invalid_argument(
+        fmt::format("sglab-fast has the one objective 'irradiance'; got '{}'", spec.objective));
   const double lo = spec.kappa_lo, hi = spec.kappa_hi;
   const auto train_k = midpoint_kappas(lo, hi, kTrainKappas);
   const auto train_c = cosine_grid(kTrainCosines);
@@ -291,8 +303,8 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   for (const auto& p : per) floor = std::max(floor, p.error);
 
   // 2. Rational start (or the committed set).
-  const std::string variant =
-      precision_name(spec.precision) + (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
+  const std::string variant = precision_name(spec.precision) +
+                              (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
   Parameters params;
   params.names = parameter_names();
   std::optional<std::vector<double>> committed;
@@ -302,10 +314,11 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   // 3. Joint minimax on the runtime function.
   Residuals residuals;
   for (const auto& r : train)
-    residuals.push_back(
-        make_residual(ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi}, kNumParams));
+    residuals.push_back(make_residual(
+        ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi}, kNumParams));
   double start_error = 0;
-  for (double r : evaluate_residuals(residuals, params.values)) start_error = std::max(start_error, std::abs(r));
+  for (double r : evaluate_residuals(residuals, params.values))
+    start_error = std::max(start_error, std::abs(r));
   const FitResult result = fit(residuals, params, fit_options(committed.has_value()));
   const Measured m = measure(to_params(result.values, hi), train, lo, hi);
   const ordered_json coefficients = coefficients_json(result.values, hi);
@@ -318,28 +331,39 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   out.converged = result.converged;
   out.constant_sets.push_back(make_constant_set(
       recorded, "sglab-fast", variant, "SglabFastParams<double>",
-      "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; "
-      "A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + "
+      "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | "
+      "(0,1) | u>=1; "
+      "A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 "
+      "and Q = k^4 + "
       "q[3]k^3 + ... + q[0] (coefficients lowest order first)",
       coefficients,
-      fmt::format("minimax of the sglab_fast irradiance peak_rel error (double) over a training grid of {} kappa "
+      fmt::format("minimax of the sglab_fast irradiance peak_rel error (double) over a training "
+                  "grid of {} kappa "
                   "(log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; start: {}",
                   kTrainKappas, kTrainKappas, lo, hi, kTrainCosines,
-                  committed ? "the committed set (polish)" : "per-kappa optimum, then rational least squares"),
+                  committed ? "the committed set (polish)"
+                            : "per-kappa optimum, then rational least squares"),
       achieved));
-  out.report = {{"target", "sglab-fast"}, {"variant", variant}, {"converged", result.converged},
+  out.report = {{"target", "sglab-fast"},
+                {"variant", variant},
+                {"converged", result.converged},
                 {"start", committed ? "committed constant set" : "rational least squares"},
-                {"per_kappa_floor", floor}, {"start_error", start_error},
-                {"objective_error", result.max_abs}, {"achieved", achieved}, {"coefficients", coefficients}};
+                {"per_kappa_floor", floor},
+                {"start_error", start_error},
+                {"objective_error", result.max_abs},
+                {"achieved", achieved},
+                {"coefficients", coefficients}};
   ordered_json table = ordered_json::array();
   for (const auto& p : per) table.push_back({p.kappa, p.A, p.B, p.C, p.V, p.error});
   out.report["per_kappa"] = table;
   out.text = fmt::format(
       "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
-      "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: float {:.4e}, "
+      "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: "
+      "float {:.4e}, "
       "double {:.4e}\n",
-      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs, kHeldOutKappas,
-      kHeldOutCosines, m.held_float, m.worst_kappa, m.worst_cosine, m.held_double, m.std_float, m.std_double);
+      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
+      kHeldOutKappas, kHeldOutCosines, m.held_float, m.worst_kappa, m.worst_cosine, m.held_double,
+      m.std_float, m.std_double);
   return out;
 }
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <optional>
 #include <span>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -25,22 +25,22 @@ enum class WorkingPrecision { half, single, dbl };
 // a fit that compares costs takes them from here and never times anything,
 // so that its report is the same for the same inputs.
 struct MethodCosts {
-  std::string source;                             // the table's file, date and machine; empty: no table
+  std::string source;  // the table's file, date and machine; empty: no table
   std::map<std::string, double> float_scalar_ns;  // method id → ns/eval
 };
 
 struct FitSpec {
-  std::string target;                   // a name of fit_targets()
+  std::string target;  // a name of fit_targets()
   WorkingPrecision precision = WorkingPrecision::single;
-  std::string objective;                // target-specific; empty = the target's default
-  bool alpha_free = false;              // clamped-cosine: α free instead of tied by energy conservation
+  std::string objective;    // target-specific; empty = the target's default
+  bool alpha_free = false;  // clamped-cosine: α free instead of tied by energy conservation
   double kappa_lo = 1e-3, kappa_hi = 1e4;
   int kappa_count = 29, cosine_count = 41;
-  bool kappa_range_given = false;       // --kappa was given: the variant name records the range
-  std::optional<double> max_error;      // model order: the error budget
-  bool cold_start = false;              // sglab-fast: ignore the committed set as a warm start
-  std::string command;                  // the command line, recorded in provenance
-  MethodCosts costs;                    // sglab-acc: the cost column of its report
+  bool kappa_range_given = false;   // --kappa was given: the variant name records the range
+  std::optional<double> max_error;  // model order: the error budget
+  bool cold_start = false;          // sglab-fast: ignore the committed set as a warm start
+  std::string command;              // the command line, recorded in provenance
+  MethodCosts costs;                // sglab-acc: the cost column of its report
 };
 
 struct FitOutcome {
@@ -61,16 +61,19 @@ std::vector<double> kappa_grid(double lo, double hi, int count);
 std::vector<double> cosine_grid(int count);
 
 // A constant set with provenance; `coefficients` in parameter-struct order.
-ordered_json make_constant_set(const FitSpec& spec, const std::string& target, const std::string& variant,
-                               const std::string& cpp_type, const std::string& form, ordered_json coefficients,
+ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
+                               const std::string& variant, const std::string& cpp_type,
+                               const std::string& form, ordered_json coefficients,
                                ordered_json objective, ordered_json achieved);
 
 FitOutcome fit_clamped_cosine(const FitSpec& spec);
-FitOutcome fit_steepness(const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
+FitOutcome fit_steepness(
+    const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
 FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
-FitOutcome fit_sglab_acc(const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
+FitOutcome fit_sglab_acc(
+    const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
 // peak_rel error of SglabAccParams<double, terms, degree> on `samples`, each
@@ -84,8 +87,9 @@ struct SglabAccFit {
   double max_abs = 0;          // max peak_rel on the samples
   bool converged = false;
 };
-SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree, const std::vector<double>& start,
-                                            const std::vector<SglabAccSample>& samples);
+SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree,
+                                       const std::vector<double>& start,
+                                       const std::vector<SglabAccSample>& samples);
 
 // t*(κ) at each κ: the steepness that minimaxes, over 201 cosines, the 2022
 // s̃ − s (target "steepness2022") or the 2024 f − (E − E(−1))/(E(1) − E(−1))

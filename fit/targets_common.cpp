@@ -13,18 +13,24 @@ namespace sglab::fit {
 
 double machine_epsilon(WorkingPrecision p) {
   switch (p) {
-    case WorkingPrecision::half: return std::ldexp(1.0, -10);
-    case WorkingPrecision::single: return std::ldexp(1.0, -23);
-    case WorkingPrecision::dbl: return std::ldexp(1.0, -52);
+    case WorkingPrecision::half:
+      return std::ldexp(1.0, -10);
+    case WorkingPrecision::single:
+      return std::ldexp(1.0, -23);
+    case WorkingPrecision::dbl:
+      return std::ldexp(1.0, -52);
   }
   return 0;
 }
 
 std::string precision_name(WorkingPrecision p) {
   switch (p) {
-    case WorkingPrecision::half: return "half";
-    case WorkingPrecision::single: return "float";
-    case WorkingPrecision::dbl: return "double";
+    case WorkingPrecision::half:
+      return "half";
+    case WorkingPrecision::single:
+      return "float";
+    case WorkingPrecision::dbl:
+      return "double";
   }
   return "?";
 }
@@ -36,7 +42,9 @@ std::optional<WorkingPrecision> parse_precision(const std::string& name) {
   return std::nullopt;
 }
 
-std::vector<double> kappa_grid(double lo, double hi, int count) { return io::log_spaced(lo, hi, count); }
+std::vector<double> kappa_grid(double lo, double hi, int count) {
+  return io::log_spaced(lo, hi, count);
+}
 
 std::vector<double> cosine_grid(int count) {
   std::vector<double> c;
@@ -44,8 +52,9 @@ std::vector<double> cosine_grid(int count) {
   return c;
 }
 
-ordered_json make_constant_set(const FitSpec& spec, const std::string& target, const std::string& variant,
-                               const std::string& cpp_type, const std::string& form, ordered_json coefficients,
+ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
+                               const std::string& variant, const std::string& cpp_type,
+                               const std::string& form, ordered_json coefficients,
                                ordered_json objective, ordered_json achieved) {
   std::string cpp_name = target + "_" + variant;
   for (char& ch : cpp_name)
@@ -79,27 +88,34 @@ namespace {
 
 constexpr FitAllRun kClampedCosineAll[] = {
     {"", false, "half"}, {"", false, "float"}, {"", false, "double"}, {"", true, "float"}};
-constexpr FitAllRun kSteepnessAll[] = {{"optimal-t", false, "float"}, {"irradiance", false, "float"}};
+constexpr FitAllRun kSteepnessAll[] = {{"optimal-t", false, "float"},
+                                       {"irradiance", false, "float"}};
 constexpr FitAllRun kDefaultAll[] = {{"", false, "float"}};
 
-// name, fitter, help; precision, objective, kappa, max_error, alpha_free, cold_start, costs; fit all
+// name, fitter, help; precision, objective, kappa, max_error, alpha_free, cold_start, costs; fit
+// all
 constexpr FitTarget kTargets[] = {
-    {"clamped-cosine", fit_clamped_cosine, "λ, α of max(cos θ, 0) ≈ α(e^{λ cos θ} − 1) ([Tokuyoshi2022] Listing 1)",
-     true, true, true, false, true, false, false, kClampedCosineAll},
-    {"steepness2022", fit_steepness, "rational steepness t(κ) of [Tokuyoshi2022] Eq. 5/6 (optimal-t | irradiance)",
-     false, true, true, true, false, false, false, kSteepnessAll},
-    {"steepness2024", fit_steepness, "rational steepness t(κ) of [Tokuyoshi2024] (optimal-t | irradiance)",
-     false, true, true, true, false, false, false, kSteepnessAll},
-    {"erf", fit_erf, "erf approximations (listing5 | as7125)",
-     true, true, false, true, false, false, false, kDefaultAll},
+    {"clamped-cosine", fit_clamped_cosine,
+     "λ, α of max(cos θ, 0) ≈ α(e^{λ cos θ} − 1) ([Tokuyoshi2022] Listing 1)", true, true, true,
+     false, true, false, false, kClampedCosineAll},
+    {"steepness2022", fit_steepness,
+     "rational steepness t(κ) of [Tokuyoshi2022] Eq. 5/6 (optimal-t | irradiance)", false, true,
+     true, true, false, false, false, kSteepnessAll},
+    {"steepness2024", fit_steepness,
+     "rational steepness t(κ) of [Tokuyoshi2024] (optimal-t | irradiance)", false, true, true, true,
+     false, false, false, kSteepnessAll},
+    {"erf", fit_erf, "erf approximations (listing5 | as7125)", true, true, false, true, false,
+     false, false, kDefaultAll},
     // --kappa only with --objective irradiance: checked by the CLI
-    {"lambda-d", fit_lambda_d, "diffuse SG sharpness λd (sphere-ls | hemisphere-ls | free-amplitude | irradiance)",
-     false, true, true, false, false, false, false, kDefaultAll},
-    {"sglab-fast", fit_sglab_fast, "sglab_fast's rational coefficients", false, false, true, false, false, true, false,
-     kDefaultAll},
+    {"lambda-d", fit_lambda_d,
+     "diffuse SG sharpness λd (sphere-ls | hemisphere-ls | free-amplitude | irradiance)", false,
+     true, true, false, false, false, false, kDefaultAll},
+    {"sglab-fast", fit_sglab_fast, "sglab_fast's rational coefficients", false, false, true, false,
+     false, true, false, kDefaultAll},
     // --kappa with --max-error: the model order for a range
-    {"sglab-acc", fit_sglab_acc, "the sglab_acc ladder, or with --max-error the smallest member meeting it",
-     false, false, true, true, false, false, true, kDefaultAll},
+    {"sglab-acc", fit_sglab_acc,
+     "the sglab_acc ladder, or with --max-error the smallest member meeting it", false, false, true,
+     true, false, false, true, kDefaultAll},
 };
 
 }  // namespace
@@ -120,7 +136,8 @@ std::string fit_target_names() {
 
 FitOutcome run_fit(const FitSpec& spec) {
   if (const FitTarget* t = find_fit_target(spec.target)) return t->fit(spec);
-  throw std::invalid_argument(fmt::format("unknown fit target '{}' (known: {}, all)", spec.target, fit_target_names()));
+  throw std::invalid_argument(
+      fmt::format("unknown fit target '{}' (known: {}, all)", spec.target, fit_target_names()));
 }
 
 }  // namespace sglab::fit

@@ -17,19 +17,26 @@ namespace sglab::report {
 
 std::string_view to_string(CostKind k) {
   switch (k) {
-    case CostKind::irradiance: return "irradiance";
-    case CostKind::hemispherical: return "hemispherical";
-    case CostKind::erf: return "erf";
+    case CostKind::irradiance:
+      return "irradiance";
+    case CostKind::hemispherical:
+      return "hemispherical";
+    case CostKind::erf:
+      return "erf";
   }
   return "?";
 }
 
 std::string_view to_string(CostMode m) {
   switch (m) {
-    case CostMode::scalar: return "scalar";
-    case CostMode::batch: return "batch";
-    case CostMode::light_setup: return "light_setup";
-    case CostMode::light_eval: return "light_eval";
+    case CostMode::scalar:
+      return "scalar";
+    case CostMode::batch:
+      return "batch";
+    case CostMode::light_setup:
+      return "light_setup";
+    case CostMode::light_eval:
+      return "light_eval";
   }
   return "?";
 }
@@ -41,15 +48,18 @@ std::optional<CostKind> parse_cost_kind(std::string_view s) {
 }
 
 std::optional<CostMode> parse_cost_mode(std::string_view s) {
-  for (CostMode m : {CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval})
+  for (CostMode m :
+       {CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval})
     if (to_string(m) == s) return m;
   return std::nullopt;
 }
 
 std::string cost_input_description(std::size_t n) {
   return fmt::format(
-      "{} inputs: kappa log-uniform in [1e-3, 1e4], cosine uniform in [-1, 1] (erf: x uniform in [0, 4]); "
-      "std::mt19937_64 seed {}, drawn in double and rounded to float; light_eval: {} lights (the first kappa) "
+      "{} inputs: kappa log-uniform in [1e-3, 1e4], cosine uniform in [-1, 1] (erf: x uniform in "
+      "[0, 4]); "
+      "std::mt19937_64 seed {}, drawn in double and rounded to float; light_eval: {} lights (the "
+      "first kappa) "
       "x {} cosines each",
       n, kCostSeed, kCostLights, n / kCostLights);
 }
@@ -156,7 +166,8 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     });
     // Eval: kCostLights lights, each at a contiguous block of the cosines.
     auto states = std::make_shared<std::vector<float>>(kCostLights * kLightStateFloats);
-    for (std::size_t j = 0; j < kCostLights; ++j) setup(w->kappa32[j], states->data() + j * kLightStateFloats);
+    for (std::size_t j = 0; j < kCostLights; ++j)
+      setup(w->kappa32[j], states->data() + j * kLightStateFloats);
     make(validate::FloatFormat::binary32, CostMode::light_eval, [w, eval, states, n] {
       const float* c = w->cosine32.data();
       float* o = w->out32.data();
@@ -171,7 +182,8 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
   }
 }
 
-void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v, const std::shared_ptr<CostWorkload>& w) {
+void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v,
+                   const std::shared_ptr<CostWorkload>& w) {
   const std::size_t n = w->x32.size();
   const auto make = [&](validate::FloatFormat f, CostMode mode, std::function<void()> run) {
     CostCase c;
@@ -216,20 +228,26 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-template <class T> bool contains(const std::vector<T>& v, T x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+template <class T>
+bool contains(const std::vector<T>& v, T x) {
+  return std::find(v.begin(), v.end(), x) != v.end();
+}
 
 }  // namespace
 
 std::vector<CostCase> cost_cases(const std::shared_ptr<CostWorkload>& workload) {
   std::vector<CostCase> out;
-  for (const Method& m : irradiance_methods) add_method_cases(out, CostKind::irradiance, m, workload);
-  for (const Method& m : hemispherical_methods) add_method_cases(out, CostKind::hemispherical, m, workload);
+  for (const Method& m : irradiance_methods)
+    add_method_cases(out, CostKind::irradiance, m, workload);
+  for (const Method& m : hemispherical_methods)
+    add_method_cases(out, CostKind::hemispherical, m, workload);
   for (const ErfVariant& v : erf_variants) add_erf_cases(out, v, workload);
   return out;
 }
 
 double time_case(const CostCase& c, int repetitions, double min_time) {
-  if (repetitions < 1) throw std::invalid_argument(fmt::format("repetitions must be >= 1, got {}", repetitions));
+  if (repetitions < 1)
+    throw std::invalid_argument(fmt::format("repetitions must be >= 1, got {}", repetitions));
   using clock = std::chrono::steady_clock;
   c.run();  // warm-up (caches, page faults)
   std::vector<double> ns;
@@ -250,7 +268,8 @@ double time_case(const CostCase& c, int repetitions, double min_time) {
 
 std::vector<Cost> measure_costs(const CostOptions& options) {
   if (options.repetitions < 1)
-    throw std::invalid_argument(fmt::format("repetitions must be >= 1, got {}", options.repetitions));
+    throw std::invalid_argument(
+        fmt::format("repetitions must be >= 1, got {}", options.repetitions));
   std::regex filter;
   if (!options.filter.empty()) filter = std::regex(options.filter);  // throws std::regex_error
   const auto workload = make_cost_workload();
@@ -273,9 +292,11 @@ std::vector<Cost> measure_costs(const CostOptions& options) {
 }
 
 validate::Table cost_table(const std::vector<Cost>& costs, std::string title) {
-  validate::Table t(std::move(title), {{"kind"}, {"method"}, {"precision"}, {"mode"}, {"ns_per_eval", 3}});
+  validate::Table t(std::move(title),
+                    {{"kind"}, {"method"}, {"precision"}, {"mode"}, {"ns_per_eval", 3}});
   for (const Cost& c : costs)
-    t.add_row({validate::Table::text(to_string(c.kind)), validate::Table::text(c.method), validate::Table::text(to_string(c.precision)),
+    t.add_row({validate::Table::text(to_string(c.kind)), validate::Table::text(c.method),
+               validate::Table::text(to_string(c.precision)),
                validate::Table::text(to_string(c.mode)), validate::Table::real(c.ns_per_eval)});
   return t;
 }

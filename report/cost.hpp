@@ -39,8 +39,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "validate/sweep.hpp"
@@ -67,7 +67,8 @@ struct CostWorkload {
   std::vector<float> cosine32, kappa32, x32, out32;
   std::vector<double> cosine64, kappa64, x64, out64;
 };
-std::shared_ptr<CostWorkload> make_cost_workload(std::uint64_t seed = kCostSeed, std::size_t n = kCostInputs);
+std::shared_ptr<CostWorkload> make_cost_workload(std::uint64_t seed = kCostSeed,
+                                                 std::size_t n = kCostInputs);
 
 // One timed case: `run()` evaluates the method once per input (one pass of
 // `evaluations` evaluations).
@@ -101,8 +102,10 @@ struct CostOptions {
   int repetitions = 5;
   double min_time = 0.01;  // seconds per repetition (5 × 0.01 s = the ~0.05 s quick mode)
   std::vector<CostKind> kinds{CostKind::irradiance, CostKind::hemispherical, CostKind::erf};
-  std::vector<validate::FloatFormat> precisions{validate::FloatFormat::binary32, validate::FloatFormat::binary64};
-  std::vector<CostMode> modes{CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval};
+  std::vector<validate::FloatFormat> precisions{validate::FloatFormat::binary32,
+                                                validate::FloatFormat::binary64};
+  std::vector<CostMode> modes{CostMode::scalar, CostMode::batch, CostMode::light_setup,
+                              CostMode::light_eval};
   std::string filter;  // ECMAScript regex searched in CostCase::name(); empty = all
 };
 
@@ -116,6 +119,7 @@ double time_case(const CostCase& c, int repetitions, double min_time);
 std::vector<Cost> measure_costs(const CostOptions& options = {});
 
 // kind, method, precision, mode, ns_per_eval.
-validate::Table cost_table(const std::vector<Cost>& costs, std::string title = "Cost per evaluation (median of repetitions)");
+validate::Table cost_table(const std::vector<Cost>& costs,
+                           std::string title = "Cost per evaluation (median of repetitions)");
 
 }  // namespace sglab::report

@@ -9,9 +9,12 @@ namespace sglab::report {
 
 std::string CostSource::name() const {
   switch (kind) {
-    case CostSourceKind::gpu: return "gpu:" + family;
-    case CostSourceKind::cpu_batch: return "cpu-batch";
-    case CostSourceKind::cpu_scalar: return "cpu-scalar";
+    case CostSourceKind::gpu:
+      return "gpu:" + family;
+    case CostSourceKind::cpu_batch:
+      return "cpu-batch";
+    case CostSourceKind::cpu_scalar:
+      return "cpu-scalar";
   }
   return "?";
 }
@@ -20,14 +23,19 @@ std::string_view CostSource::unit() const { return kind == CostSourceKind::gpu ?
 
 std::string CostSource::describe() const {
   switch (kind) {
-    case CostSourceKind::gpu: return fmt::format("GPU inverse throughput on {} (cycles per wave, ACO estimate)", family);
-    case CostSourceKind::cpu_batch: return "CPU batch ns/eval";
-    case CostSourceKind::cpu_scalar: return "CPU scalar ns/eval";
+    case CostSourceKind::gpu:
+      return fmt::format("GPU inverse throughput on {} (cycles per wave, ACO estimate)", family);
+    case CostSourceKind::cpu_batch:
+      return "CPU batch ns/eval";
+    case CostSourceKind::cpu_scalar:
+      return "CPU scalar ns/eval";
   }
   return "?";
 }
 
-CostMode CostSource::cpu_mode() const { return kind == CostSourceKind::cpu_scalar ? CostMode::scalar : CostMode::batch; }
+CostMode CostSource::cpu_mode() const {
+  return kind == CostSourceKind::cpu_scalar ? CostMode::scalar : CostMode::batch;
+}
 
 bool is_gpu_family_name(std::string_view name) {
   return !name.empty() && name.size() <= 32 &&
@@ -35,7 +43,8 @@ bool is_gpu_family_name(std::string_view name) {
 }
 
 CostSource default_cost_source(validate::FloatFormat precision) {
-  if (precision == validate::FloatFormat::binary32) return {CostSourceKind::gpu, std::string(kDefaultGpuFamily)};
+  if (precision == validate::FloatFormat::binary32)
+    return {CostSourceKind::gpu, std::string(kDefaultGpuFamily)};
   return {CostSourceKind::cpu_batch, {}};
 }
 
@@ -46,13 +55,15 @@ std::variant<CostSource, std::string> parse_cost_source(std::string_view text) {
   if (text.substr(0, prefix.size()) == prefix) {
     const std::string_view family = text.substr(prefix.size());
     if (!is_gpu_family_name(family))
-      return fmt::format("{} does not name a GPU family (gpu:FAMILY, FAMILY a chip name of lower-case letters and "
-                         "digits, e.g. gpu:navi21)",
-                         io::quote_escaped(text));
+      return fmt::format(
+          "{} does not name a GPU family (gpu:FAMILY, FAMILY a chip name of lower-case letters and "
+          "digits, e.g. gpu:navi21)",
+          io::quote_escaped(text));
     return CostSource{CostSourceKind::gpu, std::string(family)};
   }
-  return fmt::format("{} is not a cost source (expected gpu:FAMILY, e.g. gpu:navi21, cpu-batch or cpu-scalar)",
-                     io::quote_escaped(text));
+  return fmt::format(
+      "{} is not a cost source (expected gpu:FAMILY, e.g. gpu:navi21, cpu-batch or cpu-scalar)",
+      io::quote_escaped(text));
 }
 
 }  // namespace sglab::report

@@ -34,7 +34,7 @@ struct CostSource {
   std::string_view unit() const;  // "cycles" (gpu) or "ns" (cpu-*)
   // "GPU inverse throughput on navi21 (cycles per wave)", "CPU batch ns/eval", …
   std::string describe() const;
-  CostMode cpu_mode() const;      // batch or scalar (cpu-* only)
+  CostMode cpu_mode() const;  // batch or scalar (cpu-* only)
   bool operator==(const CostSource&) const = default;
 };
 

@@ -25,9 +25,11 @@ namespace sglab::report {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
-const Cost* CostTable::find(CostKind kind, std::string_view method, validate::FloatFormat precision, CostMode mode) const {
+const Cost* CostTable::find(CostKind kind, std::string_view method, validate::FloatFormat precision,
+                            CostMode mode) const {
   for (const Cost& c : costs)
-    if (c.kind == kind && c.method == method && c.precision == precision && c.mode == mode) return &c;
+    if (c.kind == kind && c.method == method && c.precision == precision && c.mode == mode)
+      return &c;
   return nullptr;
 }
 
@@ -60,7 +62,8 @@ CostTableInfo current_cost_table_info() {
   info.cores = std::thread::hardware_concurrency();
 #if defined(__clang__)
   info.compiler_id = "Clang";
-  info.compiler_version = fmt::format("{}.{}.{}", __clang_major__, __clang_minor__, __clang_patchlevel__);
+  info.compiler_version =
+      fmt::format("{}.{}.{}", __clang_major__, __clang_minor__, __clang_patchlevel__);
 #elif defined(__GNUC__)
   info.compiler_id = "GNU";
   info.compiler_version = fmt::format("{}.{}.{}", __GNUC__, __GNUC_MINOR__, __GNUC_PATCHLEVEL__);
@@ -108,8 +111,10 @@ namespace {
   throw CostTableError(fmt::format("cost table {}: {}", path.string(), what));
 }
 
-std::string text_field(const fs::path& path, const json& obj, const char* key, const std::string& where) {
-  if (!obj.contains(key) || !obj.at(key).is_string()) fail(path, fmt::format("{}\"{}\" must be a string", where, key));
+std::string text_field(const fs::path& path, const json& obj, const char* key,
+                       const std::string& where) {
+  if (!obj.contains(key) || !obj.at(key).is_string())
+    fail(path, fmt::format("{}\"{}\" must be a string", where, key));
   return obj.at(key).get<std::string>();
 }
 
@@ -117,7 +122,8 @@ std::string text_field(const fs::path& path, const json& obj, const char* key, c
 
 CostTable read_cost_table(const fs::path& path) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
+  if (!fs::exists(path, ec))
+    fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
   json doc;
   try {
     doc = io::read_json_file(path, kMaxCostTableBytes, "a cost table");
@@ -127,7 +133,8 @@ CostTable read_cost_table(const fs::path& path) {
   if (!doc.is_object()) fail(path, "expected a JSON object");
   if (!doc.contains("format") || doc.at("format") != "sglab-costs")
     fail(path, "\"format\" must be \"sglab-costs\"");
-  if (!doc.contains("version") || !doc.at("version").is_number_integer() || doc.at("version").get<long long>() != 1)
+  if (!doc.contains("version") || !doc.at("version").is_number_integer() ||
+      doc.at("version").get<long long>() != 1)
     fail(path, "\"version\" must be 1");
   CostTable t;
   t.path = path;
@@ -136,7 +143,8 @@ CostTable read_cost_table(const fs::path& path) {
   t.info.build_type = text_field(path, doc, "build_type", "");
   t.info.timer = text_field(path, doc, "timer", "");
   t.info.inputs = text_field(path, doc, "inputs", "");
-  if (!doc.contains("machine") || !doc.at("machine").is_object()) fail(path, "\"machine\" must be an object");
+  if (!doc.contains("machine") || !doc.at("machine").is_object())
+    fail(path, "\"machine\" must be an object");
   const json& machine = doc.at("machine");
   t.info.cpu = text_field(path, machine, "cpu", "machine.");
   if (!machine.contains("cores") || !machine.at("cores").is_number_unsigned())
@@ -149,10 +157,12 @@ CostTable read_cost_table(const fs::path& path) {
     t.info.load_start = load[0].get<double>();
     t.info.load_end = load[1].get<double>();
   }
-  if (!doc.contains("compiler") || !doc.at("compiler").is_object()) fail(path, "\"compiler\" must be an object");
+  if (!doc.contains("compiler") || !doc.at("compiler").is_object())
+    fail(path, "\"compiler\" must be an object");
   t.info.compiler_id = text_field(path, doc.at("compiler"), "id", "compiler.");
   t.info.compiler_version = text_field(path, doc.at("compiler"), "version", "compiler.");
-  if (!doc.contains("costs") || !doc.at("costs").is_array()) fail(path, "\"costs\" must be an array");
+  if (!doc.contains("costs") || !doc.at("costs").is_array())
+    fail(path, "\"costs\" must be an array");
   std::size_t i = 0;
   for (const json& row : doc.at("costs")) {
     const std::string where = fmt::format("costs[{}].", i++);
@@ -164,25 +174,32 @@ CostTable read_cost_table(const fs::path& path) {
     c.method = text_field(path, row, "method", where);
     if (c.method.empty()) fail(path, where + "\"method\" is empty");
     const auto k = parse_cost_kind(kind);
-    if (!k) fail(path, fmt::format("{}\"kind\": unknown kind '{}' (irradiance, hemispherical, erf)", where, kind));
+    if (!k)
+      fail(path, fmt::format("{}\"kind\": unknown kind '{}' (irradiance, hemispherical, erf)",
+                             where, kind));
     c.kind = *k;
     if (precision == "float")
       c.precision = validate::FloatFormat::binary32;
     else if (precision == "double")
       c.precision = validate::FloatFormat::binary64;
     else
-      fail(path, fmt::format("{}\"precision\": expected float or double, got '{}'", where, precision));
+      fail(path,
+           fmt::format("{}\"precision\": expected float or double, got '{}'", where, precision));
     const auto m = parse_cost_mode(mode);
-    if (!m) fail(path, fmt::format("{}\"mode\": unknown mode '{}' (scalar, batch, light_setup, light_eval)", where, mode));
+    if (!m)
+      fail(path,
+           fmt::format("{}\"mode\": unknown mode '{}' (scalar, batch, light_setup, light_eval)",
+                       where, mode));
     c.mode = *m;
     if (!row.contains("ns_per_eval") || !row.at("ns_per_eval").is_number())
       fail(path, where + "\"ns_per_eval\" must be a number");
     c.ns_per_eval = row.at("ns_per_eval").get<double>();
     if (!std::isfinite(c.ns_per_eval) || !(c.ns_per_eval > 0))
-      fail(path, fmt::format("{}\"ns_per_eval\" must be finite and > 0, got {}", where, c.ns_per_eval));
+      fail(path,
+           fmt::format("{}\"ns_per_eval\" must be finite and > 0, got {}", where, c.ns_per_eval));
     if (t.find(c.kind, c.method, c.precision, c.mode))
-      fail(path, fmt::format("{} duplicates {}/{}/{}/{}", where.substr(0, where.size() - 1), kind, c.method,
-                             precision, mode));
+      fail(path, fmt::format("{} duplicates {}/{}/{}/{}", where.substr(0, where.size() - 1), kind,
+                             c.method, precision, mode));
     t.costs.push_back(std::move(c));
   }
   if (doc.contains("gpu")) {

@@ -28,9 +28,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "report/cost.hpp"
-#include "export/gpu_cost.hpp"
 #include "common/io.hpp"
+#include "export/gpu_cost.hpp"
+#include "report/cost.hpp"
 
 namespace sglab::report {
 
@@ -41,10 +41,10 @@ struct CostTableError : io::InputError {
 };
 
 struct CostTableInfo {
-  std::string date;     // ISO 8601 UTC
-  std::string command;  // how it was produced
-  std::string cpu;      // model name from /proc/cpuinfo ("unknown" when absent)
-  unsigned cores = 0;   // std::thread::hardware_concurrency
+  std::string date;                       // ISO 8601 UTC
+  std::string command;                    // how it was produced
+  std::string cpu;                        // model name from /proc/cpuinfo ("unknown" when absent)
+  unsigned cores = 0;                     // std::thread::hardware_concurrency
   double load_start = -1, load_end = -1;  // 1-minute load average (/proc/loadavg), −1 when unknown
   std::string compiler_id, compiler_version, build_type;
   std::string timer;
@@ -57,7 +57,8 @@ struct CostTable {
   std::vector<Cost> costs;
   std::optional<shader::gpu::Report> gpu;
   // The row for (kind, method, precision, mode), or nullptr.
-  const Cost* find(CostKind kind, std::string_view method, validate::FloatFormat precision, CostMode mode) const;
+  const Cost* find(CostKind kind, std::string_view method, validate::FloatFormat precision,
+                   CostMode mode) const;
 };
 
 // This machine, compiler and build (date = now); command, timer and inputs

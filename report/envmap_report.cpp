@@ -18,8 +18,8 @@
 #include <sglab/registry.hpp>
 
 #include "common/atomic_files.hpp"
-#include "report/figures.hpp"
 #include "common/io.hpp"
+#include "report/figures.hpp"
 
 namespace sglab::report {
 
@@ -31,13 +31,15 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<envmap::Vec3> method_irradiance(const std::vector<envmap::Lobe>& lobes, const std::vector<envmap::Vec3>& normals, const Method& m,
-                                    validate::FloatFormat precision) {
+std::vector<envmap::Vec3> method_irradiance(const std::vector<envmap::Lobe>& lobes,
+                                            const std::vector<envmap::Vec3>& normals,
+                                            const Method& m, validate::FloatFormat precision) {
   double largest = 0;
   for (const envmap::Lobe& l : lobes)
     for (double a : l.amplitude) largest = std::max(largest, a);
   if (!(largest > 0)) return std::vector<envmap::Vec3>(normals.size(), envmap::Vec3{0, 0, 0});
-  std::vector<envmap::Vec3> e = validate::scene_irradiance(envmap::to_scene(lobes), normals, m, precision);
+  std::vector<envmap::Vec3> e =
+      validate::scene_irradiance(envmap::to_scene(lobes), normals, m, precision);
   for (auto& v : e)
     for (double& x : v) x *= largest;
   return e;
@@ -53,9 +55,11 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes) {
   return out;
 }
 
-EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget, std::size_t max_lobes, std::size_t normals_n,
-                 validate::FloatFormat precision, const std::vector<report::MethodPoint>& costs,
-                 const std::function<void(const std::string&)>& note) {
+EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget,
+                                     std::size_t max_lobes, std::size_t normals_n,
+                                     validate::FloatFormat precision,
+                                     const std::vector<report::MethodPoint>& costs,
+                                     const std::function<void(const std::string&)>& note) {
   EnvmapSelection sel;
   envmap::FitOptions options;
   options.objective = envmap::Objective::irradiance;
@@ -69,20 +73,26 @@ EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& 
     options.lobes = n;
     const envmap::FitReport fit = envmap::fit(work, exact_fit, options);
     note(fmt::format("{} lobes: errors", n));
-    sel.fit_error.emplace_back(n, envmap::irradiance_error(envmap::lobes_irradiance_exact(fit.lobes, normals), exact).max_rel);
+    sel.fit_error.emplace_back(
+        n, envmap::irradiance_error(envmap::lobes_irradiance_exact(fit.lobes, normals), exact)
+               .max_rel);
     std::vector<report::MethodPoint> points;
     for (const report::MethodPoint& c : costs) {
       if (!std::isfinite(c.cost)) continue;
       const Method* m = find_method(irradiance_methods, c.method);
       if (!m) continue;
       report::MethodPoint p = c;
-      p.max_peak_rel = envmap::irradiance_error(method_irradiance(fit.lobes, normals, *m, precision), exact).max_rel;
+      p.max_peak_rel =
+          envmap::irradiance_error(method_irradiance(fit.lobes, normals, *m, precision), exact)
+              .max_rel;
       points.push_back(p);
-      sel.tried.push_back({n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost});
+      sel.tried.push_back(
+          {n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost});
     }
     const report::Recommendation r = report::recommend(points, budget);
     auto candidate = [&](const report::MethodPoint& p) {
-      return EnvmapCandidate{n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost};
+      return EnvmapCandidate{n,      p.method,    p.max_peak_rel,
+                             p.cost, p.cost_unit, static_cast<double>(n) * p.cost};
     };
     if (r.choice) {
       sel.choice = candidate(*r.choice);
@@ -111,8 +121,9 @@ std::string tonemap_rgb(double r, double g, double b, double exposure) {
 
 // The figure of one map: the map, its SG reconstruction, the irradiance over
 // every normal direction (exact, fitted) and the error, each an equirect panel.
-void write_map_figure(const std::filesystem::path& out, const std::string& name, const envmap::Map& work,
-                      const std::vector<envmap::Lobe>& lobes, std::size_t n_lobes) {
+void write_map_figure(const std::filesystem::path& out, const std::string& name,
+                      const envmap::Map& work, const std::vector<envmap::Lobe>& lobes,
+                      std::size_t n_lobes) {
   const envmap::Map recon = envmap::reconstruct(lobes, work.width, work.height);
   double mean = 0;
   for (float v : work.rgb) mean += v;
@@ -134,7 +145,8 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
   auto panel = [&](const envmap::Map& m) {
     for (std::size_t j = 0; j < m.height; ++j)
       for (std::size_t i = 0; i < m.width; ++i)
-        data += fmt::format("{} {} {}\n", i, m.height - 1 - j, tonemap_rgb(m.at(i, j, 0), m.at(i, j, 1), m.at(i, j, 2), exposure));
+        data += fmt::format("{} {} {}\n", i, m.height - 1 - j,
+                            tonemap_rgb(m.at(i, j, 0), m.at(i, j, 1), m.at(i, j, 2), exposure));
     data += "\n\n";
   };
   panel(work);
@@ -143,7 +155,10 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
     for (std::size_t j = 0; j < grid.height; ++j)
       for (std::size_t i = 0; i < grid.width; ++i) {
         const envmap::Vec3& v = e[j * grid.width + i];
-        auto c = [&](double x) { return static_cast<int>(std::lround(255 * std::pow(std::clamp(x / peak, 0.0, 1.0), 1 / 2.2))); };
+        auto c = [&](double x) {
+          return static_cast<int>(
+              std::lround(255 * std::pow(std::clamp(x / peak, 0.0, 1.0), 1 / 2.2)));
+        };
         data += fmt::format("{} {} {} {} {}\n", i, grid.height - 1 - j, c(v[0]), c(v[1]), c(v[2]));
       }
     data += "\n\n";
@@ -154,7 +169,9 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
   for (std::size_t j = 0; j < grid.height; ++j)
     for (std::size_t i = 0; i < grid.width; ++i) {
       double d = 0;
-      for (std::size_t ch = 0; ch < 3; ++ch) d = std::max(d, std::abs(fitted[j * grid.width + i][ch] - exact[j * grid.width + i][ch]) / peak);
+      for (std::size_t ch = 0; ch < 3; ++ch)
+        d = std::max(
+            d, std::abs(fitted[j * grid.width + i][ch] - exact[j * grid.width + i][ch]) / peak);
       worst = std::max(worst, d);
       data += fmt::format("{} {} {:.6g}\n", i, grid.height - 1 - j, d * 100);
     }
@@ -163,14 +180,18 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
   const std::string script = fmt::format(
       "set terminal pngcairo size 1500,620 font 'sans,10'\n"
       "set output '{0}.png'\n"
-      "set multiplot layout 2,3 title 'Environment map {1}: {2} SG lobes, irradiance objective (sglab envmap fit --lobes {2})'\n"
+      "set multiplot layout 2,3 title 'Environment map {1}: {2} SG lobes, irradiance objective "
+      "(sglab envmap fit --lobes {2})'\n"
       "unset key; unset xtics; unset ytics; set size ratio -1\n"
       "set title 'map (tone-mapped)'\nplot '{0}.dat' index 0 using 1:2:3:4:5 with rgbimage\n"
       "set title 'SG reconstruction'\nplot '{0}.dat' index 1 using 1:2:3:4:5 with rgbimage\n"
       "set multiplot next\n"
-      "set title 'irradiance E(n), exact (every pixel)'\nplot '{0}.dat' index 2 using 1:2:3:4:5 with rgbimage\n"
-      "set title 'irradiance of the lobes (exact SG)'\nplot '{0}.dat' index 3 using 1:2:3:4:5 with rgbimage\n"
-      "set title sprintf('|error| / max E, %% (max %.2f %%)', {3})\nset palette rgbformulae 34,35,36\nset colorbox\n"
+      "set title 'irradiance E(n), exact (every pixel)'\nplot '{0}.dat' index 2 using 1:2:3:4:5 "
+      "with rgbimage\n"
+      "set title 'irradiance of the lobes (exact SG)'\nplot '{0}.dat' index 3 using 1:2:3:4:5 with "
+      "rgbimage\n"
+      "set title sprintf('|error| / max E, %% (max %.2f %%)', {3})\nset palette rgbformulae "
+      "34,35,36\nset colorbox\n"
       "plot '{0}.dat' index 4 using 1:2:3 with image\n"
       "unset multiplot\n",
       stem, name, n_lobes, worst * 100);
@@ -187,16 +208,20 @@ struct MapData {
 
 // The maps of --maps (every .exr and .hdr, sorted) and the output folder
 // (default: the project's data/envmaps and data/results).
-std::pair<std::vector<std::filesystem::path>, std::filesystem::path> baseline_paths(const std::string& maps_arg,
-                                                                                   const std::string& out_arg) {
+std::pair<std::vector<std::filesystem::path>, std::filesystem::path> baseline_paths(
+    const std::string& maps_arg, const std::string& out_arg) {
   const auto root = io::find_project_root(std::filesystem::current_path());
   std::filesystem::path maps_dir = maps_arg, out = out_arg;
   if (maps_dir.empty()) {
-    if (!root) throw InputError("--maps: no project folder above the working directory; name the maps folder");
+    if (!root)
+      throw InputError(
+          "--maps: no project folder above the working directory; name the maps folder");
     maps_dir = *root / "data" / "envmaps";
   }
   if (out.empty()) {
-    if (!root) throw InputError("--out: no project folder above the working directory; name the output folder");
+    if (!root)
+      throw InputError(
+          "--out: no project folder above the working directory; name the output folder");
     out = *root / "data" / "results";
   }
   io::check_output_folder(out);
@@ -208,7 +233,8 @@ std::pair<std::vector<std::filesystem::path>, std::filesystem::path> baseline_pa
   }
   if (ec) throw InputError(fmt::format("--maps {}: {}", maps_dir.string(), ec.message()));
   std::sort(files.begin(), files.end());
-  if (files.empty()) throw InputError(fmt::format("--maps {}: no .exr or .hdr maps", maps_dir.string()));
+  if (files.empty())
+    throw InputError(fmt::format("--maps {}: no .exr or .hdr maps", maps_dir.string()));
   return {files, out};
 }
 
@@ -236,12 +262,14 @@ struct BaselineRun {
   double wall = 0;
   bool quick = false;
   const Errors& at(std::size_t m, std::size_t n) const {
-    const auto c = static_cast<std::size_t>(std::find(counts.begin(), counts.end(), n) - counts.begin());
+    const auto c =
+        static_cast<std::size_t>(std::find(counts.begin(), counts.end(), n) - counts.begin());
     return results[m * counts.size() + c];
   }
 };
 
-void run_fits(BaselineRun& run, const envmap::FitOptions& base_options, const std::vector<envmap::Vec3>& eval_normals) {
+void run_fits(BaselineRun& run, const envmap::FitOptions& base_options,
+              const std::vector<envmap::Vec3>& eval_normals) {
   const std::size_t jobs = run.maps.size() * run.counts.size();
   run.results.assign(jobs, Errors{});
   const auto t_all = std::chrono::steady_clock::now();
@@ -263,9 +291,12 @@ void run_fits(BaselineRun& run, const envmap::FitOptions& base_options, const st
     t0 = std::chrono::steady_clock::now();
     const envmap::FitReport irr = fit(md.work, md.exact_fit, o);
     r.t_irradiance = seconds_since(t0);
-    r.baseline = envmap::irradiance_error(envmap::lobes_irradiance_exact(base, eval_normals), md.exact_eval);
-    r.radiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(rad.lobes, eval_normals), md.exact_eval);
-    r.irradiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(irr.lobes, eval_normals), md.exact_eval);
+    r.baseline =
+        envmap::irradiance_error(envmap::lobes_irradiance_exact(base, eval_normals), md.exact_eval);
+    r.radiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(rad.lobes, eval_normals),
+                                          md.exact_eval);
+    r.irradiance = envmap::irradiance_error(envmap::lobes_irradiance_exact(irr.lobes, eval_normals),
+                                            md.exact_eval);
     r.irradiance_lobes = irr.lobes;
     progress.advance();
   });
@@ -277,20 +308,29 @@ void run_fits(BaselineRun& run, const envmap::FitOptions& base_options, const st
 std::string baselines_markdown(const BaselineRun& run) {
   std::string md;
   md += "# Environment maps: SG lobe fits against the BakingLab baseline\n\n";
-  md += fmt::format("Written by `sglab envmap baselines{}` from the maps in `data/envmaps/` (see its README: CC0, "
-                    "128 × 64 area-averaged copies of Blender's studio-light worlds).\n\n",
-                    run.quick ? " --quick" : "");
   md += fmt::format(
-      "Irradiance error = max (and RMS) over {} Fibonacci normals and RGB of |E_lobes(n) − E_map(n)| / max E_map, "
-      "where E_map sums every pixel of the map with its solid angle and E_lobes is the lobes' exact SG irradiance "
-      "(reference engine). (a) BakingLab baseline: fixed spiral axes, BakingLab's shared sharpness, NNLS amplitudes "
-      "on the radiance; (b) sglab radiance fit: every parameter jointly (Ceres) on the solid-angle weighted "
-      "radiance; (c) sglab irradiance fit: a radiance fit as (b) on a 64 × 32 copy, then every parameter "
+      "Written by `sglab envmap baselines{}` from the maps in `data/envmaps/` (see its README: "
+      "CC0, "
+      "128 × 64 area-averaged copies of Blender's studio-light worlds).\n\n",
+      run.quick ? " --quick" : "");
+  md += fmt::format(
+      "Irradiance error = max (and RMS) over {} Fibonacci normals and RGB of |E_lobes(n) − "
+      "E_map(n)| / max E_map, "
+      "where E_map sums every pixel of the map with its solid angle and E_lobes is the lobes' "
+      "exact SG irradiance "
+      "(reference engine). (a) BakingLab baseline: fixed spiral axes, BakingLab's shared "
+      "sharpness, NNLS amplitudes "
+      "on the radiance; (b) sglab radiance fit: every parameter jointly (Ceres) on the solid-angle "
+      "weighted "
+      "radiance; (c) sglab irradiance fit: a radiance fit as (b) on a 64 × 32 copy, then every "
+      "parameter "
       "jointly on the irradiance at 1024 other "
       "Fibonacci normals. Ratio = (a) max / (c) max; the target is ≥ 2.\n\n",
       envmap::kEvalNormals);
   std::size_t met = 0, total = 0;
-  md += "| map | lobes | (a) baseline max | (a) RMS | (b) radiance max | (b) RMS | (c) irradiance max | (c) RMS | ratio (a)/(c) |\n";
+  md +=
+      "| map | lobes | (a) baseline max | (a) RMS | (b) radiance max | (b) RMS | (c) irradiance "
+      "max | (c) RMS | ratio (a)/(c) |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (std::size_t m = 0; m < run.maps.size(); ++m)
     for (std::size_t n : run.table_counts) {
@@ -298,17 +338,23 @@ std::string baselines_markdown(const BaselineRun& run) {
       const double ratio = e.baseline.max_rel / e.irradiance.max_rel;
       ++total;
       if (ratio >= 2) ++met;
-      md += fmt::format("| {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.1f}{} |\n",
-                        run.maps[m].name, n, e.baseline.max_rel, e.baseline.rms_rel, e.radiance.max_rel,
-                        e.radiance.rms_rel, e.irradiance.max_rel, e.irradiance.rms_rel, ratio,
-                        ratio >= 2 ? "" : " (below 2)");
+      md += fmt::format(
+          "| {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.1f}{} |\n",
+          run.maps[m].name, n, e.baseline.max_rel, e.baseline.rms_rel, e.radiance.max_rel,
+          e.radiance.rms_rel, e.irradiance.max_rel, e.irradiance.rms_rel, ratio,
+          ratio >= 2 ? "" : " (below 2)");
     }
-  md += fmt::format("\n(c) has at least 2× lower max irradiance error than (a) in {} of {} (map, lobes) cases.\n\n", met,
-                    total);
+  md += fmt::format(
+      "\n(c) has at least 2× lower max irradiance error than (a) in {} of {} (map, lobes) "
+      "cases.\n\n",
+      met, total);
   if (run.quick) return md;
   md += "## Lobes needed for a 1 % budget\n\n";
-  md += "Fewest lobes (of 1, 2, 3, 4, 6, 8, 12, 16, 24) whose fit has max irradiance error ≤ 1 % (exact SG irradiance; "
-        "the error of a diffuse approximation comes on top: `sglab envmap recommend FILE --budget 0.01`).\n\n";
+  md +=
+      "Fewest lobes (of 1, 2, 3, 4, 6, 8, 12, 16, 24) whose fit has max irradiance error ≤ 1 % "
+      "(exact SG irradiance; "
+      "the error of a diffuse approximation comes on top: `sglab envmap recommend FILE --budget "
+      "0.01`).\n\n";
   md += "| map | (a) baseline | (b) radiance fit | (c) irradiance fit |\n|---|---:|---:|---:|\n";
   for (std::size_t m = 0; m < run.maps.size(); ++m) {
     auto need = [&](auto pick) {
@@ -316,12 +362,14 @@ std::string baselines_markdown(const BaselineRun& run) {
         if (pick(run.at(m, n)).max_rel <= 0.01) return fmt::format("{}", n);
       return fmt::format("> {}", run.counts.back());
     };
-    md += fmt::format("| {} | {} | {} | {} |\n", run.maps[m].name, need([](const Errors& e) { return e.baseline; }),
+    md += fmt::format("| {} | {} | {} | {} |\n", run.maps[m].name,
+                      need([](const Errors& e) { return e.baseline; }),
                       need([](const Errors& e) { return e.radiance; }),
                       need([](const Errors& e) { return e.irradiance; }));
   }
   md += "\n## Figures\n\n![error vs lobes](envmap_curves.png)\n\n";
-  md += "![one map: map, reconstruction, irradiance exact / fitted / error](envmap_" + run.maps[0].name + ".png)\n";
+  md += "![one map: map, reconstruction, irradiance exact / fitted / error](envmap_" +
+        run.maps[0].name + ".png)\n";
   return md;
 }
 
@@ -331,9 +379,12 @@ std::string baselines_csv(const BaselineRun& run) {
     for (std::size_t n : run.counts) {
       const Errors& e = run.at(m, n);
       const std::string& name = run.maps[m].name;
-      csv += fmt::format("{},{},baseline,{:.6e},{:.6e}\n", name, n, e.baseline.max_rel, e.baseline.rms_rel);
-      csv += fmt::format("{},{},radiance,{:.6e},{:.6e}\n", name, n, e.radiance.max_rel, e.radiance.rms_rel);
-      csv += fmt::format("{},{},irradiance,{:.6e},{:.6e}\n", name, n, e.irradiance.max_rel, e.irradiance.rms_rel);
+      csv += fmt::format("{},{},baseline,{:.6e},{:.6e}\n", name, n, e.baseline.max_rel,
+                         e.baseline.rms_rel);
+      csv += fmt::format("{},{},radiance,{:.6e},{:.6e}\n", name, n, e.radiance.max_rel,
+                         e.radiance.rms_rel);
+      csv += fmt::format("{},{},irradiance,{:.6e},{:.6e}\n", name, n, e.irradiance.max_rel,
+                         e.irradiance.rms_rel);
     }
   return csv;
 }
@@ -347,7 +398,8 @@ void write_curves_figure(const std::filesystem::path& out, const BaselineRun& ru
     dat += "# lobes baseline radiance irradiance (" + run.maps[m].name + ")\n";
     for (std::size_t n : run.counts) {
       const Errors& e = run.at(m, n);
-      dat += fmt::format("{} {:.6e} {:.6e} {:.6e}\n", n, e.baseline.max_rel, e.radiance.max_rel, e.irradiance.max_rel);
+      dat += fmt::format("{} {:.6e} {:.6e} {:.6e}\n", n, e.baseline.max_rel, e.radiance.max_rel,
+                         e.irradiance.max_rel);
     }
     dat += "\n\n";
   }
@@ -356,19 +408,24 @@ void write_curves_figure(const std::filesystem::path& out, const BaselineRun& ru
   const std::string gp = fmt::format(
       "set terminal pngcairo size 1300,520 font 'sans,10'\nset output 'envmap_curves.png'\n"
       "names = '{}'\nset logscale xy\nset xtics (1,2,3,4,6,8,12,16,24)\nset grid\n"
-      "set xlabel 'lobes'\nset ylabel 'max |E_{{lobes}} - E_{{map}}| / max E_{{map}}'\nset key outside right\n"
+      "set xlabel 'lobes'\nset ylabel 'max |E_{{lobes}} - E_{{map}}| / max E_{{map}}'\nset key "
+      "outside right\n"
       "set multiplot layout 1,2\n"
       "set title '(c) sglab irradiance fit (solid), (a) BakingLab baseline (dashed)'\n"
-      "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:4 with linespoints lc i+1 pt 7 title word(names, i+1), "
-      "for [i=0:{}] '' index i using 1:2 with lines dt 2 lc i+1 notitle, 0.01 with lines lc 'black' dt 3 title '1 %'\n"
+      "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:4 with linespoints lc i+1 pt 7 title "
+      "word(names, i+1), "
+      "for [i=0:{}] '' index i using 1:2 with lines dt 2 lc i+1 notitle, 0.01 with lines lc "
+      "'black' dt 3 title '1 %'\n"
       "set title '(b) sglab radiance fit'\n"
-      "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:3 with linespoints lc i+1 pt 7 title word(names, i+1), "
+      "plot for [i=0:{}] 'envmap_curves.dat' index i using 1:3 with linespoints lc i+1 pt 7 title "
+      "word(names, i+1), "
       "0.01 with lines lc 'black' dt 3 title '1 %'\n"
       "unset multiplot\n",
       names, last, last, last);
   io::write_file_atomic(out / "envmap_curves.gp", gp);
   if (io::run_program({"gnuplot", "envmap_curves.gp"}, out, {}) != 0)
-    throw std::runtime_error(fmt::format("gnuplot failed on {}", (out / "envmap_curves.gp").string()));
+    throw std::runtime_error(
+        fmt::format("gnuplot failed on {}", (out / "envmap_curves.gp").string()));
 }
 
 // Times: on the terminal only (committed results stay deterministic).
@@ -378,8 +435,8 @@ void print_times(const BaselineRun& run) {
   for (std::size_t m = 0; m < run.maps.size(); ++m)
     for (std::size_t n : run.table_counts) {
       const Errors& e = run.at(m, n);
-      fmt::print(stderr, "  {:<10} {:>3} lobes  (a) {:6.2f}  (b) {:6.2f}  (c) {:6.2f}\n", run.maps[m].name, n,
-                 e.t_baseline, e.t_radiance, e.t_irradiance);
+      fmt::print(stderr, "  {:<10} {:>3} lobes  (a) {:6.2f}  (b) {:6.2f}  (c) {:6.2f}\n",
+                 run.maps[m].name, n, e.t_baseline, e.t_radiance, e.t_irradiance);
     }
   fmt::print(stderr, "all fits: {:.1f} s wall\n", run.wall);
 }
@@ -390,7 +447,8 @@ void run_envmap_baselines(const std::string& maps_arg, const std::string& out_ar
   const auto [files, out] = baseline_paths(maps_arg, out_arg);
   BaselineRun run;
   run.quick = quick;
-  run.counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16, 24};
+  run.counts =
+      quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16, 24};
   run.table_counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{4, 8, 12, 24};
   const envmap::FitOptions base_options;
   const auto fit_normals = validate::fibonacci_normals(base_options.fit_normals);

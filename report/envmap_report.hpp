@@ -18,16 +18,17 @@ namespace sglab::report {
 struct EnvmapCandidate {
   std::size_t lobes = 0;
   std::string method;
-  double error = 0;        // max over normals and RGB of |E_method(lobes) − E_map| / max E_map
-  double cost = 0;         // the method's cost per evaluation, in cost_unit (report::MethodPoint::cost)
-  std::string cost_unit;   // "cycles" (GPU inverse throughput) or "ns" (CPU)
-  double total_cost = 0;   // lobes × cost: the irradiance cost of one shading point
+  double error = 0;  // max over normals and RGB of |E_method(lobes) − E_map| / max E_map
+  double cost = 0;   // the method's cost per evaluation, in cost_unit (report::MethodPoint::cost)
+  std::string cost_unit;  // "cycles" (GPU inverse throughput) or "ns" (CPU)
+  double total_cost = 0;  // lobes × cost: the irradiance cost of one shading point
 };
 
 struct EnvmapSelection {
   std::optional<EnvmapCandidate> choice, runner_up;
-  std::vector<EnvmapCandidate> tried;                          // every (lobes, method) pair evaluated
-  std::vector<std::pair<std::size_t, double>> fit_error;  // lobes → max error with the exact SG irradiance
+  std::vector<EnvmapCandidate> tried;  // every (lobes, method) pair evaluated
+  std::vector<std::pair<std::size_t, double>>
+      fit_error;  // lobes → max error with the exact SG irradiance
 };
 
 // Lobe counts tried, in order: 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96,
@@ -40,9 +41,11 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes);
 // at which a method meets `budget` gives the choice (the cheapest there, ties
 // within report::kCostTieMargin broken by error) and the runner-up (the
 // next in that ranking).
-EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget, std::size_t max_lobes, std::size_t normals,
-                 validate::FloatFormat precision, const std::vector<report::MethodPoint>& costs,
-                 const std::function<void(const std::string&)>& note);
+EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget,
+                                     std::size_t max_lobes, std::size_t normals,
+                                     validate::FloatFormat precision,
+                                     const std::vector<report::MethodPoint>& costs,
+                                     const std::function<void(const std::string&)>& note);
 
 // `sglab envmap baselines`: every map in `maps` (default data/envmaps of the
 // project) × lobe counts; writes envmaps.md, envmaps.csv and the figures into

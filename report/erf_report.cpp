@@ -82,7 +82,10 @@ std::string erf_reports_json(const std::vector<validate::ErfReport>& reports, bo
     if (r.oddness.violations) j["oddness"]["first_violation_x"] = r.oddness.first_violation_x;
     nlohmann::json specials = nlohmann::json::array();
     for (const validate::ErfSpecial& sp : r.specials)
-      specials.push_back({{"x", fmt_value(sp.x)}, {"expected", fmt_value(sp.expected)}, {"got", fmt_value(sp.got)}, {"ok", sp.ok}});
+      specials.push_back({{"x", fmt_value(sp.x)},
+                          {"expected", fmt_value(sp.expected)},
+                          {"got", fmt_value(sp.got)},
+                          {"ok", sp.ok}});
     j["specials"] = specials;
     j["ambiguous_resolved"] = r.ambiguous_resolved;
     j["reference_selfcheck_ulps"] = r.reference_selfcheck_ulps;
@@ -97,25 +100,34 @@ std::string erf_reports_json(const std::vector<validate::ErfReport>& reports, bo
 
 std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports, bool exhaustive) {
   std::string md;
-  md += fmt::format("# erf accuracy against the correctly rounded erf ({})\n\n", exhaustive ? "exhaustive" : "sample");
-  md += "err_ulp = |f(x) - erf(x)| / ulp(erf(x)) with the exact erf(x) (not its rounding); ulp(y) = "
-        "2^(floor(log2|y|) - 23) in float, - 52 in double (subnormal spacing below the normal range). "
-        "`cr` = correctly rounded results. Non-finite outputs are counted apart and excluded from the rest.\n\n";
-  md += "| variant | precision | max ulp | worst x | worst x (hex) | max abs | worst x (abs) | rms ulp | cr | points | "
-        "nonfinite | time |\n";
+  md += fmt::format("# erf accuracy against the correctly rounded erf ({})\n\n",
+                    exhaustive ? "exhaustive" : "sample");
+  md +=
+      "err_ulp = |f(x) - erf(x)| / ulp(erf(x)) with the exact erf(x) (not its rounding); ulp(y) = "
+      "2^(floor(log2|y|) - 23) in float, - 52 in double (subnormal spacing below the normal "
+      "range). "
+      "`cr` = correctly rounded results. Non-finite outputs are counted apart and excluded from "
+      "the rest.\n\n";
+  md +=
+      "| variant | precision | max ulp | worst x | worst x (hex) | max abs | worst x (abs) | rms "
+      "ulp | cr | points | "
+      "nonfinite | time |\n";
   md += "|---|---|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const validate::ErfReport& r : reports) {
     const validate::ErfStats& s = r.stats;
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.4g} | {} | {} | {} | {:.2f} s |\n", r.variant, r.precision,
-                      fmt_ulp(s.max_ulp), shortest(s.worst_x, r.precision), hex(s.worst_x), fmt_abs(s.max_abs),
-                      shortest(s.worst_abs_x, r.precision),
-                      s.rms_ulp(), percent(s.correctly_rounded, s.count), group_digits(s.count), group_digits(s.nonfinite),
-                      r.seconds);
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.4g} | {} | {} | {} | {:.2f} s |\n",
+                      r.variant, r.precision, fmt_ulp(s.max_ulp), shortest(s.worst_x, r.precision),
+                      hex(s.worst_x), fmt_abs(s.max_abs), shortest(s.worst_abs_x, r.precision),
+                      s.rms_ulp(), percent(s.correctly_rounded, s.count), group_digits(s.count),
+                      group_digits(s.nonfinite), r.seconds);
   }
 
   // Histogram: rows = buckets (non-empty in some report), columns = reports.
-  md += "\n## ulp error distribution (share of points; bucket `<=2^k` holds 2^(k-1) < err <= 2^k)\n\n| bucket |";
-  for (const validate::ErfReport& r : reports) md += fmt::format(" {} {} |", r.variant, r.precision);
+  md +=
+      "\n## ulp error distribution (share of points; bucket `<=2^k` holds 2^(k-1) < err <= "
+      "2^k)\n\n| bucket |";
+  for (const validate::ErfReport& r : reports)
+    md += fmt::format(" {} {} |", r.variant, r.precision);
   md += "\n|---|";
   for (std::size_t i = 0; i < reports.size(); ++i) md += "--:|";
   md += "\n";
@@ -124,19 +136,26 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
     for (const validate::ErfReport& r : reports) any |= r.stats.histogram[b] != 0;
     if (!any) continue;
     md += fmt::format("| {} |", validate::erf_histogram_label(b));
-    for (const validate::ErfReport& r : reports) md += fmt::format(" {} |", percent(r.stats.histogram[b], r.stats.count));
+    for (const validate::ErfReport& r : reports)
+      md += fmt::format(" {} |", percent(r.stats.histogram[b], r.stats.count));
     md += "\n";
   }
 
   md += "\n## Constant region, oddness, references\n\n";
-  md += "| variant | precision | constant region from | points | not RN (= not exactly 1) | max ulp there | odd checked | "
-        "odd violations | midpoints resolved | reference self-check (double ulps) |\n";
+  md +=
+      "| variant | precision | constant region from | points | not RN (= not exactly 1) | max ulp "
+      "there | odd checked | "
+      "odd violations | midpoints resolved | reference self-check (double ulps) |\n";
   md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const validate::ErfReport& r : reports) {
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {}{} | {} | {:.3g} |\n", r.variant, r.precision, r.tail_from,
-                      group_digits(r.tail.count), group_digits(r.tail.count - r.tail.correctly_rounded + r.tail.nonfinite),
-                      fmt_ulp(r.tail.max_ulp), group_digits(r.oddness.checked), group_digits(r.oddness.violations),
-                      r.oddness.violations ? fmt::format(" (first x = {})", hex(r.oddness.first_violation_x)) : "",
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {}{} | {} | {:.3g} |\n", r.variant,
+                      r.precision, r.tail_from, group_digits(r.tail.count),
+                      group_digits(r.tail.count - r.tail.correctly_rounded + r.tail.nonfinite),
+                      fmt_ulp(r.tail.max_ulp), group_digits(r.oddness.checked),
+                      group_digits(r.oddness.violations),
+                      r.oddness.violations
+                          ? fmt::format(" (first x = {})", hex(r.oddness.first_violation_x))
+                          : "",
                       group_digits(r.ambiguous_resolved), r.reference_selfcheck_ulps);
   }
 
@@ -145,7 +164,10 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
     for (const validate::ErfReport& r : reports)
       if (r.precision == prec) rs.push_back(&r);
     if (rs.empty()) continue;
-    md += fmt::format("\n## Special values ({}; expected = correctly rounded, sign of zero kept; x marks a mismatch)\n\n| x | expected |", prec);
+    md += fmt::format(
+        "\n## Special values ({}; expected = correctly rounded, sign of zero kept; x marks a "
+        "mismatch)\n\n| x | expected |",
+        prec);
     for (const validate::ErfReport* r : rs) md += fmt::format(" {} |", r->variant);
     md += "\n|---|---|";
     for (std::size_t i = 0; i < rs.size(); ++i) md += "---|";
@@ -162,7 +184,8 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
   md += "\n## Coverage and reference\n\n";
   std::vector<std::string> seen;
   for (const validate::ErfReport& r : reports) {
-    const std::pair<const char*, const std::string*> items[] = {{"coverage", &r.coverage}, {"reference", &r.reference}};
+    const std::pair<const char*, const std::string*> items[] = {{"coverage", &r.coverage},
+                                                                {"reference", &r.reference}};
     for (const auto& [what, text] : items) {
       if (std::find(seen.begin(), seen.end(), r.precision + *text) != seen.end()) continue;
       seen.push_back(r.precision + *text);
@@ -174,15 +197,17 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
 
 std::string erf_summary_csv(const std::vector<validate::ErfReport>& reports) {
   std::string csv =
-      "variant,precision,max_ulp,worst_x,worst_x_hex,max_abs,worst_x_abs,rms_ulp,count,correctly_rounded,nonfinite,"
+      "variant,precision,max_ulp,worst_x,worst_x_hex,max_abs,worst_x_abs,rms_ulp,count,correctly_"
+      "rounded,nonfinite,"
       "tail_from,tail_count,tail_not_rn,odd_checked,odd_violations,ambiguous_resolved,seconds\n";
   for (const validate::ErfReport& r : reports) {
     const validate::ErfStats& s = r.stats;
-    csv += fmt::format("{},{},{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},{},{},{},{},{},{},{},{},{},{:.3f}\n", r.variant,
-                       r.precision, max_or_zero(s.max_ulp), s.worst_x, hex(s.worst_x), max_or_zero(s.max_abs), s.worst_abs_x,
-                       s.rms_ulp(), s.count, s.correctly_rounded, s.nonfinite, r.tail_from, r.tail.count,
-                       r.tail.count - r.tail.correctly_rounded, r.oddness.checked, r.oddness.violations,
-                       r.ambiguous_resolved, r.seconds);
+    csv += fmt::format(
+        "{},{},{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},{},{},{},{},{},{},{},{},{},{:.3f}\n",
+        r.variant, r.precision, max_or_zero(s.max_ulp), s.worst_x, hex(s.worst_x),
+        max_or_zero(s.max_abs), s.worst_abs_x, s.rms_ulp(), s.count, s.correctly_rounded,
+        s.nonfinite, r.tail_from, r.tail.count, r.tail.count - r.tail.correctly_rounded,
+        r.oddness.checked, r.oddness.violations, r.ambiguous_resolved, r.seconds);
   }
   return csv;
 }
@@ -191,8 +216,9 @@ std::string erf_histogram_csv(const std::vector<validate::ErfReport>& reports) {
   std::string csv = "variant,precision,bucket,max_ulp,count\n";
   for (const validate::ErfReport& r : reports)
     for (std::size_t i = 0; i < validate::kErfHistBuckets; ++i)
-      csv += fmt::format("{},{},{},{},{}\n", r.variant, r.precision, validate::erf_histogram_label(i), validate::erf_histogram_upper(i),
-                         r.stats.histogram[i]);
+      csv +=
+          fmt::format("{},{},{},{},{}\n", r.variant, r.precision, validate::erf_histogram_label(i),
+                      validate::erf_histogram_upper(i), r.stats.histogram[i]);
   return csv;
 }
 
@@ -200,8 +226,8 @@ std::string erf_series_csv(const validate::ErfReport& r) {
   std::string csv = "x_lo,x_hi,count,max_ulp,max_ulp_x,rms_ulp,max_abs\n";
   for (const validate::ErfBin& b : r.series) {
     const double rms = b.count ? std::sqrt(b.sum_sq_ulp / static_cast<double>(b.count)) : 0.0;
-    csv += fmt::format("{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", b.x_lo, b.x_hi, b.count, b.max_ulp,
-                       b.max_ulp_x, rms, b.max_abs);
+    csv += fmt::format("{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", b.x_lo, b.x_hi,
+                       b.count, b.max_ulp, b.max_ulp_x, rms, b.max_abs);
   }
   return csv;
 }

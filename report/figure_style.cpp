@@ -9,18 +9,24 @@ namespace sglab::report::figures_detail {
 
 std::string line_style(std::size_t i, Origin origin) {
   switch (origin) {
-    case Origin::published: return fmt::format("lw 1.6 dt 1 lc rgb '{}'", kPalette[i % kPaletteSize]);
-    case Origin::refit: return fmt::format("lw 1.8 dt (8,4) lc rgb '{}'", kPalette[i % kPaletteSize]);
-    case Origin::sglab: return fmt::format("lw 3.0 dt (12,4,3,4) lc rgb '{}'", kPalette[i % kPaletteSize]);
+    case Origin::published:
+      return fmt::format("lw 1.6 dt 1 lc rgb '{}'", kPalette[i % kPaletteSize]);
+    case Origin::refit:
+      return fmt::format("lw 1.8 dt (8,4) lc rgb '{}'", kPalette[i % kPaletteSize]);
+    case Origin::sglab:
+      return fmt::format("lw 3.0 dt (12,4,3,4) lc rgb '{}'", kPalette[i % kPaletteSize]);
   }
   return "";
 }
 
 std::string origin_suffix(Origin o) {
   switch (o) {
-    case Origin::published: return "";
-    case Origin::refit: return " (refit)";
-    case Origin::sglab: return " [sglab]";
+    case Origin::published:
+      return "";
+    case Origin::refit:
+      return " (refit)";
+    case Origin::sglab:
+      return " [sglab]";
   }
   return "";
 }
@@ -29,7 +35,8 @@ std::string origin_suffix(Origin o) {
 // shares the colour (or marker shape) of the published method it refits.
 std::string family_of(std::string_view id) {
   constexpr std::string_view suffix = "_refit";
-  if (id.size() > suffix.size() && id.substr(id.size() - suffix.size()) == suffix) id.remove_suffix(suffix.size());
+  if (id.size() > suffix.size() && id.substr(id.size() - suffix.size()) == suffix)
+    id.remove_suffix(suffix.size());
   return std::string(id);
 }
 

@@ -16,9 +16,10 @@ namespace sglab::report::figures_detail {
 inline constexpr const char* kLogFormat = "1e%T";
 
 // 20 colours that stay apart on white (one per method in the line charts).
-inline constexpr const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-                                    "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
-                                    "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#000080"};
+inline constexpr const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf",
+                                           "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173",
+                                           "#3182bd", "#e6550d", "#31a354", "#756bb1", "#000080"};
 inline constexpr std::size_t kPaletteSize = std::size(kPalette);
 
 // Line style of a method of family `i`: the family's colour; solid for

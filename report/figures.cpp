@@ -38,9 +38,10 @@ validate::SweepResult irradiance_sweep(std::vector<validate::SweepMethod>& metho
 
 std::vector<Figure> make_figures(const FiguresOptions& options) {
   if (!gnuplot_available(options.gnuplot))
-    throw GnuplotMissing(fmt::format(
-        "gnuplot ('{}') is not installed or does not run; install it (e.g. apt-get install gnuplot-nox) to render figures",
-        options.gnuplot));
+    throw GnuplotMissing(
+        fmt::format("gnuplot ('{}') is not installed or does not run; install it (e.g. apt-get "
+                    "install gnuplot-nox) to render figures",
+                    options.gnuplot));
   // Bad input and a bad output folder are refused before any figure is computed or written.
   io::check_output_folder(options.out);
   for (const fs::path& p : options.pareto)
@@ -58,8 +59,10 @@ std::vector<Figure> make_figures(const FiguresOptions& options) {
   figs.push_back(figure_f(options));
   figs.push_back(figure_g(options, methods, sweep_result));
 
-  std::string md = "# sglab figures\n\nWritten by `sglab figures`. Each figure has its data CSV, the gnuplot script "
-                   "that renders it (run `gnuplot <name>.gp` in this directory), a PNG and an SVG.\n\n";
+  std::string md =
+      "# sglab figures\n\nWritten by `sglab figures`. Each figure has its data CSV, the gnuplot "
+      "script "
+      "that renders it (run `gnuplot <name>.gp` in this directory), a PNG and an SVG.\n\n";
   for (const Figure& f : figs) {
     md += fmt::format("## {} — {}\n\n{}\n\n", f.id, f.title, f.description);
     if (f.skipped) {

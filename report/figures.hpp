@@ -40,12 +40,12 @@ struct FiguresOptions {
 };
 
 struct Figure {
-  std::string id;     // "a_clamped_cosine", …
+  std::string id;  // "a_clamped_cosine", …
   std::string title;
   std::string description;
   std::vector<std::filesystem::path> files;  // data CSV(s), script, PNG, SVG (relative to out)
   bool skipped = false;
-  std::string note;   // why skipped, or remarks
+  std::string note;  // why skipped, or remarks
 };
 
 // True when `gnuplot --version` runs.

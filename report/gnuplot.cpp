@@ -27,8 +27,8 @@ std::string gp_quote(const std::string& s) {
 
 // A CSV from a header and rows of numbers (full precision; NaN → "nan").
 // `block` > 0 inserts a blank line every `block` rows (gnuplot scan lines).
-std::string numeric_csv(const std::vector<std::string>& header, const std::vector<std::vector<double>>& rows,
-                        std::size_t block) {
+std::string numeric_csv(const std::vector<std::string>& header,
+                        const std::vector<std::vector<double>>& rows, std::size_t block) {
   std::string s;
   for (std::size_t i = 0; i < header.size(); ++i) s += (i ? "," : "") + header[i];
   s += '\n';
@@ -37,7 +37,8 @@ std::string numeric_csv(const std::vector<std::string>& header, const std::vecto
     for (std::size_t i = 0; i < rows[r].size(); ++i) {
       const double x = rows[r][i];
       s += i ? "," : "";
-      s += std::isfinite(x) ? fmt::format("{}", x) : (std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf"));
+      s += std::isfinite(x) ? fmt::format("{}", x)
+                            : (std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf"));
     }
     s += '\n';
   }
@@ -46,8 +47,8 @@ std::string numeric_csv(const std::vector<std::string>& header, const std::vecto
 
 // Writes <stem>.gp next to the data and runs gnuplot in `dir`; the body is
 // rendered once to PNG and once to SVG. Returns the script, PNG and SVG paths.
-std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem, const std::string& body, int width,
-                             int height) {
+std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
+                             const std::string& body, int width, int height) {
   const fs::path& dir = opt.out;
   auto block = [&](const std::string& terminal, const std::string& ext) {
     return fmt::format(
@@ -62,12 +63,14 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
         "set output\n",
         terminal, width, height, gp_quote(stem + "." + ext), body);
   };
-  const std::string script = fmt::format("# gnuplot script written by `sglab figures`; run in this directory.\n{}\n{}",
-                                         block("pngcairo", "png"), block("svg", "svg"));
+  const std::string script =
+      fmt::format("# gnuplot script written by `sglab figures`; run in this directory.\n{}\n{}",
+                  block("pngcairo", "png"), block("svg", "svg"));
   const fs::path gp = dir / (stem + ".gp");
   const fs::path log = dir / (stem + ".gp.log");
   // gnuplot opens its outputs itself: refuse first what is not a regular file there.
-  for (const fs::path& p : {log, dir / (stem + ".png"), dir / (stem + ".svg")}) io::check_output_path(p);
+  for (const fs::path& p : {log, dir / (stem + ".png"), dir / (stem + ".svg")})
+    io::check_output_path(p);
   io::write_file_atomic(gp, script);
   // No shell: gnuplot runs in `dir` with an argument vector.
   const int status = io::run_program({opt.gnuplot, stem + ".gp"}, dir, stem + ".gp.log");
@@ -78,19 +81,20 @@ std::vector<fs::path> render(const FiguresOptions& opt, const std::string& stem,
       if (tail.size() > 2000) tail = tail.substr(tail.size() - 2000);
     } catch (...) {
     }
-    throw std::runtime_error(fmt::format("gnuplot failed on {} (exit status {}); log {}:\n{}", gp.string(), status,
-                                         log.string(), tail));
+    throw std::runtime_error(fmt::format("gnuplot failed on {} (exit status {}); log {}:\n{}",
+                                         gp.string(), status, log.string(), tail));
   }
   {
     std::error_code ec;
-    if (fs::file_size(log, ec) == 0 && !ec) fs::remove(log, ec);  // keep the log only when gnuplot said something
+    if (fs::file_size(log, ec) == 0 && !ec)
+      fs::remove(log, ec);  // keep the log only when gnuplot said something
   }
   for (const char* ext : {"png", "svg"}) {
     const fs::path p = dir / (stem + "." + ext);
     std::error_code ec;
     if (!fs::exists(p, ec) || fs::file_size(p, ec) == 0)
-      throw std::runtime_error(fmt::format("gnuplot ran {} but {} is missing or empty (log {})", gp.string(), p.string(),
-                                           log.string()));
+      throw std::runtime_error(fmt::format("gnuplot ran {} but {} is missing or empty (log {})",
+                                           gp.string(), p.string(), log.string()));
   }
   return {stem + ".gp", stem + ".png", stem + ".svg"};
 }

@@ -67,8 +67,7 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget, 
       if (it->cost > limit) continue;
       if (best == remaining.end() || it->max_peak_rel < best->max_peak_rel ||
           (it->max_peak_rel == best->max_peak_rel &&
-           (it->cost < best->cost ||
-            (it->cost == best->cost && it->method < best->method))))
+           (it->cost < best->cost || (it->cost == best->cost && it->method < best->method))))
         best = it;
     }
     r.ranked.push_back(*best);
@@ -88,7 +87,8 @@ validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi) {
   return g;
 }
 
-std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, validate::FloatFormat f) {
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
+                                           validate::FloatFormat f) {
   const validate::SweepGrid grid = pareto_grid(kappa_lo, kappa_hi);
   grid.validate();
   std::vector<validate::SweepMethod> methods;
@@ -114,7 +114,8 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, val
   return out;
 }
 
-void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode, int repetitions, double min_time) {
+void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode,
+                int repetitions, double min_time) {
   CostOptions options;
   options.repetitions = repetitions;
   options.min_time = min_time;
@@ -134,38 +135,46 @@ namespace {
 
 // The rows of gpu:FAMILY in the table (unsplit float GLSL), or CostTableError.
 std::vector<const shader::gpu::Row*> gpu_rows(const CostTable& table, const std::string& family) {
-  const std::string where = table.path.empty() ? std::string("the cost table") : table.path.string();
+  const std::string where =
+      table.path.empty() ? std::string("the cost table") : table.path.string();
   if (!table.gpu)
-    throw CostTableError(fmt::format("--cost gpu:{}: {} has no \"gpu\" section (write it with `sglab gpucost --out "
-                                     "DIR`, or choose --cost cpu-batch)",
-                                     family, where));
+    throw CostTableError(
+        fmt::format("--cost gpu:{}: {} has no \"gpu\" section (write it with `sglab gpucost --out "
+                    "DIR`, or choose --cost cpu-batch)",
+                    family, where));
   std::vector<const shader::gpu::Row*> rows;
   std::vector<std::string> families;
   for (const shader::gpu::Row& r : table.gpu->rows) {
-    if (std::find(families.begin(), families.end(), r.family) == families.end()) families.push_back(r.family);
-    if (r.family == family && r.lang == shader::Language::glsl && !r.split && r.precision == "float")
+    if (std::find(families.begin(), families.end(), r.family) == families.end())
+      families.push_back(r.family);
+    if (r.family == family && r.lang == shader::Language::glsl && !r.split &&
+        r.precision == "float")
       rows.push_back(&r);
   }
   if (rows.empty())
-    throw CostTableError(fmt::format("--cost gpu:{}: {} has no GLSL rows for family '{}' (it has: {})", family, where,
-                                     family, families.empty() ? "none" : fmt::format("{}", fmt::join(families, ", "))));
+    throw CostTableError(fmt::format(
+        "--cost gpu:{}: {} has no GLSL rows for family '{}' (it has: {})", family, where, family,
+        families.empty() ? "none" : fmt::format("{}", fmt::join(families, ", "))));
   return rows;
 }
 
 }  // namespace
 
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table,
-                                    const CostSource& source) {
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
+                                    const CostTable& table, const CostSource& source) {
   std::vector<std::string> missing;
   const double none = std::numeric_limits<double>::quiet_NaN();
   if (source.kind == CostSourceKind::gpu) {
     if (f != validate::FloatFormat::binary32)
-      throw std::invalid_argument(fmt::format("--cost {}: the GPU cost is that of the float shader export; use "
-                                              "--precision float or a cpu-* cost",
-                                              source.name()));
+      throw std::invalid_argument(
+          fmt::format("--cost {}: the GPU cost is that of the float shader export; use "
+                      "--precision float or a cpu-* cost",
+                      source.name()));
     const std::vector<const shader::gpu::Row*> rows = gpu_rows(table, source.family);
     for (MethodPoint& p : points) {
-      const auto it = std::find_if(rows.begin(), rows.end(), [&](const shader::gpu::Row* r) { return r->method == p.method; });
+      const auto it = std::find_if(rows.begin(), rows.end(), [&](const shader::gpu::Row* r) {
+        return r->method == p.method;
+      });
       p.cost = it == rows.end() ? none : static_cast<double>((*it)->stats.inverse_throughput);
       p.cost_unit = std::string(source.unit());
       if (it == rows.end()) missing.push_back(p.method);
@@ -181,26 +190,31 @@ std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::
   return missing;
 }
 
-validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi,
-                   const CostSource& source, std::string_view cost_from) {
-  validate::Table t(fmt::format("Speed against accuracy ({}): {} against max peak_rel over κ in [{}, {}] "
-                      "(29 κ × 41 c); frontier = not dominated{}",
-                      to_string(f), source.describe(), kappa_lo, kappa_hi,
-                      cost_from.empty() ? std::string() : fmt::format(". Cost: {}", cost_from)),
-          {{"method"},
-           {"origin"},
-           {"precision"},
-           {"kappa_lo", 4},
-           {"kappa_hi", 4},
-           {"cost", 3},
-           {"cost_unit"},
-           {"cost_source"},
-           {"max_peak_rel", 3},
-           {"frontier"}});
+validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
+                             double kappa_lo, double kappa_hi, const CostSource& source,
+                             std::string_view cost_from) {
+  validate::Table t(
+      fmt::format("Speed against accuracy ({}): {} against max peak_rel over κ in [{}, {}] "
+                  "(29 κ × 41 c); frontier = not dominated{}",
+                  to_string(f), source.describe(), kappa_lo, kappa_hi,
+                  cost_from.empty() ? std::string() : fmt::format(". Cost: {}", cost_from)),
+      {{"method"},
+       {"origin"},
+       {"precision"},
+       {"kappa_lo", 4},
+       {"kappa_hi", 4},
+       {"cost", 3},
+       {"cost_unit"},
+       {"cost_source"},
+       {"max_peak_rel", 3},
+       {"frontier"}});
   for (const MethodPoint& p : points)
-    t.add_row({validate::Table::text(p.method), validate::Table::text(std::string(to_string(p.origin))), validate::Table::text(to_string(f)),
-               validate::Table::real(kappa_lo), validate::Table::real(kappa_hi), validate::Table::real(p.cost), validate::Table::text(p.cost_unit),
-               validate::Table::text(source.name()), validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0)});
+    t.add_row(
+        {validate::Table::text(p.method), validate::Table::text(std::string(to_string(p.origin))),
+         validate::Table::text(to_string(f)), validate::Table::real(kappa_lo),
+         validate::Table::real(kappa_hi), validate::Table::real(p.cost),
+         validate::Table::text(p.cost_unit), validate::Table::text(source.name()),
+         validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0)});
   return t;
 }
 
@@ -260,7 +274,8 @@ bool parse_bool(const std::string& s, bool& out) {
   return false;
 }
 
-double parse_number(const std::string& s, const std::filesystem::path& path, std::size_t line, const char* col) {
+double parse_number(const std::string& s, const std::filesystem::path& path, std::size_t line,
+                    const char* col) {
   std::string t = s;
   if (t == "nan" || t.empty()) return std::nan("");
   if (t == "inf") return INFINITY;
@@ -270,21 +285,23 @@ double parse_number(const std::string& s, const std::filesystem::path& path, std
     if (pos == t.size()) return x;
   } catch (...) {
   }
-  throw std::invalid_argument(fmt::format("{}:{}: column {}: '{}' is not a number", path.string(), line, col, s));
+  throw std::invalid_argument(
+      fmt::format("{}:{}: column {}: '{}' is not a number", path.string(), line, col, s));
 }
 
 }  // namespace
 
 std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
   const std::string text = io::read_input_file(path, kMaxParetoCsvBytes, "a Pareto CSV");
-  std::istringstream in(std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
+  std::istringstream in(
+      std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
   std::string line;
   std::size_t lineno = 0;
   std::vector<std::string> header;
   std::map<std::string, std::size_t> col;
   std::vector<ParetoRow> rows;
-  static const char* kRequired[] = {"method", "origin", "precision", "kappa_lo", "kappa_hi", "max_peak_rel",
-                                     "frontier"};
+  static const char* kRequired[] = {"method",   "origin",       "precision", "kappa_lo",
+                                    "kappa_hi", "max_peak_rel", "frontier"};
   bool legacy = false;  // ns_per_eval instead of cost, cost_unit, cost_source
   while (std::getline(in, line)) {
     ++lineno;
@@ -295,21 +312,23 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
       for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
       for (const char* r : kRequired)
         if (!col.count(r))
-          throw std::invalid_argument(fmt::format("{}: header lacks column '{}' (expected "
-                                                  "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,"
-                                                  "cost_source,max_peak_rel,frontier)",
-                                                  path.string(), r));
+          throw std::invalid_argument(
+              fmt::format("{}: header lacks column '{}' (expected "
+                          "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,"
+                          "cost_source,max_peak_rel,frontier)",
+                          path.string(), r));
       legacy = !col.count("cost") && col.count("ns_per_eval");
       for (const char* r : {"cost", "cost_unit", "cost_source"})
         if (!legacy && !col.count(r))
-          throw std::invalid_argument(fmt::format("{}: header lacks column '{}' (nor has it the ns_per_eval of an "
-                                                  "older `sglab pareto`)",
-                                                  path.string(), r));
+          throw std::invalid_argument(
+              fmt::format("{}: header lacks column '{}' (nor has it the ns_per_eval of an "
+                          "older `sglab pareto`)",
+                          path.string(), r));
       continue;
     }
     if (cells.size() != header.size())
-      throw std::invalid_argument(
-          fmt::format("{}:{}: {} fields, the header has {}", path.string(), lineno, cells.size(), header.size()));
+      throw std::invalid_argument(fmt::format("{}:{}: {} fields, the header has {}", path.string(),
+                                              lineno, cells.size(), header.size()));
     ParetoRow r;
     r.method = cells[col["method"]];
     r.precision = cells[col["precision"]];
@@ -321,19 +340,23 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
     else if (origin == to_string(Origin::sglab))
       r.origin = Origin::sglab;
     else
-      throw std::invalid_argument(fmt::format("{}:{}: origin '{}' is not one of published, refit, sglab",
-                                              path.string(), lineno, origin));
+      throw std::invalid_argument(
+          fmt::format("{}:{}: origin '{}' is not one of published, refit, sglab", path.string(),
+                      lineno, origin));
     if (!parse_bool(cells[col["frontier"]], r.frontier))
-      throw std::invalid_argument(fmt::format("{}:{}: frontier must be true/false", path.string(), lineno));
+      throw std::invalid_argument(
+          fmt::format("{}:{}: frontier must be true/false", path.string(), lineno));
     r.kappa_lo = parse_number(cells[col["kappa_lo"]], path, lineno, "kappa_lo");
     r.kappa_hi = parse_number(cells[col["kappa_hi"]], path, lineno, "kappa_hi");
-    r.cost = parse_number(cells[col[legacy ? "ns_per_eval" : "cost"]], path, lineno, legacy ? "ns_per_eval" : "cost");
+    r.cost = parse_number(cells[col[legacy ? "ns_per_eval" : "cost"]], path, lineno,
+                          legacy ? "ns_per_eval" : "cost");
     r.cost_unit = legacy ? "ns" : cells[col["cost_unit"]];
     r.cost_source = legacy ? "cpu-batch" : cells[col["cost_source"]];
     r.max_peak_rel = parse_number(cells[col["max_peak_rel"]], path, lineno, "max_peak_rel");
     rows.push_back(std::move(r));
   }
-  if (header.empty()) throw std::invalid_argument(fmt::format("{}: empty file (no header)", path.string()));
+  if (header.empty())
+    throw std::invalid_argument(fmt::format("{}: empty file (no header)", path.string()));
   return rows;
 }
 

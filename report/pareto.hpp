@@ -36,7 +36,7 @@ struct MethodPoint {
   Origin origin = Origin::published;  // from the registry (Method::origin)
   double cost = 0;                    // in cost_unit; NaN: no cost in the chosen source
   std::string cost_unit = "ns";       // CostSource::unit(): "cycles" or "ns"
-  double max_peak_rel = 0;  // +inf on non-finite output, NaN if nothing was measured
+  double max_peak_rel = 0;            // +inf on non-finite output, NaN if nothing was measured
   bool frontier = false;
 };
 
@@ -69,13 +69,14 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget,
 // {lo, hi, 29, 41} (see above). In registry order; cost left 0.
 // Throws std::invalid_argument on an invalid range.
 validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
-std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, validate::FloatFormat f);
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
+                                           validate::FloatFormat f);
 
 // Fills cost (ns) with the median CPU cost in precision `f` and `mode` (batch
 // or scalar; measure_costs, `repetitions` × `min_time` s per method): live
 // timing, which differs from run to run.
-void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode, int repetitions = 5,
-                double min_time = 0.01);
+void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode,
+                int repetitions = 5, double min_time = 0.01);
 
 // Fills cost and cost_unit from a cost table (cost_table.hpp) in `source`:
 // cpu-*: the irradiance batch/scalar ns of precision `f`; gpu:FAMILY: the
@@ -85,15 +86,16 @@ void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostM
 // those methods. Throws CostTableError naming the table when the source has no
 // rows at all (no "gpu" section, FAMILY not in it: the families it has are
 // named), std::invalid_argument for gpu:* with f double.
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, const CostTable& table,
-                                    const CostSource& source);
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
+                                    const CostTable& table, const CostSource& source);
 
 // method, origin, precision, kappa_lo, kappa_hi, cost, cost_unit, cost_source,
 // max_peak_rel, frontier (origin published/refit/sglab, frontier 0/1,
 // cost_source CostSource::name()); the title names the source and, when
 // given, where its costs came from (`cost_from`: table, driver or machine).
-validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f, double kappa_lo, double kappa_hi,
-                   const CostSource& source, std::string_view cost_from = {});
+validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
+                             double kappa_lo, double kappa_hi, const CostSource& source,
+                             std::string_view cost_from = {});
 
 // Whole-string finite number.
 bool parse_number(std::string_view text, double& out);

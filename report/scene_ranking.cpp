@@ -10,9 +10,11 @@
 
 namespace sglab::report {
 
-std::vector<MethodPoint> scene_points(const validate::Scene& scene, const std::vector<validate::Vec3>& normals,
+std::vector<MethodPoint> scene_points(const validate::Scene& scene,
+                                      const std::vector<validate::Vec3>& normals,
                                       validate::FloatFormat precision) {
-  const std::vector<double> errors = validate::scene_errors(scene, normals, irradiance_methods, precision);
+  const std::vector<double> errors =
+      validate::scene_errors(scene, normals, irradiance_methods, precision);
   std::vector<MethodPoint> points;
   for (std::size_t i = 0; i < std::size(irradiance_methods); ++i) {
     MethodPoint p;
@@ -24,8 +26,8 @@ std::vector<MethodPoint> scene_points(const validate::Scene& scene, const std::v
   return points;
 }
 
-SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene, double budget,
-                        validate::FloatFormat precision) {
+SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene,
+                        double budget, validate::FloatFormat precision) {
   SceneRanking r;
   r.recommendation = recommend(points, budget);
   r.kappa_lo = std::max(scene.kappa_min(), 1e-3);
@@ -41,7 +43,8 @@ SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::
       }
   }
   for (const auto& m : r.models_on_range)
-    if (m.max_peak_rel <= budget && std::isfinite(m.cost) && (!r.sufficient || m.cost < r.sufficient->cost))
+    if (m.max_peak_rel <= budget && std::isfinite(m.cost) &&
+        (!r.sufficient || m.cost < r.sufficient->cost))
       r.sufficient = m;
   return r;
 }

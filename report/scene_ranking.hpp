@@ -16,7 +16,8 @@ namespace sglab::report {
 // Every irradiance method of the registry with its scene error in
 // max_peak_rel (validate::scene_errors at `normals`); cost left 0 for the
 // caller's cost source.
-std::vector<MethodPoint> scene_points(const validate::Scene& scene, const std::vector<validate::Vec3>& normals,
+std::vector<MethodPoint> scene_points(const validate::Scene& scene,
+                                      const std::vector<validate::Vec3>& normals,
                                       validate::FloatFormat precision);
 
 struct SceneRanking {
@@ -29,7 +30,7 @@ struct SceneRanking {
 };
 
 // `points` with costs filled. κ = 0 lights: the range starts at 1e-3.
-SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene, double budget,
-                        validate::FloatFormat precision);
+SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene,
+                        double budget, validate::FloatFormat precision);
 
 }  // namespace sglab::report

@@ -14,7 +14,8 @@ class FiniteResidualsEnvironment final : public ::testing::Environment {
  public:
   void TearDown() override {
     EXPECT_EQ(sglab::fit::nonfinite_residual_evaluations(), 0u)
-        << "a fit in this process evaluated a NaN or inf residual (a model defect on the search space)";
+        << "a fit in this process evaluated a NaN or inf residual (a model defect on the search "
+           "space)";
   }
 };
 

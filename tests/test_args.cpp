@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/args.hpp"
-#include "validate/sweep.hpp"
 #include "tests/test_support.hpp"
+#include "validate/sweep.hpp"
 
 namespace {
 
@@ -38,7 +38,8 @@ std::string error_of(std::string_view text, const KappaRangeRules& rules) {
 }
 KappaRange accepted(std::string_view text, const KappaRangeRules& rules) {
   const auto r = parse_kappa_range(text, rules);
-  if (const auto* why = std::get_if<std::string>(&r)) ADD_FAILURE() << "'" << text << "' refused: " << *why;
+  if (const auto* why = std::get_if<std::string>(&r))
+    ADD_FAILURE() << "'" << text << "' refused: " << *why;
   return std::holds_alternative<KappaRange>(r) ? std::get<KappaRange>(r) : KappaRange{};
 }
 
@@ -56,32 +57,42 @@ TEST(KappaRange, PlainDecimalsAccepted) {
 }
 
 TEST(KappaRange, OnlyPlainDecimals) {
-  for (const char* bad : {"0x1p3:10", "+1:10", " 1:10", "1 :10", "1:10 ", "1:\t10", "1e:10", "1e+:10", ".:10",
-                          "1:10x", "inf:10", "1:nan", "1:infinity", "--1:10", "1..2:3", "1:1e4.5", ":", "1:"}) {
+  for (const char* bad :
+       {"0x1p3:10", "+1:10", " 1:10", "1 :10", "1:10 ", "1:\t10", "1e:10", "1e+:10", ".:10",
+        "1:10x", "inf:10", "1:nan", "1:infinity", "--1:10", "1..2:3", "1:1e4.5", ":", "1:"}) {
     const std::string e = error_of(bad, range());
     EXPECT_NE(e.find("not a number"), std::string::npos) << "'" << bad << "' gave: " << e;
   }
-  for (const char* bad : {"", "1", "1:2:3", "1:2:3:4"}) EXPECT_NE(error_of(bad, range()).find("expected LO:HI"), std::string::npos) << bad;
-  for (const char* bad : {"1:2", "1:2:3:4"}) EXPECT_NE(error_of(bad, grid()).find("expected LO:HI:N"), std::string::npos) << bad;
+  for (const char* bad : {"", "1", "1:2:3", "1:2:3:4"})
+    EXPECT_NE(error_of(bad, range()).find("expected LO:HI"), std::string::npos) << bad;
+  for (const char* bad : {"1:2", "1:2:3:4"})
+    EXPECT_NE(error_of(bad, grid()).find("expected LO:HI:N"), std::string::npos) << bad;
 }
 
 TEST(KappaRange, OverflowAndUnderflowSayOutOfRange) {
-  for (const char* bad : {"1:1e400", "1e-400:1", "1:1000000000000000000000000000000000000000000000000000000000000000000"
-                                                  "000000000000000000000000000000000000000000000000000000000000000000000"
-                                                  "000000000000000000000000000000000000000000000000000000000000000000000"
-                                                  "000000000000000000000000000000000000000000000000000000000000000000000"
-                                                  "0000000000000000000000000000000000000000000000"}) {
+  for (const char* bad : {"1:1e400", "1e-400:1",
+                          "1:1000000000000000000000000000000000000000000000000000000000000000000"
+                          "000000000000000000000000000000000000000000000000000000000000000000000"
+                          "000000000000000000000000000000000000000000000000000000000000000000000"
+                          "000000000000000000000000000000000000000000000000000000000000000000000"
+                          "0000000000000000000000000000000000000000000000"}) {
     const std::string e = error_of(bad, range(sglab::io::kDoubleFormat));
     EXPECT_NE(e.find("out of range"), std::string::npos) << e;
     EXPECT_EQ(e.find("not a number"), std::string::npos) << e;
   }
-  EXPECT_NE(error_of("0.0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
-                     "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
-                     "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
-                     "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000001:1",
-                     range(sglab::io::kDoubleFormat))
-                .find("nonzero but smaller"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(
+          "0."
+          "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+          "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+          "0000"
+          "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+          "0000"
+          "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+          "0001:1",
+          range(sglab::io::kDoubleFormat))
+          .find("nonzero but smaller"),
+      std::string::npos);
   EXPECT_NE(error_of("1:2:99999999999999999999", grid()).find("out of range"), std::string::npos);
 }
 
@@ -94,8 +105,10 @@ TEST(KappaRange, PrecisionOfUseDecidesTinyAndHugeBounds) {
   // 1e-45 rounds to the smallest float subnormal 2^-149: accepted.
   EXPECT_EQ(accepted("1e-45:1", range()).lo, 1e-45);
   // Half: the smallest subnormal is 2^-24 ≈ 5.96e-8, the largest finite 65504.
-  EXPECT_NE(error_of("2e-8:1", range(sglab::io::kHalfFormat)).find("rounds to 0 in half"), std::string::npos);
-  EXPECT_NE(error_of("1:1e5", range(sglab::io::kHalfFormat)).find("largest finite half"), std::string::npos);
+  EXPECT_NE(error_of("2e-8:1", range(sglab::io::kHalfFormat)).find("rounds to 0 in half"),
+            std::string::npos);
+  EXPECT_NE(error_of("1:1e5", range(sglab::io::kHalfFormat)).find("largest finite half"),
+            std::string::npos);
   EXPECT_NE(error_of("1:1e39", range()).find("largest finite float"), std::string::npos);
   EXPECT_EQ(accepted("1:1e39", range(sglab::io::kDoubleFormat)).hi, 1e39);
 }
@@ -109,7 +122,8 @@ TEST(KappaRange, BoundsAndCount) {
   EXPECT_NE(error_of("1:2:1", grid()).find("N = 1 needs LO = HI"), std::string::npos);
   EXPECT_EQ(accepted("3:3:1", grid()).count, 1);
   EXPECT_EQ(accepted("1:2:100000", grid()).count, sglab::io::kMaxKappaCount);
-  EXPECT_NE(error_of("1:2:100001", grid()).find("out of range (at most 100000)"), std::string::npos);
+  EXPECT_NE(error_of("1:2:100001", grid()).find("out of range (at most 100000)"),
+            std::string::npos);
 }
 
 TEST(KappaRange, MessagesEscapeTheTextAndStayShort) {
@@ -129,14 +143,16 @@ TEST(KappaRange, MessagesEscapeTheTextAndStayShort) {
 }
 
 TEST(LogSpaced, SortedAndExactAtTheEnds) {
-  for (const auto& [lo, hi, n] : {std::tuple{5.0, 5.0, 4}, std::tuple{1e-3, 1e4, 29}, std::tuple{0.1, 0.3, 7},
-                                   std::tuple{1e-310, 1e300, 1000}, std::tuple{3.0, 3.0000000000000004, 50}}) {
+  for (const auto& [lo, hi, n] :
+       {std::tuple{5.0, 5.0, 4}, std::tuple{1e-3, 1e4, 29}, std::tuple{0.1, 0.3, 7},
+        std::tuple{1e-310, 1e300, 1000}, std::tuple{3.0, 3.0000000000000004, 50}}) {
     const auto v = sglab::io::log_spaced(lo, hi, n);
     ASSERT_EQ(v.size(), static_cast<std::size_t>(n));
     EXPECT_EQ(v.front(), lo);
     EXPECT_EQ(v.back(), hi);
     for (std::size_t i = 1; i < v.size(); ++i) {
-      EXPECT_LE(v[i - 1], v[i]) << "at " << i << ": " << sglab::test::hex(v[i - 1]) << " > " << sglab::test::hex(v[i]);
+      EXPECT_LE(v[i - 1], v[i]) << "at " << i << ": " << sglab::test::hex(v[i - 1]) << " > "
+                                << sglab::test::hex(v[i]);
       EXPECT_GE(v[i], lo);
       EXPECT_LE(v[i], hi);
     }
@@ -167,16 +183,18 @@ TEST(KappaRangeCli, EveryCommandRefusesTheSameBadText) {
     const bool with_count = base[0] == "sweep";
     const std::string n = with_count ? ":5" : "";
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"0x1p3:10" + n, "is not a number"},  {"+1:10" + n, "is not a number"},
-        {" 1:10" + n, "is not a number"},     {"1:1e400" + n, "out of range"},
+        {"0x1p3:10" + n, "is not a number"},     {"+1:10" + n, "is not a number"},
+        {" 1:10" + n, "is not a number"},        {"1:1e400" + n, "out of range"},
         {"1e-46:1" + n, "rounds to 0 in float"}, {"10:1" + n, "HI must be >= LO"}};
     for (const auto& [text, want] : cases) {
       std::vector<std::string> args = base;
       args.push_back(text);
       const auto r = sglab::test::run_sglab(args);
       EXPECT_EQ(r.exit_code, 2) << base[0] << " " << text << "\n" << r.output;
-      EXPECT_NE(r.output.find("--kappa: "), std::string::npos) << base[0] << " " << text << "\n" << r.output;
-      EXPECT_NE(r.output.find(want), std::string::npos) << base[0] << " " << text << "\n" << r.output;
+      EXPECT_NE(r.output.find("--kappa: "), std::string::npos) << base[0] << " " << text << "\n"
+                                                               << r.output;
+      EXPECT_NE(r.output.find(want), std::string::npos) << base[0] << " " << text << "\n"
+                                                        << r.output;
     }
   }
 }
@@ -184,7 +202,9 @@ TEST(KappaRangeCli, EveryCommandRefusesTheSameBadText) {
 TEST(KappaRangeCli, FitAcceptsSubnormalKappaInDouble) {
   // 1e-310 is valid where κ is used in double (clamped-cosine --precision double),
   // and refused in float (the default), naming the precision.
-  auto r = sglab::test::run_sglab({"fit", "clamped-cosine", "--precision", "double", "--kappa", "1e-310:1", "--dry-run", "--json"}, false);
+  auto r = sglab::test::run_sglab({"fit", "clamped-cosine", "--precision", "double", "--kappa",
+                                   "1e-310:1", "--dry-run", "--json"},
+                                  false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   EXPECT_EQ(j["dry_run"], true);
@@ -200,10 +220,12 @@ TEST(KappaRangeCli, SweepEqualBoundsGiveEqualKappas) {
   namespace fs = std::filesystem;
   const sglab::test::TempDir tmp("args");
   const fs::path dir = tmp.path / "out";
-  const auto r = sglab::test::run_sglab(
-      {"sweep", "--kappa", "5:5:4", "--cosines", "3", "--method", "tokuyoshi2024", "--out", dir.string(), "--json"}, false);
+  const auto r = sglab::test::run_sglab({"sweep", "--kappa", "5:5:4", "--cosines", "3", "--method",
+                                         "tokuyoshi2024", "--out", dir.string(), "--json"},
+                                        false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string csv = sglab::test::run_program({"cat", (dir / "per_kappa.csv").string()}).output;
+  const std::string csv =
+      sglab::test::run_program({"cat", (dir / "per_kappa.csv").string()}).output;
   // Every κ column of per_kappa.csv is exactly 5 (4 rows per method and precision).
   std::size_t rows = 0;
   std::size_t pos = csv.find('\n');

@@ -15,8 +15,8 @@
 
 #include <sglab/sglab.hpp>
 
-#include "validate/reference.hpp"
 #include "tests/test_support.hpp"
+#include "validate/reference.hpp"
 
 namespace {
 
@@ -24,7 +24,8 @@ using sglab::test::hex;
 namespace bf = sglab::branch_free;
 
 // x = ±10^u, u uniform on [lo, hi].
-std::vector<float> log_uniform(std::size_t n, double lo, double hi, double sign, std::uint64_t seed) {
+std::vector<float> log_uniform(std::size_t n, double lo, double hi, double sign,
+                               std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(lo, hi);
   std::vector<float> x(n);
@@ -43,7 +44,8 @@ TEST(BranchFree, ExpRelativeErrorWithinTwoUlp) {
     ASSERT_LE(std::abs(got - want), 2 * std::numeric_limits<float>::epsilon() * want) << hex(x);
   }
   // Far below the float range: exactly 0, never NaN.
-  for (float x : {-87.5f, -100.0f, -1e30f, -std::numeric_limits<float>::infinity()}) EXPECT_EQ(bf::exp_bf(x), 0.0f);
+  for (float x : {-87.5f, -100.0f, -1e30f, -std::numeric_limits<float>::infinity()})
+    EXPECT_EQ(bf::exp_bf(x), 0.0f);
 }
 
 TEST(BranchFree, Expm1RelativeErrorWithinThreeUlpForNonPositive) {
@@ -52,7 +54,8 @@ TEST(BranchFree, Expm1RelativeErrorWithinThreeUlpForNonPositive) {
   for (float x : xs) {
     const double want = std::expm1(static_cast<double>(x));
     const double got = bf::expm1_bf(x);
-    ASSERT_LE(std::abs(got - want), 3 * std::numeric_limits<float>::epsilon() * std::abs(want)) << hex(x);
+    ASSERT_LE(std::abs(got - want), 3 * std::numeric_limits<float>::epsilon() * std::abs(want))
+        << hex(x);
   }
   EXPECT_EQ(bf::expm1_bf(0.0f), 0.0f);
   EXPECT_EQ(bf::expm1_bf(-1e30f), -1.0f);
@@ -68,7 +71,8 @@ TEST(BranchFree, ErfcAbsoluteErrorWithinSixTimesTenToMinusSeven) {
     const double want = std::erfc(static_cast<double>(x));
     ASSERT_LE(std::abs(bf::erfc_bf(x) - want), std::abs(x) < 0.75f ? 6.5e-7 : 3e-7) << hex(x);
   }
-  for (float x : {1e4f, 1e19f, std::numeric_limits<float>::max(), std::numeric_limits<float>::infinity()}) {
+  for (float x :
+       {1e4f, 1e19f, std::numeric_limits<float>::max(), std::numeric_limits<float>::infinity()}) {
     EXPECT_EQ(bf::erfc_bf(x), 0.0f) << hex(x);
     EXPECT_EQ(bf::erfc_bf(-x), 2.0f) << hex(x);
   }
@@ -76,10 +80,12 @@ TEST(BranchFree, ErfcAbsoluteErrorWithinSixTimesTenToMinusSeven) {
 
 TEST(BranchFree, SqrtWithinOneUlp) {
   std::vector<float> ys = log_uniform(300000, -37, 38, 1, 4);
-  ys.insert(ys.end(), {1.0f, 4.0f, 2.0f, std::numeric_limits<float>::min(), std::numeric_limits<float>::max() / 2});
+  ys.insert(ys.end(), {1.0f, 4.0f, 2.0f, std::numeric_limits<float>::min(),
+                       std::numeric_limits<float>::max() / 2});
   for (float y : ys) {
     const double want = std::sqrt(static_cast<double>(y));
-    ASSERT_LE(std::abs(bf::sqrt_bf(y) - want), std::numeric_limits<float>::epsilon() * want) << hex(y);
+    ASSERT_LE(std::abs(bf::sqrt_bf(y) - want), std::numeric_limits<float>::epsilon() * want)
+        << hex(y);
   }
   EXPECT_EQ(bf::sqrt_bf(0.0f), 0.0f);
 }
@@ -97,7 +103,8 @@ TEST(BranchFree, SelectMinMaxClamp) {
 // The float pole series (11 terms) and closed forms against the naive formula
 // in long double where it is accurate, and against double, on both sides of κ = 1.
 TEST(PoleSeries, FloatAndDoubleMatchAcrossKappaOne) {
-  for (double kappa : {0.0, 1e-30, 1e-6, 0.01, 0.25, 0.5, 0.9, 0.99999994, 1.0, 1.0000001, 1.5, 3.0, 50.0, 1e6}) {
+  for (double kappa :
+       {0.0, 1e-30, 1e-6, 0.01, 0.25, 0.5, 0.9, 0.99999994, 1.0, 1.0000001, 1.5, 3.0, 50.0, 1e6}) {
     SCOPED_TRACE(hex(kappa));
     const auto d = sglab::irradiance_poles_over_two_pi(kappa);
     const auto f = sglab::irradiance_poles_over_two_pi(static_cast<float>(kappa));
@@ -125,7 +132,8 @@ TEST(Tokuyoshi2024Batch, PeakRelAgainstReferenceUnchanged) {
   std::vector<sglab::validate::Query> q;
   for (double kappa : sglab::test::standard_kappas())
     for (double cosine : sglab::test::standard_cosines())
-      q.push_back({static_cast<double>(static_cast<float>(kappa)), static_cast<double>(static_cast<float>(cosine))});
+      q.push_back({static_cast<double>(static_cast<float>(kappa)),
+                   static_cast<double>(static_cast<float>(cosine))});
   const auto ref = engine.evaluate(q);
   std::vector<float> c, k, out(q.size());
   for (const auto& p : q) {

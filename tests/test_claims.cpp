@@ -58,7 +58,9 @@ TEST(Claims, GaussianProductIdentityAtRandomPoints) {
   for (int i = 0; i < 1000; ++i) {
     const double m1 = mu(rng), l1 = lam(rng), m2 = mu(rng), l2 = lam(rng), x = xs(rng);
     const auto p = gaussian_product(m1, l1, m2, l2);
-    const auto g = [](double t, double m, double l) { return std::exp(-(t - m) * (t - m) / (l * l)); };
+    const auto g = [](double t, double m, double l) {
+      return std::exp(-(t - m) * (t - m) / (l * l));
+    };
     const double lhs = g(x, m1, l1) * g(x, m2, l2), rhs = p.b * g(x, p.mu, p.lambda);
     if (lhs < 1e-250) continue;
     EXPECT_NEAR(rhs / lhs, 1.0, 1e-11) << "trial " << i;
@@ -72,7 +74,9 @@ TEST(Claims, CircularGaussianProductIdentityAtRandomPoints) {
   for (int i = 0; i < 1000; ++i) {
     const double m1 = mu(rng), l1 = lam(rng), m2 = mu(rng), l2 = lam(rng), x = mu(rng);
     const auto p = circular_gaussian_product(m1, l1, m2, l2);
-    const auto g = [](double t, double m, double l) { return std::exp(2 * (std::cos(t - m) - 1) / (l * l)); };
+    const auto g = [](double t, double m, double l) {
+      return std::exp(2 * (std::cos(t - m) - 1) / (l * l));
+    };
     const double lhs = g(x, m1, l1) * g(x, m2, l2), rhs = p.b * g(x, p.mu, p.lambda);
     if (lhs < 1e-250) continue;
     EXPECT_NEAR(rhs / lhs, 1.0, 1e-11) << "trial " << i;

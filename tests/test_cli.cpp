@@ -29,9 +29,11 @@ TEST(Cli, UnknownSubcommandIsNamed) {
 }
 
 TEST(Cli, CommandLineErrorsExitWithTwo) {
-  for (const std::vector<std::string>& args :
-       {std::vector<std::string>{}, {"sweep", "--no-such-option"}, {"recommend", "--kappa", "1:2"}, {"fit"},
-        {"table", "--kappa"}}) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{},
+                                               {"sweep", "--no-such-option"},
+                                               {"recommend", "--kappa", "1:2"},
+                                               {"fit"},
+                                               {"table", "--kappa"}}) {
     const auto r = run_sglab(args);
     std::string joined;
     for (const auto& a : args) joined += a + " ";

@@ -24,10 +24,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "report/figures.hpp"
 #include "common/io.hpp"
-#include "validate/sweep.hpp"
+#include "report/figures.hpp"
 #include "tests/test_support.hpp"
+#include "validate/sweep.hpp"
 
 namespace {
 
@@ -45,7 +45,8 @@ TEST(SweepLimit, GridValidateRefusesMoreThanTheLimit) {
   EXPECT_THROW((SweepGrid{1e-3, 1e4, fits + 1, cosines}.validate()), std::invalid_argument);
   EXPECT_THROW((SweepGrid{1, 2, 50000, 50000}.validate()), std::invalid_argument);
   EXPECT_EQ((SweepGrid{1, 2, 50000, 50000}.point_count()), 2'500'000'000u);
-  EXPECT_EQ((SweepGrid{1, 2, 2147483647, 2147483647}.point_count()), 4611686014132420609u);  // no overflow
+  EXPECT_EQ((SweepGrid{1, 2, 2147483647, 2147483647}.point_count()),
+            4611686014132420609u);  // no overflow
   try {
     SweepGrid{1e-3, 1e4, 100'000'000, 41}.validate();
     FAIL() << "accepted";
@@ -63,14 +64,18 @@ TEST(SweepLimit, MemoryEstimateGrowsWithPointsAndEntries) {
   EXPECT_EQ(sweep_memory_estimate(large, 4), 10 * sweep_memory_estimate(small, 4));
   EXPECT_GT(sweep_memory_estimate(small, 8), sweep_memory_estimate(small, 4));
   // The standard grid stays well under 100 MB for the full registry.
-  EXPECT_LT(sweep_memory_estimate(SweepGrid{}, 2 * sglab::validate::registered_sweep_methods().size()), 100'000'000u);
+  EXPECT_LT(
+      sweep_memory_estimate(SweepGrid{}, 2 * sglab::validate::registered_sweep_methods().size()),
+      100'000'000u);
 }
 
 TEST(SweepLimit, CommandLineRefusesHugeGridsWithExitTwoAndWritesNothing) {
   TempDir dir("sweep-limit");
   const fs::path out = dir.path / "out";
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"--kappa", "1e-3:1e4:100000000"}, {"--kappa", "1e-3:1e4:100000"}, {"--kappa", "1:2:50000", "--cosines", "50000"}}) {
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{"--kappa", "1e-3:1e4:100000000"},
+                                             {"--kappa", "1e-3:1e4:100000"},
+                                             {"--kappa", "1:2:50000", "--cosines", "50000"}}) {
     std::vector<std::string> argv = {"sweep", "--out", out.string()};
     argv.insert(argv.end(), args.begin(), args.end());
     const auto r = sglab::test::run_sglab(argv);
@@ -94,7 +99,8 @@ sglab::test::CommandResult run_in(const fs::path& cwd, const std::vector<std::st
 
 TEST(JsonOutput, SweepAndStabilityWriteNoFileWithoutOut) {
   TempDir dir("json-cwd");
-  auto r = run_in(dir.path, {"sweep", "--json", "--kappa", "1:1:1", "--cosines", "3", "--method", "punctual"});
+  auto r = run_in(
+      dir.path, {"sweep", "--json", "--kappa", "1:1:1", "--cosines", "3", "--method", "punctual"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("\"results\""), std::string::npos) << r.output;
   r = run_in(dir.path, {"stability", "--json"});
@@ -102,7 +108,8 @@ TEST(JsonOutput, SweepAndStabilityWriteNoFileWithoutOut) {
   EXPECT_NE(r.output.find("\"results\""), std::string::npos);
   EXPECT_TRUE(fs::is_empty(dir.path)) << "files were written to the working directory";
   // With --out, the files go there.
-  r = run_in(dir.path, {"sweep", "--json", "--kappa", "1:1:1", "--cosines", "3", "--method", "punctual", "--out", "here"});
+  r = run_in(dir.path, {"sweep", "--json", "--kappa", "1:1:1", "--cosines", "3", "--method",
+                        "punctual", "--out", "here"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::is_regular_file(dir.path / "here" / "summary.json"));
 }
@@ -121,14 +128,20 @@ TEST(ByteOrderMark, ReferencePointsFileWithAMarkGivesTheSameOutput) {
   const std::string body = "kappa,cosine\r\n1,0.5\r\n2.5,-0.25\r\n";
   sglab::io::write_file_atomic(dir.path / "plain.csv", body);
   sglab::io::write_file_atomic(dir.path / "bom.csv", "\xEF\xBB\xBF" + body);
-  const auto plain = sglab::test::run_sglab({"reference", "--points", (dir.path / "plain.csv").string()});
-  const auto bom = sglab::test::run_sglab({"reference", "--points", (dir.path / "bom.csv").string()});
+  const auto plain =
+      sglab::test::run_sglab({"reference", "--points", (dir.path / "plain.csv").string()});
+  const auto bom =
+      sglab::test::run_sglab({"reference", "--points", (dir.path / "bom.csv").string()});
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   EXPECT_EQ(bom.exit_code, 0) << bom.output;
   EXPECT_EQ(bom.output, plain.output);
   // A mark anywhere else is still an error.
-  sglab::io::write_file_atomic(dir.path / "late.csv", "kappa,cosine\n\xEF\xBB\xBF" "1,0.5\n");
-  EXPECT_EQ(sglab::test::run_sglab({"reference", "--points", (dir.path / "late.csv").string()}).exit_code, 2);
+  sglab::io::write_file_atomic(dir.path / "late.csv",
+                               "kappa,cosine\n\xEF\xBB\xBF"
+                               "1,0.5\n");
+  EXPECT_EQ(
+      sglab::test::run_sglab({"reference", "--points", (dir.path / "late.csv").string()}).exit_code,
+      2);
 }
 
 TEST(ByteOrderMark, ParetoCsvWithAMarkIsRead) {
@@ -170,14 +183,16 @@ long peak_rss_kib(const std::vector<std::string>& args) {
 void write_points(const fs::path& file, int rows) {
   std::ofstream out(file);
   out << "kappa,cosine\n";
-  for (int i = 0; i < rows; ++i) out << fmt::format("{},{}\n", 0.5 + 1e-4 * i, -1.0 + 2.0 * (i % 997) / 996.0);
+  for (int i = 0; i < rows; ++i)
+    out << fmt::format("{},{}\n", 0.5 + 1e-4 * i, -1.0 + 2.0 * (i % 997) / 996.0);
 }
 
 TEST(ReferenceStreaming, OutputKeepsEveryRowInOrderAcrossChunks) {
   TempDir dir("ref-stream");
   const int rows = 10'000;  // more than one chunk
   write_points(dir.path / "p.csv", rows);
-  const auto r = sglab::test::run_sglab({"reference", "--points", (dir.path / "p.csv").string()}, false);
+  const auto r =
+      sglab::test::run_sglab({"reference", "--points", (dir.path / "p.csv").string()}, false);
   ASSERT_EQ(r.exit_code, 0);
   std::size_t lines = 0, start = 0;
   while (start < r.output.size()) {
@@ -210,8 +225,8 @@ TEST(ReferenceStreaming, MemoryDoesNotGrowWithTheFile) {
   ASSERT_GT(large, 0);
   // Holding every row (query, result, output line and cache entry) costs
   // about 400 bytes a row, 80 MB here; streaming holds a few chunks.
-  EXPECT_LT(large - small, 24 * 1024) << "peak RSS " << small << " KiB for 1,000 rows, " << large
-                                      << " KiB for 200,000 rows";
+  EXPECT_LT(large - small, 24 * 1024)
+      << "peak RSS " << small << " KiB for 1,000 rows, " << large << " KiB for 200,000 rows";
 }
 
 TEST(EvalStreaming, MemoryDoesNotGrowWithTheFile) {
@@ -222,15 +237,16 @@ TEST(EvalStreaming, MemoryDoesNotGrowWithTheFile) {
   write_points(dir.path / "small.csv", 1'000);
   write_points(dir.path / "large.csv", 1'000'000);
   const auto eval = [&](const char* file) {
-    return peak_rss_kib({"eval", "--method", "tokuyoshi2024", "--points", (dir.path / file).string()});
+    return peak_rss_kib(
+        {"eval", "--method", "tokuyoshi2024", "--points", (dir.path / file).string()});
   };
   const long small = eval("small.csv"), large = eval("large.csv");
   ASSERT_GT(small, 0);
   ASSERT_GT(large, 0);
   // Holding every row (query and output line) costs about 80 bytes a row,
   // 80 MB here; streaming holds one line and a 64 KB output buffer.
-  EXPECT_LT(large - small, 24 * 1024) << "peak RSS " << small << " KiB for 1,000 rows, " << large
-                                      << " KiB for 1,000,000 rows";
+  EXPECT_LT(large - small, 24 * 1024)
+      << "peak RSS " << small << " KiB for 1,000 rows, " << large << " KiB for 1,000,000 rows";
 }
 
 // ---- io::run_program: an argument vector, no shell ---------------------------
@@ -275,10 +291,12 @@ std::pair<std::string, std::string> run_with_terminal_stderr(const std::vector<s
   char buffer[4096];
   ssize_t n;
   if (rc == 0)
-    while ((n = ::read(out[0], buffer, sizeof buffer)) > 0) stdout_text.append(buffer, static_cast<std::size_t>(n));
+    while ((n = ::read(out[0], buffer, sizeof buffer)) > 0)
+      stdout_text.append(buffer, static_cast<std::size_t>(n));
   ::close(out[0]);
   if (rc == 0) ::waitpid(pid, nullptr, 0);
-  while ((n = ::read(master, buffer, sizeof buffer)) > 0) terminal.append(buffer, static_cast<std::size_t>(n));
+  while ((n = ::read(master, buffer, sizeof buffer)) > 0)
+    terminal.append(buffer, static_cast<std::size_t>(n));
   ::close(master);
   return {stdout_text, terminal};
 }
@@ -291,7 +309,8 @@ TEST(Progress, ReferenceShowsProgressOnATerminalOnly) {
   EXPECT_EQ(out.rfind("kappa,cosine,", 0), 0u) << out.substr(0, 200);
   EXPECT_EQ(out.find("reference:"), std::string::npos);
   // The file is read once, so the count is open-ended: "reference: ROWS 0.1s".
-  EXPECT_TRUE(std::regex_search(terminal, std::regex(R"(reference: [0-9]+ [0-9]+\.[0-9]s)"))) << terminal;
+  EXPECT_TRUE(std::regex_search(terminal, std::regex(R"(reference: [0-9]+ [0-9]+\.[0-9]s)")))
+      << terminal;
   // Not a terminal: no progress at all, on either stream.
   const auto piped = sglab::test::run_sglab({"reference", "--points", file});
   EXPECT_EQ(piped.exit_code, 0);

@@ -26,7 +26,8 @@ const sglab::Method& method(std::string_view id) {
 }
 
 // Writes `text` to dir/name and returns the path.
-std::filesystem::path temp_file(const sglab::test::TempDir& dir, const std::string& name, const std::string& text) {
+std::filesystem::path temp_file(const sglab::test::TempDir& dir, const std::string& name,
+                                const std::string& text) {
   const auto path = dir.path / name;
   std::ofstream(path) << text;
   return path;
@@ -35,7 +36,9 @@ std::filesystem::path temp_file(const sglab::test::TempDir& dir, const std::stri
 TEST(EvalCommand, PrintsEveryRowInBothPrecisions) {
   const sglab::test::TempDir dir("eval-rows");
   const auto points = temp_file(dir, "points.csv", "kappa,cosine\n4,0.25\n0.001,-1\n10000, 1\n");
-  const auto d = run_sglab({"eval", "--method", "sglab_acc2", "--points", points.string(), "--precision", "double"}, false);
+  const auto d = run_sglab(
+      {"eval", "--method", "sglab_acc2", "--points", points.string(), "--precision", "double"},
+      false);
   ASSERT_EQ(d.exit_code, 0) << d.output;
   std::istringstream lines(d.output);
   std::string line;
@@ -51,7 +54,8 @@ TEST(EvalCommand, PrintsEveryRowInBothPrecisions) {
     EXPECT_EQ(c, cosines[i]);
     EXPECT_EQ(v, m.f64(cosines[i], kappas[i])) << line;  // %.17g round-trips
   }
-  const auto f = run_sglab({"eval", "--method", "tokuyoshi2024", "--points", points.string()}, false);
+  const auto f =
+      run_sglab({"eval", "--method", "tokuyoshi2024", "--points", points.string()}, false);
   ASSERT_EQ(f.exit_code, 0) << f.output;
   std::istringstream flines(f.output);
   std::getline(flines, line);
@@ -60,7 +64,8 @@ TEST(EvalCommand, PrintsEveryRowInBothPrecisions) {
     ASSERT_TRUE(std::getline(flines, line));
     double k, c, v;
     ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &k, &c, &v), 3) << line;
-    EXPECT_EQ(float(v), t.f32(float(cosines[i]), float(kappas[i]))) << line;  // %.9g round-trips a float
+    EXPECT_EQ(float(v), t.f32(float(cosines[i]), float(kappas[i])))
+        << line;  // %.9g round-trips a float
   }
 }
 
@@ -71,7 +76,8 @@ TEST(EvalCommand, RejectsBadInputWithExitCode2) {
   const auto malformed = temp_file(dir, "malformed.csv", "kappa,cosine\n1,zero\n");
   auto r = run_sglab({"eval", "--method", "no_such_method", "--points", good.string()});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("unknown irradiance method 'no_such_method'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("unknown irradiance method 'no_such_method'"), std::string::npos)
+      << r.output;
   r = run_sglab({"eval", "--method", "sglab_acc2", "--points", negative.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find(":3: kappa must be finite and >= 0"), std::string::npos) << r.output;
@@ -80,7 +86,8 @@ TEST(EvalCommand, RejectsBadInputWithExitCode2) {
   r = run_sglab({"eval", "--method", "sglab_acc2", "--points", malformed.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("cosine is not a number"), std::string::npos) << r.output;
-  r = run_sglab({"eval", "--method", "sglab_acc2", "--points", good.string(), "--precision", "half"});
+  r = run_sglab(
+      {"eval", "--method", "sglab_acc2", "--points", good.string(), "--precision", "half"});
   EXPECT_EQ(r.exit_code, 2);
 }
 

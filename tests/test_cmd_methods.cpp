@@ -30,7 +30,8 @@ TEST(MethodsCommand, JsonListsEveryRegisteredMethod) {
     for (const auto& set : e["constants"]) {
       // Every constant set named is one that the generated header defines (its JSON exists).
       bool found = false;
-      for (const auto& file : std::filesystem::directory_iterator(std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants"))
+      for (const auto& file : std::filesystem::directory_iterator(
+               std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants"))
         found = found || nlohmann::json::parse(std::ifstream(file.path()))["cpp_name"] == set;
       EXPECT_TRUE(found) << m.id << ": constant set " << set << " not in data/constants";
     }
@@ -39,7 +40,8 @@ TEST(MethodsCommand, JsonListsEveryRegisteredMethod) {
   EXPECT_EQ(j["erf"].size(), std::size(sglab::erf_variants));
   std::size_t sglab_origin = 0, registered = 0;
   for (const auto& e : j["irradiance"]) sglab_origin += e["origin"] == "sglab";
-  for (const sglab::Method& m : sglab::irradiance_methods) registered += m.origin == sglab::Origin::sglab;
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    registered += m.origin == sglab::Origin::sglab;
   EXPECT_EQ(sglab_origin, registered);
 }
 

@@ -8,8 +8,8 @@
 
 #include <sglab/constants.hpp>
 
-#include "fit/constants_io.hpp"
 #include "common/io.hpp"
+#include "fit/constants_io.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -22,7 +22,8 @@ TEST(Constants, HeaderMatchesJson) {
   ASSERT_FALSE(sets.empty());
   const std::string want = sglab::fit::render_constants_header(sets);
   const std::string have = sglab::io::read_file(kRoot / "include" / "sglab" / "constants.hpp");
-  EXPECT_EQ(have, want) << "include/sglab/constants.hpp is stale: run `build/sglab constants --write-header`";
+  EXPECT_EQ(have, want)
+      << "include/sglab/constants.hpp is stale: run `build/sglab constants --write-header`";
 }
 
 TEST(Constants, PublishedValuesAreThePublishedDigits) {
@@ -43,15 +44,17 @@ TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {
   const sglab::test::TempDir tmp("constants");
   const fs::path& dir = tmp.path;
   // Both carry the format tag: damaged constant sets, refused (not skipped as foreign files).
-  sglab::io::write_file_atomic(dir / "bad.json", "{\"format\": \"sglab-constants\", \"target\": \"x\",");
+  sglab::io::write_file_atomic(dir / "bad.json",
+                               "{\"format\": \"sglab-constants\", \"target\": \"x\",");
   try {
     sglab::fit::load_constant_sets(dir);
     FAIL() << "malformed JSON accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
   }
-  sglab::io::write_file_atomic(dir / "bad.json",
-                               R"({"format":"sglab-constants","version":1,"target":"t","variant":"v","cpp_name":"1x","cpp_type":"T","form":"f",
+  sglab::io::write_file_atomic(
+      dir / "bad.json",
+      R"({"format":"sglab-constants","version":1,"target":"t","variant":"v","cpp_name":"1x","cpp_type":"T","form":"f",
                                   "coefficients":{"a":1},"provenance":{}})");
   EXPECT_THROW(sglab::fit::load_constant_sets(dir), std::runtime_error);
   const auto r = sglab::test::run_sglab({"constants", "--dir", dir.string()});

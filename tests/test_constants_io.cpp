@@ -17,8 +17,8 @@
 #include <gtest/gtest.h>
 
 #include "common/atomic_files.hpp"
-#include "fit/constants_io.hpp"
 #include "common/io.hpp"
+#include "fit/constants_io.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -46,7 +46,8 @@ struct WorkingDirectory {
 fs::path copy_constants(const fs::path& dir) {
   const fs::path to = dir / "constants";
   fs::create_directories(to);
-  for (const auto& e : fs::directory_iterator(kConstants)) fs::copy_file(e.path(), to / e.path().filename());
+  for (const auto& e : fs::directory_iterator(kConstants))
+    fs::copy_file(e.path(), to / e.path().filename());
   return to;
 }
 
@@ -74,13 +75,16 @@ TEST(Schema, MatchesParamsHpp) {
   // Every `template <class S, std::size_t X...> struct Name { S members; };`
   // of params.hpp, member by member, against the table.
   const std::string text = slurp(kRoot / "include" / "sglab" / "params.hpp");
-  const std::regex decl(R"(template\s*<\s*class\s+S((?:\s*,\s*std::size_t\s+\w+)*)\s*>\s*struct\s+(\w+)\s*\{([^}]*)\};)");
+  const std::regex decl(
+      R"(template\s*<\s*class\s+S((?:\s*,\s*std::size_t\s+\w+)*)\s*>\s*struct\s+(\w+)\s*\{([^}]*)\};)");
   std::map<std::string, std::pair<std::vector<std::string>, std::vector<std::string>>> in_header;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), decl); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), decl); it != std::sregex_iterator();
+       ++it) {
     std::vector<std::string> sizes, members;
     const std::string params = (*it)[1];
     const std::regex size_param(R"(std::size_t\s+(\w+))");
-    for (auto s = std::sregex_iterator(params.begin(), params.end(), size_param); s != std::sregex_iterator(); ++s)
+    for (auto s = std::sregex_iterator(params.begin(), params.end(), size_param);
+         s != std::sregex_iterator(); ++s)
       sizes.push_back((*s)[1]);
     std::string body = std::regex_replace(std::string((*it)[3]), std::regex(R"(//[^\n]*)"), "");
     std::stringstream statements(body);
@@ -99,24 +103,30 @@ TEST(Schema, MatchesParamsHpp) {
     in_table.insert(std::string(p.name));
     const auto h = in_header.find(std::string(p.name));
     ASSERT_NE(h, in_header.end()) << p.name << " is in the schema but not in params.hpp";
-    EXPECT_EQ(h->second.first, std::vector<std::string>(p.size_params.begin(), p.size_params.end())) << p.name;
+    EXPECT_EQ(h->second.first, std::vector<std::string>(p.size_params.begin(), p.size_params.end()))
+        << p.name;
     std::vector<std::string> members;
     for (auto m : p.members) members.push_back(squeeze(std::string(m)));
     EXPECT_EQ(h->second.second, members) << p.name;
   }
-  for (const auto& [name, _] : in_header) EXPECT_TRUE(in_table.count(name)) << name << " is missing from the schema";
+  for (const auto& [name, _] : in_header)
+    EXPECT_TRUE(in_table.count(name)) << name << " is missing from the schema";
 }
 
 TEST(Schema, ArrayLengthsFollowTheSizeParameters) {
   const auto r = sglab::fit::resolve_cpp_type("SteepnessRationalParams<double,0>", "t");
   EXPECT_EQ(r.canonical, "SteepnessRationalParams<double, 0>");
   EXPECT_EQ(r.members, (std::vector<std::pair<std::string, std::size_t>>{{"p", 1}, {"q", 1}}));
-  EXPECT_EQ(sglab::fit::resolve_cpp_type("SteepnessRationalParams<double, 3>", "t").members[1].second, 4u);
+  EXPECT_EQ(
+      sglab::fit::resolve_cpp_type("SteepnessRationalParams<double, 3>", "t").members[1].second,
+      4u);
   const auto l = sglab::fit::resolve_cpp_type("Listing5Params<double, 6, 7>", "t");
-  EXPECT_EQ(l.members, (std::vector<std::pair<std::string, std::size_t>>{{"split", 0}, {"cutoff", 0}, {"small", 6}, {"large", 7}}));
-  for (const char* bad : {"Listing5Params<double, 6>", "Listing5Params<float, 6, 7>", "Nope<double>",
-                          "AbramowitzStegunParams<double, 0>", "AbramowitzStegunParams<double, 65>",
-                          "AbramowitzStegunParams<double, -1>", "HillParams<double>; int x", "HillParams"})
+  EXPECT_EQ(l.members, (std::vector<std::pair<std::string, std::size_t>>{
+                           {"split", 0}, {"cutoff", 0}, {"small", 6}, {"large", 7}}));
+  for (const char* bad :
+       {"Listing5Params<double, 6>", "Listing5Params<float, 6, 7>", "Nope<double>",
+        "AbramowitzStegunParams<double, 0>", "AbramowitzStegunParams<double, 65>",
+        "AbramowitzStegunParams<double, -1>", "HillParams<double>; int x", "HillParams"})
     EXPECT_THROW(sglab::fit::resolve_cpp_type(bad, "t"), sglab::fit::ConstantsError) << bad;
 }
 
@@ -124,7 +134,8 @@ TEST(Schema, RequiredSetsCoverEveryReferenceInTheCode) {
   std::set<std::string> required;
   for (const auto& r : sglab::fit::required_sets()) {
     required.insert(std::string(r.cpp_name));
-    EXPECT_EQ(sglab::fit::resolve_cpp_type(r.cpp_type, "t").canonical, r.cpp_type) << "not canonical: " << r.cpp_type;
+    EXPECT_EQ(sglab::fit::resolve_cpp_type(r.cpp_type, "t").canonical, r.cpp_type)
+        << "not canonical: " << r.cpp_type;
   }
   const std::regex ref(R"((?:^|[^:\w])(?:sglab::)?constants::([a-z_][a-z0-9_]*))");
   std::size_t references = 0;
@@ -134,10 +145,12 @@ TEST(Schema, RequiredSetsCoverEveryReferenceInTheCode) {
       const auto ext = e.path().extension();
       if (e.path().filename() == "constants.hpp" || (ext != ".hpp" && ext != ".cpp")) continue;
       const std::string text = slurp(e.path());
-      for (auto it = std::sregex_iterator(text.begin(), text.end(), ref); it != std::sregex_iterator(); ++it) {
+      for (auto it = std::sregex_iterator(text.begin(), text.end(), ref);
+           it != std::sregex_iterator(); ++it) {
         ++references;
-        EXPECT_TRUE(required.count((*it)[1])) << e.path() << " uses constants::" << (*it)[1]
-                                              << ", which is not in required_sets() (fit/constants_schema.cpp)";
+        EXPECT_TRUE(required.count((*it)[1]))
+            << e.path() << " uses constants::" << (*it)[1]
+            << ", which is not in required_sets() (fit/constants_schema.cpp)";
       }
     }
   }
@@ -162,13 +175,14 @@ TEST(CommentText, NothingLeavesTheComment) {
   EXPECT_EQ(comment_text("a\nb\r#error x"), "a\\x0ab\\x0d#error x");
   EXPECT_EQ(comment_text(std::string("nul\0here", 8)), "nul\\x00here");
   EXPECT_EQ(comment_text("ends with \\"), "ends with \\x5c");  // never a line splice
-  EXPECT_EQ(comment_text("ends with ?\?/"), "ends with ?\\x3f/");  // nor a trigraph splice (C++ before 17)
+  EXPECT_EQ(comment_text("ends with ?\?/"),
+            "ends with ?\\x3f/");  // nor a trigraph splice (C++ before 17)
   EXPECT_EQ(comment_text("what???"), "what?\\x3f\\x3f");
   EXPECT_EQ(comment_text("\x1b[31m"), "\\x1b[31m");
   EXPECT_EQ(comment_text("bidi \u202e override"), "bidi \\u{202e} override");
   EXPECT_EQ(comment_text("line\u2028sep"), "line\\u{2028}sep");
   EXPECT_EQ(comment_text("c1 \xc2\x85"), "c1 \\u{0085}");
-  EXPECT_EQ(comment_text("bad \xff\xc3"), "bad \\xff\\xc3");                 // ill-formed UTF-8
+  EXPECT_EQ(comment_text("bad \xff\xc3"), "bad \\xff\\xc3");  // ill-formed UTF-8
   EXPECT_EQ(comment_text("overlong \xc0\xaf"), "overlong \\xc0\\xaf");
   EXPECT_EQ(comment_text("surrogate \xed\xa0\x80"), "surrogate \\xed\\xa0\\x80");
 }
@@ -176,43 +190,132 @@ TEST(CommentText, NothingLeavesTheComment) {
 // ---- refused files: exit 2, file and key named, nothing written --------------
 
 struct BadFile {
-  std::string name;  // which test case
-  std::string file;  // the file of the copy to change
+  std::string name;                                        // which test case
+  std::string file;                                        // the file of the copy to change
   std::vector<std::pair<std::string, std::string>> edits;  // text replaced in it
-  std::string key;     // the key the message must name ("" when none)
-  std::string reason;  // a phrase of the message
+  std::string key;          // the key the message must name ("" when none)
+  std::string reason;       // a phrase of the message
   bool collection = false;  // wrong only as part of a header (the listing accepts it)
 };
 
 TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
   const std::string A = "\"A\": 0.65173288269070562", objective = "\"objective\": \"published\"";
-  const std::string hill_type = "\"cpp_type\": \"HillParams<double>\"", hill_name = "\"cpp_name\": \"hill_published\"";
+  const std::string hill_type = "\"cpp_type\": \"HillParams<double>\"",
+                    hill_name = "\"cpp_name\": \"hill_published\"";
   const std::vector<BadFile> cases = {
-      {"unknown coefficient", "steepness2022-published.json", {{"\"C\":", "\"Z\":"}}, "coefficients.Z", "no member"},
-      {"missing coefficient", "steepness2022-published.json", {{",\n    \"C\": 7.2216687798956709", ""}}, "coefficients.C", "missing"},
-      {"array too short", "erf-listing5-published.json", {{"\"small\": [1.128379121, ", "\"small\": ["}}, "coefficients.small", "needs 6"},
-      {"array element not a number", "erf-listing5-published.json", {{"\"small\": [1.128379121, ", "\"small\": [null, "}}, "coefficients.small[0]", "must be a number"},
-      {"overflow", "steepness2022-published.json", {{A, "\"A\": 1e400"}}, "coefficients.A", "out of range (larger than any double)"},
-      {"underflow", "steepness2022-published.json", {{A, "\"A\": 1e-400"}}, "coefficients.A", "out of range"},
-      {"string coefficient", "steepness2022-published.json", {{A, "\"A\": \"0.6\""}}, "coefficients.A", "must be a number"},
-      {"objective not a string", "hill-published.json", {{objective, "\"objective\": 3"}}, "provenance.objective", "must be a string"},
-      {"newline in target", "hill-published.json", {{"\"target\": \"hill\"", "\"target\": \"hill\\n#error x\""}}, "target", "not a name"},
-      {"slash in variant", "hill-published.json", {{"\"variant\": \"published\"", "\"variant\": \"../x\""}}, "variant", "not a name"},
-      {"keyword cpp_name", "hill-published.json", {{hill_name, "\"cpp_name\": \"int\""}}, "cpp_name", "not a C++ identifier"},
-      {"NUL in cpp_name", "hill-published.json", {{hill_name, "\"cpp_name\": \"hill\\u0000x\""}}, "cpp_name", "'hill\\x00x'"},
-      {"injected cpp_type", "hill-published.json", {{hill_type, "\"cpp_type\": \"HillParams<double> x{}; int y\""}}, "", "cpp_type"},
-      {"unknown cpp_type", "hill-published.json", {{hill_type, "\"cpp_type\": \"HillParam<double>\""}}, "", "unknown parameter struct"},
-      {"duplicate key", "hill-published.json", {{"\"target\": \"hill\",", "\"target\": \"hill\", \"target\": \"x\","}}, "target", "duplicate key"},
-      {"ill-formed UTF-8", "hill-published.json", {{objective, "\"objective\": \"p\xff\""}}, "", "UTF-8"},
-      {"provenance not an object", "hill-published.json", {{"\"provenance\": {", "\"provenance\": 1, \"x\": {"}}, "provenance", "must be an object"},
-      {"kappa_range wrong", "steepness2022-irradiance.json", {{"\"kappa_range\": [", "\"kappa_range\": [\"a\", "}}, "provenance.kappa_range", "two numbers"},
-      {"not an object", "hill-published.json", {{"{\n  \"format\"", "[{\"format\""}, {"\n}", "}]"}}, "", "not a JSON object"},
-      {"version wrong", "hill-published.json", {{"\"version\": 1", "\"version\": 2"}}, "version", "must be 1"},
-      {"duplicate cpp_name", "steepness2022-optimal-t.json",
-       {{"\"cpp_name\": \"steepness2022_optimal_t\"", "\"cpp_name\": \"steepness2022_published\""}}, "cpp_name", "also the cpp_name", true},
-      {"required set with another type", "erf-as7125-published.json",
-       {{"AbramowitzStegunParams<double, 3>", "AbramowitzStegunParams<double, 2>"}, {", 0.7478556]", "]"}}, "cpp_type",
-       "the code uses it as AbramowitzStegunParams<double, 3>", true},
+      {"unknown coefficient",
+       "steepness2022-published.json",
+       {{"\"C\":", "\"Z\":"}},
+       "coefficients.Z",
+       "no member"},
+      {"missing coefficient",
+       "steepness2022-published.json",
+       {{",\n    \"C\": 7.2216687798956709", ""}},
+       "coefficients.C",
+       "missing"},
+      {"array too short",
+       "erf-listing5-published.json",
+       {{"\"small\": [1.128379121, ", "\"small\": ["}},
+       "coefficients.small",
+       "needs 6"},
+      {"array element not a number",
+       "erf-listing5-published.json",
+       {{"\"small\": [1.128379121, ", "\"small\": [null, "}},
+       "coefficients.small[0]",
+       "must be a number"},
+      {"overflow",
+       "steepness2022-published.json",
+       {{A, "\"A\": 1e400"}},
+       "coefficients.A",
+       "out of range (larger than any double)"},
+      {"underflow",
+       "steepness2022-published.json",
+       {{A, "\"A\": 1e-400"}},
+       "coefficients.A",
+       "out of range"},
+      {"string coefficient",
+       "steepness2022-published.json",
+       {{A, "\"A\": \"0.6\""}},
+       "coefficients.A",
+       "must be a number"},
+      {"objective not a string",
+       "hill-published.json",
+       {{objective, "\"objective\": 3"}},
+       "provenance.objective",
+       "must be a string"},
+      {"newline in target",
+       "hill-published.json",
+       {{"\"target\": \"hill\"", "\"target\": \"hill\\n#error x\""}},
+       "target",
+       "not a name"},
+      {"slash in variant",
+       "hill-published.json",
+       {{"\"variant\": \"published\"", "\"variant\": \"../x\""}},
+       "variant",
+       "not a name"},
+      {"keyword cpp_name",
+       "hill-published.json",
+       {{hill_name, "\"cpp_name\": \"int\""}},
+       "cpp_name",
+       "not a C++ identifier"},
+      {"NUL in cpp_name",
+       "hill-published.json",
+       {{hill_name, "\"cpp_name\": \"hill\\u0000x\""}},
+       "cpp_name",
+       "'hill\\x00x'"},
+      {"injected cpp_type",
+       "hill-published.json",
+       {{hill_type, "\"cpp_type\": \"HillParams<double> x{}; int y\""}},
+       "",
+       "cpp_type"},
+      {"unknown cpp_type",
+       "hill-published.json",
+       {{hill_type, "\"cpp_type\": \"HillParam<double>\""}},
+       "",
+       "unknown parameter struct"},
+      {"duplicate key",
+       "hill-published.json",
+       {{"\"target\": \"hill\",", "\"target\": \"hill\", \"target\": \"x\","}},
+       "target",
+       "duplicate key"},
+      {"ill-formed UTF-8",
+       "hill-published.json",
+       {{objective, "\"objective\": \"p\xff\""}},
+       "",
+       "UTF-8"},
+      {"provenance not an object",
+       "hill-published.json",
+       {{"\"provenance\": {", "\"provenance\": 1, \"x\": {"}},
+       "provenance",
+       "must be an object"},
+      {"kappa_range wrong",
+       "steepness2022-irradiance.json",
+       {{"\"kappa_range\": [", "\"kappa_range\": [\"a\", "}},
+       "provenance.kappa_range",
+       "two numbers"},
+      {"not an object",
+       "hill-published.json",
+       {{"{\n  \"format\"", "[{\"format\""}, {"\n}", "}]"}},
+       "",
+       "not a JSON object"},
+      {"version wrong",
+       "hill-published.json",
+       {{"\"version\": 1", "\"version\": 2"}},
+       "version",
+       "must be 1"},
+      {"duplicate cpp_name",
+       "steepness2022-optimal-t.json",
+       {{"\"cpp_name\": \"steepness2022_optimal_t\"", "\"cpp_name\": \"steepness2022_published\""}},
+       "cpp_name",
+       "also the cpp_name",
+       true},
+      {"required set with another type",
+       "erf-as7125-published.json",
+       {{"AbramowitzStegunParams<double, 3>", "AbramowitzStegunParams<double, 2>"},
+        {", 0.7478556]", "]"}},
+       "cpp_type",
+       "the code uses it as AbramowitzStegunParams<double, 3>",
+       true},
   };
   TempDir tmp("constants_bad");
   for (const BadFile& c : cases) {
@@ -244,7 +347,8 @@ TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
 // overflow first): the schema refuses each in memory, in a scalar member and
 // in an element of an array member, naming the key.
 TEST(Schema, NonFiniteCoefficientsAreRefused) {
-  const ordered_json good = sglab::fit::load_constant_set(kConstants / "erf-listing5-published.json");
+  const ordered_json good =
+      sglab::fit::load_constant_set(kConstants / "erf-listing5-published.json");
   ASSERT_NO_THROW(sglab::fit::validate_constant_set(good, "good"));
   const double inf = std::numeric_limits<double>::infinity();
   for (const double bad : {std::numeric_limits<double>::quiet_NaN(), inf, -inf}) {
@@ -274,14 +378,17 @@ TEST(Schema, NonFiniteCoefficientsAreRefused) {
 TEST(UntrustedConstants, AFitWithANonFiniteCoefficientWritesNothing) {
   TempDir tmp("constants_nonfinite");
   const fs::path out = tmp.path / "out", header = out / "constants.hpp";
-  const ordered_json good = sglab::fit::load_constant_set(kConstants / "steepness2024-irradiance.json");
+  const ordered_json good =
+      sglab::fit::load_constant_set(kConstants / "steepness2024-irradiance.json");
   const double inf = std::numeric_limits<double>::infinity();
   for (const double bad : {std::numeric_limits<double>::quiet_NaN(), inf, -inf}) {
     SCOPED_TRACE(fmt::format("A = {}", bad));
     ordered_json set = good;
     set["coefficients"]["A"] = bad;
-    const std::vector<sglab::fit::ConstantSetFile> batch = {{out / "hill-published.json", sglab::fit::load_constant_set(kConstants / "hill-published.json")},
-                                                           {out / "steepness2024-irradiance.json", set}};
+    const std::vector<sglab::fit::ConstantSetFile> batch = {
+        {out / "hill-published.json",
+         sglab::fit::load_constant_set(kConstants / "hill-published.json")},
+        {out / "steepness2024-irradiance.json", set}};
     try {
       sglab::fit::write_sets_and_header(batch, out, kConstants, header);
       ADD_FAILURE() << "written";
@@ -301,20 +408,25 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-  write(file, replace_once(slurp(file), "\"objective\": \"published\"", "\"objective\": \"published\", \"x\": " + deep));
+  write(file, replace_once(slurp(file), "\"objective\": \"published\"",
+                           "\"objective\": \"published\", \"x\": " + deep));
   for (bool write_header : {true, false}) {
     std::vector<std::string> args = {"constants", "--dir", dir.string()};
-    if (write_header) args.insert(args.end(), {"--write-header", "--header", (tmp.path / "h.hpp").string()});
+    if (write_header)
+      args.insert(args.end(), {"--write-header", "--header", (tmp.path / "h.hpp").string()});
     const auto r = run_sglab(args);
     EXPECT_EQ(r.exit_code, 2) << r.output.substr(0, 2000);
     EXPECT_NE(r.output.find("hill-published.json"), std::string::npos) << r.output.substr(0, 2000);
-    EXPECT_NE(r.output.find("nested deeper than 64 levels"), std::string::npos) << r.output.substr(0, 2000);
+    EXPECT_NE(r.output.find("nested deeper than 64 levels"), std::string::npos)
+        << r.output.substr(0, 2000);
     EXPECT_NE(r.output.find("key 'provenance.x"), std::string::npos) << r.output.substr(0, 2000);
   }
   EXPECT_FALSE(fs::exists(tmp.path / "h.hpp"));
   // 64 levels are fine.
-  write(file, replace_once(slurp(kConstants / "hill-published.json"), "\"objective\": \"published\"",
-                           "\"objective\": \"published\", \"x\": " + std::string(62, '[') + std::string(62, ']')));
+  write(file,
+        replace_once(
+            slurp(kConstants / "hill-published.json"), "\"objective\": \"published\"",
+            "\"objective\": \"published\", \"x\": " + std::string(62, '[') + std::string(62, ']')));
   EXPECT_NO_THROW(sglab::fit::load_constant_set(file));
 }
 
@@ -322,24 +434,29 @@ TEST(UntrustedConstants, OversizedFileIsRefused) {
   TempDir tmp("constants_big");
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
-  write(file, replace_once(slurp(file), "\"objective\": \"published\"",
-                           "\"objective\": \"published\", \"x\": \"" + std::string(2 << 20, 'a') + "\""));
+  write(file,
+        replace_once(slurp(file), "\"objective\": \"published\"",
+                     "\"objective\": \"published\", \"x\": \"" + std::string(2 << 20, 'a') + "\""));
   const auto r = run_sglab({"constants", "--dir", dir.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output.substr(0, 1000);
-  EXPECT_NE(r.output.find("more than the 1048576 bytes a constants file may have"), std::string::npos) << r.output.substr(0, 1000);
+  EXPECT_NE(r.output.find("more than the 1048576 bytes a constants file may have"),
+            std::string::npos)
+      << r.output.substr(0, 1000);
 }
 
 TEST(UntrustedConstants, IncompleteCollectionsWriteNoHeader) {
   TempDir tmp("constants_incomplete");
   fs::create_directories(tmp.path / "empty");
   const fs::path header = tmp.path / "h.hpp";
-  auto r = run_sglab({"constants", "--dir", (tmp.path / "empty").string(), "--write-header", "--header", header.string()});
+  auto r = run_sglab({"constants", "--dir", (tmp.path / "empty").string(), "--write-header",
+                      "--header", header.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("no constant set has cpp_name"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(header));
   const fs::path dir = copy_constants(tmp.path);
   fs::remove(dir / "hill-published.json");
-  r = run_sglab({"constants", "--dir", dir.string(), "--write-header", "--header", header.string()});
+  r = run_sglab(
+      {"constants", "--dir", dir.string(), "--write-header", "--header", header.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("'hill_published'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(header));
@@ -354,12 +471,14 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
   const fs::path file = dir / "hill-published.json";
   std::string text = slurp(file);
   text = replace_once(text, "\"objective\": \"published\"",
-                      "\"objective\": \"published\\n#error objective\", \"key\\n#error key\": \"v\\u0000\\u001b[2J\\\\\", "
+                      "\"objective\": \"published\\n#error objective\", \"key\\n#error key\": "
+                      "\"v\\u0000\\u001b[2J\\\\\", "
                       "\"nested\": {\"a\\n#error nested\": [\"\\u202e\\n#error\"]}");
   text = replace_once(text, "\"form\": \"", "\"form\": \"\\r\\n#error form\\\\");
   write(file, text);
   const fs::path header = tmp.path / "h.hpp";
-  const auto r = run_sglab({"constants", "--dir", dir.string(), "--write-header", "--header", header.string()});
+  const auto r = run_sglab(
+      {"constants", "--dir", dir.string(), "--write-header", "--header", header.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string h = slurp(header);
   EXPECT_EQ(h.find('\0'), std::string::npos);
@@ -387,9 +506,11 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
 
 TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   TempDir tmp("atomic");
-  const fs::path a = tmp.path / "a.json", b = tmp.path / "b.json", blocked = tmp.path / "header.hpp";
+  const fs::path a = tmp.path / "a.json", b = tmp.path / "b.json",
+                 blocked = tmp.path / "header.hpp";
   write(a, "old a");
-  fs::create_directories(blocked);  // refused before any file is written (a rename over it would fail)
+  fs::create_directories(
+      blocked);  // refused before any file is written (a rename over it would fail)
   try {
     sglab::io::write_files_atomic({{a, "new a"}, {b, "new b"}, {blocked, "header"}});
     FAIL() << "no error";
@@ -404,7 +525,9 @@ TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   EXPECT_EQ(entries, 2u) << "temporaries left behind";
   // A destination folder that cannot be created: nothing replaced.
   write(tmp.path / "file", "x");
-  EXPECT_THROW(sglab::io::write_files_atomic({{a, "new a"}, {tmp.path / "file" / "sub" / "c", "c"}}), std::runtime_error);
+  EXPECT_THROW(
+      sglab::io::write_files_atomic({{a, "new a"}, {tmp.path / "file" / "sub" / "c", "c"}}),
+      std::runtime_error);
   EXPECT_EQ(slurp(a), "old a");
   sglab::io::write_files_atomic({{a, "new a"}, {b, "new b"}});
   EXPECT_EQ(slurp(a), "new a");
@@ -430,7 +553,9 @@ TEST(Project, FoundFromTheWorkingDirectory) {
     WorkingDirectory cwd(other / "deep" / "er");
     const auto r = run_sglab({"constants", "--write-header"});
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find((other / "include" / "sglab" / "constants.hpp").string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find((other / "include" / "sglab" / "constants.hpp").string()),
+              std::string::npos)
+        << r.output;
   }
   EXPECT_EQ(slurp(other / "include" / "sglab" / "constants.hpp"), checkout_header);
   EXPECT_EQ(slurp(kHeader), checkout_header);

@@ -23,11 +23,11 @@
 namespace {
 
 namespace fs = std::filesystem;
-using sglab::test::run_sglab;
-using sglab::test::TempDir;
 using sglab::report::CostSource;
 using sglab::report::CostSourceKind;
 using sglab::report::parse_cost_source;
+using sglab::test::run_sglab;
+using sglab::test::TempDir;
 
 // ---- the parser ------------------------------------------------------------------
 
@@ -44,7 +44,8 @@ TEST(CostSource, ParsesTheThreeForms) {
                         Case{"cpu-batch", CostSourceKind::cpu_batch, "", "ns"},
                         Case{"cpu-scalar", CostSourceKind::cpu_scalar, "", "ns"}}) {
     const auto parsed = parse_cost_source(c.text);
-    ASSERT_TRUE(std::holds_alternative<CostSource>(parsed)) << c.text << ": " << std::get<std::string>(parsed);
+    ASSERT_TRUE(std::holds_alternative<CostSource>(parsed))
+        << c.text << ": " << std::get<std::string>(parsed);
     const CostSource& s = std::get<CostSource>(parsed);
     EXPECT_EQ(s.kind, c.kind) << c.text;
     if (s.kind == CostSourceKind::gpu) {
@@ -53,19 +54,22 @@ TEST(CostSource, ParsesTheThreeForms) {
     EXPECT_EQ(s.unit(), c.unit) << c.text;
     EXPECT_EQ(s.name(), c.text);  // the name is what --cost takes back
   }
-  EXPECT_EQ(std::get<CostSource>(parse_cost_source("cpu-batch")).cpu_mode(), sglab::report::CostMode::batch);
-  EXPECT_EQ(std::get<CostSource>(parse_cost_source("cpu-scalar")).cpu_mode(), sglab::report::CostMode::scalar);
+  EXPECT_EQ(std::get<CostSource>(parse_cost_source("cpu-batch")).cpu_mode(),
+            sglab::report::CostMode::batch);
+  EXPECT_EQ(std::get<CostSource>(parse_cost_source("cpu-scalar")).cpu_mode(),
+            sglab::report::CostMode::scalar);
 }
 
 TEST(CostSource, RefusesEverythingElseQuotingIt) {
-  for (const std::string& bad : std::vector<std::string>{"", "gpu", "gpu:", "gpu:Navi21", "GPU:navi21", "gpu:navi 21", " cpu-batch", "cpu-batch ",
-                                "cpu", "cpu_batch", "cpu-batch,gpu:navi21", "gpu:navi21:x", "gpu:navi-21",
-                                std::string("gpu:navi21\0x", 12), "gpu:" + std::string(33, 'a')}) {
+  for (const std::string& bad : std::vector<std::string>{
+           "", "gpu", "gpu:", "gpu:Navi21", "GPU:navi21", "gpu:navi 21", " cpu-batch", "cpu-batch ",
+           "cpu", "cpu_batch", "cpu-batch,gpu:navi21", "gpu:navi21:x", "gpu:navi-21",
+           std::string("gpu:navi21\0x", 12), "gpu:" + std::string(33, 'a')}) {
     const auto parsed = parse_cost_source(bad);
     ASSERT_TRUE(std::holds_alternative<std::string>(parsed)) << "accepted '" << bad << "'";
     const std::string& why = std::get<std::string>(parsed);
     EXPECT_NE(why.find("gpu:navi21"), std::string::npos) << why;  // says what is expected
-    EXPECT_EQ(why.find('\0'), std::string::npos) << why;           // the text quoted escaped
+    EXPECT_EQ(why.find('\0'), std::string::npos) << why;          // the text quoted escaped
   }
   EXPECT_TRUE(std::holds_alternative<CostSource>(parse_cost_source("gpu:" + std::string(32, 'a'))));
 }
@@ -85,27 +89,47 @@ TEST(CostSource, DefaultIsGpuInverseThroughputOnNavi21ForFloat) {
 // A well-formed table with a float batch cost for every irradiance method and,
 // when `gpu` is not empty, a GPU section with those inverse throughputs
 // (method → cycles) on `family`.
-nlohmann::ordered_json table_json(double ns, const std::map<std::string, long>& gpu, const std::string& family = "navi21") {
-  nlohmann::ordered_json doc = {{"format", "sglab-costs"}, {"version", 1}, {"date", "2026-01-01T00:00:00Z"},
-                                {"command", "hand-made for test_cost_source"}, {"machine", {{"cpu", "t"}, {"cores", 1}}},
-                                {"compiler", {{"id", "none"}, {"version", "0"}}}, {"build_type", "none"},
-                                {"timer", "none"}, {"inputs", "none"}};
+nlohmann::ordered_json table_json(double ns, const std::map<std::string, long>& gpu,
+                                  const std::string& family = "navi21") {
+  nlohmann::ordered_json doc = {{"format", "sglab-costs"},
+                                {"version", 1},
+                                {"date", "2026-01-01T00:00:00Z"},
+                                {"command", "hand-made for test_cost_source"},
+                                {"machine", {{"cpu", "t"}, {"cores", 1}}},
+                                {"compiler", {{"id", "none"}, {"version", "0"}}},
+                                {"build_type", "none"},
+                                {"timer", "none"},
+                                {"inputs", "none"}};
   auto rows = nlohmann::ordered_json::array();
   for (const sglab::Method& m : sglab::irradiance_methods)
-    rows.push_back({{"kind", "irradiance"}, {"method", m.id}, {"precision", "float"}, {"mode", "batch"},
+    rows.push_back({{"kind", "irradiance"},
+                    {"method", m.id},
+                    {"precision", "float"},
+                    {"mode", "batch"},
                     {"ns_per_eval", ns}});
   doc["costs"] = rows;
   if (gpu.empty()) return doc;
   auto g = nlohmann::ordered_json::array();
   for (const auto& [method, cycles] : gpu)
-    g.push_back({{"method", method}, {"family", family}, {"lang", "glsl"}, {"split", false}, {"precision", "float"},
-                 {"instructions", 1}, {"inverse_throughput", cycles}, {"latency", 1}, {"vgprs", 1}, {"sgprs", 1},
-                 {"code_size", 4}, {"branches", 0}, {"spirv_hash", "0000000000000000"}});
+    g.push_back({{"method", method},
+                 {"family", family},
+                 {"lang", "glsl"},
+                 {"split", false},
+                 {"precision", "float"},
+                 {"instructions", 1},
+                 {"inverse_throughput", cycles},
+                 {"latency", 1},
+                 {"vgprs", 1},
+                 {"sgprs", 1},
+                 {"code_size", 4},
+                 {"branches", 0},
+                 {"spirv_hash", "0000000000000000"}});
   doc["gpu"] = {{"driver", "radv test"}, {"command", "hand-made"}, {"rows", g}};
   return doc;
 }
 
-fs::path write_table(const TempDir& dir, const std::string& name, const nlohmann::ordered_json& doc) {
+fs::path write_table(const TempDir& dir, const std::string& name,
+                     const nlohmann::ordered_json& doc) {
   const fs::path p = dir.path / name;
   std::ofstream(p) << doc.dump(2);
   return p;
@@ -115,7 +139,8 @@ fs::path write_table(const TempDir& dir, const std::string& name, const nlohmann
 std::map<std::string, long> gpu_costs(long cycles) {
   std::map<std::string, long> m;
   long step = 0;
-  for (const sglab::Method& method : sglab::irradiance_methods) m[std::string(method.id)] = cycles + (step += 10);
+  for (const sglab::Method& method : sglab::irradiance_methods)
+    m[std::string(method.id)] = cycles + (step += 10);
   return m;
 }
 
@@ -130,15 +155,18 @@ nlohmann::json recommend_json(const std::vector<std::string>& extra) {
 TEST(CostSourceCli, TableWithoutGpuSectionRefusesGpuAndServesCpu) {
   TempDir dir("cost-source-nogpu");
   const fs::path t = write_table(dir, "cpu_only.json", table_json(5, {}));
-  for (const std::vector<std::string>& cost : {std::vector<std::string>{}, {"--cost", "gpu:navi21"}}) {
-    std::vector<std::string> args = {"recommend", "--kappa", "1:100", "--budget", "1e-2", "--costs", t.string()};
+  for (const std::vector<std::string>& cost :
+       {std::vector<std::string>{}, {"--cost", "gpu:navi21"}}) {
+    std::vector<std::string> args = {"recommend", "--kappa", "1:100",   "--budget",
+                                     "1e-2",      "--costs", t.string()};
     args.insert(args.end(), cost.begin(), cost.end());
     const auto r = run_sglab(args);
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("cpu_only.json has no \"gpu\" section"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("gpu:navi21"), std::string::npos) << r.output;
   }
-  const auto p = run_sglab({"pareto", "--kappa", "1:100", "--costs", t.string(), "--out", (dir.path / "p").string()});
+  const auto p = run_sglab(
+      {"pareto", "--kappa", "1:100", "--costs", t.string(), "--out", (dir.path / "p").string()});
   EXPECT_EQ(p.exit_code, 2) << p.output;
   EXPECT_NE(p.output.find("cpu_only.json"), std::string::npos) << p.output;
   const auto batch = recommend_json({"--costs", t.string(), "--cost", "cpu-batch"});
@@ -156,17 +184,22 @@ TEST(CostSourceCli, TableWithoutGpuSectionRefusesGpuAndServesCpu) {
 TEST(CostSourceCli, FamilyNotInTheTableIsNamedWithTheOnesItHas) {
   TempDir dir("cost-source-family");
   const fs::path t = write_table(dir, "navi10.json", table_json(5, gpu_costs(100), "navi10"));
-  const auto r = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--costs", t.string()});
+  const auto r =
+      run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--costs", t.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("navi10.json has no GLSL rows for family 'navi21' (it has: navi10)"), std::string::npos)
+  EXPECT_NE(r.output.find("navi10.json has no GLSL rows for family 'navi21' (it has: navi10)"),
+            std::string::npos)
       << r.output;
-  EXPECT_EQ(recommend_json({"--costs", t.string(), "--cost", "gpu:navi10"}).value("cost_source", ""), "gpu:navi10");
+  EXPECT_EQ(
+      recommend_json({"--costs", t.string(), "--cost", "gpu:navi10"}).value("cost_source", ""),
+      "gpu:navi10");
 }
 
 TEST(CostSourceCli, BadValuesExit2NamingTheOption) {
   TempDir dir("cost-source-bad");
   const fs::path scene = dir.path / "scene.json";
-  std::ofstream(scene) << R"({"lights": [{"axis": [0, 0, 1], "sharpness": 4, "amplitude": [1, 1, 1]}]})";
+  std::ofstream(scene)
+      << R"({"lights": [{"axis": [0, 0, 1], "sharpness": 4, "amplitude": [1, 1, 1]}]})";
   const std::vector<std::vector<std::string>> commands = {
       {"pareto", "--kappa", "1:100", "--out", (dir.path / "p").string()},
       {"recommend", "--kappa", "1:100", "--budget", "1e-2"},
@@ -174,10 +207,14 @@ TEST(CostSourceCli, BadValuesExit2NamingTheOption) {
   for (const auto& command : commands) {
     std::vector<std::string> good = command;
     good.insert(good.end(), {"--cost", "cpu-scalar"});
-    EXPECT_EQ(run_sglab(good).exit_code, 0) << command[0];  // the option exists and takes a good value
-    for (const std::vector<std::string>& bad :
-         {std::vector<std::string>{"--cost", "gpu:Navi21"}, {"--cost", ""}, {"--cost", "gpu"}, {"--cost", "cpu"},
-          {"--cost", "gpu:navi21", "--precision", "double"}, {"--cost", "gpu:navi21", "--live-timing"}}) {
+    EXPECT_EQ(run_sglab(good).exit_code, 0)
+        << command[0];  // the option exists and takes a good value
+    for (const std::vector<std::string>& bad : {std::vector<std::string>{"--cost", "gpu:Navi21"},
+                                                {"--cost", ""},
+                                                {"--cost", "gpu"},
+                                                {"--cost", "cpu"},
+                                                {"--cost", "gpu:navi21", "--precision", "double"},
+                                                {"--cost", "gpu:navi21", "--live-timing"}}) {
       std::vector<std::string> args = command;
       args.insert(args.end(), bad.begin(), bad.end());
       const auto r = run_sglab(args);
@@ -253,7 +290,8 @@ TEST(CostSourceCli, ChoiceUnderGpuCostIsTheCheapestMeetingTheBudget) {
   const auto navi21 = committed_navi21();
   for (const char* budget : {"1e-2", "2e-3", "1e-4"}) {
     SCOPED_TRACE(budget);
-    const auto r = run_sglab({"recommend", "--kappa", "1e-3:1e4", "--budget", budget, "--json"}, false);
+    const auto r =
+        run_sglab({"recommend", "--kappa", "1e-3:1e4", "--budget", budget, "--json"}, false);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const auto doc = nlohmann::json::parse(r.output);
     ASSERT_TRUE(doc["choice"].is_object()) << r.output;
@@ -261,7 +299,8 @@ TEST(CostSourceCli, ChoiceUnderGpuCostIsTheCheapestMeetingTheBudget) {
     const double margin = doc["tie_margin"].get<double>();
     for (const auto& c : doc["candidates"]) {
       const double cycles = navi21.at(c["method"]);
-      const bool meets = c["max_peak_rel"].is_number() && c["max_peak_rel"].get<double>() <= std::stod(budget);
+      const bool meets =
+          c["max_peak_rel"].is_number() && c["max_peak_rel"].get<double>() <= std::stod(budget);
       EXPECT_EQ(c["qualifies"].get<bool>(), meets) << c.dump();
       if (meets) {
         EXPECT_GE(cycles * (1 + margin), choice) << c.dump();
@@ -283,9 +322,11 @@ TEST(CostSourceCli, ChoiceUnderGpuCostIsTheCheapestMeetingTheBudget) {
   // A method without a GPU row is listed with no cost, never chosen.
   cycles.erase("sglab_acc3");
   const fs::path c = write_table(dir, "c.json", table_json(5, cycles));
-  const auto r = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--costs", c.string()});
+  const auto r =
+      run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--costs", c.string()});
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("no gpu:navi21 cost for method 'sglab_acc3'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no gpu:navi21 cost for method 'sglab_acc3'"), std::string::npos)
+      << r.output;
   EXPECT_NE(recommend_json({"--costs", c.string()})["choice"].value("method", ""), "sglab_acc3");
 }
 

@@ -46,7 +46,10 @@ nlohmann::ordered_json hand_table(const std::map<std::string, double>& costs) {
   doc["inputs"] = "none";
   auto rows = nlohmann::ordered_json::array();
   for (const auto& [method, ns] : costs)
-    rows.push_back({{"kind", "irradiance"}, {"method", method}, {"precision", "float"}, {"mode", "batch"},
+    rows.push_back({{"kind", "irradiance"},
+                    {"method", method},
+                    {"precision", "float"},
+                    {"mode", "batch"},
                     {"ns_per_eval", ns}});
   doc["costs"] = rows;
   return doc;
@@ -55,20 +58,23 @@ nlohmann::ordered_json hand_table(const std::map<std::string, double>& costs) {
 std::map<std::string, double> all_methods_cost(double ns) {
   std::map<std::string, double> m;
   double step = 0;
-  for (const sglab::Method& method : sglab::irradiance_methods) m[std::string(method.id)] = ns + (step += 10);
+  for (const sglab::Method& method : sglab::irradiance_methods)
+    m[std::string(method.id)] = ns + (step += 10);
   return m;
 }
 
-nlohmann::json recommend_json(const fs::path& table, const std::string& kappa, const std::string& budget) {
-  const auto r = run_sglab({"recommend", "--kappa", kappa, "--budget", budget, "--json", "--costs", table.string(),
-                            "--cost", "cpu-batch"},
+nlohmann::json recommend_json(const fs::path& table, const std::string& kappa,
+                              const std::string& budget) {
+  const auto r = run_sglab({"recommend", "--kappa", kappa, "--budget", budget, "--json", "--costs",
+                            table.string(), "--cost", "cpu-batch"},
                            /*merge_stderr=*/false);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return nlohmann::json::parse(r.output);
 }
 
 // The cheapest qualifying method by the given costs (all > 5% apart, so no ties).
-std::string cheapest_qualifying(const nlohmann::json& doc, const std::map<std::string, double>& costs) {
+std::string cheapest_qualifying(const nlohmann::json& doc,
+                                const std::map<std::string, double>& costs) {
   std::string best;
   double best_ns = std::numeric_limits<double>::infinity();
   for (const auto& c : doc.at("candidates")) {
@@ -112,11 +118,13 @@ TEST(CostTable, MissingMethodIsNamedAndLeftOut) {
   auto costs = all_methods_cost(10);
   costs.erase("tokuyoshi2024");
   write(dir / "t.json", hand_table(costs).dump(2));
-  const auto r = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--json", "--costs",
-                            (dir / "t.json").string(), "--cost", "cpu-batch"},
+  const auto r = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--json",
+                            "--costs", (dir / "t.json").string(), "--cost", "cpu-batch"},
                            /*merge_stderr=*/true);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("no cpu-batch cost for method 'tokuyoshi2024' (float)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no cpu-batch cost for method 'tokuyoshi2024' (float)"),
+            std::string::npos)
+      << r.output;
   const auto j = recommend_json(dir / "t.json", "1:100", "1e-2");
   for (const auto& c : j.at("candidates"))
     if (c.at("method") == "tokuyoshi2024") {
@@ -140,7 +148,8 @@ TEST(CostTable, RecommendAndParetoAnswerTheSameTwice) {
   ASSERT_EQ(p1.exit_code, 0) << p1.output;
   ASSERT_EQ(p2.exit_code, 0) << p2.output;
   std::ifstream fa(a / "pareto.csv"), fb(b / "pareto.csv");
-  const std::string ca((std::istreambuf_iterator<char>(fa)), {}), cb((std::istreambuf_iterator<char>(fb)), {});
+  const std::string ca((std::istreambuf_iterator<char>(fa)), {}),
+      cb((std::istreambuf_iterator<char>(fb)), {});
   EXPECT_FALSE(ca.empty());
   EXPECT_EQ(ca, cb);
 }
@@ -150,17 +159,20 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
   const fs::path& dir = tmp.path;
   const std::map<std::string, std::string> bad = {
       {"not_json.json", "{ this is not json"},
-      {"no_costs.json", [] {
+      {"no_costs.json",
+       [] {
          auto d = hand_table(all_methods_cost(1));
          d.erase("costs");
          return d.dump();
        }()},
-      {"negative.json", [] {
+      {"negative.json",
+       [] {
          auto d = hand_table(all_methods_cost(1));
          d["costs"][0]["ns_per_eval"] = -3.0;
          return d.dump();
        }()},
-      {"bad_mode.json", [] {
+      {"bad_mode.json",
+       [] {
          auto d = hand_table(all_methods_cost(1));
          d["costs"][0]["mode"] = "warp";
          return d.dump();
@@ -172,8 +184,10 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
     write(dir / name, text);
     for (const char* cmd : {"recommend", "pareto"}) {
       std::vector<std::string> args{cmd, "--kappa", "1:100", "--costs", (dir / name).string()};
-      if (std::string(cmd) == "recommend") args.insert(args.end(), {"--budget", "1e-2"});
-      else args.insert(args.end(), {"--out", (dir / "out").string()});
+      if (std::string(cmd) == "recommend")
+        args.insert(args.end(), {"--budget", "1e-2"});
+      else
+        args.insert(args.end(), {"--out", (dir / "out").string()});
       const auto r = run_sglab(args);
       EXPECT_EQ(r.exit_code, 2) << name << " " << cmd << "\n" << r.output;
       EXPECT_NE(r.output.find(name), std::string::npos) << name << "\n" << r.output;
@@ -184,23 +198,24 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
   EXPECT_EQ(none.exit_code, 2) << none.output;
   EXPECT_NE(none.output.find("does_not_exist.json"), std::string::npos) << none.output;
   // Both sources at once is refused.
-  const auto both = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--live-timing", "--costs",
-                               (dir / "not_json.json").string()});
+  const auto both = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--live-timing",
+                               "--costs", (dir / "not_json.json").string()});
   EXPECT_EQ(both.exit_code, 2) << both.output;
   // read_cost_table names the key.
   try {
     sglab::report::read_cost_table(dir / "negative.json");
     ADD_FAILURE() << "no error";
   } catch (const sglab::report::CostTableError& e) {
-    EXPECT_NE(std::string(e.what()).find("costs[0].\"ns_per_eval\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("costs[0].\"ns_per_eval\""), std::string::npos)
+        << e.what();
   }
 }
 
 TEST(CostTable, BenchWritesATableThatReadsBack) {
   const sglab::test::TempDir tmp("test_costs bench");
   const fs::path& dir = tmp.path;
-  const auto r = run_sglab({"bench", "--filter", "^irradiance/(hill|tokuyoshi2024)/float/", "--repetitions", "1",
-                            "--min-time", "0.01", "--out", dir.string()});
+  const auto r = run_sglab({"bench", "--filter", "^irradiance/(hill|tokuyoshi2024)/float/",
+                            "--repetitions", "1", "--min-time", "0.01", "--out", dir.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto t = sglab::report::read_cost_table(dir / "costs.json");
   using sglab::report::CostKind;
@@ -211,8 +226,10 @@ TEST(CostTable, BenchWritesATableThatReadsBack) {
     EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, mode));
   }
   // The per-light split is measured for tokuyoshi2024, not for hill (which has none).
-  EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, CostMode::light_setup));
-  EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, CostMode::light_eval));
+  EXPECT_TRUE(
+      t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, CostMode::light_setup));
+  EXPECT_TRUE(
+      t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, CostMode::light_eval));
   EXPECT_FALSE(t.find(CostKind::irradiance, "hill", FloatFormat::binary32, CostMode::light_setup));
   EXPECT_FALSE(t.find(CostKind::irradiance, "hill", FloatFormat::binary64, CostMode::batch));
   EXPECT_NE(t.info.inputs.find("1048576 inputs"), std::string::npos) << t.info.inputs;

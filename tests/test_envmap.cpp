@@ -13,8 +13,8 @@
 #include <sglab/registry.hpp>
 
 #include "envmap/envmap.hpp"
-#include "validate/scene.hpp"
 #include "tests/test_support.hpp"
+#include "validate/scene.hpp"
 
 namespace {
 
@@ -89,7 +89,8 @@ TEST(Envmap, DownsampleKeepsTheIntegral) {
   auto integral = [](const Map& m) {
     double s = 0;
     for (std::size_t j = 0; j < m.height; ++j)
-      for (std::size_t i = 0; i < m.width; ++i) s += envmap::pixel_solid_angle(m, j) * m.at(i, j, 0);
+      for (std::size_t i = 0; i < m.width; ++i)
+        s += envmap::pixel_solid_angle(m, j) * m.at(i, j, 0);
     return s;
   };
   EXPECT_NEAR(integral(coarse) / integral(fine), 1.0, 1e-6);
@@ -106,13 +107,15 @@ TEST(Envmap, FitRecoversKnownLobes) {
     const Lobe* best = nullptr;
     double best_dot = -2;
     for (const Lobe& l : r.lobes) {
-      const double d = l.axis[0] * truth.axis[0] + l.axis[1] * truth.axis[1] + l.axis[2] * truth.axis[2];
+      const double d =
+          l.axis[0] * truth.axis[0] + l.axis[1] * truth.axis[1] + l.axis[2] * truth.axis[2];
       if (d > best_dot) best_dot = d, best = &l;
     }
     ASSERT_NE(best, nullptr);
     EXPECT_GT(best_dot, std::cos(0.01)) << "axis within 0.01 rad";
     EXPECT_NEAR(best->sharpness / truth.sharpness, 1.0, 0.01);
-    for (std::size_t ch = 0; ch < 3; ++ch) EXPECT_NEAR(best->amplitude[ch] / truth.amplitude[ch], 1.0, 0.01);
+    for (std::size_t ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(best->amplitude[ch] / truth.amplitude[ch], 1.0, 0.01);
   }
   // The irradiance of the fitted lobes matches the map's exact irradiance.
   const auto normals = validate::fibonacci_normals(300);
@@ -153,8 +156,9 @@ TEST(Envmap, ReadsRadianceHdr) {
   auto write_hdr = [&](const std::string& name, int w, int h) {
     std::ofstream f(dir.path / name, std::ios::binary);
     f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " << h << " +X " << w << "\n";
-    for (int p = 0; p < w * h; ++p) f << static_cast<char>(128) << static_cast<char>(64) << static_cast<char>(32)
-                                      << static_cast<char>(129);  // (1, 0.5, 0.25)
+    for (int p = 0; p < w * h; ++p)
+      f << static_cast<char>(128) << static_cast<char>(64) << static_cast<char>(32)
+        << static_cast<char>(129);  // (1, 0.5, 0.25)
   };
   write_hdr("m.hdr", 16, 8);
   const Map m = envmap::read_map(dir.path / "m.hdr");
@@ -197,13 +201,17 @@ TEST(EnvmapCli, BadFilesExitTwo) {
   const std::vector<Case> cases = {
       {{"envmap", "fit", p("text.exr"), "--lobes", "2", "--out", p("o.json")}, "not an HDR image"},
       {{"envmap", "fit", p("missing.exr"), "--lobes", "2", "--out", p("o.json")}, "no such file"},
-      {{"envmap", "fit", p("folder.exr"), "--lobes", "2", "--out", p("o.json")}, "not a regular file"},
-      {{"envmap", "fit", p("square.exr"), "--lobes", "2", "--out", p("o.json")}, "not a 2:1 equirectangular"},
+      {{"envmap", "fit", p("folder.exr"), "--lobes", "2", "--out", p("o.json")},
+       "not a regular file"},
+      {{"envmap", "fit", p("square.exr"), "--lobes", "2", "--out", p("o.json")},
+       "not a 2:1 equirectangular"},
       {{"envmap", "fit", p("nan.exr"), "--lobes", "2", "--out", p("o.json")}, "channel G is NaN"},
-      {{"envmap", "fit", p("neg.exr"), "--lobes", "2", "--out", p("o.json")}, "channel B is negative"},
+      {{"envmap", "fit", p("neg.exr"), "--lobes", "2", "--out", p("o.json")},
+       "channel B is negative"},
       {{"envmap", "fit", p("inf.exr"), "--lobes", "2", "--out", p("o.json")}, "is infinite"},
       {{"envmap", "fit", p("good.exr"), "--lobes", "0", "--out", p("o.json")}, "at least one lobe"},
-      {{"envmap", "fit", p("good.exr"), "--lobes", "17", "--out", p("o.json")}, "more than the map supports"},
+      {{"envmap", "fit", p("good.exr"), "--lobes", "17", "--out", p("o.json")},
+       "more than the map supports"},
       {{"envmap", "irradiance", p("nan.exr")}, "NaN"},
       {{"envmap", "recommend", p("square.exr"), "--budget", "0.01"}, "not a 2:1"},
       {{"envmap", "downsample", p("good.exr"), p("o.exr"), "--width", "12"}, "must divide"},
@@ -226,8 +234,8 @@ TEST(EnvmapCli, SelectorChoiceMeetsItsBudget) {
   envmap::write_exr(map, envmap::downsample(envmap::reconstruct(kKnown, 128, 64), 64));
   const std::string costs = std::string(SGLAB_TEST_SOURCE_DIR) + "/../data/results/costs.json";
   const double budget = 0.02;
-  const auto r = run_sglab({"envmap", "recommend", map, "--budget", "0.02", "--max-lobes", "8", "--normals", "500",
-                            "--json", "--costs", costs},
+  const auto r = run_sglab({"envmap", "recommend", map, "--budget", "0.02", "--max-lobes", "8",
+                            "--normals", "500", "--json", "--costs", costs},
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
@@ -237,7 +245,8 @@ TEST(EnvmapCli, SelectorChoiceMeetsItsBudget) {
   EXPECT_LE(doc["choice"]["error"].get<double>(), budget);
 
   const std::string scene_file = (dir.path / "s.json").string();
-  const auto f = run_sglab({"envmap", "fit", map, "--lobes", std::to_string(lobes), "--out", scene_file});
+  const auto f =
+      run_sglab({"envmap", "fit", map, "--lobes", std::to_string(lobes), "--out", scene_file});
   ASSERT_EQ(f.exit_code, 0) << f.output;
   std::ifstream in(scene_file);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -255,7 +264,8 @@ TEST(EnvmapCli, SelectorChoiceMeetsItsBudget) {
   const auto exact = envmap::irradiance(envmap::read_map(map), normals);
   EXPECT_LE(envmap::irradiance_error(approx, exact).max_rel, budget);
 
-  const auto rec = run_sglab({"recommend", "--scene", scene_file, "--budget", "0.01", "--costs", costs, "--normals", "200"});
+  const auto rec = run_sglab({"recommend", "--scene", scene_file, "--budget", "0.01", "--costs",
+                              costs, "--normals", "200"});
   EXPECT_EQ(rec.exit_code, 0) << rec.output;
 }
 
@@ -265,12 +275,16 @@ namespace {
 
 TEST(EnvmapScene, ProvenanceIsAnOptionalObject) {
   const std::string light = R"({"axis": [0, 0, 1], "sharpness": 2, "amplitude": [1, 1, 1]})";
-  EXPECT_EQ(validate::parse_scene(R"({"lights": [)" + light + R"(], "provenance": {"map": "x.exr", "lobes": 1}})", "s")
-                .lights.size(),
-            1u);
-  EXPECT_THROW(validate::parse_scene(R"({"lights": [)" + light + R"(], "provenance": "text"})", "s"),
+  EXPECT_EQ(
+      validate::parse_scene(
+          R"({"lights": [)" + light + R"(], "provenance": {"map": "x.exr", "lobes": 1}})", "s")
+          .lights.size(),
+      1u);
+  EXPECT_THROW(
+      validate::parse_scene(R"({"lights": [)" + light + R"(], "provenance": "text"})", "s"),
+      validate::SceneError);
+  EXPECT_THROW(validate::parse_scene(R"({"lights": [)" + light + R"(], "other": {}})", "s"),
                validate::SceneError);
-  EXPECT_THROW(validate::parse_scene(R"({"lights": [)" + light + R"(], "other": {}})", "s"), validate::SceneError);
 }
 
 }  // namespace

@@ -8,9 +8,9 @@
 #include <random>
 #include <string>
 
+#include <gtest/gtest.h>
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <sglab/erf.hpp>
@@ -83,8 +83,8 @@ TEST(ErfCheck, HistogramBuckets) {
   EXPECT_EQ(erf_histogram_bucket(0.3, false), 1u);
   EXPECT_EQ(erf_histogram_bucket(0.5000001, false), 2u);  // (0.5, 1]
   EXPECT_EQ(erf_histogram_bucket(1.0, false), 2u);
-  EXPECT_EQ(erf_histogram_bucket(1.5, false), 3u);         // (1, 2]
-  EXPECT_EQ(erf_histogram_bucket(4.0, false), 4u);         // (2, 4]
+  EXPECT_EQ(erf_histogram_bucket(1.5, false), 3u);  // (1, 2]
+  EXPECT_EQ(erf_histogram_bucket(4.0, false), 4u);  // (2, 4]
   EXPECT_EQ(erf_histogram_bucket(0x1p24, false), kErfHistBuckets - 2);
   EXPECT_EQ(erf_histogram_bucket(0x1p30, false), kErfHistBuckets - 1);
   EXPECT_EQ(sglab::validate::erf_histogram_label(0), "cr");
@@ -99,11 +99,13 @@ TEST(ErfCheck, ReferenceIsCorrectlyRounded) {
   for (int i = 0; i < 3000; ++i) {
     const float x = std::bit_cast<float>(bits(rng));
     const float got = sglab::validate::erf_reference_float(x).rounded;
-    ASSERT_EQ(std::bit_cast<std::uint32_t>(got), std::bit_cast<std::uint32_t>(cr_erf_50(x))) << "x = " << hexf(x);
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(got), std::bit_cast<std::uint32_t>(cr_erf_50(x)))
+        << "x = " << hexf(x);
   }
   for (float x : {0x1p-149f, 0x1p-126f, 0.5f, 1.0f, 3.9f, 3.92f, 3.95f, 4.0f, 1e30f}) {
     ASSERT_EQ(sglab::validate::erf_reference_float(x).rounded, cr_erf_50(x)) << "x = " << hexf(x);
-    ASSERT_EQ(sglab::validate::erf_reference_float(-x).rounded, -cr_erf_50(x)) << "x = " << hexf(-x);
+    ASSERT_EQ(sglab::validate::erf_reference_float(-x).rounded, -cr_erf_50(x))
+        << "x = " << hexf(-x);
   }
   EXPECT_TRUE(std::signbit(sglab::validate::erf_reference_float(-0.0f).rounded));
 }
@@ -126,14 +128,16 @@ TEST(ErfCheck, TaylorReferenceMatches50Digits) {
   // A run of consecutive floats in [2, 4), as in the exhaustive loop.
   const float x0 = 3.1f;
   const std::uint32_t b0 = std::bit_cast<std::uint32_t>(x0);
-  const auto t = sglab::validate::detail::erf_taylor_float(std::bit_cast<float>(b0 - 512), x0, std::bit_cast<float>(b0 + 511));
+  const auto t = sglab::validate::detail::erf_taylor_float(std::bit_cast<float>(b0 - 512), x0,
+                                                           std::bit_cast<float>(b0 + 511));
   static_assert(std::is_same_v<decltype(t(1.0)), double>);
   ASSERT_TRUE(t.ok);
   for (std::uint32_t d : {0u, 1u, 100u, 511u}) {
     for (std::uint32_t b : {b0 + d, b0 - d - 1}) {
       const float x = std::bit_cast<float>(b);
       const long double exact = sglab::validate::erf_reference_50(x);
-      EXPECT_LE(std::abs(t(x) - exact) / sglab::validate::ulp_double(exact), 2.0L) << "x = " << hexf(x);
+      EXPECT_LE(std::abs(t(x) - exact) / sglab::validate::ulp_double(exact), 2.0L)
+          << "x = " << hexf(x);
     }
   }
 }
@@ -148,7 +152,8 @@ TEST(ErfCheck, FindsInjectedError) {
   };
   const ErfReport r = sglab::validate::check_erf_float(f, small_options(), "injected");
   const Big exact = boost::math::erf(Big(bad));
-  const double expected_ulp = static_cast<double>(abs(Big(f(bad)) - exact) / Big(0x1p-24));  // erf(0.75) ∈ [0.5, 1)
+  const double expected_ulp =
+      static_cast<double>(abs(Big(f(bad)) - exact) / Big(0x1p-24));  // erf(0.75) ∈ [0.5, 1)
   EXPECT_EQ(r.stats.worst_x, bad);
   EXPECT_NEAR(r.stats.max_ulp, expected_ulp, 1e-6);
   EXPECT_NEAR(r.stats.max_ulp, 0.711155633653515 * 16, 0.5);  // erf(0.75)·2^−20 / 2^−24
@@ -166,14 +171,17 @@ TEST(ErfCheck, CountsNonFiniteOutputs) {
 }
 
 TEST(ErfCheck, ReportsOddnessViolations) {
-  auto f = [](float x) { return x < 0 && x > -2.0f ? -std::erf(-x) * (1 + 0x1p-10f) : std::erf(x); };
+  auto f = [](float x) {
+    return x < 0 && x > -2.0f ? -std::erf(-x) * (1 + 0x1p-10f) : std::erf(x);
+  };
   const ErfReport r = sglab::validate::check_erf_float(f, small_options(), "not_odd");
   EXPECT_GT(r.oddness.violations, 0u);
   EXPECT_LT(r.oddness.first_violation_x, 1e-30);  // the smallest sampled x
 }
 
 TEST(ErfCheck, StdErffIsFaithful) {
-  const ErfReport r = sglab::validate::check_erf_float([](float x) { return std::erf(x); }, small_options(), "std");
+  const ErfReport r =
+      sglab::validate::check_erf_float([](float x) { return std::erf(x); }, small_options(), "std");
   EXPECT_LT(r.stats.max_ulp, 1.0) << "worst x = " << hexf(r.stats.worst_x);
   EXPECT_EQ(r.stats.nonfinite, 0u);
   EXPECT_EQ(r.oddness.violations, 0u);
@@ -182,7 +190,8 @@ TEST(ErfCheck, StdErffIsFaithful) {
 
 // A&S 7.1.25 claims |error| ≤ 2.5e−5; the claim holds and is tight.
 TEST(ErfCheck, AS7125PublishedBoundHoldsAndIsTight) {
-  const ErfReport rf = sglab::validate::check_erf_float(sglab::ErfAS7125{}, small_options(), "as7125");
+  const ErfReport rf =
+      sglab::validate::check_erf_float(sglab::ErfAS7125{}, small_options(), "as7125");
   EXPECT_LE(rf.stats.max_abs, 2.5e-5);
   EXPECT_GE(rf.stats.max_abs, 1e-6);
   EXPECT_LE(rf.stats.worst_abs_x, 4.0);
@@ -203,7 +212,8 @@ TEST(ErfCheck, AS7125PublishedBoundHoldsAndIsTight) {
 }
 
 TEST(ErfCheck, Listing5IsOddAndExactlyOneBeyondFour) {
-  const ErfReport r = sglab::validate::check_erf_float(sglab::ErfListing5{}, small_options(), "listing5");
+  const ErfReport r =
+      sglab::validate::check_erf_float(sglab::ErfListing5{}, small_options(), "listing5");
   EXPECT_EQ(r.oddness.violations, 0u);
   EXPECT_GT(r.oddness.checked, 30'000u);
   EXPECT_GT(r.tail.count, 10'000u);
@@ -224,7 +234,8 @@ TEST(ErfCheck, FunctionPointerAndFunctorAgree) {
   const sglab::ErfVariant* v = sglab::find_erf_variant("listing5");
   ASSERT_NE(v, nullptr);
   const ErfReport a = sglab::validate::check_erf_float(v->f32, small_options(), "listing5");
-  const ErfReport b = sglab::validate::check_erf_float(sglab::ErfListing5{}, small_options(), "listing5");
+  const ErfReport b =
+      sglab::validate::check_erf_float(sglab::ErfListing5{}, small_options(), "listing5");
   EXPECT_EQ(a.stats.max_ulp, b.stats.max_ulp);
   EXPECT_EQ(a.stats.worst_x, b.stats.worst_x);
   EXPECT_EQ(a.stats.count, b.stats.count);
@@ -255,7 +266,8 @@ TEST(ErfCheck, DoubleCheckOfStdIsAccurate) {
   o.odd_points = 512;
   o.bins = 20;
   const auto sample = sglab::validate::make_erf_double_sample(o);
-  const ErfReport r = sglab::validate::check_erf_double([](double x) { return std::erf(x); }, sample, "std");
+  const ErfReport r =
+      sglab::validate::check_erf_double([](double x) { return std::erf(x); }, sample, "std");
   EXPECT_LT(r.stats.max_ulp, 2.0);  // glibc erf: ≤ ~1.3 ulp
   EXPECT_GT(r.stats.correctly_rounded, r.stats.count * 9 / 10);
   for (const auto& sp : r.specials) EXPECT_TRUE(sp.ok) << "x = " << hexf(sp.x);
@@ -271,13 +283,15 @@ TEST(ErfCommand, UnknownVariantExitsTwoNamingIt) {
 
 TEST(ErfCommand, JsonHasTheDocumentedKeys) {
   const auto r = sglab::test::run_sglab(
-      {"erf", "--json", "--variant", "listing5", "--variant", "std", "--double-points", "20000"}, false);
+      {"erf", "--json", "--variant", "listing5", "--variant", "std", "--double-points", "20000"},
+      false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output);
   ASSERT_TRUE(j.contains("results"));
   ASSERT_EQ(j["results"].size(), 4u);  // 2 variants × float, double
   for (const auto& e : j["results"]) {
-    for (const char* key : {"variant", "precision", "max_abs", "max_ulp", "worst_x", "rms_ulp", "count", "nonfinite", "histogram"})
+    for (const char* key : {"variant", "precision", "max_abs", "max_ulp", "worst_x", "rms_ulp",
+                            "count", "nonfinite", "histogram"})
       EXPECT_TRUE(e.contains(key)) << key;
     EXPECT_TRUE(e["precision"] == "float" || e["precision"] == "double");
     EXPECT_TRUE(e["histogram"].is_array());
@@ -294,10 +308,11 @@ TEST(ErfCommand, JsonHasTheDocumentedKeys) {
 TEST(ErfCommand, OutWritesSeriesAndSummary) {
   const sglab::test::TempDir tmp("erf-out");
   const std::string dir = tmp.path.string();
-  const auto r =
-      sglab::test::run_sglab({"erf", "--variant", "as7125", "--bins", "64", "--double-points", "20000", "--out", dir});
+  const auto r = sglab::test::run_sglab(
+      {"erf", "--variant", "as7125", "--bins", "64", "--double-points", "20000", "--out", dir});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"erf_as7125_float.csv", "erf_as7125_double.csv", "erf_summary.csv", "erf_summary.md", "erf_histogram.csv"}) {
+  for (const char* f : {"erf_as7125_float.csv", "erf_as7125_double.csv", "erf_summary.csv",
+                        "erf_summary.md", "erf_histogram.csv"}) {
     FILE* p = std::fopen((dir + "/" + f).c_str(), "r");
     EXPECT_NE(p, nullptr) << f;
     if (p) std::fclose(p);

@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "report/figures.hpp"
 #include "common/io.hpp"
+#include "report/figures.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -25,7 +25,8 @@ TEST(Figures, ReadParetoCsvRejectsBadHeader) {
 TEST(Figures, ReadParetoCsvReadsOrigin) {
   const sglab::test::TempDir tmp("claims-origin");
   const fs::path& dir = tmp.path;
-  const std::string header = "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n";
+  const std::string header =
+      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n";
   sglab::io::write_file_atomic(dir / "ok.csv", header +
                                                    "a,published,float,1,10,1,0.1,1\n"
                                                    "b,refit,float,1,10,2,0.01,0\n"
@@ -41,9 +42,10 @@ TEST(Figures, ReadParetoCsvReadsOrigin) {
   // The old boolean column is not an origin.
   sglab::io::write_file_atomic(dir / "old.csv", header + "a,true,float,1,10,1,0.1,1\n");
   EXPECT_THROW(read_pareto_csv(dir / "old.csv"), std::invalid_argument);
-  sglab::io::write_file_atomic(dir / "oldheader.csv",
-                               "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-                               "a,0,float,1,10,1,0.1,1\n");
+  sglab::io::write_file_atomic(
+      dir / "oldheader.csv",
+      "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+      "a,0,float,1,10,1,0.1,1\n");
   EXPECT_THROW(read_pareto_csv(dir / "oldheader.csv"), std::invalid_argument);
 }
 
@@ -52,21 +54,23 @@ TEST(Figures, CommandWritesPngAndSvg) {
   const sglab::test::TempDir tmp("figures");
   const fs::path& dir = tmp.path;
   const fs::path pareto = dir / "pareto.csv";
-  sglab::io::write_file_atomic(pareto,
-                               "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-                               "punctual,published,float,0.001,10000,0.8,0.9,true\n"
-                               "wang2009,published,float,0.001,10000,2.5,0.35,false\n"
-                               "hill,published,float,0.001,10000,3.0,3.1e7,false\n"
-                               "tokuyoshi2022,published,float,0.001,10000,12.0,0.0045,true\n"
-                               "tokuyoshi2024_refit,refit,float,0.001,10000,15.0,0.0014,true\n"
-                               "sglab_model,sglab,float,0.001,10000,4.0,0.002,true\n"
-                               "tokuyoshi2024,published,double,0.001,10000,20.0,0.0013,true\n"
-                               "\"meder2018\",published,double,0.001,10000,9.0,0.02,true\n");
+  sglab::io::write_file_atomic(
+      pareto,
+      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+      "punctual,published,float,0.001,10000,0.8,0.9,true\n"
+      "wang2009,published,float,0.001,10000,2.5,0.35,false\n"
+      "hill,published,float,0.001,10000,3.0,3.1e7,false\n"
+      "tokuyoshi2022,published,float,0.001,10000,12.0,0.0045,true\n"
+      "tokuyoshi2024_refit,refit,float,0.001,10000,15.0,0.0014,true\n"
+      "sglab_model,sglab,float,0.001,10000,4.0,0.002,true\n"
+      "tokuyoshi2024,published,double,0.001,10000,20.0,0.0013,true\n"
+      "\"meder2018\",published,double,0.001,10000,9.0,0.02,true\n");
   const fs::path out = dir / "figs";
-  const auto r = sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", pareto.string()});
+  const auto r =
+      sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", pareto.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* stem : {"a_clamped_cosine", "b_steepness", "c_irradiance_kappa4", "d_peak_rel_heatmaps", "e_pareto",
-                           "f_erf_ulp", "g_peak_rel_vs_kappa"})
+  for (const char* stem : {"a_clamped_cosine", "b_steepness", "c_irradiance_kappa4",
+                           "d_peak_rel_heatmaps", "e_pareto", "f_erf_ulp", "g_peak_rel_vs_kappa"})
     for (const char* ext : {".png", ".svg"}) {
       const fs::path p = out / (std::string(stem) + ext);
       ASSERT_TRUE(fs::exists(p)) << p << "\n" << r.output;
@@ -78,7 +82,8 @@ TEST(Figures, CommandWritesPngAndSvg) {
   // A method failing on the range (hill, 3.1e7 > 1) is moved into the band, its true error kept;
   // the origin column is carried through.
   const std::string points = sglab::io::read_file(out / "e_pareto_points.csv");
-  EXPECT_NE(points.find("3,31000000,10,hill,published,float,0,hill (3.1e+07)"), std::string::npos) << points;
+  EXPECT_NE(points.find("3,31000000,10,hill,published,float,0,hill (3.1e+07)"), std::string::npos)
+      << points;
   EXPECT_NE(points.find(",sglab_model,sglab,float,1,"), std::string::npos) << points;
   // Figure (g): one row per κ of the standard grid, float and double column per irradiance method.
   const std::string g = sglab::io::read_file(out / "g_peak_rel_vs_kappa.csv");
@@ -92,33 +97,44 @@ TEST(Figures, CommandWritesPngAndSvg) {
 TEST(Figures, OnePanelPerCostSource) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   sglab::test::TempDir dir("figures-panels");
-  const std::string header = "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n";
-  sglab::io::write_file_atomic(dir.path / "gpu.csv", header +
-                                                         "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,0.15,1\n"
-                                                         "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,3e-5,1\n");
-  sglab::io::write_file_atomic(dir.path / "cpu.csv",
-                               "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-                               "vsgl2015,published,float,0.001,10000,3.7,0.15,1\n"
-                               "sglab_acc3,sglab,float,0.001,10000,18.3,3e-5,1\n");
-  // The cost table's GPU rows: beside the navi21 panel, a table of the other families (here navi10).
+  const std::string header =
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
+      "frontier\n";
+  sglab::io::write_file_atomic(
+      dir.path / "gpu.csv",
+      header +
+          "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,0.15,1\n"
+          "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,3e-5,1\n");
+  sglab::io::write_file_atomic(
+      dir.path / "cpu.csv",
+      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+      "vsgl2015,published,float,0.001,10000,3.7,0.15,1\n"
+      "sglab_acc3,sglab,float,0.001,10000,18.3,3e-5,1\n");
+  // The cost table's GPU rows: beside the navi21 panel, a table of the other families (here
+  // navi10).
   std::string gpu_rows;
-  for (const auto& [method, family, cycles] : {std::tuple{"vsgl2015", "navi21", 3}, {"vsgl2015", "navi10", 4},
-                                               {"sglab_acc3", "navi21", 169}, {"sglab_acc3", "navi10", 177}})
-    gpu_rows += fmt::format(R"({}{{"method": "{}", "family": "{}", "lang": "glsl", "split": false, "precision": "float", )"
-                            R"("instructions": 1, "inverse_throughput": {}, "latency": 1, "vgprs": 1, "sgprs": 1, )"
-                            R"("code_size": 4, "branches": 0, "spirv_hash": "0"}})",
-                            gpu_rows.empty() ? "" : ", ", method, family, cycles);
+  for (const auto& [method, family, cycles] : {std::tuple{"vsgl2015", "navi21", 3},
+                                               {"vsgl2015", "navi10", 4},
+                                               {"sglab_acc3", "navi21", 169},
+                                               {"sglab_acc3", "navi10", 177}})
+    gpu_rows += fmt::format(
+        R"({}{{"method": "{}", "family": "{}", "lang": "glsl", "split": false, "precision": "float", )"
+        R"("instructions": 1, "inverse_throughput": {}, "latency": 1, "vgprs": 1, "sgprs": 1, )"
+        R"("code_size": 4, "branches": 0, "spirv_hash": "0"}})",
+        gpu_rows.empty() ? "" : ", ", method, family, cycles);
   sglab::io::write_file_atomic(
       dir.path / "costs.json",
       R"({"format": "sglab-costs", "version": 1, "date": "2026-01-01T00:00:00Z", "command": "test", "machine": )"
       R"({"cpu": "t", "cores": 1}, "compiler": {"id": "none", "version": "0"}, "build_type": "none", "timer": "none", )"
-      R"("inputs": "none", "costs": [], "gpu": {"driver": "radv test", "command": "test", "rows": [)" + gpu_rows + "]}}");
+      R"("inputs": "none", "costs": [], "gpu": {"driver": "radv test", "command": "test", "rows": [)" +
+          gpu_rows + "]}}");
   const fs::path out = dir.path / "figs";
-  const auto r = sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", (dir.path / "gpu.csv").string(),
-                                         "--pareto", (dir.path / "cpu.csv").string(), "--costs",
-                                         (dir.path / "costs.json").string()});
+  const auto r = sglab::test::run_sglab(
+      {"figures", "--out", out.string(), "--pareto", (dir.path / "gpu.csv").string(), "--pareto",
+       (dir.path / "cpu.csv").string(), "--costs", (dir.path / "costs.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(sglab::io::read_file(out / "e_pareto_1_families.csv"), "method,navi10\nvsgl2015,4\nsglab_acc3,177\n");
+  EXPECT_EQ(sglab::io::read_file(out / "e_pareto_1_families.csv"),
+            "method,navi10\nvsgl2015,4\nsglab_acc3,177\n");
   EXPECT_FALSE(fs::exists(out / "e_pareto_2_families.csv"));  // the CPU panel has none
   const std::string gpu = sglab::io::read_file(out / "e_pareto_1_points.csv");
   const std::string cpu = sglab::io::read_file(out / "e_pareto_2_points.csv");
@@ -127,15 +143,17 @@ TEST(Figures, OnePanelPerCostSource) {
   EXPECT_EQ(gpu.find("18.3"), std::string::npos) << gpu;
   const std::string script = sglab::io::read_file(out / "e_pareto.gp");
   EXPECT_NE(script.find("set title '--cost gpu:navi21'"), std::string::npos);
-  EXPECT_NE(script.find("set xlabel 'GPU inverse throughput on navi21 (cycles per wave, ACO estimate)'"),
-            std::string::npos);
+  EXPECT_NE(
+      script.find("set xlabel 'GPU inverse throughput on navi21 (cycles per wave, ACO estimate)'"),
+      std::string::npos);
   EXPECT_NE(script.find("set title '--cost cpu-batch'"), std::string::npos);
   EXPECT_NE(script.find("set xlabel 'CPU batch ns/eval'"), std::string::npos);
   EXPECT_GT(fs::file_size(out / "e_pareto.png"), 1000u);
   // A header with cost but not its unit and source is refused.
-  sglab::io::write_file_atomic(dir.path / "half.csv",
-                               "method,origin,precision,kappa_lo,kappa_hi,cost,max_peak_rel,frontier\n"
-                               "a,published,float,1,10,1,0.1,1\n");
+  sglab::io::write_file_atomic(
+      dir.path / "half.csv",
+      "method,origin,precision,kappa_lo,kappa_hi,cost,max_peak_rel,frontier\n"
+      "a,published,float,1,10,1,0.1,1\n");
   EXPECT_THROW(read_pareto_csv(dir.path / "half.csv"), std::invalid_argument);
 }
 
@@ -144,7 +162,8 @@ TEST(Figures, OnePanelPerCostSource) {
 TEST(Figures, GnuplotPathTakenLiterally) {
   EXPECT_FALSE(gnuplot_available(""));
   EXPECT_FALSE(gnuplot_available("/nonexistent/gnuplot"));
-  EXPECT_FALSE(gnuplot_available("gnuplot --version; true"));  // one program name, not a command line
+  EXPECT_FALSE(
+      gnuplot_available("gnuplot --version; true"));  // one program name, not a command line
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   const sglab::test::TempDir tmp("fig's $dir;");
   const fs::path& dir = tmp.path;
@@ -161,8 +180,8 @@ TEST(Figures, MissingParetoFileIsSkipped) {
   // Only checks the command line path: figure (e) skipped with a message, exit 0.
   const sglab::test::TempDir tmp("figures-np");
   const fs::path& dir = tmp.path;
-  const auto r =
-      sglab::test::run_sglab({"figures", "--out", (dir / "figs").string(), "--pareto", (dir / "absent.csv").string()});
+  const auto r = sglab::test::run_sglab(
+      {"figures", "--out", (dir / "figs").string(), "--pareto", (dir / "absent.csv").string()});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("not found"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "figs" / "e_pareto.png"));

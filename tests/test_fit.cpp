@@ -6,16 +6,16 @@
 #include <cmath>
 #include <memory>
 
+#include <gtest/gtest.h>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/minima.hpp>
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <sglab/sglab.hpp>
 
-#include "tests/fit_guard.hpp"
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
+#include "tests/fit_guard.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -27,8 +27,12 @@ double lre(double got, double want) { return -std::log10(std::abs(got - want) / 
 
 struct SteepnessData {
   double kappa, t;
-  template <class T> bool operator()(T const* const* p, T* r) const {
-    r[0] = sglab::steepness2022(T(kappa), sglab::Steepness2022Params<T>{p[0][0], p[1][0], p[2][0]}) / T(t) - T(1);
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    r[0] =
+        sglab::steepness2022(T(kappa), sglab::Steepness2022Params<T>{p[0][0], p[1][0], p[2][0]}) /
+            T(t) -
+        T(1);
     return true;
   }
 };
@@ -38,7 +42,8 @@ TEST(Engine, RecoversSteepnessCoefficientsFromSyntheticData) {
   Residuals residuals;
   for (double k : kappa_grid(1e-3, 1e4, 60))
     residuals.push_back(make_residual(SteepnessData{k, sglab::steepness2022(k, truth)}, 3));
-  Parameters start{{"A", "B", "C"}, {0.65173288269070562, 1.3418280033141288, 7.2216687798956709}, {}};
+  Parameters start{
+      {"A", "B", "C"}, {0.65173288269070562, 1.3418280033141288, 7.2216687798956709}, {}};
   for (Norm norm : {Norm::least_squares, Norm::minimax}) {
     FitOptions options;
     options.norm = norm;
@@ -52,7 +57,8 @@ TEST(Engine, RecoversSteepnessCoefficientsFromSyntheticData) {
 
 struct LineResidual {
   double x;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     using std::exp;
     r[0] = exp(T(x)) - p[0][0] - p[1][0] * T(x);
     return true;
@@ -62,7 +68,8 @@ struct LineResidual {
 // The guard behind fit_guard.hpp counts what it should: a residual √(p − 1)
 // is NaN for p < 1 (its value and its derivative), finite for p > 1.
 struct SqrtBelowOne {
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     using std::sqrt;
     r[0] = sqrt(p[0][0] - T(1));
     return true;
@@ -70,7 +77,8 @@ struct SqrtBelowOne {
 };
 TEST(Engine, CountsNonFiniteResidualEvaluations) {
   std::atomic<std::size_t> count{0};
-  auto inner = std::make_unique<ceres::DynamicAutoDiffCostFunction<SqrtBelowOne, 4>>(new SqrtBelowOne);
+  auto inner =
+      std::make_unique<ceres::DynamicAutoDiffCostFunction<SqrtBelowOne, 4>>(new SqrtBelowOne);
   inner->AddParameterBlock(1);
   inner->SetNumResiduals(1);
   const auto checked = make_checked_residual(std::move(inner), &count);
@@ -123,8 +131,9 @@ TEST(ClampedCosine, FloatFitReproducesPublishedConstants) {
   EXPECT_GT(lre(lambda, 0.00084560872241480124), 6.0) << lambda;
   EXPECT_GT(lre(alpha, 1182.2467339678153), 6.0) << alpha;
   // At the optimum the two error terms balance ([Tokuyoshi2022] supplementary §1.1).
-  EXPECT_NEAR(out.report["approximation_error"].get<double>() / out.report["rounding_error_model"].get<double>(), 1.0,
-              0.01);
+  EXPECT_NEAR(out.report["approximation_error"].get<double>() /
+                  out.report["rounding_error_model"].get<double>(),
+              1.0, 0.01);
 }
 
 TEST(ClampedCosine, PrecisionSetsTheBalance) {
@@ -145,7 +154,8 @@ TEST(LambdaD, SphereLeastSquaresMatchesIndependentMinimization) {
   // Independent: the integral by adaptive Gauss–Kronrod, minimized by Brent.
   auto cost = [](double lambda) {
     auto f = [&](double u) {
-      const double d = std::max(u, 0.0) / M_PI - std::exp(lambda * (u - 1)) * lambda / (2 * M_PI * -std::expm1(-2 * lambda));
+      const double d = std::max(u, 0.0) / M_PI -
+                       std::exp(lambda * (u - 1)) * lambda / (2 * M_PI * -std::expm1(-2 * lambda));
       return 2 * M_PI * d * d;
     };
     using boost::math::quadrature::gauss_kronrod;
@@ -243,8 +253,10 @@ TEST(ModelOrder, RationalOrderTwoReproducesThe2024Form) {
   const auto& a = sglab::constants::steepness2022_published;
   const sglab::SteepnessRationalParams<double, 1> r1{{2 * a.A}, {a.C, a.B}};
   for (double k : {1e-3, 0.5, 0.999, 1.0, 7.0, 1e5}) {
-    EXPECT_NEAR(sglab::steepness_rational(k, r), sglab::steepness2024(k), 1e-15 * sglab::steepness2024(k));
-    EXPECT_NEAR(sglab::steepness_rational(k, r1), sglab::steepness2022(k), 1e-15 * sglab::steepness2022(k));
+    EXPECT_NEAR(sglab::steepness_rational(k, r), sglab::steepness2024(k),
+                1e-15 * sglab::steepness2024(k));
+    EXPECT_NEAR(sglab::steepness_rational(k, r1), sglab::steepness2022(k),
+                1e-15 * sglab::steepness2022(k));
   }
 }
 

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/io.hpp"
 #include "fit/constants_io.hpp"
 #include "fit/targets.hpp"
-#include "common/io.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -54,7 +54,8 @@ TEST(FitCli, FitIntoAFolderNeverTouchesTheCheckout) {
   EXPECT_EQ(slurp(kHeader), header_before) << "the checkout's header changed";
   ASSERT_TRUE(fs::exists(out / "constants.hpp")) << r.output;
   ASSERT_TRUE(fs::exists(out / "lambda-d-diffuse-lobe-sphere-ls.json")) << r.output;
-  EXPECT_NE(r.output.find("regenerated " + (out / "constants.hpp").string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("regenerated " + (out / "constants.hpp").string()), std::string::npos)
+      << r.output;
   // The header is the checkout's sets with the new one in its place: exactly
   // what rendering that collection gives, and it holds every required set.
   std::vector<sglab::fit::ordered_json> sets;
@@ -81,10 +82,13 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   fs::create_directories(blocked);
   auto r = run_sglab(quick_fit({"--out", out.string(), "--header", blocked.string(), "--force"}));
   EXPECT_EQ(r.exit_code, 2) << r.output;  // an output that is not a regular file is bad input
-  EXPECT_NE(r.output.find(blocked.string() + ": is a directory, not a regular file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(blocked.string() + ": is a directory, not a regular file"),
+            std::string::npos)
+      << r.output;
   EXPECT_EQ(slurp(json), before);
   // An invalid set already in --out (tagged as a constant set): refused before anything is written.
-  std::ofstream(out / "zz-bad.json") << "{\"format\": \"sglab-constants\", \"version\": 1, \"target\": 1}";
+  std::ofstream(out / "zz-bad.json")
+      << "{\"format\": \"sglab-constants\", \"version\": 1, \"target\": 1}";
   const fs::path header = tmp.path / "h.hpp";
   r = run_sglab(quick_fit({"--out", out.string(), "--header", header.string(), "--force"}));
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -118,7 +122,9 @@ TEST(FitCli, OptionsThatDoNotApplyAreRefused) {
     EXPECT_NE(r.output.find("does not apply"), std::string::npos) << joined << "\n" << r.output;
   }
   // Where it applies, the same option is accepted.
-  const auto r = run_sglab({"fit", "lambda-d", "--objective", "irradiance", "--kappa", "1:10", "--dry-run", "--json"}, false);
+  const auto r = run_sglab(
+      {"fit", "lambda-d", "--objective", "irradiance", "--kappa", "1:10", "--dry-run", "--json"},
+      false);
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
@@ -177,12 +183,14 @@ TEST(FitCli, ForeignFilesInTheOutputFolderAreSkippedAndNamed) {
     skipped.insert(fs::path(s["file"].get<std::string>()).filename().string());
     EXPECT_NE(s["reason"].get<std::string>().find("\"sglab-constants\""), std::string::npos) << s;
   }
-  EXPECT_EQ(skipped, (std::set<std::string>{"r.json", "costs.json", "notes.json", "partial.json"})) << r.output;
+  EXPECT_EQ(skipped, (std::set<std::string>{"r.json", "costs.json", "notes.json", "partial.json"}))
+      << r.output;
   for (const auto& [name, text] : foreign) EXPECT_EQ(slurp(out / name), text) << name;
   // The text report names them too.
   const auto t = run_sglab(quick_fit({"--out", out.string(), "--force"}));
   ASSERT_EQ(t.exit_code, 0) << t.output;
-  EXPECT_NE(t.output.find("skipped " + (out / "r.json").string() + ": not a constant set"), std::string::npos)
+  EXPECT_NE(t.output.find("skipped " + (out / "r.json").string() + ": not a constant set"),
+            std::string::npos)
       << t.output;
 }
 

@@ -12,11 +12,11 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "report/cost_table.hpp"
-#include "export/gpu_cost.hpp"
 #include "common/io.hpp"
-#include "tests/test_support.hpp"
+#include "export/gpu_cost.hpp"
 #include "export/vulkan_runner.hpp"
+#include "report/cost_table.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -30,8 +30,8 @@ using sglab::test::TempDir;
 gpu::Shader synthetic(const std::string& name, const std::string& body) {
   const std::string src = fmt::format("float {}(float cosine, float kappa) {{ {} }}\n", name, body);
   return {name, shader::Language::glsl,
-          sglab::shader::vulkan::compile_compute(shader::Language::glsl,
-                                                   shader::compute_shader(shader::Language::glsl, src, name))};
+          sglab::shader::vulkan::compile_compute(
+              shader::Language::glsl, shader::compute_shader(shader::Language::glsl, src, name))};
 }
 
 class OnRadv : public ::testing::Test {
@@ -43,7 +43,8 @@ class OnRadv : public ::testing::Test {
       return;
     }
     try {
-      gpu::measure(SGLAB_BINARY, *manifest_, {"navi21"}, {gpu::baseline_shader(shader::Language::glsl)});
+      gpu::measure(SGLAB_BINARY, *manifest_, {"navi21"},
+                   {gpu::baseline_shader(shader::Language::glsl)});
     } catch (const gpu::Unavailable& e) {
       skip_reason_ = e.what();
     }
@@ -51,7 +52,8 @@ class OnRadv : public ::testing::Test {
   void SetUp() override {
     if (!skip_reason_.empty()) GTEST_SKIP() << "no RADV null device: " << skip_reason_;
   }
-  static gpu::Report measure(const std::vector<std::string>& families, const std::vector<gpu::Shader>& shaders) {
+  static gpu::Report measure(const std::vector<std::string>& families,
+                             const std::vector<gpu::Shader>& shaders) {
     return gpu::measure(SGLAB_BINARY, *manifest_, families, shaders);
   }
   static std::optional<fs::path> manifest_;
@@ -85,10 +87,15 @@ TEST_F(OnRadv, TheWrapperAloneCostsNothing) {
 TEST_F(OnRadv, MoreWorkCostsMore) {
   const gpu::Report r = measure(
       {"navi21"},
-      {gpu::baseline_shader(shader::Language::glsl), synthetic("one_exp", "return exp(-kappa) * cosine;"),
+      {gpu::baseline_shader(shader::Language::glsl),
+       synthetic("one_exp", "return exp(-kappa) * cosine;"),
        synthetic("two_exp", "return exp(-kappa) * cosine + exp(kappa * cosine);"),
-       synthetic("chain", "float x = cosine; for (int i = 0; i < 8; ++i) x = exp(-x) / (kappa + x); return x;"),
-       synthetic("loop", "float s = 0.0; for (int i = 0; i < int(kappa); ++i) s += exp(s * cosine); return s;")});
+       synthetic(
+           "chain",
+           "float x = cosine; for (int i = 0; i < 8; ++i) x = exp(-x) / (kappa + x); return x;"),
+       synthetic(
+           "loop",
+           "float s = 0.0; for (int i = 0; i < int(kappa); ++i) s += exp(s * cosine); return s;")});
   ASSERT_EQ(r.rows.size(), 4u);
   const gpu::Statistics &one = r.rows[0].stats, &two = r.rows[1].stats, &chain = r.rows[2].stats,
                         &loop = r.rows[3].stats;
@@ -107,8 +114,8 @@ TEST_F(OnRadv, MoreWorkCostsMore) {
 // Two runs print the same bytes; the JSON carries every field the cost table
 // needs, for every method asked on every family asked.
 TEST_F(OnRadv, TwoRunsGiveTheSameBytes) {
-  const std::vector<std::string> args = {"gpucost", "--families", "navi21,gfx1100", "--method", "hill",
-                                         "--lang", "both", "--json"};
+  const std::vector<std::string> args = {"gpucost", "--families", "navi21,gfx1100", "--method",
+                                         "hill",    "--lang",     "both",           "--json"};
   const auto a = run_sglab(args, false);
   const auto b = run_sglab(args, false);
   ASSERT_EQ(a.exit_code, 0) << a.output;
@@ -117,8 +124,9 @@ TEST_F(OnRadv, TwoRunsGiveTheSameBytes) {
   EXPECT_NE(doc.at("driver").get<std::string>().find("Mesa"), std::string::npos);
   ASSERT_EQ(doc.at("rows").size(), 8u);  // 2 families × 1 method × 2 languages × (unsplit, split)
   for (const auto& row : doc.at("rows")) {
-    for (const char* key : {"method", "family", "lang", "split", "precision", "instructions", "inverse_throughput",
-                            "latency", "vgprs", "sgprs", "code_size", "branches", "spirv_hash"})
+    for (const char* key :
+         {"method", "family", "lang", "split", "precision", "instructions", "inverse_throughput",
+          "latency", "vgprs", "sgprs", "code_size", "branches", "spirv_hash"})
       EXPECT_TRUE(row.contains(key)) << key;
     EXPECT_GT(row.at("instructions").get<long long>(), 0) << row.dump();
   }
@@ -128,16 +136,18 @@ TEST_F(OnRadv, TwoRunsGiveTheSameBytes) {
 // a re-run leaves the file byte for byte as it was.
 TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
   TempDir dir("gpucost-out");
-  const fs::path committed = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
+  const fs::path committed =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
   fs::copy_file(committed, dir.path / "costs.json");
   const auto before = sglab::report::read_cost_table(dir.path / "costs.json");
-  const std::vector<std::string> args = {"gpucost", "--families", "navi21", "--method", "hill", "--out",
-                                         dir.path.string()};
+  const std::vector<std::string> args = {"gpucost", "--families", "navi21",         "--method",
+                                         "hill",    "--out",      dir.path.string()};
   const auto run = run_sglab(args);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto after = sglab::report::read_cost_table(dir.path / "costs.json");
   ASSERT_EQ(after.costs.size(), before.costs.size());
-  for (std::size_t i = 0; i < before.costs.size(); ++i) EXPECT_EQ(after.costs[i].ns_per_eval, before.costs[i].ns_per_eval);
+  for (std::size_t i = 0; i < before.costs.size(); ++i)
+    EXPECT_EQ(after.costs[i].ns_per_eval, before.costs[i].ns_per_eval);
   ASSERT_TRUE(after.gpu.has_value());
   ASSERT_EQ(after.gpu->rows.size(), 2u);  // unsplit and split
   EXPECT_EQ(after.gpu->rows[0].method, "hill");
@@ -153,13 +163,15 @@ TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
 // --disasm prints the final assembly: the wrapper's load and store, and for
 // tokuyoshi2024 the hardware exp its erfc and e^{-κ} need.
 TEST_F(OnRadv, DisasmPrintsTheAssembly) {
-  const auto r = run_sglab({"gpucost", "--disasm", "--method", "tokuyoshi2024", "--family", "navi21"}, false);
+  const auto r =
+      run_sglab({"gpucost", "--disasm", "--method", "tokuyoshi2024", "--family", "navi21"}, false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("buffer_load_dwordx2"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("buffer_store_dword"), std::string::npos);
   EXPECT_NE(r.output.find("v_exp_f32"), std::string::npos);
   EXPECT_NE(r.output.find("s_endpgm"), std::string::npos);
-  const auto two = run_sglab({"gpucost", "--disasm", "--method", "hill", "--method", "vsgl2015", "--family", "navi21"});
+  const auto two = run_sglab(
+      {"gpucost", "--disasm", "--method", "hill", "--method", "vsgl2015", "--family", "navi21"});
   EXPECT_EQ(two.exit_code, 2) << two.output;
   EXPECT_NE(two.output.find("--disasm"), std::string::npos) << two.output;
 }
@@ -179,13 +191,14 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
   ASSERT_EQ(r.rows.size(), 2 * 2 * methods.size());
   std::map<std::pair<std::string, std::string>, std::int64_t> glsl;
   for (const gpu::Row& row : r.rows)
-    if (row.lang == shader::Language::glsl) glsl[{row.family, row.method}] = row.stats.inverse_throughput;
+    if (row.lang == shader::Language::glsl)
+      glsl[{row.family, row.method}] = row.stats.inverse_throughput;
   for (const gpu::Row& row : r.rows) {
     if (row.lang != shader::Language::hlsl) continue;
     const std::int64_t g = glsl.at({row.family, row.method}), h = row.stats.inverse_throughput;
     EXPECT_GT(g, 0) << row.family << " " << row.method;
-    EXPECT_LE(static_cast<double>(std::abs(h - g)), 0.05 * static_cast<double>(g)) << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h
-                                         << " cycles";
+    EXPECT_LE(static_cast<double>(std::abs(h - g)), 0.05 * static_cast<double>(g))
+        << row.family << " " << row.method << ": GLSL " << g << ", HLSL " << h << " cycles";
   }
 }
 
@@ -195,20 +208,24 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
 // tokuyoshi2024 and split sglab_acc3 is at most 0.6× the unsplit tokuyoshi2024
 // inverse throughput, and every split row costs less than its unsplit row.
 TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
-  const auto r = run_sglab({"gpucost", "--families", "navi21,gfx1100", "--method", "tokuyoshi2024", "--method",
-                            "sglab_acc3", "--method", "wang2009", "--json"},
+  const auto r = run_sglab({"gpucost", "--families", "navi21,gfx1100", "--method", "tokuyoshi2024",
+                            "--method", "sglab_acc3", "--method", "wang2009", "--json"},
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
-  std::map<std::tuple<std::string, std::string, bool>, nlohmann::json> rows;  // (family, method, split)
+  std::map<std::tuple<std::string, std::string, bool>, nlohmann::json>
+      rows;  // (family, method, split)
   for (const auto& row : doc.at("rows"))
-    rows[{row.at("family").get<std::string>(), row.at("method").get<std::string>(), row.at("split").get<bool>()}] = row;
+    rows[{row.at("family").get<std::string>(), row.at("method").get<std::string>(),
+          row.at("split").get<bool>()}] = row;
   EXPECT_EQ(rows.size(), 2u * 5u);  // 2 families × (3 unsplit + 2 split)
   for (const std::string family : {"navi21", "gfx1100"}) {
     SCOPED_TRACE(family);
     EXPECT_FALSE(rows.count({family, "wang2009", true}));
-    ASSERT_TRUE(rows.count({family, "tokuyoshi2024", false}) && rows.count({family, "tokuyoshi2024", true}) &&
-                rows.count({family, "sglab_acc3", false}) && rows.count({family, "sglab_acc3", true}));
+    ASSERT_TRUE(rows.count({family, "tokuyoshi2024", false}) &&
+                rows.count({family, "tokuyoshi2024", true}) &&
+                rows.count({family, "sglab_acc3", false}) &&
+                rows.count({family, "sglab_acc3", true}));
     const auto cycles = [&](const char* method, bool split) {
       return rows.at({family, method, split}).at("inverse_throughput").get<double>();
     };
@@ -217,14 +234,18 @@ TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
     EXPECT_LE(cycles("tokuyoshi2024", true), 0.6 * reference);
     EXPECT_LE(cycles("sglab_acc3", true), 0.6 * reference);
     EXPECT_LT(cycles("sglab_acc3", true), cycles("sglab_acc3", false));
-    EXPECT_NE(rows.at({family, "sglab_acc3", true}).at("spirv_hash"), rows.at({family, "sglab_acc3", false}).at("spirv_hash"));
+    EXPECT_NE(rows.at({family, "sglab_acc3", true}).at("spirv_hash"),
+              rows.at({family, "sglab_acc3", false}).at("spirv_hash"));
   }
-  const auto only = run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "sglab_fast", "--json"}, false);
+  const auto only = run_sglab(
+      {"gpucost", "--families", "navi21", "--form", "split", "--method", "sglab_fast", "--json"},
+      false);
   ASSERT_EQ(only.exit_code, 0) << only.output;
   const auto only_doc = nlohmann::json::parse(only.output);
   ASSERT_EQ(only_doc.at("rows").size(), 1u);
   EXPECT_TRUE(only_doc.at("rows")[0].at("split").get<bool>());
-  const auto none = run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "wang2009"});
+  const auto none =
+      run_sglab({"gpucost", "--families", "navi21", "--form", "split", "--method", "wang2009"});
   EXPECT_EQ(none.exit_code, 2) << none.output;
   EXPECT_NE(none.output.find("wang2009"), std::string::npos) << none.output;
   const auto bad = run_sglab({"gpucost", "--families", "navi21", "--form", "halfway"});
@@ -260,9 +281,12 @@ TEST(GpuCostCli, BadInputExitsTwoNamingIt) {
 // The cost table reader refuses a malformed "gpu" section, naming the key.
 TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
   TempDir dir("gpucost-table");
-  const fs::path committed = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
+  const fs::path committed =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
   auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(committed));
-  doc["gpu"] = {{"driver", "radv Mesa"}, {"command", "x"}, {"rows", {{{"method", "hill"}, {"family", "navi21"}}}}};
+  doc["gpu"] = {{"driver", "radv Mesa"},
+                {"command", "x"},
+                {"rows", {{{"method", "hill"}, {"family", "navi21"}}}}};
   sglab::io::write_file_atomic(dir.path / "costs.json", doc.dump());
   try {
     sglab::report::read_cost_table(dir.path / "costs.json");
@@ -290,16 +314,21 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
   fs::create_directories(dir.path / "include" / "sglab");
   fs::create_directories(dir.path / "data" / "results");
   fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
-  fs::copy_file(checkout / "data" / "results" / "vulkan_sweep.json", dir.path / "data" / "results" / "vulkan_sweep.json");
-  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  fs::copy_file(checkout / "data" / "results" / "vulkan_sweep.json",
+                dir.path / "data" / "results" / "vulkan_sweep.json");
+  auto doc = nlohmann::ordered_json::parse(
+      sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
   gpu::Report report{"radv Mesa (test rows)", "test", {}};
-  const auto row = [](const std::string& family, shader::Language lang, std::int64_t cycles, std::string hash) {
+  const auto row = [](const std::string& family, shader::Language lang, std::int64_t cycles,
+                      std::string hash) {
     gpu::Statistics s;
     s.instructions = s.inverse_throughput = s.latency = cycles;
     return gpu::Row{"hill", family, lang, false, "float", s, std::move(hash)};
   };
-  const std::string glsl_hash = gpu::spirv_hash(gpu::method_shader("hill", shader::Language::glsl).spirv);
-  const std::string hlsl_hash = gpu::spirv_hash(gpu::method_shader("hill", shader::Language::hlsl).spirv);
+  const std::string glsl_hash =
+      gpu::spirv_hash(gpu::method_shader("hill", shader::Language::glsl).spirv);
+  const std::string hlsl_hash =
+      gpu::spirv_hash(gpu::method_shader("hill", shader::Language::hlsl).spirv);
   ASSERT_NE(glsl_hash, hlsl_hash);
   report.rows = {row("navi21", shader::Language::glsl, 1234, glsl_hash),
                  row("gfx1100", shader::Language::glsl, 2345, glsl_hash),
@@ -311,21 +340,25 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
   const auto glsl = run_sglab({"export", "--lang", "glsl", "--method", "hill"}, false);
   ASSERT_EQ(glsl.exit_code, 0) << glsl.output;
   EXPECT_NE(glsl.output.find("measured on Vulkan"), std::string::npos) << glsl.output;
-  EXPECT_NE(glsl.output.find("radv Mesa (test rows), data/results/costs.json): navi21 1234, gfx1100 2345\n"),
+  EXPECT_NE(glsl.output.find(
+                "radv Mesa (test rows), data/results/costs.json): navi21 1234, gfx1100 2345\n"),
             std::string::npos)
       << glsl.output;
   const auto hlsl = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
   ASSERT_EQ(hlsl.exit_code, 0) << hlsl.output;
   EXPECT_EQ(hlsl.output.find("3456"), std::string::npos) << hlsl.output;
-  EXPECT_NE(hlsl.output.find("`sglab gpucost`): not measured for this code in radv Mesa (test rows)"),
-            std::string::npos)
+  EXPECT_NE(
+      hlsl.output.find("`sglab gpucost`): not measured for this code in radv Mesa (test rows)"),
+      std::string::npos)
       << hlsl.output;
   // The right hash for HLSL: its row is read.
   report.rows[2].spirv_hash = hlsl_hash;
   doc["gpu"] = gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   const auto hlsl2 = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
-  EXPECT_NE(hlsl2.output.find("costs.json): navi21 3456, gfx1100 not measured\n"), std::string::npos) << hlsl2.output;
+  EXPECT_NE(hlsl2.output.find("costs.json): navi21 3456, gfx1100 not measured\n"),
+            std::string::npos)
+      << hlsl2.output;
   // C++ is costed by `sglab bench`, not here.
   const auto cpp = run_sglab({"export", "--lang", "cpp", "--method", "hill"}, false);
   ASSERT_EQ(cpp.exit_code, 0) << cpp.output;
@@ -340,25 +373,33 @@ TEST(GpuCostInExport, SplitHeaderReadsTheSplitRow) {
   fs::create_directories(dir.path / "include" / "sglab");
   fs::create_directories(dir.path / "data" / "results");
   fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
-  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  auto doc = nlohmann::ordered_json::parse(
+      sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
   gpu::Statistics unsplit_stats, split_stats;
   unsplit_stats.inverse_throughput = 4321;
   split_stats.inverse_throughput = 1234;
-  const std::string unsplit_hash = gpu::spirv_hash(gpu::method_shader("sglab_fast", shader::Language::glsl).spirv);
-  const std::string split_hash = gpu::spirv_hash(gpu::split_method_shader("sglab_fast", shader::Language::glsl).spirv);
+  const std::string unsplit_hash =
+      gpu::spirv_hash(gpu::method_shader("sglab_fast", shader::Language::glsl).spirv);
+  const std::string split_hash =
+      gpu::spirv_hash(gpu::split_method_shader("sglab_fast", shader::Language::glsl).spirv);
   ASSERT_NE(unsplit_hash, split_hash);
   gpu::Report report{"radv Mesa (test rows)", "test", {}};
-  report.rows = {{"sglab_fast", "navi21", shader::Language::glsl, false, "float", unsplit_stats, unsplit_hash},
-                 {"sglab_fast", "navi21", shader::Language::glsl, true, "float", split_stats, split_hash}};
+  report.rows = {
+      {"sglab_fast", "navi21", shader::Language::glsl, false, "float", unsplit_stats, unsplit_hash},
+      {"sglab_fast", "navi21", shader::Language::glsl, true, "float", split_stats, split_hash}};
   doc["gpu"] = gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   WorkingDirectory cwd(dir.path);
-  const auto split = run_sglab({"export", "--lang", "glsl", "--method", "sglab_fast", "--split"}, false);
+  const auto split =
+      run_sglab({"export", "--lang", "glsl", "--method", "sglab_fast", "--split"}, false);
   ASSERT_EQ(split.exit_code, 0) << split.output;
-  EXPECT_NE(split.output.find("costs.json): navi21 1234, gfx1100 not measured\n"), std::string::npos) << split.output;
+  EXPECT_NE(split.output.find("costs.json): navi21 1234, gfx1100 not measured\n"),
+            std::string::npos)
+      << split.output;
   const auto unsplit = run_sglab({"export", "--lang", "glsl", "--method", "sglab_fast"}, false);
   ASSERT_EQ(unsplit.exit_code, 0) << unsplit.output;
-  EXPECT_NE(unsplit.output.find("costs.json): navi21 4321, gfx1100 not measured\n"), std::string::npos)
+  EXPECT_NE(unsplit.output.find("costs.json): navi21 4321, gfx1100 not measured\n"),
+            std::string::npos)
       << unsplit.output;
 }
 

@@ -59,11 +59,13 @@ TEST(HalfExport, EveryMethodCompilesToHalfSpirv) {
       const sh::ExportResult ex = half_export(lang, id);
       EXPECT_NO_THROW(vk::check_compiles(lang, ex.source, sh::Precision::float16));
       const auto spirv = vk::compile_compute(
-          lang, sh::compute_shader(lang, ex.source, ex.entry_point, sh::Precision::float16), sh::Precision::float16);
+          lang, sh::compute_shader(lang, ex.source, ex.entry_point, sh::Precision::float16),
+          sh::Precision::float16);
       EXPECT_TRUE(declares_float16(spirv));
       // The float export declares no 16-bit type: the check can fail.
       const sh::ExportResult fl = sh::export_source(sh::standard_request(lang, id));
-      EXPECT_FALSE(declares_float16(vk::compile_compute(lang, sh::compute_shader(lang, fl.source, fl.entry_point))));
+      EXPECT_FALSE(declares_float16(
+          vk::compile_compute(lang, sh::compute_shader(lang, fl.source, fl.entry_point))));
       EXPECT_NE(ex.source.find("--precision half"), std::string::npos);
     }
 }
@@ -78,7 +80,8 @@ TEST(HalfExport, LiteralsAreHalvesAndNoFloatIsLeft) {
       SCOPED_TRACE(fmt::format("{} {}", id, sh::to_string(lang)));
       const std::string code = code_of(half_export(lang, id).source);
       std::size_t count = 0;
-      for (auto it = std::sregex_iterator(code.begin(), code.end(), literal); it != std::sregex_iterator(); ++it) {
+      for (auto it = std::sregex_iterator(code.begin(), code.end(), literal);
+           it != std::sregex_iterator(); ++it) {
         const float v = std::stof((*it)[1].str());
         EXPECT_EQ(static_cast<float>(static_cast<_Float16>(v)), v) << (*it)[0].str();
         ++count;
@@ -86,17 +89,22 @@ TEST(HalfExport, LiteralsAreHalvesAndNoFloatIsLeft) {
       if (id == "sglab_fast") continue;  // its κ-only part is float by design
       EXPECT_GT(count, 0u);
       // The HLSL prelude converts to float for exp, exp2 and sqrt only.
-      const std::string rest = std::regex_replace(code, std::regex(R"(\(float\)x|\(half\)(exp|exp2|sqrt)\(\(float\)x\))"), "");
-      EXPECT_FALSE(std::regex_search(rest, std::regex(R"(\bfloat\b|\bvec[23]\b|\bfloat[23]\b|\d[.]\d*f\b)"))) << rest;
+      const std::string rest = std::regex_replace(
+          code, std::regex(R"(\(float\)x|\(half\)(exp|exp2|sqrt)\(\(float\)x\))"), "");
+      EXPECT_FALSE(
+          std::regex_search(rest, std::regex(R"(\bfloat\b|\bvec[23]\b|\bfloat[23]\b|\d[.]\d*f\b)")))
+          << rest;
     }
 }
 
 TEST(HalfExport, CppHalfAndBadPrecisionAreRefused) {
   EXPECT_THROW(half_export(sh::Language::cpp, "tokuyoshi2024"), std::invalid_argument);
-  auto r = run_sglab({"export", "--lang", "cpp", "--method", "tokuyoshi2024", "--precision", "half"});
+  auto r =
+      run_sglab({"export", "--lang", "cpp", "--method", "tokuyoshi2024", "--precision", "half"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--precision half"), std::string::npos) << r.output;
-  r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--precision", "quarter"});
+  r = run_sglab(
+      {"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--precision", "quarter"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--precision"), std::string::npos) << r.output;
   r = run_sglab({"sweep", "--backend", "vulkan", "--precision", "double", "--method", "hill"});
@@ -108,13 +116,15 @@ TEST(HalfExport, CppHalfAndBadPrecisionAreRefused) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   r = run_sglab({"export", "--lang", "hlsl", "--method", "sglab_acc3", "--precision", "half"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("half sglab_irradiance_sglab_acc3(half cosine, half kappa)"), std::string::npos);
+  EXPECT_NE(r.output.find("half sglab_irradiance_sglab_acc3(half cosine, half kappa)"),
+            std::string::npos);
 }
 
 // A coefficient beyond 65504 would be an infinite half literal: refused naming
 // the set and the key (the same value is fine in a float export).
 TEST(HalfExport, CoefficientNotFiniteInHalfIsRefused) {
-  sh::ExportRequest req = sh::standard_request(sh::Language::glsl, "tokuyoshi2024", sh::Precision::float16);
+  sh::ExportRequest req =
+      sh::standard_request(sh::Language::glsl, "tokuyoshi2024", sh::Precision::float16);
   sh::ConstantSet set = sh::method_constants("tokuyoshi2024").at(0);
   for (auto& [name, values] : set.members)
     if (name == "E") values = {1e5};
@@ -141,7 +151,8 @@ TEST_F(OnVulkanHalf, TheDeviceRoundsToHalf) {
   for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
     const sh::ExportResult ex = half_export(lang, "punctual");
     const auto spirv = vk::compile_compute(
-        lang, sh::compute_shader(lang, ex.source, ex.entry_point, sh::Precision::float16), sh::Precision::float16);
+        lang, sh::compute_shader(lang, ex.source, ex.entry_point, sh::Precision::float16),
+        sh::Precision::float16);
     const auto out = device_->run(spirv, {1.0f, 1e-3f, 0.5f, 3.0f});
     const auto h = [](float x) { return static_cast<float>(static_cast<_Float16>(x)); };
     // A quotient of two halves rounded once through float is the correctly rounded half quotient.
@@ -158,11 +169,12 @@ TEST_F(OnVulkanHalf, TheDeviceRoundsToHalf) {
 // held-out grid no fit used.
 TEST_F(OnVulkanHalf, TargetMethodsMeetTheHalfBudget) {
   TempDir dir("half_sweep");
-  for (const std::vector<std::string>& grid : {std::vector<std::string>{"--kappa", "1e-2:1e3:21"},
-                                              std::vector<std::string>{"--kappa", "1.13e-2:8.9e2:53", "--cosines", "101"}}) {
-    std::vector<std::string> args = {"sweep", "--backend", "vulkan", "--precision", "half", "--lang", "both",
-                                     "--method", "sglab_fast", "--method", "sglab_acc3", "--out", dir.path.string(),
-                                     "--json"};
+  for (const std::vector<std::string>& grid :
+       {std::vector<std::string>{"--kappa", "1e-2:1e3:21"},
+        std::vector<std::string>{"--kappa", "1.13e-2:8.9e2:53", "--cosines", "101"}}) {
+    std::vector<std::string> args = {
+        "sweep",    "--backend",  "vulkan",   "--precision", "half",  "--lang",          "both",
+        "--method", "sglab_fast", "--method", "sglab_acc3",  "--out", dir.path.string(), "--json"};
     args.insert(args.end(), grid.begin(), grid.end());
     const auto r = run_sglab(args, false);
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -214,23 +226,27 @@ TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
   fs::create_directories(dir.path / "include" / "sglab");
   fs::create_directories(dir.path / "data" / "results");
   fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
-  auto doc = nlohmann::ordered_json::parse(sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
+  auto doc = nlohmann::ordered_json::parse(
+      sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
   const std::string half_hash =
       gpu::spirv_hash(gpu::method_shader("hill", sh::Language::glsl, sh::Precision::float16).spirv);
   gpu::Statistics s;
   s.instructions = s.inverse_throughput = s.latency = 777;
   gpu::Report report{"radv Mesa (test rows)", "test", {}};
-  report.rows = {{"hill", "navi21", sh::Language::glsl, false, "half", s, half_hash},
-                 {"hill", "gfx1100", sh::Language::glsl, false, "float", s, half_hash}};  // not a half row
+  report.rows = {
+      {"hill", "navi21", sh::Language::glsl, false, "half", s, half_hash},
+      {"hill", "gfx1100", sh::Language::glsl, false, "float", s, half_hash}};  // not a half row
   doc["gpu"] = gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   const fs::path old = fs::current_path();
   fs::current_path(dir.path);
-  const auto half = run_sglab({"export", "--lang", "glsl", "--method", "hill", "--precision", "half"}, false);
+  const auto half =
+      run_sglab({"export", "--lang", "glsl", "--method", "hill", "--precision", "half"}, false);
   const auto single = run_sglab({"export", "--lang", "glsl", "--method", "hill"}, false);
   fs::current_path(old);
   ASSERT_EQ(half.exit_code, 0) << half.output;
-  EXPECT_NE(half.output.find("costs.json): navi21 777, gfx1100 not measured\n"), std::string::npos) << half.output;
+  EXPECT_NE(half.output.find("costs.json): navi21 777, gfx1100 not measured\n"), std::string::npos)
+      << half.output;
   ASSERT_EQ(single.exit_code, 0) << single.output;
   EXPECT_EQ(single.output.find("777"), std::string::npos) << single.output;
 }
@@ -240,7 +256,8 @@ TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
 
 TEST(OnRadv, HalfRowsCostTheHalfExports) {
   const auto manifest = gpu::find_radv_manifest();
-  if (!manifest) GTEST_SKIP() << "no RADV null device: no radeon_icd.*.json in the Vulkan loader's folders";
+  if (!manifest)
+    GTEST_SKIP() << "no RADV null device: no radeon_icd.*.json in the Vulkan loader's folders";
   try {
     gpu::measure(SGLAB_BINARY, *manifest, {"navi21"}, {gpu::baseline_shader(sh::Language::glsl)});
   } catch (const gpu::Unavailable& e) {
@@ -256,9 +273,10 @@ TEST(OnRadv, HalfRowsCostTheHalfExports) {
   EXPECT_EQ(alone.rows[0].stats.inverse_throughput, 0);
   EXPECT_EQ(alone.rows[0].stats.instructions, 0);
 
-  const auto r = run_sglab({"gpucost", "--families", "navi21,gfx1100", "--precision", "both", "--lang", "both",
-                            "--method", "sglab_fast", "--method", "sglab_acc3", "--json"},
-                           false);
+  const auto r =
+      run_sglab({"gpucost", "--families", "navi21,gfx1100", "--precision", "both", "--lang", "both",
+                 "--method", "sglab_fast", "--method", "sglab_acc3", "--json"},
+                false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
   int half = 0, single = 0, half_split = 0, single_split = 0;

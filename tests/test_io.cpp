@@ -30,14 +30,18 @@ namespace fs = std::filesystem;
 using sglab::test::run_sglab;
 using sglab::test::TempDir;
 
-void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream(p, std::ios::binary) << text;
+}
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 // A FIFO, a symbolic link to a regular file and a directory in `dir`, each
 // named after what it is; the link's target holds "keep".
@@ -77,7 +81,8 @@ TEST(AtomicWrite, RefusesToReplaceWhatIsNotARegularFile) {
   odd.expect_untouched();
   // Several files as one unit: one bad destination and none is written.
   const fs::path fresh = dir.path / "fresh.txt";
-  EXPECT_THROW(sglab::io::write_files_atomic({{fresh, "a"}, {odd.fifo, "b"}}), sglab::io::InputError);
+  EXPECT_THROW(sglab::io::write_files_atomic({{fresh, "a"}, {odd.fifo, "b"}}),
+               sglab::io::InputError);
   EXPECT_FALSE(fs::exists(fresh));
   odd.expect_untouched();
   // A regular file, or a path below a symbolic link to a folder, is written.
@@ -105,9 +110,11 @@ TEST(AtomicWrite, RefusesAFolderThatIsNotAFolderAndEmptyPaths) {
 TEST(OutputCommands, HeaderOverAFifoOrSymlinkExitsTwoAndLeavesItAlone) {
   TempDir dir("io-header");
   const NotRegularFiles odd(dir.path);
-  const std::string sets = (fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "constants").string();
+  const std::string sets =
+      (fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "constants").string();
   for (const fs::path& header : {odd.fifo, odd.link, odd.folder}) {
-    const auto r = run_sglab({"constants", "--dir", sets, "--write-header", "--header", header.string()});
+    const auto r =
+        run_sglab({"constants", "--dir", sets, "--write-header", "--header", header.string()});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_TRUE(contains(r.output, header.string() + ": is a")) << r.output;
   }
@@ -118,7 +125,8 @@ TEST(OutputCommands, SweepOutputOverASymlinkOrIntoAFifoExitsTwo) {
   TempDir dir("io-sweep-out");
   const NotRegularFiles odd(dir.path);
   const auto sweep = [](const fs::path& out) {
-    return run_sglab({"sweep", "--kappa", "1:1:1", "--cosines", "3", "--method", "punctual", "--out", out.string()});
+    return run_sglab({"sweep", "--kappa", "1:1:1", "--cosines", "3", "--method", "punctual",
+                      "--out", out.string()});
   };
   auto r = sweep(odd.fifo);
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -163,9 +171,10 @@ TEST(OutputCommands, EmptyOutputPathsExitTwo) {
 TEST(InputFile, RefusesWhatIsNotARegularFileAndFilesOverTheLimit) {
   TempDir dir("io-input");
   const NotRegularFiles odd(dir.path);
-  const std::pair<fs::path, const char*> cases[] = {{odd.fifo, "is a FIFO"},  // refused without blocking
-                                                    {odd.folder, "is a directory"},
-                                                    {dir.path / "absent", "no such file"}};
+  const std::pair<fs::path, const char*> cases[] = {
+      {odd.fifo, "is a FIFO"},  // refused without blocking
+      {odd.folder, "is a directory"},
+      {dir.path / "absent", "no such file"}};
   for (const auto& [path, why] : cases) {
     try {
       sglab::io::read_input_file(path, 100, "a test file");
@@ -174,13 +183,15 @@ TEST(InputFile, RefusesWhatIsNotARegularFileAndFilesOverTheLimit) {
       EXPECT_TRUE(contains(e.what(), path.string() + ": " + why)) << e.what();
     }
   }
-  EXPECT_EQ(sglab::io::read_input_file(odd.link, 100, "a test file"), "keep");  // a link to a regular file is fine
-  EXPECT_EQ(sglab::io::read_input_file(odd.target, 4, "a test file"), "keep");   // exactly the limit
+  EXPECT_EQ(sglab::io::read_input_file(odd.link, 100, "a test file"),
+            "keep");  // a link to a regular file is fine
+  EXPECT_EQ(sglab::io::read_input_file(odd.target, 4, "a test file"), "keep");  // exactly the limit
   try {
     sglab::io::read_input_file(odd.target, 3, "a test file");
     ADD_FAILURE() << "read a file over the limit";
   } catch (const sglab::io::InputError& e) {
-    EXPECT_TRUE(contains(e.what(), "4 bytes, more than the 3 bytes a test file may have")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "4 bytes, more than the 3 bytes a test file may have"))
+        << e.what();
   }
 }
 
@@ -238,15 +249,18 @@ TEST(JsonInput, SceneAndConstantsFilesWithHugeNumbersExitTwoNamingFileAndKey) {
   TempDir dir("io-json-huge");
   const std::string huge(100'000, '9');
   const fs::path scene = dir.path / "scene.json";
-  write_text(scene, R"({"lights": [{"axis": [0, 0, 1], "sharpness": )" + huge + R"(, "amplitude": [1, 1, 1]}]})");
+  write_text(scene, R"({"lights": [{"axis": [0, 0, 1], "sharpness": )" + huge +
+                        R"(, "amplitude": [1, 1, 1]}]})");
   auto r = run_sglab({"recommend", "--scene", scene.string(), "--budget", "1e-2"});
   EXPECT_EQ(r.exit_code, 2) << r.output.substr(0, 500);
-  EXPECT_TRUE(contains(r.output, scene.string() + ": malformed JSON: key 'lights[0].sharpness'")) << r.output.substr(0, 500);
+  EXPECT_TRUE(contains(r.output, scene.string() + ": malformed JSON: key 'lights[0].sharpness'"))
+      << r.output.substr(0, 500);
   EXPECT_LT(r.output.size(), 1000u);
   // A constant set with a coefficient of 1e400.
   const fs::path sets = dir.path / "sets";
   fs::create_directories(sets);
-  const fs::path source = fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "constants" / "clamped-cosine-float.json";
+  const fs::path source = fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "constants" /
+                          "clamped-cosine-float.json";
   std::string set = read_text(source);
   const auto at = set.find("\"lambda\":");
   ASSERT_NE(at, std::string::npos);
@@ -283,7 +297,8 @@ TEST(CountOption, ParsesDigitsOnlyWithinTheRange) {
 }
 
 TEST(CountOption, CommandsSayWhatIsWrongWithAWholeNumber) {
-  const std::string scene = (fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "scenes" / "studio.json").string();
+  const std::string scene =
+      (fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "scenes" / "studio.json").string();
   auto r = run_sglab({"recommend", "--scene", scene, "--budget", "1e-2", "--normals", "-1"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_TRUE(contains(r.output, "--normals")) << r.output;
@@ -303,8 +318,10 @@ TEST(CountOption, CommandsSayWhatIsWrongWithAWholeNumber) {
 TEST(SceneInput, NegativeZeroSharpnessIsZero) {
   TempDir dir("io-negzero");
   const fs::path scene = dir.path / "s.json";
-  write_text(scene, R"({"lights": [{"axis": [0, 0, 1], "sharpness": -0.0, "amplitude": [1, 1, 1]}]})");
-  const auto r = run_sglab({"recommend", "--scene", scene.string(), "--budget", "1e-2", "--normals", "16"});
+  write_text(scene,
+             R"({"lights": [{"axis": [0, 0, 1], "sharpness": -0.0, "amplitude": [1, 1, 1]}]})");
+  const auto r =
+      run_sglab({"recommend", "--scene", scene.string(), "--budget", "1e-2", "--normals", "16"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "κ in [0, 0]")) << r.output;
   EXPECT_FALSE(contains(r.output, "[-0")) << r.output;
@@ -326,8 +343,10 @@ TEST(PointsInput, ALongLineWithControlBytesIsQuotedShortAndEscaped) {
     EXPECT_EQ(r.exit_code, 2) << command << ": " << r.output.substr(0, 500);
     EXPECT_LT(r.output.size(), 1000u) << command;
     EXPECT_TRUE(contains(r.output, file.string() + ":3: ")) << r.output.substr(0, 500);
-    EXPECT_EQ(r.output.find('\0'), std::string::npos) << command << ": a raw NUL byte in the output";
-    EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << command << ": a raw escape byte in the output";
+    EXPECT_EQ(r.output.find('\0'), std::string::npos)
+        << command << ": a raw NUL byte in the output";
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos)
+        << command << ": a raw escape byte in the output";
   }
   // A short bad line with a NUL byte: the message escapes it.
   write_text(file, std::string("kappa,cosine\n1,0\n1,\0\n", 21));
@@ -349,9 +368,11 @@ TEST(PointsInput, RowsBeforeABadRowArePrintedThenExitTwo) {
     if (std::string(command) == "eval") args.insert(args.end(), {"--method", "tokuyoshi2024"});
     const auto out = run_sglab(args, /*merge_stderr=*/false);
     EXPECT_EQ(out.exit_code, 2) << command;
-    EXPECT_EQ(std::count(out.output.begin(), out.output.end(), '\n'), good + 1) << command;  // header and every good row
+    EXPECT_EQ(std::count(out.output.begin(), out.output.end(), '\n'), good + 1)
+        << command;  // header and every good row
     const auto all = run_sglab(args);
-    EXPECT_TRUE(contains(all.output, fmt::format("{}:{}: cosine must be in [-1, 1]", file.string(), good + 2)))
+    EXPECT_TRUE(contains(all.output,
+                         fmt::format("{}:{}: cosine must be in [-1, 1]", file.string(), good + 2)))
         << all.output.substr(all.output.size() > 300 ? all.output.size() - 300 : 0);
   }
   // A refused file, or a bad first row: nothing at all on stdout.
@@ -377,7 +398,9 @@ TEST(PointsInput, EvalInFloatRefusesKappaThatFloatCannotHold) {
     EXPECT_TRUE(contains(r.output, file.string() + ":2: kappa")) << r.output;
     EXPECT_TRUE(contains(r.output, why)) << r.output;
     EXPECT_FALSE(contains(r.output, "nan")) << r.output;
-    r = run_sglab({"eval", "--method", "tokuyoshi2024", "--points", file.string(), "--precision", "double"}, false);
+    r = run_sglab(
+        {"eval", "--method", "tokuyoshi2024", "--points", file.string(), "--precision", "double"},
+        false);
     EXPECT_EQ(r.exit_code, 0) << r.output;  // a double holds it
   }
   // The largest float and the smallest subnormal float are fine.

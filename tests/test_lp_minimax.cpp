@@ -56,7 +56,8 @@ struct Problem {
 };
 
 // Degree-n polynomial (monomials) against f on the points x, weights 1.
-template <class F> Problem polynomial_problem(const std::vector<double>& x, int n, F f) {
+template <class F>
+Problem polynomial_problem(const std::vector<double>& x, int n, F f) {
   Problem p{Eigen::MatrixXd(Eigen::Index(x.size()), n + 1), Eigen::VectorXd(Eigen::Index(x.size())),
             Eigen::VectorXd::Ones(Eigen::Index(x.size()))};
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -82,7 +83,8 @@ TEST(LpMinimax, BestPolynomialApproximationOfAMonomialIsTheChebyshevClosedForm) 
     // p*(x) = x^{n+1} − 2^{−n} T_{n+1}(x): its coefficients.
     const auto t = chebyshev_coefficients(n + 1);
     // The monomial basis is ill-conditioned (|coefficients| up to 2.25 at n = 8).
-    for (int j = 0; j <= n; ++j) EXPECT_NEAR(r.x[j], -want * t[std::size_t(j)], 1e-7) << "n = " << n << ", x^" << j;
+    for (int j = 0; j <= n; ++j)
+      EXPECT_NEAR(r.x[j], -want * t[std::size_t(j)], 1e-7) << "n = " << n << ", x^" << j;
   }
 }
 
@@ -112,12 +114,14 @@ TEST(LpMinimax, LowerBoundOnAnySubsetIsBelowTheAchievedMaximum) {
   std::vector<std::size_t> every, some;
   for (std::size_t i = 0; i < x.size(); ++i) every.push_back(i);
   for (std::size_t i = 0; i < x.size(); i += 97) some.push_back(i);
-  const auto all_rows = lp_minimax_on(p.a, p.y, p.w, every);  // one LP on every row: the exact minimax
+  const auto all_rows =
+      lp_minimax_on(p.a, p.y, p.w, every);  // one LP on every row: the exact minimax
   const auto subset = lp_minimax_on(p.a, p.y, p.w, some);
   EXPECT_LE(subset.lower_bound, all_rows.lower_bound * (1 + 1e-12));
   EXPECT_LE(all_rows.lower_bound, full.achieved * (1 + 1e-12));
   EXPECT_NEAR(full.achieved, all_rows.lower_bound, 1e-6 * all_rows.lower_bound);
-  EXPECT_GT(subset.achieved, subset.lower_bound) << "a sparse subset misses the peaks: its x is worse on every row";
+  EXPECT_GT(subset.achieved, subset.lower_bound)
+      << "a sparse subset misses the peaks: its x is worse on every row";
 }
 
 TEST(LpMinimax, WeightsAreHonoured) {
@@ -175,7 +179,8 @@ TEST(LpMinimax, IllPosedInputIsRefusedWithAClearMessage) {
 // in (p0, p2) at p1 held is exact, and the LP on it is the minimax.
 struct QuadraticResidual {
   double x, data;
-  template <class T> bool operator()(T const* const* p, T* r) const {
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
     r[0] = p[0][0] + p[1][0] * T(x) + p[2][0] * T(x * x) - T(data);
     return true;
   }
@@ -193,7 +198,8 @@ TEST(LpMinimax, LinearSubproblemOfAFitsResidualsIsExact) {
   for (std::size_t i = 0; i < xs.size(); ++i) {
     EXPECT_DOUBLE_EQ(sub.a(Eigen::Index(i), 0), 1.0);
     EXPECT_NEAR(sub.a(Eigen::Index(i), 1), xs[i] * xs[i], 1e-15);
-    EXPECT_NEAR(sub.y[Eigen::Index(i)], std::abs(xs[i]) - 0.3 + 0.7 * xs[i] * xs[i], 1e-15);  // −r(x₀)
+    EXPECT_NEAR(sub.y[Eigen::Index(i)], std::abs(xs[i]) - 0.3 + 0.7 * xs[i] * xs[i],
+                1e-15);  // −r(x₀)
   }
   // Best even quadratic to |x| on [−1, 1] = best linear a + b·s to √s on
   // s = x² ∈ [0, 1]: b = 1, a = 1/8, error 1/8 (chord slope, tangent at s = 1/4).
@@ -211,12 +217,14 @@ TEST(LpMinimax, ConstantSetWithAnIncompleteCertificateIsRefused) {
   sglab::test::TempDir tmp("lp_certificate");
   const fs::path dir = tmp.path / "constants";
   fs::create_directories(dir);
-  for (const auto& e : fs::directory_iterator(fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants"))
+  for (const auto& e :
+       fs::directory_iterator(fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants"))
     fs::copy_file(e.path(), dir / e.path().filename());
   const fs::path file = dir / "sglab-acc-acc3.json";
   std::ifstream in(file);
   auto set = nlohmann::ordered_json::parse(in);
-  set["provenance"]["certificate"] = {{"kind", "lp_at_fitted_steepness"}, {"grid", "g"}, {"achieved", 0.5}};
+  set["provenance"]["certificate"] = {
+      {"kind", "lp_at_fitted_steepness"}, {"grid", "g"}, {"achieved", 0.5}};
   std::ofstream(file, std::ios::trunc) << set.dump(2);
   const auto r = sglab::test::run_sglab({"constants", "--dir", dir.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -17,9 +17,9 @@
 
 #include <sglab/sglab.hpp>
 
-#include "validate/reference.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
+#include "validate/reference.hpp"
 
 namespace sglab {
 // Test names and failure messages show the method's id.
@@ -39,8 +39,9 @@ using sglab::test::Tolerance;
 const Tolerance& row(const sglab::Method& m, Quantity q, Precision p = Precision::float32) {
   const Tolerance* t = find_tolerance(m.id, q, p);
   if (!t)
-    throw std::runtime_error(fmt::format("tests/tolerances.hpp has no row for {} {} {}: add one with its reason",
-                                         m.id, to_string(q), to_string(p)));
+    throw std::runtime_error(
+        fmt::format("tests/tolerances.hpp has no row for {} {} {}: add one with its reason", m.id,
+                    to_string(q), to_string(p)));
   return *t;
 }
 
@@ -50,7 +51,8 @@ std::vector<sglab::validate::Query> random_points(int n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> lk(std::log(1e-3), std::log(1e4)), uc(-1.0, 1.0);
   std::vector<sglab::validate::Query> q;
-  for (int i = 0; i < n; ++i) q.push_back({double(float(std::exp(lk(rng)))), double(float(uc(rng)))});
+  for (int i = 0; i < n; ++i)
+    q.push_back({double(float(std::exp(lk(rng)))), double(float(uc(rng)))});
   return q;
 }
 
@@ -98,8 +100,8 @@ const FloatPoints& batch_points() {
         p.kappa.push_back(static_cast<float>(kappa));
         p.cosine.push_back(static_cast<float>(cosine));
       }
-    for (float kappa : {0.0f, 1e-30f, 0.25f, std::nextafter(0.25f, 0.0f), 0.99999994f, 1.0f, 80.0f, 1e4f, 1e20f,
-                        1e30f, std::numeric_limits<float>::max()})
+    for (float kappa : {0.0f, 1e-30f, 0.25f, std::nextafter(0.25f, 0.0f), 0.99999994f, 1.0f, 80.0f,
+                        1e4f, 1e20f, 1e30f, std::numeric_limits<float>::max()})
       for (float cosine : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f}) {
         p.kappa.push_back(kappa);
         p.cosine.push_back(cosine);
@@ -122,14 +124,15 @@ TEST_P(BatchVsDouble, WithinTheTable) {
     const float c = p.cosine[i], k = p.kappa[i], scalar = m.f32(c, k);
     if (t.bound == kNone) {  // batch32 is f32 element by element
       ASSERT_TRUE(out[i] == scalar || (std::isnan(out[i]) && std::isnan(scalar)))
-          << t.reason << "; kappa " << hex(k) << " c " << hex(c) << " batch " << hex(out[i]) << " scalar " << hex(scalar);
+          << t.reason << "; kappa " << hex(k) << " c " << hex(c) << " batch " << hex(out[i])
+          << " scalar " << hex(scalar);
       continue;
     }
     const double want = m.f64(c, k), peak = sglab::irradiance_upper(double(k));
     ASSERT_TRUE(std::isfinite(out[i])) << hex(k) << " " << hex(c);
     const double e = std::abs(out[i] - want) / peak;
-    ASSERT_LE(e, t.bound) << t.reason << "; kappa " << hex(k) << " c " << hex(c) << " batch " << out[i] << " double "
-                          << want;
+    ASSERT_LE(e, t.bound) << t.reason << "; kappa " << hex(k) << " c " << hex(c) << " batch "
+                          << out[i] << " double " << want;
     worst_batch = std::max(worst_batch, e);
     worst_scalar = std::max(worst_scalar, std::abs(scalar - want) / peak);
   }
@@ -145,8 +148,10 @@ TEST_P(LightSplit, EqualsThePlainFloatFunction) {
   const sglab::Method& m = GetParam();
   const Tolerance& t = row(m, Quantity::split_vs_plain);
   if (t.bound == kNone) {
-    EXPECT_EQ(m.light_setup32, nullptr) << "the registry has a split the table says is absent: " << t.reason;
-    EXPECT_EQ(m.light_eval32, nullptr) << "the registry has a split the table says is absent: " << t.reason;
+    EXPECT_EQ(m.light_setup32, nullptr)
+        << "the registry has a split the table says is absent: " << t.reason;
+    EXPECT_EQ(m.light_eval32, nullptr)
+        << "the registry has a split the table says is absent: " << t.reason;
     return;
   }
   ASSERT_NE(m.light_setup32, nullptr) << "the table bounds a split the registry does not have";
@@ -160,7 +165,8 @@ TEST_P(LightSplit, EqualsThePlainFloatFunction) {
     m.light_setup32(k, state);
     const float split = m.light_eval32(state, c), plain = m.f32(c, k);
     ASSERT_LE(std::abs(split - plain), t.bound * sglab::irradiance_upper(q.kappa))
-        << t.reason << "; kappa " << hex(k) << " c " << hex(c) << " split " << hex(split) << " plain " << hex(plain);
+        << t.reason << "; kappa " << hex(k) << " c " << hex(c) << " split " << hex(split)
+        << " plain " << hex(plain);
   }
 }
 
@@ -176,7 +182,9 @@ TEST_P(PeakRel, AgainstTheReferenceOnPointsNoFitSaw) {
   std::size_t at_f = 0, at_d = 0;
   for (std::size_t i = 0; i < ref.size(); ++i) {
     const double peak = sglab::irradiance_upper(ref[i].kappa);
-    const double ef = std::abs(double(m.f32(float(ref[i].cosine), float(ref[i].kappa))) - ref[i].irradiance) / peak;
+    const double ef =
+        std::abs(double(m.f32(float(ref[i].cosine), float(ref[i].kappa))) - ref[i].irradiance) /
+        peak;
     const double ed = std::abs(m.f64(ref[i].cosine, ref[i].kappa) - ref[i].irradiance) / peak;
     if (!(ef <= worst_f)) worst_f = ef, at_f = i;
     if (!(ed <= worst_d)) worst_d = ed, at_d = i;
@@ -197,20 +205,28 @@ TEST_P(PeakRel, AgainstTheReferenceOnPointsNoFitSaw) {
   EXPECT_GT(worst_d, 1e-3 * td.bound);
 }
 
-std::string method_name(const ::testing::TestParamInfo<sglab::Method>& info) { return std::string(info.param.id); }
+std::string method_name(const ::testing::TestParamInfo<sglab::Method>& info) {
+  return std::string(info.param.id);
+}
 
-INSTANTIATE_TEST_SUITE_P(Registry, FloatVsDouble, ::testing::ValuesIn(sglab::irradiance_methods), method_name);
-INSTANTIATE_TEST_SUITE_P(Registry, BatchVsDouble, ::testing::ValuesIn(sglab::irradiance_methods), method_name);
-INSTANTIATE_TEST_SUITE_P(Registry, LightSplit, ::testing::ValuesIn(sglab::irradiance_methods), method_name);
-INSTANTIATE_TEST_SUITE_P(Registry, PeakRel, ::testing::ValuesIn(sglab::irradiance_methods), method_name);
+INSTANTIATE_TEST_SUITE_P(Registry, FloatVsDouble, ::testing::ValuesIn(sglab::irradiance_methods),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Registry, BatchVsDouble, ::testing::ValuesIn(sglab::irradiance_methods),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Registry, LightSplit, ::testing::ValuesIn(sglab::irradiance_methods),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Registry, PeakRel, ::testing::ValuesIn(sglab::irradiance_methods),
+                         method_name);
 
 // ---- the table itself ---------------------------------------------------------
 
 TEST(ToleranceTable, EveryRowNamesARegisteredMethodOnceWithAReason) {
   std::set<std::string> seen;
   for (const Tolerance& t : sglab::test::kTolerances) {
-    const std::string key = fmt::format("{} {} {}", t.method, to_string(t.quantity), to_string(t.precision));
-    EXPECT_NE(sglab::find_method(sglab::irradiance_methods, t.method), nullptr) << "stale row: " << key;
+    const std::string key =
+        fmt::format("{} {} {}", t.method, to_string(t.quantity), to_string(t.precision));
+    EXPECT_NE(sglab::find_method(sglab::irradiance_methods, t.method), nullptr)
+        << "stale row: " << key;
     EXPECT_TRUE(seen.insert(key).second) << "duplicate row: " << key;
     EXPECT_FALSE(t.reason.empty()) << key;
     EXPECT_TRUE(t.bound == kNone || t.bound > 0) << key;

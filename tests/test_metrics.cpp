@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "common/io.hpp"
+#include "tests/test_support.hpp"
 #include "validate/metrics.hpp"
 #include "validate/table.hpp"
-#include "tests/test_support.hpp"
 
 namespace sv = sglab::validate;
 
@@ -86,7 +86,8 @@ TEST(Metrics, UlpInTheEvaluatedPrecision) {
   EXPECT_EQ(sv::ulp_of<float>(1.5), 0x1p-23);
   EXPECT_EQ(sv::ulp_of<float>(0.0), static_cast<double>(std::numeric_limits<float>::denorm_min()));
   EXPECT_EQ(sv::ulp_of<double>(0.0), std::numeric_limits<double>::denorm_min());
-  EXPECT_EQ(sv::ulp_of<float>(1e-40), static_cast<double>(std::numeric_limits<float>::denorm_min()));
+  EXPECT_EQ(sv::ulp_of<float>(1e-40),
+            static_cast<double>(std::numeric_limits<float>::denorm_min()));
   EXPECT_EQ(sv::ulp_of<float>(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
   EXPECT_EQ(sv::ulp_of<float>(1e39), 0x1p104);  // rounds to inf in float: spacing below FLT_MAX
   EXPECT_TRUE(std::isnan(sv::ulp_of<float>(kInf)));
@@ -189,14 +190,14 @@ namespace {
 
 sv::Table sample_table() {
   sv::Table t("Sample | with pipe", {{"name"}, {"x", 3}, {"n"}, {"flag"}, {"note"}});
-  t.add_row({sv::Table::text("plain"), sv::Table::real(1.0 / 3.0), sv::Table::integer(-7), sv::Cell{true},
-             sv::Table::text("a,b")});
-  t.add_row({sv::Table::text("quote \"q\""), sv::Table::real(kNaN), sv::Table::integer(0), sv::Cell{false},
-             sv::Table::text("pipe | here")});
-  t.add_row({sv::Table::text("line\nbreak"), sv::Table::real(kInf), sv::Table::count(42), sv::Cell{},
-             sv::Cell{}});
-  t.add_row({sv::Table::text("tiny"), sv::Table::real(4.9406564584124654e-324), sv::Table::integer(1),
-             sv::Cell{true}, sv::Table::text("")});
+  t.add_row({sv::Table::text("plain"), sv::Table::real(1.0 / 3.0), sv::Table::integer(-7),
+             sv::Cell{true}, sv::Table::text("a,b")});
+  t.add_row({sv::Table::text("quote \"q\""), sv::Table::real(kNaN), sv::Table::integer(0),
+             sv::Cell{false}, sv::Table::text("pipe | here")});
+  t.add_row({sv::Table::text("line\nbreak"), sv::Table::real(kInf), sv::Table::count(42),
+             sv::Cell{}, sv::Cell{}});
+  t.add_row({sv::Table::text("tiny"), sv::Table::real(4.9406564584124654e-324),
+             sv::Table::integer(1), sv::Cell{true}, sv::Table::text("")});
   t.add_row({sv::Table::text("neg"), sv::Table::real(-0.1), sv::Table::integer(2), sv::Cell{true},
              sv::Table::text("x")});
   return t;
@@ -316,9 +317,11 @@ TEST(Table, MarkdownParsesBack) {
   ASSERT_GE(ls.size(), 4 + t.rows().size());
   EXPECT_EQ(ls[0], "**Sample \\| with pipe**");
   EXPECT_EQ(ls[1], "");
-  EXPECT_EQ(parse_markdown_row(ls[2]), (std::vector<std::string>{"name", "x", "n", "flag", "note"}));
+  EXPECT_EQ(parse_markdown_row(ls[2]),
+            (std::vector<std::string>{"name", "x", "n", "flag", "note"}));
   // Numeric columns right-aligned, the others left-aligned.
-  EXPECT_EQ(parse_markdown_row(ls[3]), (std::vector<std::string>{":---", "---:", "---:", ":---", ":---"}));
+  EXPECT_EQ(parse_markdown_row(ls[3]),
+            (std::vector<std::string>{":---", "---:", "---:", ":---", ":---"}));
   std::vector<std::vector<std::string>> body;
   for (std::size_t i = 4; i < ls.size(); ++i)
     if (!ls[i].empty()) body.push_back(parse_markdown_row(ls[i]));
@@ -363,15 +366,16 @@ TEST(Table, WritesEveryFormatAtomically) {
   const sglab::test::TempDir tmp("table");
   const fs::path dir = tmp.path / "out";  // write_table makes the folder
   const sv::Table t = sample_table();
-  const auto paths =
-      sv::write_table(t, dir, "sample", {sv::TableFormat::csv, sv::TableFormat::markdown, sv::TableFormat::json});
+  const auto paths = sv::write_table(
+      t, dir, "sample", {sv::TableFormat::csv, sv::TableFormat::markdown, sv::TableFormat::json});
   ASSERT_EQ(paths.size(), 3u);
   EXPECT_EQ(paths[0], dir / "sample.csv");
   EXPECT_EQ(paths[1], dir / "sample.md");
   EXPECT_EQ(paths[2], dir / "sample.json");
   EXPECT_EQ(sglab::io::read_file(paths[0]), sv::to_csv(t));
   EXPECT_EQ(sglab::io::read_file(paths[1]), sv::to_markdown(t));
-  EXPECT_EQ(nlohmann::json::parse(sglab::io::read_file(paths[2])), nlohmann::json::parse(sv::to_json(t).dump()));
+  EXPECT_EQ(nlohmann::json::parse(sglab::io::read_file(paths[2])),
+            nlohmann::json::parse(sv::to_json(t).dump()));
 }
 
 // ---- ulp of an exact value (the erf checker's metric) ----------------------
@@ -385,7 +389,8 @@ TEST(Metrics, UlpFloatAtPowersOfTwoAndBetween) {
     ASSERT_EQ(sv::ulp_float(1.5 * p), std::ldexp(1.0, e - 23)) << "1.5*2^" << e;
     // Just below a power of two (the exact value's binade, not its rounding's);
     // below FLT_MIN = 2^−126 the subnormal spacing 2^−149.
-    ASSERT_EQ(sv::ulp_float(std::nextafter(p, 0.0)), e > -126 ? std::ldexp(1.0, e - 24) : 0x1p-149) << "below 2^" << e;
+    ASSERT_EQ(sv::ulp_float(std::nextafter(p, 0.0)), e > -126 ? std::ldexp(1.0, e - 24) : 0x1p-149)
+        << "below 2^" << e;
   }
   EXPECT_EQ(sv::ulp_float(1.0), 0x1p-23);
   EXPECT_EQ(sv::ulp_float(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
@@ -400,7 +405,7 @@ TEST(Metrics, UlpFloatDenormalsZeroInfNaN) {
   EXPECT_EQ(sv::ulp_float(denorm_min), 0x1p-149);
   EXPECT_EQ(sv::ulp_float(0x1p-130), 0x1p-149);
   EXPECT_EQ(sv::ulp_float(std::nextafter(0x1p-126, 0.0)), 0x1p-149);  // largest value below FLT_MIN
-  EXPECT_EQ(sv::ulp_float(0x1p-126), 0x1p-149);                       // FLT_MIN: normal, same spacing
+  EXPECT_EQ(sv::ulp_float(0x1p-126), 0x1p-149);  // FLT_MIN: normal, same spacing
   EXPECT_EQ(sv::ulp_float(0x1p-125), 0x1p-148);
   EXPECT_EQ(sv::ulp_float(1e-300), 0x1p-149);
   EXPECT_EQ(sv::ulp_float(kInf), kInf);
@@ -413,13 +418,15 @@ TEST(Metrics, UlpDoubleAtPowersOfTwoDenormalsZeroInfNaN) {
     const long double p = std::ldexp(1.0L, e);
     ASSERT_EQ(sv::ulp_double(p), std::ldexp(1.0L, e - 52)) << "2^" << e;
     ASSERT_EQ(sv::ulp_double(-p), std::ldexp(1.0L, e - 52)) << "-2^" << e;
-    ASSERT_EQ(sv::ulp_double(std::nextafter(p, 0.0L)), e > -1022 ? std::ldexp(1.0L, e - 53) : 0x1p-1074L)
+    ASSERT_EQ(sv::ulp_double(std::nextafter(p, 0.0L)),
+              e > -1022 ? std::ldexp(1.0L, e - 53) : 0x1p-1074L)
         << "below 2^" << e;
   }
   EXPECT_EQ(sv::ulp_double(1.0L), 0x1p-52L);
   EXPECT_EQ(sv::ulp_double(0.0L), 0x1p-1074L);
   EXPECT_EQ(sv::ulp_double(-0.0L), 0x1p-1074L);
-  EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::denorm_min())), 0x1p-1074L);
+  EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::denorm_min())),
+            0x1p-1074L);
   EXPECT_EQ(sv::ulp_double(0x1p-1050L), 0x1p-1074L);
   EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::max())), 0x1p971L);
   EXPECT_EQ(sv::ulp_double(static_cast<long double>(kInf)), static_cast<long double>(kInf));
@@ -442,7 +449,8 @@ TEST(Metrics, ExactUlpErrorSpecialValues) {
   EXPECT_TRUE(std::isnan(sv::exact_ulp_error_float(1.0, kNaN)));
 
   EXPECT_EQ(sv::exact_ulp_error_double(1.0 + 0x1p-52, 1.0L), 1.0);
-  EXPECT_EQ(sv::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L), 0x1p-60 / 0x1p-53);  // long double exact value
+  EXPECT_EQ(sv::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L),
+            0x1p-60 / 0x1p-53);  // long double exact value
   EXPECT_EQ(sv::exact_ulp_error_double(0x1p-1074, 0.0L), 1.0);
   EXPECT_EQ(sv::exact_ulp_error_double(-0.0, 0.0L), 0.0);
   EXPECT_EQ(sv::exact_ulp_error_double(kInf, static_cast<long double>(kInf)), 0.0);
@@ -466,7 +474,8 @@ TEST(Metrics, MaxPeakRelErrorIsTheMaxOrInfinity) {
   const std::vector<double> ref = {1.0, 2.0, 0.5};
   const std::vector<double> peak = {4.0, 4.0, 2.0};
   EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, 2.0, 0.5}, ref, peak), 0.0);
-  // |1.5 − 1|/4 = 0.125, |2 − 2|/4 = 0, |0.25 − 0.5|/2 = 0.125 → 0.125; with 3 at the second point |3 − 2|/4 = 0.25.
+  // |1.5 − 1|/4 = 0.125, |2 − 2|/4 = 0, |0.25 − 0.5|/2 = 0.125 → 0.125; with 3 at the second point
+  // |3 − 2|/4 = 0.25.
   EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5, 2.0, 0.25}, ref, peak), 0.125);
   EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5, 3.0, 0.25}, ref, peak), 0.25);
   // One non-finite output anywhere makes the worst case infinite, whatever comes after.
@@ -474,8 +483,12 @@ TEST(Metrics, MaxPeakRelErrorIsTheMaxOrInfinity) {
   EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, kInf, 0.5}, ref, peak), kInf);
   EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, 2.0, -kInf}, ref, peak), kInf);
   // A zero peak with a non-zero difference is infinite too; with no difference it is 0.
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0}, std::vector<double>{1.0}, std::vector<double>{0.0}), 0.0);
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5}, std::vector<double>{1.0}, std::vector<double>{0.0}), kInf);
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0}, std::vector<double>{1.0},
+                                   std::vector<double>{0.0}),
+            0.0);
+  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5}, std::vector<double>{1.0},
+                                   std::vector<double>{0.0}),
+            kInf);
   EXPECT_EQ(sv::max_peak_rel_error({}, {}, {}), 0.0);  // no points
   EXPECT_THROW(sv::max_peak_rel_error(std::vector<double>{1.0}, ref, peak), std::invalid_argument);
 }

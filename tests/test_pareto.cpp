@@ -47,7 +47,8 @@ bool on_frontier(const std::vector<MethodPoint>& v, const std::string& id) {
 // The origin of each point comes from the registry (Method::origin) and the
 // table writes it as text: published, refit or sglab.
 TEST(Pareto, OriginFromRegistryInTable) {
-  const auto points = sglab::report::irradiance_errors(1, 10, sglab::validate::FloatFormat::binary64);
+  const auto points =
+      sglab::report::irradiance_errors(1, 10, sglab::validate::FloatFormat::binary64);
   ASSERT_EQ(points.size(), std::size(sglab::irradiance_methods));
   bool published = false, refit = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -57,9 +58,9 @@ TEST(Pareto, OriginFromRegistryInTable) {
     refit |= points[i].origin == sglab::Origin::refit;
   }
   EXPECT_TRUE(published && refit);  // both kinds exist in the registry today
-  const std::string csv = sglab::validate::to_csv(
-      sglab::report::pareto_table(points, sglab::validate::FloatFormat::binary64, 1, 10,
-                                    sglab::report::default_cost_source(sglab::validate::FloatFormat::binary64)));
+  const std::string csv = sglab::validate::to_csv(sglab::report::pareto_table(
+      points, sglab::validate::FloatFormat::binary64, 1, 10,
+      sglab::report::default_cost_source(sglab::validate::FloatFormat::binary64)));
   for (const auto& m : sglab::irradiance_methods) {
     const std::string row = fmt::format("\n{},{},double,", m.id, sglab::to_string(m.origin));
     EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;
@@ -68,14 +69,14 @@ TEST(Pareto, OriginFromRegistryInTable) {
 
 TEST(Frontier, SyntheticPoints) {
   std::vector<MethodPoint> v{
-      pt("fast_bad", 1.0, 1e-1),     // cheapest finite: frontier
-      pt("mid", 2.0, 1e-2),          // frontier
-      pt("dominated", 3.0, 5e-2),    // mid is cheaper and more accurate
-      pt("slow_good", 10.0, 1e-4),   // most accurate: frontier
-      pt("nan_err", 0.5, kNaN),      // non-finite error: never, and dominates nothing
-      pt("inf_err", 0.25, kInf),     // same
-      pt("same_cost", 2.0, 2e-2),    // equal cost to mid, worse error: dominated
-      pt("same_err", 12.0, 1e-4),    // equal error to slow_good, dearer: dominated
+      pt("fast_bad", 1.0, 1e-1),    // cheapest finite: frontier
+      pt("mid", 2.0, 1e-2),         // frontier
+      pt("dominated", 3.0, 5e-2),   // mid is cheaper and more accurate
+      pt("slow_good", 10.0, 1e-4),  // most accurate: frontier
+      pt("nan_err", 0.5, kNaN),     // non-finite error: never, and dominates nothing
+      pt("inf_err", 0.25, kInf),    // same
+      pt("same_cost", 2.0, 2e-2),   // equal cost to mid, worse error: dominated
+      pt("same_err", 12.0, 1e-4),   // equal error to slow_good, dearer: dominated
   };
   sglab::report::mark_frontier(v);
   EXPECT_TRUE(on_frontier(v, "fast_bad"));
@@ -96,8 +97,8 @@ TEST(Frontier, AllNaNHasNoFrontier) {
 }
 
 TEST(Recommend, CheapestQualifyingAndRunnerUp) {
-  const std::vector<MethodPoint> v{pt("cheap_bad", 1.0, 1e-1), pt("a", 3.0, 5e-4), pt("b", 2.0, 9e-4),
-                                   pt("c", 5.0, 1e-5), pt("nan", 0.1, kNaN)};
+  const std::vector<MethodPoint> v{pt("cheap_bad", 1.0, 1e-1), pt("a", 3.0, 5e-4),
+                                   pt("b", 2.0, 9e-4), pt("c", 5.0, 1e-5), pt("nan", 0.1, kNaN)};
   const auto r = recommend(v, 1e-3);
   ASSERT_TRUE(r.choice);
   EXPECT_EQ(r.choice->method, "b");
@@ -126,7 +127,8 @@ TEST(Recommend, TiesWithinMarginBrokenByError) {
 }
 
 TEST(Recommend, NoneQualifiesNamesMostAccurate) {
-  const std::vector<MethodPoint> v{pt("a", 1.0, 1e-1), pt("b", 2.0, 1e-2), pt("c", 0.5, kNaN), pt("d", 0.2, kInf)};
+  const std::vector<MethodPoint> v{pt("a", 1.0, 1e-1), pt("b", 2.0, 1e-2), pt("c", 0.5, kNaN),
+                                   pt("d", 0.2, kInf)};
   const auto r = recommend(v, 1e-3);
   EXPECT_FALSE(r.choice);
   EXPECT_FALSE(r.runner_up);
@@ -143,7 +145,8 @@ TEST(Recommend, ParseKappaRange) {
   EXPECT_EQ(std::get<KappaRange>(ok).lo, 1e-3);
   EXPECT_EQ(std::get<KappaRange>(ok).hi, 1e4);
   for (const char* bad : {"0:1", "2:1", "a:1", "1:2:3", "1"})
-    EXPECT_TRUE(std::holds_alternative<std::string>(sglab::io::parse_kappa_range(bad, rules))) << bad;
+    EXPECT_TRUE(std::holds_alternative<std::string>(sglab::io::parse_kappa_range(bad, rules)))
+        << bad;
 }
 
 // ---- CLI -------------------------------------------------------------------
@@ -158,14 +161,17 @@ Output run_stdout(const std::string& args) {
   return {r.exit_code, r.output};
 }
 
-double sweep_max_peak_rel(const std::string& kappa, const std::string& method, const std::string& precision) {
+double sweep_max_peak_rel(const std::string& kappa, const std::string& method,
+                          const std::string& precision) {
   const sglab::test::TempDir dir("pareto-sweep");
-  const Output s = run_stdout(fmt::format("sweep --kappa {}:29 --cosines 41 --json --method {} --out {}", kappa,
-                                          method, dir.path.string()));
+  const Output s =
+      run_stdout(fmt::format("sweep --kappa {}:29 --cosines 41 --json --method {} --out {}", kappa,
+                             method, dir.path.string()));
   EXPECT_EQ(s.exit_code, 0) << s.out;
   const auto doc = nlohmann::json::parse(s.out);
   for (const auto& row : doc.at("results"))
-    if (row.at("method") == method && row.at("precision") == precision && row.at("quantity") == "irradiance")
+    if (row.at("method") == method && row.at("precision") == precision &&
+        row.at("quantity") == "irradiance")
       return row.at("max_peak_rel").get<double>();
   ADD_FAILURE() << "sweep has no row for " << method << " " << precision;
   return kNaN;
@@ -173,7 +179,8 @@ double sweep_max_peak_rel(const std::string& kappa, const std::string& method, c
 
 void check_recommend(const std::string& kappa, double budget) {
   SCOPED_TRACE(fmt::format("--kappa {} --budget {}", kappa, budget));
-  const Output r = run_stdout(fmt::format("recommend --kappa {} --budget {} --json", kappa, budget));
+  const Output r =
+      run_stdout(fmt::format("recommend --kappa {} --budget {} --json", kappa, budget));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto doc = nlohmann::json::parse(r.out);
   EXPECT_EQ(doc.at("precision"), "float");
@@ -189,7 +196,8 @@ void check_recommend(const std::string& kappa, double budget) {
     const double best_err = best.at("max_peak_rel").get<double>();
     EXPECT_GT(best_err, budget);
     const double swept = sweep_max_peak_rel(kappa, best.at("method"), "float");
-    EXPECT_LE(std::abs(best_err - swept), 1e-12 * std::abs(swept)) << best.dump() << " sweep " << swept;
+    EXPECT_LE(std::abs(best_err - swept), 1e-12 * std::abs(swept))
+        << best.dump() << " sweep " << swept;
     for (const auto& c : candidates)
       if (c.at("max_peak_rel").is_number()) {
         EXPECT_GE(c.at("max_peak_rel").get<double>(), best_err) << c.dump();
@@ -201,7 +209,8 @@ void check_recommend(const std::string& kappa, double budget) {
   const double ns = choice.at("cost").get<double>();
   EXPECT_LE(err, budget);
   const double swept = sweep_max_peak_rel(kappa, method, "float");
-  EXPECT_LE(std::abs(err - swept), 1e-12 * std::abs(swept)) << method << ": recommend " << err << " sweep " << swept;
+  EXPECT_LE(std::abs(err - swept), 1e-12 * std::abs(swept))
+      << method << ": recommend " << err << " sweep " << swept;
   const double margin = doc.at("tie_margin").get<double>();
   for (const auto& c : candidates) {
     if (!c.at("qualifies").get<bool>()) {
@@ -247,9 +256,10 @@ TEST(RecommendCli, NoneQualifyingExitsZero) {
 }
 
 TEST(RecommendCli, BadOptionsExit2) {
-  for (const char* args : {"--kappa 0:10 --budget 1e-3", "--kappa 10:1 --budget 1e-3", "--kappa a:b --budget 1e-3",
-                           "--kappa 1 --budget 1e-3", "--kappa 1:10 --budget 0", "--kappa 1:10 --budget -1",
-                           "--kappa 1:10 --budget abc", "--kappa 1:10 --budget 1e-3 --precision half"}) {
+  for (const char* args :
+       {"--kappa 0:10 --budget 1e-3", "--kappa 10:1 --budget 1e-3", "--kappa a:b --budget 1e-3",
+        "--kappa 1 --budget 1e-3", "--kappa 1:10 --budget 0", "--kappa 1:10 --budget -1",
+        "--kappa 1:10 --budget abc", "--kappa 1:10 --budget 1e-3 --precision half"}) {
     auto argv = sglab::test::words(args);
     argv.insert(argv.begin(), "recommend");
     const auto r = sglab::test::run_sglab(argv);
@@ -272,7 +282,8 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   ASSERT_TRUE(std::fgets(line, sizeof line, f));
   std::fclose(f);
   EXPECT_EQ(std::string(line),
-            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n");
+            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
+            "frontier\n");
   EXPECT_EQ(sglab::test::run_sglab({"pareto", "--kappa", "0:1", "--out", dir}).exit_code, 2);
 }
 

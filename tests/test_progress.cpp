@@ -124,7 +124,8 @@ TEST(Progress, NothingDrawnNothingCleared) {
   std::string out;
   { Progress p("idle", 3, string_sink(out, true)); }  // never advanced: no line to clear
   EXPECT_EQ(out, "");
-  Progress no_writer("work", 1, ProgressSink{true, nullptr});  // a terminal without a writer draws nothing
+  Progress no_writer("work", 1,
+                     ProgressSink{true, nullptr});  // a terminal without a writer draws nothing
   no_writer.advance();
   no_writer.finish();
 }
@@ -140,7 +141,8 @@ TEST(Progress, ErfPrintsNothingExtraWhenStderrIsNotATerminal) {
 }
 
 TEST(Progress, FitPrintsNothingExtraWhenStderrIsNotATerminal) {
-  const auto r = run_sglab({"fit", "steepness2022", "--kappa", "1:2", "--max-error", "1", "--dry-run"});
+  const auto r =
+      run_sglab({"fit", "steepness2022", "--kappa", "1:2", "--max-error", "1", "--dry-run"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find('\r'), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("\033["), std::string::npos) << r.output;
@@ -150,12 +152,13 @@ TEST(Progress, FitPrintsNothingExtraWhenStderrIsNotATerminal) {
 // On a terminal the same runs draw their line on stderr.
 TEST(Progress, ErfAndFitDrawOnATerminal) {
   int code = -1;
-  const std::string erf = run_sglab_on_pty({"erf", "--variant", "std", "--double-points", "10000", "--bins", "10"}, code);
+  const std::string erf = run_sglab_on_pty(
+      {"erf", "--variant", "std", "--double-points", "10000", "--bins", "10"}, code);
   if (code == -1 && erf.empty()) GTEST_SKIP() << "no pseudo-terminal available";
   ASSERT_EQ(code, 0) << erf;
   EXPECT_NE(erf.find("\rerf std float: "), std::string::npos) << erf;
-  const std::string fit =
-      run_sglab_on_pty({"fit", "steepness2022", "--kappa", "1:2", "--max-error", "1", "--dry-run"}, code);
+  const std::string fit = run_sglab_on_pty(
+      {"fit", "steepness2022", "--kappa", "1:2", "--max-error", "1", "--dry-run"}, code);
   ASSERT_EQ(code, 0) << fit;
   EXPECT_NE(fit.find("\rfit steepness2022, solves: "), std::string::npos) << fit;
   EXPECT_NE(fit.find("  rational order 0"), std::string::npos) << fit;  // the driver's note

@@ -61,7 +61,8 @@ std::vector<std::string> cells(const std::string& line) {
 
 // The rows of the first Markdown table in `text` whose header starts with
 // `header` (cells), header and separator excluded.
-std::vector<std::vector<std::string>> table_after(const std::string& text, const std::vector<std::string>& header) {
+std::vector<std::vector<std::string>> table_after(const std::string& text,
+                                                  const std::vector<std::string>& header) {
   std::istringstream in(text);
   std::string line;
   std::vector<std::vector<std::string>> rows;
@@ -99,7 +100,9 @@ std::vector<Stated> numbers_in(const std::string& text) {
     }
   }
   const auto is_digit = [](char ch) { return ch >= '0' && ch <= '9'; };
-  const auto is_word = [&](char ch) { return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_' || ch == '^'; };
+  const auto is_word = [&](char ch) {
+    return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_' || ch == '^';
+  };
   std::vector<Stated> out;
   std::size_t i = 0;
   while (i < s.size()) {
@@ -144,11 +147,13 @@ Stated number(const std::string& cell, const std::string& what) {
 // The nth number (from 0) stated after `anchor` in `text`, within its
 // paragraph. The anchor must occur exactly once, so a claim cannot silently
 // move to another sentence.
-Stated stated_after(const std::string& text, const std::string& anchor, std::size_t nth, const std::string& file) {
+Stated stated_after(const std::string& text, const std::string& anchor, std::size_t nth,
+                    const std::string& file) {
   const std::size_t at = text.find(anchor);
   EXPECT_NE(at, std::string::npos) << file << " no longer says '" << anchor << "'";
   if (at == std::string::npos) return {NAN, 1};
-  EXPECT_EQ(text.find(anchor, at + 1), std::string::npos) << file << " says '" << anchor << "' twice";
+  EXPECT_EQ(text.find(anchor, at + 1), std::string::npos)
+      << file << " says '" << anchor << "' twice";
   const std::size_t from = at + anchor.size();
   const auto n = numbers_in(text.substr(from, text.find("\n\n", from) - from));
   EXPECT_GT(n.size(), nth) << file << ": no number " << nth << " after '" << anchor << "'";
@@ -162,9 +167,12 @@ double half_unit(const Stated& x) {
 
 // A ratio of two stated (rounded) numbers is the stated ratio: within the
 // ratio's own rounding plus what the rounding of the two numbers moves it.
-void expect_ratio(const Stated& ratio, const Stated& num, const Stated& den, const std::string& what) {
+void expect_ratio(const Stated& ratio, const Stated& num, const Stated& den,
+                  const std::string& what) {
   const double q = num.value / den.value;
-  EXPECT_NEAR(ratio.value, q, half_unit(ratio) + q * (half_unit(num) / num.value + half_unit(den) / den.value)) << what;
+  EXPECT_NEAR(ratio.value, q,
+              half_unit(ratio) + q * (half_unit(num) / num.value + half_unit(den) / den.value))
+      << what;
 }
 
 // `truth` printed with the stated number of significant digits is the stated
@@ -172,10 +180,12 @@ void expect_ratio(const Stated& ratio, const Stated& num, const Stated& den, con
 // may have been rounded across the stated rounding's midpoint: either side of
 // it is accepted.
 bool rounds_to(const Stated& stated, double truth) {
-  const double scale = std::pow(10.0, std::floor(std::log10(std::fabs(truth))) - (stated.digits - 1));
+  const double scale =
+      std::pow(10.0, std::floor(std::log10(std::fabs(truth))) - (stated.digits - 1));
   return std::fabs(stated.value - std::nearbyint(truth / scale) * scale) <= 0.01 * scale;
 }
-void expect_matches(const Stated& stated, double truth, const std::string& what, int source_digits = 0) {
+void expect_matches(const Stated& stated, double truth, const std::string& what,
+                    int source_digits = 0) {
   ASSERT_TRUE(std::isfinite(truth)) << what << ": no source value";
   if (truth == 0) {
     EXPECT_EQ(stated.value, 0) << what;
@@ -186,7 +196,8 @@ void expect_matches(const Stated& stated, double truth, const std::string& what,
     const double slack = half_unit({truth, source_digits});
     ok = ok || rounds_to(stated, truth - slack) || rounds_to(stated, truth + slack);
   }
-  EXPECT_TRUE(ok) << what << ": the document states " << stated.value << ", its source gives " << truth;
+  EXPECT_TRUE(ok) << what << ": the document states " << stated.value << ", its source gives "
+                  << truth;
 }
 
 // ---- the sources ----------------------------------------------------------------
@@ -194,16 +205,18 @@ void expect_matches(const Stated& stated, double truth, const std::string& what,
 using Key = std::pair<std::string, std::string>;  // (method, precision)
 
 struct Results {
-  std::map<Key, double> standard;       // sweep_summary.md, irradiance max_peak_rel
-  std::map<Key, double> held_out;       // heldout_sweep.json, irradiance max_peak_rel
+  std::map<Key, double> standard;  // sweep_summary.md, irradiance max_peak_rel
+  std::map<Key, double> held_out;  // heldout_sweep.json, irradiance max_peak_rel
   std::map<Key, double> held_out_worst_kappa;
-  std::map<Key, double> vulkan;         // vulkan_sweep.json results, irradiance max_peak_rel
+  std::map<Key, double> vulkan;           // vulkan_sweep.json results, irradiance max_peak_rel
   std::map<Key, double> device_vs_float;  // vulkan_sweep.json device_vs_float, max_diff_peak_rel
-  std::map<std::tuple<std::string, std::string, bool>, double> gpu;  // (method, family, split): GLSL float cycles
-  std::map<Key, double> ns;             // (method, "scalar" | "batch"): float ns/eval
-  std::map<Key, double> ir;             // callgrind.csv: (method, mode): instructions per float evaluation
+  std::map<std::tuple<std::string, std::string, bool>, double>
+      gpu;                   // (method, family, split): GLSL float cycles
+  std::map<Key, double> ns;  // (method, "scalar" | "batch"): float ns/eval
+  std::map<Key, double> ir;  // callgrind.csv: (method, mode): instructions per float evaluation
   std::map<std::tuple<std::string, int, std::string>, double> envmap;  // (map, lobes, fit): max_rel
-  std::map<std::tuple<std::string, int, std::string>, double> envmap_rms;  // (map, lobes, fit): rms_rel
+  std::map<std::tuple<std::string, int, std::string>, double>
+      envmap_rms;  // (map, lobes, fit): rms_rel
   std::set<std::string> maps;
 
   double at(const auto& table, const auto& key, const std::string& what) const {
@@ -223,7 +236,8 @@ struct Results {
   double device_diff(const std::string& m, const std::string& p = "vulkan") const {
     return at(device_vs_float, Key{m, p}, "vulkan_sweep.json device_vs_float " + m + " " + p);
   }
-  double cycles(const std::string& m, const std::string& family = "navi21", bool split = false) const {
+  double cycles(const std::string& m, const std::string& family = "navi21",
+                bool split = false) const {
     return at(gpu, std::tuple{m, family, split}, "costs.json gpu " + m + " " + family);
   }
   double ns_per_eval(const std::string& m, const std::string& mode) const {
@@ -233,7 +247,8 @@ struct Results {
     return at(ir, Key{m, mode}, "callgrind.csv " + m + " " + mode);
   }
   double envmap_err(const std::string& map, int lobes, const std::string& fit) const {
-    return at(envmap, std::tuple{map, lobes, fit}, fmt::format("envmaps.csv {} {} {}", map, lobes, fit));
+    return at(envmap, std::tuple{map, lobes, fit},
+              fmt::format("envmaps.csv {} {} {}", map, lobes, fit));
   }
 };
 
@@ -263,10 +278,12 @@ void read_sweeps(Results& r) {
 void read_costs(Results& r) {
   const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
   for (const auto& e : costs.at("gpu").at("rows"))
-    if (e.at("lang") == "glsl" && e.at("precision") == "float" && e.at("inverse_throughput").is_number())
+    if (e.at("lang") == "glsl" && e.at("precision") == "float" &&
+        e.at("inverse_throughput").is_number())
       r.gpu[{e.at("method"), e.at("family"), e.at("split")}] = e.at("inverse_throughput");
   for (const auto& e : costs.at("costs"))
-    if (e.at("kind") == "irradiance" && e.at("precision") == "float" && e.at("ns_per_eval").is_number())
+    if (e.at("kind") == "irradiance" && e.at("precision") == "float" &&
+        e.at("ns_per_eval").is_number())
       r.ns[{e.at("method"), e.at("mode")}] = e.at("ns_per_eval");
 }
 
@@ -338,7 +355,7 @@ struct Claim {
   std::size_t nth;     // which number after the anchor (0: the first)
   Says says;
   double (*source)(const Results&);
-  const char* from;    // where the value comes from, for the message
+  const char* from;  // where the value comes from, for the message
 };
 
 double envmap_ratio(const Results& r, const std::string& map, int lobes) {
@@ -358,7 +375,9 @@ double envmap_ratio_bound(const Results& r, bool largest) {
 }
 
 // Shorthands for the claims below.
-double vulkan(const Results& r, const char* m, const char* p = "vulkan") { return r.vulkan_err(m, p); }
+double vulkan(const Results& r, const char* m, const char* p = "vulkan") {
+  return r.vulkan_err(m, p);
+}
 
 // How many (map, lobes) cases of README's table have (a)/(c) ≥ `ratio`.
 double envmap_cases_with_ratio_at_least(const Results& r, double ratio) {
@@ -372,49 +391,65 @@ const Claim kClaims[] = {
     // README.md
     {"README.md", "branch-free float exp, expm1, erfc and sqrt", 0, Says::equals,
      [](const Results&) {
-       return sglab::test::find_tolerance("tokuyoshi2024", sglab::test::batch_vs_double, sglab::test::f32)->bound;
+       return sglab::test::find_tolerance("tokuyoshi2024", sglab::test::batch_vs_double,
+                                          sglab::test::f32)
+           ->bound;
      },
      "tests/tolerances.hpp, tokuyoshi2024 batch_vs_double"},
     {"README.md", "peak-relative error ≤ ", 0, Says::upper_bound,
      [](const Results& r) {
-       return std::max(r.standard_err("sglab_acc3", "double"), r.held_out_err("sglab_acc3", "double"));
+       return std::max(r.standard_err("sglab_acc3", "double"),
+                       r.held_out_err("sglab_acc3", "double"));
      },
      "sglab_acc3 double, sweep_summary.md and heldout_sweep.json"},
     {"README.md", "published tokuyoshi2024 measures ", 0, Says::equals,
      [](const Results& r) { return vulkan(r, "tokuyoshi2024"); }, "vulkan_sweep.json"},
     {"README.md", "published tokuyoshi2024 measures ", 1, Says::equals,
-     [](const Results& r) { return r.device_diff("tokuyoshi2024"); }, "vulkan_sweep.json device_vs_float"},
-    {"README.md", "(c) has ", 0, Says::equals, [](const Results& r) { return envmap_ratio_bound(r, false); },
+     [](const Results& r) { return r.device_diff("tokuyoshi2024"); },
+     "vulkan_sweep.json device_vs_float"},
+    {"README.md", "(c) has ", 0, Says::equals,
+     [](const Results& r) { return envmap_ratio_bound(r, false); },
      "envmaps.csv, smallest (a)/(c)"},
-    {"README.md", "(c) has ", 1, Says::equals, [](const Results& r) { return envmap_ratio_bound(r, true); },
-     "envmaps.csv, largest (a)/(c)"},
+    {"README.md", "(c) has ", 1, Says::equals,
+     [](const Results& r) { return envmap_ratio_bound(r, true); }, "envmaps.csv, largest (a)/(c)"},
     {"README.md", "(c) has ", 2, Says::equals,
      [](const Results& r) { return envmap_cases_with_ratio_at_least(r, 2); },
      "envmaps.csv, cases with (a)/(c) ≥ 2"},
     {"README.md", "(c) has ", 3, Says::equals,
-     [](const Results& r) { return double(r.maps.size() * std::size(kTableLobes)); }, "envmaps.csv, cases"},
+     [](const Results& r) { return double(r.maps.size() * std::size(kTableLobes)); },
+     "envmaps.csv, cases"},
     {"README.md", "is often worse than (a) (", 1, Says::equals,
-     [](const Results& r) { return r.envmap_err("night", 24, "radiance"); }, "envmaps.csv night 24 radiance"},
+     [](const Results& r) { return r.envmap_err("night", 24, "radiance"); },
+     "envmaps.csv night 24 radiance"},
     {"README.md", "is often worse than (a) (", 3, Says::equals,
-     [](const Results& r) { return r.envmap_err("sunrise", 4, "radiance"); }, "envmaps.csv sunrise 4 radiance"},
+     [](const Results& r) { return r.envmap_err("sunrise", 4, "radiance"); },
+     "envmaps.csv sunrise 4 radiance"},
     {"README.md", "monotone in N (studio: ", 0, Says::equals,
-     [](const Results& r) { return r.envmap_err("studio", 6, "irradiance"); }, "envmaps.csv studio 6 irradiance"},
+     [](const Results& r) { return r.envmap_err("studio", 6, "irradiance"); },
+     "envmaps.csv studio 6 irradiance"},
     {"README.md", "monotone in N (studio: ", 2, Says::equals,
-     [](const Results& r) { return r.envmap_err("studio", 24, "irradiance"); }, "envmaps.csv studio 24 irradiance"},
+     [](const Results& r) { return r.envmap_err("studio", 24, "irradiance"); },
+     "envmaps.csv studio 24 irradiance"},
     // data/results/envmaps.md
-    {"data/results/envmaps.md", "(c) has at least 2× lower max irradiance error than (a) in ", 0, Says::equals,
-     [](const Results& r) { return envmap_cases_with_ratio_at_least(r, 2); },
+    {"data/results/envmaps.md", "(c) has at least 2× lower max irradiance error than (a) in ", 0,
+     Says::equals, [](const Results& r) { return envmap_cases_with_ratio_at_least(r, 2); },
      "envmaps.csv, cases with (a)/(c) ≥ 2"},
-    {"data/results/envmaps.md", "(c) has at least 2× lower max irradiance error than (a) in ", 1, Says::equals,
-     [](const Results& r) { return double(r.maps.size() * std::size(kTableLobes)); }, "envmaps.csv, cases"},
+    {"data/results/envmaps.md", "(c) has at least 2× lower max irradiance error than (a) in ", 1,
+     Says::equals, [](const Results& r) { return double(r.maps.size() * std::size(kTableLobes)); },
+     "envmaps.csv, cases"},
     // data/results/vulkan_sweep.md
-    {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 0, Says::equals,
-     [](const Results& r) { return std::max(r.device_diff("tokuyoshi2024"), r.device_diff("tokuyoshi2024_refit")); },
+    {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 0,
+     Says::equals,
+     [](const Results& r) {
+       return std::max(r.device_diff("tokuyoshi2024"), r.device_diff("tokuyoshi2024_refit"));
+     },
      "vulkan_sweep.json device_vs_float"},
-    {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 1, Says::equals,
-     [](const Results& r) { return vulkan(r, "tokuyoshi2024"); }, "vulkan_sweep.json"},
-    {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 2, Says::equals,
-     [](const Results& r) { return vulkan(r, "tokuyoshi2024_refit"); }, "vulkan_sweep.json"},
+    {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 1,
+     Says::equals, [](const Results& r) { return vulkan(r, "tokuyoshi2024"); },
+     "vulkan_sweep.json"},
+    {"data/results/vulkan_sweep.md", "tokuyoshi2024 and tokuyoshi2024_refit on the device agree", 2,
+     Says::equals, [](const Results& r) { return vulkan(r, "tokuyoshi2024_refit"); },
+     "vulkan_sweep.json"},
     {"data/results/vulkan_sweep.md", "family differs from C++ float by up to ", 0, Says::equals,
      [](const Results& r) {
        return std::max({r.device_diff("tokuyoshi2022"), r.device_diff("tokuyoshi2022_listing5"),
@@ -426,16 +461,19 @@ const Claim kClaims[] = {
     {"data/results/vulkan_sweep.md", "implementation (C++ float: ", 1, Says::equals,
      [](const Results& r) { return vulkan(r, "tokuyoshi2022", "double"); }, "vulkan_sweep.json"},
     {"data/results/vulkan_sweep.md", "device and C++ float agree to ", 0, Says::equals,
-     [](const Results& r) { return r.device_diff("wang2009"); }, "vulkan_sweep.json device_vs_float"},
+     [](const Results& r) { return r.device_diff("wang2009"); },
+     "vulkan_sweep.json device_vs_float"},
     {"data/results/vulkan_sweep.md", "device and C++ float agree to ", 1, Says::equals,
-     [](const Results& r) { return r.device_diff("meder2018"); }, "vulkan_sweep.json device_vs_float"},
+     [](const Results& r) { return r.device_diff("meder2018"); },
+     "vulkan_sweep.json device_vs_float"},
 };
 
 TEST(ReadmeNumbers, ProseMatchesTheResults) {
   std::map<std::string, std::string> text;
   for (const Claim& c : kClaims) {
     if (!text.count(c.file)) text[c.file] = slurp(kRoot / c.file);
-    const std::string what = fmt::format("{}: number {} after '{}' ({})", c.file, c.nth, c.anchor, c.from);
+    const std::string what =
+        fmt::format("{}: number {} after '{}' ({})", c.file, c.nth, c.anchor, c.from);
     const Stated s = stated_after(text[c.file], c.anchor, c.nth, c.file);
     const double truth = c.source(results());
     if (c.says == Says::equals)
@@ -454,7 +492,8 @@ TEST(ReadmeNumbers, WordedClaimsHold) {
   EXPECT_LE(r.held_out_err("sglab_fast"), 2 * r.held_out_err("tokuyoshi2024")) << fast;
   EXPECT_LE(r.standard_err("sglab_fast"), 2 * r.standard_err("tokuyoshi2024")) << fast;
   EXPECT_LT(r.cycles("sglab_fast"), 0.5 * r.cycles("tokuyoshi2024")) << fast;
-  const std::string point = "a `sglab_fast` shading point then costs fewer instructions\nthan vsgl2015's";
+  const std::string point =
+      "a `sglab_fast` shading point then costs fewer instructions\nthan vsgl2015's";
   ASSERT_NE(readme.find(point), std::string::npos) << "README no longer says '" << point << "'";
   EXPECT_LT(r.instructions("sglab_fast", "eval"), r.instructions("vsgl2015", "scalar")) << point;
   const std::string neither = "neither (a) nor (b) reaches 1 % within 24 lobes";
@@ -475,10 +514,12 @@ TEST(ReadmeNumbers, LobesForOnePercentMatchTheResults) {
   const std::string anchor = "For a 1 % budget on the lobe fit alone, (c) needs ";
   const std::size_t at = readme.find(anchor);
   ASSERT_NE(at, std::string::npos) << "README no longer says '" << anchor << "'";
-  const std::string claim = readme.substr(at + anchor.size(), readme.find(';', at) - at - anchor.size());
+  const std::string claim =
+      readme.substr(at + anchor.size(), readme.find(';', at) - at - anchor.size());
   const Results& r = results();
   std::set<std::string> named;
-  for (std::size_t open = claim.find('('); open != std::string::npos; open = claim.find('(', open + 1)) {
+  for (std::size_t open = claim.find('('); open != std::string::npos;
+       open = claim.find('(', open + 1)) {
     const std::size_t close = claim.find(')', open);
     const auto before = numbers_in(claim.substr(0, open));
     ASSERT_FALSE(before.empty()) << claim;
@@ -504,14 +545,17 @@ TEST(ReadmeNumbers, LobesForOnePercentMatchTheResults) {
 
 std::string method_of(std::string cell) {
   for (const char* drop : {"`", "**"})
-    for (std::size_t p; (p = cell.find(drop)) != std::string::npos;) cell.erase(p, std::string(drop).size());
+    for (std::size_t p; (p = cell.find(drop)) != std::string::npos;)
+      cell.erase(p, std::string(drop).size());
   return cell.substr(0, cell.find(' '));
 }
 
 TEST(ReadmeNumbers, SglabModelsTableMatchesTheResults) {
-  const auto rows = table_after(slurp(kRoot / "README.md"),
-                                {"method", "form", "held-out max peak_rel", "standard grid", "GPU cycles", "batch ns"});
-  ASSERT_GE(rows.size(), 5u) << "README has no table of sglab's own models with the expected header";
+  const auto rows = table_after(
+      slurp(kRoot / "README.md"),
+      {"method", "form", "held-out max peak_rel", "standard grid", "GPU cycles", "batch ns"});
+  ASSERT_GE(rows.size(), 5u)
+      << "README has no table of sglab's own models with the expected header";
   const Results& r = results();
   for (const auto& row : rows) {
     ASSERT_GE(row.size(), 6u);
@@ -533,7 +577,8 @@ TEST(ReadmeNumbers, EnvmapTableMatchesTheResults) {
   for (const auto& row : rows) {
     ASSERT_EQ(row.size(), 5u);
     const int lobes = static_cast<int>(number(row[0], "lobes").value);
-    for (const auto& [column, fit] : {std::pair{1, "baseline"}, {2, "radiance"}, {3, "irradiance"}}) {
+    for (const auto& [column, fit] :
+         {std::pair{1, "baseline"}, {2, "radiance"}, {3, "irradiance"}}) {
       const auto range = numbers_in(row[std::size_t(column)]);
       ASSERT_EQ(range.size(), 2u) << row[std::size_t(column)];
       double lo = INFINITY, hi = 0;
@@ -541,14 +586,18 @@ TEST(ReadmeNumbers, EnvmapTableMatchesTheResults) {
         lo = std::min(lo, r.envmap_err(map, lobes, fit));
         hi = std::max(hi, r.envmap_err(map, lobes, fit));
       }
-      expect_matches(range[0], lo, fmt::format("README envmap table, {} lobes, {} min", lobes, fit));
-      expect_matches(range[1], hi, fmt::format("README envmap table, {} lobes, {} max", lobes, fit));
+      expect_matches(range[0], lo,
+                     fmt::format("README envmap table, {} lobes, {} min", lobes, fit));
+      expect_matches(range[1], hi,
+                     fmt::format("README envmap table, {} lobes, {} max", lobes, fit));
     }
     std::string worst;
     for (const auto& map : r.maps)
       if (worst.empty() || envmap_ratio(r, map, lobes) < envmap_ratio(r, worst, lobes)) worst = map;
-    expect_matches(numbers_in(row[4]).at(0), envmap_ratio(r, worst, lobes), fmt::format("{} lobes, (a)/(c)", lobes));
-    EXPECT_NE(row[4].find("(" + worst + ")"), std::string::npos) << row[4] << ": the worst map is " << worst;
+    expect_matches(numbers_in(row[4]).at(0), envmap_ratio(r, worst, lobes),
+                   fmt::format("{} lobes, (a)/(c)", lobes));
+    EXPECT_NE(row[4].find("(" + worst + ")"), std::string::npos)
+        << row[4] << ": the worst map is " << worst;
   }
 }
 
@@ -567,41 +616,48 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
     const auto v = numbers_in(doc.substr(line, doc.find('\n', line) - line));
     ASSERT_GE(v.size(), 6u);
     const std::string what = fmt::format("sglab_acc.md fit row N={}", n);
-    const double cost =
-        r.ns_per_eval(fmt::format("sglab_acc{}", n), "scalar") / r.ns_per_eval("tokuyoshi2024", "scalar");
+    const double cost = r.ns_per_eval(fmt::format("sglab_acc{}", n), "scalar") /
+                        r.ns_per_eval("tokuyoshi2024", "scalar");
     expect_matches(v[5], cost, what + " cost (costs.json scalar ns ratio)");
   }
   const auto held = table_after(doc, {"method", "float", "double", "worst κ (float)"});
   ASSERT_EQ(held.size(), 4u);
   for (const auto& row : held) {
-    expect_matches(number(row[1], row[0]), r.held_out_err(row[0]), "sglab_acc.md held-out float " + row[0]);
-    expect_matches(number(row[2], row[0]), r.held_out_err(row[0], "double"), "sglab_acc.md held-out double " + row[0]);
+    expect_matches(number(row[1], row[0]), r.held_out_err(row[0]),
+                   "sglab_acc.md held-out float " + row[0]);
+    expect_matches(number(row[2], row[0]), r.held_out_err(row[0], "double"),
+                   "sglab_acc.md held-out double " + row[0]);
     expect_matches(number(row[3], row[0]), r.held_out_worst_kappa.at({row[0], "float"}),
                    "sglab_acc.md worst κ " + row[0]);
   }
-  const auto cost =
-      table_after(doc, {"method", "scalar Ir", "ratio", "batch Ir", "ratio", "setup Ir", "eval Ir", "navi21"});
+  const auto cost = table_after(
+      doc, {"method", "scalar Ir", "ratio", "batch Ir", "ratio", "setup Ir", "eval Ir", "navi21"});
   ASSERT_EQ(cost.size(), 4u);
   ASSERT_EQ(cost[0][0], "tokuyoshi2024");
   for (const auto& row : cost) {
     ASSERT_EQ(row.size(), 12u);
     const std::string& m = row[0];
-    const std::pair<std::size_t, const char*> ir_columns[] = {{1, "scalar"}, {3, "batch"}, {5, "setup"}, {6, "eval"}};
+    const std::pair<std::size_t, const char*> ir_columns[] = {
+        {1, "scalar"}, {3, "batch"}, {5, "setup"}, {6, "eval"}};
     for (const auto& [c, mode] : ir_columns)
-      expect_matches(number(row[c], m), r.instructions(m, mode), fmt::format("sglab_acc.md {} Ir {}", mode, m));
+      expect_matches(number(row[c], m), r.instructions(m, mode),
+                     fmt::format("sglab_acc.md {} Ir {}", mode, m));
     expect_matches(number(row[7], m), r.cycles(m), "sglab_acc.md navi21 " + m);
     expect_matches(number(row[9], m), r.cycles(m, "gfx1100"), "sglab_acc.md gfx1100 " + m);
-    expect_matches(number(row[11], m), r.cycles(m, "navi21", true), "sglab_acc.md navi21 split " + m);
+    expect_matches(number(row[11], m), r.cycles(m, "navi21", true),
+                   "sglab_acc.md navi21 split " + m);
     // Each ratio is its column over tokuyoshi2024's.
     for (std::size_t c : {1u, 3u, 7u, 9u})
       expect_ratio(number(row[c + 1], m), number(row[c], m), number(cost[0][c], m),
                    fmt::format("sglab_acc.md {} ratio of column {}", m, c));
     if (m == "tokuyoshi2024") continue;
-    // "the unsplit GPU columns miss [≤ 1.15× tokuyoshi2024] … a shading point costs well under the unsplit
-    // tokuyoshi2024 (last column)"
+    // "the unsplit GPU columns miss [≤ 1.15× tokuyoshi2024] … a shading point costs well under the
+    // unsplit tokuyoshi2024 (last column)"
     for (const char* family : {"navi21", "gfx1100"})
-      EXPECT_GT(r.cycles(m, family), 1.15 * r.cycles("tokuyoshi2024", family)) << "sglab_acc.md: " << m << " " << family;
-    EXPECT_LT(r.cycles(m, "navi21", true), 0.5 * r.cycles("tokuyoshi2024")) << "sglab_acc.md: " << m << " split";
+      EXPECT_GT(r.cycles(m, family), 1.15 * r.cycles("tokuyoshi2024", family))
+          << "sglab_acc.md: " << m << " " << family;
+    EXPECT_LT(r.cycles(m, "navi21", true), 0.5 * r.cycles("tokuyoshi2024"))
+        << "sglab_acc.md: " << m << " split";
   }
 }
 
@@ -611,47 +667,57 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
 TEST(ResultsDocs, SglabFastMatchesTheResults) {
   const std::string doc = slurp(kResults / "sglab_fast.md");
   const Results& r = results();
-  const auto acc = table_after(doc, {"method", "standard float", "standard double", "held-out float"});
+  const auto acc =
+      table_after(doc, {"method", "standard float", "standard double", "held-out float"});
   ASSERT_EQ(acc.size(), 3u);
   for (const auto& row : acc) {
     ASSERT_EQ(row.size(), 6u);
     const std::string& m = row[0];
     expect_matches(number(row[1], m), r.standard_err(m), "sglab_fast.md standard float " + m);
-    expect_matches(number(row[2], m), r.standard_err(m, "double"), "sglab_fast.md standard double " + m);
+    expect_matches(number(row[2], m), r.standard_err(m, "double"),
+                   "sglab_fast.md standard double " + m);
     expect_matches(number(row[3], m), r.held_out_err(m), "sglab_fast.md held-out float " + m);
-    expect_matches(number(row[4], m), r.held_out_err(m, "double"), "sglab_fast.md held-out double " + m);
-    expect_matches(number(row[5], m), r.held_out_worst_kappa.at({m, "float"}), "sglab_fast.md worst κ " + m);
+    expect_matches(number(row[4], m), r.held_out_err(m, "double"),
+                   "sglab_fast.md held-out double " + m);
+    expect_matches(number(row[5], m), r.held_out_worst_kappa.at({m, "float"}),
+                   "sglab_fast.md worst κ " + m);
   }
   const auto cost = table_after(doc, {"method", "scalar Ir", "batch Ir", "per-light setup Ir"});
   ASSERT_EQ(cost.size(), 3u);
   for (const auto& row : cost) {
     ASSERT_EQ(row.size(), 8u);
     const std::string& m = row[0];
-    const std::pair<std::size_t, const char*> ir_columns[] = {{1, "scalar"}, {2, "batch"}, {3, "setup"}, {4, "eval"}};
+    const std::pair<std::size_t, const char*> ir_columns[] = {
+        {1, "scalar"}, {2, "batch"}, {3, "setup"}, {4, "eval"}};
     for (const auto& [c, mode] : ir_columns) {
       if (row[c] == "–") {
-        EXPECT_FALSE(r.ir.count({m, mode})) << "sglab_fast.md: callgrind.csv has " << m << " " << mode;
+        EXPECT_FALSE(r.ir.count({m, mode}))
+            << "sglab_fast.md: callgrind.csv has " << m << " " << mode;
         continue;
       }
-      expect_matches(number(row[c], m), r.instructions(m, mode), fmt::format("sglab_fast.md {} Ir {}", mode, m));
+      expect_matches(number(row[c], m), r.instructions(m, mode),
+                     fmt::format("sglab_fast.md {} Ir {}", mode, m));
     }
     expect_matches(number(row[5], m), r.cycles(m), "sglab_fast.md navi21 " + m);
     expect_matches(number(row[6], m), r.cycles(m, "gfx1100"), "sglab_fast.md gfx1100 " + m);
-    expect_matches(number(row[7], m), r.cycles(m, "navi21", true), "sglab_fast.md navi21 split " + m);
+    expect_matches(number(row[7], m), r.cycles(m, "navi21", true),
+                   "sglab_fast.md navi21 split " + m);
   }
 }
 
 // vulkan_sweep.md's table: the irradiance rows of vulkan_sweep.json (an empty
 // cell: the sweep has no such row).
 TEST(ResultsDocs, VulkanSweepTableMatchesItsJson) {
-  const auto rows = table_after(slurp(kResults / "vulkan_sweep.md"), {"method", "double (model)", "C++ float"});
+  const auto rows =
+      table_after(slurp(kResults / "vulkan_sweep.md"), {"method", "double (model)", "C++ float"});
   const Results& r = results();
   ASSERT_GE(rows.size(), 17u);
   const char* precisions[] = {"double",       "float",       "vulkan",          "vulkan_hlsl",
                               "vulkan_split", "vulkan_half", "vulkan_hlsl_half"};
   for (const auto& row : rows) {
     ASSERT_EQ(row.size(), 10u);
-    const auto check = [&](std::size_t column, const std::map<Key, double>& source, const std::string& p) {
+    const auto check = [&](std::size_t column, const std::map<Key, double>& source,
+                           const std::string& p) {
       const auto it = source.find({row[0], p});
       const std::string what = "vulkan_sweep.md " + row[0] + " " + p;
       if (row[column].empty())
@@ -665,7 +731,6 @@ TEST(ResultsDocs, VulkanSweepTableMatchesItsJson) {
   }
 }
 
-
 // gpu_costs.md and bench_summary.md are written beside the cost table by
 // `sglab gpucost --out` and `sglab bench --out`: every number in them is the
 // table's, and every row of the table is in them.
@@ -677,11 +742,14 @@ TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
   for (const auto& e : costs.at("gpu").at("rows"))
     table[{e.at("method"), e.at("family"), e.at("lang"), e.at("split"), e.at("precision")}] = e;
   const std::string doc = slurp(kResults / "gpu_costs.md");
-  const char* stats[] = {"instructions", "inverse_throughput", "latency", "vgprs", "sgprs", "code_size", "branches"};
+  const char* stats[] = {"instructions", "inverse_throughput", "latency", "vgprs",
+                         "sgprs",        "code_size",          "branches"};
   std::size_t checked = 0;
-  for (std::size_t at = doc.find("\n## "); at != std::string::npos; at = doc.find("\n## ", at + 1)) {
+  for (std::size_t at = doc.find("\n## "); at != std::string::npos;
+       at = doc.find("\n## ", at + 1)) {
     const std::string family = doc.substr(at + 4, doc.find(' ', at + 4) - at - 4);
-    for (const auto& row : table_after(doc.substr(at), {"method", "lang", "instructions", "inverse throughput"})) {
+    for (const auto& row :
+         table_after(doc.substr(at), {"method", "lang", "instructions", "inverse throughput"})) {
       ASSERT_EQ(row.size(), 9u);
       const std::string lang = row[1].substr(0, row[1].find(' '));
       const std::string precision = row[1].ends_with(" half") ? "half" : "float";
@@ -690,7 +758,8 @@ TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
       const auto it = table.find(key);
       ASSERT_NE(it, table.end()) << what << ": not in costs.json";
       for (std::size_t i = 0; i < std::size(stats); ++i)
-        expect_matches(number(row[i + 2], what), it->second.at(stats[i]).get<double>(), what + " " + stats[i]);
+        expect_matches(number(row[i + 2], what), it->second.at(stats[i]).get<double>(),
+                       what + " " + stats[i]);
       ++checked;
     }
   }
@@ -699,17 +768,20 @@ TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
 
 TEST(ResultsDocs, BenchSummaryMatchesTheCostTable) {
   const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
-  std::map<std::tuple<std::string, std::string, std::string, std::string>, double> ns;  // kind method precision mode
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, double>
+      ns;  // kind method precision mode
   for (const auto& e : costs.at("costs"))
     ns[{e.at("kind"), e.at("method"), e.at("precision"), e.at("mode")}] = e.at("ns_per_eval");
-  const auto rows = table_after(slurp(kResults / "bench_summary.md"), {"kind", "method", "precision", "scalar_ns"});
+  const auto rows = table_after(slurp(kResults / "bench_summary.md"),
+                                {"kind", "method", "precision", "scalar_ns"});
   ASSERT_FALSE(rows.empty());
   std::size_t checked = 0;
   for (const auto& row : rows) {
     ASSERT_EQ(row.size(), 8u);
     const auto check = [&](std::size_t column, const char* mode) {
       const auto it = ns.find({row[0], row[1], row[2], mode});
-      const std::string what = fmt::format("bench_summary.md {} {} {} {}", row[0], row[1], row[2], mode);
+      const std::string what =
+          fmt::format("bench_summary.md {} {} {} {}", row[0], row[1], row[2], mode);
       if (row[column].empty()) {
         EXPECT_TRUE(it == ns.end()) << what << ": empty, but costs.json has " << it->second;
         return;
@@ -729,7 +801,6 @@ TEST(ResultsDocs, BenchSummaryMatchesTheCostTable) {
   EXPECT_EQ(checked, ns.size()) << "bench_summary.md leaves out rows of costs.json";
 }
 
-
 // envmaps.md (`sglab envmap baselines`): its tables are envmaps.csv's rows.
 TEST(ResultsDocs, EnvmapsMatchTheirCsv) {
   const std::string doc = slurp(kResults / "envmaps.md");
@@ -742,15 +813,17 @@ TEST(ResultsDocs, EnvmapsMatchTheirCsv) {
     const std::string what = fmt::format("envmaps.md {} {}", row[0], lobes);
     std::size_t column = 2;
     for (const char* fit : {"baseline", "radiance", "irradiance"}) {
-      expect_matches(number(row[column++], what), r.envmap_err(row[0], lobes, fit), what + " " + fit + " max",
-                     kCsvDigits);
-      expect_matches(number(row[column++], what), r.envmap_rms.at({row[0], lobes, fit}), what + " " + fit + " RMS",
-                     kCsvDigits);
+      expect_matches(number(row[column++], what), r.envmap_err(row[0], lobes, fit),
+                     what + " " + fit + " max", kCsvDigits);
+      expect_matches(number(row[column++], what), r.envmap_rms.at({row[0], lobes, fit}),
+                     what + " " + fit + " RMS", kCsvDigits);
     }
-    expect_matches(number(row[8], what), envmap_ratio(r, row[0], lobes), what + " ratio", kCsvDigits - 1);
+    expect_matches(number(row[8], what), envmap_ratio(r, row[0], lobes), what + " ratio",
+                   kCsvDigits - 1);
   }
   // Fewest lobes whose fit meets 1 % ("> 24": none does).
-  const auto needed = table_after(doc, {"map", "(a) baseline", "(b) radiance fit", "(c) irradiance fit"});
+  const auto needed =
+      table_after(doc, {"map", "(a) baseline", "(b) radiance fit", "(c) irradiance fit"});
   ASSERT_EQ(needed.size(), r.maps.size());
   for (const auto& row : needed) {
     std::size_t column = 1;
@@ -758,7 +831,8 @@ TEST(ResultsDocs, EnvmapsMatchTheirCsv) {
       int fewest = 0;
       for (const auto& [key, err] : r.envmap) {
         const auto& [map, lobes, f] = key;
-        if (map == row[0] && f == fit && err <= 0.01 && (fewest == 0 || lobes < fewest)) fewest = lobes;
+        if (map == row[0] && f == fit && err <= 0.01 && (fewest == 0 || lobes < fewest))
+          fewest = lobes;
       }
       const std::string& cell = row[column++];
       if (cell.starts_with(">")) {
@@ -776,23 +850,28 @@ TEST(ResultsDocs, ParetoMatchesItsSources) {
   const Results& r = results();
   std::map<std::string, std::vector<std::string>> csv;
   const Csv file = read_csv("pareto.csv");
-  ASSERT_EQ(file.header, "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier");
+  ASSERT_EQ(
+      file.header,
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier");
   for (const auto& f : file.rows) {
     ASSERT_EQ(f.size(), 10u) << f[0];
     ASSERT_EQ(f[7], "gpu:navi21") << f[0];
     EXPECT_EQ(std::stod(f[5]), r.cycles(f[0])) << "pareto.csv cost " << f[0];
     // The float rows of the same standard-grid sweep, to the digit.
-    EXPECT_DOUBLE_EQ(std::stod(f[8]), r.vulkan_err(f[0], "float")) << "pareto.csv max_peak_rel " << f[0];
+    EXPECT_DOUBLE_EQ(std::stod(f[8]), r.vulkan_err(f[0], "float"))
+        << "pareto.csv max_peak_rel " << f[0];
     csv[f[0]] = f;
   }
-  const auto rows = table_after(slurp(kResults / "pareto.md"), {"method", "origin", "precision", "kappa_lo"});
+  const auto rows =
+      table_after(slurp(kResults / "pareto.md"), {"method", "origin", "precision", "kappa_lo"});
   ASSERT_EQ(rows.size(), csv.size());
   for (const auto& row : rows) {
     ASSERT_EQ(row.size(), 10u);
     ASSERT_TRUE(csv.count(row[0])) << row[0];
     const auto& f = csv[row[0]];
     for (std::size_t c : {3u, 4u, 5u, 8u, 9u})
-      expect_matches(number(row[c], row[0]), std::stod(f[c]), fmt::format("pareto.md {} column {}", row[0], c));
+      expect_matches(number(row[c], row[0]), std::stod(f[c]),
+                     fmt::format("pareto.md {} column {}", row[0], c));
   }
 }
 

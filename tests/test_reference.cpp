@@ -21,16 +21,16 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
+#include <gtest/gtest.h>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
-#include <fmt/format.h>
-#include <gtest/gtest.h>
 
 #include "common/io.hpp"
+#include "tests/test_support.hpp"
 #include "validate/reference.hpp"
 #include "validate/reference_detail.hpp"
-#include "tests/test_support.hpp"
 
 namespace {
 
@@ -43,11 +43,13 @@ using sglab::validate::ReferencePoint;
 using mp = boost::multiprecision::cpp_bin_float_50;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kRelTol = 1e-13;       // required relative accuracy of H, E
-constexpr double kAbsTolS = 1e-13;      // required absolute accuracy of s
-constexpr double kSmallest = 1e-290;    // relative accuracy required above this
+constexpr double kRelTol = 1e-13;     // required relative accuracy of H, E
+constexpr double kAbsTolS = 1e-13;    // required absolute accuracy of s
+constexpr double kSmallest = 1e-290;  // relative accuracy required above this
 
-double rel_err(double got, double want) { return want == 0 ? std::abs(got) : std::abs(got / want - 1); }
+double rel_err(double got, double want) {
+  return want == 0 ? std::abs(got) : std::abs(got / want - 1);
+}
 
 // ---------------------------------------------------------------------------
 // closed forms of docs/quantities.md in 50-digit arithmetic, written naively on purpose:
@@ -62,18 +64,18 @@ ClosedForms closed_forms(double kappa_in) {
   const mp k = kappa_in, two_pi = 2 * boost::math::constants::pi<mp>();
   const mp em = exp(-k);
   ClosedForms f;
-  f.h_plus = two_pi * (1 - em) / k;                             // H(1, κ)
-  f.h_minus = em * f.h_plus;                                    // H(−1, κ)
-  f.h_zero = (two_pi * (1 - exp(-2 * k)) / k) / 2;              // S(κ)/2
-  f.e_plus = two_pi * (k - 1 + em) / (k * k);                   // E(1, κ)
-  f.e_minus = two_pi * em * (1 - em - k * em) / (k * k);        // E(−1, κ)
+  f.h_plus = two_pi * (1 - em) / k;                       // H(1, κ)
+  f.h_minus = em * f.h_plus;                              // H(−1, κ)
+  f.h_zero = (two_pi * (1 - exp(-2 * k)) / k) / 2;        // S(κ)/2
+  f.e_plus = two_pi * (k - 1 + em) / (k * k);             // E(1, κ)
+  f.e_minus = two_pi * em * (1 - em - k * em) / (k * k);  // E(−1, κ)
   f.s_zero = static_cast<double>((f.h_zero - f.h_minus) / (f.h_plus - f.h_minus));
   return f;
 }
 
 const std::vector<double>& closed_form_kappas() {
-  static const std::vector<double> k = {1e-6, 1e-5, 3e-4, 0.01, 0.2, 0.5, 0.999, 1.0, 1.001, 2.5, 10,
-                                        37.5, 100, 710, 1e3, 1e4, 1e5, 3.3e5, 1e6};
+  static const std::vector<double> k = {1e-6, 1e-5, 3e-4, 0.01, 0.2, 0.5, 0.999, 1.0,   1.001, 2.5,
+                                        10,   37.5, 100,  710,  1e3, 1e4, 1e5,   3.3e5, 1e6};
   return k;
 }
 
@@ -82,8 +84,8 @@ void expect_rel(double value, const mp& exact, const char* what, double kappa, d
   const double x = static_cast<double>(exact);
   ASSERT_FALSE(std::isnan(value)) << what << " NaN at κ=" << hex(kappa) << " c=" << hex(cosine);
   if (x >= kSmallest) {
-    EXPECT_LE(rel_err(value, x), kRelTol)
-        << what << " at κ=" << hex(kappa) << " c=" << hex(cosine) << ": got " << hex(value) << ", exact " << hex(x);
+    EXPECT_LE(rel_err(value, x), kRelTol) << what << " at κ=" << hex(kappa) << " c=" << hex(cosine)
+                                          << ": got " << hex(value) << ", exact " << hex(x);
   } else {
     EXPECT_GE(value, 0) << what << " at κ=" << hex(kappa);
     EXPECT_LE(value, 1e-285) << what << " at κ=" << hex(kappa);
@@ -114,14 +116,17 @@ TEST(ReferenceClosedForms, ErrorEstimateBoundsActualError) {
   ReferenceEngine engine;
   for (double kappa : closed_form_kappas()) {
     const ClosedForms f = closed_forms(kappa);
-    const std::vector<std::tuple<double, mp, mp>> ends = {{1.0, f.h_plus, f.e_plus}, {-1.0, f.h_minus, f.e_minus}};
+    const std::vector<std::tuple<double, mp, mp>> ends = {{1.0, f.h_plus, f.e_plus},
+                                                          {-1.0, f.h_minus, f.e_minus}};
     for (const auto& [c, h, e] : ends) {
       const ReferencePoint p = engine.evaluate(kappa, c);
       if (static_cast<double>(h) < kSmallest) continue;
       const double slack = 4 * std::numeric_limits<double>::epsilon();
-      EXPECT_LE(std::abs(p.hemispherical - static_cast<double>(h)), p.hemispherical_error + slack * p.hemispherical)
+      EXPECT_LE(std::abs(p.hemispherical - static_cast<double>(h)),
+                p.hemispherical_error + slack * p.hemispherical)
           << "κ=" << hex(kappa) << " c=" << c;
-      EXPECT_LE(std::abs(p.irradiance - static_cast<double>(e)), p.irradiance_error + slack * p.irradiance)
+      EXPECT_LE(std::abs(p.irradiance - static_cast<double>(e)),
+                p.irradiance_error + slack * p.irradiance)
           << "κ=" << hex(kappa) << " c=" << c;
       EXPECT_GE(p.hemispherical_error, 0);
       EXPECT_GE(p.irradiance_error, 0);
@@ -161,10 +166,12 @@ TEST(ReferenceHighPrecision, AgreesWithStandardOnRandomPoints) {
   // Corners and the awkward places: both poles, the horizon from both sides,
   // near-pole c, and the underflow edge of H at large κ and c < 0.
   for (double kappa : {1e-6, 0.7, 1.0, 1.5, 50.0, 1e6})
-    for (double c : {-1.0, -0.0365, -1e-12, 0.0, 1e-12, 0.5, 1 - 1e-12, 1.0}) queries.push_back({kappa, c});
+    for (double c : {-1.0, -0.0365, -1e-12, 0.0, 1e-12, 0.5, 1 - 1e-12, 1.0})
+      queries.push_back({kappa, c});
   std::mt19937_64 rng(20240611);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int i = 0; i < 220; ++i) queries.push_back({std::pow(10.0, -6 + 12 * unit(rng)), -1 + 2 * unit(rng)});
+  for (int i = 0; i < 220; ++i)
+    queries.push_back({std::pow(10.0, -6 + 12 * unit(rng)), -1 + 2 * unit(rng)});
 
   ReferenceEngine engine;
   const auto standard = engine.evaluate(queries, Precision::standard);
@@ -174,24 +181,30 @@ TEST(ReferenceHighPrecision, AgreesWithStandardOnRandomPoints) {
     const double k = queries[i].kappa, c = queries[i].cosine;
     const ReferencePoint& a = standard[i];
     const ReferencePoint& b = high[i];
-    for (double v : {a.hemispherical, a.irradiance, a.normalized, b.hemispherical, b.irradiance, b.normalized})
+    for (double v :
+         {a.hemispherical, a.irradiance, a.normalized, b.hemispherical, b.irradiance, b.normalized})
       ASSERT_TRUE(std::isfinite(v)) << "non-finite at κ=" << hex(k) << " c=" << hex(c);
-    if (b.hemispherical >= kSmallest) max_h = std::max(max_h, rel_err(a.hemispherical, b.hemispherical));
+    if (b.hemispherical >= kSmallest)
+      max_h = std::max(max_h, rel_err(a.hemispherical, b.hemispherical));
     if (b.irradiance >= kSmallest) max_e = std::max(max_e, rel_err(a.irradiance, b.irradiance));
     max_s = std::max(max_s, std::abs(a.normalized - b.normalized));
     if (b.hemispherical >= kSmallest) {
-      EXPECT_LE(rel_err(a.hemispherical, b.hemispherical), kRelTol) << "H at κ=" << hex(k) << " c=" << hex(c);
+      EXPECT_LE(rel_err(a.hemispherical, b.hemispherical), kRelTol)
+          << "H at κ=" << hex(k) << " c=" << hex(c);
     }
     if (b.irradiance >= kSmallest) {
-      EXPECT_LE(rel_err(a.irradiance, b.irradiance), kRelTol) << "E at κ=" << hex(k) << " c=" << hex(c);
+      EXPECT_LE(rel_err(a.irradiance, b.irradiance), kRelTol)
+          << "E at κ=" << hex(k) << " c=" << hex(c);
     }
-    EXPECT_LE(std::abs(a.normalized - b.normalized), kAbsTolS) << "s at κ=" << hex(k) << " c=" << hex(c);
+    EXPECT_LE(std::abs(a.normalized - b.normalized), kAbsTolS)
+        << "s at κ=" << hex(k) << " c=" << hex(c);
     EXPECT_GE(a.normalized, 0);
     EXPECT_LE(a.normalized, 1);
     EXPECT_LE(a.irradiance, a.hemispherical);  // u ≤ 1 under the integral
   }
-  const std::string summary = fmt::format("{} points: max rel H {:.3e}, max rel E {:.3e}, max abs s {:.3e}",
-                                          queries.size(), max_h, max_e, max_s);
+  const std::string summary =
+      fmt::format("{} points: max rel H {:.3e}, max rel E {:.3e}, max abs s {:.3e}", queries.size(),
+                  max_h, max_e, max_s);
   std::printf("high vs standard: %s\n", summary.c_str());
   RecordProperty("high_vs_standard", summary);
 }
@@ -202,7 +215,8 @@ TEST(ReferenceHighPrecision, NeverNaNAtTheExtremes) {
     for (double kappa : {0.0, 5e-324, 1e-300, 1e-6, 1e6})
       for (double c : {-1.0, -0.5, -0.0, 0.0, 1.0}) {
         const ReferencePoint p = engine.evaluate(kappa, c, mode);
-        EXPECT_TRUE(std::isfinite(p.hemispherical) && std::isfinite(p.irradiance) && std::isfinite(p.normalized))
+        EXPECT_TRUE(std::isfinite(p.hemispherical) && std::isfinite(p.irradiance) &&
+                    std::isfinite(p.normalized))
             << "κ=" << hex(kappa) << " c=" << hex(c);
       }
   }
@@ -226,13 +240,30 @@ TEST(ReferenceHighPrecision, NeverNaNAtTheExtremes) {
 // to have a bound no larger than themselves.
 std::vector<Query> contract_points() {
   const double below_one = std::nextafter(1.0, 0.0);
-  const std::vector<double> cosines = {-1.0, -below_one, -(1 - 1e-12), -(1 - 1e-6), -0.999, -0.5, -1e-9, 0.0, 1e-9,
-                                       0.6, 0.999, 1 - 1e-6, 1 - 1e-12, below_one, 1.0};
+  const std::vector<double> cosines = {-1.0,  -below_one, -(1 - 1e-12), -(1 - 1e-6), -0.999,
+                                       -0.5,  -1e-9,      0.0,          1e-9,        0.6,
+                                       0.999, 1 - 1e-6,   1 - 1e-12,    below_one,   1.0};
   // The switch of the 50-digit mode: 0.6 ln(1/ε) of its type (mp has the same digits).
   const double high_switch = static_cast<double>(-0.6 * log(std::numeric_limits<mp>::epsilon()));
-  const std::vector<double> kappas = {1e-300, 1e-12, 1e-4, std::nextafter(1.0, 0.0), 1.0, 1.5, 2.0, 10.0,
-                                      50 * (1 - 1e-12), 50.0, 50 * (1 + 1e-12), 78.125, high_switch * (1 - 1e-12),
-                                      high_switch * (1 + 1e-12), 1e4, 1e6, 1e10, 1e100, 1e300};
+  const std::vector<double> kappas = {1e-300,
+                                      1e-12,
+                                      1e-4,
+                                      std::nextafter(1.0, 0.0),
+                                      1.0,
+                                      1.5,
+                                      2.0,
+                                      10.0,
+                                      50 * (1 - 1e-12),
+                                      50.0,
+                                      50 * (1 + 1e-12),
+                                      78.125,
+                                      high_switch * (1 - 1e-12),
+                                      high_switch * (1 + 1e-12),
+                                      1e4,
+                                      1e6,
+                                      1e10,
+                                      1e100,
+                                      1e300};
   std::vector<Query> q;
   for (double k : kappas)
     for (double c : cosines) q.push_back({k, c});
@@ -241,7 +272,8 @@ std::vector<Query> contract_points() {
 
 TEST(ReferenceContract, ReportedBoundWithin1e14AndHighPrecisionAgrees) {
   constexpr double kContract = 1e-14;  // relative, per quantity (H, E)
-  const double slack = 4 * std::numeric_limits<double>::epsilon();  // rounding of the result to double
+  const double slack =
+      4 * std::numeric_limits<double>::epsilon();  // rounding of the result to double
   const std::vector<Query> queries = contract_points();
   ReferenceEngine engine;
   const auto standard = engine.evaluate(queries, Precision::standard);
@@ -257,7 +289,8 @@ TEST(ReferenceContract, ReportedBoundWithin1e14AndHighPrecisionAgrees) {
     } quantities[] = {{"H", a.hemispherical, a.hemispherical_error, b.hemispherical},
                       {"E", a.irradiance, a.irradiance_error, b.irradiance}};
     for (const auto& x : quantities) {
-      ASSERT_TRUE(std::isfinite(x.value) && std::isfinite(x.bound)) << x.name << " at κ=" << hex(k) << " c=" << hex(c);
+      ASSERT_TRUE(std::isfinite(x.value) && std::isfinite(x.bound))
+          << x.name << " at κ=" << hex(k) << " c=" << hex(c);
       EXPECT_GE(x.bound, 0) << x.name << " at κ=" << hex(k) << " c=" << hex(c);
       if (b.hemispherical < kSmallest || x.high < kSmallest) {
         EXPECT_LE(x.bound, std::abs(x.value)) << x.name << " at κ=" << hex(k) << " c=" << hex(c);
@@ -265,17 +298,19 @@ TEST(ReferenceContract, ReportedBoundWithin1e14AndHighPrecisionAgrees) {
       }
       worst_bound = std::max(worst_bound, x.bound / x.value);
       EXPECT_LE(x.bound, kContract * x.value)
-          << x.name << " at κ=" << hex(k) << " c=" << hex(c) << ": reported bound " << x.bound / x.value
-          << " of the value, contract " << kContract;
+          << x.name << " at κ=" << hex(k) << " c=" << hex(c) << ": reported bound "
+          << x.bound / x.value << " of the value, contract " << kContract;
       const double diff = std::abs(x.value - x.high);
       worst_agreement = std::max(worst_agreement, diff / x.high);
       EXPECT_LE(diff, x.bound + slack * x.high)
-          << x.name << " at κ=" << hex(k) << " c=" << hex(c) << ": standard " << hex(x.value) << ", high "
-          << hex(x.high) << ", reported bound " << x.bound;
+          << x.name << " at κ=" << hex(k) << " c=" << hex(c) << ": standard " << hex(x.value)
+          << ", high " << hex(x.high) << ", reported bound " << x.bound;
     }
   }
-  std::printf("contract points: %zu, worst reported bound %.3e, worst standard/high difference %.3e (relative)\n",
-              queries.size(), worst_bound, worst_agreement);
+  std::printf(
+      "contract points: %zu, worst reported bound %.3e, worst standard/high difference %.3e "
+      "(relative)\n",
+      queries.size(), worst_bound, worst_agreement);
 }
 
 // The tolerance itself. On every point of the engine (the contract points
@@ -294,14 +329,18 @@ TEST(ReferenceContract, AdaptiveQuadratureMeetsTheToleranceWhereBisectionIsNeede
     return std::exp(-0.5 * z * z);
   };
   const mp s = sigma, root2 = boost::math::constants::root_two<mp>();
-  const double exact = static_cast<double>(s * sqrt(2 * boost::math::constants::pi<mp>()) *
-                                           (boost::math::erf((1 - mp(mu)) / (s * root2)) + boost::math::erf(mp(mu) / (s * root2))) / 2);
+  const double exact = static_cast<double>(
+      s * sqrt(2 * boost::math::constants::pi<mp>()) *
+      (boost::math::erf((1 - mp(mu)) / (s * root2)) + boost::math::erf(mp(mu) / (s * root2))) / 2);
   AdaptiveQuadrature<double, double> quad;
   quad.add(f, 0, 0.0, 1.0);
-  EXPECT_GT(quad.error(), 1e-6 * exact) << "one segment must not resolve the peak (the loop would not be tested)";
+  EXPECT_GT(quad.error(), 1e-6 * exact)
+      << "one segment must not resolve the peak (the loop would not be tested)";
   quad.run(f, Settings::tolerance());
-  EXPECT_LE(quad.error(), 1e-14 * quad.value()) << "reported bound after " << quad.size() << " segments";
-  EXPECT_LE(std::abs(quad.value() - exact), quad.error() + 4 * std::numeric_limits<double>::epsilon() * exact)
+  EXPECT_LE(quad.error(), 1e-14 * quad.value())
+      << "reported bound after " << quad.size() << " segments";
+  EXPECT_LE(std::abs(quad.value() - exact),
+            quad.error() + 4 * std::numeric_limits<double>::epsilon() * exact)
       << "value " << hex(quad.value()) << ", exact " << hex(exact);
   EXPECT_LE(rel_err(quad.value(), exact), 1e-14);
 }
@@ -311,7 +350,8 @@ TEST(ReferenceContract, AdaptiveQuadratureMeetsTheToleranceWhereBisectionIsNeede
 // Gauss–Legendre (Boost's 20-point rule on 24 equal panels in each angle),
 // with v at polar angle acos(c). No 1-D reduction, no Bessel function, no
 // adaptivity: catches a wrong formula that both engine modes would share.
-template <class F> double composite_gauss(const F& f, double a, double b) {
+template <class F>
+double composite_gauss(const F& f, double a, double b) {
   constexpr int panels = 24;
   const double h = (b - a) / panels;
   double sum = 0;
@@ -324,7 +364,8 @@ double sphere_quadrature(double kappa, double c, bool cosine_weighted) {
   auto over_phi = [&](double theta) {
     const double ct = std::cos(theta), st = std::sin(theta);
     auto g = [&](double phi) { return std::exp(kappa * (st * r * std::cos(phi) + ct * c - 1)); };
-    return 2 * composite_gauss(g, 0.0, kPi) * st * (cosine_weighted ? ct : 1.0);  // φ ∈ [0, 2π], symmetric
+    return 2 * composite_gauss(g, 0.0, kPi) * st *
+           (cosine_weighted ? ct : 1.0);  // φ ∈ [0, 2π], symmetric
   };
   return composite_gauss(over_phi, 0.0, kPi / 2);
 }
@@ -340,7 +381,8 @@ TEST(ReferenceBruteForce, MatchesSphereQuadrature) {
       EXPECT_LE(rel_err(p.irradiance, e), 1e-12) << "E at κ=" << kappa << " c=" << c;
       // s from the brute-force H and the closed-form ends.
       const ClosedForms f = closed_forms(kappa);
-      const double s = (h - static_cast<double>(f.h_minus)) / static_cast<double>(f.h_plus - f.h_minus);
+      const double s =
+          (h - static_cast<double>(f.h_minus)) / static_cast<double>(f.h_plus - f.h_minus);
       EXPECT_NEAR(p.normalized, s, 1e-11) << "s at κ=" << kappa << " c=" << c;
     }
 }
@@ -348,9 +390,11 @@ TEST(ReferenceBruteForce, MatchesSphereQuadrature) {
 // ---------------------------------------------------------------------------
 TEST(ReferenceEngineApi, RejectsBadArguments) {
   ReferenceEngine engine;
-  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  const std::vector<std::pair<double, double>> bad = {{-1.0, 0.0}, {-1e-300, 0.0}, {nan, 0.0}, {inf, 0.0},
-                                                      {1.0, 1.0000000000000002}, {1.0, -1.5}, {1.0, nan}, {1.0, inf}};
+  const double nan = std::numeric_limits<double>::quiet_NaN(),
+               inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<double, double>> bad = {
+      {-1.0, 0.0}, {-1e-300, 0.0}, {nan, 0.0}, {inf, 0.0}, {1.0, 1.0000000000000002},
+      {1.0, -1.5}, {1.0, nan},     {1.0, inf}};
   for (auto [k, c] : bad)
     EXPECT_THROW(engine.evaluate(k, c), std::invalid_argument) << "κ=" << k << " c=" << c;
   const std::vector<Query> batch = {{1.0, 0.5}, {2.0, 2.0}};
@@ -379,7 +423,8 @@ TEST(ReferenceEngineApi, CacheKeyedByBitsAndPrecision) {
 TEST(ReferenceEngineApi, BatchIsInQueryOrderAndMatchesSingleCalls) {
   std::vector<Query> queries;
   // 300 distinct points (i mod 37, i mod 23 are unique for i < 851), then a repeat.
-  for (int i = 0; i < 300; ++i) queries.push_back({std::pow(10.0, -3 + 7 * (i % 37) / 36.0), -1 + 2 * (i % 23) / 22.0});
+  for (int i = 0; i < 300; ++i)
+    queries.push_back({std::pow(10.0, -3 + 7 * (i % 37) / 36.0), -1 + 2 * (i % 23) / 22.0});
   queries.push_back(queries[17]);
   ReferenceEngine batch_engine, single_engine;
   const auto batch = batch_engine.evaluate(queries);
@@ -415,14 +460,16 @@ TEST(ReferenceEngineApi, ConcurrentCallersAgree) {
 // ---------------------------------------------------------------------------
 // `sglab reference`.
 // Writes `content` to dir/name and returns the path.
-std::string write(const sglab::test::TempDir& dir, const std::string& name, const std::string& content) {
+std::string write(const sglab::test::TempDir& dir, const std::string& name,
+                  const std::string& content) {
   const auto file = dir.path / name;
   sglab::io::write_file_atomic(file, content);
   return file.string();
 }
 
 // `sglab reference --points FILE` with extra options before --points.
-sglab::test::CommandResult sglab_reference(const std::string& file, std::vector<std::string> options = {}) {
+sglab::test::CommandResult sglab_reference(const std::string& file,
+                                           std::vector<std::string> options = {}) {
   options.insert(options.begin(), "reference");
   options.insert(options.end(), {"--points", file});
   return sglab::test::run_sglab(options);
@@ -430,15 +477,17 @@ sglab::test::CommandResult sglab_reference(const std::string& file, std::vector<
 
 TEST(ReferenceCommand, PrintsCsvWith17Digits) {
   const sglab::test::TempDir dir("reference");
-  const std::string file = write(dir, "points.csv", "kappa,cosine\n0,0.5\n1e-6,-1\n2.5,0.1\r\n 1000 , -0.25 \n1e6,1\n\n");
+  const std::string file = write(
+      dir, "points.csv", "kappa,cosine\n0,0.5\n1e-6,-1\n2.5,0.1\r\n 1000 , -0.25 \n1e6,1\n\n");
   const auto r = sglab_reference(file);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::string expected = "kappa,cosine,hemispherical,irradiance,normalized\n";
-  const std::vector<std::pair<double, double>> points = {{0.0, 0.5}, {1e-6, -1.0}, {2.5, 0.1}, {1000.0, -0.25}, {1e6, 1.0}};
+  const std::vector<std::pair<double, double>> points = {
+      {0.0, 0.5}, {1e-6, -1.0}, {2.5, 0.1}, {1000.0, -0.25}, {1e6, 1.0}};
   for (auto [k, c] : points) {
     const ReferencePoint p = reference_engine().evaluate(k, c);
-    expected += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", k, c, p.hemispherical, p.irradiance,
-                            p.normalized);
+    expected += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", k, c, p.hemispherical,
+                            p.irradiance, p.normalized);
   }
   EXPECT_EQ(r.output, expected);
 

@@ -23,8 +23,8 @@
 #include <sglab/registry.hpp>
 
 #include "common/io.hpp"
-#include "validate/reference.hpp"
 #include "tests/test_support.hpp"
+#include "validate/reference.hpp"
 
 namespace {
 
@@ -59,7 +59,8 @@ std::vector<Link> markdown_links(const std::string& text) {
       if (line[i] == '`') {
         const std::size_t close = line.find('`', i + 1);
         const std::size_t stop = close == std::string::npos ? line.size() : close + 1;
-        std::fill(line.begin() + static_cast<std::ptrdiff_t>(i), line.begin() + static_cast<std::ptrdiff_t>(stop), ' ');
+        std::fill(line.begin() + static_cast<std::ptrdiff_t>(i),
+                  line.begin() + static_cast<std::ptrdiff_t>(stop), ' ');
         i = stop;
       }
     for (std::size_t at = line.find("]("); at != std::string::npos; at = line.find("](", at + 1)) {
@@ -99,12 +100,14 @@ void check_index(const fs::path& out, std::size_t min_images) {
     if (!is_relative(l.target)) continue;
     ++relative;
     const std::string path = l.target.substr(0, l.target.find('#'));
-    EXPECT_TRUE(fs::is_regular_file(out / path)) << "index.md:" << l.line << ": broken link " << l.target;
+    EXPECT_TRUE(fs::is_regular_file(out / path))
+        << "index.md:" << l.line << ": broken link " << l.target;
     if (l.image) ++images[fs::path(path).lexically_normal().generic_string()];
   }
   EXPECT_GT(relative, 0u);
   EXPECT_GE(images.size(), min_images);
-  for (const auto& [target, count] : images) EXPECT_EQ(count, 1) << target << " is shown " << count << " times";
+  for (const auto& [target, count] : images)
+    EXPECT_EQ(count, 1) << target << " is shown " << count << " times";
 
   // One H1, first; a heading is at most one level below the one before it.
   int previous = 0;
@@ -123,15 +126,18 @@ void check_index(const fs::path& out, std::size_t min_images) {
     table_run = line.rfind("|", 0) == 0 ? table_run + 1 : 0;
     longest_table = std::max(longest_table, table_run);
     int level = 0;
-    while (level < static_cast<int>(line.size()) && line[static_cast<std::size_t>(level)] == '#') ++level;
-    if (level == 0 || level > 6 || (static_cast<std::size_t>(level) < line.size() && line[static_cast<std::size_t>(level)] != ' '))
+    while (level < static_cast<int>(line.size()) && line[static_cast<std::size_t>(level)] == '#')
+      ++level;
+    if (level == 0 || level > 6 ||
+        (static_cast<std::size_t>(level) < line.size() &&
+         line[static_cast<std::size_t>(level)] != ' '))
       continue;
     if (level == 1) ++h1;
     if (previous == 0) {
       EXPECT_EQ(level, 1) << "index.md:" << line_number << ": the first heading is not an H1";
     }
-    EXPECT_LE(level, previous + 1) << "index.md:" << line_number << ": H" << level << " under H" << previous << ": "
-                                   << line;
+    EXPECT_LE(level, previous + 1)
+        << "index.md:" << line_number << ": H" << level << " under H" << previous << ": " << line;
     previous = level;
   }
   EXPECT_EQ(h1, 1);
@@ -150,9 +156,10 @@ struct HostileOut {
 TEST(RunCommand, HostilePathWorksAndRunsNothing) {
   HostileOut dir;
   // The fast steps only; the report checks below cover the rest.
-  const auto r = sglab::test::run_sglab({"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "erf",
-                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "pareto-cpu",
-                                         "--skip", "figures", "--skip", "envmap"});
+  const auto r = sglab::test::run_sglab(
+      {"run",    "--quick",    "--out",  dir.out.string(), "--skip", "fit",    "--skip",
+       "erf",    "--skip",     "claims", "--skip",         "bench",  "--skip", "pareto",
+       "--skip", "pareto-cpu", "--skip", "figures",        "--skip", "envmap"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.marker)) << "a command in the output path was run";
   EXPECT_TRUE(fs::is_regular_file(dir.out / "sweep" / "summary.csv")) << r.output;
@@ -166,8 +173,8 @@ TEST(RunCommand, QuickRunIndexHasNoBrokenLinkAndEachFigureOnce) {
   // read the pareto table, which falls back to no cost data without bench;
   // envmap's quick step fits eight maps, 50 s of CPU, and draws no figure).
   HostileOut dir;
-  const auto r = sglab::test::run_sglab(
-      {"run", "--quick", "--out", dir.out.string(), "--skip", "fit", "--skip", "bench", "--skip", "envmap"});
+  const auto r = sglab::test::run_sglab({"run", "--quick", "--out", dir.out.string(), "--skip",
+                                         "fit", "--skip", "bench", "--skip", "envmap"});
   EXPECT_FALSE(fs::exists(dir.marker));
   // Steps may fail for reasons outside the report (e.g. no gnuplot); the
   // report must be clean whatever happened.
@@ -191,7 +198,8 @@ TEST(RunCommand, UnknownSkipIsBadInput) {
 std::map<std::string, std::string> files_under(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).generic_string()] = sglab::io::read_file(e.path());
+    if (e.is_regular_file())
+      files[fs::relative(e.path(), dir).generic_string()] = sglab::io::read_file(e.path());
   return files;
 }
 
@@ -220,12 +228,14 @@ pid_t spawn_sglab(const std::vector<std::string>& args) {
 TEST(RunCommand, ParetoWithoutGpuCostsIsSkippedWithTheReason) {
   sglab::test::TempDir project("run-no-gpu");
   fs::create_directories(project.path / "include" / "sglab");
-  fs::create_directories(project.path / "data" / "constants");  // what marks a project (io::find_project_root)
+  fs::create_directories(project.path / "data" /
+                         "constants");  // what marks a project (io::find_project_root)
   fs::create_directories(project.path / "data" / "results");
   std::string rows;
   for (const sglab::Method& m : sglab::irradiance_methods)
-    rows += fmt::format(R"({}{{"kind": "irradiance", "method": "{}", "precision": "float", "mode": "batch", "ns_per_eval": 5}})",
-                        rows.empty() ? "" : ", ", m.id);
+    rows += fmt::format(
+        R"({}{{"kind": "irradiance", "method": "{}", "precision": "float", "mode": "batch", "ns_per_eval": 5}})",
+        rows.empty() ? "" : ", ", m.id);
   sglab::io::write_file_atomic(
       project.path / "data" / "results" / "costs.json",
       R"({"format": "sglab-costs", "version": 1, "date": "2026-01-01T00:00:00Z", "command": "test", "machine": {"cpu": "t", "cores": 1}, )"
@@ -234,15 +244,18 @@ TEST(RunCommand, ParetoWithoutGpuCostsIsSkippedWithTheReason) {
   const fs::path here = fs::current_path();
   fs::current_path(project.path);
   const fs::path out = project.path / "out";
-  const auto r = sglab::test::run_sglab({"run", "--out", out.string(), "--skip", "fit", "--skip", "sweep", "--skip",
-                                         "erf", "--skip", "stability", "--skip", "claims", "--skip", "bench", "--skip",
-                                         "gpucost", "--skip", "figures", "--skip", "envmap"});
+  const auto r = sglab::test::run_sglab(
+      {"run",    "--out",  out.string(), "--skip",    "fit",     "--skip", "sweep",
+       "--skip", "erf",    "--skip",     "stability", "--skip",  "claims", "--skip",
+       "bench",  "--skip", "gpucost",    "--skip",    "figures", "--skip", "envmap"});
   fs::current_path(here);
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("skipped: the cost table has no GPU costs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("skipped: the cost table has no GPU costs"), std::string::npos)
+      << r.output;
   EXPECT_FALSE(fs::exists(out / "pareto" / "pareto.csv"));
   ASSERT_TRUE(fs::is_regular_file(out / "pareto-cpu" / "pareto.csv")) << r.output;
-  EXPECT_NE(sglab::io::read_file(out / "pareto-cpu" / "pareto.csv").find(",ns,cpu-batch,"), std::string::npos);
+  EXPECT_NE(sglab::io::read_file(out / "pareto-cpu" / "pareto.csv").find(",ns,cpu-batch,"),
+            std::string::npos);
   EXPECT_NE(sglab::io::read_file(out / "index.md").find("no GPU costs"), std::string::npos);
 }
 
@@ -252,18 +265,21 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   // A complete earlier output: its index says the sweep step was ok, with its log.
   fs::create_directories(out / "logs");
   fs::create_directories(out / "sweep");
-  sglab::io::write_file_atomic(out / "index.md", "# sglab results\n\n## sweep\n\n`sglab sweep` — ok\n");
+  sglab::io::write_file_atomic(out / "index.md",
+                               "# sglab results\n\n## sweep\n\n`sglab sweep` — ok\n");
   sglab::io::write_file_atomic(out / "logs" / "sweep.log", "the previous sweep's log\n");
   sglab::io::write_file_atomic(out / "sweep" / "summary.csv", "previous\n");
   const auto before = files_under(out);
-  const std::vector<std::string> args = {"run", "--quick", "--out", out.string(), "--skip", "fit", "--skip", "erf",
-                                         "--skip", "claims", "--skip", "bench", "--skip", "pareto", "--skip", "pareto-cpu",
-                                         "--skip", "figures", "--skip", "envmap"};
+  const std::vector<std::string> args = {
+      "run",    "--quick",    "--out",  out.string(), "--skip", "fit",    "--skip",
+      "erf",    "--skip",     "claims", "--skip",     "bench",  "--skip", "pareto",
+      "--skip", "pareto-cpu", "--skip", "figures",    "--skip", "envmap"};
   for (const int signal : {SIGINT, SIGTERM}) {
     const pid_t pid = spawn_sglab(args);
     ASSERT_GT(pid, 0);
     // Interrupt it while its first step (sweep) is writing its log.
-    const fs::path partial_log = base.path / fmt::format("out.staging-{}", pid) / "logs" / ".sweep.log.partial";
+    const fs::path partial_log =
+        base.path / fmt::format("out.staging-{}", pid) / "logs" / ".sweep.log.partial";
     for (int i = 0; i < 2000 && !fs::exists(partial_log); ++i) ::usleep(10'000);
     ASSERT_TRUE(fs::exists(partial_log)) << "the run did not start its first step within 20 s";
     ::kill(pid, signal);
@@ -280,7 +296,8 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   EXPECT_TRUE(after.count("stability/stability.csv"));
   EXPECT_NE(after.at("sweep/summary.csv"), "previous\n");
   EXPECT_NE(after.at("index.md").find("## stability"), std::string::npos);
-  for (const auto& [name, text] : after) EXPECT_EQ(name.find(".partial"), std::string::npos) << name;
+  for (const auto& [name, text] : after)
+    EXPECT_EQ(name.find(".partial"), std::string::npos) << name;
 }
 
 // ---- `sglab table` prints every value with 5 significant digits --------------
@@ -297,7 +314,8 @@ std::vector<std::vector<std::string>> table_rows(const std::string& output) {
     if (line.rfind("|", 0) != 0 || line.rfind("|:", 0) == 0) continue;
     std::vector<std::string> cells;
     std::size_t a = 1;
-    for (std::size_t b = line.find('|', a); b != std::string::npos; a = b + 1, b = line.find('|', a)) {
+    for (std::size_t b = line.find('|', a); b != std::string::npos;
+         a = b + 1, b = line.find('|', a)) {
       std::string c = line.substr(a, b - a);
       c.erase(0, c.find_first_not_of(' '));
       c.erase(c.find_last_not_of(' ') + 1);
@@ -331,15 +349,17 @@ TEST(TableCommand, KeepsFourSignificantDigitsAtEveryKappa) {
       ASSERT_TRUE(row[0] == "reference" || method) << row[0];
       for (std::size_t i = 0; i < cosines.size(); ++i) {
         const double c = -1.0 + 2.0 * static_cast<double>(i) / 8.0;
-        const double truth = method ? method->f64(c, kappa)
-                                    : sglab::validate::reference_engine().evaluate(kappa, c).irradiance;
+        const double truth =
+            method ? method->f64(c, kappa)
+                   : sglab::validate::reference_engine().evaluate(kappa, c).irradiance;
         const double printed = number(row[i + 1]);
         if (truth == 0) {
           EXPECT_EQ(printed, 0) << row[0] << " c = " << c;
           continue;
         }
         EXPECT_LE(std::abs(printed - truth), 1e-4 * std::abs(truth))
-            << row[0] << " at κ = " << kappa << ", c = " << c << ": printed " << row[i + 1] << ", value " << truth;
+            << row[0] << " at κ = " << kappa << ", c = " << c << ": printed " << row[i + 1]
+            << ", value " << truth;
         ++checked;
       }
     }

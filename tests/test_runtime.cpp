@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
+#include <gtest/gtest.h>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
-#include <gtest/gtest.h>
 
 #include <sglab/sglab.hpp>
 
@@ -24,7 +24,8 @@ double rel_err(double got, double want) { return std::abs(got - want) / std::abs
 // ∫_{S²} G(ω; v, κ) w(ω·n) dω by brute-force 2-D Gauss–Kronrod in (θ, φ)
 // about n, with v at polar angle acos(c) in the x-z plane. Independent of the
 // 1-D reduction used by the reference engine.
-template <class W> double sphere_quadrature(double c, double kappa, W weight) {
+template <class W>
+double sphere_quadrature(double c, double kappa, W weight) {
   using boost::math::quadrature::gauss_kronrod;
   const double s = std::sqrt(std::max(0.0, 1 - c * c));
   auto over_phi = [&](double theta) {
@@ -43,11 +44,16 @@ TEST(ClosedForms, AgreeWithBruteForceSphereQuadrature) {
     auto one = [](double) { return 1.0; };
     SCOPED_TRACE(hex(kappa));
     EXPECT_LT(rel_err(sglab::sphere_integral(kappa), sphere_quadrature(1.0, kappa, one)), 1e-10);
-    EXPECT_LT(rel_err(sglab::hemispherical_upper(kappa), sphere_quadrature(1.0, kappa, upper)), 1e-10);
-    EXPECT_LT(rel_err(sglab::hemispherical_lower(kappa), sphere_quadrature(-1.0, kappa, upper)), 1e-10);
-    EXPECT_LT(rel_err(sglab::hemispherical_equator(kappa), sphere_quadrature(0.0, kappa, upper)), 1e-8);
-    EXPECT_LT(rel_err(sglab::irradiance_upper(kappa), sphere_quadrature(1.0, kappa, cosine)), 1e-10);
-    EXPECT_LT(rel_err(sglab::irradiance_lower(kappa), sphere_quadrature(-1.0, kappa, cosine)), 1e-10);
+    EXPECT_LT(rel_err(sglab::hemispherical_upper(kappa), sphere_quadrature(1.0, kappa, upper)),
+              1e-10);
+    EXPECT_LT(rel_err(sglab::hemispherical_lower(kappa), sphere_quadrature(-1.0, kappa, upper)),
+              1e-10);
+    EXPECT_LT(rel_err(sglab::hemispherical_equator(kappa), sphere_quadrature(0.0, kappa, upper)),
+              1e-8);
+    EXPECT_LT(rel_err(sglab::irradiance_upper(kappa), sphere_quadrature(1.0, kappa, cosine)),
+              1e-10);
+    EXPECT_LT(rel_err(sglab::irradiance_lower(kappa), sphere_quadrature(-1.0, kappa, cosine)),
+              1e-10);
   }
 }
 
@@ -76,10 +82,12 @@ TEST(ClosedForms, MatchFiftyDigitNaiveFormulasOverFullRange) {
 }
 
 TEST(ClosedForms, FloatStaysFiniteAndAccurateUpToFltMax) {
-  for (float kappa : {0.0f, 1e-30f, 1e-6f, 0.5f, 1.0f, 1e6f, 1e30f, std::numeric_limits<float>::max()}) {
+  for (float kappa :
+       {0.0f, 1e-30f, 1e-6f, 0.5f, 1.0f, 1e6f, 1e30f, std::numeric_limits<float>::max()}) {
     SCOPED_TRACE(hex(kappa));
-    for (float v : {sglab::sphere_integral(kappa), sglab::hemispherical_upper(kappa), sglab::hemispherical_lower(kappa),
-                    sglab::irradiance_upper(kappa), sglab::irradiance_lower(kappa)}) {
+    for (float v : {sglab::sphere_integral(kappa), sglab::hemispherical_upper(kappa),
+                    sglab::hemispherical_lower(kappa), sglab::irradiance_upper(kappa),
+                    sglab::irradiance_lower(kappa)}) {
       EXPECT_TRUE(std::isfinite(v) && v >= 0) << hex(v);
     }
     const double d = kappa;
@@ -157,7 +165,8 @@ TEST(SGProduct, NoCancellationAtLargeSharpness) {
       EXPECT_LT(rel_err(p.log_amplitude, want), 1e-14);
       // Vector form with the same geometry.
       const double s = std::sqrt(1 - c * c);
-      const auto q = sglab::sg_product(sglab::Vec3<double>{s, 0, c}, k1, sglab::Vec3<double>{0, 0, 1}, lambda);
+      const auto q =
+          sglab::sg_product(sglab::Vec3<double>{s, 0, c}, k1, sglab::Vec3<double>{0, 0, 1}, lambda);
       EXPECT_LT(rel_err(q.log_amplitude, want), 1e-9);  // |v1 − v2|² from rounded components
       EXPECT_LT(rel_err(q.sharpness, p.sharpness), 1e-14);
     }
@@ -165,7 +174,8 @@ TEST(SGProduct, NoCancellationAtLargeSharpness) {
 }
 
 TEST(SGProduct, OppositeAxesEqualSharpnessIsFinite) {
-  const auto p = sglab::sg_product(sglab::Vec3<double>{0, 0, 1}, 3.0, sglab::Vec3<double>{0, 0, -1}, 3.0);
+  const auto p =
+      sglab::sg_product(sglab::Vec3<double>{0, 0, 1}, 3.0, sglab::Vec3<double>{0, 0, -1}, 3.0);
   EXPECT_EQ(p.sharpness, 0.0);
   EXPECT_DOUBLE_EQ(p.log_amplitude, -6.0);  // G1·G2 = e^{−6} everywhere
   const auto q = sglab::sg_product_with_normal(-1.0, 3.0, 3.0);
@@ -200,20 +210,25 @@ TEST(Symmetry, NormalizedIntegralIsPointSymmetric) {
   // s(−c) = 1 − s(c) for the erf and logistic forms.
   for (double kappa : {0.01, 1.0, 40.0})
     for (double c : {0.0, 0.3, 0.9}) {
-      EXPECT_NEAR(sglab::normalized_erf2022(-c, kappa), 1 - sglab::normalized_erf2022(c, kappa), 1e-15);
-      EXPECT_NEAR(sglab::normalized_meder2018(-c, kappa), 1 - sglab::normalized_meder2018(c, kappa), 1e-15);
+      EXPECT_NEAR(sglab::normalized_erf2022(-c, kappa), 1 - sglab::normalized_erf2022(c, kappa),
+                  1e-15);
+      EXPECT_NEAR(sglab::normalized_meder2018(-c, kappa), 1 - sglab::normalized_meder2018(c, kappa),
+                  1e-15);
     }
 }
 
 TEST(Hemispherical, Erf2022IsExactAtThePoles) {
   for (double kappa : {1e-3, 0.5, 4.0, 100.0}) {
-    EXPECT_LT(rel_err(sglab::hemispherical_erf2022(1.0, kappa), sglab::hemispherical_upper(kappa)), 1e-15);
-    EXPECT_LT(rel_err(sglab::hemispherical_erf2022(-1.0, kappa), sglab::hemispherical_lower(kappa)), 1e-15);
+    EXPECT_LT(rel_err(sglab::hemispherical_erf2022(1.0, kappa), sglab::hemispherical_upper(kappa)),
+              1e-15);
+    EXPECT_LT(rel_err(sglab::hemispherical_erf2022(-1.0, kappa), sglab::hemispherical_lower(kappa)),
+              1e-15);
   }
 }
 
 TEST(Steepness, LargeKappaTendsToSqrtHalfKappa) {
-  // [Tokuyoshi2022] supplementary §1.2: t(κ) → √(κ/2); the rearranged evaluation stays finite up to FLT_MAX.
+  // [Tokuyoshi2022] supplementary §1.2: t(κ) → √(κ/2); the rearranged evaluation stays finite up to
+  // FLT_MAX.
   for (double kappa : {1e8, 1e12, 1e300}) {
     EXPECT_LT(rel_err(sglab::steepness2022(kappa), std::sqrt(kappa / 2)), 1e-7);
     EXPECT_LT(rel_err(sglab::steepness2024(kappa), std::sqrt(kappa / 2)), 1e-7);
@@ -228,7 +243,8 @@ TEST(Steepness, LargeKappaTendsToSqrtHalfKappa) {
   }
 }
 
-// Hand-computed points from the published formulas ([Pettineo2016], [Tokuyoshi2015], docs/references.md).
+// Hand-computed points from the published formulas ([Pettineo2016], [Tokuyoshi2015],
+// docs/references.md).
 TEST(Transcriptions, MatchHandComputedValues) {
   const double k = 4, c = 0.5;
   // punctual: max(c,0)·2π/κ.
@@ -237,20 +253,24 @@ TEST(Transcriptions, MatchHandComputedValues) {
   EXPECT_NEAR(sglab::irradiance_vsgl2015(c, k), 2 * kPi * std::exp(-2.0 / 3.0) / 6, 1e-15);
   // wang2009 at c = 1: d = κ + λ, e^{0}·a·2π(1 − e^{−2d})/d.
   const double d = 4 + 2.133;
-  EXPECT_NEAR(sglab::irradiance_wang2009(1.0, k), 2 * kPi * 1.17 * (1 - std::exp(-2 * d)) / d, 1e-15);
+  EXPECT_NEAR(sglab::irradiance_wang2009(1.0, k), 2 * kPi * 1.17 * (1 - std::exp(-2 * d)) / d,
+              1e-15);
   // hill at c = 1, κ = 4: scale = 1 + 2e^{−8} − 1/4, bias = (e^{−4} − e^{−8})/4 − e^{−8};
   // x = √(1 − scale); |x0| = 0.36 > x1 = x/1.44, so y = saturate(c) = 1.
-  const double scale = 1 + 2 * std::exp(-8.0) - 0.25, bias = (std::exp(-4.0) - std::exp(-8.0)) / 4 - std::exp(-8.0);
+  const double scale = 1 + 2 * std::exp(-8.0) - 0.25,
+               bias = (std::exp(-4.0) - std::exp(-8.0)) / 4 - std::exp(-8.0);
   ASSERT_GT(0.36, std::sqrt(1 - scale) / 1.44);
   EXPECT_NEAR(sglab::irradiance_hill(1.0, k), (scale + bias) * 2 * kPi / 4, 1e-15);
-  EXPECT_NEAR(sglab::irradiance_hill_exact(1.0, k), (scale + bias) * sglab::sphere_integral(4.0), 1e-15);
+  EXPECT_NEAR(sglab::irradiance_hill_exact(1.0, k), (scale + bias) * sglab::sphere_integral(4.0),
+              1e-15);
   // tokuyoshi2024 interpolates the exact poles: f(1) = 1, f(−1) = 0.
   EXPECT_NEAR(sglab::irradiance_tokuyoshi2024(1.0, k), sglab::irradiance_upper(k), 1e-15);
   EXPECT_NEAR(sglab::irradiance_tokuyoshi2024(-1.0, k), sglab::irradiance_lower(k), 1e-17);
   // erf variants: published A&S coefficients at x = 0.5 by hand: t = 1/(1 + 0.235235).
   const double t = 1 / (1 + 0.47047 * 0.5);
-  EXPECT_DOUBLE_EQ(sglab::erf_abramowitz_stegun(0.5),
-                   1 - (0.3480242 * t - 0.0958798 * t * t + 0.7478556 * t * t * t) * std::exp(-0.25));
+  EXPECT_DOUBLE_EQ(
+      sglab::erf_abramowitz_stegun(0.5),
+      1 - (0.3480242 * t - 0.0958798 * t * t + 0.7478556 * t * t * t) * std::exp(-0.25));
   EXPECT_EQ(sglab::erf_listing5(4.0f), 1.0f);
   EXPECT_EQ(sglab::erf_listing5(-7.0f), -1.0f);
   EXPECT_NEAR(sglab::erf_listing5(0.5), std::erf(0.5), 1e-6);
@@ -271,7 +291,8 @@ double tokuyoshi2022_naive(double c, double kappa) {
   const double ax = kappa * sx, az = kappa * c + lambda;
   const double k3 = std::sqrt(ax * ax + az * az);
   const double kmin = std::min(kappa, lambda), ratio = kmin / std::max(kappa, lambda);
-  const double log_amp = 2 * kmin * (c - 1) / (1 + ratio + std::sqrt(2 * ratio * c + ratio * ratio + 1));
+  const double log_amp =
+      2 * kmin * (c - 1) / (1 + ratio + std::sqrt(2 * ratio * c + ratio * ratio + 1));
   const double p = H(az / k3, k3) * std::exp(lambda + log_amp);
   return std::max(alpha * p - alpha * H(c, kappa), 0.0);
 }
@@ -280,7 +301,8 @@ TEST(Transcriptions, Tokuyoshi2022MatchesNaiveListing) {
   for (double kappa : {0.05, 0.5, 4.0, 60.0})
     for (double c : {-1.0, -0.4, 0.0, 0.3, 1.0}) {
       const double want = tokuyoshi2022_naive(c, kappa);
-      EXPECT_NEAR(sglab::irradiance_tokuyoshi2022(c, kappa), want, 1e-9 * sglab::irradiance_upper(kappa))
+      EXPECT_NEAR(sglab::irradiance_tokuyoshi2022(c, kappa), want,
+                  1e-9 * sglab::irradiance_upper(kappa))
           << kappa << " " << c;
     }
 }
@@ -325,15 +347,16 @@ TEST(Methods, NonNegativeOverStandardSweepExceptKnownFindings) {
 }
 
 TEST(Registry, IdsAreUniqueAndMatchSpec) {
-  const char* spec_ids[] = {"wang2009", "punctual", "hill", "hill_exact", "vsgl2015",
-                            "meder2018", "tokuyoshi2022", "tokuyoshi2024"};
+  const char* spec_ids[] = {"wang2009", "punctual",  "hill",          "hill_exact",
+                            "vsgl2015", "meder2018", "tokuyoshi2022", "tokuyoshi2024"};
   for (const char* id : spec_ids) {
     const auto* m = sglab::find_method(sglab::irradiance_methods, id);
     ASSERT_NE(m, nullptr) << id;
     EXPECT_EQ(m->origin, sglab::Origin::published) << id;
   }
   for (std::size_t i = 0; i < std::size(sglab::irradiance_methods); ++i)
-    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(sglab::irradiance_methods[i].id, sglab::irradiance_methods[j].id);
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_NE(sglab::irradiance_methods[i].id, sglab::irradiance_methods[j].id);
   EXPECT_EQ(sglab::find_method(sglab::irradiance_methods, "nope"), nullptr);
   EXPECT_NE(sglab::find_erf_variant("listing5"), nullptr);
 }

@@ -15,8 +15,8 @@
 
 #include <sglab/sglab.hpp>
 
-#include "validate/scene.hpp"
 #include "tests/test_support.hpp"
+#include "validate/scene.hpp"
 
 namespace {
 
@@ -37,8 +37,8 @@ TEST(Scene, FibonacciNormalsAreUnitAndBalanced) {
 // A single light along +z: the normal's cosine is its z = 1 − (2i + 1)/n, so
 // the scene value is amplitude × the method's Ê(z, κ), computed here directly.
 TEST(Scene, SingleLightEqualsMethodTimesAmplitude) {
-  const Scene scene = parse_scene(R"({"lights": [{"axis": [0, 0, 2], "sharpness": 7.5, "amplitude": [1, 0.5, 2]}]})",
-                                  "test");
+  const Scene scene = parse_scene(
+      R"({"lights": [{"axis": [0, 0, 2], "sharpness": 7.5, "amplitude": [1, 0.5, 2]}]})", "test");
   const std::size_t n = 257;
   const auto normals = fibonacci_normals(n);
   for (const char* id : {"tokuyoshi2024", "sglab_fast", "vsgl2015"}) {
@@ -70,7 +70,8 @@ double direct_irradiance(const Scene& scene, const Vec3& n, std::size_t channel)
   Vec3 t1{a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
   const double l = std::hypot(t1[0], t1[1], t1[2]);
   for (double& x : t1) x /= l;
-  const Vec3 t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  const Vec3 t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                n[0] * t1[1] - n[1] * t1[0]};
   // Gauss–Legendre nodes on [0, 1] by Newton's method on P_N.
   const int N = 160, M = 512;
   double total = 0;
@@ -93,7 +94,8 @@ double direct_irradiance(const Scene& scene, const Vec3& n, std::size_t channel)
     for (int j = 0; j < M; ++j) {
       const double phi = 2 * M_PI * j / M;
       Vec3 w3;
-      for (int d = 0; d < 3; ++d) w3[d] = u * n[d] + r * (std::cos(phi) * t1[d] + std::sin(phi) * t2[d]);
+      for (int d = 0; d < 3; ++d)
+        w3[d] = u * n[d] + r * (std::cos(phi) * t1[d] + std::sin(phi) * t2[d]);
       for (const auto& light : scene.lights) {
         const double c = w3[0] * light.axis[0] + w3[1] * light.axis[1] + w3[2] * light.axis[2];
         ring += light.amplitude[channel] * std::exp(light.sharpness * (c - 1));
@@ -137,7 +139,8 @@ TEST(Scene, ShippedExamplesParse) {
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const Scene s = parse_scene(text, name);
     EXPECT_GE(s.lights.size(), 3u) << name;
-    for (const auto& l : s.lights) EXPECT_NEAR(std::hypot(l.axis[0], l.axis[1], l.axis[2]), 1.0, 1e-15);
+    for (const auto& l : s.lights)
+      EXPECT_NEAR(std::hypot(l.axis[0], l.axis[1], l.axis[2]), 1.0, 1e-15);
   }
 }
 
@@ -148,15 +151,19 @@ struct BadScene {
 
 TEST(Scene, BadFilesNameTheLineOrKey) {
   const BadScene cases[] = {
-      {"{\"lights\": [\n  {\"axis\": [0, 0, 1], \"sharpness\": 1, \"amplitude\": [1, 1, 1]},\n]}", "line 3"},
+      {"{\"lights\": [\n  {\"axis\": [0, 0, 1], \"sharpness\": 1, \"amplitude\": [1, 1, 1]},\n]}",
+       "line 3"},
       {"", "malformed JSON"},
       {"[1, 2]", "expected an object"},
       {"{}", "lights: missing key"},
       {"{\"lights\": {}}", "lights: expected an array"},
       {"{\"lights\": []}", "lights: no lights"},
-      {"{\"lights\": [{\"sharpness\": 1, \"amplitude\": [1, 1, 1]}]}", "lights[0].axis: missing key"},
-      {"{\"lights\": [{\"axis\": [0, 0, 1], \"amplitude\": [1, 1, 1]}]}", "lights[0].sharpness: missing key"},
-      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": 1}]}", "lights[0].amplitude: missing key"},
+      {"{\"lights\": [{\"sharpness\": 1, \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].axis: missing key"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"amplitude\": [1, 1, 1]}]}",
+       "lights[0].sharpness: missing key"},
+      {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": 1}]}",
+       "lights[0].amplitude: missing key"},
       {"{\"lights\": [{\"axis\": [0, 0, 0], \"sharpness\": 1, \"amplitude\": [1, 1, 1]}]}",
        "lights[0].axis: cannot be normalized"},
       {"{\"lights\": [{\"axis\": [0, 0, 1], \"sharpness\": -2, \"amplitude\": [1, 1, 1]}]}",
@@ -179,7 +186,8 @@ TEST(Scene, BadFilesNameTheLineOrKey) {
       ADD_FAILURE() << "accepted: " << c.text;
     } catch (const SceneError& e) {
       const std::string msg = e.what();
-      EXPECT_NE(msg.find(c.expect), std::string::npos) << "message '" << msg << "' lacks '" << c.expect << "'";
+      EXPECT_NE(msg.find(c.expect), std::string::npos)
+          << "message '" << msg << "' lacks '" << c.expect << "'";
       EXPECT_EQ(msg.rfind("s.json: ", 0), 0u) << msg;
     }
   }
@@ -190,20 +198,23 @@ TEST(Scene, BadFilesNameTheLineOrKey) {
 TEST(Scene, SharpnessAboveFloatMaxIsRefusedAtItsLight) {
   const std::string light = R"({"axis": [0, 0, 1], "sharpness": 2, "amplitude": [1, 1, 1]})";
   for (const char* kappa : {"3.5e38", "1e300", "1.7976931348623157e308"}) {
-    const std::string bad = fmt::format(R"({{"axis": [1, 0, 0], "sharpness": {}, "amplitude": [1, 1, 1]}})", kappa);
+    const std::string bad =
+        fmt::format(R"({{"axis": [1, 0, 0], "sharpness": {}, "amplitude": [1, 1, 1]}})", kappa);
     const std::string text = fmt::format(R"({{"lights": [{0}, {0}, {0}, {1}]}})", light, bad);
     try {
       parse_scene(text, "s.json");
       ADD_FAILURE() << "accepted κ = " << kappa;
     } catch (const SceneError& e) {
-      EXPECT_NE(std::string(e.what()).find("s.json: lights[3].sharpness: must be at most"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find("s.json: lights[3].sharpness: must be at most"),
+                std::string::npos)
           << e.what();
     }
   }
   // The largest float itself is a valid κ.
   const Scene s = parse_scene(
-      fmt::format(R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": {:.17g}, "amplitude": [1, 1, 1]}}]}})",
-                  double(std::numeric_limits<float>::max())),
+      fmt::format(
+          R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": {:.17g}, "amplitude": [1, 1, 1]}}]}})",
+          double(std::numeric_limits<float>::max())),
       "s.json");
   EXPECT_EQ(s.lights[0].sharpness, double(std::numeric_limits<float>::max()));
 }
@@ -233,8 +244,10 @@ TEST(Scene, ErrorIsIndependentOfTheAmplitudeUnit) {
     const auto exact = scene_irradiance_reference(scene, normals);
     for (std::size_t m = 0; m < methods.size(); ++m) {
       SCOPED_TRACE(fmt::format("{} at amplitude scale {:g}", methods[m].id, s));
-      const double one = scene_relative_error(scene_irradiance(scene, normals, methods[m], FloatFormat::binary32), exact);
-      if (std::isinf(want[m])) {  // a published method failing at κ = 1e30 (meder2018's t(κ)) fails at every scale
+      const double one = scene_relative_error(
+          scene_irradiance(scene, normals, methods[m], FloatFormat::binary32), exact);
+      if (std::isinf(want[m])) {  // a published method failing at κ = 1e30 (meder2018's t(κ)) fails
+                                  // at every scale
         EXPECT_TRUE(std::isinf(got[m]));
         EXPECT_TRUE(std::isinf(one));
         continue;
@@ -257,15 +270,17 @@ TEST(Scene, ErrorOfExtremeAmplitudesEqualsUnitAmplitudes) {
                                 scene_irradiance_reference(s, normals));
   };
   const auto one_light = [](const char* kappa, const char* a) {
-    return fmt::format(R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": {0}, "amplitude": [{1}, {1}, {1}]}}]}})",
-                       kappa, a);
+    return fmt::format(
+        R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": {0}, "amplitude": [{1}, {1}, {1}]}}]}})",
+        kappa, a);
   };
   EXPECT_NEAR(error(one_light("1e30", "1e-300")), error(one_light("1e30", "1")), 1e-12);
   EXPECT_NEAR(error(one_light("4", "1e-323")), error(one_light("4", "1")), 1e-12);
   const auto two_lights = [](const char* a) {
-    return fmt::format(R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": 4, "amplitude": [{0}, {0}, {0}]}},
+    return fmt::format(
+        R"({{"lights": [{{"axis": [0, 0, 1], "sharpness": 4, "amplitude": [{0}, {0}, {0}]}},
                                       {{"axis": [0, 0.6, 0.8], "sharpness": 4, "amplitude": [{0}, {0}, {0}]}}]}})",
-                       a);
+        a);
   };
   const double bright = error(two_lights("1e308"));
   EXPECT_TRUE(std::isfinite(bright));
@@ -295,7 +310,9 @@ TEST(Scene, StreamedErrorsEqualPerMethodSumsAcrossChunks) {
     const auto* m = sglab::find_method(sglab::irradiance_methods, id);
     ASSERT_NE(m, nullptr) << id;
     const std::size_t i = static_cast<std::size_t>(m - sglab::irradiance_methods);
-    EXPECT_DOUBLE_EQ(errors[i], scene_relative_error(scene_irradiance(scene, normals, *m, FloatFormat::binary32), exact))
+    EXPECT_DOUBLE_EQ(
+        errors[i],
+        scene_relative_error(scene_irradiance(scene, normals, *m, FloatFormat::binary32), exact))
         << id;
   }
 }
@@ -303,7 +320,8 @@ TEST(Scene, StreamedErrorsEqualPerMethodSumsAcrossChunks) {
 TEST(Scene, LimitsAreRefusedWithTheMemory) {
   EXPECT_NO_THROW(check_scene_limits(1000, 4096));
   EXPECT_NO_THROW(check_scene_limits(1, kMaxSceneNormals));
-  for (auto [lights, normals] : {std::pair<std::size_t, std::size_t>{1000, 1000000}, {1, kMaxSceneNormals + 1},
+  for (auto [lights, normals] : {std::pair<std::size_t, std::size_t>{1000, 1000000},
+                                 {1, kMaxSceneNormals + 1},
                                  {kMaxSceneLights + 1, 1}}) {
     try {
       check_scene_limits(lights, normals);
@@ -319,7 +337,8 @@ TEST(Scene, LimitsAreRefusedWithTheMemory) {
 }
 
 // Writes `text` to dir/name and returns the path.
-fs::path write_temp(const sglab::test::TempDir& dir, const std::string& name, const std::string& text) {
+fs::path write_temp(const sglab::test::TempDir& dir, const std::string& name,
+                    const std::string& text) {
   const fs::path p = dir.path / name;
   std::ofstream(p) << text;
   return p;
@@ -327,7 +346,9 @@ fs::path write_temp(const sglab::test::TempDir& dir, const std::string& name, co
 
 TEST(RecommendScene, BadFilesExitTwoWithTheKey) {
   const sglab::test::TempDir dir("scene-bad");
-  const auto negative = write_temp(dir, "negative.json", R"({"lights": [{"axis": [0, 0, 1], "sharpness": -1, "amplitude": [1, 1, 1]}]})");
+  const auto negative =
+      write_temp(dir, "negative.json",
+                 R"({"lights": [{"axis": [0, 0, 1], "sharpness": -1, "amplitude": [1, 1, 1]}]})");
   auto r = sglab::test::run_sglab({"recommend", "--scene", negative.string(), "--budget", "1e-2"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("lights[0].sharpness"), std::string::npos) << r.output;
@@ -335,7 +356,8 @@ TEST(RecommendScene, BadFilesExitTwoWithTheKey) {
   r = sglab::test::run_sglab({"recommend", "--scene", malformed.string(), "--budget", "1e-2"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("line 2"), std::string::npos) << r.output;
-  r = sglab::test::run_sglab({"recommend", "--scene", (negative.parent_path() / "absent.json").string(), "--budget", "1"});
+  r = sglab::test::run_sglab(
+      {"recommend", "--scene", (negative.parent_path() / "absent.json").string(), "--budget", "1"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   r = sglab::test::run_sglab({"recommend", "--budget", "1e-2"});  // neither --kappa nor --scene
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -345,10 +367,11 @@ TEST(RecommendScene, LimitsAndHugeSharpnessExitTwo) {
   const sglab::test::TempDir dir("scene-limits");
   std::string lights;
   for (int i = 0; i < 1000; ++i)
-    lights += fmt::format(R"({}{{"axis": [{}, 1, 0.5], "sharpness": {}, "amplitude": [1, 1, 1]}})", i ? "," : "",
-                          std::cos(i), 1 + i % 50);
+    lights += fmt::format(R"({}{{"axis": [{}, 1, 0.5], "sharpness": {}, "amplitude": [1, 1, 1]}})",
+                          i ? "," : "", std::cos(i), 1 + i % 50);
   const auto many = write_temp(dir, "many.json", R"({"lights": [)" + lights + "]}");
-  auto r = sglab::test::run_sglab({"recommend", "--scene", many.string(), "--budget", "1e-2", "--normals", "1000000"});
+  auto r = sglab::test::run_sglab(
+      {"recommend", "--scene", many.string(), "--budget", "1e-2", "--normals", "1000000"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("MB"), std::string::npos) << r.output;
   const auto huge = write_temp(dir, "huge.json", R"({"lights": [
@@ -357,8 +380,8 @@ TEST(RecommendScene, LimitsAndHugeSharpnessExitTwo) {
       {"axis": [1, 0, 1], "sharpness": 4, "amplitude": [1, 1, 1]},
       {"axis": [1, 1, 1], "sharpness": 1e300, "amplitude": [1, 1, 1]}]})");
   for (const char* precision : {"float", "double"}) {
-    r = sglab::test::run_sglab(
-        {"recommend", "--scene", huge.string(), "--budget", "1e-2", "--normals", "16", "--precision", precision});
+    r = sglab::test::run_sglab({"recommend", "--scene", huge.string(), "--budget", "1e-2",
+                                "--normals", "16", "--precision", precision});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("lights[3].sharpness: must be at most"), std::string::npos) << r.output;
   }
@@ -372,7 +395,8 @@ TEST(RecommendScene, SubnormalSharpnessGivesFiniteErrors) {
       {"axis": [0, 0, 1], "sharpness": 2e-39, "amplitude": [1, 1, 1]},
       {"axis": [1, 0, 0], "sharpness": 5, "amplitude": [0.5, 0.5, 0.5]}]})");
   const auto r = sglab::test::run_sglab(
-      {"recommend", "--scene", scene.string(), "--budget", "1e-2", "--normals", "64", "--json"}, false);
+      {"recommend", "--scene", scene.string(), "--budget", "1e-2", "--normals", "64", "--json"},
+      false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
   for (const auto& row : doc["methods"])
@@ -387,7 +411,8 @@ TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {
       {"axis": [0, 0, 1], "sharpness": 30, "amplitude": [1, 1, 1]},
       {"axis": [1, 0, 0], "sharpness": 0.5, "amplitude": [0.2, 0.3, 0.4]}]})");
   const auto r = sglab::test::run_sglab(
-      {"recommend", "--scene", scene.string(), "--budget", "5e-3", "--normals", "512", "--json"}, false);
+      {"recommend", "--scene", scene.string(), "--budget", "5e-3", "--normals", "512", "--json"},
+      false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
   ASSERT_TRUE(doc["choice"].is_object()) << r.output;
@@ -396,13 +421,15 @@ TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {
   // The reported error of one method, recomputed here in-process.
   const Scene s = parse_scene(R"({"lights": [
       {"axis": [0, 0, 1], "sharpness": 30, "amplitude": [1, 1, 1]},
-      {"axis": [1, 0, 0], "sharpness": 0.5, "amplitude": [0.2, 0.3, 0.4]}]})", "x");
+      {"axis": [1, 0, 0], "sharpness": 0.5, "amplitude": [0.2, 0.3, 0.4]}]})",
+                              "x");
   const auto normals = fibonacci_normals(512);
   const auto exact = scene_irradiance_reference(s, normals);
   for (const auto& row : doc["methods"]) {
     if (row["method"] != "vsgl2015") continue;
     const auto* m = sglab::find_method(sglab::irradiance_methods, "vsgl2015");
-    const double want = scene_relative_error(scene_irradiance(s, normals, *m, FloatFormat::binary32), exact);
+    const double want =
+        scene_relative_error(scene_irradiance(s, normals, *m, FloatFormat::binary32), exact);
     EXPECT_NEAR(row["scene_error"].get<double>(), want, 1e-12 * want);
     EXPECT_GT(want, 5e-3);  // vsgl2015 is far off: it must not qualify
     EXPECT_FALSE(row["qualifies"].get<bool>());

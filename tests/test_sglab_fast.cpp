@@ -32,8 +32,10 @@ TEST(SglabFast, UpperPoleWithinBoundAndSeriesMatchesClosedForm) {
   // The series and the closed form of E(1, κ)/2π agree with closed_forms.hpp
   // on both sides of the switch κ = ¼.
   for (double kappa : {1e-3, 0.2499999, 0.25, 0.5, 3.0}) {
-    EXPECT_NEAR(sglab::detail::upper_over_two_pi_fast(kappa), sglab::irradiance_upper_over_two_pi(kappa), 1e-15);
-    EXPECT_NEAR(sglab::detail::upper_over_two_pi_fast(float(kappa)), sglab::irradiance_upper_over_two_pi(kappa), 2e-7);
+    EXPECT_NEAR(sglab::detail::upper_over_two_pi_fast(kappa),
+                sglab::irradiance_upper_over_two_pi(kappa), 1e-15);
+    EXPECT_NEAR(sglab::detail::upper_over_two_pi_fast(float(kappa)),
+                sglab::irradiance_upper_over_two_pi(kappa), 2e-7);
   }
 }
 
@@ -45,23 +47,27 @@ TEST(SglabFast, RampIsC1AndLinearAboveOne) {
   EXPECT_DOUBLE_EQ(sglab_ramp(3.0), 5.0);
   const double h = 1e-6;
   for (double u : {0.0, 1.0}) {  // one-sided slopes agree at the joints
-    const double left = (sglab_ramp(u) - sglab_ramp(u - h)) / h, right = (sglab_ramp(u + h) - sglab_ramp(u)) / h;
+    const double left = (sglab_ramp(u) - sglab_ramp(u - h)) / h,
+                 right = (sglab_ramp(u + h) - sglab_ramp(u)) / h;
     EXPECT_NEAR(left, right, 1e-5) << u;
   }
 }
 
 TEST(SglabFast, FiniteAndNonNegativeOutsideTheFittedRange) {
-  const float fk[] = {0.0f, std::numeric_limits<float>::denorm_min(), 1e-30f, 1e-4f, 2e4f, 1e8f, 1e30f,
-                      std::numeric_limits<float>::max()};
+  const float fk[] = {0.0f,  std::numeric_limits<float>::denorm_min(), 1e-30f, 1e-4f, 2e4f, 1e8f,
+                      1e30f, std::numeric_limits<float>::max()};
   for (float k : fk)
     for (float c : {-1.0f, -0.3f, 0.0f, 1e-6f, 0.5f, 1.0f}) {
       const float v = sglab::irradiance_sglab_fast(c, k);
       const double d = sglab::irradiance_sglab_fast(double(c), double(k));
-      EXPECT_TRUE(std::isfinite(v) && v >= 0) << "float kappa " << hex(k) << " c " << hex(c) << " -> " << v;
-      EXPECT_TRUE(std::isfinite(d) && d >= 0) << "double kappa " << hex(k) << " c " << hex(c) << " -> " << d;
+      EXPECT_TRUE(std::isfinite(v) && v >= 0)
+          << "float kappa " << hex(k) << " c " << hex(c) << " -> " << v;
+      EXPECT_TRUE(std::isfinite(d) && d >= 0)
+          << "double kappa " << hex(k) << " c " << hex(c) << " -> " << d;
     }
   // κ → 0: the light is uniform, E = π for every normal.
-  for (float c : {-1.0f, 0.0f, 1.0f}) EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kBound * M_PI) << c;
+  for (float c : {-1.0f, 0.0f, 1.0f})
+    EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kBound * M_PI) << c;
 }
 
 }  // namespace

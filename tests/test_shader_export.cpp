@@ -5,8 +5,8 @@
 // elementary tiers are chosen by the model's accuracy; bad input exits 2.
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,10 +28,10 @@
 #include <sglab/registry.hpp>
 
 #include "export/shader_export.hpp"
-#include "validate/sweep.hpp"
+#include "export/vulkan_runner.hpp"
 #include "tests/test_support.hpp"
 #include "tests/vulkan_fixture.hpp"
-#include "export/vulkan_runner.hpp"
+#include "validate/sweep.hpp"
 
 namespace fs = std::filesystem;
 namespace sh = sglab::shader;
@@ -73,11 +73,13 @@ Deviation deviation(const sglab::Method& m, const Grid& g, const std::vector<dou
       d.exported = std::isnan(e) ? INFINITY : e;
       d.worst = i;
     }
-    d.runtime_float = std::max(d.runtime_float, std::fabs(double(m.f32(float(c), float(k))) - ref) / peak);
+    d.runtime_float =
+        std::max(d.runtime_float, std::fabs(double(m.f32(float(c), float(k))) - ref) / peak);
   }
   return d;
 }
-constexpr double kAllowance = 2e-5;  // of the peak: the tiers' erf/erfc error is ≤ 1.5e-7, expm1 ≤ 2e-7 relative
+constexpr double kAllowance =
+    2e-5;  // of the peak: the tiers' erf/erfc error is ≤ 1.5e-7, expm1 ≤ 2e-7 relative
 
 // Registered methods with an export entry (CoversEveryRegisteredIrradianceMethod
 // names any without one).
@@ -97,11 +99,13 @@ std::string export_text(sh::Language lang, const std::string& method) {
 struct CppExport {
   std::string source, entry;
 };
-std::vector<std::vector<double>> run_cpp_exports(const std::vector<CppExport>& exports, const Grid& g,
-                                                 const fs::path& dir, bool vector_form = false) {
+std::vector<std::vector<double>> run_cpp_exports(const std::vector<CppExport>& exports,
+                                                 const Grid& g, const fs::path& dir,
+                                                 bool vector_form = false) {
   {
     std::ofstream in(dir / "points.txt");
-    for (std::size_t i = 0; i < g.kappa.size(); ++i) in << fmt::format("{:a} {:a}\n", g.cosine[i], g.kappa[i]);
+    for (std::size_t i = 0; i < g.kappa.size(); ++i)
+      in << fmt::format("{:a} {:a}\n", g.cosine[i], g.kappa[i]);
     std::ofstream main(dir / "main.cpp");
     main << "#include <cstdio>\n#include <cstdlib>\n#include <cmath>\n";
     for (std::size_t e = 0; e < exports.size(); ++e) {
@@ -119,15 +123,16 @@ std::vector<std::vector<double>> run_cpp_exports(const std::vector<CppExport>& e
     for (const CppExport& ex : exports) {
       const std::string ns = "sglab_export_" + ex.entry.substr(17);
       if (vector_form)
-        main << "    std::printf(\"%a \", (double)" << ex.entry << "(" << ns << "::float3(s, 0.0f, c), k, " << ns
-             << "::float3(0.0f, 0.0f, 1.0f)));\n";
+        main << "    std::printf(\"%a \", (double)" << ex.entry << "(" << ns
+             << "::float3(s, 0.0f, c), k, " << ns << "::float3(0.0f, 0.0f, 1.0f)));\n";
       else
         main << "    std::printf(\"%a \", (double)" << ex.entry << "(c, k));\n";
     }
     main << "    std::printf(\"\\n\");\n  }\n  return 0;\n}\n";
   }
-  const auto build = run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
-                                  (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
+  const auto build =
+      run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
+                   (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
   EXPECT_EQ(build.exit_code, 0) << build.output;
   if (build.exit_code != 0) return {};
   const auto run = run_program({(dir / "prog").string(), (dir / "points.txt").string()}, false);
@@ -144,8 +149,8 @@ std::vector<std::vector<double>> run_cpp_exports(const std::vector<CppExport>& e
   return out;
 }
 
-std::vector<double> run_cpp_export(const std::string& source, const std::string& entry, const Grid& g,
-                                   const fs::path& dir, bool vector_form = false) {
+std::vector<double> run_cpp_export(const std::string& source, const std::string& entry,
+                                   const Grid& g, const fs::path& dir, bool vector_form = false) {
   auto columns = run_cpp_exports({{source, entry}}, g, dir, vector_form);
   return columns.empty() ? std::vector<double>{} : std::move(columns[0]);
 }
@@ -171,8 +176,11 @@ TEST(ShaderExport, EveryMethodCompilesToSpirv) {
   for (const std::string& id : sh::exportable_methods())
     for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
       const std::string text = export_text(lang, id);
-      EXPECT_NE(text.find("float sglab_irradiance_" + id + "(float cosine, float kappa)"), std::string::npos) << id;
-      EXPECT_NE(text.find("Produced by: sglab export --lang " + std::string(sh::to_string(lang)) + " --method " + id),
+      EXPECT_NE(text.find("float sglab_irradiance_" + id + "(float cosine, float kappa)"),
+                std::string::npos)
+          << id;
+      EXPECT_NE(text.find("Produced by: sglab export --lang " + std::string(sh::to_string(lang)) +
+                          " --method " + id),
                 std::string::npos);
       EXPECT_EQ(text.find("#extension"), std::string::npos);
       try {
@@ -191,10 +199,12 @@ TEST(ShaderExport, SpirvPassesSpirvVal) {
   for (const std::string id : {"tokuyoshi2024", "tokuyoshi2022_listing5", "meder2018"})
     for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
       const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, id));
-      const auto spirv = vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
+      const auto spirv =
+          vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
       const fs::path file = dir / fmt::format("{}_{}.spv", id, sh::to_string(lang));
       std::ofstream(file, std::ios::binary)
-          .write(reinterpret_cast<const char*>(spirv.data()), static_cast<std::streamsize>(spirv.size() * 4));
+          .write(reinterpret_cast<const char*>(spirv.data()),
+                 static_cast<std::streamsize>(spirv.size() * 4));
       const auto r = run_program({"spirv-val", "--target-env", "vulkan1.0", file.string()});
       EXPECT_EQ(r.exit_code, 0) << id << " " << sh::to_string(lang) << ": " << r.output;
     }
@@ -216,7 +226,8 @@ TEST(ShaderExport, CppExportMatchesRuntime) {
   std::vector<CppExport> exports;
   for (const sglab::Method& m : sglab::irradiance_methods) {
     if (!exportable(m.id)) continue;
-    const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, std::string(m.id)));
+    const sh::ExportResult ex =
+        sh::export_source(sh::standard_request(sh::Language::cpp, std::string(m.id)));
     methods.push_back(&m);
     exports.push_back({ex.source, ex.entry_point});
   }
@@ -231,7 +242,8 @@ TEST(ShaderExport, CppExportMatchesRuntime) {
     const Deviation d = deviation(m, g, values);
     EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance)
         << m.id << ": worst at kappa = " << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst]
-        << ": exported " << values[d.worst] << ", runtime double " << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
+        << ": exported " << values[d.worst] << ", runtime double "
+        << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
   }
 }
 
@@ -245,7 +257,8 @@ TEST(ShaderExport, VectorFormMatchesScalarForm) {
     }
   const sglab::test::TempDir tmp("shader-vector");
   const fs::path& dir = tmp.path;
-  const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::cpp, "tokuyoshi2024"));
+  const sh::ExportResult ex =
+      sh::export_source(sh::standard_request(sh::Language::cpp, "tokuyoshi2024"));
   const auto scalar = run_cpp_export(ex.source, ex.entry_point, g, dir);
   const auto vector = run_cpp_export(ex.source, ex.entry_point, g, dir, true);
   ASSERT_EQ(scalar.size(), vector.size());
@@ -257,8 +270,11 @@ TEST(ShaderExport, VectorFormMatchesScalarForm) {
 // --constants replaces the compiled-in set of the same type: tokuyoshi2024
 // with the refitted steepness is tokuyoshi2024_refit.
 TEST(ShaderExport, ConstantsFileOverridesTheCompiledInSet) {
-  const fs::path file = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "steepness2024-irradiance.json";
-  const auto r = run_sglab({"export", "--lang", "cpp", "--method", "tokuyoshi2024", "--constants", file.string()}, false);
+  const fs::path file = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" /
+                        "steepness2024-irradiance.json";
+  const auto r = run_sglab(
+      {"export", "--lang", "cpp", "--method", "tokuyoshi2024", "--constants", file.string()},
+      false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("steepness2024_irradiance"), std::string::npos);
   EXPECT_NE(r.output.find("--constants " + file.string()), std::string::npos);
@@ -283,15 +299,18 @@ TEST(ShaderExport, BadInputExitsWithCode2) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("metal"), std::string::npos);
   // A constant set of a type the method does not use.
-  const fs::path hill = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "hill-published.json";
-  r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants", hill.string()});
+  const fs::path hill =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "hill-published.json";
+  r = run_sglab(
+      {"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants", hill.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("HillParams"), std::string::npos) << r.output;
   // Malformed JSON.
   const sglab::test::TempDir tmp("shader-bad");
   const fs::path& dir = tmp.path;
   std::ofstream(dir / "bad.json") << "{ not json";
-  r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants", (dir / "bad.json").string()});
+  r = run_sglab({"export", "--lang", "glsl", "--method", "tokuyoshi2024", "--constants",
+                 (dir / "bad.json").string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bad.json"), std::string::npos);
 }
@@ -305,7 +324,9 @@ namespace {
 
 const fs::path kConstantsDir = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants";
 
-nlohmann::ordered_json read_json(const fs::path& file) { return nlohmann::ordered_json::parse(std::ifstream(file)); }
+nlohmann::ordered_json read_json(const fs::path& file) {
+  return nlohmann::ordered_json::parse(std::ifstream(file));
+}
 
 // The lines of `source` that contain `marker` outside a // comment.
 std::vector<std::string> code_lines_with(const std::string& source, const std::string& marker) {
@@ -339,12 +360,15 @@ TEST(ShaderExport, ConstantsTextCannotLeaveTheComments) {
   std::ofstream(file) << j.dump(2);
   for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl, sh::Language::cpp}) {
     const std::string l(sh::to_string(lang));
-    const auto r = run_sglab({"export", "--lang", l, "--method", "sglab_acc1", "--constants", file.string()}, false);
+    const auto r = run_sglab(
+        {"export", "--lang", l, "--method", "sglab_acc1", "--constants", file.string()}, false);
     ASSERT_EQ(r.exit_code, 0) << l;
-    for (const char* marker : {"INJECTED_OBJECTIVE", "INJECTED_COMMAND", "INJECTED_DATE", "INJECTED_SOURCE",
-                               "INJECTED_PATH"}) {
-      EXPECT_NE(r.output.find(marker), std::string::npos) << l << ": the text is kept, escaped: " << marker;
-      for (const std::string& line : code_lines_with(r.output, marker)) ADD_FAILURE() << l << ": injected: " << line;
+    for (const char* marker : {"INJECTED_OBJECTIVE", "INJECTED_COMMAND", "INJECTED_DATE",
+                               "INJECTED_SOURCE", "INJECTED_PATH"}) {
+      EXPECT_NE(r.output.find(marker), std::string::npos)
+          << l << ": the text is kept, escaped: " << marker;
+      for (const std::string& line : code_lines_with(r.output, marker))
+        ADD_FAILURE() << l << ": injected: " << line;
     }
     if (lang == sh::Language::cpp) {
       const auto build = compile_cpp(r.output, dir.path);
@@ -366,7 +390,8 @@ TEST(ShaderExport, ConstantsWithADuplicateKeyAreRefused) {
   const std::string text = read_json(kConstantsDir / "sglab-acc-acc1.json").dump(2);
   const fs::path file = dir.path / "duplicate.json";
   std::ofstream(file) << "{\n  \"cpp_name\": \"first_of_two\"," << text.substr(1);
-  const auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc1", "--constants", file.string()});
+  const auto r = run_sglab(
+      {"export", "--lang", "glsl", "--method", "sglab_acc1", "--constants", file.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("duplicate.json"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("duplicate key"), std::string::npos) << r.output;
@@ -389,14 +414,15 @@ TEST(ShaderExport, CoefficientNotFiniteInFloatIsRefused) {
     sh::Language lang;
   };
   for (const Case& c : {Case{1e308, 2, sh::Language::glsl}, Case{1e308, 2, sh::Language::cpp},
-                        Case{-1e308, 2, sh::Language::hlsl}, Case{std::nextafter(overflow, 0.0), 0, sh::Language::glsl},
+                        Case{-1e308, 2, sh::Language::hlsl},
+                        Case{std::nextafter(overflow, 0.0), 0, sh::Language::glsl},
                         Case{std::nextafter(overflow, INFINITY), 2, sh::Language::glsl}}) {
     nlohmann::ordered_json j = read_json(kConstantsDir / "sglab-acc-acc1.json");
     j["coefficients"]["num"][1] = c.value;
     const fs::path file = dir.path / "overflow.json";
     std::ofstream(file) << j.dump(2);
-    const auto r = run_sglab(
-        {"export", "--lang", std::string(sh::to_string(c.lang)), "--method", "sglab_acc1", "--constants", file.string()});
+    const auto r = run_sglab({"export", "--lang", std::string(sh::to_string(c.lang)), "--method",
+                              "sglab_acc1", "--constants", file.string()});
     EXPECT_EQ(r.exit_code, c.exit_code) << sglab::test::hex(c.value) << ": " << r.output;
     if (c.exit_code == 2) {
       EXPECT_NE(r.output.find("overflow.json"), std::string::npos) << r.output;
@@ -435,7 +461,8 @@ std::vector<Literal> numeric_literals(const std::string& code) {
   const auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   for (std::size_t i = 0; i < code.size();) {
     const bool starts = std::isdigit(static_cast<unsigned char>(code[i])) ||
-                        (code[i] == '.' && i + 1 < code.size() && std::isdigit(static_cast<unsigned char>(code[i + 1])));
+                        (code[i] == '.' && i + 1 < code.size() &&
+                         std::isdigit(static_cast<unsigned char>(code[i + 1])));
     if (ident(code[i]) && !starts) {
       while (i < code.size() && ident(code[i])) ++i;
       continue;
@@ -446,7 +473,8 @@ std::vector<Literal> numeric_literals(const std::string& code) {
     }
     std::size_t end = i;
     while (end < code.size() && (ident(code[end]) || code[end] == '.' ||
-                                 ((code[end] == '+' || code[end] == '-') && (code[end - 1] == 'e' || code[end - 1] == 'E'))))
+                                 ((code[end] == '+' || code[end] == '-') &&
+                                  (code[end - 1] == 'e' || code[end - 1] == 'E'))))
       ++end;
     std::string text = code.substr(i, end - i);
     std::size_t before = i;
@@ -454,7 +482,8 @@ std::vector<Literal> numeric_literals(const std::string& code) {
     if (before > 0 && code[before - 1] == '-') {
       std::size_t op = before - 1;
       while (op > 0 && code[op - 1] == ' ') --op;
-      if (op == 0 || std::string_view("(,=?:").find(code[op - 1]) != std::string_view::npos) text = "-" + text;
+      if (op == 0 || std::string_view("(,=?:").find(code[op - 1]) != std::string_view::npos)
+        text = "-" + text;
     }
     static const std::regex float_literal(R"(-?(\d+\.\d*|\.\d+|\d+(?=[eE]))([eE][+-]?\d+)?f)");
     float value = NAN;
@@ -494,7 +523,8 @@ std::vector<std::pair<float, std::string>> fixed_constants() {
     if (n >= 2) {
       const long double sign = (n % 2 ? -1 : 1);
       t.emplace_back(static_cast<float>(sign / factorial), fmt::format("(-1)^{}/{}!", n - 2, n));
-      t.emplace_back(static_cast<float>(sign * (n - 1) / factorial), fmt::format("(-1)^{} {}/{}!", n - 2, n - 1, n));
+      t.emplace_back(static_cast<float>(sign * (n - 1) / factorial),
+                     fmt::format("(-1)^{} {}/{}!", n - 2, n - 1, n));
     }
   }
   return t;
@@ -515,12 +545,14 @@ std::map<std::string, nlohmann::ordered_json> json_sets() {
 
 // Checks every literal of one export (see above); returns the cpp_names of the
 // sets it declares constants of, in order.
-std::vector<std::string> check_export_literals(const std::string& source, const std::string& method,
-                                               const std::map<std::string, nlohmann::ordered_json>& sets) {
+std::vector<std::string> check_export_literals(
+    const std::string& source, const std::string& method,
+    const std::map<std::string, nlohmann::ordered_json>& sets) {
   const std::string what = method + " " + source.substr(0, source.find('\n'));
   const std::string prefix = "sglab_" + sh::entry_point_name(method).substr(17) + "_";
   static const std::regex set_line(R"(// (\w+): \w+<[^>]*> (\w+))");
-  static const std::regex decl(R"((?:const float|static const float|inline constexpr float) (\w+) = ([^;]+);)");
+  static const std::regex decl(
+      R"((?:const float|static const float|inline constexpr float) (\w+) = ([^;]+);)");
   static const auto fixed = fixed_constants();
   std::vector<std::string> declared_sets;
   std::string role, set_name, code;
@@ -542,7 +574,8 @@ std::vector<std::string> check_export_literals(const std::string& source, const 
     // A declared constant: {P}<role>_<member> (scalar) or {P}<role>_<member><i>.
     const std::string name = m[1], text = m[2];
     const auto lits = numeric_literals(text);
-    const bool one_literal = lits.size() == 1 && lits[0].text == text && name.rfind(prefix + role + "_", 0) == 0;
+    const bool one_literal =
+        lits.size() == 1 && lits[0].text == text && name.rfind(prefix + role + "_", 0) == 0;
     EXPECT_TRUE(one_literal) << what << ": not {P}<role>_<member> = <float literal>: " << line;
     if (!one_literal || !sets.count(set_name)) continue;
     const std::string rest = name.substr(prefix.size() + role.size() + 1);
@@ -553,9 +586,11 @@ std::vector<std::string> check_export_literals(const std::string& source, const 
         if (rest != (value.is_array() ? member + std::to_string(i) : member)) continue;
         const double want = value.is_array() ? value[i].get<double>() : value.get<double>();
         EXPECT_EQ(bits(lits[0].value), bits(static_cast<float>(want)))
-            << what << ": " << line << " reads as " << sglab::test::hex(lits[0].value) << ", the runtime's float is "
-            << sglab::test::hex(static_cast<float>(want)) << " (" << set_name << "." << member << ")";
-        EXPECT_TRUE(seen.insert(fmt::format("{}.{}[{}]", set_name, member, i)).second) << what << ": twice: " << line;
+            << what << ": " << line << " reads as " << sglab::test::hex(lits[0].value)
+            << ", the runtime's float is " << sglab::test::hex(static_cast<float>(want)) << " ("
+            << set_name << "." << member << ")";
+        EXPECT_TRUE(seen.insert(fmt::format("{}.{}[{}]", set_name, member, i)).second)
+            << what << ": twice: " << line;
         matched = true;
       }
     }
@@ -566,14 +601,15 @@ std::vector<std::string> check_export_literals(const std::string& source, const 
     if (!sets.count(name)) continue;
     for (const auto& [member, value] : sets.at(name).items())
       for (std::size_t i = 0; i < (value.is_array() ? value.size() : 1); ++i)
-        EXPECT_TRUE(seen.count(fmt::format("{}.{}[{}]", name, member, i))) << what << ": " << name << "." << member
-                                                                             << "[" << i << "] is not declared";
+        EXPECT_TRUE(seen.count(fmt::format("{}.{}[{}]", name, member, i)))
+            << what << ": " << name << "." << member << "[" << i << "] is not declared";
   }
   // Every other literal is a fixed constant of the snippets.
   const std::vector<Literal> inline_literals = numeric_literals(code);
   EXPECT_FALSE(inline_literals.empty()) << what;
   for (const Literal& l : inline_literals) {
-    const bool known = std::any_of(fixed.begin(), fixed.end(), [&](const auto& f) { return bits(f.first) == bits(l.value); });
+    const bool known = std::any_of(fixed.begin(), fixed.end(),
+                                   [&](const auto& f) { return bits(f.first) == bits(l.value); });
     EXPECT_TRUE(known) << what << ": literal " << l.text << " (" << sglab::test::hex(l.value)
                        << ") is neither a coefficient nor a fixed constant of the export";
   }
@@ -611,9 +647,11 @@ TEST(ShaderExport, EveryLiteralIsTheRuntimesFloat) {
       for (const std::string& d : declared)
         if (std::find(expected.begin(), expected.end(), d) == expected.end()) extra.push_back(d);
       for (const std::string& e : expected)
-        EXPECT_NE(std::find(declared.begin(), declared.end(), e), declared.end()) << m.id << " does not bake in " << e;
+        EXPECT_NE(std::find(declared.begin(), declared.end(), e), declared.end())
+            << m.id << " does not bake in " << e;
       EXPECT_LE(extra.size(), 1u) << m.id;
-      for (const std::string& e : extra) EXPECT_TRUE(tier_sets.count(e)) << m.id << " bakes in " << e;
+      for (const std::string& e : extra)
+        EXPECT_TRUE(tier_sets.count(e)) << m.id << " bakes in " << e;
     }
   }
   EXPECT_TRUE(covered.count("erf_listing5_float"));
@@ -633,7 +671,8 @@ TEST(ShaderExport, EveryConstantSetOverrideKeepsItsFloats) {
   candidates.emplace_back();
   candidates.back().method = "tokuyoshi2024";
   const sh::ElementaryError as7125 = sh::measure_elementary("as7125");
-  candidates.back().budget.model = 100 * std::max(as7125.max_abs(), as7125.erf_rel_small) * 1.01;  // takes as7125
+  candidates.back().budget.model =
+      100 * std::max(as7125.max_abs(), as7125.erf_rel_small) * 1.01;  // takes as7125
   for (const auto& entry : fs::directory_iterator(kConstantsDir)) {
     if (entry.path().extension() != ".json") continue;
     const auto j = read_json(entry.path());
@@ -646,7 +685,8 @@ TEST(ShaderExport, EveryConstantSetOverrideKeepsItsFloats) {
     bool exported = false;
     for (sh::ExportRequest req : candidates) {
       req.overrides = {o};
-      for (sh::Language lang : {sh::Language::glsl}) {  // one lit() for all: every language in the test above
+      for (sh::Language lang :
+           {sh::Language::glsl}) {  // one lit() for all: every language in the test above
         req.lang = lang;
         sh::ExportResult ex;
         try {
@@ -655,7 +695,8 @@ TEST(ShaderExport, EveryConstantSetOverrideKeepsItsFloats) {
           break;  // no slot of this type
         }
         const auto declared = check_export_literals(ex.source, req.method, sets);
-        EXPECT_NE(std::find(declared.begin(), declared.end(), o.cpp_name), declared.end()) << req.method << " " << o.cpp_name;
+        EXPECT_NE(std::find(declared.begin(), declared.end(), o.cpp_name), declared.end())
+            << req.method << " " << o.cpp_name;
         exported = true;
       }
       if (exported) break;
@@ -677,7 +718,8 @@ TEST(ShaderExport, ElementaryTiersAreChosenByTheModelError) {
   EXPECT_EQ(sh::choose_tier(std::nullopt).id, "listing5");
   EXPECT_EQ(sh::choose_tier(1.55e-3).id, "listing5");  // tokuyoshi2024 needs the accurate erfc
   const double as_worst = std::max(as7125.max_abs(), as7125.erf_rel_small);
-  EXPECT_EQ(sh::choose_tier(100 * as_worst * 1.01).id, "as7125");  // a coarse model takes the cheap tier
+  EXPECT_EQ(sh::choose_tier(100 * as_worst * 1.01).id,
+            "as7125");  // a coarse model takes the cheap tier
 }
 
 // ---------------------------------------------------------------------------
@@ -695,15 +737,17 @@ TEST_F(OnVulkan, EveryMethodMatchesTheRuntime) {
     for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl}) {
       if (!exportable(m.id)) continue;
       const sh::ExportResult ex = sh::export_source(sh::standard_request(lang, std::string(m.id)));
-      const auto spirv = vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
+      const auto spirv =
+          vk::compile_compute(lang, sh::compute_shader(lang, ex.source, ex.entry_point));
       const auto out = device_->run(spirv, pairs);
       ASSERT_EQ(out.size(), g.kappa.size());
       const std::vector<double> values(out.begin(), out.end());
       const Deviation d = deviation(m, g, values);
       EXPECT_LE(d.exported, 2 * d.runtime_float + kAllowance)
-          << m.id << " " << sh::to_string(lang) << " on " << device_->name() << ": worst at kappa = "
-          << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst] << ": device " << values[d.worst]
-          << ", runtime double " << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
+          << m.id << " " << sh::to_string(lang) << " on " << device_->name()
+          << ": worst at kappa = " << g.kappa[d.worst] << ", cosine = " << g.cosine[d.worst]
+          << ": device " << values[d.worst] << ", runtime double "
+          << m.f64(g.cosine[d.worst], g.kappa[d.worst]);
     }
 }
 
@@ -712,8 +756,8 @@ TEST_F(OnVulkan, EveryMethodMatchesTheRuntime) {
 TEST_F(OnVulkan, SweepBackendReportsVulkanRows) {
   const sglab::test::TempDir tmp("shader-sweep");
   const fs::path& dir = tmp.path;
-  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "tokuyoshi2024", "--method",
-                            "tokuyoshi2022_listing5", "--out", dir.string(), "--json"},
+  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "tokuyoshi2024",
+                            "--method", "tokuyoshi2022_listing5", "--out", dir.string(), "--json"},
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
@@ -738,10 +782,13 @@ TEST(ShaderExport, SweepWithoutAVulkanDriver) {
   ::setenv("VK_ICD_FILENAMES", "/nonexistent/sglab_no_icd.json", 1);
   const sglab::test::TempDir tmp("shader-noicd");
   const fs::path& dir = tmp.path;
-  auto r = run_sglab({"sweep", "--backend", "vulkan", "--method", "tokuyoshi2024", "--out", dir.string()});
+  auto r = run_sglab(
+      {"sweep", "--backend", "vulkan", "--method", "tokuyoshi2024", "--out", dir.string()});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("no Vulkan instance"), std::string::npos) << r.output;
-  r = run_sglab({"sweep", "--backend", "auto", "--method", "tokuyoshi2024", "--out", dir.string(), "--json"}, false);
+  r = run_sglab(
+      {"sweep", "--backend", "auto", "--method", "tokuyoshi2024", "--out", dir.string(), "--json"},
+      false);
   if (old)
     ::setenv("VK_ICD_FILENAMES", saved.c_str(), 1);
   else
@@ -767,7 +814,8 @@ TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
   ASSERT_TRUE(b.model.has_value());
   EXPECT_GT(*b.model, 1e-5);
   EXPECT_LE(*b.model, 2.5e-5);
-  const sh::ExportResult ex = sh::export_source(sh::standard_request(sh::Language::glsl, "sglab_acc3"));
+  const sh::ExportResult ex =
+      sh::export_source(sh::standard_request(sh::Language::glsl, "sglab_acc3"));
   EXPECT_EQ(ex.tier.id, "listing5");
   EXPECT_LE(ex.budget.elementary.erfc_abs, *b.model / 100);
   EXPECT_LE(ex.budget.elementary.erfc_abs, 3e-7);
@@ -779,13 +827,15 @@ TEST(ShaderExport, SglabAcc3TakesAnErfcWithinOneHundredthOfItsError) {
 TEST(ShaderExport, SglabAccConstantsOverride) {
   const sglab::test::TempDir tmp("shader-sglab_acc_override");
   const fs::path& dir = tmp.path;
-  const fs::path src = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc3.json";
+  const fs::path src =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc3.json";
   nlohmann::ordered_json j = nlohmann::ordered_json::parse(std::ifstream(src));
   for (auto& x : j["coefficients"]["num"]) x = 0.0;
   j["cpp_name"] = "sglab_acc3_no_correction";
   const fs::path file = dir / "no_correction.json";
   std::ofstream(file) << j.dump(2);
-  const auto r = run_sglab({"export", "--lang", "cpp", "--method", "sglab_acc3", "--constants", file.string()}, false);
+  const auto r = run_sglab(
+      {"export", "--lang", "cpp", "--method", "sglab_acc3", "--constants", file.string()}, false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("sglab_acc3_no_correction"), std::string::npos);
   const Grid g = standard_grid();
@@ -806,13 +856,17 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
   ASSERT_TRUE(acc3);
   EXPECT_GT(deviation(*acc3, g, values).exported, 1e-4);
   // A set of another SglabAccParams shape is refused, naming its type.
-  const fs::path acc1 = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc1.json";
-  const auto bad = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--constants", acc1.string()});
+  const fs::path acc1 =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-acc-acc1.json";
+  const auto bad = run_sglab(
+      {"export", "--lang", "glsl", "--method", "sglab_acc3", "--constants", acc1.string()});
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("SglabAccParams<double, 1, 3>"), std::string::npos) << bad.output;
   // sglab_fast reads its own committed set.
-  const fs::path fast = fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-fast-float.json";
-  const auto rf = run_sglab({"export", "--lang", "cpp", "--method", "sglab_fast", "--constants", fast.string()}, false);
+  const fs::path fast =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "constants" / "sglab-fast-float.json";
+  const auto rf = run_sglab(
+      {"export", "--lang", "cpp", "--method", "sglab_fast", "--constants", fast.string()}, false);
   ASSERT_EQ(rf.exit_code, 0) << rf.output;
   const auto fv = run_cpp_export(rf.output, "sglab_irradiance_sglab_fast", g, dir);
   const sglab::Method* fm = sglab::find_method(sglab::irradiance_methods, "sglab_fast");
@@ -827,8 +881,9 @@ TEST(ShaderExport, SglabAccConstantsOverride) {
 TEST_F(OnVulkan, SglabAcc3OnTheDeviceKeepsItsAccuracy) {
   const sglab::test::TempDir tmp("shader-sweep_acc3");
   const fs::path& dir = tmp.path;
-  const auto r = run_sglab(
-      {"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--out", dir.string(), "--json"}, false);
+  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--out",
+                            dir.string(), "--json"},
+                           false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
   double cpu_float = NAN, glsl = NAN, hlsl = NAN;
@@ -858,30 +913,38 @@ sh::ExportResult split_export(sh::Language lang, const std::string& method) {
 
 }  // namespace
 
-// The methods the issue names, and every other whose kappa-only work is separable, have a split form; a method without one is
-// refused by the library (invalid_argument) and by the CLI (exit 2, naming --split).
+// The methods the issue names, and every other whose kappa-only work is separable, have a split
+// form; a method without one is refused by the library (invalid_argument) and by the CLI (exit 2,
+// naming --split).
 TEST(ShaderExport, SplitFormsAndRefusals) {
   // Every registered method but those whose product SG with the normal makes
   // all their work depend on the cosine (wang2009 and its refit, meder2018).
   std::vector<std::string> expected;
   for (const sglab::Method& m : sglab::irradiance_methods)
-    if (m.id != "wang2009" && m.id != "wang2009_refit" && m.id != "meder2018") expected.emplace_back(m.id);
+    if (m.id != "wang2009" && m.id != "wang2009_refit" && m.id != "meder2018")
+      expected.emplace_back(m.id);
   EXPECT_EQ(sh::split_methods(), expected);
-  for (const char* id : {"tokuyoshi2024", "tokuyoshi2024_refit", "tokuyoshi2022", "tokuyoshi2022_listing5",
-                         "tokuyoshi2022_refit", "sglab_fast", "sglab_acc1", "sglab_acc2", "sglab_acc3"})
-    EXPECT_NE(std::find(expected.begin(), expected.end(), id), expected.end()) << id;  // the issue's list
+  for (const char* id :
+       {"tokuyoshi2024", "tokuyoshi2024_refit", "tokuyoshi2022", "tokuyoshi2022_listing5",
+        "tokuyoshi2022_refit", "sglab_fast", "sglab_acc1", "sglab_acc2", "sglab_acc3"})
+    EXPECT_NE(std::find(expected.begin(), expected.end(), id), expected.end())
+        << id;  // the issue's list
   EXPECT_THROW(split_export(sh::Language::glsl, "wang2009"), std::invalid_argument);
   const auto r = run_sglab({"export", "--lang", "glsl", "--method", "wang2009", "--split"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--split"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("wang2009"), std::string::npos) << r.output;
-  const auto ok = run_sglab({"export", "--lang", "hlsl", "--method", "sglab_acc3", "--split"}, false);
+  const auto ok =
+      run_sglab({"export", "--lang", "hlsl", "--method", "sglab_acc3", "--split"}, false);
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("struct SglabLight_sglab_acc3 {"), std::string::npos);
-  EXPECT_NE(ok.output.find("SglabLight_sglab_acc3 sglab_light_sglab_acc3(float kappa)"), std::string::npos);
-  EXPECT_NE(ok.output.find("float sglab_irradiance_sglab_acc3(SglabLight_sglab_acc3 light, float cosine)"),
+  EXPECT_NE(ok.output.find("SglabLight_sglab_acc3 sglab_light_sglab_acc3(float kappa)"),
             std::string::npos);
-  EXPECT_NE(ok.output.find("Produced by: sglab export --lang hlsl --method sglab_acc3 --split"), std::string::npos);
+  EXPECT_NE(ok.output.find(
+                "float sglab_irradiance_sglab_acc3(SglabLight_sglab_acc3 light, float cosine)"),
+            std::string::npos);
+  EXPECT_NE(ok.output.find("Produced by: sglab export --lang hlsl --method sglab_acc3 --split"),
+            std::string::npos);
   EXPECT_NE(ok.output.find("std430"), std::string::npos);
 }
 
@@ -890,15 +953,18 @@ TEST(ShaderExport, SplitFormsAndRefusals) {
 // split --precision half` (exit 2, naming both options); the half export alone
 // and the float split alone still work.
 TEST(ShaderExport, SplitWithHalfIsRefused) {
-  sh::ExportRequest request = sh::standard_request(sh::Language::glsl, "sglab_acc3", sh::Precision::float16);
+  sh::ExportRequest request =
+      sh::standard_request(sh::Language::glsl, "sglab_acc3", sh::Precision::float16);
   request.split = true;
   EXPECT_THROW(sh::export_source(request), std::invalid_argument);
   request.split = false;
   EXPECT_NO_THROW(sh::export_source(request));
-  auto r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--split", "--precision", "half"});
+  auto r = run_sglab(
+      {"export", "--lang", "glsl", "--method", "sglab_acc3", "--split", "--precision", "half"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--split with --precision half"), std::string::npos) << r.output;
-  r = run_sglab({"gpucost", "--families", "navi21", "--method", "sglab_acc3", "--form", "split", "--precision", "half"});
+  r = run_sglab({"gpucost", "--families", "navi21", "--method", "sglab_acc3", "--form", "split",
+                 "--precision", "half"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--form split with --precision half"), std::string::npos) << r.output;
   r = run_sglab({"export", "--lang", "glsl", "--method", "sglab_acc3", "--split"}, false);
@@ -948,22 +1014,27 @@ TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
     std::ofstream(dir / (id + ".hpp")) << export_text(sh::Language::cpp, id);
     main << "#include \"" << id << ".hpp\"\n#include \"" << id << "_split.hpp\"\n";
   }
-  main << "int main(int, char** argv) {\n  std::FILE* f = std::fopen(argv[1], \"r\");\n  char a[64];\n"
-       << "  auto next = [&] { return std::fscanf(f, \"%63s\", a) == 1 ? std::strtof(a, nullptr) : 0.0f; };\n"
-       << "  while (std::fscanf(f, \"%63s\", a) == 1) {\n    float c = std::strtof(a, nullptr), k = next();\n";
+  main << "int main(int, char** argv) {\n  std::FILE* f = std::fopen(argv[1], \"r\");\n  char "
+          "a[64];\n"
+       << "  auto next = [&] { return std::fscanf(f, \"%63s\", a) == 1 ? std::strtof(a, nullptr) : "
+          "0.0f; };\n"
+       << "  while (std::fscanf(f, \"%63s\", a) == 1) {\n    float c = std::strtof(a, nullptr), k "
+          "= next();\n";
   for (const Item& it : items) {
     const std::string& L = it.split.light_struct;
     const std::size_t n = it.split.light_floats;
-    main << fmt::format("    {{\n      static_assert(sizeof({0}) == {1} * sizeof(float), \"std430: no padding\");\n"
-                        "      {0} l = {2}(k);\n      float lf[{1}];\n      std::memcpy(lf, &l, sizeof l);\n"
-                        "      std::printf(\"%a %a \", (double){3}(c, k), (double){3}(l, c));\n"
-                        "      for (float x : lf) std::printf(\"%a \", (double)x);\n",
-                        L, n, it.split.light_function, it.split.entry_point);
+    main << fmt::format(
+        "    {{\n      static_assert(sizeof({0}) == {1} * sizeof(float), \"std430: no padding\");\n"
+        "      {0} l = {2}(k);\n      float lf[{1}];\n      std::memcpy(lf, &l, sizeof l);\n"
+        "      std::printf(\"%a %a \", (double){3}(c, k), (double){3}(l, c));\n"
+        "      for (float x : lf) std::printf(\"%a \", (double)x);\n",
+        L, n, it.split.light_function, it.split.entry_point);
     if (it.host)
-      main << fmt::format("      float s[{0}];\n      for (float& x : s) x = next();\n      {1} h;\n"
-                          "      std::memcpy(&h, s, sizeof h);\n      std::printf(\"%a \", (double){2}(h, c));\n"
-                          "      for (float x : s) std::printf(\"%a \", (double)x);\n",
-                          n, L, it.split.entry_point);
+      main << fmt::format(
+          "      float s[{0}];\n      for (float& x : s) x = next();\n      {1} h;\n"
+          "      std::memcpy(&h, s, sizeof h);\n      std::printf(\"%a \", (double){2}(h, c));\n"
+          "      for (float x : s) std::printf(\"%a \", (double)x);\n",
+          n, L, it.split.entry_point);
     main << "    }\n";
   }
   main << "    std::printf(\"\\n\");\n  }\n  return 0;\n}\n";
@@ -976,13 +1047,15 @@ TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
         if (!it.host) continue;
         float state[sglab::kLightStateFloats] = {};
         it.method->light_setup32(g.kappa[i], state);
-        for (std::size_t j = 0; j < it.split.light_floats; ++j) in << fmt::format(" {:a}", state[j]);
+        for (std::size_t j = 0; j < it.split.light_floats; ++j)
+          in << fmt::format(" {:a}", state[j]);
       }
       in << "\n";
     }
   }
-  const auto build = run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
-                                  (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
+  const auto build =
+      run_program({SGLAB_CXX_COMPILER, "-std=c++17", "-O2", "-ffp-contract=off", "-Wall", "-Werror",
+                   (dir / "main.cpp").string(), "-o", (dir / "prog").string()});
   ASSERT_EQ(build.exit_code, 0) << build.output;
   const auto run = run_program({(dir / "prog").string(), (dir / "points.txt").string()}, false);
   ASSERT_EQ(run.exit_code, 0);
@@ -1014,8 +1087,10 @@ TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
       worst_host[id] = std::max(worst_host[id], std::fabs(host - split) / peak);
       for (std::size_t j = 0; j < fields.size(); ++j) {
         const double state = next();
-        EXPECT_LE(std::fabs(fields[j] - state), 1e-5 * std::max(std::fabs(fields[j]), std::fabs(state)) + 1e-6)
-            << id << " field " << j << " at kappa " << k << ": export " << fields[j] << ", runtime " << state;
+        EXPECT_LE(std::fabs(fields[j] - state),
+                  1e-5 * std::max(std::fabs(fields[j]), std::fabs(state)) + 1e-6)
+            << id << " field " << j << " at kappa " << k << ": export " << fields[j] << ", runtime "
+            << state;
       }
     }
     ++point;
@@ -1023,7 +1098,8 @@ TEST(ShaderExport, SplitCppExportMatchesTheUnsplitOneAndTheRuntimeState) {
   EXPECT_EQ(point, g.kappa.size());
   for (const Item& it : items) {
     const std::string id(it.method->id);
-    EXPECT_LE(worst_unsplit[id], 1e-6) << id << ": split against unsplit export, worst at " << where[id];
+    EXPECT_LE(worst_unsplit[id], 1e-6)
+        << id << ": split against unsplit export, worst at " << where[id];
     if (it.host) {
       EXPECT_LE(worst_host[id], 1e-6) << id << ": struct filled from light_setup32";
     }
@@ -1046,17 +1122,20 @@ TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
         std::find(split_ids.begin(), split_ids.end(), sm.method.id) != split_ids.end())
       methods.push_back(sm);
   ASSERT_EQ(methods.size(), split_ids.size());
-  const std::set<std::string> hlsl_ids = {"tokuyoshi2024", "tokuyoshi2022", "sglab_fast", "sglab_acc3"};
+  const std::set<std::string> hlsl_ids = {"tokuyoshi2024", "tokuyoshi2022", "sglab_fast",
+                                          "sglab_acc3"};
   std::vector<sglab::validate::SweepMethod> hlsl_methods;
   for (const auto& sm : methods)
     if (hlsl_ids.count(std::string(sm.method.id))) hlsl_methods.push_back(sm);
   sglab::validate::SweepOptions options;
   options.precisions.clear();
   options.progress = false;
-  sglab::validate::SweepResult r = sglab::validate::sweep(sglab::validate::SweepGrid{}, methods, options);
+  sglab::validate::SweepResult r =
+      sglab::validate::sweep(sglab::validate::SweepGrid{}, methods, options);
   vk::add_device_entries(r, methods, sh::Language::glsl, *device_);
   vk::add_device_entries(r, hlsl_methods, sh::Language::hlsl, *device_);
-  const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()), cosines(r.cosines.begin(), r.cosines.end());
+  const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()),
+      cosines(r.cosines.begin(), r.cosines.end());
   using F = sglab::validate::FloatFormat;
   const sglab::validate::Quantity E = sglab::validate::Quantity::irradiance;
   for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl})
@@ -1066,8 +1145,10 @@ TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
       const auto* unsplit = r.find(id, E, lang == sh::Language::hlsl ? F::vulkan_hlsl : F::vulkan);
       ASSERT_TRUE(unsplit);
       const sh::ExportResult ex = split_export(lang, id);
-      const std::vector<float> prepass = vk::run_split(ex, lang, vk::device_lights(ex, lang, kappas, *device_), cosines, *device_);
-      const std::vector<float> host = vk::run_split(ex, lang, vk::split_lights(sm.method, ex, lang, kappas, *device_), cosines, *device_);
+      const std::vector<float> prepass =
+          vk::run_split(ex, lang, vk::device_lights(ex, lang, kappas, *device_), cosines, *device_);
+      const std::vector<float> host = vk::run_split(
+          ex, lang, vk::split_lights(sm.method, ex, lang, kappas, *device_), cosines, *device_);
       ASSERT_EQ(prepass.size(), unsplit->values.size());
       ASSERT_EQ(host.size(), unsplit->values.size());
       double worst_prepass = 0, worst_runtime = 0;
@@ -1093,15 +1174,17 @@ TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
 TEST_F(OnVulkan, SweepReportsSplitRows) {
   const sglab::test::TempDir tmp("shader-sweep_split");
   const fs::path& dir = tmp.path;
-  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3", "--method", "wang2009", "--out",
-                            dir.string(), "--json"},
+  const auto r = run_sglab({"sweep", "--backend", "cpu,vulkan", "--method", "sglab_acc3",
+                            "--method", "wang2009", "--out", dir.string(), "--json"},
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::map<std::string, std::set<std::string>> precisions;
   const auto doc = nlohmann::json::parse(r.output);
   for (const auto& rec : doc.at("results"))
     precisions[rec.at("method").get<std::string>()].insert(rec.at("precision").get<std::string>());
-  EXPECT_EQ(precisions["sglab_acc3"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl",
-                                                               "vulkan_split", "vulkan_hlsl_split"}));
-  EXPECT_EQ(precisions["wang2009"], (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl"}));
+  EXPECT_EQ(precisions["sglab_acc3"],
+            (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl", "vulkan_split",
+                                   "vulkan_hlsl_split"}));
+  EXPECT_EQ(precisions["wang2009"],
+            (std::set<std::string>{"float", "double", "vulkan", "vulkan_hlsl"}));
 }

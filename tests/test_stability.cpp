@@ -4,12 +4,12 @@
 // inputs (docs/quantities.md). Plus the `sglab stability --json` contract.
 #include <algorithm>
 #include <cmath>
-#include <variant>
 #include <filesystem>
 #include <limits>
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include <unistd.h>
@@ -21,8 +21,8 @@
 #include <sglab/constants.hpp>
 #include <sglab/registry.hpp>
 
-#include "validate/stability.hpp"
 #include "tests/test_support.hpp"
+#include "validate/stability.hpp"
 
 namespace sv = sglab::validate;
 
@@ -57,17 +57,22 @@ TEST(Stability, EveryFunctionHasFourRows) {
     EXPECT_GT(rows[i + 1].evaluations, 0u) << rows[i].function;
   }
   for (const auto& m : sglab::irradiance_methods)
-    EXPECT_NE(report().find(fmt::format("irradiance/{}", m.id), sv::FloatFormat::binary64, true), nullptr) << m.id;
+    EXPECT_NE(report().find(fmt::format("irradiance/{}", m.id), sv::FloatFormat::binary64, true),
+              nullptr)
+        << m.id;
   // Probed inputs include κ = 0, the smallest denormal, FLT_MAX, DBL_MAX (double), +inf, NaN.
   const auto& kd = report().kappas_double;
   EXPECT_NE(std::find(kd.begin(), kd.end(), 0.0), kd.end());
   EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::denorm_min()), kd.end());
   EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::max()), kd.end());
-  EXPECT_NE(std::find(kd.begin(), kd.end(), static_cast<double>(std::numeric_limits<float>::max())), kd.end());
+  EXPECT_NE(std::find(kd.begin(), kd.end(), static_cast<double>(std::numeric_limits<float>::max())),
+            kd.end());
   EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::infinity()), kd.end());
   EXPECT_TRUE(std::any_of(kd.begin(), kd.end(), [](double k) { return std::isnan(k); }));
   const auto& kf = report().kappas_float;
-  EXPECT_NE(std::find(kf.begin(), kf.end(), static_cast<double>(std::numeric_limits<float>::denorm_min())), kf.end());
+  EXPECT_NE(std::find(kf.begin(), kf.end(),
+                      static_cast<double>(std::numeric_limits<float>::denorm_min())),
+            kf.end());
 }
 
 TEST(Stability, PunctualIsInfiniteAtKappaZero) {
@@ -109,9 +114,10 @@ TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
     std::string what;
     for (std::size_t k = 0; k < sv::kFailureKinds; ++k)
       if (r->failures[k].count && r->is_failure(static_cast<sv::FailureKind>(k)))
-        what += fmt::format("\n  {} x{}: {}", sv::to_string(static_cast<sv::FailureKind>(k)), r->failures[k].count,
-                            r->failures[k].example);
-    ADD_FAILURE() << r->function << " (" << sv::to_string(r->precision) << ") on valid inputs:" << what;
+        what += fmt::format("\n  {} x{}: {}", sv::to_string(static_cast<sv::FailureKind>(k)),
+                            r->failures[k].count, r->failures[k].example);
+    ADD_FAILURE() << r->function << " (" << sv::to_string(r->precision)
+                  << ") on valid inputs:" << what;
   }
   // The list is drawn from the sglab and refit rows only.
   for (const sv::StabilityRow& r : report().rows) {
@@ -138,16 +144,22 @@ TEST(Stability, MethodRowsCarryTheRegistryOrigin) {
   check("irradiance", sglab::irradiance_methods);
   check("hemispherical", sglab::hemispherical_methods);
   check("normalized", sglab::normalized_methods);
-  EXPECT_EQ(row("irradiance/sglab_acc3", sv::FloatFormat::binary32, true).origin, sglab::Origin::sglab);
-  EXPECT_EQ(row("irradiance/tokuyoshi2024_refit", sv::FloatFormat::binary64, true).origin, sglab::Origin::refit);
+  EXPECT_EQ(row("irradiance/sglab_acc3", sv::FloatFormat::binary32, true).origin,
+            sglab::Origin::sglab);
+  EXPECT_EQ(row("irradiance/tokuyoshi2024_refit", sv::FloatFormat::binary64, true).origin,
+            sglab::Origin::refit);
 }
 
 // Every binade of the subnormals is probed, in both precisions: 2^e from the
 // smallest subnormal to the smallest normal, and the largest subnormal.
-template <class T> void expect_subnormal_binades(const std::vector<double>& probed) {
-  const auto has = [&](T v) { return std::find(probed.begin(), probed.end(), static_cast<double>(v)) != probed.end(); };
+template <class T>
+void expect_subnormal_binades(const std::vector<double>& probed) {
+  const auto has = [&](T v) {
+    return std::find(probed.begin(), probed.end(), static_cast<double>(v)) != probed.end();
+  };
   int binades = 0;
-  for (T k = std::numeric_limits<T>::denorm_min(); k < std::numeric_limits<T>::min(); k *= T(2), ++binades)
+  for (T k = std::numeric_limits<T>::denorm_min(); k < std::numeric_limits<T>::min();
+       k *= T(2), ++binades)
     EXPECT_TRUE(has(k)) << sglab::test::hex(k);
   EXPECT_EQ(binades, std::numeric_limits<T>::digits - 1);
   EXPECT_TRUE(has(std::numeric_limits<T>::min()));
@@ -186,7 +198,8 @@ TEST(Stability, AccuracyIsRelativeDownToTheSmallestNormal) {
   EXPECT_TRUE(sv::is_inaccurate<double>(1.001e-300, 1e-300L));
   EXPECT_FALSE(sv::is_inaccurate<double>(1.00000001e-300, 1e-300L));
   EXPECT_TRUE(sv::is_inaccurate<double>(0.0, 3.5e-308L));  // 2π/DBL_MAX, a normal double
-  EXPECT_FALSE(sv::is_inaccurate<double>(0.0, 1e-320L));   // a denormal: within 1e−4 of the smallest normal
+  EXPECT_FALSE(
+      sv::is_inaccurate<double>(0.0, 1e-320L));  // a denormal: within 1e−4 of the smallest normal
   EXPECT_TRUE(sv::is_inaccurate<float>(0.0f, 1.85e-38L));  // 2π/FLT_MAX, a normal float
   EXPECT_FALSE(sv::is_inaccurate<float>(0.0f, 1e-44L));
   EXPECT_FALSE(sv::is_inaccurate<float>(1.0f, 1.00001L));
@@ -195,14 +208,16 @@ TEST(Stability, AccuracyIsRelativeDownToTheSmallestNormal) {
 // The reference engine is one of sglab's own primitives: probed like them
 // (exact at the poles and, for H and s, at the horizon), refusing invalid input.
 TEST(Stability, ReferenceEngineIsProbed) {
-  for (const char* name : {"reference/hemispherical", "reference/irradiance", "reference/normalized"})
+  for (const char* name :
+       {"reference/hemispherical", "reference/irradiance", "reference/normalized"})
     for (sv::FloatFormat f : kFormats) {
       const auto& valid = row(name, f, true);
       EXPECT_EQ(valid.origin, sv::Origin::sglab) << name;
       EXPECT_GT(valid.evaluations, 100u) << name;
       const auto& invalid = row(name, f, false);
       EXPECT_GT(invalid.evaluations, 0u) << name;
-      EXPECT_EQ(invalid.failure_count(), 0u) << name << ": invalid input must be refused, not answered";
+      EXPECT_EQ(invalid.failure_count(), 0u)
+          << name << ": invalid input must be refused, not answered";
     }
 }
 
@@ -239,14 +254,16 @@ TEST(Stability, FindingsSayWhyPublishedFailuresRemain) {
   for (const auto& r : t.rows()) {
     const auto& text = std::get<std::string>(r[why]);
     EXPECT_FALSE(text.empty()) << std::get<std::string>(r[function]);
-    if (std::get<std::string>(r[origin]) == "published" && std::get<std::string>(r[inputs]) == "valid") {
+    if (std::get<std::string>(r[origin]) == "published" &&
+        std::get<std::string>(r[inputs]) == "valid") {
       ++published_valid;
       EXPECT_EQ(text.find("a bug"), std::string::npos) << std::get<std::string>(r[function]);
     }
   }
   EXPECT_GT(published_valid, 0u);
   for (const auto& r : t.rows())
-    if (std::get<std::string>(r[function]) == "irradiance/punctual" && std::get<std::string>(r[inputs]) == "valid") {
+    if (std::get<std::string>(r[function]) == "irradiance/punctual" &&
+        std::get<std::string>(r[inputs]) == "valid") {
       EXPECT_NE(std::get<std::string>(r[why]).find("2π/κ"), std::string::npos);
     }
 }
@@ -254,9 +271,9 @@ TEST(Stability, FindingsSayWhyPublishedFailuresRemain) {
 TEST(Stability, TableHasCountsAndKappaSpans) {
   const sv::Table t = sv::stability_table(report());
   EXPECT_EQ(t.rows().size(), report().rows.size());
-  for (const char* c : {"function", "origin", "precision", "inputs", "nan", "nan_kappa_min", "nan_kappa_max", "inf",
-                        "inf_kappa_min", "overflow", "negative", "out_of_range", "out_of_range_kappa_max",
-                        "approximation", "first_failure"})
+  for (const char* c : {"function", "origin", "precision", "inputs", "nan", "nan_kappa_min",
+                        "nan_kappa_max", "inf", "inf_kappa_min", "overflow", "negative",
+                        "out_of_range", "out_of_range_kappa_max", "approximation", "first_failure"})
     EXPECT_NO_THROW(t.column_index(c)) << c;
 }
 
@@ -270,7 +287,8 @@ TEST(StabilityCli, JsonParses) {
   ASSERT_TRUE(j.contains("inputs"));
   EXPECT_EQ(j.at("results").size(), report().rows.size());
   for (const auto& e : j.at("results"))
-    for (const char* k : {"function", "origin", "precision", "inputs", "nan", "inf", "overflow", "negative", "out_of_range"})
+    for (const char* k : {"function", "origin", "precision", "inputs", "nan", "inf", "overflow",
+                          "negative", "out_of_range"})
       EXPECT_TRUE(e.contains(k)) << k;
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "stability.csv"));
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "stability.md"));

@@ -22,7 +22,10 @@
 namespace sglab::test {
 
 // A value printed exactly (hex float) and in decimal, for failure messages.
-template <class T> std::string hex(T x) { return fmt::format("{:a} ({:.9g})", static_cast<double>(x), static_cast<double>(x)); }
+template <class T>
+std::string hex(T x) {
+  return fmt::format("{:a} ({:.9g})", static_cast<double>(x), static_cast<double>(x));
+}
 
 // The standard sweep (docs/quantities.md).
 inline std::vector<double> standard_kappas() {
@@ -66,8 +69,9 @@ inline std::vector<std::string> words(std::string_view text) {
 struct TempDir {
   std::filesystem::path path;
   explicit TempDir(const std::string& name) {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / fmt::format("sglab-test-{}-{}-XXXXXX", name, ::getpid())).string();
+    std::string pattern = (std::filesystem::temp_directory_path() /
+                           fmt::format("sglab-test-{}-{}-XXXXXX", name, ::getpid()))
+                              .string();
     if (::mkdtemp(pattern.data()) == nullptr)
       throw std::system_error(errno, std::generic_category(), "mkdtemp " + pattern);
     path = pattern;
@@ -109,7 +113,8 @@ inline CommandResult run_program(const std::vector<std::string>& argv, bool merg
   if (rc == 0) {
     char buffer[4096];
     ssize_t n;
-    while ((n = ::read(fds[0], buffer, sizeof buffer)) > 0) r.output.append(buffer, static_cast<std::size_t>(n));
+    while ((n = ::read(fds[0], buffer, sizeof buffer)) > 0)
+      r.output.append(buffer, static_cast<std::size_t>(n));
   }
   ::close(fds[0]);
   if (rc != 0) return r;

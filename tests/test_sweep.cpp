@@ -1,6 +1,6 @@
-// The accuracy sweep (the standard grid of docs/quantities.md): the grid, float-exact inputs, exact closed
-// forms used as methods, a deliberately perturbed method; and the
-// `sglab sweep` command-line contract.
+// The accuracy sweep (the standard grid of docs/quantities.md): the grid, float-exact inputs, exact
+// closed forms used as methods, a deliberately perturbed method; and the `sglab sweep` command-line
+// contract.
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -16,9 +16,9 @@
 #include <sglab/closed_forms.hpp>
 #include <sglab/registry.hpp>
 
+#include "tests/test_support.hpp"
 #include "validate/reference.hpp"
 #include "validate/sweep.hpp"
-#include "tests/test_support.hpp"
 
 namespace sv = sglab::validate;
 using sglab::test::hex;
@@ -33,19 +33,23 @@ sv::SweepOptions quiet(std::vector<sv::FloatFormat> precisions = {sv::FloatForma
   return o;
 }
 
-sglab::Method method(std::string_view id, float (*f32)(float, float), double (*f64)(double, double)) {
+sglab::Method method(std::string_view id, float (*f32)(float, float),
+                     double (*f64)(double, double)) {
   return sglab::Method{id, "test", "", f32, f64, nullptr, nullptr};
 }
 
 // The exact closed forms at c = ±1 (and H at c = 0) "as methods" (docs/quantities.md).
-template <class T> T exact_irradiance(T c, T k) {
+template <class T>
+T exact_irradiance(T c, T k) {
   return c > T(0) ? sglab::irradiance_upper(k) : sglab::irradiance_lower(k);
 }
-template <class T> T exact_hemispherical(T c, T k) {
+template <class T>
+T exact_hemispherical(T c, T k) {
   if (c == T(0)) return sglab::hemispherical_equator(k);
   return c > T(0) ? sglab::hemispherical_upper(k) : sglab::hemispherical_lower(k);
 }
-template <class T> T exact_normalized(T c, T /*kappa*/) {
+template <class T>
+T exact_normalized(T c, T /*kappa*/) {
   // s(0, κ) = (S/2 − e^{−κ}H(1))/((1 − e^{−κ})H(1)) = ((1 + e^{−κ})/2 − e^{−κ})/(1 − e^{−κ}) = 1/2.
   if (c == T(0)) return T(0.5);
   return c > T(0) ? T(1) : T(0);
@@ -63,16 +67,20 @@ float perturbed32(float c, float k) { return static_cast<float>(perturbed64(c, k
 
 // NaN at one point, the reference elsewhere; and NaN unless the inputs are float-exact.
 double nan_at_point64(double c, double k) {
-  if (k == kPerturbedKappa && c == kPerturbedCosine) return std::numeric_limits<double>::quiet_NaN();
+  if (k == kPerturbedKappa && c == kPerturbedCosine)
+    return std::numeric_limits<double>::quiet_NaN();
   return sv::reference_engine().evaluate(k, c).irradiance;
 }
 float nan_at_point32(float c, float k) { return static_cast<float>(nan_at_point64(c, k)); }
 double float_exact_or_nan64(double c, double k) {
-  if (static_cast<double>(static_cast<float>(c)) != c || static_cast<double>(static_cast<float>(k)) != k)
+  if (static_cast<double>(static_cast<float>(c)) != c ||
+      static_cast<double>(static_cast<float>(k)) != k)
     return std::numeric_limits<double>::quiet_NaN();
   return sv::reference_engine().evaluate(k, c).irradiance;
 }
-float float_exact_or_nan32(float c, float k) { return static_cast<float>(float_exact_or_nan64(c, k)); }
+float float_exact_or_nan32(float c, float k) {
+  return static_cast<float>(float_exact_or_nan64(c, k));
+}
 
 }  // namespace
 
@@ -82,10 +90,12 @@ TEST(SweepGrid, DefaultIsTheSpecStandardGrid) {
   const auto c = g.cosines();
   ASSERT_EQ(k.size(), 29u);
   ASSERT_EQ(c.size(), 41u);
-  const auto k_spec = sglab::test::standard_kappas();  // 10^(i/4), i = −12…16
+  const auto k_spec = sglab::test::standard_kappas();   // 10^(i/4), i = −12…16
   const auto c_spec = sglab::test::standard_cosines();  // −1 + 2i/40
-  for (std::size_t i = 0; i < k.size(); ++i) EXPECT_EQ(k[i], k_spec[i]) << i << ": " << hex(k[i]) << " vs " << hex(k_spec[i]);
-  for (std::size_t i = 0; i < c.size(); ++i) EXPECT_EQ(c[i], c_spec[i]) << i << ": " << hex(c[i]) << " vs " << hex(c_spec[i]);
+  for (std::size_t i = 0; i < k.size(); ++i)
+    EXPECT_EQ(k[i], k_spec[i]) << i << ": " << hex(k[i]) << " vs " << hex(k_spec[i]);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    EXPECT_EQ(c[i], c_spec[i]) << i << ": " << hex(c[i]) << " vs " << hex(c_spec[i]);
   // Decades are the decimal literals.
   const double decades[] = {1e-3, 1e-2, 1e-1, 1, 10, 100, 1e3, 1e4};
   for (int d = 0; d < 8; ++d) EXPECT_EQ(k[4 * d], decades[d]) << hex(k[4 * d]);
@@ -111,9 +121,11 @@ TEST(SweepGrid, CustomGridsAndValidation) {
   EXPECT_THROW((sv::SweepGrid{1, 2, 1, 5}.validate()), std::invalid_argument);
   EXPECT_THROW((sv::SweepGrid{1, 2, 0, 5}.validate()), std::invalid_argument);
   EXPECT_THROW((sv::SweepGrid{1, 2, 3, 1}.validate()), std::invalid_argument);
-  EXPECT_THROW((sv::SweepGrid{1, std::numeric_limits<double>::infinity(), 3, 5}.validate()), std::invalid_argument);
-  EXPECT_THROW((sv::SweepGrid{std::numeric_limits<double>::quiet_NaN(), 1, 3, 5}.validate()), std::invalid_argument);
-  EXPECT_THROW((sv::SweepGrid{1, 1e39, 3, 5}.validate()), std::invalid_argument);  // not a float
+  EXPECT_THROW((sv::SweepGrid{1, std::numeric_limits<double>::infinity(), 3, 5}.validate()),
+               std::invalid_argument);
+  EXPECT_THROW((sv::SweepGrid{std::numeric_limits<double>::quiet_NaN(), 1, 3, 5}.validate()),
+               std::invalid_argument);
+  EXPECT_THROW((sv::SweepGrid{1, 1e39, 3, 5}.validate()), std::invalid_argument);   // not a float
   EXPECT_THROW((sv::SweepGrid{1e-50, 1, 3, 5}.validate()), std::invalid_argument);  // 0 in float
 }
 
@@ -154,7 +166,8 @@ TEST(Sweep, InputsAreFloatExactAndSharedByBothPrecisions) {
 TEST(Sweep, ExactClosedFormsGiveNearZeroError) {
   const sv::SweepGrid g{1e-3, 1e4, 29, 3};  // c ∈ {−1, 0, 1}
   const sglab::Method e = method("exact_E", exact_irradiance<float>, exact_irradiance<double>);
-  const sglab::Method h = method("exact_H", exact_hemispherical<float>, exact_hemispherical<double>);
+  const sglab::Method h =
+      method("exact_H", exact_hemispherical<float>, exact_hemispherical<double>);
   const sglab::Method s = method("exact_s", exact_normalized<float>, exact_normalized<double>);
   // E has no closed form at c = 0: hold exact_E to c = ±1 with a 2-cosine grid.
   const sv::SweepMethod poles[] = {{sv::Quantity::irradiance, e}};
@@ -164,7 +177,8 @@ TEST(Sweep, ExactClosedFormsGiveNearZeroError) {
   for (const auto* r : {&rp, &ra}) {
     ASSERT_FALSE(r->entries.empty());
     for (const sv::SweepEntry& en : r->entries) {
-      SCOPED_TRACE(fmt::format("{} {} {}", en.method, sv::to_string(en.quantity), sv::to_string(en.precision)));
+      SCOPED_TRACE(fmt::format("{} {} {}", en.method, sv::to_string(en.quantity),
+                               sv::to_string(en.precision)));
       EXPECT_EQ(en.summary.nonfinite, 0u);
       EXPECT_EQ(en.summary.invalid_reference, 0u);
       EXPECT_EQ(en.summary.peak_rel.count, r->kappas.size() * r->cosines.size());
@@ -186,8 +200,9 @@ TEST(Sweep, PerturbedMethodGivesExpectedMaxAndLocation) {
   const auto r = sv::sweep(g, methods, quiet());
   ASSERT_EQ(r.entries.size(), 4u);
   const auto& ref = sv::reference_engine();
-  const double expected =
-      kPerturbation * ref.evaluate(kPerturbedKappa, kPerturbedCosine).irradiance / ref.evaluate(kPerturbedKappa, 1.0).irradiance;
+  const double expected = kPerturbation *
+                          ref.evaluate(kPerturbedKappa, kPerturbedCosine).irradiance /
+                          ref.evaluate(kPerturbedKappa, 1.0).irradiance;
   for (sv::FloatFormat f : {sv::FloatFormat::binary32, sv::FloatFormat::binary64}) {
     SCOPED_TRACE(std::string(sv::to_string(f)));
     const auto* p = r.find("perturbed", sv::Quantity::irradiance, f);
@@ -224,7 +239,8 @@ TEST(Sweep, PerturbedMethodGivesExpectedMaxAndLocation) {
 TEST(Sweep, RegisteredMethodsAndTables) {
   const sv::SweepGrid g{0.01, 100, 5, 9};
   const auto methods = sv::registered_sweep_methods();
-  EXPECT_EQ(methods.size(), std::size(sglab::irradiance_methods) + std::size(sglab::hemispherical_methods) +
+  EXPECT_EQ(methods.size(), std::size(sglab::irradiance_methods) +
+                                std::size(sglab::hemispherical_methods) +
                                 std::size(sglab::normalized_methods));
   const auto r = sv::sweep(g, methods, quiet());
   EXPECT_EQ(r.entries.size(), 2 * methods.size());
@@ -236,16 +252,17 @@ TEST(Sweep, RegisteredMethodsAndTables) {
   const auto summary = sv::summary_table(r);
   std::vector<std::string> names;
   for (const auto& c : summary.columns()) names.push_back(c.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"method", "quantity", "precision", "max_peak_rel", "worst_kappa",
-                                             "worst_cosine", "rms_peak_rel", "max_rel", "nonfinite"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"method", "quantity", "precision", "max_peak_rel",
+                                             "worst_kappa", "worst_cosine", "rms_peak_rel",
+                                             "max_rel", "nonfinite"}));
   EXPECT_EQ(summary.rows().size(), r.entries.size());
   EXPECT_EQ(sv::per_kappa_table(r).rows().size(), r.entries.size() * 5);
   const auto points = sv::points_table(r);
   EXPECT_EQ(points.rows().size(), r.entries.size() * 5 * 9);
   names.clear();
   for (const auto& c : points.columns()) names.push_back(c.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"kappa", "cosine", "method", "quantity", "precision", "value",
-                                             "reference", "peak_rel"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"kappa", "cosine", "method", "quantity", "precision",
+                                             "value", "reference", "peak_rel"}));
 }
 
 // ---------------------------------------------------------------------------
@@ -275,10 +292,12 @@ TEST(SweepCli, JsonHasTheDocumentedKeys) {
   EXPECT_EQ(g.at("kappa_count").get<int>(), 3);
   EXPECT_EQ(g.at("cosine_count").get<int>(), 5);
   const auto& results = j.at("results");
-  ASSERT_EQ(results.size(), 2 * (std::size(sglab::irradiance_methods) + std::size(sglab::hemispherical_methods) +
-                                 std::size(sglab::normalized_methods)));
-  const std::vector<std::string> keys = {"method",       "quantity",     "precision", "max_peak_rel", "worst_kappa",
-                                         "worst_cosine", "rms_peak_rel", "max_rel",   "nonfinite"};
+  ASSERT_EQ(results.size(),
+            2 * (std::size(sglab::irradiance_methods) + std::size(sglab::hemispherical_methods) +
+                 std::size(sglab::normalized_methods)));
+  const std::vector<std::string> keys = {"method",       "quantity",    "precision",
+                                         "max_peak_rel", "worst_kappa", "worst_cosine",
+                                         "rms_peak_rel", "max_rel",     "nonfinite"};
   for (const auto& e : results) {
     EXPECT_EQ(e.size(), keys.size());
     for (const auto& k : keys) EXPECT_TRUE(e.contains(k)) << k;
@@ -289,13 +308,15 @@ TEST(SweepCli, JsonHasTheDocumentedKeys) {
     EXPECT_TRUE(e.at("nonfinite").is_number_integer());
   }
   namespace fs = std::filesystem;
-  for (const char* f : {"summary.csv", "summary.md", "summary.json", "per_kappa.csv", "per_kappa.md", "points.csv"})
+  for (const char* f :
+       {"summary.csv", "summary.md", "summary.json", "per_kappa.csv", "per_kappa.md", "points.csv"})
     EXPECT_TRUE(fs::exists(dir.path / f)) << f;
 }
 
 TEST(SweepCli, MethodFilter) {
   const sglab::test::TempDir dir("sweep-filter");
-  const auto r = sweep_cli("--kappa 1:1:1 --cosines 3 --method meder2018 --method tokuyoshi2024 --json", dir);
+  const auto r =
+      sweep_cli("--kappa 1:1:1 --cosines 3 --method meder2018 --method tokuyoshi2024 --json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   // meder2018 exists for all three quantities, tokuyoshi2024 for irradiance only; × 2 precisions.
@@ -304,9 +325,10 @@ TEST(SweepCli, MethodFilter) {
 
 TEST(SweepCli, BadKappaExitsTwoNamingTheOption) {
   const sglab::test::TempDir dir("sweep-bad-kappa");
-  for (const char* bad : {"--kappa=-1:10:5", "--kappa -1:10:5", "--kappa a:b:c", "--kappa 1:10", "--kappa 1:10:5:7",
-                          "--kappa 10:1:5", "--kappa 1:10:0", "--kappa 1:10:1", "--kappa inf:1e4:3",
-                          "--kappa 1:nan:3", "--kappa 0:10:5", "--kappa 1:1e40:5", "--kappa 1:10:2.5"}) {
+  for (const char* bad :
+       {"--kappa=-1:10:5", "--kappa -1:10:5", "--kappa a:b:c", "--kappa 1:10", "--kappa 1:10:5:7",
+        "--kappa 10:1:5", "--kappa 1:10:0", "--kappa 1:10:1", "--kappa inf:1e4:3",
+        "--kappa 1:nan:3", "--kappa 0:10:5", "--kappa 1:1e40:5", "--kappa 1:10:2.5"}) {
     const auto r = sweep_cli(bad, dir);
     EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
     EXPECT_NE(r.output.find("--kappa"), std::string::npos) << bad << "\n" << r.output;
@@ -324,5 +346,6 @@ TEST(SweepCli, BadCosinesAndUnknownMethodExitTwo) {
   const auto r = sweep_cli("--method no_such_method", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("no_such_method"), std::string::npos) << r.output;
-  for (const auto& m : sglab::irradiance_methods) EXPECT_NE(r.output.find(std::string(m.id)), std::string::npos) << m.id;
+  for (const auto& m : sglab::irradiance_methods)
+    EXPECT_NE(r.output.find(std::string(m.id)), std::string::npos) << m.id;
 }

@@ -32,19 +32,26 @@ enum class Precision { float32, float64 };
 
 constexpr std::string_view to_string(Quantity q) {
   switch (q) {
-    case Quantity::float_vs_double: return "float_vs_double";
-    case Quantity::batch_vs_double: return "batch_vs_double";
-    case Quantity::split_vs_plain: return "split_vs_plain";
-    case Quantity::peak_rel: return "peak_rel";
+    case Quantity::float_vs_double:
+      return "float_vs_double";
+    case Quantity::batch_vs_double:
+      return "batch_vs_double";
+    case Quantity::split_vs_plain:
+      return "split_vs_plain";
+    case Quantity::peak_rel:
+      return "peak_rel";
   }
   return "?";
 }
-constexpr std::string_view to_string(Precision p) { return p == Precision::float32 ? "float" : "double"; }
+constexpr std::string_view to_string(Precision p) {
+  return p == Precision::float32 ? "float" : "double";
+}
 
 // A bound that is not a number: the property is absent (see Quantity).
 inline constexpr double kNone = -1;
 // Float rounding of the peak: the same operations in the same order.
-inline constexpr double kFourFloatUlps = 4 * static_cast<double>(std::numeric_limits<float>::epsilon());
+inline constexpr double kFourFloatUlps =
+    4 * static_cast<double>(std::numeric_limits<float>::epsilon());
 
 struct Tolerance {
   std::string_view method;
@@ -61,20 +68,25 @@ inline constexpr Precision f32 = Precision::float32, f64 = Precision::float64;
 // Reasons said once.
 inline constexpr std::string_view kWellConditioned = "float rounding of a well-conditioned formula";
 inline constexpr std::string_view kTokuyoshi2022Alpha =
-    "the difference of two integrals scaled by α ≈ 1182 ([Tokuyoshi2022] supplementary §1.1) amplifies float "
+    "the difference of two integrals scaled by α ≈ 1182 ([Tokuyoshi2022] supplementary §1.1) "
+    "amplifies float "
     "rounding ~1e3";
-inline constexpr std::string_view kNoKernel = "no dedicated float batch kernel (registry.hpp make_method)";
+inline constexpr std::string_view kNoKernel =
+    "no dedicated float batch kernel (registry.hpp make_method)";
 inline constexpr std::string_view kNoSplit = "no per-light split in the runtime";
 inline constexpr std::string_view kPublishedError =
     "a published or refitted method: its error is what it is, measured by `sglab sweep` "
     "(data/results/sweep_summary.md, checked by test_readme_numbers)";
 inline constexpr std::string_view kKernel =
-    "the vectorizing kernel (branch_free.hpp exp/expm1/erfc; erfc_bf within 6e-7 absolute moves the lerp factor "
+    "the vectorizing kernel (branch_free.hpp exp/expm1/erfc; erfc_bf within 6e-7 absolute moves "
+    "the lerp factor "
     "by at most that)";
 inline constexpr std::string_view kKernelScalar =
-    "both float paths at float noise (kernel: branch_free.hpp exp/expm1/erfc; erfc_bf within 6e-7 absolute)";
+    "both float paths at float noise (kernel: branch_free.hpp exp/expm1/erfc; erfc_bf within 6e-7 "
+    "absolute)";
 inline constexpr std::string_view kHillBelowOne =
-    "Hill's curve is ill-conditioned below κ = 1 (1 − scale ≈ 1/κ, [Pettineo2016]): checked from κ = 1";
+    "Hill's curve is ill-conditioned below κ = 1 (1 − scale ≈ 1/κ, [Pettineo2016]): checked from κ "
+    "= 1";
 
 inline constexpr Tolerance kTolerances[] = {
     // ---- float_vs_double: the scalar float path against the scalar double one
@@ -83,7 +95,8 @@ inline constexpr Tolerance kTolerances[] = {
     {"hill", float_vs_double, f32, 2e-6, kHillBelowOne, 1.0},
     {"hill_exact", float_vs_double, f32, 2e-6, kHillBelowOne, 1.0},
     {"vsgl2015", float_vs_double, f32, 2e-6, kWellConditioned},
-    {"meder2018", float_vs_double, f32, 1e-4, "32.7 H̃(product) − 31.7 H̃(c, κ) ([Meder2018]) cancels ~30×"},
+    {"meder2018", float_vs_double, f32, 1e-4,
+     "32.7 H̃(product) − 31.7 H̃(c, κ) ([Meder2018]) cancels ~30×"},
     {"tokuyoshi2022", float_vs_double, f32, 2e-3, kTokuyoshi2022Alpha},
     {"tokuyoshi2024", float_vs_double, f32, 2e-6, kWellConditioned},
     {"tokuyoshi2022_listing5", float_vs_double, f32, 2e-3, kTokuyoshi2022Alpha},
@@ -111,7 +124,8 @@ inline constexpr Tolerance kTolerances[] = {
     {"vsgl2015_refit", batch_vs_double, f32, kNone, kNoKernel},
     {"wang2009_refit", batch_vs_double, f32, kNone, kNoKernel},
     {"sglab_fast", batch_vs_double, f32, 2e-6,
-     "the same algebra with branch_free.hpp's exp and selects: float rounding of the peak, far below the model's "
+     "the same algebra with branch_free.hpp's exp and selects: float rounding of the peak, far "
+     "below the model's "
      "own 3e-3"},
     {"sglab_acc1", batch_vs_double, f32, 1e-6, kKernel},
     {"sglab_acc2", batch_vs_double, f32, 1e-6, kKernel},
@@ -125,17 +139,22 @@ inline constexpr Tolerance kTolerances[] = {
     {"vsgl2015", split_vs_plain, f32, kNone, kNoSplit},
     {"meder2018", split_vs_plain, f32, kNone, kNoSplit},
     {"tokuyoshi2022", split_vs_plain, f32, kNone, kNoSplit},
-    {"tokuyoshi2024", split_vs_plain, f32, kFourFloatUlps, "same operations in the same order (tokuyoshi2024_light)"},
+    {"tokuyoshi2024", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (tokuyoshi2024_light)"},
     {"tokuyoshi2022_listing5", split_vs_plain, f32, kNone, kNoSplit},
     {"tokuyoshi2022_refit", split_vs_plain, f32, kNone, kNoSplit},
     {"tokuyoshi2024_refit", split_vs_plain, f32, kFourFloatUlps,
      "same operations in the same order (tokuyoshi2024_light)"},
     {"vsgl2015_refit", split_vs_plain, f32, kNone, kNoSplit},
     {"wang2009_refit", split_vs_plain, f32, kNone, kNoSplit},
-    {"sglab_fast", split_vs_plain, f32, kFourFloatUlps, "same operations in the same order (sglab_fast_light)"},
-    {"sglab_acc1", split_vs_plain, f32, kFourFloatUlps, "same operations in the same order (sglab_acc_light)"},
-    {"sglab_acc2", split_vs_plain, f32, kFourFloatUlps, "same operations in the same order (sglab_acc_light)"},
-    {"sglab_acc3", split_vs_plain, f32, kFourFloatUlps, "same operations in the same order (sglab_acc_light)"},
+    {"sglab_fast", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (sglab_fast_light)"},
+    {"sglab_acc1", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (sglab_acc_light)"},
+    {"sglab_acc2", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (sglab_acc_light)"},
+    {"sglab_acc3", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (sglab_acc_light)"},
 
     // ---- peak_rel: against the reference engine, κ ∈ [1e-3, 1e4], c ∈ [-1, 1]
     {"wang2009", peak_rel, f32, kNone, kPublishedError},
@@ -152,14 +171,17 @@ inline constexpr Tolerance kTolerances[] = {
     {"vsgl2015_refit", peak_rel, f32, kNone, kPublishedError},
     {"wang2009_refit", peak_rel, f32, kNone, kPublishedError},
     {"sglab_fast", peak_rel, f32, 3e-3,
-     "the shipped bound: held-out 2.54e-3 on the 211 × 401 grid (data/results/sglab_fast.md), target 4e-3"},
+     "the shipped bound: held-out 2.54e-3 on the 211 × 401 grid (data/results/sglab_fast.md), "
+     "target 4e-3"},
     {"sglab_fast", peak_rel, f64, 3e-3, "as float: the model's own error dominates rounding"},
     {"sglab_acc1", peak_rel, f32, 2.2e-4,
      "one term (N=1, D=3): held-out 1.93e-4 (the rational form before issue 17: 2.47e-4)"},
     {"sglab_acc1", peak_rel, f64, 2.2e-4, "as float"},
-    {"sglab_acc2", peak_rel, f32, 6.5e-5, "two terms (N=2, D=3): held-out 5.51e-5 (before: 5.68e-5, 7.5e-5)"},
+    {"sglab_acc2", peak_rel, f32, 6.5e-5,
+     "two terms (N=2, D=3): held-out 5.51e-5 (before: 5.68e-5, 7.5e-5)"},
     {"sglab_acc2", peak_rel, f64, 6.5e-5, "as float"},
-    {"sglab_acc3", peak_rel, f32, 2.5e-5, "three terms (N=3, D=4): held-out 2.11e-5 (before: 2.15e-5, 3.15e-5)"},
+    {"sglab_acc3", peak_rel, f32, 2.5e-5,
+     "three terms (N=3, D=4): held-out 2.11e-5 (before: 2.15e-5, 3.15e-5)"},
     {"sglab_acc3", peak_rel, f64, 2.5e-5, "as float"},
 };
 

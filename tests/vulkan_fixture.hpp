@@ -34,7 +34,8 @@ class VulkanDeviceTest : public ::testing::Test {
   }
   void SetUp() override {
     if (!skip_reason_.empty())
-      GTEST_SKIP() << (Need == DeviceNeed::float16 ? "no Vulkan device with half arithmetic: " : "no Vulkan device: ")
+      GTEST_SKIP() << (Need == DeviceNeed::float16 ? "no Vulkan device with half arithmetic: "
+                                                   : "no Vulkan device: ")
                    << skip_reason_;
   }
   static inline shader::vulkan::Device* device_ = nullptr;

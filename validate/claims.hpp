@@ -18,12 +18,12 @@
 namespace sglab::validate {
 
 struct Claim {
-  std::string id;          // short key, e.g. "as7125_bound"
-  std::string claim;       // what the seed says
-  std::string source;      // seed and section
-  std::string tested_as;   // the interpretation / procedure
-  std::string measured;    // the numbers
-  std::string verdict;     // "holds" | "does not hold" | "holds in part"
+  std::string id;         // short key, e.g. "as7125_bound"
+  std::string claim;      // what the seed says
+  std::string source;     // seed and section
+  std::string tested_as;  // the interpretation / procedure
+  std::string measured;   // the numbers
+  std::string verdict;    // "holds" | "does not hold" | "holds in part"
 };
 
 // t*(κ) for each κ (fit::optimal_steepness("steepness2022", κs)).
@@ -41,14 +41,14 @@ Table claims_table(const std::vector<Claim>& claims);
 // max |erf_as7125(x) − erf(x)| over a dense grid of x ∈ [0, 6] in double.
 double as7125_max_abs_error(int points = 2'000'001);
 
-// Unpolarized dielectric Fresnel factor ([TokuyoshiHarada2017] supplemental Eq. 3–5) at cos θh for the
-// relative index η (complex square root: total internal reflection gives 1).
+// Unpolarized dielectric Fresnel factor ([TokuyoshiHarada2017] supplemental Eq. 3–5) at cos θh for
+// the relative index η (complex square root: total internal reflection gives 1).
 double fresnel_dielectric(double cos_theta, double eta);
 
 struct FresnelShape {
   bool monotone_increasing = false;  // non-decreasing in θh ∈ [0, π/2] (tolerance 1e−12)
   bool quasiconvex = false;          // non-increasing then non-decreasing
-  double eq6_max_error = 0;          // max over θi of |Eq. 6 − brute-force max over θh ∈ [0, θh_max(θi)]|
+  double eq6_max_error = 0;  // max over θi of |Eq. 6 − brute-force max over θh ∈ [0, θh_max(θi)]|
 };
 FresnelShape fresnel_shape(double eta, int theta_points = 2001, int incidence_points = 401);
 

@@ -30,10 +30,12 @@ void ErfStats::merge(const ErfStats& o) {
   nonfinite += o.nonfinite;
   correctly_rounded += o.correctly_rounded;
   sum_sq_ulp += o.sum_sq_ulp;
-  if (o.max_ulp > max_ulp || (o.max_ulp == max_ulp && o.worst_x < worst_x)) max_ulp = o.max_ulp, worst_x = o.worst_x;
+  if (o.max_ulp > max_ulp || (o.max_ulp == max_ulp && o.worst_x < worst_x))
+    max_ulp = o.max_ulp, worst_x = o.worst_x;
   if (o.max_abs > max_abs || (o.max_abs == max_abs && o.worst_abs_x < worst_abs_x))
     max_abs = o.max_abs, worst_abs_x = o.worst_abs_x;
-  if (o.nonfinite && !(o.first_nonfinite_x >= first_nonfinite_x)) first_nonfinite_x = o.first_nonfinite_x;
+  if (o.nonfinite && !(o.first_nonfinite_x >= first_nonfinite_x))
+    first_nonfinite_x = o.first_nonfinite_x;
   for (std::size_t i = 0; i < histogram.size(); ++i) histogram[i] += o.histogram[i];
 }
 
@@ -53,20 +55,25 @@ namespace detail {
 namespace {
 
 // Fields of a binary32 pattern: sign 1 bit, exponent 8 bits, fraction 23 bits.
-constexpr std::uint32_t kFloatExponentMask = 0x7f800000u;  // exponent field; also the pattern of +inf
-constexpr std::uint32_t kFloatFractionMask = 0x007fffffu;  // fraction field; also the largest subnormal's pattern
+constexpr std::uint32_t kFloatExponentMask =
+    0x7f800000u;  // exponent field; also the pattern of +inf
+constexpr std::uint32_t kFloatFractionMask =
+    0x007fffffu;  // fraction field; also the largest subnormal's pattern
 constexpr std::uint32_t kFloatMagnitudeMask = 0x7fffffffu;  // all but the sign: the pattern of |x|
 constexpr std::uint32_t kFloatOneBits = 0x3f800000u;        // 1.0f
-static_assert(std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity()) == kFloatExponentMask);
+static_assert(std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity()) ==
+              kFloatExponentMask);
 static_assert(std::bit_cast<std::uint32_t>(1.0f) == kFloatOneBits);
 // Fields of a binary64 pattern: sign 1, exponent 11 (bias 1023), fraction 52.
-constexpr std::uint64_t kDoubleExponentMask = 0x7ff0000000000000u;  // exponent field; also the pattern of +inf
+constexpr std::uint64_t kDoubleExponentMask =
+    0x7ff0000000000000u;  // exponent field; also the pattern of +inf
 constexpr std::uint64_t kDoubleFractionMask = (std::uint64_t{1} << 52) - 1;
 // 2^1023 (biased exponent 2046, fraction 0). Subtracting the exponent field of
 // r = m·2^e (biased e + 1023) from it leaves biased exponent 1023 − e: the
 // pattern of 2^−e = 2^−floor(log2 r), for any normal r.
 constexpr std::uint64_t kDoubleTwoTo1023Bits = 0x7fe0000000000000u;
-static_assert(std::bit_cast<std::uint64_t>(std::numeric_limits<double>::infinity()) == kDoubleExponentMask);
+static_assert(std::bit_cast<std::uint64_t>(std::numeric_limits<double>::infinity()) ==
+              kDoubleExponentMask);
 static_assert(std::bit_cast<std::uint64_t>(0x1p1023) == kDoubleTwoTo1023Bits);
 
 // Float ↔ double through the bits: converting a subnormal float in hardware
@@ -83,11 +90,13 @@ inline double to_double(std::uint32_t b) {
 // a double reference to float in the accumulation.
 inline std::uint32_t round_to_float_bits(double r) {
   if (r >= 0x1p-126) return std::bit_cast<std::uint32_t>(static_cast<float>(r));
-  const double q = r * 0x1p149;  // exact, < 2^23
+  const double q = r * 0x1p149;                              // exact, < 2^23
   return static_cast<std::uint32_t>((q + 0x1p52) - 0x1p52);  // RN to integer; 2^23 → FLT_MIN's bits
 }
 // Both patterns encode the same value (bitwise equal, or +0 and −0).
-inline bool same_float(std::uint32_t a, std::uint32_t b) { return a == b || ((a | b) & kFloatMagnitudeMask) == 0; }
+inline bool same_float(std::uint32_t a, std::uint32_t b) {
+  return a == b || ((a | b) & kFloatMagnitudeMask) == 0;
+}
 // erf_histogram_bucket without a libm call.
 inline std::size_t bucket_fast(double err, bool cr) {
   if (cr) return 0;
@@ -118,7 +127,9 @@ void ErfFloatAccum::main_slow(double x, float y, double ref) {
   }
   const double err_ulp = err_abs / ulp_float(exact);
   stats.add(x, err_ulp, err_abs, same_float(yb, cr));
-  if (!bins.empty()) bins[std::min(bins.size() - 1, static_cast<std::size_t>(x * bin_scale))].add(x, err_ulp, err_abs);
+  if (!bins.empty())
+    bins[std::min(bins.size() - 1, static_cast<std::size_t>(x * bin_scale))].add(x, err_ulp,
+                                                                                 err_abs);
 }
 
 void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
@@ -136,7 +147,8 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   if (t.ok) {
     for (std::size_t k = 0; k < n; ++k) ref[k] = t(xd[k]);
     const double direct = std::erf(xd[n - 1]);
-    selfcheck = std::max(selfcheck, std::abs(ref[n - 1] - direct) / static_cast<double>(ulp_double(direct)));
+    selfcheck = std::max(selfcheck,
+                         std::abs(ref[n - 1] - direct) / static_cast<double>(ulp_double(direct)));
   } else {
     for (std::size_t k = 0; k < n; ++k) ref[k] = std::erf(xd[k]);
   }
@@ -144,14 +156,16 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   for (std::size_t k = 0; k < n; ++k) {
     // 1/ulp_float(ref) = 2^23 · min(2^−floor(log2 ref), 2^126), through the exponent bits.
     const std::uint64_t e = std::bit_cast<std::uint64_t>(ref[k]) & kDoubleExponentMask;
-    const double inv_p2 = std::bit_cast<double>(kDoubleTwoTo1023Bits - e);  // 2^−floor(log2 ref); 2^1023 for 0
+    const double inv_p2 =
+        std::bit_cast<double>(kDoubleTwoTo1023Bits - e);  // 2^−floor(log2 ref); 2^1023 for 0
     const double inv = (inv_p2 < 0x1p126 ? inv_p2 : 0x1p126) * 0x1p23;
     err_abs[k] = std::abs(err_abs[k] - ref[k]);
     err_ulp[k] = err_abs[k] * inv;
   }
   for (std::size_t k = 0; k < n; ++k) {
     const auto yb = std::bit_cast<std::uint32_t>(y[k]);
-    if ((yb & kFloatExponentMask) == kFloatExponentMask || near_float_midpoint(ref[k])) [[unlikely]] {  // ±inf, NaN
+    if ((yb & kFloatExponentMask) == kFloatExponentMask || near_float_midpoint(ref[k]))
+        [[unlikely]] {  // ±inf, NaN
       bucket[k] = kSkip;
       main_slow(xd[k], y[k], ref[k]);
       continue;
@@ -166,12 +180,15 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   double max_ulp = -1, max_ulp_x = 0, max_abs = -1, max_abs_x = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint8_t b = bucket[k];
-    if (b == kSkip) [[unlikely]] continue;
+    if (b == kSkip) [[unlikely]]
+      continue;
     ++count;
     ++hist[k & 3][b];
     (k & 1 ? sq1 : sq0) += err_ulp[k] * err_ulp[k];
-    if (err_ulp[k] > max_ulp) [[unlikely]] max_ulp = err_ulp[k], max_ulp_x = xd[k];
-    if (err_abs[k] > max_abs) [[unlikely]] max_abs = err_abs[k], max_abs_x = xd[k];
+    if (err_ulp[k] > max_ulp) [[unlikely]]
+      max_ulp = err_ulp[k], max_ulp_x = xd[k];
+    if (err_abs[k] > max_abs) [[unlikely]]
+      max_abs = err_abs[k], max_abs_x = xd[k];
   }
   ErfStats run;
   run.count = count;
@@ -186,7 +203,9 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   stats.merge(run);
 
   if (bins.empty() || count == 0) return;
-  const auto bin_of = [&](double v) { return std::min(bins.size() - 1, static_cast<std::size_t>(v * bin_scale)); };
+  const auto bin_of = [&](double v) {
+    return std::min(bins.size() - 1, static_cast<std::size_t>(v * bin_scale));
+  };
   if (bin_of(xd[0]) == bin_of(xd[n - 1])) {
     ErfBin bin;
     bin.count = count;
@@ -253,22 +272,27 @@ std::vector<FloatSegment> float_segments(const ErfFloatOptions& o) {
   if (o.exhaustive) {
     const std::uint32_t far_stride = std::max<std::uint32_t>(1, o.exhaustive_tail_stride);
     s.push_back({FloatSegment::bits, 0, 1, 0, kErfFloatTailBits, false});
-    s.push_back({FloatSegment::bits, kErfFloatTailBits, 1, 0, kErfFloatFarBits - kErfFloatTailBits, true});
-    s.push_back({FloatSegment::bits, kErfFloatFarBits, far_stride, 0, (kErfFloatMaxBits - kErfFloatFarBits) / far_stride + 1, true});
+    s.push_back(
+        {FloatSegment::bits, kErfFloatTailBits, 1, 0, kErfFloatFarBits - kErfFloatTailBits, true});
+    s.push_back({FloatSegment::bits, kErfFloatFarBits, far_stride, 0,
+                 (kErfFloatMaxBits - kErfFloatFarBits) / far_stride + 1, true});
     return s;
   }
   const std::uint32_t stride = std::max<std::uint32_t>(1, o.stride);
   const std::uint32_t tail_stride = std::max<std::uint32_t>(1, o.tail_stride);
   s.push_back({FloatSegment::bits, 0, stride, 0, (kErfFloatTailBits - 1) / stride + 1, false});
   if (o.grid_log2 > 0) {
-    const int g = static_cast<int>(std::min<std::uint32_t>(o.grid_log2, 24));  // i·step exact for i < 2^24
+    const int g =
+        static_cast<int>(std::min<std::uint32_t>(o.grid_log2, 24));  // i·step exact for i < 2^24
     s.push_back({FloatSegment::grid, 0, 0, std::ldexp(4.0f, -g), std::uint64_t{1} << g, false});
   }
-  s.push_back({FloatSegment::bits, kErfFloatTailBits, tail_stride, 0, (kErfFloatMaxBits - kErfFloatTailBits) / tail_stride + 1, true});
+  s.push_back({FloatSegment::bits, kErfFloatTailBits, tail_stride, 0,
+               (kErfFloatMaxBits - kErfFloatTailBits) / tail_stride + 1, true});
   return s;
 }
 
-void finish_float_report(ErfReport& report, const std::vector<std::shared_ptr<ErfFloatAccum>>& parts,
+void finish_float_report(ErfReport& report,
+                         const std::vector<std::shared_ptr<ErfFloatAccum>>& parts,
                          const ErfFloatOptions& options) {
   report.tail_from = 4.0;
   report.series_x_max = 4.0;
@@ -285,9 +309,12 @@ void finish_float_report(ErfReport& report, const std::vector<std::shared_ptr<Er
     for (std::size_t b = 0; b < p->bins.size(); ++b) report.series[b].merge(p->bins[b]);
   }
   report.reference = fmt::format(
-      "correctly rounded float erf: x < 4 from a degree-6 Taylor expansion in double about erfl/expl centres "
-      "(runs of {} points) or std::erf in double, points within 8 double ulps of a float midpoint decided with "
-      "Boost.Math erf in cpp_bin_float_50 ({} here); Taylor vs std::erf at run ends: max {:.3g} double ulps; "
+      "correctly rounded float erf: x < 4 from a degree-6 Taylor expansion in double about "
+      "erfl/expl centres "
+      "(runs of {} points) or std::erf in double, points within 8 double ulps of a float midpoint "
+      "decided with "
+      "Boost.Math erf in cpp_bin_float_50 ({} here); Taylor vs std::erf at run ends: max {:.3g} "
+      "double ulps; "
       "x >= 4: RN(erf) = 1 (erfc(4) < 2^-25), erf = 1 - erfc(x) with erfc in double",
       kRun, report.ambiguous_resolved, report.reference_selfcheck_ulps);
 }
@@ -297,13 +324,17 @@ std::string float_coverage(const ErfFloatOptions& o, std::uint64_t odd_checked) 
   if (o.exhaustive) {
     const std::uint32_t far_stride = std::max<std::uint32_t>(1, o.exhaustive_tail_stride);
     if (far_stride == 1)
-      s = fmt::format("every float in [0, 4) ({} points) and every float in [4, FLT_MAX] ({} points)",
-                      group_digits(kErfFloatTailBits), group_digits(std::uint64_t{kErfFloatMaxBits} - kErfFloatTailBits + 1));
+      s = fmt::format(
+          "every float in [0, 4) ({} points) and every float in [4, FLT_MAX] ({} points)",
+          group_digits(kErfFloatTailBits),
+          group_digits(std::uint64_t{kErfFloatMaxBits} - kErfFloatTailBits + 1));
     else
-      s = fmt::format("every float in [0, 4) ({} points), every float in [4, 64) ({} points), every {}th bit pattern "
-                      "in [64, FLT_MAX] ({} points; above 64 erfc underflows in double and e^(-x^2) in float)",
-                      group_digits(kErfFloatTailBits), group_digits(kErfFloatFarBits - kErfFloatTailBits), far_stride,
-                      group_digits((kErfFloatMaxBits - kErfFloatFarBits) / far_stride + 1));
+      s = fmt::format(
+          "every float in [0, 4) ({} points), every float in [4, 64) ({} points), every {}th bit "
+          "pattern "
+          "in [64, FLT_MAX] ({} points; above 64 erfc underflows in double and e^(-x^2) in float)",
+          group_digits(kErfFloatTailBits), group_digits(kErfFloatFarBits - kErfFloatTailBits),
+          far_stride, group_digits((kErfFloatMaxBits - kErfFloatFarBits) / far_stride + 1));
   } else {
     const std::uint32_t stride = std::max<std::uint32_t>(1, o.stride);
     const std::uint32_t tail_stride = std::max<std::uint32_t>(1, o.tail_stride);
@@ -317,21 +348,45 @@ std::string float_coverage(const ErfFloatOptions& o, std::uint64_t odd_checked) 
     s += fmt::format(", every {}th bit pattern in [4, FLT_MAX] ({} points)", tail_stride,
                      group_digits((kErfFloatMaxBits - kErfFloatTailBits) / tail_stride + 1));
   }
-  s += fmt::format("; negatives by oddness on every {}th bit pattern in (0, FLT_MAX] ({} points); special values",
-                   std::max<std::uint32_t>(1, o.odd_stride), group_digits(odd_checked));
+  s += fmt::format(
+      "; negatives by oddness on every {}th bit pattern in (0, FLT_MAX] ({} points); special "
+      "values",
+      std::max<std::uint32_t>(1, o.odd_stride), group_digits(odd_checked));
   return s;
 }
 
 std::vector<float> float_specials() {
   constexpr float inf = std::numeric_limits<float>::infinity();
-  return {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
-          FLT_MIN, -FLT_MIN, 1.0f, -1.0f, FLT_MAX, -FLT_MAX, inf, -inf, std::numeric_limits<float>::quiet_NaN()};
+  return {0.0f,
+          -0.0f,
+          std::numeric_limits<float>::denorm_min(),
+          -std::numeric_limits<float>::denorm_min(),
+          FLT_MIN,
+          -FLT_MIN,
+          1.0f,
+          -1.0f,
+          FLT_MAX,
+          -FLT_MAX,
+          inf,
+          -inf,
+          std::numeric_limits<float>::quiet_NaN()};
 }
 
 std::vector<double> double_specials() {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  return {0.0, -0.0, std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::denorm_min(),
-          DBL_MIN, -DBL_MIN, 1.0, -1.0, DBL_MAX, -DBL_MAX, inf, -inf, std::numeric_limits<double>::quiet_NaN()};
+  return {0.0,
+          -0.0,
+          std::numeric_limits<double>::denorm_min(),
+          -std::numeric_limits<double>::denorm_min(),
+          DBL_MIN,
+          -DBL_MIN,
+          1.0,
+          -1.0,
+          DBL_MAX,
+          -DBL_MAX,
+          inf,
+          -inf,
+          std::numeric_limits<double>::quiet_NaN()};
 }
 
 bool same_result(double expected, double got) {
@@ -341,11 +396,14 @@ bool same_result(double expected, double got) {
 
 std::string double_coverage(const ErfDoubleSample& s, std::uint64_t odd_checked) {
   return fmt::format(
-      "sample: uniform grid i*{}/{} in [0, {}) ({} points), {} evenly spaced bit patterns in (0, {}) (every "
-      "binade), {} evenly spaced bit patterns in [{}, DBL_MAX]; negatives by oddness on {} bit patterns in "
+      "sample: uniform grid i*{}/{} in [0, {}) ({} points), {} evenly spaced bit patterns in (0, "
+      "{}) (every "
+      "binade), {} evenly spaced bit patterns in [{}, DBL_MAX]; negatives by oddness on {} bit "
+      "patterns in "
       "(0, DBL_MAX]; special values",
-      s.options.x_max, s.options.grid_points, s.options.x_max, group_digits(s.grid_end), group_digits(s.main_end - s.grid_end),
-      s.options.x_max, group_digits(s.x.size() - s.main_end), s.options.x_max, group_digits(odd_checked));
+      s.options.x_max, s.options.grid_points, s.options.x_max, group_digits(s.grid_end),
+      group_digits(s.main_end - s.grid_end), s.options.x_max, group_digits(s.x.size() - s.main_end),
+      s.options.x_max, group_digits(odd_checked));
 }
 
 }  // namespace detail

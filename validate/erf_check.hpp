@@ -39,8 +39,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "validate/erf_reference.hpp"
 #include "common/io.hpp"
+#include "validate/erf_reference.hpp"
 
 namespace sglab::validate {
 
@@ -63,7 +63,7 @@ inline std::size_t erf_histogram_bucket(double err_ulp, bool correctly_rounded) 
   if (err_ulp <= 0.5) return 1;
   int e = 0;
   const double m = std::frexp(err_ulp, &e);  // err = m·2^e, m ∈ [0.5, 1)
-  const int k = m == 0.5 ? e - 1 : e;         // smallest k with err ≤ 2^k (≥ 0 here)
+  const int k = m == 0.5 ? e - 1 : e;        // smallest k with err ≤ 2^k (≥ 0 here)
   return k > kErfHistMaxLog2 ? kErfHistBuckets - 1 : static_cast<std::size_t>(2 + k);
 }
 // Upper edge of bucket i in ulps: 0 ("cr"), 0.5, 1, 2, …, 2^24, +inf.
@@ -85,7 +85,7 @@ struct ErfStats {
   double max_ulp = -1;                  // −1 while empty
   double worst_x = 0;                   // x of max_ulp (smallest such x)
   double max_abs = -1;
-  double worst_abs_x = 0;               // x of max_abs
+  double worst_abs_x = 0;  // x of max_abs
   double sum_sq_ulp = 0;
   double first_nonfinite_x = std::numeric_limits<double>::quiet_NaN();
   std::array<std::uint64_t, kErfHistBuckets> histogram{};
@@ -95,7 +95,8 @@ struct ErfStats {
     correctly_rounded += cr;
     sum_sq_ulp += err_ulp * err_ulp;
     if (err_ulp > max_ulp || (err_ulp == max_ulp && x < worst_x)) max_ulp = err_ulp, worst_x = x;
-    if (err_abs > max_abs || (err_abs == max_abs && x < worst_abs_x)) max_abs = err_abs, worst_abs_x = x;
+    if (err_abs > max_abs || (err_abs == max_abs && x < worst_abs_x))
+      max_abs = err_abs, worst_abs_x = x;
     ++histogram[erf_histogram_bucket(err_ulp, cr)];
   }
   void add_nonfinite(double x) {
@@ -103,7 +104,9 @@ struct ErfStats {
     if (!(x >= first_nonfinite_x)) first_nonfinite_x = x;  // keeps the smallest
   }
   void merge(const ErfStats& o);
-  double rms_ulp() const { return count ? std::sqrt(sum_sq_ulp / static_cast<double>(count)) : 0.0; }
+  double rms_ulp() const {
+    return count ? std::sqrt(sum_sq_ulp / static_cast<double>(count)) : 0.0;
+  }
 };
 
 // One bin of the downsampled error-over-x series (for plots).
@@ -144,16 +147,16 @@ struct ErfReport {
   std::string variant;
   std::string precision;  // "float" | "double"
   ErfStats stats;         // every measured point (x ≥ 0)
-  ErfStats tail;          // the constant region alone (float x ≥ 4, double x ≥ 6), included in `stats`
-  double tail_from = 0;   // where the constant region starts
+  ErfStats tail;  // the constant region alone (float x ≥ 4, double x ≥ 6), included in `stats`
+  double tail_from = 0;        // where the constant region starts
   std::vector<ErfBin> series;  // max error per bin of x over [0, series_x_max)
   double series_x_max = 0;
   ErfOddness oddness;
   std::vector<ErfSpecial> specials;
   std::uint64_t ambiguous_resolved = 0;  // float: reference points decided in 50 digits
   double reference_selfcheck_ulps = 0;   // max deviation of the fast reference from an independent
-                                         // evaluation at spot points, in double ulps (float: std::erf,
-                                         // double: direct 50-digit erf)
+                                         // evaluation at spot points, in double ulps (float:
+                                         // std::erf, double: direct 50-digit erf)
   std::string coverage;                  // which inputs were covered, in words
   std::string reference;                 // how the reference was computed, in words
   double seconds = 0;                    // wall time of the check
@@ -168,7 +171,8 @@ struct ErfReport {
 // a range of patterns).
 inline constexpr std::uint32_t kErfFloatTailBits = 0x40800000u;  // 4.0f: from here RN(erf) = 1
 inline constexpr std::uint32_t kErfFloatMaxBits = 0x7f7fffffu;   // FLT_MAX = (2 − 2^−23)·2^127
-inline constexpr std::uint32_t kErfFloatFarBits = 0x42800000u;   // 64.0f: exhaustive_tail_stride applies above
+inline constexpr std::uint32_t kErfFloatFarBits =
+    0x42800000u;  // 64.0f: exhaustive_tail_stride applies above
 static_assert(std::bit_cast<std::uint32_t>(4.0f) == kErfFloatTailBits);
 static_assert(std::bit_cast<std::uint32_t>(std::numeric_limits<float>::max()) == kErfFloatMaxBits);
 static_assert(std::bit_cast<std::uint32_t>(64.0f) == kErfFloatFarBits);
@@ -216,7 +220,8 @@ struct ErfFloatAccum {
 };
 
 std::shared_ptr<ErfFloatAccum> make_float_accum(std::size_t bins);
-void finish_float_report(ErfReport& report, const std::vector<std::shared_ptr<ErfFloatAccum>>& parts,
+void finish_float_report(ErfReport& report,
+                         const std::vector<std::shared_ptr<ErfFloatAccum>>& parts,
                          const ErfFloatOptions& options);
 std::string float_coverage(const ErfFloatOptions& options, std::uint64_t odd_checked);
 std::vector<float> float_specials();
@@ -233,30 +238,33 @@ struct FloatSegment {
   std::uint32_t stride;  // bits: pattern stride
   float step;            // grid: x = i·step (a power of two)
   std::uint64_t n;
-  bool tail;             // x ≥ 4 (constant region)
+  bool tail;  // x ≥ 4 (constant region)
 };
 std::vector<FloatSegment> float_segments(const ErfFloatOptions& options);
 
 template <class F, class X>
-void float_segment_loop(F& f, const FloatSegment& seg, X xs, tbb::enumerable_thread_specific<std::shared_ptr<ErfFloatAccum>>& ets,
+void float_segment_loop(F& f, const FloatSegment& seg, X xs,
+                        tbb::enumerable_thread_specific<std::shared_ptr<ErfFloatAccum>>& ets,
                         io::Progress* progress) {
   const std::uint64_t runs = (seg.n + kRun - 1) / kRun;
-  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, runs, 4), [&](const tbb::blocked_range<std::uint64_t>& r) {
-    ErfFloatAccum& acc = *ets.local();
-    alignas(64) float xb[kRun];
-    alignas(64) float yb[kRun];
-    for (std::uint64_t run = r.begin(); run != r.end(); ++run) {
-      const std::uint64_t i0 = run * kRun;
-      const auto n = static_cast<std::size_t>(std::min(seg.n, i0 + kRun) - i0);
-      for (std::size_t k = 0; k < n; ++k) xb[k] = xs(i0 + k);
-      for (std::size_t k = 0; k < n; ++k) yb[k] = f(xb[k]);  // the only per-variant code
-      if (seg.tail)
-        acc.tail_run(xb, yb, n);
-      else
-        acc.main_run(xb, yb, n);
-      if (progress) progress->advance(n);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, runs, 4),
+                    [&](const tbb::blocked_range<std::uint64_t>& r) {
+                      ErfFloatAccum& acc = *ets.local();
+                      alignas(64) float xb[kRun];
+                      alignas(64) float yb[kRun];
+                      for (std::uint64_t run = r.begin(); run != r.end(); ++run) {
+                        const std::uint64_t i0 = run * kRun;
+                        const auto n = static_cast<std::size_t>(std::min(seg.n, i0 + kRun) - i0);
+                        for (std::size_t k = 0; k < n; ++k) xb[k] = xs(i0 + k);
+                        for (std::size_t k = 0; k < n; ++k)
+                          yb[k] = f(xb[k]);  // the only per-variant code
+                        if (seg.tail)
+                          acc.tail_run(xb, yb, n);
+                        else
+                          acc.main_run(xb, yb, n);
+                        if (progress) progress->advance(n);
+                      }
+                    });
 }
 
 }  // namespace detail
@@ -276,15 +284,23 @@ ErfReport check_erf_float(F f, const ErfFloatOptions& options = {}, std::string_
   std::uint64_t total = 0;
   for (const FloatSegment& s : segments) total += s.n;
   std::unique_ptr<io::Progress> progress;
-  if (!options.progress_label.empty()) progress = std::make_unique<io::Progress>(options.progress_label, total);
+  if (!options.progress_label.empty())
+    progress = std::make_unique<io::Progress>(options.progress_label, total);
 
-  tbb::enumerable_thread_specific<std::shared_ptr<ErfFloatAccum>> ets([&] { return make_float_accum(options.bins); });
+  tbb::enumerable_thread_specific<std::shared_ptr<ErfFloatAccum>> ets(
+      [&] { return make_float_accum(options.bins); });
   for (const FloatSegment& seg : segments) {
     if (seg.kind == FloatSegment::bits)
-      float_segment_loop(f, seg, [&seg](std::uint64_t i) { return float_from_bits(seg.first + static_cast<std::uint32_t>(i) * seg.stride); },
-                         ets, progress.get());
+      float_segment_loop(
+          f, seg,
+          [&seg](std::uint64_t i) {
+            return float_from_bits(seg.first + static_cast<std::uint32_t>(i) * seg.stride);
+          },
+          ets, progress.get());
     else
-      float_segment_loop(f, seg, [&seg](std::uint64_t i) { return static_cast<float>(i) * seg.step; }, ets, progress.get());
+      float_segment_loop(
+          f, seg, [&seg](std::uint64_t i) { return static_cast<float>(i) * seg.step; }, ets,
+          progress.get());
   }
   if (progress) progress->finish();
   std::vector<std::shared_ptr<ErfFloatAccum>> parts(ets.begin(), ets.end());
@@ -293,19 +309,22 @@ ErfReport check_erf_float(F f, const ErfFloatOptions& options = {}, std::string_
   const std::uint32_t odd_stride = std::max<std::uint32_t>(1, options.odd_stride);
   const std::uint64_t odd_n = (kErfFloatMaxBits - 1) / odd_stride + 1;
   tbb::enumerable_thread_specific<ErfOddness> odd;
-  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, odd_n, 4096), [&](const tbb::blocked_range<std::uint64_t>& r) {
-    ErfOddness& o = odd.local();
-    for (std::uint64_t i = r.begin(); i != r.end(); ++i) {
-      const float x = float_from_bits(1 + static_cast<std::uint32_t>(i) * odd_stride);
-      const float p = f(x), m = f(-x);
-      ++o.checked;
-      const bool ok = (std::isnan(p) && std::isnan(m)) || std::bit_cast<std::uint32_t>(m) == std::bit_cast<std::uint32_t>(-p);
-      if (!ok) {
-        ++o.violations;
-        if (!(x >= o.first_violation_x)) o.first_violation_x = x;
-      }
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::uint64_t>(0, odd_n, 4096),
+      [&](const tbb::blocked_range<std::uint64_t>& r) {
+        ErfOddness& o = odd.local();
+        for (std::uint64_t i = r.begin(); i != r.end(); ++i) {
+          const float x = float_from_bits(1 + static_cast<std::uint32_t>(i) * odd_stride);
+          const float p = f(x), m = f(-x);
+          ++o.checked;
+          const bool ok = (std::isnan(p) && std::isnan(m)) ||
+                          std::bit_cast<std::uint32_t>(m) == std::bit_cast<std::uint32_t>(-p);
+          if (!ok) {
+            ++o.violations;
+            if (!(x >= o.first_violation_x)) o.first_violation_x = x;
+          }
+        }
+      });
   for (const ErfOddness& o : odd) {
     report.oddness.checked += o.checked;
     report.oddness.violations += o.violations;
@@ -351,38 +370,45 @@ ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view varia
     std::vector<ErfBin> bins;
   };
   const double bin_scale = static_cast<double>(s.options.bins) / s.options.x_max;
-  tbb::enumerable_thread_specific<Acc> ets([&] { return Acc{{}, {}, std::vector<ErfBin>(s.options.bins)}; });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.x.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    Acc& acc = ets.local();
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const double x = s.x[i];
-      const double y = f(x);
-      const bool is_tail = i >= s.main_end;
-      if (!std::isfinite(y)) {
-        acc.stats.add_nonfinite(x);
-        if (is_tail) acc.tail.add_nonfinite(x);
-        continue;
-      }
-      if (is_tail) {  // exact = 1 − erfc ∈ (1 − 2^−54, 1): RN = 1, ulp_double = 2^−53
-        const long double err_abs = std::abs((static_cast<long double>(y) - 1.0L) + s.ref[i]);
-        const double err_ulp = static_cast<double>(err_abs * 0x1p53L);  // err_abs / 2^−53
-        acc.stats.add(x, err_ulp, static_cast<double>(err_abs), y == 1.0);
-        acc.tail.add(x, err_ulp, static_cast<double>(err_abs), y == 1.0);
-      } else {
-        const long double exact = s.ref[i];
-        const long double err_abs = std::abs(static_cast<long double>(y) - exact);
-        const double err_ulp = exact_ulp_error_double(y, exact);
-        acc.stats.add(x, err_ulp, static_cast<double>(err_abs), y == static_cast<double>(exact));
-        if (!acc.bins.empty())
-          acc.bins[std::min(acc.bins.size() - 1, static_cast<std::size_t>(x * bin_scale))].add(x, err_ulp,
-                                                                                                  static_cast<double>(err_abs));
-      }
-    }
+  tbb::enumerable_thread_specific<Acc> ets([&] {
+    return Acc{{}, {}, std::vector<ErfBin>(s.options.bins)};
   });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, s.x.size(), 4096),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        Acc& acc = ets.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const double x = s.x[i];
+          const double y = f(x);
+          const bool is_tail = i >= s.main_end;
+          if (!std::isfinite(y)) {
+            acc.stats.add_nonfinite(x);
+            if (is_tail) acc.tail.add_nonfinite(x);
+            continue;
+          }
+          if (is_tail) {  // exact = 1 − erfc ∈ (1 − 2^−54, 1): RN = 1, ulp_double = 2^−53
+            const long double err_abs = std::abs((static_cast<long double>(y) - 1.0L) + s.ref[i]);
+            const double err_ulp = static_cast<double>(err_abs * 0x1p53L);  // err_abs / 2^−53
+            acc.stats.add(x, err_ulp, static_cast<double>(err_abs), y == 1.0);
+            acc.tail.add(x, err_ulp, static_cast<double>(err_abs), y == 1.0);
+          } else {
+            const long double exact = s.ref[i];
+            const long double err_abs = std::abs(static_cast<long double>(y) - exact);
+            const double err_ulp = exact_ulp_error_double(y, exact);
+            acc.stats.add(x, err_ulp, static_cast<double>(err_abs),
+                          y == static_cast<double>(exact));
+            if (!acc.bins.empty())
+              acc.bins[std::min(acc.bins.size() - 1, static_cast<std::size_t>(x * bin_scale))].add(
+                  x, err_ulp, static_cast<double>(err_abs));
+          }
+        }
+      });
   report.series.assign(s.options.bins, ErfBin{});
   for (std::size_t b = 0; b < report.series.size(); ++b) {
-    report.series[b].x_lo = s.options.x_max * static_cast<double>(b) / static_cast<double>(s.options.bins);
-    report.series[b].x_hi = s.options.x_max * static_cast<double>(b + 1) / static_cast<double>(s.options.bins);
+    report.series[b].x_lo =
+        s.options.x_max * static_cast<double>(b) / static_cast<double>(s.options.bins);
+    report.series[b].x_hi =
+        s.options.x_max * static_cast<double>(b + 1) / static_cast<double>(s.options.bins);
   }
   for (const Acc& a : ets) {
     report.stats.merge(a.stats);
@@ -396,7 +422,8 @@ ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view varia
     const double x = std::bit_cast<double>(1 + (max_bits - 1) / n_odd * i);
     const double p = f(x), m = f(-x);
     ++report.oddness.checked;
-    const bool ok = (std::isnan(p) && std::isnan(m)) || std::bit_cast<std::uint64_t>(m) == std::bit_cast<std::uint64_t>(-p);
+    const bool ok = (std::isnan(p) && std::isnan(m)) ||
+                    std::bit_cast<std::uint64_t>(m) == std::bit_cast<std::uint64_t>(-p);
     if (!ok) {
       ++report.oddness.violations;
       if (!(x >= report.oddness.first_violation_x)) report.oddness.first_violation_x = x;

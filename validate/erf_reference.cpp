@@ -7,12 +7,12 @@
 #include <limits>
 #include <stdexcept>
 
-#include <boost/math/special_functions/erf.hpp>
-#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <boost/math/special_functions/erf.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
 
 namespace sglab::validate {
 
@@ -27,11 +27,13 @@ const Big& two_over_sqrt_pi_50() {
 
 // The T (float or double) nearest to v: the conversion through double, or
 // one of its two neighbours when that is closer (ties keep the conversion).
-template <class T> T round_to_nearest(const Big& v) {
+template <class T>
+T round_to_nearest(const Big& v) {
   const T r = static_cast<T>(static_cast<double>(v));
   T best = r;
   Big best_d = abs(Big(r) - v);
-  for (T nb : {std::nextafter(r, -std::numeric_limits<T>::infinity()), std::nextafter(r, std::numeric_limits<T>::infinity())}) {
+  for (T nb : {std::nextafter(r, -std::numeric_limits<T>::infinity()),
+               std::nextafter(r, std::numeric_limits<T>::infinity())}) {
     const Big d = abs(Big(nb) - v);
     if (d < best_d) best = nb, best_d = d;
   }
@@ -40,11 +42,13 @@ template <class T> T round_to_nearest(const Big& v) {
 
 // Taylor coefficients erf^(k)(x0)/k!, k = 0 … N−1, in 50 digits:
 // erf^(k)(x) = (2/√π)(−1)^(k−1) H_{k−1}(x) e^{−x²} (physicists' Hermite H).
-template <std::size_t N> std::array<Big, N> taylor_coefficients_50(const Big& x0) {
+template <std::size_t N>
+std::array<Big, N> taylor_coefficients_50(const Big& x0) {
   std::array<Big, N> H;  // H_0 … H_{N−2}: H_{n+1} = 2x H_n − 2n H_{n−1}
   H[0] = 1;
   if (N > 2) H[1] = 2 * x0;
-  for (std::size_t n = 1; n + 2 < N; ++n) H[n + 1] = 2 * x0 * H[n] - 2 * static_cast<unsigned>(n) * H[n - 1];
+  for (std::size_t n = 1; n + 2 < N; ++n)
+    H[n + 1] = 2 * x0 * H[n] - 2 * static_cast<unsigned>(n) * H[n - 1];
   std::array<Big, N> c;
   c[0] = boost::math::erf(x0);
   const Big g = two_over_sqrt_pi_50() * exp(-x0 * x0);
@@ -81,8 +85,12 @@ Big erf_50(float x) { return boost::math::erf(Big(x)); }
 
 }  // namespace
 
-long double erf_reference_50(double x) { return static_cast<long double>(boost::math::erf(Big(x))); }
-long double erfc_reference_50(double x) { return static_cast<long double>(boost::math::erfc(Big(x))); }
+long double erf_reference_50(double x) {
+  return static_cast<long double>(boost::math::erf(Big(x)));
+}
+long double erfc_reference_50(double x) {
+  return static_cast<long double>(boost::math::erfc(Big(x)));
+}
 
 namespace detail {
 
@@ -103,7 +111,8 @@ ErfTaylorFloat erf_taylor_float(double x_first, double x0, double x_last) {
   t.ok = true;
   t.x0 = x0;
   const long double X = x0;
-  const long double g = 1.1283791670955125738961589031215452L * std::exp(-X * X);  // 2/√π · e^(−x0²)
+  const long double g =
+      1.1283791670955125738961589031215452L * std::exp(-X * X);  // 2/√π · e^(−x0²)
   long double H[6];
   H[0] = 1;
   H[1] = 2 * X;
@@ -122,7 +131,8 @@ long double erf_special_expected_double(double x) {
   if (std::isnan(x)) return x;
   if (std::isinf(x)) return x > 0 ? 1.0L : -1.0L;
   if (x == 0) return x;  // keeps the sign of zero
-  const double best = round_to_nearest<double>(boost::math::erf(Big(std::abs(x))));  // RN to double, decided in 50 digits
+  const double best = round_to_nearest<double>(
+      boost::math::erf(Big(std::abs(x))));  // RN to double, decided in 50 digits
   return x < 0 ? -best : best;
 }
 
@@ -138,7 +148,8 @@ ErfFloatReference erf_reference_float(float x) {
     r = {1.0 - std::erfc(static_cast<double>(a)), 1.0f, false};
   } else {
     const double y = std::erf(static_cast<double>(a));
-    r = detail::near_float_midpoint(y) ? detail::erf_resolve_float(a) : ErfFloatReference{y, static_cast<float>(y), false};
+    r = detail::near_float_midpoint(y) ? detail::erf_resolve_float(a)
+                                       : ErfFloatReference{y, static_cast<float>(y), false};
   }
   if (x < 0) r.exact = -r.exact, r.rounded = -r.rounded;
   return r;
@@ -164,7 +175,8 @@ ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options) {
     s.x.push_back(std::bit_cast<double>(1 + (xmax_bits - 1) / options.log_points * k));
   s.main_end = s.x.size();
   for (std::uint32_t k = 0; k < options.tail_points; ++k) {
-    const std::uint64_t step = options.tail_points > 1 ? (dmax_bits - xmax_bits) / (options.tail_points - 1) : 0;
+    const std::uint64_t step =
+        options.tail_points > 1 ? (dmax_bits - xmax_bits) / (options.tail_points - 1) : 0;
     s.x.push_back(std::bit_cast<double>(xmax_bits + step * k));
   }
   s.ref.assign(s.x.size(), 0.0L);
@@ -174,42 +186,53 @@ ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options) {
   // (remainder < (2/√π)·1.0865·2^6·√12!/13!·h^13 < 2^−100).
   constexpr std::size_t kDeg = 13;
   const double step = options.x_max / static_cast<double>(std::max<std::size_t>(n_grid, 1));
-  const std::size_t run_len = std::clamp<std::size_t>(static_cast<std::size_t>(0x1p-6 / step), 1, detail::kRun);
+  const std::size_t run_len =
+      std::clamp<std::size_t>(static_cast<std::size_t>(0x1p-6 / step), 1, detail::kRun);
   const std::size_t runs = (s.grid_end + run_len - 1) / run_len;
   tbb::enumerable_thread_specific<double> selfcheck(0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t run = r.begin(); run != r.end(); ++run) {
-      const std::size_t i0 = run * run_len, i1 = std::min(s.grid_end, i0 + run_len);
-      const double xa = s.x[i0], xb = s.x[i1 - 1], x0 = s.x[i0 + (i1 - i0 - 1) / 2];
-      const double h = std::max(x0 - xa, xb - x0);
-      if (xb <= 0.5) {
-        for (std::size_t i = i0; i < i1; ++i) s.ref[i] = erf_maclaurin(s.x[i]);
-      } else if (h * 64 <= x0 && h <= 0x1p-7) {
-        const auto big = taylor_coefficients_50<kDeg>(Big(x0));
-        long double c[kDeg];
-        for (std::size_t k = 0; k < kDeg; ++k) c[k] = static_cast<long double>(big[k]);
-        for (std::size_t i = i0; i < i1; ++i) s.ref[i] = horner(static_cast<long double>(s.x[i]) - x0, c);  // x − x0 exact (Sterbenz)
-      } else {
-        for (std::size_t i = i0; i < i1; ++i) s.ref[i] = erf_reference_50(s.x[i]);
-      }
-      if (run % 16 == 0 || run + 1 == runs) {  // spot check the run's far end against 50 digits
-        const long double direct = erf_reference_50(xb);
-        double& m = selfcheck.local();
-        m = std::max(m, static_cast<double>(std::abs(s.ref[i1 - 1] - direct) / ulp_double(direct)));
-      }
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t run = r.begin(); run != r.end(); ++run) {
+          const std::size_t i0 = run * run_len, i1 = std::min(s.grid_end, i0 + run_len);
+          const double xa = s.x[i0], xb = s.x[i1 - 1], x0 = s.x[i0 + (i1 - i0 - 1) / 2];
+          const double h = std::max(x0 - xa, xb - x0);
+          if (xb <= 0.5) {
+            for (std::size_t i = i0; i < i1; ++i) s.ref[i] = erf_maclaurin(s.x[i]);
+          } else if (h * 64 <= x0 && h <= 0x1p-7) {
+            const auto big = taylor_coefficients_50<kDeg>(Big(x0));
+            long double c[kDeg];
+            for (std::size_t k = 0; k < kDeg; ++k) c[k] = static_cast<long double>(big[k]);
+            for (std::size_t i = i0; i < i1; ++i)
+              s.ref[i] =
+                  horner(static_cast<long double>(s.x[i]) - x0, c);  // x − x0 exact (Sterbenz)
+          } else {
+            for (std::size_t i = i0; i < i1; ++i) s.ref[i] = erf_reference_50(s.x[i]);
+          }
+          if (run % 16 == 0 || run + 1 == runs) {  // spot check the run's far end against 50 digits
+            const long double direct = erf_reference_50(xb);
+            double& m = selfcheck.local();
+            m = std::max(
+                m, static_cast<double>(std::abs(s.ref[i1 - 1] - direct) / ulp_double(direct)));
+          }
+        }
+      });
   for (double m : selfcheck) s.selfcheck_ulps = std::max(s.selfcheck_ulps, m);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(s.grid_end, s.x.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      s.ref[i] = i < s.main_end ? erf_reference_50(s.x[i]) : erfc_reference_50(s.x[i]);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(s.grid_end, s.x.size(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        s.ref[i] =
+                            i < s.main_end ? erf_reference_50(s.x[i]) : erfc_reference_50(s.x[i]);
+                    });
   for (std::size_t i = s.main_end; i < s.x.size(); ++i)
-    if (!(s.ref[i] < 0x1p-54L)) throw std::logic_error("erf double sample: erfc(x_max) >= 2^-54, RN(erf) is not 1");
+    if (!(s.ref[i] < 0x1p-54L))
+      throw std::logic_error("erf double sample: erfc(x_max) >= 2^-54, RN(erf) is not 1");
   s.reference = fmt::format(
-      "erf in 50 digits (Boost.Math, cpp_bin_float_50), carried in long double: x <= 1/2 by its Maclaurin series, "
-      "the grid above by a degree-{} Taylor expansion about a 50-digit centre per run of {} points (max deviation "
-      "from direct 50-digit evaluation at spot points: {:.3g} double ulps), the other points directly; x >= {}: "
+      "erf in 50 digits (Boost.Math, cpp_bin_float_50), carried in long double: x <= 1/2 by its "
+      "Maclaurin series, "
+      "the grid above by a degree-{} Taylor expansion about a 50-digit centre per run of {} points "
+      "(max deviation "
+      "from direct 50-digit evaluation at spot points: {:.3g} double ulps), the other points "
+      "directly; x >= {}: "
       "RN(erf) = 1, erf = 1 - erfc(x) with erfc in 50 digits",
       kDeg - 1, run_len, s.selfcheck_ulps, options.x_max);
   return s;

@@ -39,9 +39,9 @@ namespace sglab::validate {
 // ---------------------------------------------------------------------------
 
 struct ErfFloatReference {
-  double exact;    // erf(x) to within a few double ulps (50-digit value when resolved)
-  float rounded;   // correctly rounded erf(x), signed zero kept
-  bool resolved;   // decided with cpp_bin_float_50
+  double exact;   // erf(x) to within a few double ulps (50-digit value when resolved)
+  float rounded;  // correctly rounded erf(x), signed zero kept
+  bool resolved;  // decided with cpp_bin_float_50
 };
 // Correctly rounded float erf at any float (±0, ±inf, NaN included).
 ErfFloatReference erf_reference_float(float x);
@@ -68,11 +68,11 @@ struct ErfDoubleOptions {
 // once and check every variant against it.
 struct ErfDoubleSample {
   ErfDoubleOptions options;
-  std::vector<double> x;          // [0, main_end): x < x_max; [main_end, size): tail
-  std::vector<long double> ref;   // erf(x) for the main part, erfc(x) for the tail
+  std::vector<double> x;         // [0, main_end): x < x_max; [main_end, size): tail
+  std::vector<long double> ref;  // erf(x) for the main part, erfc(x) for the tail
   std::size_t main_end = 0;
-  std::size_t grid_end = 0;       // [0, grid_end) is the uniform grid
-  double selfcheck_ulps = 0;      // max |Taylor − direct 50-digit| in double ulps at spot points
+  std::size_t grid_end = 0;   // [0, grid_end) is the uniform grid
+  double selfcheck_ulps = 0;  // max |Taylor − direct 50-digit| in double ulps at spot points
   std::string reference;
 };
 ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options = {});
@@ -98,8 +98,10 @@ inline bool near_float_midpoint(double y, int ulps = 8) {
   const double a = std::abs(y);
   if (a >= 0x1p-126) {  // float-normal range: the 29 bits below the float's last bit decide
     constexpr int kDroppedBits = 52 - 23;  // double significand bits a float does not keep
-    const auto low = static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(a) & ((std::uint64_t{1} << kDroppedBits) - 1));
-    const std::int64_t d = low - (std::int64_t{1} << (kDroppedBits - 1));  // distance from the midpoint pattern 100…0
+    const auto low = static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(a) &
+                                               ((std::uint64_t{1} << kDroppedBits) - 1));
+    const std::int64_t d =
+        low - (std::int64_t{1} << (kDroppedBits - 1));  // distance from the midpoint pattern 100…0
     return d <= ulps && d >= -ulps;
   }
   const double q = a * 0x1p149;  // in units of the subnormal spacing; exact

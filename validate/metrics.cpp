@@ -32,14 +32,16 @@ double rel_error(double value, double reference) {
   if (std::isnan(value) || std::isnan(reference)) return kNaN;
   if (value == reference) return 0;
   if (reference == 0) return kInf;
-  if (std::isinf(reference)) return std::isinf(value) ? kInf : 1;  // |x̂/±inf − 1| = 1; opposite infinities: inf
+  if (std::isinf(reference))
+    return std::isinf(value) ? kInf : 1;  // |x̂/±inf − 1| = 1; opposite infinities: inf
   return std::abs(value / reference - 1);
 }
 
 double max_peak_rel_error(std::span<const double> values, std::span<const double> references,
                           std::span<const double> peaks) {
   if (values.size() != references.size() || values.size() != peaks.size())
-    throw std::invalid_argument("max_peak_rel_error: values, references and peaks differ in length");
+    throw std::invalid_argument(
+        "max_peak_rel_error: values, references and peaks differ in length");
   double worst = 0;
   for (std::size_t i = 0; i < values.size(); ++i) {
     const double e = peak_rel_error(values[i], references[i], peaks[i]);
@@ -120,7 +122,8 @@ ErrorStats ErrorAccumulator::stats() const {
   return s;
 }
 
-PointErrors MetricAccumulator::add(double kappa, double cosine, double value, double reference, double peak) {
+PointErrors MetricAccumulator::add(double kappa, double cosine, double value, double reference,
+                                   double peak) {
   const PointErrors p = compare(value, reference, peak);
   ++points_;
   switch (p.status) {

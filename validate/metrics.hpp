@@ -50,7 +50,8 @@ bool significant(double reference, double peak);
 // smallest denormal for x = 0 and for values below the normal range; NaN for
 // non-finite x; for values that round to infinity, the spacing just below
 // the largest finite value).
-template <class T> double ulp_of(double reference) {
+template <class T>
+double ulp_of(double reference) {
   if (!std::isfinite(reference)) return std::numeric_limits<double>::quiet_NaN();
   const T a = static_cast<T>(std::abs(reference));
   if (!std::isfinite(a)) {
@@ -60,16 +61,19 @@ template <class T> double ulp_of(double reference) {
   // Spacing above a (for a power of two this is the larger spacing, the usual
   // "ulp(x) = 2^(e − p + 1)" convention).
   const T next = std::nextafter(a, std::numeric_limits<T>::infinity());
-  if (!std::isfinite(next)) return static_cast<double>(a) - static_cast<double>(std::nextafter(a, T(0)));
+  if (!std::isfinite(next))
+    return static_cast<double>(a) - static_cast<double>(std::nextafter(a, T(0)));
   return static_cast<double>(next) - static_cast<double>(a);
 }
 
 // |x̂ − x| / ulp(x) in precision T.
-template <class T> double ulp_error(double value, double reference) {
+template <class T>
+double ulp_error(double value, double reference) {
   const double e = abs_error(value, reference);
   if (e == 0 || std::isnan(e)) return e;
   const double u = ulp_of<T>(reference);
-  if (std::isnan(u)) return std::numeric_limits<double>::infinity();  // finite vs infinite reference
+  if (std::isnan(u))
+    return std::numeric_limits<double>::infinity();  // finite vs infinite reference
   return e / u;
 }
 

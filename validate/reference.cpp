@@ -33,9 +33,11 @@ namespace {
 
 void check_query(double kappa, double cosine) {
   if (!(std::isfinite(kappa) && kappa >= 0))
-    throw std::invalid_argument(fmt::format("reference: kappa must be finite and >= 0, got {}", kappa));
+    throw std::invalid_argument(
+        fmt::format("reference: kappa must be finite and >= 0, got {}", kappa));
   if (!(cosine >= -1 && cosine <= 1))
-    throw std::invalid_argument(fmt::format("reference: cosine must be in [-1, 1], got {}", cosine));
+    throw std::invalid_argument(
+        fmt::format("reference: cosine must be in [-1, 1], got {}", cosine));
 }
 
 // Cache key: the bit patterns of (κ, c) and the precision (the two modes give
@@ -61,7 +63,8 @@ struct ReferenceEngine::Impl {
   std::unordered_map<Key, ReferencePoint, KeyHash> cache;
 
   ReferencePoint evaluate(double kappa, double cosine, Precision precision) {
-    const Key key{std::bit_cast<std::uint64_t>(kappa), std::bit_cast<std::uint64_t>(cosine), precision};
+    const Key key{std::bit_cast<std::uint64_t>(kappa), std::bit_cast<std::uint64_t>(cosine),
+                  precision};
     {
       std::shared_lock lock(mutex);
       if (auto it = cache.find(key); it != cache.end()) return it->second;
@@ -84,7 +87,8 @@ ReferencePoint ReferenceEngine::evaluate(double kappa, double cosine, Precision 
   return impl_->evaluate(kappa, cosine, precision);
 }
 
-std::vector<ReferencePoint> ReferenceEngine::evaluate(std::span<const Query> queries, Precision precision) const {
+std::vector<ReferencePoint> ReferenceEngine::evaluate(std::span<const Query> queries,
+                                                      Precision precision) const {
   for (const Query& q : queries) check_query(q.kappa, q.cosine);  // fail before any work
   std::vector<ReferencePoint> out(queries.size());
   tbb::parallel_for(std::size_t{0}, queries.size(), [&](std::size_t i) {

@@ -40,7 +40,8 @@ class ReferenceEngine {
   ReferenceEngine& operator=(const ReferenceEngine&) = delete;
 
   // Requires finite κ ≥ 0 and c ∈ [−1, 1]; throws std::invalid_argument otherwise.
-  ReferencePoint evaluate(double kappa, double cosine, Precision precision = Precision::standard) const;
+  ReferencePoint evaluate(double kappa, double cosine,
+                          Precision precision = Precision::standard) const;
 
   // Evaluates many points in parallel on all cores (TBB), results in query order.
   std::vector<ReferencePoint> evaluate(std::span<const Query> queries,

@@ -52,10 +52,17 @@ namespace sglab::validate::detail {
 // an absolute error 745ε ≈ 1.7e−13 in log H — above the 1e−13 budget. So the
 // double engine forms it in long double (ε = 5.4e−20); wider types use
 // themselves.
-template <class Real> struct Wide { using type = Real; };
-template <> struct Wide<double> { using type = long double; };
+template <class Real>
+struct Wide {
+  using type = Real;
+};
+template <>
+struct Wide<double> {
+  using type = long double;
+};
 
-template <class Real> struct Settings {
+template <class Real>
+struct Settings {
   // Gauss–Kronrod order, and the relative tolerance on the summed
   // |Kronrod − Gauss| estimate. That estimate is pessimistic for these
   // smooth integrands (the Kronrod value is far better than it): in double
@@ -80,7 +87,8 @@ template <class Real> struct Settings {
 // ~1 ulp) times e^{−x}; in the high-precision type, the power series
 // Σ (x²/4)^k/(k!)² (all terms positive) times e^{−x}, which is faster there
 // than Boost's generic-precision Bessel code and independent of it.
-template <class Real> Real scaled_bessel_i0(const Real& x) {
+template <class Real>
+Real scaled_bessel_i0(const Real& x) {
   using std::exp;
   using std::log;
   using std::sqrt;
@@ -115,7 +123,8 @@ template <class Real> Real scaled_bessel_i0(const Real& x) {
 }
 
 // I0(x) − 1 = Σ_{k≥1} (x²/4)^k / (k!)², without cancellation (used for x ≤ 1).
-template <class Real> Real bessel_i0_minus_one(const Real& x) {
+template <class Real>
+Real bessel_i0_minus_one(const Real& x) {
   const Real eps = std::numeric_limits<Real>::epsilon();
   const Real q = x * x / 4;
   Real term = q, sum = q;
@@ -131,13 +140,18 @@ template <class Real> Real bessel_i0_minus_one(const Real& x) {
 // Boost's Gauss–Kronrod (which accepts any value type with +, −, scaling by
 // Real and an abs()). The E component is pre-multiplied by `gamma` ≈ H/E so
 // that abs() = max(|h|, |γe|) weighs both relative errors alike.
-template <class Real> struct Pair {
+template <class Real>
+struct Pair {
   Real h{0}, e{0};
   Pair() = default;
   Pair(const Real& a, const Real& b) : h(a), e(b) {}
   template <class T, std::enable_if_t<std::is_arithmetic_v<T> || std::is_same_v<T, Real>, int> = 0>
   Pair(const T& v) : h(v), e(v) {}  // K(0) and static_cast<K>(Real) in Boost
-  Pair& operator+=(const Pair& o) { h += o.h; e += o.e; return *this; }
+  Pair& operator+=(const Pair& o) {
+    h += o.h;
+    e += o.e;
+    return *this;
+  }
   friend Pair operator+(Pair a, const Pair& b) { return a += b; }
   friend Pair operator-(const Pair& a, const Pair& b) { return {a.h - b.h, a.e - b.e}; }
   friend Pair operator-(const Pair& a) { return {-a.h, -a.e}; }
@@ -161,7 +175,8 @@ template <class Real> struct Pair {
 // times too large and narrow peaks are refined to the maximum depth. Each
 // segment is therefore mapped to [−1, 1] here and Boost is called with
 // max_depth = 0 (one Kronrod rule, for which its estimate is right).
-template <class Real, class K> struct Segment {
+template <class Real, class K>
+struct Segment {
   Real a, b;
   int side;  // which integrand (see `compute`)
   K value;
@@ -174,20 +189,24 @@ Segment<Real, K> kronrod_segment(const F& f, int side, const Real& a, const Real
   const Real mid = (a + b) / 2, half = (b - a) / 2;
   auto g = [&](const Real& x) -> K { return f(side, mid + half * x); };
   Real error = 0;
-  const K value = gauss_kronrod<Real, Settings<Real>::order>::integrate(g, Real(-1), Real(1), 0, Real(0), &error);
+  const K value = gauss_kronrod<Real, Settings<Real>::order>::integrate(g, Real(-1), Real(1), 0,
+                                                                        Real(0), &error);
   return {a, b, side, value * half, error * half};
 }
 
-template <class Real, class K> class AdaptiveQuadrature {
+template <class Real, class K>
+class AdaptiveQuadrature {
  public:
   // Integrand f(side, s); segments are added with `add` before `run`.
-  template <class F> void add(const F& f, int side, const Real& a, const Real& b) {
+  template <class F>
+  void add(const F& f, int side, const Real& a, const Real& b) {
     if (b > a) segments_.push_back(kronrod_segment<Real, K>(f, side, a, b));
   }
   // Splits [0, L] geometrically at w, 2w, 4w, ... (an integrand peaked at 0
   // that decays on the scale w), so that each segment sees a function that is
   // smooth on its own length.
-  template <class F> void add_from_peak(const F& f, int side, const Real& L, const Real& w) {
+  template <class F>
+  void add_from_peak(const F& f, int side, const Real& L, const Real& w) {
     Real a = 0, b = w > 0 ? std::min(w, L) : L;
     while (a < L) {
       add(f, side, a, b);
@@ -195,7 +214,8 @@ template <class Real, class K> class AdaptiveQuadrature {
       b = std::min(Real(2 * b), L);
     }
   }
-  template <class F> void run(const F& f, const Real& tolerance, int max_bisections = 400) {
+  template <class F>
+  void run(const F& f, const Real& tolerance, int max_bisections = 400) {
     using std::abs;
     for (int i = 0; i < max_bisections; ++i) {
       K total = 0;
@@ -231,7 +251,8 @@ template <class Real, class K> class AdaptiveQuadrature {
 
 // What the template computes. Values are in the wide type W (long double for
 // the double engine) so that a denormal result is rounded to double once.
-template <class Real> struct RawPoint {
+template <class Real>
+struct RawPoint {
   using W = typename Wide<Real>::type;
   W hemispherical = 0, irradiance = 0, normalized = 0;
   W hemispherical_error = 0, irradiance_error = 0;
@@ -242,11 +263,13 @@ template <class Real> struct RawPoint {
 // 1 − e^{−κ} = −expm1(−κ) so that nothing cancels:
 //   H(1) = 2π(1−e^{−κ})/κ, H(−1) = e^{−κ}H(1), H(1) − H(−1) = 2π(1−e^{−κ})²/κ.
 // Used only to normalise s; H and E themselves always come from quadrature.
-template <class W> W hemispherical_at_minus_one(const W& kappa) {
+template <class W>
+W hemispherical_at_minus_one(const W& kappa) {
   using std::exp;
   return 2 * boost::math::constants::pi<W>() * exp(-kappa) * (-boost::math::expm1(-kappa)) / kappa;
 }
-template <class W> W hemispherical_span(const W& kappa) {
+template <class W>
+W hemispherical_span(const W& kappa) {
   const W m = boost::math::expm1(-kappa);
   return 2 * boost::math::constants::pi<W>() * (m / kappa) * m;
 }
@@ -259,8 +282,9 @@ template <class W> W hemispherical_span(const W& kappa) {
 // relative to itself as c → −1, where both vanish linearly in δ.
 // Returned without the factor e^{−κ}; e^{x − κu} is formed as one exponential
 // so that I0(x) cannot overflow.
-template <class Real> Real difference_integrand(const Real& kappa, const Real& delta, const Real& r, const Real& u,
-                                                const Real& rho) {
+template <class Real>
+Real difference_integrand(const Real& kappa, const Real& delta, const Real& r, const Real& u,
+                          const Real& rho) {
   using boost::math::expm1;
   using std::exp;
   const Real x = kappa * r * rho;
@@ -282,7 +306,8 @@ template <class Real> Real difference_integrand(const Real& kappa, const Real& d
 //   s = e^{−κ} ∫₀¹ (d/κ) du / (expm1(−κ)/κ)².
 // d/κ is analytic in u (I0 is even, so I0(κrρ) is a power series in 1 − u²)
 // and accurate relative to itself for every c, so s is accurate relative to s.
-template <class Real> Real normalized_small_kappa(const Real& kappa, const Real& c, const Real& r) {
+template <class Real>
+Real normalized_small_kappa(const Real& kappa, const Real& c, const Real& r) {
   using boost::math::expm1;
   using std::exp;
   using std::sqrt;
@@ -304,8 +329,9 @@ template <class Real> Real normalized_small_kappa(const Real& kappa, const Real&
 // geometrically from ψ = 0 on the scale 1/(κ + 1) of e^{−κu}:
 //   (H(c) − H(−1)) / 2π = e^{−κ} ∫₀^{π/2} d(sin ψ) cos ψ dψ,
 //   s = e^{−κ} κ ∫ … dψ / expm1(−κ)²   (formed in the wide type W).
-template <class Real> typename Wide<Real>::type normalized_by_difference(const Real& kappa, const Real& c,
-                                                                         const Real& r) {
+template <class Real>
+typename Wide<Real>::type normalized_by_difference(const Real& kappa, const Real& c,
+                                                   const Real& r) {
   using W = typename Wide<Real>::type;
   using boost::math::expm1;
   using std::cos;
@@ -326,7 +352,8 @@ template <class Real> typename Wide<Real>::type normalized_by_difference(const R
 // The integrand of H/(2π·peak factor) at one point as f(side, s), with s ≥ 0
 // the angular offset from the peak, returned together with γ·u·f for E
 // (compute() below). kscale: see compute().
-template <class Real> struct PointIntegrand {
+template <class Real>
+struct PointIntegrand {
   enum Side { toward_horizon = 0, toward_pole = 1, boundary_layer = 2 };
   Real kappa, r, kscale;
   Real gamma = 1;  // ≈ H/E, so that both components weigh alike in abs(Pair)
@@ -366,9 +393,9 @@ template <class Real> struct PointIntegrand {
 // truncation exponent and gauss_cut the offset where the Gaussian reaches it
 // (compute()). Returns false when the peak factor underflows: H = E = s = 0.
 template <class Real>
-bool place_segments(AdaptiveQuadrature<Real, Pair<Real>>& quad, PointIntegrand<Real>& f, double kappa_in,
-                    double cosine_in, const Real& c, const Real& T, const Real& gauss_cut,
-                    typename Wide<Real>::type& log_peak) {
+bool place_segments(AdaptiveQuadrature<Real, Pair<Real>>& quad, PointIntegrand<Real>& f,
+                    double kappa_in, double cosine_in, const Real& c, const Real& T,
+                    const Real& gauss_cut, typename Wide<Real>::type& log_peak) {
   using W = typename Wide<Real>::type;
   using std::asin;
   using std::atan2;
@@ -411,8 +438,9 @@ bool place_segments(AdaptiveQuadrature<Real, Pair<Real>>& quad, PointIntegrand<R
 
 // s = (H − H(−1)) / (H(1) − H(−1)), docs/quantities.md, from H at the point.
 template <class Real>
-typename Wide<Real>::type normalized_from(double kappa_in, double cosine_in, const Real& kappa, const Real& c,
-                                          const Real& r, const typename Wide<Real>::type& hemispherical) {
+typename Wide<Real>::type normalized_from(double kappa_in, double cosine_in, const Real& kappa,
+                                          const Real& c, const Real& r,
+                                          const typename Wide<Real>::type& hemispherical) {
   using W = typename Wide<Real>::type;
   W normalized;
   if (kappa < std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon()) {
@@ -438,7 +466,8 @@ typename Wide<Real>::type normalized_from(double kappa_in, double cosine_in, con
 // H, E, s at one point, docs/quantities.md. Requires finite κ ≥ 0 and c ∈ [−1, 1]
 // (checked by the caller). Never NaN: where H underflows double the result is
 // 0 or a denormal.
-template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) {
+template <class Real>
+RawPoint<Real> compute(double kappa_in, double cosine_in) {
   using W = typename Wide<Real>::type;
   using std::asin;
   using std::exp;
@@ -498,7 +527,8 @@ template <class Real> RawPoint<Real> compute(double kappa_in, double cosine_in) 
 // RawPoint → ReferencePoint (rounding to double once). Both integrands are
 // nonnegative at every node (exponentials, I0e ≥ 0, ρ ≥ 0, u ≥ 0), so the L1
 // norm the quadrature would report equals its value: condition number 1.
-template <class Real> ReferencePoint to_reference_point(double kappa, double cosine, const RawPoint<Real>& raw) {
+template <class Real>
+ReferencePoint to_reference_point(double kappa, double cosine, const RawPoint<Real>& raw) {
   ReferencePoint p;
   p.kappa = kappa;
   p.cosine = cosine;

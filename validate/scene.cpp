@@ -6,9 +6,9 @@
 #include <tuple>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
+#include <nlohmann/json.hpp>
 
 #include "common/args.hpp"
 #include "common/io.hpp"
@@ -35,17 +35,21 @@ double finite_number(std::string_view source, const std::string& key, const json
 }
 
 Vec3 vector3(std::string_view source, const std::string& key, const json& v) {
-  if (!v.is_array()) fail(source, key, fmt::format("expected an array of 3 numbers, got {}", type_name(v)));
+  if (!v.is_array())
+    fail(source, key, fmt::format("expected an array of 3 numbers, got {}", type_name(v)));
   if (v.size() != 3) fail(source, key, fmt::format("expected 3 numbers, got {}", v.size()));
   Vec3 out;
-  for (std::size_t i = 0; i < 3; ++i) out[i] = finite_number(source, fmt::format("{}[{}]", key, i), v[i]);
+  for (std::size_t i = 0; i < 3; ++i)
+    out[i] = finite_number(source, fmt::format("{}[{}]", key, i), v[i]);
   return out;
 }
 
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // The cosine between a unit axis and a unit normal, kept in [−1, 1] against rounding.
-double cosine(const Vec3& axis, const Vec3& normal) { return std::clamp(dot(axis, normal), -1.0, 1.0); }
+double cosine(const Vec3& axis, const Vec3& normal) {
+  return std::clamp(dot(axis, normal), -1.0, 1.0);
+}
 
 }  // namespace
 
@@ -68,15 +72,18 @@ Scene parse_scene(std::string_view text, std::string_view source) {
   } catch (const io::InputError& e) {
     throw SceneError(e.what());
   }
-  if (!doc.is_object()) fail(source, "(top level)", fmt::format("expected an object, got {}", type_name(doc)));
+  if (!doc.is_object())
+    fail(source, "(top level)", fmt::format("expected an object, got {}", type_name(doc)));
   for (const auto& [key, value] : doc.items())
     if (key != "lights" && key != "provenance")
       fail(source, key, "unknown key (expected \"lights\" and optionally \"provenance\")");
   if (doc.contains("provenance") && !doc["provenance"].is_object())
-    fail(source, "provenance", fmt::format("expected an object, got {}", type_name(doc["provenance"])));
+    fail(source, "provenance",
+         fmt::format("expected an object, got {}", type_name(doc["provenance"])));
   if (!doc.contains("lights")) fail(source, "lights", "missing key");
   const json& lights = doc["lights"];
-  if (!lights.is_array()) fail(source, "lights", fmt::format("expected an array, got {}", type_name(lights)));
+  if (!lights.is_array())
+    fail(source, "lights", fmt::format("expected an array, got {}", type_name(lights)));
   if (lights.empty()) fail(source, "lights", "no lights");
   try {
     check_scene_limits(lights.size(), 0);  // before the lights are copied
@@ -100,18 +107,21 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (!(length > 1e-12) || !std::isfinite(length))
       fail(source, at + ".axis", fmt::format("cannot be normalized (length {})", length));
     for (double& x : light.axis) x /= length;
-    light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]) + 0.0;  // -0 is 0 (κ in [0, 0], not [-0, 0])
-    if (light.sharpness < 0) fail(source, at + ".sharpness", fmt::format("must be >= 0, got {}", light.sharpness));
+    light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]) +
+                      0.0;  // -0 is 0 (κ in [0, 0], not [-0, 0])
+    if (light.sharpness < 0)
+      fail(source, at + ".sharpness", fmt::format("must be >= 0, got {}", light.sharpness));
     // Every method is ranked in float (and sglab's models over the κ range):
     // κ must be a finite float in both precisions.
     if (light.sharpness > io::kFloatFormat.max_finite)
       fail(source, at + ".sharpness",
-           fmt::format("must be at most the largest finite float ({:.9g}), got {}", io::kFloatFormat.max_finite,
-                       light.sharpness));
+           fmt::format("must be at most the largest finite float ({:.9g}), got {}",
+                       io::kFloatFormat.max_finite, light.sharpness));
     light.amplitude = vector3(source, at + ".amplitude", l["amplitude"]);
     for (std::size_t ch = 0; ch < 3; ++ch) {
       if (light.amplitude[ch] < 0)
-        fail(source, fmt::format("{}.amplitude[{}]", at, ch), fmt::format("must be >= 0, got {}", light.amplitude[ch]));
+        fail(source, fmt::format("{}.amplitude[{}]", at, ch),
+             fmt::format("must be >= 0, got {}", light.amplitude[ch]));
       total_amplitude += light.amplitude[ch];
     }
     scene.lights.push_back(light);
@@ -141,14 +151,17 @@ std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals) {
 void check_scene_limits(std::size_t lights, std::size_t normals) {
   const double mb = static_cast<double>(scene_memory_bytes(lights, normals)) / 1e6;
   if (normals > kMaxSceneNormals)
-    throw SceneError(fmt::format("{} normals, at most {} (it would hold {:.0f} MB)", normals, kMaxSceneNormals, mb));
+    throw SceneError(fmt::format("{} normals, at most {} (it would hold {:.0f} MB)", normals,
+                                 kMaxSceneNormals, mb));
   if (lights > kMaxSceneLights)
-    throw SceneError(fmt::format("{} lights, at most {} (it would hold {:.0f} MB)", lights, kMaxSceneLights, mb));
+    throw SceneError(fmt::format("{} lights, at most {} (it would hold {:.0f} MB)", lights,
+                                 kMaxSceneLights, mb));
   if (lights > kMaxScenePairs / std::max<std::size_t>(normals, 1))
-    throw SceneError(fmt::format("{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} "
-                                 "MB); use fewer normals",
-                                 lights, normals, static_cast<double>(lights) * static_cast<double>(normals),
-                                 kMaxScenePairs, mb));
+    throw SceneError(fmt::format(
+        "{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} "
+        "MB); use fewer normals",
+        lights, normals, static_cast<double>(lights) * static_cast<double>(normals), kMaxScenePairs,
+        mb));
 }
 
 namespace {
@@ -169,9 +182,13 @@ std::vector<Lobe> lobes_of(const Scene& scene) {
   std::vector<Lobe> lobes;
   lobes.reserve(scene.lights.size());
   for (const auto& l : scene.lights)
-    lobes.push_back({l.sharpness, l.axis, {l.amplitude[0] / largest, l.amplitude[1] / largest, l.amplitude[2] / largest}});
+    lobes.push_back(
+        {l.sharpness,
+         l.axis,
+         {l.amplitude[0] / largest, l.amplitude[1] / largest, l.amplitude[2] / largest}});
   const auto key = [](const Lobe& x) { return std::tie(x.kappa, x.axis[0], x.axis[1], x.axis[2]); };
-  std::sort(lobes.begin(), lobes.end(), [&](const Lobe& a, const Lobe& b) { return key(a) < key(b); });
+  std::sort(lobes.begin(), lobes.end(),
+            [&](const Lobe& a, const Lobe& b) { return key(a) < key(b); });
   std::vector<Lobe> merged;
   for (const Lobe& l : lobes) {
     if (!merged.empty() && key(merged.back()) == key(l)) {
@@ -196,11 +213,13 @@ double method_value(const Method& m, FloatFormat precision, double cosine, doubl
 // least); each chunk's reference points are evaluated in parallel, then its
 // normals summed in parallel.
 template <class Visit>
-void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals, std::span<const Method> methods,
-                      FloatFormat precision, bool with_exact, Visit&& visit) {
+void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
+                      std::span<const Method> methods, FloatFormat precision, bool with_exact,
+                      Visit&& visit) {
   const std::vector<Lobe> lobes = lobes_of(scene);
   const std::size_t nl = lobes.size();
-  const std::size_t per_chunk = std::max<std::size_t>(1, kSceneChunkQueries / std::max<std::size_t>(nl, 1));
+  const std::size_t per_chunk =
+      std::max<std::size_t>(1, kSceneChunkQueries / std::max<std::size_t>(nl, 1));
   std::vector<Query> queries;
   std::vector<ReferencePoint> ref;
   for (std::size_t j0 = 0; j0 < normals.size(); j0 += per_chunk) {
@@ -212,7 +231,8 @@ void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals, std:
       ref = reference_engine().evaluate(queries);
       // The engine caches every point; a scene's points are met once, so keep
       // the cache from growing with the scene (as `sglab reference` does).
-      if (reference_engine().cache_size() > 4 * kSceneChunkQueries) reference_engine().clear_cache();
+      if (reference_engine().cache_size() > 4 * kSceneChunkQueries)
+        reference_engine().clear_cache();
     }
     tbb::parallel_for(j0, j1, [&](std::size_t j) {
       Vec3 exact{0, 0, 0};
@@ -237,24 +257,27 @@ void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals, std:
 
 std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals) {
   std::vector<Vec3> out(normals.size());
-  sum_over_normals(scene, normals, {}, FloatFormat::binary64, true,
-                   [&](std::size_t j, const Vec3& exact, const std::vector<Vec3>&) { out[j] = exact; });
+  sum_over_normals(
+      scene, normals, {}, FloatFormat::binary64, true,
+      [&](std::size_t j, const Vec3& exact, const std::vector<Vec3>&) { out[j] = exact; });
   return out;
 }
 
-std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals, const Method& method,
-                                   FloatFormat precision) {
+std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals,
+                                   const Method& method, FloatFormat precision) {
   std::vector<Vec3> out(normals.size());
-  sum_over_normals(scene, normals, std::span<const Method>(&method, 1), precision, false,
-                   [&](std::size_t j, const Vec3&, const std::vector<Vec3>& approx) { out[j] = approx[0]; });
+  sum_over_normals(
+      scene, normals, std::span<const Method>(&method, 1), precision, false,
+      [&](std::size_t j, const Vec3&, const std::vector<Vec3>& approx) { out[j] = approx[0]; });
   return out;
 }
 
-std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals, std::span<const Method> methods,
-                                 FloatFormat precision) {
+std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals,
+                                 std::span<const Method> methods, FloatFormat precision) {
   // Per thread: the largest |Ê − E| of each method, then the largest exact value.
   const std::size_t peak = methods.size();
-  tbb::combinable<std::vector<double>> partial([&] { return std::vector<double>(methods.size() + 1, 0.0); });
+  tbb::combinable<std::vector<double>> partial(
+      [&] { return std::vector<double>(methods.size() + 1, 0.0); });
   sum_over_normals(scene, normals, methods, precision, true,
                    [&](std::size_t, const Vec3& exact, const std::vector<Vec3>& approx) {
                      std::vector<double>& w = partial.local();
@@ -262,7 +285,8 @@ std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& no
                        w[peak] = std::max(w[peak], exact[ch]);
                        for (std::size_t m = 0; m < methods.size(); ++m) {
                          const double d = std::abs(approx[m][ch] - exact[ch]);
-                         w[m] = std::isfinite(d) ? std::max(w[m], d) : std::numeric_limits<double>::infinity();
+                         w[m] = std::isfinite(d) ? std::max(w[m], d)
+                                                 : std::numeric_limits<double>::infinity();
                        }
                      }
                    });

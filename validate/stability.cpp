@@ -50,7 +50,8 @@ std::size_t StabilityRow::failure_count() const {
   return n;
 }
 
-const StabilityRow* StabilityReport::find(std::string_view function, FloatFormat f, bool valid_inputs) const {
+const StabilityRow* StabilityReport::find(std::string_view function, FloatFormat f,
+                                          bool valid_inputs) const {
   for (const StabilityRow& r : rows)
     if (r.function == function && r.precision == f && r.valid_inputs == valid_inputs) return &r;
   return nullptr;
@@ -64,13 +65,18 @@ constexpr long double kInaccurateRelative = 1e-4L;
 
 }  // namespace
 
-template <class T> long double inaccuracy(T y, long double exact) {
+template <class T>
+long double inaccuracy(T y, long double exact) {
   // Relative wherever the exact value is a normal number of T; below, relative
   // to the smallest normal (a denormal result carries fewer bits by design).
-  const long double scale = std::max(std::abs(exact), static_cast<long double>(std::numeric_limits<T>::min()));
+  const long double scale =
+      std::max(std::abs(exact), static_cast<long double>(std::numeric_limits<T>::min()));
   return std::abs(static_cast<long double>(y) - exact) / scale;
 }
-template <class T> bool is_inaccurate(T y, long double exact) { return inaccuracy(y, exact) > kInaccurateRelative; }
+template <class T>
+bool is_inaccurate(T y, long double exact) {
+  return inaccuracy(y, exact) > kInaccurateRelative;
+}
 template long double inaccuracy<float>(float, long double);
 template long double inaccuracy<double>(double, long double);
 template bool is_inaccurate<float>(float, long double);

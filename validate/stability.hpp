@@ -74,9 +74,9 @@ struct StabilityRow {
   std::string function;
   Origin origin = Origin::sglab;
   FloatFormat precision = FloatFormat::binary64;
-  bool valid_inputs = true;   // finite κ ≥ 0, c ∈ [−1, 1], unit axes, finite x
-  std::string range;          // the documented output range, e.g. "[0, π]"
-  bool sign_checked = true;   // false where negative outputs are in range (erf, log-amplitudes)
+  bool valid_inputs = true;  // finite κ ≥ 0, c ∈ [−1, 1], unit axes, finite x
+  std::string range;         // the documented output range, e.g. "[0, π]"
+  bool sign_checked = true;  // false where negative outputs are in range (erf, log-amplitudes)
   // An approximation (a method, or a published approximate formula): its
   // output exceeding the exact quantity's range by its approximation error is
   // an accuracy matter (`sglab sweep`), so out_of_range does not make it fail.
@@ -84,7 +84,9 @@ struct StabilityRow {
   std::size_t evaluations = 0;
   std::array<FailureStats, kFailureKinds> failures{};
 
-  const FailureStats& operator[](FailureKind k) const { return failures[static_cast<std::size_t>(k)]; }
+  const FailureStats& operator[](FailureKind k) const {
+    return failures[static_cast<std::size_t>(k)];
+  }
   // Failures: nan, inf, negative, inaccurate, and out_of_range unless an
   // approximation (overflow is never a failure).
   bool is_failure(FailureKind k) const;
@@ -109,8 +111,10 @@ std::vector<double> method_sharpness_constants();
 
 // The `inaccurate` judgement: |y − exact| / max(|exact|, smallest normal of T),
 // and whether it exceeds 1e−4 (T = float or double).
-template <class T> long double inaccuracy(T y, long double exact);
-template <class T> bool is_inaccurate(T y, long double exact);
+template <class T>
+long double inaccuracy(T y, long double exact);
+template <class T>
+bool is_inaccurate(T y, long double exact);
 
 // Rows of origin sglab or refit (sglab's own primitives and models, and the
 // published formulas with sglab's refitted constants) with any failure on

@@ -28,7 +28,8 @@ using namespace stability_detail;
 constexpr Origin own = Origin::sglab, pub = Origin::published;
 
 // SG primitives (sg.hpp).
-template <class T> void probe_sg_primitives(Runner<T>& r) {
+template <class T>
+void probe_sg_primitives(Runner<T>& r) {
   r.cosine_kappa(
       "sg_evaluate(c, κ)", own, kUnit, [](T c, T k) { return sg_evaluate(c, k); },
       [](T c, T k) { return std::exp(L(k) * (L(c) - 1)); });
@@ -37,29 +38,36 @@ template <class T> void probe_sg_primitives(Runner<T>& r) {
   r.kappa_only(
       "sphere_integral", own, kFourPi, [](T k) { return sphere_integral(k); },
       [](T k) { return exact_sphere_integral(k); });
-  r.kappa_only("sphere_integral_approx", pub, kFourPi, [](T k) { return sphere_integral_approx(k); });
+  r.kappa_only("sphere_integral_approx", pub, kFourPi,
+               [](T k) { return sphere_integral_approx(k); });
   r.approximation();
   r.kappa_only(
       "expm1_over_x(-κ)", own, kUnit, [](T k) { return expm1_over_x(-k); },
       [](T k) { return exact_expm1_over_minus(k); });
   r.axes_two_kappas(
       "sg_product.sharpness", own, kNonNegative,
-      [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) { return sg_product(a, k1, b, k2).sharpness; },
+      [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
+        return sg_product(a, k1, b, k2).sharpness;
+      },
       exact_product_sharpness<T>);
-  r.axes_two_kappas("sg_product.log_amplitude", own, kNonPositive,
+  r.axes_two_kappas(
+      "sg_product.log_amplitude", own, kNonPositive,
+      [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
+        return sg_product(a, k1, b, k2).log_amplitude;
+      },
+      exact_product_log_amplitude<T>);
+  r.axes_two_kappas("sg_product.axis_length", own, kUnitLength,
                     [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
-                      return sg_product(a, k1, b, k2).log_amplitude;
-                    },
-                    exact_product_log_amplitude<T>);
-  r.axes_two_kappas("sg_product.axis_length", own, kUnitLength, [](const Vec3<T>& a, T k1, const Vec3<T>& b, T k2) {
-    return length(sg_product(a, k1, b, k2).axis);
-  });
-  r.cosine_two_kappas("sg_product_with_normal.sharpness", own, kNonNegative,
-                      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).sharpness; },
-                      exact_normal_product_sharpness<T>);
-  r.cosine_two_kappas("sg_product_with_normal.log_amplitude", own, kNonPositive,
-                      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).log_amplitude; },
-                      exact_normal_product_log_amplitude<T>);
+                      return length(sg_product(a, k1, b, k2).axis);
+                    });
+  r.cosine_two_kappas(
+      "sg_product_with_normal.sharpness", own, kNonNegative,
+      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).sharpness; },
+      exact_normal_product_sharpness<T>);
+  r.cosine_two_kappas(
+      "sg_product_with_normal.log_amplitude", own, kNonPositive,
+      [](T c, T k, T l) { return sg_product_with_normal(c, k, l).log_amplitude; },
+      exact_normal_product_log_amplitude<T>);
   r.cosine_two_kappas("sg_product_with_normal.cosine", own, kSigned,
                       [](T c, T k, T l) { return sg_product_with_normal(c, k, l).cosine; });
   r.cosine_two_kappas(
@@ -74,7 +82,8 @@ template <class T> void probe_sg_primitives(Runner<T>& r) {
 }
 
 // Closed forms (closed_forms.hpp).
-template <class T> void probe_closed_forms(Runner<T>& r) {
+template <class T>
+void probe_closed_forms(Runner<T>& r) {
   r.kappa_only(
       "irradiance_upper", own, kPi, [](T k) { return irradiance_upper(k); },
       [](T k) { return 2 * kPiL * exact_upper_over_two_pi(k); });
@@ -82,10 +91,12 @@ template <class T> void probe_closed_forms(Runner<T>& r) {
       "irradiance_lower", own, kPi, [](T k) { return irradiance_lower(k); },
       [](T k) { return 2 * kPiL * exact_lower_over_two_pi(k); });
   r.kappa_only(
-      "irradiance_upper_over_two_pi", own, kHalf, [](T k) { return irradiance_upper_over_two_pi(k); },
+      "irradiance_upper_over_two_pi", own, kHalf,
+      [](T k) { return irradiance_upper_over_two_pi(k); },
       [](T k) { return exact_upper_over_two_pi(k); });
   r.kappa_only(
-      "irradiance_lower_over_two_pi", own, kHalf, [](T k) { return irradiance_lower_over_two_pi(k); },
+      "irradiance_lower_over_two_pi", own, kHalf,
+      [](T k) { return irradiance_lower_over_two_pi(k); },
       [](T k) { return exact_lower_over_two_pi(k); });
   r.kappa_only(
       "hemispherical_upper", own, kTwoPi, [](T k) { return hemispherical_upper(k); },
@@ -99,7 +110,8 @@ template <class T> void probe_closed_forms(Runner<T>& r) {
 }
 
 // The reference engine, exact at the poles and (H, s) on the horizon.
-template <class T> void probe_reference(Runner<T>& r) {
+template <class T>
+void probe_reference(Runner<T>& r) {
   const auto nan_l = std::numeric_limits<L>::quiet_NaN();
   r.reference(
       "reference/hemispherical", kTwoPi, [](const ReferencePoint& q) { return q.hemispherical; },
@@ -132,7 +144,8 @@ template <class T> void probe_reference(Runner<T>& r) {
 
 // Steepness functions and erf-based pieces (hemispherical.hpp, irradiance.hpp),
 // and the erf variants.
-template <class T> void probe_steepness_and_erf(Runner<T>& r) {
+template <class T>
+void probe_steepness_and_erf(Runner<T>& r) {
   r.kappa_only(
       "steepness2022", own, kNonNegative, [](T k) { return steepness2022(k); },
       [](T k) { return exact_steepness2022(k, constants::steepness2022_published); });
@@ -141,7 +154,8 @@ template <class T> void probe_steepness_and_erf(Runner<T>& r) {
       "steepness2024", own, kNonNegative, [](T k) { return steepness2024(k); },
       [](T k) { return exact_steepness2024(k, constants::steepness2024_published); });
   r.approximation();
-  r.kappa_only("steepness_meder2018", pub, kNonNegative, [](T k) { return steepness_meder2018(k); });
+  r.kappa_only("steepness_meder2018", pub, kNonNegative,
+               [](T k) { return steepness_meder2018(k); });
   r.approximation();
   r.cosine_kappa("erf_ratio(t, c)", own, kSigned, [](T c, T t) { return erf_ratio(t, c); });
   r.cosine_kappa("lerp_factor_tokuyoshi2024", own, kUnit,
@@ -162,7 +176,8 @@ template <class T> void probe_steepness_and_erf(Runner<T>& r) {
 }
 
 // Every registered method, each labelled with the registry's origin (Method::origin).
-template <class T> void probe_methods(Runner<T>& r) {
+template <class T>
+void probe_methods(Runner<T>& r) {
   const auto call = [](const Method& m) {
     return [m](T c, T k) {
       if constexpr (sizeof(T) == sizeof(float))
@@ -186,7 +201,8 @@ template <class T> void probe_methods(Runner<T>& r) {
 }
 
 // Every probe, in a fixed order, for precision T.
-template <class T> std::vector<StabilityRow> run_all(std::vector<double>& kappas, std::vector<double>& cosines) {
+template <class T>
+std::vector<StabilityRow> run_all(std::vector<double>& kappas, std::vector<double>& cosines) {
   Runner<T> r;
   for (T k : r.kappas()) kappas.push_back(static_cast<double>(k));
   for (T c : r.cosines()) cosines.push_back(static_cast<double>(c));

@@ -30,10 +30,12 @@ std::vector<double> method_sharpness_constants() {
 
 namespace stability_detail {
 
-template <class T> std::vector<T> probe_kappas() {
-  const double list[] = {-1,   0,    1e-30, 1e-6, 1e-3, 1e-2, 0.1,  0.2,  0.3,  0.4,  0.5,  0.6,  0.7,
-                         0.8,  1,    2,     5,    10,   20,   50,   88,   89,   100,  700,  710,  1e3,
-                         1e4,  1e5,  1e6,   1e10, 1e15, 1e20, 1e30, 1e38, 1e100, 1e200, 1e300};
+template <class T>
+std::vector<T> probe_kappas() {
+  const double list[] = {-1,   0,    1e-30, 1e-6, 1e-3,  1e-2,  0.1,  0.2, 0.3, 0.4,
+                         0.5,  0.6,  0.7,   0.8,  1,     2,     5,    10,  20,  50,
+                         88,   89,   100,   700,  710,   1e3,   1e4,  1e5, 1e6, 1e10,
+                         1e15, 1e20, 1e30,  1e38, 1e100, 1e200, 1e300};
   std::vector<T> out;
   // Every binade of the subnormals, 2^e from the smallest subnormal up to the
   // smallest normal, and the largest subnormal.
@@ -53,7 +55,8 @@ template <class T> std::vector<T> probe_kappas() {
   return out;
 }
 
-template <class T> std::vector<T> probe_cosines() {
+template <class T>
+std::vector<T> probe_cosines() {
   const T one(1);
   return {T(-1) - T(0x1p-10),
           std::nextafter(-one, T(-2)),
@@ -70,7 +73,8 @@ template <class T> std::vector<T> probe_cosines() {
           std::numeric_limits<T>::quiet_NaN()};
 }
 
-template <class T> std::vector<AxisPair<T>> probe_axes() {
+template <class T>
+std::vector<AxisPair<T>> probe_axes() {
   using std::sqrt;
   const T z0(0), o(1);
   const Vec3<T> z{z0, z0, o}, x{o, z0, z0};

@@ -26,12 +26,14 @@ namespace sglab::validate::stability_detail {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Exact text of a value: shortest decimal in its own precision and hex.
-template <class T> std::string show(T x) {
+template <class T>
+std::string show(T x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
   return fmt::format("{} ({:a})", x, static_cast<double>(x));
 }
-template <class T> std::string show(const Vec3<T>& v) {
+template <class T>
+std::string show(const Vec3<T>& v) {
   return fmt::format("({}, {}, {})", show(v.x), show(v.y), show(v.z));
 }
 
@@ -54,14 +56,22 @@ constexpr Range kTwoPi{0, 6.283185307179586, "[0, 2π]", 4};
 constexpr Range kFourPi{0, 12.566370614359172, "[0, 4π]", 4};
 constexpr Range kUnitLength{1, 1, "|axis| = 1", 8};
 
-template <class T> FloatFormat format_of() {
+template <class T>
+FloatFormat format_of() {
   return sizeof(T) == sizeof(float) ? FloatFormat::binary32 : FloatFormat::binary64;
 }
 
-template <class T> bool valid_kappa(T k) { return std::isfinite(k) && k >= T(0); }
-template <class T> bool valid_cosine(T c) { return c >= T(-1) && c <= T(1); }
+template <class T>
+bool valid_kappa(T k) {
+  return std::isfinite(k) && k >= T(0);
+}
+template <class T>
+bool valid_cosine(T c) {
+  return c >= T(-1) && c <= T(1);
+}
 
-template <class Describe> void note(FailureStats& f, double key, Describe&& describe, double error = -1) {
+template <class Describe>
+void note(FailureStats& f, double key, Describe&& describe, double error = -1) {
   if (f.count == 0 || error > f.example_error) {
     f.example = describe();
     f.example_error = error;
@@ -80,7 +90,8 @@ constexpr auto no_exact = [] { return std::numeric_limits<long double>::quiet_Na
 
 // |x| beyond the largest finite T (x computed in long double, whose range
 // exceeds double's).
-template <class T> bool beyond_max(long double x) {
+template <class T>
+bool beyond_max(long double x) {
   return std::isinf(x) || std::abs(x) > static_cast<long double>(std::numeric_limits<T>::max());
 }
 
@@ -88,23 +99,28 @@ template <class T> bool beyond_max(long double x) {
 // The inputs of the stability sweep, in precision T (float or double;
 // stability_inputs.cpp): special values, a logarithmic ladder, and the
 // methods' own sharpness constants (rounded to T as the methods round them).
-template <class T> std::vector<T> probe_kappas();
+template <class T>
+std::vector<T> probe_kappas();
 // Cosines at, just inside and just outside ±1, ±0, ±1/2 and NaN.
-template <class T> std::vector<T> probe_cosines();
+template <class T>
+std::vector<T> probe_cosines();
 
-template <class T> struct AxisPair {
+template <class T>
+struct AxisPair {
   const char* name;
   Vec3<T> a, b;
   bool valid;
 };
 
 // Unit, nearly opposite, non-unit, zero and NaN axis pairs.
-template <class T> std::vector<AxisPair<T>> probe_axes();
+template <class T>
+std::vector<AxisPair<T>> probe_axes();
 
 // ---------------------------------------------------------------------------
 // Runs one function over its inputs and fills a valid-input and an
 // invalid-input row.
-template <class T> class Probe {
+template <class T>
+class Probe {
  public:
   Probe(std::string name, Origin origin, Range range) : range_(range) {
     for (StabilityRow* r : {&valid_, &invalid_}) {
@@ -129,7 +145,8 @@ template <class T> class Probe {
     ++row.evaluations;
     // The exact value is defined for valid inputs only.
     const auto exact_value = [&]() -> long double {
-      return is_valid ? static_cast<long double>(exact()) : std::numeric_limits<long double>::quiet_NaN();
+      return is_valid ? static_cast<long double>(exact())
+                      : std::numeric_limits<long double>::quiet_NaN();
     };
     FailureKind kind;
     long double error = -1;
@@ -149,17 +166,22 @@ template <class T> class Probe {
       kind = FailureKind::inaccurate;
       error = inaccuracy(y, x);
     }
-    note(row.failures[static_cast<std::size_t>(kind)], key, [&] {
-      if (kind == FailureKind::inaccurate)
-        return fmt::format("{} -> {}, exact {:.17g}", describe(), show(y), static_cast<double>(x));
-      return fmt::format("{} -> {}", describe(), show(y));
-    }, static_cast<double>(error));
+    note(
+        row.failures[static_cast<std::size_t>(kind)], key,
+        [&] {
+          if (kind == FailureKind::inaccurate)
+            return fmt::format("{} -> {}, exact {:.17g}", describe(), show(y),
+                               static_cast<double>(x));
+          return fmt::format("{} -> {}", describe(), show(y));
+        },
+        static_cast<double>(error));
   }
 
   // An input the function refused by throwing (the reference engine's
   // argument check): right for invalid inputs, a failure (counted as `nan`,
   // no value) for valid ones.
-  template <class Describe> void refused(bool is_valid, double key, Describe&& describe, const char* what) {
+  template <class Describe>
+  void refused(bool is_valid, double key, Describe&& describe, const char* what) {
     StabilityRow& row = is_valid ? valid_ : invalid_;
     ++row.evaluations;
     if (!is_valid) return;
@@ -184,7 +206,8 @@ template <class T> class Probe {
   StabilityRow valid_, invalid_;
 };
 
-template <class T> class Runner {
+template <class T>
+class Runner {
  public:
   std::vector<StabilityRow> rows;
 
@@ -196,7 +219,8 @@ template <class T> class Runner {
     Probe<T> p(name, origin, range);
     for (T k : kappas_)
       p.check(
-          valid_kappa(k), static_cast<double>(k), f(k), [&] { return fmt::format("κ = {}", show(k)); },
+          valid_kappa(k), static_cast<double>(k), f(k),
+          [&] { return fmt::format("κ = {}", show(k)); },
           [&] {
             if constexpr (std::is_same_v<Exact, std::nullptr_t>)
               return no_exact();
@@ -208,7 +232,8 @@ template <class T> class Runner {
 
   // f(c, κ)
   template <class F, class Exact = std::nullptr_t>
-  void cosine_kappa(const std::string& name, Origin origin, Range range, F f, Exact exact = nullptr) {
+  void cosine_kappa(const std::string& name, Origin origin, Range range, F f,
+                    Exact exact = nullptr) {
     Probe<T> p(name, origin, range);
     for (T k : kappas_)
       for (T c : cosines_)
@@ -233,7 +258,8 @@ template <class T> class Runner {
       for (T k2 : kappas_)
         for (T c : cosines_)
           p.check(
-              valid_kappa(k1) && valid_kappa(k2) && valid_cosine(c), static_cast<double>(k1), f(c, k1, k2),
+              valid_kappa(k1) && valid_kappa(k2) && valid_cosine(c), static_cast<double>(k1),
+              f(c, k1, k2),
               [&] { return fmt::format("c = {}, κ1 = {}, κ2 = {}", show(c), show(k1), show(k2)); },
               [&] {
                 if constexpr (std::is_same_v<Exact, std::nullptr_t>)
@@ -245,12 +271,14 @@ template <class T> class Runner {
   }
 
   // f(ω, v, κ) over the axis pairs
-  template <class F> void axes_kappa(const char* name, Origin origin, Range range, F f) {
+  template <class F>
+  void axes_kappa(const char* name, Origin origin, Range range, F f) {
     Probe<T> p(name, origin, range);
     for (const AxisPair<T>& ax : axes_)
       for (T k : kappas_)
         p.check(ax.valid && valid_kappa(k), static_cast<double>(k), f(ax.a, ax.b, k), [&] {
-          return fmt::format("{} axes ω = {}, v = {}, κ = {}", ax.name, show(ax.a), show(ax.b), show(k));
+          return fmt::format("{} axes ω = {}, v = {}, κ = {}", ax.name, show(ax.a), show(ax.b),
+                             show(k));
         });
     std::move(p).append_to(rows);
   }
@@ -263,10 +291,11 @@ template <class T> class Runner {
       for (T k1 : kappas_)
         for (T k2 : kappas_)
           p.check(
-              ax.valid && valid_kappa(k1) && valid_kappa(k2), static_cast<double>(k1), f(ax.a, k1, ax.b, k2),
+              ax.valid && valid_kappa(k1) && valid_kappa(k2), static_cast<double>(k1),
+              f(ax.a, k1, ax.b, k2),
               [&] {
-                return fmt::format("{} axes v1 = {}, κ1 = {}, v2 = {}, κ2 = {}", ax.name, show(ax.a), show(k1),
-                                   show(ax.b), show(k2));
+                return fmt::format("{} axes v1 = {}, κ1 = {}, v2 = {}, κ2 = {}", ax.name,
+                                   show(ax.a), show(k1), show(ax.b), show(k2));
               },
               [&] {
                 if constexpr (std::is_same_v<Exact, std::nullptr_t>)
@@ -294,7 +323,8 @@ template <class T> class Runner {
           p.refused(valid, static_cast<double>(k), describe, e.what());
           continue;
         }
-        p.check(valid, static_cast<double>(k), static_cast<T>(get(point)), describe, [&] { return exact(c, k); });
+        p.check(valid, static_cast<double>(k), static_cast<T>(get(point)), describe,
+                [&] { return exact(c, k); });
       }
     std::move(p).append_to(rows);
   }
@@ -306,14 +336,17 @@ template <class T> class Runner {
   }
 
   // f(x) over ±κ values and ±inf, NaN; valid when finite; located by x.
-  template <class F> void real_line(const std::string& name, Origin origin, Range range, F f) {
+  template <class F>
+  void real_line(const std::string& name, Origin origin, Range range, F f) {
     Probe<T> p(name, origin, range);
     std::vector<T> xs;
     for (T k : kappas_) {
       xs.push_back(k);
       if (!std::isnan(k) && k != T(0)) xs.push_back(-k);
     }
-    for (T x : xs) p.check(std::isfinite(x), static_cast<double>(x), f(x), [&] { return fmt::format("x = {}", show(x)); });
+    for (T x : xs)
+      p.check(std::isfinite(x), static_cast<double>(x), f(x),
+              [&] { return fmt::format("x = {}", show(x)); });
     std::move(p).append_to(rows);
   }
 

@@ -25,7 +25,9 @@ std::string_view to_string(Quantity q) {
   return "?";
 }
 
-bool is_device_format(FloatFormat f) { return f != FloatFormat::binary32 && f != FloatFormat::binary64; }
+bool is_device_format(FloatFormat f) {
+  return f != FloatFormat::binary32 && f != FloatFormat::binary64;
+}
 
 std::string_view to_string(FloatFormat f) {
   switch (f) {
@@ -52,27 +54,37 @@ std::string_view to_string(FloatFormat f) {
 void SweepGrid::validate() const {
   constexpr double flt_max = std::numeric_limits<float>::max();
   if (!std::isfinite(kappa_lo) || !std::isfinite(kappa_hi))
-    throw std::invalid_argument(fmt::format("κ bounds must be finite, got {}:{}", kappa_lo, kappa_hi));
-  if (!(kappa_lo > 0)) throw std::invalid_argument(fmt::format("κ lower bound must be > 0, got {}", kappa_lo));
-  if (!(kappa_hi >= kappa_lo))
-    throw std::invalid_argument(fmt::format("κ upper bound must be >= the lower bound, got {} < {}", kappa_hi, kappa_lo));
-  if (static_cast<float>(kappa_lo) == 0.0f)
     throw std::invalid_argument(
-        fmt::format("κ lower bound {} rounds to 0 in float (inputs are rounded to float first)", kappa_lo));
+        fmt::format("κ bounds must be finite, got {}:{}", kappa_lo, kappa_hi));
+  if (!(kappa_lo > 0))
+    throw std::invalid_argument(fmt::format("κ lower bound must be > 0, got {}", kappa_lo));
+  if (!(kappa_hi >= kappa_lo))
+    throw std::invalid_argument(
+        fmt::format("κ upper bound must be >= the lower bound, got {} < {}", kappa_hi, kappa_lo));
+  if (static_cast<float>(kappa_lo) == 0.0f)
+    throw std::invalid_argument(fmt::format(
+        "κ lower bound {} rounds to 0 in float (inputs are rounded to float first)", kappa_lo));
   if (kappa_hi > flt_max)
     throw std::invalid_argument(fmt::format(
-        "κ upper bound {} exceeds the largest float {} (inputs are rounded to float first)", kappa_hi, flt_max));
-  if (kappa_count < 1) throw std::invalid_argument(fmt::format("κ count must be >= 1, got {}", kappa_count));
+        "κ upper bound {} exceeds the largest float {} (inputs are rounded to float first)",
+        kappa_hi, flt_max));
+  if (kappa_count < 1)
+    throw std::invalid_argument(fmt::format("κ count must be >= 1, got {}", kappa_count));
   if (kappa_count == 1 && kappa_lo != kappa_hi)
     throw std::invalid_argument(
         fmt::format("a κ count of 1 needs equal bounds, got {}:{}", kappa_lo, kappa_hi));
-  if (cosine_count < 2) throw std::invalid_argument(fmt::format("cosine count must be >= 2, got {}", cosine_count));
+  if (cosine_count < 2)
+    throw std::invalid_argument(fmt::format("cosine count must be >= 2, got {}", cosine_count));
   if (point_count() > kMaxPoints) {
-    const std::size_t entries = registered_sweep_methods().size() * 2;  // every method, float and double
-    throw std::invalid_argument(fmt::format(
-        "the grid of {} κ × {} cosines = {} points exceeds the limit of {} points; it would need about {:.3g} GB "
-        "of memory for every method in float and double (use fewer κ or cosines, or several smaller sweeps)",
-        kappa_count, cosine_count, point_count(), kMaxPoints, static_cast<double>(sweep_memory_estimate(*this, entries)) / 1e9));
+    const std::size_t entries =
+        registered_sweep_methods().size() * 2;  // every method, float and double
+    throw std::invalid_argument(
+        fmt::format("the grid of {} κ × {} cosines = {} points exceeds the limit of {} points; it "
+                    "would need about {:.3g} GB "
+                    "of memory for every method in float and double (use fewer κ or cosines, or "
+                    "several smaller sweeps)",
+                    kappa_count, cosine_count, point_count(), kMaxPoints,
+                    static_cast<double>(sweep_memory_estimate(*this, entries)) / 1e9));
   }
 }
 
@@ -83,18 +95,23 @@ std::uint64_t SweepGrid::point_count() const {
 
 std::uint64_t sweep_memory_estimate(const SweepGrid& grid, std::size_t entries) {
   const std::uint64_t points = grid.point_count();
-  const std::uint64_t per_point = sizeof(Query) + sizeof(ReferencePoint) + entries * kSweepBytesPerPointEntry;
+  const std::uint64_t per_point =
+      sizeof(Query) + sizeof(ReferencePoint) + entries * kSweepBytesPerPointEntry;
   return points * per_point;
 }
 
-std::vector<double> SweepGrid::kappas() const { return io::log_spaced(kappa_lo, kappa_hi, kappa_count); }
+std::vector<double> SweepGrid::kappas() const {
+  return io::log_spaced(kappa_lo, kappa_hi, kappa_count);
+}
 
 std::vector<double> SweepGrid::cosines() const {
   std::vector<double> c;
   if (cosine_count < 2) return c;
   c.reserve(static_cast<std::size_t>(cosine_count));
   const int last = cosine_count - 1;
-  for (int i = 0; i <= last; ++i) c.push_back(-1.0 + 2.0 * i / last);  // the standard grid's expression (docs/quantities.md); ends exact
+  for (int i = 0; i <= last; ++i)
+    c.push_back(-1.0 +
+                2.0 * i / last);  // the standard grid's expression (docs/quantities.md); ends exact
   return c;
 }
 
@@ -129,7 +146,9 @@ double SweepResult::reference_value(Quantity q, std::size_t k, std::size_t j) co
   return validate::reference_value(reference[index(k, j)], q);
 }
 
-double SweepResult::peak_value(Quantity q, std::size_t k) const { return validate::reference_value(peak[k], q); }
+double SweepResult::peak_value(Quantity q, std::size_t k) const {
+  return validate::reference_value(peak[k], q);
+}
 
 const SweepEntry* SweepResult::find(std::string_view method, Quantity q, FloatFormat f) const {
   for (const SweepEntry& e : entries)
@@ -139,7 +158,8 @@ const SweepEntry* SweepResult::find(std::string_view method, Quantity q, FloatFo
 
 namespace {
 
-std::vector<ReferencePoint> evaluate_reference(std::span<const Query> queries, Precision precision, bool progress) {
+std::vector<ReferencePoint> evaluate_reference(std::span<const Query> queries, Precision precision,
+                                               bool progress) {
   // In chunks, so that the terminal shows progress; each chunk still runs in
   // parallel inside the engine.
   constexpr std::size_t chunk = 256;
@@ -165,11 +185,12 @@ double evaluate(const Method& m, FloatFormat f, double cosine, double kappa) {
 
 }  // namespace
 
-SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, FloatFormat f, std::span<const double> values,
-                       bool keep_points) {
+SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, FloatFormat f,
+                       std::span<const double> values, bool keep_points) {
   const std::size_t nk = r.kappas.size(), nc = r.cosines.size();
   if (values.size() != nk * nc)
-    throw std::invalid_argument(fmt::format("sweep_entry: {} values for a {} x {} grid", values.size(), nk, nc));
+    throw std::invalid_argument(
+        fmt::format("sweep_entry: {} values for a {} x {} grid", values.size(), nk, nc));
   SweepEntry e;
   e.method = std::string(sm.method.id);
   e.quantity = sm.quantity;
@@ -185,7 +206,8 @@ SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, FloatFormat 
     const double peak = r.peak_value(sm.quantity, k);
     for (std::size_t j = 0; j < nc; ++j) {
       const double value = values[r.index(k, j)];
-      const PointErrors p = row.add(r.kappas[k], r.cosines[j], value, r.reference_value(sm.quantity, k, j), peak);
+      const PointErrors p =
+          row.add(r.kappas[k], r.cosines[j], value, r.reference_value(sm.quantity, k, j), peak);
       if (keep_points) {
         e.values[r.index(k, j)] = value;
         e.peak_rel[r.index(k, j)] = p.peak_rel;
@@ -198,7 +220,8 @@ SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, FloatFormat 
   return e;
 }
 
-SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, const SweepOptions& options) {
+SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods,
+                  const SweepOptions& options) {
   grid.validate();
   SweepResult r;
   r.grid = grid;
@@ -221,7 +244,8 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, c
       if (is_device_format(f)) continue;
       std::vector<double> values(nk * nc);
       for (std::size_t k = 0; k < nk; ++k)
-        for (std::size_t j = 0; j < nc; ++j) values[r.index(k, j)] = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);
+        for (std::size_t j = 0; j < nc; ++j)
+          values[r.index(k, j)] = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);
       r.entries.push_back(sweep_entry(r, sm, f, values, options.keep_points));
     }
   }
@@ -229,9 +253,10 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, c
 }
 
 Table summary_table(const SweepResult& result) {
-  Table t(fmt::format("Accuracy sweep: κ in [{}, {}] ({} values), {} cosines; peak_rel = |x̂ − x|/x(1, κ)",
-                      result.grid.kappa_lo, result.grid.kappa_hi, result.grid.kappa_count,
-                      result.grid.cosine_count),
+  Table t(fmt::format(
+              "Accuracy sweep: κ in [{}, {}] ({} values), {} cosines; peak_rel = |x̂ − x|/x(1, κ)",
+              result.grid.kappa_lo, result.grid.kappa_hi, result.grid.kappa_count,
+              result.grid.cosine_count),
           {{"method"},
            {"quantity"},
            {"precision"},
@@ -243,30 +268,30 @@ Table summary_table(const SweepResult& result) {
            {"nonfinite"}});
   for (const SweepEntry& e : result.entries) {
     const MetricSummary& s = e.summary;
-    t.add_row({Table::text(e.method), Table::text(to_string(e.quantity)), Table::text(to_string(e.precision)),
-               Table::real(s.peak_rel.max), Table::real(s.peak_rel.worst_kappa),
-               Table::real(s.peak_rel.worst_cosine), Table::real(s.peak_rel.rms), Table::real(s.rel.max),
-               Table::count(s.nonfinite)});
+    t.add_row({Table::text(e.method), Table::text(to_string(e.quantity)),
+               Table::text(to_string(e.precision)), Table::real(s.peak_rel.max),
+               Table::real(s.peak_rel.worst_kappa), Table::real(s.peak_rel.worst_cosine),
+               Table::real(s.peak_rel.rms), Table::real(s.rel.max), Table::count(s.nonfinite)});
   }
   return t;
 }
 
 Table per_kappa_table(const SweepResult& result) {
-  Table t("Accuracy sweep per κ: max and RMS over the cosines",
-          {{"method"},
-           {"quantity"},
-           {"precision"},
-           {"kappa", 4},
-           {"max_peak_rel", 3},
-           {"worst_cosine", 4},
-           {"rms_peak_rel", 3},
-           {"max_rel", 3},
-           {"nonfinite"}});
+  Table t("Accuracy sweep per κ: max and RMS over the cosines", {{"method"},
+                                                                 {"quantity"},
+                                                                 {"precision"},
+                                                                 {"kappa", 4},
+                                                                 {"max_peak_rel", 3},
+                                                                 {"worst_cosine", 4},
+                                                                 {"rms_peak_rel", 3},
+                                                                 {"max_rel", 3},
+                                                                 {"nonfinite"}});
   for (const SweepEntry& e : result.entries) {
     for (std::size_t k = 0; k < e.per_kappa.size(); ++k) {
       const MetricSummary& s = e.per_kappa[k];
-      t.add_row({Table::text(e.method), Table::text(to_string(e.quantity)), Table::text(to_string(e.precision)),
-                 Table::real(result.kappas[k]), Table::real(s.peak_rel.max), Table::real(s.peak_rel.worst_cosine),
+      t.add_row({Table::text(e.method), Table::text(to_string(e.quantity)),
+                 Table::text(to_string(e.precision)), Table::real(result.kappas[k]),
+                 Table::real(s.peak_rel.max), Table::real(s.peak_rel.worst_cosine),
                  Table::real(s.peak_rel.rms), Table::real(s.rel.max), Table::count(s.nonfinite)});
     }
   }
@@ -274,16 +299,24 @@ Table per_kappa_table(const SweepResult& result) {
 }
 
 Table points_table(const SweepResult& result) {
-  Table t("Accuracy sweep, every point",
-          {{"kappa"}, {"cosine"}, {"method"}, {"quantity"}, {"precision"}, {"value"}, {"reference"}, {"peak_rel"}});
+  Table t("Accuracy sweep, every point", {{"kappa"},
+                                          {"cosine"},
+                                          {"method"},
+                                          {"quantity"},
+                                          {"precision"},
+                                          {"value"},
+                                          {"reference"},
+                                          {"peak_rel"}});
   for (const SweepEntry& e : result.entries) {
     if (e.values.empty()) continue;
     for (std::size_t k = 0; k < result.kappas.size(); ++k)
       for (std::size_t j = 0; j < result.cosines.size(); ++j) {
         const std::size_t i = result.index(k, j);
-        t.add_row({Table::real(result.kappas[k]), Table::real(result.cosines[j]), Table::text(e.method),
-                   Table::text(to_string(e.quantity)), Table::text(to_string(e.precision)), Table::real(e.values[i]),
-                   Table::real(result.reference_value(e.quantity, k, j)), Table::real(e.peak_rel[i])});
+        t.add_row({Table::real(result.kappas[k]), Table::real(result.cosines[j]),
+                   Table::text(e.method), Table::text(to_string(e.quantity)),
+                   Table::text(to_string(e.precision)), Table::real(e.values[i]),
+                   Table::real(result.reference_value(e.quantity, k, j)),
+                   Table::real(e.peak_rel[i])});
       }
   }
   return t;

@@ -1,6 +1,6 @@
-// validate/sweep.hpp — the accuracy sweep of docs/quantities.md (standard grid): every method against
-// the reference engine over a (κ, c) grid, in float and in double, with the
-// metrics of docs/quantities.md.
+// validate/sweep.hpp — the accuracy sweep of docs/quantities.md (standard grid): every method
+// against the reference engine over a (κ, c) grid, in float and in double, with the metrics of
+// docs/quantities.md.
 //
 // Inputs are rounded to float first and the reference is evaluated at those
 // float-exact inputs, so the float and the double evaluation of a method see
@@ -36,7 +36,16 @@ std::string_view to_string(Quantity q);
 // converted to half and back in the wrapper. `vulkan_split` /
 // `vulkan_hlsl_split`: the float per-light split export (`sglab export
 // --split`; split is not combined with half).
-enum class FloatFormat { binary32, binary64, vulkan, vulkan_hlsl, vulkan_half, vulkan_hlsl_half, vulkan_split, vulkan_hlsl_split };
+enum class FloatFormat {
+  binary32,
+  binary64,
+  vulkan,
+  vulkan_hlsl,
+  vulkan_half,
+  vulkan_hlsl_half,
+  vulkan_split,
+  vulkan_hlsl_split
+};
 // "float", "double", "vulkan", "vulkan_hlsl", "vulkan_half", "vulkan_hlsl_half", "vulkan_split",
 // "vulkan_hlsl_split"
 std::string_view to_string(FloatFormat f);
@@ -114,7 +123,7 @@ struct SweepEntry {
   std::string method;
   Quantity quantity = Quantity::irradiance;
   FloatFormat precision = FloatFormat::binary64;
-  MetricSummary summary;                // over every (κ, c)
+  MetricSummary summary;                 // over every (κ, c)
   std::vector<MetricSummary> per_kappa;  // over c, one per κ
   // Point data, index k·cosine_count + j (empty unless keep_points).
   std::vector<double> values;    // the method's output, widened to double
@@ -123,8 +132,8 @@ struct SweepEntry {
 
 struct SweepResult {
   SweepGrid grid;
-  std::vector<double> kappas;   // evaluated, float-exact
-  std::vector<double> cosines;  // evaluated, float-exact
+  std::vector<double> kappas;             // evaluated, float-exact
+  std::vector<double> cosines;            // evaluated, float-exact
   std::vector<ReferencePoint> reference;  // index k·cosine_count + j
   std::vector<ReferencePoint> peak;       // per κ, at c = 1: the peak values x(1, κ)
   std::vector<SweepEntry> entries;        // method-major, then precision
@@ -141,12 +150,13 @@ double reference_value(const ReferencePoint& point, Quantity q);
 
 // The entry of method `m` in precision `f` from its values at every grid point
 // (index k·cosine_count + j), measured against r's reference.
-SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& m, FloatFormat f, std::span<const double> values,
-                       bool keep_points = true);
+SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& m, FloatFormat f,
+                       std::span<const double> values, bool keep_points = true);
 
 // Runs the sweep (the `vulkan` precision is skipped here: its values come from
 // a device). Throws std::invalid_argument on an invalid grid.
-SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods, const SweepOptions& options = {});
+SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods,
+                  const SweepOptions& options = {});
 
 // The tables `sglab sweep` writes.
 // summary: method, quantity, precision, max_peak_rel, worst_kappa, worst_cosine,

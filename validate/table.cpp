@@ -20,8 +20,8 @@ std::size_t Table::column_index(std::string_view name) const {
 
 void Table::add_row(std::vector<Cell> row) {
   if (row.size() != columns_.size())
-    throw std::invalid_argument(
-        fmt::format("table '{}': row has {} cells, expected {}", title_, row.size(), columns_.size()));
+    throw std::invalid_argument(fmt::format("table '{}': row has {} cells, expected {}", title_,
+                                            row.size(), columns_.size()));
   rows_.push_back(std::move(row));
 }
 
@@ -123,7 +123,8 @@ std::string to_markdown(const Table& table) {
   std::vector<bool> numeric(cols.size(), true);
   for (const auto& row : table.rows())
     for (std::size_t i = 0; i < row.size(); ++i)
-      if (!std::holds_alternative<std::monostate>(row[i]) && !is_numeric(row[i])) numeric[i] = false;
+      if (!std::holds_alternative<std::monostate>(row[i]) && !is_numeric(row[i]))
+        numeric[i] = false;
 
   std::string out;
   if (!table.title().empty()) out += fmt::format("**{}**\n\n", markdown_field(table.title()));

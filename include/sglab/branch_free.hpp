@@ -43,7 +43,8 @@ namespace sglab::branch_free {
 // m ? a : b without a branch (bitwise select on the IEEE representation).
 SGLAB_FORCE_INLINE float select(bool m, float a, float b) {
   const std::uint32_t mask = 0u - static_cast<std::uint32_t>(m);
-  return std::bit_cast<float>((std::bit_cast<std::uint32_t>(a) & mask) | (std::bit_cast<std::uint32_t>(b) & ~mask));
+  return std::bit_cast<float>((std::bit_cast<std::uint32_t>(a) & mask) |
+                              (std::bit_cast<std::uint32_t>(b) & ~mask));
 }
 SGLAB_FORCE_INLINE float min(float a, float b) { return select(b < a, b, a); }
 SGLAB_FORCE_INLINE float max(float a, float b) { return select(a < b, b, a); }

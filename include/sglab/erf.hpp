@@ -44,26 +44,37 @@ T erf_abramowitz_stegun(const T& x, const AbramowitzStegunParams<S, N>& p) {
 }
 
 // The published coefficient sets.
-template <class T> T erf_listing5(const T& x) { return erf_listing5(x, constants::erf_listing5_published); }
-template <class T> T erf_abramowitz_stegun(const T& x) {
+template <class T>
+T erf_listing5(const T& x) {
+  return erf_listing5(x, constants::erf_listing5_published);
+}
+template <class T>
+T erf_abramowitz_stegun(const T& x) {
   return erf_abramowitz_stegun(x, constants::erf_as7125_published);
 }
 
 // Functors used as the `Erf` policy of the methods.
 struct ErfStd {
   static constexpr const char* id = "std";
-  template <class T> T operator()(const T& x) const {
+  template <class T>
+  T operator()(const T& x) const {
     using std::erf;
     return erf(x);
   }
 };
 struct ErfListing5 {
   static constexpr const char* id = "listing5";
-  template <class T> T operator()(const T& x) const { return erf_listing5(x); }
+  template <class T>
+  T operator()(const T& x) const {
+    return erf_listing5(x);
+  }
 };
 struct ErfAS7125 {
   static constexpr const char* id = "as7125";
-  template <class T> T operator()(const T& x) const { return erf_abramowitz_stegun(x); }
+  template <class T>
+  T operator()(const T& x) const {
+    return erf_abramowitz_stegun(x);
+  }
 };
 
 }  // namespace sglab

@@ -19,7 +19,8 @@ namespace sglab {
 // same ratio is evaluated as √κ √((0.5 + A/κ)/(1 + B/κ + C/κ²)) so that
 // nothing overflows up to the largest finite κ; t → √(κ/2) as κ → ∞.
 template <class T, class S = double>
-T steepness2022(const T& kappa, const Steepness2022Params<S>& p = constants::steepness2022_published) {
+T steepness2022(const T& kappa,
+                const Steepness2022Params<S>& p = constants::steepness2022_published) {
   using std::sqrt;
   const T A = T(p.A), B = T(p.B), C = T(p.C);
   if (kappa < T(1)) return kappa * sqrt((T(0.5) * kappa + A) / ((kappa + B) * kappa + C));
@@ -30,11 +31,13 @@ T steepness2022(const T& kappa, const Steepness2022Params<S>& p = constants::ste
 // t(κ) = κ √(0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E))  (Tokuyoshi et al. 2024,
 // supplementary Listing 7), rearranged for κ ≥ 1 as above.
 template <class T, class S = double>
-T steepness2024(const T& kappa, const Steepness2024Params<S>& p = constants::steepness2024_published) {
+T steepness2024(const T& kappa,
+                const Steepness2024Params<S>& p = constants::steepness2024_published) {
   using std::sqrt;
   const T A = T(p.A), B = T(p.B), C = T(p.C), D = T(p.D), E = T(p.E);
   if (kappa < T(1))
-    return kappa * sqrt(T(0.5) * ((kappa + A) * kappa + B) / (((kappa + C) * kappa + D) * kappa + E));
+    return kappa *
+           sqrt(T(0.5) * ((kappa + A) * kappa + B) / (((kappa + C) * kappa + D) * kappa + E));
   const T r = T(1) / kappa;
   return sqrt(kappa) * sqrt(T(0.5) * (T(1) + (A + B * r) * r) / (T(1) + (C + (D + E * r) * r) * r));
 }
@@ -61,20 +64,24 @@ T steepness_rational(const T& kappa, const SteepnessRationalParams<S, M>& p) {
 }
 
 // One name for every steepness form, so methods can take any of them.
-template <class T, class S> T steepness(const T& kappa, const Steepness2022Params<S>& p) {
+template <class T, class S>
+T steepness(const T& kappa, const Steepness2022Params<S>& p) {
   return steepness2022(kappa, p);
 }
-template <class T, class S> T steepness(const T& kappa, const Steepness2024Params<S>& p) {
+template <class T, class S>
+T steepness(const T& kappa, const Steepness2024Params<S>& p) {
   return steepness2024(kappa, p);
 }
-template <class T, class S, std::size_t M> T steepness(const T& kappa, const SteepnessRationalParams<S, M>& p) {
+template <class T, class S, std::size_t M>
+T steepness(const T& kappa, const SteepnessRationalParams<S, M>& p) {
   return steepness_rational(kappa, p);
 }
 
 // erf(t c)/erf(t), with its t → 0 limit c: erf(tc)/erf(t) = c(1 + t²(1 − c²)/3 + O(t⁴)),
 // so below t = 2^−13 (float) or 2^−27 (double) the ratio is c to working
 // precision, and erf(t) can no longer underflow into the denormals.
-template <class T, class Erf = ErfStd> T erf_ratio(const T& t, const T& cosine, Erf erf = {}) {
+template <class T, class Erf = ErfStd>
+T erf_ratio(const T& t, const T& cosine, Erf erf = {}) {
   const T tiny = sizeof(T) <= sizeof(float) ? T(0x1p-13) : T(0x1p-27);
   if (t < tiny) return cosine;
   // An approximate erf need not be monotone to the last ulp (Listing 5 is
@@ -84,15 +91,16 @@ template <class T, class Erf = ErfStd> T erf_ratio(const T& t, const T& cosine, 
 
 // s̃(c, κ) = ½ + ½ erf(t(κ) c)/erf(t(κ))  (Tokuyoshi 2022, Eq. 5).
 template <class T, class Erf = ErfStd, class P = Steepness2022Params<double>>
-T normalized_erf2022(const T& cosine, const T& kappa, const P& p = constants::steepness2022_published, Erf erf = {}) {
+T normalized_erf2022(const T& cosine, const T& kappa,
+                     const P& p = constants::steepness2022_published, Erf erf = {}) {
   const T t = steepness(kappa, p);
   return T(0.5) + T(0.5) * erf_ratio(t, clamp(cosine, T(-1), T(1)), erf);
 }
 
 // H̃(c, κ) = 2π lerp(e^{−κ}, 1, s̃) (1 − e^{−κ})/κ  ([Tokuyoshi2022] Listing 3, `erf2022`).
 template <class T, class Erf = ErfStd, class P = Steepness2022Params<double>>
-T hemispherical_erf2022(const T& cosine, const T& kappa, const P& p = constants::steepness2022_published,
-                        Erf erf = {}) {
+T hemispherical_erf2022(const T& cosine, const T& kappa,
+                        const P& p = constants::steepness2022_published, Erf erf = {}) {
   using std::exp;
   const T s = normalized_erf2022(cosine, kappa, p, erf);
   return two_pi_v<T>() * lerp(exp(-kappa), T(1), s) * expm1_over_x(-kappa);
@@ -101,7 +109,8 @@ T hemispherical_erf2022(const T& cosine, const T& kappa, const P& p = constants:
 // Meder & Brüderlin 2018 logistic steepness t(κ) = √κ (a2κ² + a1κ)/(κ² + b1κ + b0),
 // transcribed as published: κ² overflows for κ ≳ 1.8e19 in float.
 template <class T, class S = double>
-T steepness_meder2018(const T& kappa, const Meder2018Params<S>& p = constants::meder2018_published) {
+T steepness_meder2018(const T& kappa,
+                      const Meder2018Params<S>& p = constants::meder2018_published) {
   using std::sqrt;
   return sqrt(kappa) * (T(p.a2) * kappa * kappa + T(p.a1) * kappa) /
          (kappa * kappa + T(p.b1) * kappa + T(p.b0));
@@ -128,7 +137,8 @@ T normalized_meder2018(const T& cosine, const T& kappa,
   const T e = exp(-(t * abs(c)));
   const T sigma = c < T(0) ? e / (T(1) + e) : T(1) / (T(1) + e);  // σ(tc)
   const T u = T(1) + c;
-  const T ratio = t < T(1) ? u * (expm1_over_x(-(t * u)) / expm1_over_x(-t)) : expm1(-(t * u)) / expm1(-t);
+  const T ratio =
+      t < T(1) ? u * (expm1_over_x(-(t * u)) / expm1_over_x(-t)) : expm1(-(t * u)) / expm1(-t);
   return saturate(sigma * ratio);
 }
 

@@ -39,7 +39,8 @@ T irradiance_wang2009(const T& cosine, const T& kappa,
 
 // `punctual`: the cosine pulled out of the integral, Ê = max(c, 0)·2π/κ
 // ([Pettineo2016] "SGIrradiancePunctual"). Infinite at κ = 0.
-template <class T> T irradiance_punctual(const T& cosine, const T& kappa) {
+template <class T>
+T irradiance_punctual(const T& cosine, const T& kappa) {
   return saturate(cosine) * sphere_integral_approx(kappa);
 }
 
@@ -50,7 +51,8 @@ namespace detail {
 // double), and at c = 0 the curve's n²/x became 0/0. With x > 0 kept, n²/x is
 // evaluated as n·(n/x): n/x ∈ [c1, 2c1] where the curve applies, so nothing
 // underflows at large κ either (at c = 0 it is c1²x, x → 1/√κ).
-template <class T, class S> T hill_normalized(const T& cosine, const T& kappa, const HillParams<S>& p) {
+template <class T, class S>
+T hill_normalized(const T& cosine, const T& kappa, const HillParams<S>& p) {
   using std::abs;
   using std::exp;
   using std::sqrt;
@@ -75,13 +77,15 @@ template <class T, class S> T hill_normalized(const T& cosine, const T& kappa, c
 // Below κ ≈ 0.6, 1 − 1/κ + 2e^{−2κ} < 0 and sqrt(1 − scale) is taken of a
 // number > 1; at κ = 0 the result is NaN.
 template <class T, class S = double>
-T irradiance_hill(const T& cosine, const T& kappa, const HillParams<S>& p = constants::hill_published) {
+T irradiance_hill(const T& cosine, const T& kappa,
+                  const HillParams<S>& p = constants::hill_published) {
   return detail::hill_normalized(cosine, kappa, p) * sphere_integral_approx(kappa);
 }
 
 // `hill_exact`: the same curve times the exact integral S(κ) (as Probulator does).
 template <class T, class S = double>
-T irradiance_hill_exact(const T& cosine, const T& kappa, const HillParams<S>& p = constants::hill_published) {
+T irradiance_hill_exact(const T& cosine, const T& kappa,
+                        const HillParams<S>& p = constants::hill_published) {
   return detail::hill_normalized(cosine, kappa, p) * sphere_integral(kappa);
 }
 
@@ -118,7 +122,8 @@ T irradiance_tokuyoshi2022(const T& cosine, const T& kappa,
   using std::exp;
   const T lambda = T(cc.lambda), alpha = T(cc.alpha);
   const ProductWithNormal<T> prod = sg_product_with_normal(cosine, kappa, lambda);
-  const T p = hemispherical_erf2022(prod.cosine, prod.sharpness, st, erf) * exp(lambda + prod.log_amplitude);
+  const T p = hemispherical_erf2022(prod.cosine, prod.sharpness, st, erf) *
+              exp(lambda + prod.log_amplitude);
   const T q = hemispherical_erf2022(cosine, kappa, st, erf);
   return max0(alpha * p - alpha * q);
 }
@@ -127,22 +132,34 @@ namespace detail {
 // Elementary functions of a method's formula: the standard library's (scalar,
 // and Ceres Jets through argument-dependent lookup) ...
 struct LibmOps {
-  template <class T> static T exp(const T& x) {
+  template <class T>
+  static T exp(const T& x) {
     using std::exp;
     return exp(x);
   }
-  template <class T> static T expm1(const T& x) {
+  template <class T>
+  static T expm1(const T& x) {
     using std::expm1;
     return expm1(x);
   }
-  template <class T> static T erfc(const T& x) {
+  template <class T>
+  static T erfc(const T& x) {
     using std::erfc;
     return erfc(x);
   }
   // erfc(x) when e^{−x²} is at hand (unused here).
-  template <class T> static T erfc(const T& x, const T&) { return erfc(x); }
-  template <class T> static T select(bool m, const T& a, const T& b) { return m ? a : b; }
-  template <class T> static T clamp(const T& x, const T& lo, const T& hi) { return sglab::clamp(x, lo, hi); }
+  template <class T>
+  static T erfc(const T& x, const T&) {
+    return erfc(x);
+  }
+  template <class T>
+  static T select(bool m, const T& a, const T& b) {
+    return m ? a : b;
+  }
+  template <class T>
+  static T clamp(const T& x, const T& lo, const T& hi) {
+    return sglab::clamp(x, lo, hi);
+  }
 };
 // ... or sglab's branch-free float approximations (branch_free.hpp), with
 // which a loop over the method vectorizes.
@@ -166,12 +183,14 @@ T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, const T& t, Ops = {}) 
   const T tz = t * c;
   const T ez = Ops::exp(-tz * tz);  // e^{−t²c²}
   const T tail = Ops::select(t > T(0), ez * Ops::expm1(t * t * (c * c - T(1))) / t, T(0));
-  return Ops::clamp(T(0.5) * (c * Ops::erfc(-tz, ez) + Ops::erfc(t)) - T(0.5) * inv_sqrt_pi_v<T>() * tail, T(0),
-                    T(1));
+  return Ops::clamp(
+      T(0.5) * (c * Ops::erfc(-tz, ez) + Ops::erfc(t)) - T(0.5) * inv_sqrt_pi_v<T>() * tail, T(0),
+      T(1));
 }
 
 template <class T, class P = Steepness2024Params<double>>
-T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constants::steepness2024_published) {
+T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa,
+                            const P& p = constants::steepness2024_published) {
   return lerp_factor_tokuyoshi2024_at_steepness(cosine, steepness(kappa, p));
 }
 
@@ -179,14 +198,16 @@ T lerp_factor_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = consta
 // alone: the steepness t(κ) and the exact poles Ē(±1) = E(±1, κ)/2π,
 // closed_forms.hpp, Taylor series near κ = 0 as in the paper's Listing 6) and
 // a per-shading-point evaluation Ê = 2π lerp(Ē(−1), Ē(1), f(c, t)).
-template <class T> struct Tokuyoshi2024Light {
+template <class T>
+struct Tokuyoshi2024Light {
   T t;      // steepness t(κ)
   T lower;  // Ē(−1, κ)
   T upper;  // Ē(1, κ)
 };
 
 template <class T, class P = Steepness2024Params<double>>
-Tokuyoshi2024Light<T> tokuyoshi2024_light(const T& kappa, const P& p = constants::steepness2024_published) {
+Tokuyoshi2024Light<T> tokuyoshi2024_light(const T& kappa,
+                                          const P& p = constants::steepness2024_published) {
   const PoleIrradiances<T> poles = irradiance_poles_over_two_pi(kappa);
   return {steepness(kappa, p), poles.lower, poles.upper};
 }
@@ -194,7 +215,8 @@ Tokuyoshi2024Light<T> tokuyoshi2024_light(const T& kappa, const P& p = constants
 // The same setup in float without branches (both sides of κ < 1 computed and
 // selected; branch_free.hpp elementary functions), for the batch kernel.
 template <class S>
-SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(float kappa, const Steepness2024Params<S>& p) {
+SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(
+    float kappa, const Steepness2024Params<S>& p) {
   namespace bf = branch_free;
   const float A = float(p.A), B = float(p.B), C = float(p.C), D = float(p.D), E = float(p.E);
   const bool small = kappa < 1.0f;
@@ -202,7 +224,8 @@ SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(flo
   // t² = κ² · 0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E), as steepness2024 (κ ≥ 1 in powers of 1/κ).
   const float num = bf::select(small, kappa * kappa * (0.5f * ((kappa + A) * kappa + B)),
                                kappa * (0.5f * (1.0f + (A + B * r) * r)));
-  const float den = bf::select(small, ((kappa + C) * kappa + D) * kappa + E, 1.0f + (C + (D + E * r) * r) * r);
+  const float den =
+      bf::select(small, ((kappa + C) * kappa + D) * kappa + E, 1.0f + (C + (D + E * r) * r) * r);
   const float t = bf::sqrt_bf(num / den);
   // Poles as irradiance_poles_over_two_pi, with q = (1 − e^{−κ})/κ for κ ≥ 1.
   const float e = bf::exp_bf(-kappa);
@@ -221,7 +244,8 @@ T tokuyoshi2024_eval(const Tokuyoshi2024Light<T>& light, const T& cosine, Ops op
 // `tokuyoshi2024`: Ê = 2π lerp(Ē(−1), Ē(1), f) (Tokuyoshi et al. 2024,
 // supplementary Listings 6-7). `p` may be any steepness form (Steepness2024Params by default).
 template <class T, class P = Steepness2024Params<double>>
-T irradiance_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constants::steepness2024_published) {
+T irradiance_tokuyoshi2024(const T& cosine, const T& kappa,
+                           const P& p = constants::steepness2024_published) {
   return tokuyoshi2024_eval(tokuyoshi2024_light(kappa, p), cosine);
 }
 
@@ -231,11 +255,12 @@ T irradiance_tokuyoshi2024(const T& cosine, const T& kappa, const P& p = constan
 // moves f by at most e; measured 3.3e−7 over 2^20 random inputs, as the scalar
 // float path), tests/test_branch_free.cpp.
 template <class S = double>
-SGLAB_FLATTEN void irradiance_tokuyoshi2024_batch(const float* __restrict cosine, const float* __restrict kappa,
-                                    float* __restrict out, std::size_t n,
-                                    const Steepness2024Params<S>& p = constants::steepness2024_published) {
+SGLAB_FLATTEN void irradiance_tokuyoshi2024_batch(
+    const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
+    std::size_t n, const Steepness2024Params<S>& p = constants::steepness2024_published) {
   for (std::size_t i = 0; i < n; ++i)
-    out[i] = tokuyoshi2024_eval(tokuyoshi2024_light_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
+    out[i] = tokuyoshi2024_eval(tokuyoshi2024_light_branch_free(kappa[i], p), cosine[i],
+                                detail::BranchFreeOps{});
 }
 
 }  // namespace sglab

@@ -16,7 +16,8 @@ namespace detail {
 // A long double constant in T: rounded once for float and double, exact for
 // long double and wider types. A Ceres Jet (value member `a`, derivative `v`)
 // is built from its value type, so the rounding is said, not implied.
-template <class T> constexpr T constant(long double x) {
+template <class T>
+constexpr T constant(long double x) {
   if constexpr (requires(T t) {
                   t.a;
                   t.v;
@@ -28,10 +29,22 @@ template <class T> constexpr T constant(long double x) {
 }  // namespace detail
 
 // Constants as functions so that they also instantiate for Ceres Jets (not literal types).
-template <class T> constexpr T pi_v() { return detail::constant<T>(3.141592653589793238462643383279502884L); }
-template <class T> constexpr T two_pi_v() { return detail::constant<T>(6.283185307179586476925286766559005768L); }
-template <class T> constexpr T four_pi_v() { return detail::constant<T>(12.56637061435917295385057353311801154L); }
-template <class T> constexpr T inv_sqrt_pi_v() { return detail::constant<T>(0.5641895835477562869480794515607725858L); }
+template <class T>
+constexpr T pi_v() {
+  return detail::constant<T>(3.141592653589793238462643383279502884L);
+}
+template <class T>
+constexpr T two_pi_v() {
+  return detail::constant<T>(6.283185307179586476925286766559005768L);
+}
+template <class T>
+constexpr T four_pi_v() {
+  return detail::constant<T>(12.56637061435917295385057353311801154L);
+}
+template <class T>
+constexpr T inv_sqrt_pi_v() {
+  return detail::constant<T>(0.5641895835477562869480794515607725858L);
+}
 
 // Horner evaluation c[0] + x(c[1] + x(c[2] + ...)), coefficients lowest
 // order first.
@@ -43,29 +56,41 @@ constexpr T horner(const T& x, const C (&c)[N]) {
 }
 
 // Variadic Horner: horner(x, c0, c1, c2) = c0 + x(c1 + x c2)  (pbrt-v4 style).
-template <class T, class C> constexpr T horner(const T&, C c0) { return T(c0); }
+template <class T, class C>
+constexpr T horner(const T&, C c0) {
+  return T(c0);
+}
 template <class T, class C, class... Cs>
 constexpr T horner(const T& x, C c0, Cs... cs) {
   return horner(x, cs...) * x + T(c0);
 }
 
-template <class T> constexpr T lerp(const T& a, const T& b, const T& t) {
+template <class T>
+constexpr T lerp(const T& a, const T& b, const T& t) {
   return a + t * (b - a);
 }
 
-template <class T> constexpr T clamp(const T& x, const T& lo, const T& hi) {
+template <class T>
+constexpr T clamp(const T& x, const T& lo, const T& hi) {
   return x < lo ? lo : (hi < x ? hi : x);
 }
 
-template <class T> constexpr T saturate(const T& x) { return clamp(x, T(0), T(1)); }
+template <class T>
+constexpr T saturate(const T& x) {
+  return clamp(x, T(0), T(1));
+}
 
-template <class T> constexpr T max0(const T& x) { return x < T(0) ? T(0) : x; }
+template <class T>
+constexpr T max0(const T& x) {
+  return x < T(0) ? T(0) : x;
+}
 
 // (e^x − 1)/x without cancellation ([Tokuyoshi2022] Listing 4 cites [Higham2002] for
 // the same purpose). With a correctly rounded-ish expm1 from the standard
 // library the quotient is accurate to a few ulp for every x; the x = 0 limit
 // is 1. x = −inf gives 0, x = +inf gives +inf.
-template <class T> T expm1_over_x(const T& x) {
+template <class T>
+T expm1_over_x(const T& x) {
   using std::expm1;
   if (x == T(0)) return T(1);
   return expm1(x) / x;

@@ -13,21 +13,24 @@ namespace sglab {
 
 // max(cos θ, 0) ≈ α (e^{λ cos θ} − 1) on the upper hemisphere
 // ([Tokuyoshi2022] Listing 1).
-template <class S> struct ClampedCosineParams {
+template <class S>
+struct ClampedCosineParams {
   S lambda;
   S alpha;
 };
 
 // Steepness of the erf-based normalized hemispherical integral,
 // t(κ) = κ √((0.5κ + A) / ((κ + B)κ + C))  ([Tokuyoshi2022] Eq. 6, Listing 3).
-template <class S> struct Steepness2022Params {
+template <class S>
+struct Steepness2022Params {
   S A, B, C;
 };
 
 // Steepness of the 2024 clamped-cosine interpolation factor,
 // t(κ) = κ √(0.5((κ + A)κ + B) / (((κ + C)κ + D)κ + E))
 // (Tokuyoshi et al. 2024, supplementary Listing 7).
-template <class S> struct Steepness2024Params {
+template <class S>
+struct Steepness2024Params {
   S A, B, C, D, E;
 };
 
@@ -37,7 +40,8 @@ template <class S> struct Steepness2024Params {
 // order M ([Tokuyoshi2022] supplementary §1.2). M = 1 is the 2022 form (p0 = 2A, q1 = B, q0 = C),
 // M = 2 the 2024 form (p1 = A, p0 = B, q2 = C, q1 = D, q0 = E). For M = 0, P = 1
 // and p is unused.
-template <class S, std::size_t M> struct SteepnessRationalParams {
+template <class S, std::size_t M>
+struct SteepnessRationalParams {
   S p[M > 0 ? M : 1];
   S q[M + 1];
 };
@@ -45,7 +49,8 @@ template <class S, std::size_t M> struct SteepnessRationalParams {
 // [Tokuyoshi2022] Listing 5 erf structure: x·P(x²) on |x| ≤ split (P has NS
 // coefficients, lowest order first), 1 − 2^{−a·Q(a)} on split < a < cutoff
 // (Q has NL coefficients, lowest order first), ±1 beyond.
-template <class S, std::size_t NS, std::size_t NL> struct Listing5Params {
+template <class S, std::size_t NS, std::size_t NL>
+struct Listing5Params {
   S split;
   S cutoff;
   S small[NS];
@@ -54,31 +59,36 @@ template <class S, std::size_t NS, std::size_t NL> struct Listing5Params {
 
 // Abramowitz–Stegun 7.1.25/7.1.26 structure:
 // erf(x) ≈ 1 − (a1 t + a2 t² + … + aN t^N) e^{−x²}, t = 1/(1 + p x), x ≥ 0.
-template <class S, std::size_t N> struct AbramowitzStegunParams {
+template <class S, std::size_t N>
+struct AbramowitzStegunParams {
   S p;
   S a[N];
 };
 
 // A single SG standing in for the cosine lobe: a·G(ω; n, λ) (Wang et al. 2009).
-template <class S> struct CosineLobeParams {
+template <class S>
+struct CosineLobeParams {
   S lambda;
   S amplitude;
 };
 
 // Normalized SG standing in for cos⁺/π: G(ω; n, λd)/A(λd) ([Tokuyoshi2015] supplemental Eq. 1).
-template <class S> struct DiffuseLobeParams {
+template <class S>
+struct DiffuseLobeParams {
   S lambda_d;
 };
 
 // Stephen Hill's fitted irradiance curve ([Pettineo2016]): c1 = 1/(4 c0).
-template <class S> struct HillParams {
+template <class S>
+struct HillParams {
   S c0;
 };
 
 // Meder & Brüderlin 2018: logistic steepness
 // t(κ) = √κ (a2 κ² + a1 κ) / (κ² + b1 κ + b0) and the cosine fit
 // cos θ ≈ amplitude·e^{sharpness(cos θ − 1)} − offset on the upper hemisphere.
-template <class S> struct Meder2018Params {
+template <class S>
+struct Meder2018Params {
   S a2, a1, b1, b0;
   S amplitude, sharpness, offset;
 };
@@ -88,7 +98,8 @@ template <class S> struct Meder2018Params {
 // A = Pa(κ̃)/Q(κ̃), B = Pb/Q, C = Pc/Q, V = Pv/Q, κ̃ = min(κ, kappa_max),
 // numerators of degree 4 and one shared monic quartic Q = κ̃⁴ + q[3]κ̃³ + … + q[0]
 // (coefficients lowest order first).
-template <class S> struct SglabFastParams {
+template <class S>
+struct SglabFastParams {
   S a[5], b[5], c[5], v[5];
   S q[4];
   S kappa_max;
@@ -99,7 +110,8 @@ template <class S> struct SglabFastParams {
 // order) and N correction coefficients b_j(κ) = u(1 − u)³ P_j(u) that fade as
 // κ → 0 and κ → ∞, u = t/(t + scale) ∈ [0, 1), P_j of degree D:
 // P_j(u) = num[j(D+1)] + num[j(D+1)+1] u + … + num[j(D+1)+D] u^D; scale > 0.
-template <class S, std::size_t N, std::size_t D> struct SglabAccParams {
+template <class S, std::size_t N, std::size_t D>
+struct SglabAccParams {
   S steep[5];
   S num[N * (D + 1)];
   S scale;

@@ -11,8 +11,8 @@
 #include "erf.hpp"
 #include "hemispherical.hpp"
 #include "irradiance.hpp"
-#include "sglab_fast.hpp"
 #include "sglab_acc.hpp"
+#include "sglab_fast.hpp"
 
 namespace sglab {
 
@@ -25,9 +25,12 @@ enum class Origin {
 
 constexpr std::string_view to_string(Origin o) {
   switch (o) {
-    case Origin::published: return "published";
-    case Origin::refit: return "refit";
-    case Origin::sglab: return "sglab";
+    case Origin::published:
+      return "published";
+    case Origin::refit:
+      return "refit";
+    case Origin::sglab:
+      return "sglab";
   }
   return "?";
 }
@@ -56,30 +59,37 @@ struct Method {
 
 namespace detail {
 template <class F>
-constexpr Method make_method(std::string_view id, std::string_view source, std::string_view constants, F,
-                             Origin origin = Origin::published) {
+constexpr Method make_method(std::string_view id, std::string_view source,
+                             std::string_view constants, F, Origin origin = Origin::published) {
   return Method{
       id,
       source,
       constants,
       [](float c, float k) { return F{}(c, k); },
       [](double c, double k) { return F{}(c, k); },
-      [](const float* c, const float* k, float* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
-      [](const double* c, const double* k, double* o, std::size_t n) { evaluate_batch(F{}, c, k, o, n); },
+      [](const float* c, const float* k, float* o, std::size_t n) {
+        evaluate_batch(F{}, c, k, o, n);
+      },
+      [](const double* c, const double* k, double* o, std::size_t n) {
+        evaluate_batch(F{}, c, k, o, n);
+      },
       origin,
   };
 }
 
 // A method whose float batch is a dedicated kernel (e.g. one that vectorizes).
-constexpr Method with_batch32(Method m, void (*batch32)(const float*, const float*, float*, std::size_t)) {
+constexpr Method with_batch32(Method m,
+                              void (*batch32)(const float*, const float*, float*, std::size_t)) {
   m.batch32 = batch32;
   return m;
 }
 
 // A method with the per-light split: Setup(κ) returns a Light (a struct of at
 // most kLightStateFloats floats), Eval(light, c) the value.
-template <class Light, class Setup, class Eval> constexpr Method with_light_split(Method m, Setup, Eval) {
-  static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float) && alignof(Light) <= alignof(float));
+template <class Light, class Setup, class Eval>
+constexpr Method with_light_split(Method m, Setup, Eval) {
+  static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float) &&
+                alignof(Light) <= alignof(float));
   m.light_setup32 = [](float kappa, float* state) {
     const Light light = Setup{}(kappa);
     std::memcpy(state, &light, sizeof light);
@@ -92,10 +102,10 @@ template <class Light, class Setup, class Eval> constexpr Method with_light_spli
   return m;
 }
 
-
 // The per-light split of a method whose setup returns a trivially copyable
 // struct of floats (sglab_acc.hpp): the struct is the state.
-template <const auto& P> struct SglabAccSplit {
+template <const auto& P>
+struct SglabAccSplit {
   using Light = decltype(sglab_acc_light(0.0f, P));
   static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float));
   static void setup(float kappa, float* state) {
@@ -109,14 +119,18 @@ template <const auto& P> struct SglabAccSplit {
   }
 };
 
-template <const auto& P> constexpr Method make_sglab_acc(std::string_view id, std::string_view source,
-                                                         std::string_view constants) {
-  Method m = make_method(id, source, constants, [](auto c, auto k) { return irradiance_sglab_acc(c, k, P); },
-                         Origin::sglab);
+template <const auto& P>
+constexpr Method make_sglab_acc(std::string_view id, std::string_view source,
+                                std::string_view constants) {
+  Method m = make_method(
+      id, source, constants, [](auto c, auto k) { return irradiance_sglab_acc(c, k, P); },
+      Origin::sglab);
   m.light_setup32 = &SglabAccSplit<P>::setup;
   m.light_eval32 = &SglabAccSplit<P>::eval;
   // Float batch that vectorizes (sglab_acc.hpp irradiance_sglab_acc_batch).
-  m.batch32 = [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_acc_batch(c, k, o, n, P); };
+  m.batch32 = [](const float* c, const float* k, float* o, std::size_t n) {
+    irradiance_sglab_acc_batch(c, k, o, n, P);
+  };
   return m;
 }
 }  // namespace detail
@@ -208,14 +222,18 @@ inline constexpr Method irradiance_methods[] = {
 
 // Approximate hemispherical integrals H̃(c, κ) (`erf2022` [Tokuyoshi2022], `meder2018` [Meder2018]).
 inline constexpr Method hemispherical_methods[] = {
-    detail::make_method("erf2022", "[Tokuyoshi2022] Eq. 5/6, Listing 3, std::erf", "steepness2022_published",
+    detail::make_method("erf2022", "[Tokuyoshi2022] Eq. 5/6, Listing 3, std::erf",
+                        "steepness2022_published",
                         [](auto c, auto k) { return hemispherical_erf2022(c, k); }),
     detail::make_method("erf2022_listing5", "[Tokuyoshi2022] Eq. 5/6 with the Listing 5 erf",
                         "steepness2022_published, erf_listing5_published",
-                        [](auto c, auto k) { return hemispherical_erf2022(c, k, constants::steepness2022_published,
-                                                                          ErfListing5{}); }),
+                        [](auto c, auto k) {
+                          return hemispherical_erf2022(c, k, constants::steepness2022_published,
+                                                       ErfListing5{});
+                        }),
     detail::make_method("meder2018", "[Meder2018] logistic normalized hemispherical integral",
-                        "meder2018_published", [](auto c, auto k) { return hemispherical_meder2018(c, k); }),
+                        "meder2018_published",
+                        [](auto c, auto k) { return hemispherical_meder2018(c, k); }),
 };
 
 // Normalized hemispherical integrals s̃(c, κ) matching hemispherical_methods.
@@ -224,10 +242,13 @@ inline constexpr Method normalized_methods[] = {
                         [](auto c, auto k) { return normalized_erf2022(c, k); }),
     detail::make_method("erf2022_listing5", "[Tokuyoshi2022] Eq. 5/6 with the Listing 5 erf",
                         "steepness2022_published, erf_listing5_published",
-                        [](auto c, auto k) { return normalized_erf2022(c, k, constants::steepness2022_published,
-                                                                       ErfListing5{}); }),
+                        [](auto c, auto k) {
+                          return normalized_erf2022(c, k, constants::steepness2022_published,
+                                                    ErfListing5{});
+                        }),
     detail::make_method("meder2018", "[Meder2018] logistic normalized hemispherical integral",
-                        "meder2018_published", [](auto c, auto k) { return normalized_meder2018(c, k); }),
+                        "meder2018_published",
+                        [](auto c, auto k) { return normalized_meder2018(c, k); }),
 };
 
 // erf variants (docs/references.md).
@@ -241,8 +262,10 @@ inline constexpr ErfVariant erf_variants[] = {
     {"listing5", "[Tokuyoshi2022] supplementary Listing 5", [](float x) { return erf_listing5(x); },
      [](double x) { return erf_listing5(x); }},
     {"as7125", "[AS1964] 7.1.25, claimed |error| <= 2.5e-5",
-     [](float x) { return erf_abramowitz_stegun(x); }, [](double x) { return erf_abramowitz_stegun(x); }},
-    {"std", "platform std::erf", [](float x) { return std::erf(x); }, [](double x) { return std::erf(x); }},
+     [](float x) { return erf_abramowitz_stegun(x); },
+     [](double x) { return erf_abramowitz_stegun(x); }},
+    {"std", "platform std::erf", [](float x) { return std::erf(x); },
+     [](double x) { return std::erf(x); }},
 };
 
 // Look-ups by id; nullptr when absent.

@@ -11,35 +11,43 @@
 
 namespace sglab {
 
-template <class T> struct Vec3 {
+template <class T>
+struct Vec3 {
   T x, y, z;
 };
-template <class T> constexpr Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) {
+template <class T>
+constexpr Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
-template <class T> constexpr Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) {
+template <class T>
+constexpr Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-template <class T> constexpr Vec3<T> operator*(const T& s, const Vec3<T>& a) {
+template <class T>
+constexpr Vec3<T> operator*(const T& s, const Vec3<T>& a) {
   return {s * a.x, s * a.y, s * a.z};
 }
-template <class T> constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+template <class T>
+constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-template <class T> T length(const Vec3<T>& a) {
+template <class T>
+T length(const Vec3<T>& a) {
   using std::sqrt;
   return sqrt(dot(a, a));
 }
 
 // G at cosine c between ω and the axis.
-template <class T> T sg_evaluate(const T& cosine, const T& kappa) {
+template <class T>
+T sg_evaluate(const T& cosine, const T& kappa) {
   using std::exp;
   return exp(kappa * (cosine - T(1)));
 }
 
 // G at direction ω for axis v: ω·v − 1 = −|ω − v|²/2 for unit vectors, which
 // keeps the exponent exact near the peak (Tokuyoshi 2025, vMF on S²).
-template <class T> T sg_evaluate(const Vec3<T>& omega, const Vec3<T>& axis, const T& kappa) {
+template <class T>
+T sg_evaluate(const Vec3<T>& omega, const Vec3<T>& axis, const T& kappa) {
   using std::exp;
   const Vec3<T> d = omega - axis;
   return exp(T(-0.5) * kappa * dot(d, d));
@@ -52,7 +60,8 @@ namespace detail {
 // accuracy down to the denormals. From mx = 1 on, 2π/m times 1 − e^{−2mx} is
 // divided by x once: −2mx may overflow to −inf there, which only makes
 // e^{−2mx} = 0, and 2π/m ≥ 2π/max is a normal number in float and double.
-template <class T> T sphere_integral_scaled(const T& m, const T& x) {
+template <class T>
+T sphere_integral_scaled(const T& m, const T& x) {
   using std::expm1;
   const T kappa = m * x;
   if (kappa < T(1)) return four_pi_v<T>() * expm1_over_x(T(-2) * kappa);
@@ -63,15 +72,22 @@ template <class T> T sphere_integral_scaled(const T& m, const T& x) {
 // Exact sphere integral S(κ) = 2π(1 − e^{−2κ})/κ = 4π·(e^{−2κ} − 1)/(−2κ)
 // ([Tokuyoshi2015]; → 4π as κ → 0, → 2π/κ as κ → ∞), accurate from κ = 0
 // through the largest finite κ (where 2π/κ is still a normal number).
-template <class T> T sphere_integral(const T& kappa) { return detail::sphere_integral_scaled(T(1), kappa); }
+template <class T>
+T sphere_integral(const T& kappa) {
+  return detail::sphere_integral_scaled(T(1), kappa);
+}
 
 // The large-κ approximation 2π/κ of S(κ) ([Pettineo2016] "ApproximateSGIntegral").
 // Infinite at κ = 0: callers that need κ → 0 use sphere_integral.
-template <class T> T sphere_integral_approx(const T& kappa) { return two_pi_v<T>() / kappa; }
+template <class T>
+T sphere_integral_approx(const T& kappa) {
+  return two_pi_v<T>() / kappa;
+}
 
 // Product of two SGs: G(ω; v1, κ1) G(ω; v2, κ2) = e^{logAmp} G(ω; v3, κ3)
 // with κ3 = |κ1 v1 + κ2 v2| ([Tokuyoshi2022] Eq. 1).
-template <class T> struct SGLobe {
+template <class T>
+struct SGLobe {
   Vec3<T> axis;
   T sharpness;
   T log_amplitude;
@@ -110,7 +126,8 @@ SGLobe<T> sg_product(const Vec3<T>& v1, const T& kappa1, const Vec3<T>& v2, cons
 // Scalar form of the product of a light SG (v, κ) with an SG (n, λ) about
 // the normal, where c = v·n: the product sharpness, its log-amplitude and the
 // cosine between the product axis and n. |v − n|² = 2(1 − c).
-template <class T> struct ProductWithNormal {
+template <class T>
+struct ProductWithNormal {
   T sharpness;
   T log_amplitude;
   T cosine;
@@ -119,14 +136,16 @@ template <class T> struct ProductWithNormal {
 namespace detail {
 // The product with the normal as a scale m = max(κ, λ) and κ3/m, so that
 // callers can use κ3 where m·(κ3/m) overflows (sg_inner_product).
-template <class T> struct ScaledProductWithNormal {
+template <class T>
+struct ScaledProductWithNormal {
   T scale;             // m = max(κ, λ)
   T sharpness_scaled;  // κ3/m ∈ [0, 2]
   T log_amplitude;
   T cosine;
 };
 template <class T>
-ScaledProductWithNormal<T> product_with_normal_scaled(const T& cosine_in, const T& kappa, const T& lambda) {
+ScaledProductWithNormal<T> product_with_normal_scaled(const T& cosine_in, const T& kappa,
+                                                      const T& lambda) {
   using std::sqrt;
   // A cosine a rounding error outside [−1, 1] (c = −1 − ulp from a dot
   // product) would make κ3² negative at κ = λ: clamp it (NaN stays NaN).
@@ -152,7 +171,8 @@ ScaledProductWithNormal<T> product_with_normal_scaled(const T& cosine_in, const 
 
 template <class T>
 ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, const T& lambda) {
-  const detail::ScaledProductWithNormal<T> p = detail::product_with_normal_scaled(cosine, kappa, lambda);
+  const detail::ScaledProductWithNormal<T> p =
+      detail::product_with_normal_scaled(cosine, kappa, lambda);
   return {p.scale * p.sharpness_scaled, p.log_amplitude, p.cosine};
 }
 
@@ -161,9 +181,11 @@ ProductWithNormal<T> sg_product_with_normal(const T& cosine, const T& kappa, con
 // exceed the largest finite value (κ1, κ2 > max/2, c near 1) while the
 // result, about 2π/κ3, is still a normal number: S is taken from the scaled
 // sharpness.
-template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T& kappa2) {
+template <class T>
+T sg_inner_product(const T& cosine, const T& kappa1, const T& kappa2) {
   using std::exp;
-  const detail::ScaledProductWithNormal<T> p = detail::product_with_normal_scaled(cosine, kappa1, kappa2);
+  const detail::ScaledProductWithNormal<T> p =
+      detail::product_with_normal_scaled(cosine, kappa1, kappa2);
   return exp(p.log_amplitude) * detail::sphere_integral_scaled(p.scale, p.sharpness_scaled);
 }
 
@@ -172,7 +194,8 @@ template <class T> T sg_inner_product(const T& cosine, const T& kappa1, const T&
 // the approximation is meant for κ1 + κ2 ≫ 1 and returns +inf there.
 // κ1κ2/(κ1 + κ2) is formed as b/(1 + b/a), a = max(κ1, κ2), b = min(κ1, κ2)
 // (the same value): κ1κ2 overflows at the largest κ, and inf·(c − 1) was NaN at c = 1.
-template <class T> T sg_inner_product_iwasaki(const T& cosine, const T& kappa1, const T& kappa2) {
+template <class T>
+T sg_inner_product_iwasaki(const T& cosine, const T& kappa1, const T& kappa2) {
   const T sum = kappa1 + kappa2;
   const T a = kappa1 < kappa2 ? kappa2 : kappa1, b = kappa1 < kappa2 ? kappa1 : kappa2;
   const T lambda = sum > T(0) ? b / (T(1) + b / a) : T(0);

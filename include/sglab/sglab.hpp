@@ -13,5 +13,5 @@
 #include "params.hpp"
 #include "registry.hpp"
 #include "sg.hpp"
-#include "sglab_fast.hpp"
 #include "sglab_acc.hpp"
+#include "sglab_fast.hpp"

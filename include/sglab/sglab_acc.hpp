@@ -42,7 +42,8 @@
 namespace sglab {
 
 // The κ-only part of `sglab_acc<N>` (the per-light state).
-template <class T, std::size_t N> struct SglabAccLight {
+template <class T, std::size_t N>
+struct SglabAccLight {
   T t;             // steepness t(κ)
   T half_erfc_t;   // ½ erfc(t)
   T tail_scale;    // 1/(2√π max(t, ε)) (detail::sglab_acc_tail_scale)
@@ -83,7 +84,8 @@ SGLAB_FORCE_INLINE void sglab_acc_fade(const T& t, const SglabAccParams<S, N, D>
 // moves by that times 2π(Ē(1) − Ē(−1)) = O(κ), far below an ulp of Ê ≈ π
 // (κ ≲ 3t there). `Ops::select` keeps the float batch branch-free (one
 // select, not two: the float batch stays within 1.15× of tokuyoshi2024).
-template <class T, class Ops = LibmOps> SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
+template <class T, class Ops = LibmOps>
+SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
   const bool keep = t > std::numeric_limits<T>::epsilon();
   return T(0.5) * inv_sqrt_pi_v<T>() / Ops::select(keep, t, std::numeric_limits<T>::epsilon());
 }
@@ -92,11 +94,12 @@ template <class T, class Ops = LibmOps> SGLAB_FORCE_INLINE T sglab_acc_tail_scal
 
 // Per-light setup of `sglab_acc<N>`: everything that depends on κ alone.
 template <class T, class S, std::size_t N, std::size_t D>
-SGLAB_FORCE_INLINE SglabAccLight<T, N> sglab_acc_light(const T& kappa, const SglabAccParams<S, N, D>& p) {
+SGLAB_FORCE_INLINE SglabAccLight<T, N> sglab_acc_light(const T& kappa,
+                                                       const SglabAccParams<S, N, D>& p) {
   using std::erfc;
   // t and the poles (one exp for both) as the setup of `tokuyoshi2024` (irradiance.hpp).
-  const Tokuyoshi2024Light<T> base =
-      tokuyoshi2024_light(kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
+  const Tokuyoshi2024Light<T> base = tokuyoshi2024_light(
+      kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
   SglabAccLight<T, N> l;
   l.t = base.t;
   l.half_erfc_t = T(0.5) * erfc(l.t);
@@ -112,7 +115,8 @@ SGLAB_FORCE_INLINE SglabAccLight<T, N> sglab_acc_light(const T& kappa, const Sgl
 // poles as the vectorizing setup of `tokuyoshi2024` (irradiance.hpp), erfc(t)
 // by branch_free.hpp's erfc_bf (absolute error ≤ 6e−7).
 template <class S, std::size_t N, std::size_t D>
-SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_light_branch_free(float kappa, const SglabAccParams<S, N, D>& p) {
+SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_light_branch_free(
+    float kappa, const SglabAccParams<S, N, D>& p) {
   const Tokuyoshi2024Light<float> base = tokuyoshi2024_light_branch_free(
       kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
   SglabAccLight<float, N> l;
@@ -135,9 +139,11 @@ SGLAB_FORCE_INLINE T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosin
   const T z = l.t * c;
   const T z2 = z * z;
   const T one_minus_c2 = T(1) - c * c;
-  const T g = Ops::exp(-z2);  // e^{−z²}: shared by the [Tokuyoshi2024] tail, erfc(−z) and the correction
+  const T g =
+      Ops::exp(-z2);  // e^{−z²}: shared by the [Tokuyoshi2024] tail, erfc(−z) and the correction
   // [Tokuyoshi2024] Listing 7: f = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t).
-  const T f2024 = T(0.5) * c * Ops::erfc(-z, g) + l.half_erfc_t - g * Ops::expm1(-l.t2 * one_minus_c2) * l.tail_scale;
+  const T f2024 = T(0.5) * c * Ops::erfc(-z, g) + l.half_erfc_t -
+                  g * Ops::expm1(-l.t2 * one_minus_c2) * l.tail_scale;
   // sglab correction: (1 − c²) e^{−z²} Σ_j b_j z^{2j}. Where e^{−z²} has
   // underflowed to 0 the correction is 0 (selected: z^{2j} may overflow there
   // for huge κ, and 0·inf would be NaN).
@@ -154,15 +160,18 @@ SGLAB_FORCE_INLINE T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosin
 // by at most that, i.e. ≤ 6e−7 of the peak E(1, κ), plus float rounding;
 // tests/test_branch_free.cpp holds it to 1e−6 of the peak.
 template <class S, std::size_t N, std::size_t D>
-SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
-                                std::size_t n, const SglabAccParams<S, N, D>& p) {
+SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine,
+                                              const float* __restrict kappa, float* __restrict out,
+                                              std::size_t n, const SglabAccParams<S, N, D>& p) {
   for (std::size_t i = 0; i < n; ++i)
-    out[i] = sglab_acc_eval(sglab_acc_light_branch_free(kappa[i], p), cosine[i], detail::BranchFreeOps{});
+    out[i] = sglab_acc_eval(sglab_acc_light_branch_free(kappa[i], p), cosine[i],
+                            detail::BranchFreeOps{});
 }
 
 // `sglab_acc<N>` in one call: eval(setup(κ), c).
 template <class T, class S, std::size_t N, std::size_t D>
-SGLAB_FORCE_INLINE T irradiance_sglab_acc(const T& cosine, const T& kappa, const SglabAccParams<S, N, D>& p) {
+SGLAB_FORCE_INLINE T irradiance_sglab_acc(const T& cosine, const T& kappa,
+                                          const SglabAccParams<S, N, D>& p) {
   return sglab_acc_eval(sglab_acc_light(kappa, p), cosine);
 }
 

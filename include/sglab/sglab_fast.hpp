@@ -38,8 +38,14 @@ namespace sglab {
 
 namespace detail {
 
-template <class T> T min_of(const T& a, const T& b) { return b < a ? b : a; }
-template <class T> T max_of(const T& a, const T& b) { return a < b ? b : a; }
+template <class T>
+T min_of(const T& a, const T& b) {
+  return b < a ? b : a;
+}
+template <class T>
+T max_of(const T& a, const T& b) {
+  return a < b ? b : a;
+}
 
 // Ē(1, κ) = E(1, κ)/2π = (κ − 1 + e^{−κ})/κ² with as many Taylor terms
 // below κ = ¼ as the precision needs: Σ_{m≥0} (−κ)^m/(m + 2)!, whose first
@@ -48,7 +54,8 @@ template <class T> T max_of(const T& a, const T& b) { return a < b ? b : a; }
 // κ²; the difference loses at most a factor 9 (κ = ¼). Both are evaluated —
 // the series at min(κ, ¼), the closed form at max(κ, ¼), so both are finite —
 // and blended by a 0/1 weight (exact: the other term is 0).
-template <class T> T upper_over_two_pi_fast(const T& kappa) {
+template <class T>
+T upper_over_two_pi_fast(const T& kappa) {
   using std::exp;
   constexpr std::size_t terms = std::is_same_v<T, float> ? 6 : 12;
   const T ks = min_of(kappa, T(0.25)), kc = max_of(kappa, T(0.25));
@@ -68,7 +75,8 @@ template <class T> T upper_over_two_pi_fast(const T& kappa) {
 // v = clamp(u, 0, 1) = (|u| − |u − 1| + 1)/2 and max(u − 1, 0) = (u − 1 + |u − 1|)/2,
 // ρ = v³(2 − v) + 2 max(u − 1, 0). For the |u| ≲ 10² of the model the
 // rounding of these identities stays below 1e−6 of ρ's scale.
-template <class T> T sglab_ramp(const T& u) {
+template <class T>
+T sglab_ramp(const T& u) {
   using std::abs;
   const T over = abs(u - T(1));
   const T v = T(0.5) * (abs(u) - over + T(1));
@@ -76,7 +84,8 @@ template <class T> T sglab_ramp(const T& u) {
 }
 
 // max(x, 0) = (x + |x|)/2 without a branch (exact in binary floating point).
-template <class T> T max0_branchless(const T& x) {
+template <class T>
+T max0_branchless(const T& x) {
   using std::abs;
   return T(0.5) * (x + abs(x));
 }
@@ -85,18 +94,21 @@ template <class T> T max0_branchless(const T& x) {
 
 // Everything of `sglab_fast` that depends on κ alone, with E(1, κ) folded
 // in: Ê = max(0, a + b c + c_ramp ρ(v c + ½)).
-template <class T> struct SglabFastLight {
+template <class T>
+struct SglabFastLight {
   T a, b, c_ramp, v;
 };
 
 // The normalized shape s(c) = A + B c + C ρ(V c + ½), unclamped (the fitter's per-κ stage).
-template <class T> T sglab_fast_shape(const T& cosine, const T& A, const T& B, const T& C, const T& V) {
+template <class T>
+T sglab_fast_shape(const T& cosine, const T& A, const T& B, const T& C, const T& V) {
   return A + B * cosine + C * detail::sglab_ramp(V * cosine + T(0.5));
 }
 
 // Per-light setup: one exp and two divisions.
 template <class T, class S = double>
-SglabFastLight<T> sglab_fast_light(const T& kappa, const SglabFastParams<S>& p = constants::sglab_fast_float) {
+SglabFastLight<T> sglab_fast_light(const T& kappa,
+                                   const SglabFastParams<S>& p = constants::sglab_fast_float) {
   const T k = detail::min_of(kappa, T(p.kappa_max));
   const T inv_q = T(1) / (horner(k, p.q) + k * k * k * k);
   // A, B, C are O(1) after the division; E(1, κ) ≈ 2π/κ is applied last, so
@@ -107,7 +119,8 @@ SglabFastLight<T> sglab_fast_light(const T& kappa, const SglabFastParams<S>& p =
 }
 
 // Per-shading-point evaluation.
-template <class T> T sglab_fast_eval(const SglabFastLight<T>& light, const T& cosine) {
+template <class T>
+T sglab_fast_eval(const SglabFastLight<T>& light, const T& cosine) {
   return detail::max0_branchless(light.a + light.b * cosine +
                                  light.c_ramp * detail::sglab_ramp(light.v * cosine + T(0.5)));
 }
@@ -116,7 +129,8 @@ template <class T> T sglab_fast_eval(const SglabFastLight<T>& light, const T& co
 // exp_bf within 2 ulp of expf, selects instead of comparisons), so that a batch
 // loop vectorizes. Identical algebra to sglab_fast_light.
 template <class S>
-SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kappa, const SglabFastParams<S>& p) {
+SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kappa,
+                                                                      const SglabFastParams<S>& p) {
   namespace bf = branch_free;
   const float k = bf::min(kappa, float(p.kappa_max));
   const float inv_q = 1.0f / (horner(k, p.q) + k * k * k * k);
@@ -133,14 +147,17 @@ SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kapp
 // Float batch of `sglab_fast` that vectorizes (tests/test_sglab_fast.cpp
 // compares it with the scalar path).
 template <class S = double>
-SGLAB_FLATTEN void irradiance_sglab_fast_batch(const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
-                                 std::size_t n, const SglabFastParams<S>& p = constants::sglab_fast_float) {
-  for (std::size_t i = 0; i < n; ++i) out[i] = sglab_fast_eval(sglab_fast_light_branch_free(kappa[i], p), cosine[i]);
+SGLAB_FLATTEN void irradiance_sglab_fast_batch(
+    const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
+    std::size_t n, const SglabFastParams<S>& p = constants::sglab_fast_float) {
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = sglab_fast_eval(sglab_fast_light_branch_free(kappa[i], p), cosine[i]);
 }
 
 // `sglab_fast`: Ê(c, κ), the two steps above in one call.
 template <class T, class S = double>
-T irradiance_sglab_fast(const T& cosine, const T& kappa, const SglabFastParams<S>& p = constants::sglab_fast_float) {
+T irradiance_sglab_fast(const T& cosine, const T& kappa,
+                        const SglabFastParams<S>& p = constants::sglab_fast_float) {
   return sglab_fast_eval(sglab_fast_light(kappa, p), cosine);
 }
 

@@ -7,7 +7,8 @@
 
 int main() {
   const double kappa = 4.0;
-  const double exact = 2 * 3.14159265358979323846 * (kappa - 1 + std::exp(-kappa)) / (kappa * kappa);
+  const double exact =
+      2 * 3.14159265358979323846 * (kappa - 1 + std::exp(-kappa)) / (kappa * kappa);
   const double e = sglab::irradiance_tokuyoshi2024(1.0, kappa);
   const float mid = sglab::irradiance_tokuyoshi2024(0.25f, 4.0f);
   std::printf("tokuyoshi2024(c=1, k=4) = %.17g (exact %.17g); (c=0.25) = %.9g\n", e, exact, mid);
