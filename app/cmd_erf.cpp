@@ -73,8 +73,9 @@ void run_erf(const ErfArgs& args) {
     validate::ErfFloatOptions fopt;
     fopt.exhaustive = args.exhaustive;
     fopt.bins = args.bins;
-    fopt.progress_label = fmt::format("erf {} float{}", v->id,
-                                      args.exhaustive ? ", exhaustive" : "");  // terminals only
+    // terminals only
+    fopt.progress_label =
+        fmt::format("erf {} float{}", v->id, args.exhaustive ? ", exhaustive" : "");
     if (args.exhaustive) {
       fopt.odd_stride = 127;  // negatives: 16.7 million sampled, not all
       fopt.exhaustive_tail_stride = args.tail_stride;

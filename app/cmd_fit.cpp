@@ -305,8 +305,8 @@ FitRuns run_fits(const std::vector<fit::FitSpec>& specs, const FitCliOptions& o,
     const std::size_t nonfinite_before = fit::nonfinite_residual_evaluations();
     const std::size_t messages_before = fit::solver_messages().count;
     try {
-      io::Progress solves(fmt::format("fit {}, solves", spec.target),
-                          0);  // open-ended: counts Ceres solves
+      // open-ended: counts Ceres solves
+      io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);
       fit::FitProgressScope scope(solves);
       outcome = fit::run_fit(spec);
     } catch (const std::invalid_argument& e) {

@@ -52,8 +52,8 @@ void add_pareto_command(CLI::App& app) {
   cmd->callback([args] {
     double lo = 0, hi = 0;
     {
-      const auto parsed =
-          io::parse_kappa_range(args->kappa, io::KappaRangeRules{});  // LO:HI, float
+      // LO:HI, float
+      const auto parsed = io::parse_kappa_range(args->kappa, io::KappaRangeRules{});
       if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
       lo = std::get<io::KappaRange>(parsed).lo;
       hi = std::get<io::KappaRange>(parsed).hi;
@@ -65,8 +65,8 @@ void add_pareto_command(CLI::App& app) {
 
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
-    const report::CostSource cost =
-        args->costs.source(*precision);  // a bad --cost before the sweep
+    // a bad --cost before the sweep
+    const report::CostSource cost = args->costs.source(*precision);
     std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
     const CostsOption::From source =
         args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);

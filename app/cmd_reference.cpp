@@ -67,8 +67,8 @@ std::size_t for_each_point(const std::string& path,
   if (!in) throw InputError(fmt::format("{}: cannot open points file", path));
 
   std::size_t count = 0;
-  std::vector<char> buffer(kMaxPointsLineBytes +
-                           2);  // one byte more than a line may have, and the NUL
+  // one byte more than a line may have, and the NUL
+  std::vector<char> buffer(kMaxPointsLineBytes + 2);
   std::size_t line_number = 0;
   bool header_seen = false;
   while (true) {
@@ -150,8 +150,8 @@ void add_reference_command(CLI::App& app) {
     constexpr std::size_t kChunk = 4096;  // rows per engine call (each call runs in parallel)
     std::vector<validate::Query> chunk;
     chunk.reserve(kChunk);
-    std::string out =
-        "kappa,cosine,hemispherical,irradiance,normalized\n";  // printed with the first rows
+    // printed with the first rows
+    std::string out = "kappa,cosine,hemispherical,irradiance,normalized\n";
     const auto flush = [&] {
       const auto results = validate::reference_engine().evaluate(chunk, mode);
       for (const auto& r : results)

@@ -132,8 +132,8 @@ int run_step(const std::vector<std::string>& arguments) {
   add_pareto_command(app);
   add_figures_command(app);
   add_envmap_command(app);
-  std::vector<std::string> reversed(arguments.rbegin(),
-                                    arguments.rend());  // CLI11 takes them last first
+  // CLI11 takes them last first
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());
   return run_and_map_exit_code(app, [&] { app.parse(reversed); });
 }
 

@@ -24,11 +24,11 @@ namespace sglab::app {
 
 struct CostsOption {
   std::string costs;  // empty: the project's data/results/costs.json
-  std::string
-      cost;  // when --cost is not given: report::default_cost_source (cpu-batch with --live-timing)
+  // when --cost is not given: report::default_cost_source (cpu-batch with --live-timing)
+  std::string cost;
   bool live_timing = false;
-  CLI::Option* cost_option =
-      nullptr;  // whether --cost was given (an empty value is refused, not the default)
+  // whether --cost was given (an empty value is refused, not the default)
+  CLI::Option* cost_option = nullptr;
 
   void add_to(CLI::App* cmd) {
     cost_option = cmd->add_option(

@@ -62,8 +62,8 @@ std::optional<std::string> unknown_subcommand(CLI::App& app, int argc, char** ar
 }  // namespace
 
 int main(int argc, char** argv) {
-  sglab::fit::init_solver_logging(argc > 0 ? argv[0]
-                                           : "sglab");  // glog once, before any solver runs
+  // glog once, before any solver runs
+  sglab::fit::init_solver_logging(argc > 0 ? argv[0] : "sglab");
   CLI::App app{"sglab: refit, validate and compare spherical Gaussian diffuse lighting methods"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("sglab ") + SGLAB_VERSION,

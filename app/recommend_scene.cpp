@@ -162,8 +162,8 @@ void print_text(const SceneOutput& o) {
 }  // namespace
 
 void recommend_scene(const SceneRecommendArgs& args) {
-  const report::CostSource cost =
-      args.costs.source(args.precision);  // a bad --cost before any work
+  // a bad --cost before any work
+  const report::CostSource cost = args.costs.source(args.precision);
   const validate::Scene scene = read_scene(args);
   const auto normals = validate::fibonacci_normals(args.normals);
   std::vector<report::MethodPoint> points = report::scene_points(scene, normals, args.precision);

@@ -62,8 +62,8 @@ struct Pending {
 void check_output_folder(const fs::path& dir) {
   if (dir.empty()) throw InputError("an empty output folder name (give a folder, e.g. --out out)");
   std::error_code ec;
-  const fs::file_status st =
-      fs::status(dir, ec);  // follows symbolic links: a link to a folder is fine
+  // follows symbolic links: a link to a folder is fine
+  const fs::file_status st = fs::status(dir, ec);
   if (st.type() == fs::file_type::not_found || st.type() == fs::file_type::directory) return;
   const std::string type = file_type_name(dir);
   throw InputError(fmt::format(

@@ -82,8 +82,8 @@ std::string read_input_file(const std::filesystem::path& path, std::size_t max_b
   const std::string name = path.string();
   if (path.empty()) throw InputError(fmt::format("an empty file name for {}", what));
   std::error_code ec;
-  const fs::file_status st =
-      fs::status(path, ec);  // follows symbolic links: a link to a file is fine
+  // follows symbolic links: a link to a file is fine
+  const fs::file_status st = fs::status(path, ec);
   if (st.type() == fs::file_type::not_found)
     throw InputError(fmt::format("{}: no such file ({})", name, what));
   if (ec) throw InputError(fmt::format("{}: cannot read: {}", name, ec.message()));
@@ -116,8 +116,8 @@ std::string read_input_file(const std::filesystem::path& path, std::size_t max_b
   }
   std::string text;
   text.reserve(static_cast<std::size_t>(info.st_size));
-  const int err =
-      read_at_most(fd, max_bytes + 1, text);  // one byte more: the file may have grown since fstat
+  // one byte more: the file may have grown since fstat
+  const int err = read_at_most(fd, max_bytes + 1, text);
   ::close(fd);
   if (err != 0) throw InputError(fmt::format("{}: cannot read: {}", name, os_reason(err)));
   if (text.size() > max_bytes) throw too_large(text.size());

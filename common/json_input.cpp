@@ -116,8 +116,8 @@ class StrictBuilder : public nlohmann::json_sax<ordered_json> {
     return true;
   }
 
-  std::vector<ordered_json*>
-      stack_;  // open containers (pointers stay valid: only the innermost grows)
+  // open containers (pointers stay valid: only the innermost grows)
+  std::vector<ordered_json*> stack_;
   std::vector<std::string> keys_;  // the current key of each open object
 };
 

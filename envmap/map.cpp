@@ -203,8 +203,8 @@ Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j) {
   const double p0 = 2 * M_PI * static_cast<double>(i) / w,
                p1 = 2 * M_PI * static_cast<double>(i + 1) / w;
   const double s2 = (t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4;  // ∫ sin²θ dθ
-  const double sc =
-      (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;  // ∫ sinθ cosθ dθ
+  // ∫ sinθ cosθ dθ
+  const double sc = (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;
   return {s2 * (std::sin(p1) - std::sin(p0)), s2 * (std::cos(p1) - std::cos(p0)), sc * (p1 - p0)};
 }
 

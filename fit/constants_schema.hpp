@@ -46,8 +46,8 @@ struct ConstantsError : std::runtime_error {
 inline constexpr std::size_t kMaxConstantsFileBytes = 1 << 20;  // 1 MiB (a set is a few KB)
 inline constexpr int kMaxJsonDepth = io::kMaxJsonDepth;         // nesting of objects and arrays
 inline constexpr std::size_t kMaxArrayLength = 64;              // size parameters and array members
-inline constexpr std::size_t kMaxIdentifierLength =
-    128;  // cpp_name, target, variant, coefficient names
+// cpp_name, target, variant, coefficient names
+inline constexpr std::size_t kMaxIdentifierLength = 128;
 
 // The format tag of a constant set: its top-level members "format" and
 // "version" (written first by the fits).

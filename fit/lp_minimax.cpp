@@ -237,8 +237,8 @@ LinearSubproblem linear_subproblem(const Residuals& residuals, const std::vector
   std::vector<const double*> blocks(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) blocks[i] = &values[i];
   std::vector<double> column(linear.size());
-  std::vector<double*> jacobians(values.size(),
-                                 nullptr);  // only the linear blocks are differentiated
+  // only the linear blocks are differentiated
+  std::vector<double*> jacobians(values.size(), nullptr);
   for (std::size_t c = 0; c < linear.size(); ++c) jacobians[linear[c]] = &column[c];
   Eigen::VectorXd x0(k);
   for (Eigen::Index c = 0; c < k; ++c) x0[c] = values[linear[std::size_t(c)]];

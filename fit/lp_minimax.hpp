@@ -30,8 +30,8 @@ struct LpMinimaxOptions {
   // rounding of the residuals, 64 ε max|y_i/w_i|).
   double relative_gap = 1e-6;
   int max_rounds = 40;
-  std::size_t initial_rows =
-      0;  // rows of the first working set (evenly spread); 0: 4(n + 1), at least 32
+  // rows of the first working set (evenly spread); 0: 4(n + 1), at least 32
+  std::size_t initial_rows = 0;
   std::size_t peaks_per_round = 0;  // largest local maxima added per round; 0: 2(n + 1)
   std::size_t neighbours = 1;       // rows on each side of a peak added with it
 };

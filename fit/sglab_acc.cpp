@@ -258,8 +258,8 @@ template <std::size_t N, std::size_t D>
 Measured measure(const SglabAccParams<double, N, D>& p,
                  const std::vector<validate::ReferencePoint>& ref) {
   Measured m;
-  double at_kappa = 0,
-         base_at_kappa = 0;  // max over c at the current κ: the member, tokuyoshi2024 (float)
+  // max over c at the current κ: the member, tokuyoshi2024 (float)
+  double at_kappa = 0, base_at_kappa = 0;
   const auto close_kappa = [&](double kappa) {
     const double ratio = at_kappa / std::max(base_at_kappa, 1e-6);
     if (!(ratio <= m.never_worse)) m.never_worse = ratio, m.never_worse_kappa = kappa;
@@ -291,10 +291,10 @@ Measured measure(const SglabAccParams<double, N, D>& p,
 // achieved ≥ lower_bound ≥ per_kappa_floor.
 struct Certificate {
   double achieved = 0;  // max at the final coefficients (double), every row
-  double lower_bound =
-      0;  // LP optimum at the fitted steepness t(κ) and scale s: the best member with those
-  double per_kappa_floor =
-      0;  // max over κ of the optimum with b_j(κ) free at each κ, t(κ) as fitted
+  // LP optimum at the fitted steepness t(κ) and scale s: the best member with those
+  double lower_bound = 0;
+  // max over κ of the optimum with b_j(κ) free at each κ, t(κ) as fitted
+  double per_kappa_floor = 0;
   double per_kappa_floor_peak_rel = 0;  // the same without the weight w(κ) (plain max peak_rel)
   std::size_t rows = 0, kappas = 0, working_rows = 0;
   int rounds = 0;
@@ -307,8 +307,8 @@ struct MemberFit {
   std::vector<double> values;  // steep[5], num, scale (itself, not its log)
   double train = 0;  // the fit objective: max of peak_rel/w(κ) on the training grid (double)
   Measured standard, held_out;
-  std::optional<double>
-      cost;          // float scalar ns/eval over tokuyoshi2024's, from the cost table (member_cost)
+  // float scalar ns/eval over tokuyoshi2024's, from the cost table (member_cost)
+  std::optional<double> cost;
   double floor = 0;  // max over κ of the per-κ optimum at the refitted 2024 t(κ) (0: not computed)
   bool converged = false;
 };
@@ -477,8 +477,8 @@ std::vector<double> staged_start(const std::vector<KappaOptimum>& optima) {
   for (std::size_t i = 0; i < N * (D + 1); ++i)
     fade.names.push_back(fmt::format("num{}", i)), fade.values.push_back(0.0);
   fade.names.push_back("log_scale");
-  fade.values.push_back(
-      std::log(2.0));  // u = 1/2 at t = 2 (κ ≈ 8), the middle of the 2024 form's residual
+  // u = 1/2 at t = 2 (κ ≈ 8), the middle of the 2024 form's residual
+  fade.values.push_back(std::log(2.0));
   bound(fade);
   Residuals rr;
   for (const auto& o : optima) {
@@ -689,8 +689,8 @@ std::optional<std::vector<double>> committed(const std::string& variant, Member 
   const auto path = *root / "data" / "constants" / fmt::format("sglab-acc-{}.json", variant);
   if (!std::filesystem::exists(path)) return std::nullopt;
   try {
-    const ordered_json set =
-        load_constant_set(path);  // bounded and strict, as every constants file
+    // bounded and strict, as every constants file
+    const ordered_json set = load_constant_set(path);
     const auto& c = set.at("coefficients");
     std::vector<double> v = c.at("steep").get<std::vector<double>>();
     const auto num = c.at("num").get<std::vector<double>>();

@@ -21,8 +21,8 @@ class DiagnosticsSink final : public google::LogSink {
   void send(google::LogSeverity severity, const char*, const char* base_filename, int line,
             const google::LogMessageTime&, const char* message, std::size_t length) override {
     if (severity < google::GLOG_WARNING) return;
-    std::string text(message,
-                     length);  // its first non-blank line (Ceres starts some with a newline)
+    // its first non-blank line (Ceres starts some with a newline)
+    std::string text(message, length);
     text.erase(0, std::min(text.find_first_not_of(" \n"), text.size()));
     if (const auto eol = text.find('\n'); eol != std::string::npos) text.resize(eol);
     text = std::string(base_filename) + ":" + std::to_string(line) + ": " + text;

@@ -67,13 +67,13 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
                                ordered_json objective, ordered_json achieved);
 
 FitOutcome fit_clamped_cosine(const FitSpec& spec);
-FitOutcome fit_steepness(
-    const FitSpec& spec);  // steepness2022 / steepness2024, objective optimal-t | irradiance
+// steepness2022 / steepness2024, objective optimal-t | irradiance
+FitOutcome fit_steepness(const FitSpec& spec);
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
 FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
-FitOutcome fit_sglab_acc(
-    const FitSpec& spec);  // sglab_acc<N> ladder, or its model order with max_error
+// sglab_acc<N> ladder, or its model order with max_error
+FitOutcome fit_sglab_acc(const FitSpec& spec);
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
 // peak_rel error of SglabAccParams<double, terms, degree> on `samples`, each

@@ -27,8 +27,8 @@ struct EnvmapCandidate {
 struct EnvmapSelection {
   std::optional<EnvmapCandidate> choice, runner_up;
   std::vector<EnvmapCandidate> tried;  // every (lobes, method) pair evaluated
-  std::vector<std::pair<std::size_t, double>>
-      fit_error;  // lobes → max error with the exact SG irradiance
+  // lobes → max error with the exact SG irradiance
+  std::vector<std::pair<std::size_t, double>> fit_error;
 };
 
 // Lobe counts tried, in order: 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96,

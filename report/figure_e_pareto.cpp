@@ -159,8 +159,8 @@ std::string pareto_plot(const FiguresOptions& opt, const std::string& stem,
     std::sort(fp.begin(), fp.end(),
               [](const ParetoRow& a, const ParetoRow& b) { return a.cost < b.cost; });
     if (fp.empty()) continue;
-    fr += std::string(frontier_blocks.empty() ? "" : "\n\n") +
-          "cost,max_peak_rel,precision\n";  // a header per block
+    // a header per block
+    fr += std::string(frontier_blocks.empty() ? "" : "\n\n") + "cost,max_peak_rel,precision\n";
     frontier_blocks.push_back(pi);
     for (const ParetoRow& r : fp)
       fr += fmt::format("{},{},{}\n", r.cost, r.max_peak_rel, csv_field(r.precision));
@@ -296,8 +296,8 @@ std::vector<ParetoPanel> pareto_panels(const FiguresOptions& opt, std::string& n
 // Draws the panels side by side (the legend right of the last), sharing the
 // error axis, into f.id.{png,svg}.
 Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& panels, Figure f) {
-  std::vector<std::string> families,
-      precisions;  // families (family_of) in order of first appearance
+  // families (family_of) in order of first appearance
+  std::vector<std::string> families, precisions;
   std::set<std::pair<double, double>> ranges;
   double ymin = INFINITY;
   bool any_fail = false;

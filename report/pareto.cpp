@@ -293,8 +293,8 @@ double parse_number(const std::string& s, const std::filesystem::path& path, std
 
 std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
   const std::string text = io::read_input_file(path, kMaxParetoCsvBytes, "a Pareto CSV");
-  std::istringstream in(
-      std::string(io::strip_utf8_bom(text)));  // a byte-order mark is not part of the header
+  // a byte-order mark is not part of the header
+  std::istringstream in(std::string(io::strip_utf8_bom(text)));
   std::string line;
   std::size_t lineno = 0;
   std::vector<std::string> header;

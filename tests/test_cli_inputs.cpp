@@ -45,8 +45,8 @@ TEST(SweepLimit, GridValidateRefusesMoreThanTheLimit) {
   EXPECT_THROW((SweepGrid{1e-3, 1e4, fits + 1, cosines}.validate()), std::invalid_argument);
   EXPECT_THROW((SweepGrid{1, 2, 50000, 50000}.validate()), std::invalid_argument);
   EXPECT_EQ((SweepGrid{1, 2, 50000, 50000}.point_count()), 2'500'000'000u);
-  EXPECT_EQ((SweepGrid{1, 2, 2147483647, 2147483647}.point_count()),
-            4611686014132420609u);  // no overflow
+  // no overflow
+  EXPECT_EQ((SweepGrid{1, 2, 2147483647, 2147483647}.point_count()), 4611686014132420609u);
   try {
     SweepGrid{1e-3, 1e4, 100'000'000, 41}.validate();
     FAIL() << "accepted";

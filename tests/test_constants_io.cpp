@@ -175,8 +175,8 @@ TEST(CommentText, NothingLeavesTheComment) {
   EXPECT_EQ(comment_text("a\nb\r#error x"), "a\\x0ab\\x0d#error x");
   EXPECT_EQ(comment_text(std::string("nul\0here", 8)), "nul\\x00here");
   EXPECT_EQ(comment_text("ends with \\"), "ends with \\x5c");  // never a line splice
-  EXPECT_EQ(comment_text("ends with ?\?/"),
-            "ends with ?\\x3f/");  // nor a trigraph splice (C++ before 17)
+  // nor a trigraph splice (C++ before 17)
+  EXPECT_EQ(comment_text("ends with ?\?/"), "ends with ?\\x3f/");
   EXPECT_EQ(comment_text("what???"), "what?\\x3f\\x3f");
   EXPECT_EQ(comment_text("\x1b[31m"), "\\x1b[31m");
   EXPECT_EQ(comment_text("bidi \u202e override"), "bidi \\u{202e} override");
@@ -509,8 +509,8 @@ TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   const fs::path a = tmp.path / "a.json", b = tmp.path / "b.json",
                  blocked = tmp.path / "header.hpp";
   write(a, "old a");
-  fs::create_directories(
-      blocked);  // refused before any file is written (a rename over it would fail)
+  // refused before any file is written (a rename over it would fail)
+  fs::create_directories(blocked);
   try {
     sglab::io::write_files_atomic({{a, "new a"}, {b, "new b"}, {blocked, "header"}});
     FAIL() << "no error";

@@ -152,8 +152,8 @@ TEST(ErfCheck, FindsInjectedError) {
   };
   const ErfReport r = sglab::validate::check_erf_float(f, small_options(), "injected");
   const Big exact = boost::math::erf(Big(bad));
-  const double expected_ulp =
-      static_cast<double>(abs(Big(f(bad)) - exact) / Big(0x1p-24));  // erf(0.75) ∈ [0.5, 1)
+  // erf(0.75) ∈ [0.5, 1)
+  const double expected_ulp = static_cast<double>(abs(Big(f(bad)) - exact) / Big(0x1p-24));
   EXPECT_EQ(r.stats.worst_x, bad);
   EXPECT_NEAR(r.stats.max_ulp, expected_ulp, 1e-6);
   EXPECT_NEAR(r.stats.max_ulp, 0.711155633653515 * 16, 0.5);  // erf(0.75)·2^−20 / 2^−24

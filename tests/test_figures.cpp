@@ -162,8 +162,8 @@ TEST(Figures, OnePanelPerCostSource) {
 TEST(Figures, GnuplotPathTakenLiterally) {
   EXPECT_FALSE(gnuplot_available(""));
   EXPECT_FALSE(gnuplot_available("/nonexistent/gnuplot"));
-  EXPECT_FALSE(
-      gnuplot_available("gnuplot --version; true"));  // one program name, not a command line
+  // one program name, not a command line
+  EXPECT_FALSE(gnuplot_available("gnuplot --version; true"));
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   const sglab::test::TempDir tmp("fig's $dir;");
   const fs::path& dir = tmp.path;

@@ -213,8 +213,8 @@ TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
                            false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
-  std::map<std::tuple<std::string, std::string, bool>, nlohmann::json>
-      rows;  // (family, method, split)
+  // (family, method, split)
+  std::map<std::tuple<std::string, std::string, bool>, nlohmann::json> rows;
   for (const auto& row : doc.at("rows"))
     rows[{row.at("family").get<std::string>(), row.at("method").get<std::string>(),
           row.at("split").get<bool>()}] = row;
@@ -331,8 +331,9 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
       gpu::spirv_hash(gpu::method_shader("hill", shader::Language::hlsl).spirv);
   ASSERT_NE(glsl_hash, hlsl_hash);
   report.rows = {row("navi21", shader::Language::glsl, 1234, glsl_hash),
+                 // another code's hash
                  row("gfx1100", shader::Language::glsl, 2345, glsl_hash),
-                 row("navi21", shader::Language::hlsl, 3456, glsl_hash)};  // another code's hash
+                 row("navi21", shader::Language::hlsl, 3456, glsl_hash)};
   doc["gpu"] = gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
 

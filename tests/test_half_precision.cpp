@@ -233,9 +233,9 @@ TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
   gpu::Statistics s;
   s.instructions = s.inverse_throughput = s.latency = 777;
   gpu::Report report{"radv Mesa (test rows)", "test", {}};
-  report.rows = {
-      {"hill", "navi21", sh::Language::glsl, false, "half", s, half_hash},
-      {"hill", "gfx1100", sh::Language::glsl, false, "float", s, half_hash}};  // not a half row
+  report.rows = {// not a half row
+                 {"hill", "navi21", sh::Language::glsl, false, "half", s, half_hash},
+                 {"hill", "gfx1100", sh::Language::glsl, false, "float", s, half_hash}};
   doc["gpu"] = gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   const fs::path old = fs::current_path();

@@ -183,8 +183,8 @@ TEST(InputFile, RefusesWhatIsNotARegularFileAndFilesOverTheLimit) {
       EXPECT_TRUE(contains(e.what(), path.string() + ": " + why)) << e.what();
     }
   }
-  EXPECT_EQ(sglab::io::read_input_file(odd.link, 100, "a test file"),
-            "keep");  // a link to a regular file is fine
+  // a link to a regular file is fine
+  EXPECT_EQ(sglab::io::read_input_file(odd.link, 100, "a test file"), "keep");
   EXPECT_EQ(sglab::io::read_input_file(odd.target, 4, "a test file"), "keep");  // exactly the limit
   try {
     sglab::io::read_input_file(odd.target, 3, "a test file");

@@ -114,8 +114,8 @@ TEST(LpMinimax, LowerBoundOnAnySubsetIsBelowTheAchievedMaximum) {
   std::vector<std::size_t> every, some;
   for (std::size_t i = 0; i < x.size(); ++i) every.push_back(i);
   for (std::size_t i = 0; i < x.size(); i += 97) some.push_back(i);
-  const auto all_rows =
-      lp_minimax_on(p.a, p.y, p.w, every);  // one LP on every row: the exact minimax
+  // one LP on every row: the exact minimax
+  const auto all_rows = lp_minimax_on(p.a, p.y, p.w, every);
   const auto subset = lp_minimax_on(p.a, p.y, p.w, some);
   EXPECT_LE(subset.lower_bound, all_rows.lower_bound * (1 + 1e-12));
   EXPECT_LE(all_rows.lower_bound, full.achieved * (1 + 1e-12));
@@ -198,8 +198,8 @@ TEST(LpMinimax, LinearSubproblemOfAFitsResidualsIsExact) {
   for (std::size_t i = 0; i < xs.size(); ++i) {
     EXPECT_DOUBLE_EQ(sub.a(Eigen::Index(i), 0), 1.0);
     EXPECT_NEAR(sub.a(Eigen::Index(i), 1), xs[i] * xs[i], 1e-15);
-    EXPECT_NEAR(sub.y[Eigen::Index(i)], std::abs(xs[i]) - 0.3 + 0.7 * xs[i] * xs[i],
-                1e-15);  // −r(x₀)
+    // −r(x₀)
+    EXPECT_NEAR(sub.y[Eigen::Index(i)], std::abs(xs[i]) - 0.3 + 0.7 * xs[i] * xs[i], 1e-15);
   }
   // Best even quadratic to |x| on [−1, 1] = best linear a + b·s to √s on
   // s = x² ∈ [0, 1]: b = 1, a = 1/8, error 1/8 (chord slope, tangent at s = 1/4).

@@ -449,8 +449,8 @@ TEST(Metrics, ExactUlpErrorSpecialValues) {
   EXPECT_TRUE(std::isnan(sv::exact_ulp_error_float(1.0, kNaN)));
 
   EXPECT_EQ(sv::exact_ulp_error_double(1.0 + 0x1p-52, 1.0L), 1.0);
-  EXPECT_EQ(sv::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L),
-            0x1p-60 / 0x1p-53);  // long double exact value
+  // long double exact value
+  EXPECT_EQ(sv::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L), 0x1p-60 / 0x1p-53);
   EXPECT_EQ(sv::exact_ulp_error_double(0x1p-1074, 0.0L), 1.0);
   EXPECT_EQ(sv::exact_ulp_error_double(-0.0, 0.0L), 0.0);
   EXPECT_EQ(sv::exact_ulp_error_double(kInf, static_cast<long double>(kInf)), 0.0);

@@ -124,8 +124,8 @@ TEST(Progress, NothingDrawnNothingCleared) {
   std::string out;
   { Progress p("idle", 3, string_sink(out, true)); }  // never advanced: no line to clear
   EXPECT_EQ(out, "");
-  Progress no_writer("work", 1,
-                     ProgressSink{true, nullptr});  // a terminal without a writer draws nothing
+  // a terminal without a writer draws nothing
+  Progress no_writer("work", 1, ProgressSink{true, nullptr});
   no_writer.advance();
   no_writer.finish();
 }

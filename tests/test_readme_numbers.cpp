@@ -210,13 +210,13 @@ struct Results {
   std::map<Key, double> held_out_worst_kappa;
   std::map<Key, double> vulkan;           // vulkan_sweep.json results, irradiance max_peak_rel
   std::map<Key, double> device_vs_float;  // vulkan_sweep.json device_vs_float, max_diff_peak_rel
-  std::map<std::tuple<std::string, std::string, bool>, double>
-      gpu;                   // (method, family, split): GLSL float cycles
+  // (method, family, split): GLSL float cycles
+  std::map<std::tuple<std::string, std::string, bool>, double> gpu;
   std::map<Key, double> ns;  // (method, "scalar" | "batch"): float ns/eval
   std::map<Key, double> ir;  // callgrind.csv: (method, mode): instructions per float evaluation
   std::map<std::tuple<std::string, int, std::string>, double> envmap;  // (map, lobes, fit): max_rel
-  std::map<std::tuple<std::string, int, std::string>, double>
-      envmap_rms;  // (map, lobes, fit): rms_rel
+  // (map, lobes, fit): rms_rel
+  std::map<std::tuple<std::string, int, std::string>, double> envmap_rms;
   std::set<std::string> maps;
 
   double at(const auto& table, const auto& key, const std::string& what) const {
@@ -768,8 +768,8 @@ TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
 
 TEST(ResultsDocs, BenchSummaryMatchesTheCostTable) {
   const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
-  std::map<std::tuple<std::string, std::string, std::string, std::string>, double>
-      ns;  // kind method precision mode
+  // kind method precision mode
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, double> ns;
   for (const auto& e : costs.at("costs"))
     ns[{e.at("kind"), e.at("method"), e.at("precision"), e.at("mode")}] = e.at("ns_per_eval");
   const auto rows = table_after(slurp(kResults / "bench_summary.md"),

@@ -272,8 +272,8 @@ std::vector<Query> contract_points() {
 
 TEST(ReferenceContract, ReportedBoundWithin1e14AndHighPrecisionAgrees) {
   constexpr double kContract = 1e-14;  // relative, per quantity (H, E)
-  const double slack =
-      4 * std::numeric_limits<double>::epsilon();  // rounding of the result to double
+  // rounding of the result to double
+  const double slack = 4 * std::numeric_limits<double>::epsilon();
   const std::vector<Query> queries = contract_points();
   ReferenceEngine engine;
   const auto standard = engine.evaluate(queries, Precision::standard);
@@ -364,8 +364,8 @@ double sphere_quadrature(double kappa, double c, bool cosine_weighted) {
   auto over_phi = [&](double theta) {
     const double ct = std::cos(theta), st = std::sin(theta);
     auto g = [&](double phi) { return std::exp(kappa * (st * r * std::cos(phi) + ct * c - 1)); };
-    return 2 * composite_gauss(g, 0.0, kPi) * st *
-           (cosine_weighted ? ct : 1.0);  // φ ∈ [0, 2π], symmetric
+    // φ ∈ [0, 2π], symmetric
+    return 2 * composite_gauss(g, 0.0, kPi) * st * (cosine_weighted ? ct : 1.0);
   };
   return composite_gauss(over_phi, 0.0, kPi / 2);
 }

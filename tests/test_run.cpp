@@ -228,8 +228,8 @@ pid_t spawn_sglab(const std::vector<std::string>& args) {
 TEST(RunCommand, ParetoWithoutGpuCostsIsSkippedWithTheReason) {
   sglab::test::TempDir project("run-no-gpu");
   fs::create_directories(project.path / "include" / "sglab");
-  fs::create_directories(project.path / "data" /
-                         "constants");  // what marks a project (io::find_project_root)
+  // what marks a project (io::find_project_root)
+  fs::create_directories(project.path / "data" / "constants");
   fs::create_directories(project.path / "data" / "results");
   std::string rows;
   for (const sglab::Method& m : sglab::irradiance_methods)

@@ -78,8 +78,8 @@ Deviation deviation(const sglab::Method& m, const Grid& g, const std::vector<dou
   }
   return d;
 }
-constexpr double kAllowance =
-    2e-5;  // of the peak: the tiers' erf/erfc error is ≤ 1.5e-7, expm1 ≤ 2e-7 relative
+// of the peak: the tiers' erf/erfc error is ≤ 1.5e-7, expm1 ≤ 2e-7 relative
+constexpr double kAllowance = 2e-5;
 
 // Registered methods with an export entry (CoversEveryRegisteredIrradianceMethod
 // names any without one).
@@ -671,8 +671,8 @@ TEST(ShaderExport, EveryConstantSetOverrideKeepsItsFloats) {
   candidates.emplace_back();
   candidates.back().method = "tokuyoshi2024";
   const sh::ElementaryError as7125 = sh::measure_elementary("as7125");
-  candidates.back().budget.model =
-      100 * std::max(as7125.max_abs(), as7125.erf_rel_small) * 1.01;  // takes as7125
+  // takes as7125
+  candidates.back().budget.model = 100 * std::max(as7125.max_abs(), as7125.erf_rel_small) * 1.01;
   for (const auto& entry : fs::directory_iterator(kConstantsDir)) {
     if (entry.path().extension() != ".json") continue;
     const auto j = read_json(entry.path());
@@ -718,8 +718,8 @@ TEST(ShaderExport, ElementaryTiersAreChosenByTheModelError) {
   EXPECT_EQ(sh::choose_tier(std::nullopt).id, "listing5");
   EXPECT_EQ(sh::choose_tier(1.55e-3).id, "listing5");  // tokuyoshi2024 needs the accurate erfc
   const double as_worst = std::max(as7125.max_abs(), as7125.erf_rel_small);
-  EXPECT_EQ(sh::choose_tier(100 * as_worst * 1.01).id,
-            "as7125");  // a coarse model takes the cheap tier
+  // a coarse model takes the cheap tier
+  EXPECT_EQ(sh::choose_tier(100 * as_worst * 1.01).id, "as7125");
 }
 
 // ---------------------------------------------------------------------------

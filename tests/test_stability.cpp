@@ -198,8 +198,8 @@ TEST(Stability, AccuracyIsRelativeDownToTheSmallestNormal) {
   EXPECT_TRUE(sv::is_inaccurate<double>(1.001e-300, 1e-300L));
   EXPECT_FALSE(sv::is_inaccurate<double>(1.00000001e-300, 1e-300L));
   EXPECT_TRUE(sv::is_inaccurate<double>(0.0, 3.5e-308L));  // 2π/DBL_MAX, a normal double
-  EXPECT_FALSE(
-      sv::is_inaccurate<double>(0.0, 1e-320L));  // a denormal: within 1e−4 of the smallest normal
+  // a denormal: within 1e−4 of the smallest normal
+  EXPECT_FALSE(sv::is_inaccurate<double>(0.0, 1e-320L));
   EXPECT_TRUE(sv::is_inaccurate<float>(0.0f, 1.85e-38L));  // 2π/FLT_MAX, a normal float
   EXPECT_FALSE(sv::is_inaccurate<float>(0.0f, 1e-44L));
   EXPECT_FALSE(sv::is_inaccurate<float>(1.0f, 1.00001L));

@@ -334,15 +334,15 @@ Claim claim_numerical_vs_approximation() {
   for (int i = 0; i < n; ++i) {
     const float uf = static_cast<float>(static_cast<double>(i) / (n - 1));
     const double u = uf;
-    const double exact_model =
-        p.alpha * std::expm1(p.lambda * u);  // the model in (near) exact arithmetic
+    // the model in (near) exact arithmetic
+    const double exact_model = p.alpha * std::expm1(p.lambda * u);
     approx = std::max(approx, std::abs(exact_model - u));
     const float fl = af * (std::exp(lf * uf) - 1.0f);  // as Listing 1 evaluates it, in float
     numerical = std::max(numerical, std::abs(static_cast<double>(fl) - exact_model));
   }
   const double ratio = numerical / approx;
-  const double model =
-      p.alpha * 0x1p-23;  // α·ε_float: rounding of exp with a 1-ulp error (GPU-style exp)
+  // α·ε_float: rounding of exp with a 1-ulp error (GPU-style exp)
+  const double model = p.alpha * 0x1p-23;
   return {"float_numerical_vs_approximation",
           "with the published λ, α the maximum numerical (float rounding) error of α(e^{λ cos}-1) "
           "is almost the same as the "

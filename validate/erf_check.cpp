@@ -55,18 +55,18 @@ namespace detail {
 namespace {
 
 // Fields of a binary32 pattern: sign 1 bit, exponent 8 bits, fraction 23 bits.
-constexpr std::uint32_t kFloatExponentMask =
-    0x7f800000u;  // exponent field; also the pattern of +inf
-constexpr std::uint32_t kFloatFractionMask =
-    0x007fffffu;  // fraction field; also the largest subnormal's pattern
+// exponent field; also the pattern of +inf
+constexpr std::uint32_t kFloatExponentMask = 0x7f800000u;
+// fraction field; also the largest subnormal's pattern
+constexpr std::uint32_t kFloatFractionMask = 0x007fffffu;
 constexpr std::uint32_t kFloatMagnitudeMask = 0x7fffffffu;  // all but the sign: the pattern of |x|
 constexpr std::uint32_t kFloatOneBits = 0x3f800000u;        // 1.0f
 static_assert(std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity()) ==
               kFloatExponentMask);
 static_assert(std::bit_cast<std::uint32_t>(1.0f) == kFloatOneBits);
 // Fields of a binary64 pattern: sign 1, exponent 11 (bias 1023), fraction 52.
-constexpr std::uint64_t kDoubleExponentMask =
-    0x7ff0000000000000u;  // exponent field; also the pattern of +inf
+// exponent field; also the pattern of +inf
+constexpr std::uint64_t kDoubleExponentMask = 0x7ff0000000000000u;
 constexpr std::uint64_t kDoubleFractionMask = (std::uint64_t{1} << 52) - 1;
 // 2^1023 (biased exponent 2046, fraction 0). Subtracting the exponent field of
 // r = m·2^e (biased e + 1023) from it leaves biased exponent 1023 − e: the
@@ -156,8 +156,8 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   for (std::size_t k = 0; k < n; ++k) {
     // 1/ulp_float(ref) = 2^23 · min(2^−floor(log2 ref), 2^126), through the exponent bits.
     const std::uint64_t e = std::bit_cast<std::uint64_t>(ref[k]) & kDoubleExponentMask;
-    const double inv_p2 =
-        std::bit_cast<double>(kDoubleTwoTo1023Bits - e);  // 2^−floor(log2 ref); 2^1023 for 0
+    // 2^−floor(log2 ref); 2^1023 for 0
+    const double inv_p2 = std::bit_cast<double>(kDoubleTwoTo1023Bits - e);
     const double inv = (inv_p2 < 0x1p126 ? inv_p2 : 0x1p126) * 0x1p23;
     err_abs[k] = std::abs(err_abs[k] - ref[k]);
     err_ulp[k] = err_abs[k] * inv;
@@ -282,8 +282,8 @@ std::vector<FloatSegment> float_segments(const ErfFloatOptions& o) {
   const std::uint32_t tail_stride = std::max<std::uint32_t>(1, o.tail_stride);
   s.push_back({FloatSegment::bits, 0, stride, 0, (kErfFloatTailBits - 1) / stride + 1, false});
   if (o.grid_log2 > 0) {
-    const int g =
-        static_cast<int>(std::min<std::uint32_t>(o.grid_log2, 24));  // i·step exact for i < 2^24
+    // i·step exact for i < 2^24
+    const int g = static_cast<int>(std::min<std::uint32_t>(o.grid_log2, 24));
     s.push_back({FloatSegment::grid, 0, 0, std::ldexp(4.0f, -g), std::uint64_t{1} << g, false});
   }
   s.push_back({FloatSegment::bits, kErfFloatTailBits, tail_stride, 0,

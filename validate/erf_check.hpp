@@ -171,8 +171,8 @@ struct ErfReport {
 // a range of patterns).
 inline constexpr std::uint32_t kErfFloatTailBits = 0x40800000u;  // 4.0f: from here RN(erf) = 1
 inline constexpr std::uint32_t kErfFloatMaxBits = 0x7f7fffffu;   // FLT_MAX = (2 − 2^−23)·2^127
-inline constexpr std::uint32_t kErfFloatFarBits =
-    0x42800000u;  // 64.0f: exhaustive_tail_stride applies above
+// 64.0f: exhaustive_tail_stride applies above
+inline constexpr std::uint32_t kErfFloatFarBits = 0x42800000u;
 static_assert(std::bit_cast<std::uint32_t>(4.0f) == kErfFloatTailBits);
 static_assert(std::bit_cast<std::uint32_t>(std::numeric_limits<float>::max()) == kErfFloatMaxBits);
 static_assert(std::bit_cast<std::uint32_t>(64.0f) == kErfFloatFarBits);

@@ -111,8 +111,8 @@ ErfTaylorFloat erf_taylor_float(double x_first, double x0, double x_last) {
   t.ok = true;
   t.x0 = x0;
   const long double X = x0;
-  const long double g =
-      1.1283791670955125738961589031215452L * std::exp(-X * X);  // 2/√π · e^(−x0²)
+  // 2/√π · e^(−x0²)
+  const long double g = 1.1283791670955125738961589031215452L * std::exp(-X * X);
   long double H[6];
   H[0] = 1;
   H[1] = 2 * X;
@@ -131,8 +131,8 @@ long double erf_special_expected_double(double x) {
   if (std::isnan(x)) return x;
   if (std::isinf(x)) return x > 0 ? 1.0L : -1.0L;
   if (x == 0) return x;  // keeps the sign of zero
-  const double best = round_to_nearest<double>(
-      boost::math::erf(Big(std::abs(x))));  // RN to double, decided in 50 digits
+  // RN to double, decided in 50 digits
+  const double best = round_to_nearest<double>(boost::math::erf(Big(std::abs(x))));
   return x < 0 ? -best : best;
 }
 
@@ -203,8 +203,8 @@ ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options) {
             long double c[kDeg];
             for (std::size_t k = 0; k < kDeg; ++k) c[k] = static_cast<long double>(big[k]);
             for (std::size_t i = i0; i < i1; ++i)
-              s.ref[i] =
-                  horner(static_cast<long double>(s.x[i]) - x0, c);  // x − x0 exact (Sterbenz)
+              // x − x0 exact (Sterbenz)
+              s.ref[i] = horner(static_cast<long double>(s.x[i]) - x0, c);
           } else {
             for (std::size_t i = i0; i < i1; ++i) s.ref[i] = erf_reference_50(s.x[i]);
           }

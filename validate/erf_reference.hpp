@@ -100,8 +100,8 @@ inline bool near_float_midpoint(double y, int ulps = 8) {
     constexpr int kDroppedBits = 52 - 23;  // double significand bits a float does not keep
     const auto low = static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(a) &
                                                ((std::uint64_t{1} << kDroppedBits) - 1));
-    const std::int64_t d =
-        low - (std::int64_t{1} << (kDroppedBits - 1));  // distance from the midpoint pattern 100…0
+    // distance from the midpoint pattern 100…0
+    const std::int64_t d = low - (std::int64_t{1} << (kDroppedBits - 1));
     return d <= ulps && d >= -ulps;
   }
   const double q = a * 0x1p149;  // in units of the subnormal spacing; exact

@@ -107,8 +107,8 @@ Scene parse_scene(std::string_view text, std::string_view source) {
     if (!(length > 1e-12) || !std::isfinite(length))
       fail(source, at + ".axis", fmt::format("cannot be normalized (length {})", length));
     for (double& x : light.axis) x /= length;
-    light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]) +
-                      0.0;  // -0 is 0 (κ in [0, 0], not [-0, 0])
+    // -0 is 0 (κ in [0, 0], not [-0, 0])
+    light.sharpness = finite_number(source, at + ".sharpness", l["sharpness"]) + 0.0;
     if (light.sharpness < 0)
       fail(source, at + ".sharpness", fmt::format("must be >= 0, got {}", light.sharpness));
     // Every method is ranked in float (and sglab's models over the κ range):

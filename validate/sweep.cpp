@@ -76,8 +76,8 @@ void SweepGrid::validate() const {
   if (cosine_count < 2)
     throw std::invalid_argument(fmt::format("cosine count must be >= 2, got {}", cosine_count));
   if (point_count() > kMaxPoints) {
-    const std::size_t entries =
-        registered_sweep_methods().size() * 2;  // every method, float and double
+    // every method, float and double
+    const std::size_t entries = registered_sweep_methods().size() * 2;
     throw std::invalid_argument(
         fmt::format("the grid of {} κ × {} cosines = {} points exceeds the limit of {} points; it "
                     "would need about {:.3g} GB "
@@ -110,8 +110,8 @@ std::vector<double> SweepGrid::cosines() const {
   c.reserve(static_cast<std::size_t>(cosine_count));
   const int last = cosine_count - 1;
   for (int i = 0; i <= last; ++i)
-    c.push_back(-1.0 +
-                2.0 * i / last);  // the standard grid's expression (docs/quantities.md); ends exact
+    // the standard grid's expression (docs/quantities.md); ends exact
+    c.push_back(-1.0 + 2.0 * i / last);
   return c;
 }
 

@@ -139,8 +139,8 @@ SGLAB_FORCE_INLINE T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosin
   const T z = l.t * c;
   const T z2 = z * z;
   const T one_minus_c2 = T(1) - c * c;
-  const T g =
-      Ops::exp(-z2);  // e^{−z²}: shared by the [Tokuyoshi2024] tail, erfc(−z) and the correction
+  // e^{−z²}: shared by the [Tokuyoshi2024] tail, erfc(−z) and the correction
+  const T g = Ops::exp(-z2);
   // [Tokuyoshi2024] Listing 7: f = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t).
   const T f2024 = T(0.5) * c * Ops::erfc(-z, g) + l.half_erfc_t -
                   g * Ops::expm1(-l.t2 * one_minus_c2) * l.tail_scale;
