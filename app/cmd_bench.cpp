@@ -185,10 +185,8 @@ void write_bench(const BenchArgs& args, const Timings& t,
   const std::filesystem::path dir(args.out);
   const std::string timer = fmt::format(
       "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry "
-      "function "
-      "pointer per element, batch = batch pointer over all inputs, light_setup = ns per light, "
-      "light_eval = ns "
-      "per shading point",
+      "function pointer per element, batch = batch pointer over all inputs, light_setup = ns per "
+      "light, light_eval = ns per shading point",
       args.repetitions, args.min_time);
   const validate::Table table = report::cost_table(
       t.costs, fmt::format("ns per evaluation ({}; {})", timer, report::cost_input_description()));

@@ -146,8 +146,8 @@ void run_fit(const FitArgs& a, const std::string& command) {
   prov["fit_normals"] = options.fit_normals;
   prov["error_normals"] = a.normals;
   prov["irradiance_error"] =
-      "max and RMS over Fibonacci normals and RGB of |E_lobes - E_map| / max E_map; E_lobes "
-      "exact (reference engine), E_map every pixel with its solid angle";
+      "max and RMS over Fibonacci normals and RGB of |E_lobes - E_map| / max E_map; E_lobes exact "
+      "(reference engine), E_map every pixel with its solid angle";
   prov["max_rel"] = e_fit.max_rel;
   prov["rms_rel"] = e_fit.rms_rel;
   prov["baseline_max_rel"] = e_base.max_rel;
@@ -273,8 +273,8 @@ void add_envmap_command(CLI::App& app) {
       "envmap", "Real lighting: SG lobes fitted to HDR environment maps (OpenEXR, .hdr)");
   env->require_subcommand(1);
   env->footer(
-      "Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth "
-      "φ = 2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
+      "Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth φ = "
+      "2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
 
   {
     auto a = std::make_shared<DownsampleArgs>();

@@ -112,8 +112,7 @@ void run_erf(const ErfArgs& args) {
 void add_erf_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("erf",
                                  "Every erf variant against the correctly rounded erf, in float "
-                                 "and double (max abs/ulp error, "
-                                 "worst x, RMS, histogram)");
+                                 "and double (max abs/ulp error, worst x, RMS, histogram)");
   auto args = std::make_shared<ErfArgs>();
   cmd->add_option("--variant", args->variants,
                   "erf variant id (repeatable; default: all of " + known_variants() + ")");
@@ -123,13 +122,11 @@ void add_erf_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print the results as JSON on stdout instead of tables");
   cmd->add_option("--out", args->out,
                   "directory for per-variant CSV series of the ulp error over x, the summary (CSV, "
-                  "Markdown) and "
-                  "the histogram (CSV)")
+                  "Markdown) and the histogram (CSV)")
       ->check(non_empty_path());
   cmd->add_option("--tail-stride", args->tail_stride,
                   "with --exhaustive: check every N-th float bit pattern in [64, FLT_MAX] (every "
-                  "float in [4, 64) "
-                  "always; 1 = every float)")
+                  "float in [4, 64) always; 1 = every float)")
       ->check(count_in(1, std::numeric_limits<std::uint32_t>::max()))
       ->capture_default_str();
   cmd->add_option("--bins", args->bins, "bins of x in the CSV series")

@@ -81,8 +81,7 @@ void refuse_inapplicable(const std::string& target, const GivenOptions& given,
   if (target == "lambda-d" && given.kappa && objective != "irradiance")
     throw InputError(
         "--kappa does not apply to `fit lambda-d` without --objective irradiance (the other "
-        "lambda-d objectives are "
-        "integrals over the sphere, independent of κ)");
+        "lambda-d objectives are integrals over the sphere, independent of κ)");
 }
 
 fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target,
@@ -275,8 +274,7 @@ Destination resolve_destination(const FitCliOptions& o) {
       } catch (const fit::ConstantsError& e) {
         throw fit::ConstantsError(
             fmt::format("no sglab project at or above the working directory, so the header would "
-                        "hold only the sets in {}, "
-                        "and {}: run inside a checkout, or use --dry-run",
+                        "hold only the sets in {}, and {}: run inside a checkout, or use --dry-run",
                         d.out_dir.string(), e.what()));
       }
     }
@@ -386,22 +384,21 @@ void add_fit_command(CLI::App& app) {
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   auto* costs = cmd->add_option(
       "--costs", o->costs,
-      "cost table written by `sglab bench` for the cost column (default: "
-      "data/results/costs.json of the project holding the working directory, if any)" +
+      "cost table written by `sglab bench` for the cost column (default: data/results/costs.json "
+      "of the project holding the working directory, if any)" +
           taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--out", o->out_dir,
                   "directory of constant-set JSON files (default: data/constants of the sglab "
-                  "project found at or "
-                  "above the working directory)")
+                  "project found at or above the working directory)")
       ->check(non_empty_path());
   cmd->add_option(
          "--header", o->header,
          "runtime header to regenerate (default: the project's include/sglab/constants.hpp when "
-         "--out is "
-         "its data/constants, else OUT/constants.hpp; a fit into another folder never touches the "
-         "checkout). The header holds the project's sets with those of --out in their place")
+         "--out is its data/constants, else OUT/constants.hpp; a fit into another folder never "
+         "touches the checkout). The header holds the project's sets with those of --out in their "
+         "place")
       ->check(non_empty_path());
   cmd->callback([o, precision, objective, kappa, max_error, alpha_free, cold_start, costs] {
     const GivenOptions given{precision->count() > 0,  objective->count() > 0,

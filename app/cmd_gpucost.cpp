@@ -97,13 +97,13 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
       dir / "gpu_costs.md",
       fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
                   "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
-                  "the sweep's compute wrapper minus the same wrapper around a trivial body "
-                  "(VGPRs and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate "
-                  "of the cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and "
-                  "HLSL exports are the same code with the same control flow (a conditional "
-                  "with a costly arm is an if, never ?:, which glslang's HLSL front end "
-                  "evaluates on both sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse "
-                  "throughputs within 5% on navi21 and gfx1100.\n\n{}",
+                  "the sweep's compute wrapper minus the same wrapper around a trivial body (VGPRs "
+                  "and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate of the "
+                  "cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and HLSL "
+                  "exports are the same code with the same control flow (a conditional with a "
+                  "costly arm is an if, never ?:, which glslang's HLSL front end evaluates on both "
+                  "sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% "
+                  "on navi21 and gfx1100.\n\n{}",
                   report.driver, report.command, gpu::to_markdown(report)));
 }
 
@@ -146,8 +146,7 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
                                                                        : "";
     fmt::print(
         "; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of "
-        "the whole "
-        "pipeline: the sweep's compute wrapper ({}) around the export\n{}",
+        "the whole pipeline: the sweep's compute wrapper ({}) around the export\n{}",
         methods[0], families[0], shader::to_string(languages[0]), option,
         split ? "one float load, the light struct at the workgroup's index, one float store"
               : "one float2 load, one float store",
@@ -207,8 +206,7 @@ void add_gpucost_command(CLI::App& app) {
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
   cmd->add_option("--form", args->form,
                   "unsplit, split (the per-pixel function of `sglab export --split`, rows with "
-                  "split = true, for the "
-                  "methods that have one) or both")
+                  "split = true, for the methods that have one) or both")
       ->capture_default_str();
   cmd->add_option(
          "--precision", args->precision,
@@ -255,8 +253,7 @@ void add_gpucost_command(CLI::App& app) {
          precisions.size() != 1 || args->json || !args->out.empty()))
       throw InputError(
           "--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one "
-          "--precision, "
-          "and no --json or --out (--form split: the split export)");
+          "--precision, and no --json or --out (--form split: the split export)");
     try {
       measure_and_report(*args, families, languages, methods, precisions);
     } catch (const gpu::Unavailable& e) {

@@ -156,8 +156,8 @@ void add_recommend_command(CLI::App& app) {
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI");
   cmd->add_option("--scene", args->scene,
                   "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": "
-                  "[r, g, b]}, …]}: "
-                  "rank the methods by their error on the scene's irradiance instead");
+                  "[r, g, b]}, …]}: rank the methods by their error on the scene's irradiance "
+                  "instead");
   cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")
       ->check(count_in(1, 1000000))
       ->capture_default_str();

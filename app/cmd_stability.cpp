@@ -91,8 +91,7 @@ void print_stability_summary(const validate::StabilityReport& report,
   if (own_failures.empty())
     fmt::print(
         "sglab's own primitives and methods (origin sglab or refit): no NaN / Inf / negative / "
-        "out-of-range "
-        "output on valid inputs.\n");
+        "out-of-range output on valid inputs.\n");
   else
     for (const validate::StabilityRow* r : own_failures)
       fmt::print(
@@ -148,9 +147,8 @@ void add_stability_command(CLI::App& app) {
                 "print the full table as JSON on stdout; writes no file unless --out is given");
   cmd->add_flag("--half", args->half,
                 "also run every method's half export (`sglab export --precision half`) on the "
-                "first Vulkan device and "
-                "report the κ range where half survives (stability_half.{csv,md}); exit 1 without "
-                "a device with shaderFloat16");
+                "first Vulkan device and report the κ range where half survives "
+                "(stability_half.{csv,md}); exit 1 without a device with shaderFloat16");
   cmd->callback([args, out_option] { run_stability(*args, out_option->count() > 0); });
 }
 

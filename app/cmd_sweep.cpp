@@ -308,8 +308,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option(
       "--cosines", args->cosines,
       fmt::format(
-          "number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at "
-          "most {} points",
+          "number of cosines evenly spaced over [-1, 1] (default 41); κ count × cosines is at most "
+          "{} points",
           validate::SweepGrid::kMaxPoints));
   auto* out_option =
       cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
@@ -320,19 +320,17 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--method", args->methods, "restrict to this method id (repeatable)");
   cmd->add_option("--backend", args->backends,
                   "cpu (the C++ runtime in float and double, default) and/or vulkan (each "
-                  "irradiance method's "
-                  "`sglab export` run as a compute shader on the first Vulkan device); auto = cpu, "
-                  "plus vulkan when "
-                  "a device can be created; comma-separated or repeated")
+                  "irradiance method's `sglab export` run as a compute shader on the first Vulkan "
+                  "device); auto = cpu, plus vulkan when a device can be created; comma-separated "
+                  "or repeated")
       ->delimiter(',');
   cmd->add_option("--lang", args->lang,
                   "shader language(s) of the vulkan backend: glsl, hlsl or both")
       ->capture_default_str();
   cmd->add_option(
          "--precision", args->precisions,
-         "precision(s) of the exports the vulkan backend runs: float (default) and/or half "
-         "(`sglab export --precision half`, rows vulkan_half and vulkan_hlsl_half); "
-         "comma-separated")
+         "precision(s) of the exports the vulkan backend runs: float (default) and/or half (`sglab "
+         "export --precision half`, rows vulkan_half and vulkan_hlsl_half); comma-separated")
       ->delimiter(',');
   cmd->callback([args, out_option] { run_sweep(*args, out_option->count() > 0); });
 }

@@ -35,12 +35,10 @@ struct CostsOption {
         "--cost", cost,
         "speed axis: gpu:FAMILY (ACO's inverse throughput of the GLSL export on that RADV family, "
         "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab "
-        "bench`). "
-        "Default gpu:navi21; cpu-batch under --precision double or --live-timing");
+        "bench`). Default gpu:navi21; cpu-batch under --precision double or --live-timing");
     cmd->add_option("--costs", costs,
                     "cost table written by `sglab bench` and `sglab gpucost` (default: "
-                    "data/results/costs.json of "
-                    "the project holding the working directory)");
+                    "data/results/costs.json of the project holding the working directory)");
     cmd->add_flag("--live-timing", live_timing,
                   "time the methods on this CPU now instead of reading a cost table (answers vary "
                   "from run to run)");
@@ -93,8 +91,8 @@ struct CostsOption {
       if (!found)
         throw InputError(
             "no cost table: no project folder (with data/constants and include/sglab) above the "
-            "working directory; "
-            "pass --costs FILE (written by `sglab bench` and `sglab gpucost`) or --live-timing");
+            "working directory; pass --costs FILE (written by `sglab bench` and `sglab gpucost`) "
+            "or --live-timing");
       path = *found;
     }
     const report::CostTable table = report::read_cost_table(path);

@@ -18,10 +18,9 @@ namespace {
 // The exit codes of every subcommand (README.md, "Exit codes").
 constexpr const char* kExitCodes =
     "Exit codes: 0 success; 1 failure (a fit did not converge, a file could not be written, an "
-    "internal error); "
-    "2 bad input (an unknown subcommand or option, a malformed value or file; the message names "
-    "it). Command-line "
-    "errors that CLI11 finds (its own codes are 100-127) exit with 2 as well.";
+    "internal error); 2 bad input (an unknown subcommand or option, a malformed value or file; the "
+    "message names it). Command-line errors that CLI11 finds (its own codes are 100-127) exit with "
+    "2 as well.";
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);

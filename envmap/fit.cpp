@@ -293,8 +293,8 @@ void check_lobe_count(const Map& work, std::size_t lobes) {
   if (lobes == 0) throw InputError("--lobes 0: at least one lobe is needed");
   if (lobes > max_lobes(work))
     throw InputError(fmt::format(
-        "--lobes {}: more than the map supports (at most {} for a {} x {} working copy: one "
-        "lobe per 32 pixels, at most 256)",
+        "--lobes {}: more than the map supports (at most {} for a {} x {} working copy: one lobe "
+        "per 32 pixels, at most 256)",
         lobes, max_lobes(work), work.width, work.height));
 }
 

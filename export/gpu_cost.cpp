@@ -363,13 +363,10 @@ json to_json(const Report& report) {
   j["command"] = report.command;
   j["wrapper"] =
       "the sweep's compute wrapper (one float2 load, one float store, 64 threads), minus the same "
-      "wrapper around "
-      "`return cosine + kappa;`; vgprs and sgprs are the whole pipeline's. Rows with split = true: "
-      "the per-pixel "
-      "function of the split export in the split wrapper (one float load, the light struct loaded "
-      "at the "
-      "workgroup's index, one float store), minus the same baseline: the struct's loads count as "
-      "the function's";
+      "wrapper around `return cosine + kappa;`; vgprs and sgprs are the whole pipeline's. Rows "
+      "with split = true: the per-pixel function of the split export in the split wrapper (one "
+      "float load, the light struct loaded at the workgroup's index, one float store), minus the "
+      "same baseline: the struct's loads count as the function's";
   j["rows"] = json::array();
   for (const Row& r : report.rows) {
     json row = {{"method", r.method},

@@ -20,8 +20,8 @@ const Tier kTiers[] = {
      "[AS1964] 7.1.25 form with sglab's float refit erf_as7125_float (erfc = t P(t) e^{-x^2})",
      [] { return named("erf_as7125_float", constants::erf_as7125_float); }},
     {"listing5",
-     "[Tokuyoshi2022] Listing 5 form with sglab's float refit erf_listing5_float "
-     "(erf = x P(x^2) for |x| <= split, erfc = 2^{-|x| Q(|x|)} beyond, no 1 - erf cancellation)",
+     "[Tokuyoshi2022] Listing 5 form with sglab's float refit erf_listing5_float (erf = x P(x^2) "
+     "for |x| <= split, erfc = 2^{-|x| Q(|x|)} beyond, no 1 - erf cancellation)",
      [] { return named("erf_listing5_float", constants::erf_listing5_float); }},
 };
 }  // namespace

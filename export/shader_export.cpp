@@ -283,8 +283,8 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
   }
   if (has_erf)
     h += fmt::format(
-        "//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, "
-        "(e^x - 1)/x rel {:.2g}\n",
+        "//   elementary, float: erf abs {:.2g}, erf rel (|x| <= 1) {:.2g}, erfc abs {:.2g}, (e^x "
+        "- 1)/x rel {:.2g}\n",
         b.elementary.erf_abs, b.elementary.erf_rel_small, b.elementary.erfc_abs,
         b.elementary.expm1_over_x_rel);
   else
@@ -373,8 +373,8 @@ ExportResult export_source(const ExportRequest& request) {
                     request.method, fmt::format("{}", fmt::join(split_methods(), ", "))));
   if (request.split && request.precision == Precision::float16)
     throw std::invalid_argument(
-        "--split with --precision half: the per-light split export is float only (its light "
-        "struct is std430 floats filled by the float runtime); use one or the other");
+        "--split with --precision half: the per-light split export is float only (its light struct "
+        "is std430 floats filled by the float runtime); use one or the other");
   if (request.precision == Precision::float16 && request.lang == Language::cpp)
     throw std::invalid_argument(
         "--precision half: the C++ export is float only (g++'s _Float16 may keep float "

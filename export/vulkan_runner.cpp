@@ -278,8 +278,8 @@ void Device::Impl::create_instance() {
   ici.pApplicationInfo = &app;
   if (VkResult r = vkCreateInstance(&ici, nullptr, &instance); r != VK_SUCCESS)
     throw Unavailable(fmt::format(
-        "no Vulkan instance (vkCreateInstance returned {}): is a Vulkan driver installed "
-        "(e.g. mesa-vulkan-drivers for lavapipe)?",
+        "no Vulkan instance (vkCreateInstance returned {}): is a Vulkan driver installed (e.g. "
+        "mesa-vulkan-drivers for lavapipe)?",
         static_cast<int>(r)));
 }
 

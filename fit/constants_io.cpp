@@ -28,8 +28,8 @@ fs::path project_root() {
     if (auto root = find_project_root(cwd)) return *root;
   throw ConstantsError(
       fmt::format("no sglab project found at or above {} (a folder holding both data/constants and "
-                  "include/sglab); run sglab "
-                  "inside a checkout or name the files with --dir/--out and --header",
+                  "include/sglab); run sglab inside a checkout or name the files with --dir/--out "
+                  "and --header",
                   ec ? std::string("the working directory") : cwd.string()));
 }
 

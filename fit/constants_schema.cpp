@@ -406,8 +406,7 @@ void validate_constant_set(const ordered_json& set, const std::string& file) {
     if (!is_name(*value))
       fail(file, key,
            fmt::format("{} is not a name (letters, digits, '-', '_', '.', '+', starting with a "
-                       "letter or digit, at "
-                       "most {} characters)",
+                       "letter or digit, at most {} characters)",
                        q(*value), kMaxIdentifierLength));
   if (!is_cpp_identifier(cpp_name))
     fail(file, "cpp_name", fmt::format("{} is not a C++ identifier (or is reserved)", q(cpp_name)));

@@ -139,8 +139,8 @@ Problem problem_for(const std::string& objective, const FitSpec& spec) {
     p.params = {{"lambda_d"}, {lambda_d_pub}, {}};
     p.published = {lambda_d_pub};
     p.description = fmt::format(
-        "minimax of the vsgl2015 irradiance peak_rel error over {} kappa x {} cosines, kappa "
-        "in [{}, {}]",
+        "minimax of the vsgl2015 irradiance peak_rel error over {} kappa x {} cosines, kappa in "
+        "[{}, {}]",
         spec.kappa_count, spec.cosine_count, spec.kappa_lo, spec.kappa_hi);
     p.cpp_type = "DiffuseLobeParams<double>";
     p.form =

@@ -709,8 +709,7 @@ std::string cost_source(const MethodCosts& costs) {
     return "none (no cost table; `sglab bench` writes data/results/costs.json): operation counts "
            "only";
   return "float scalar ns/eval of the shipped method of the same form over tokuyoshi2024's (CPU), "
-         "from the cost "
-         "table " +
+         "from the cost table " +
          costs.source + "; '-' where no shipped method has the form";
 }
 
@@ -735,9 +734,8 @@ ordered_json certificate_json(const Certificate& c) {
       {"kind", "lp_at_fitted_steepness"},
       {"what",
        "lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted "
-       "t(kappa) "
-       "and scale s, the best member with those; achieved: the max at the shipped coefficients; "
-       "both of "
+       "t(kappa) and scale s, the best member with those; achieved: the max at the shipped "
+       "coefficients; both of "
        "max peak_rel/w(kappa) (double) on the grid below"},
       {"grid",
        fmt::format("dense training grid: {} kappa x (c = 0, {} offset cosines, c = +-z_k/t, z_k = "
@@ -761,8 +759,8 @@ std::string member_name(Member m) { return fmt::format("N={} D={}", m.n, m.d); }
 std::string within_text(const Certificate& c) {
   return fmt::format(
       "achieved {:.4e} (weighted, dense training grid), within {:.2f}% of the best member at the "
-      "fitted steepness and scale ({:.4e}, LP); per-kappa floor at that steepness {:.4e} "
-      "(max peak_rel {:.3e})",
+      "fitted steepness and scale ({:.4e}, LP); per-kappa floor at that steepness {:.4e} (max "
+      "peak_rel {:.3e})",
       c.achieved, 100 * (c.achieved / c.lower_bound - 1), c.lower_bound, c.per_kappa_floor,
       c.per_kappa_floor_peak_rel);
 }
@@ -794,8 +792,7 @@ std::string member_line(const MemberFit& f, const char* mark) {
   const Certificate& c = f.certificate;
   return fmt::format(
       "  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}   {:.3e}  "
-      "{:.3e} "
-      "{:>6.2f}%  {:.3e}  {:.3e}{}\n",
+      "{:.3e} {:>6.2f}%  {:.3e}  {:.3e}{}\n",
       member_name(f.member), f.values.size(), ops.setup, ops.eval,
       f.cost ? fmt::format("{:.3f}", *f.cost) : "-",
       f.floor > 0 ? fmt::format("{:.2e}", f.floor) : "-", f.train, f.standard.float_max,
@@ -809,31 +806,24 @@ std::string member_line(const MemberFit& f, const char* mark) {
 // fitted steepness and scale), how far above it, the per-κ floor weighted and plain.
 const char* kHeader =
     "  member    coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) held-out(f) "
-    "held-out(d) "
-    "never-worse  dense      LP bound    within  floor/k(w)  floor/k(peak_rel)\n";
+    "held-out(d) never-worse  dense      LP bound    within  floor/k(w)  floor/k(peak_rel)\n";
 
 ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::string& variant,
                           int held_k, int held_c, double target) {
   const std::string form =
       "E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j "
-      "b_j*z^(2j), z = t*c; "
-      "t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) "
-      "with s = steep; "
-      "b_j = u*(1 - u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + "
-      "scale)";
+      "b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + "
+      "s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = u*(1 - u)^3*(num[j*(D+1)] + "
+      "num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)";
   const std::string objective = fmt::format(
       "minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) divided by w(kappa) = "
-      "min(T, max(e2024(kappa), "
-      "8e-7)), T = {:g}, e2024(kappa) the float error of tokuyoshi2024 at kappa (never worse than "
-      "it), on a training "
-      "grid of {} kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus "
-      "the ends) x (c = 0, 24 "
-      "offset cosines, c = +-z_k/t, z_k = 0.1..3.1), {} points in all, kappa in [{}, {}] (Ceres, "
-      "every parameter); "
+      "min(T, max(e2024(kappa), 8e-7)), T = {:g}, e2024(kappa) the float error of tokuyoshi2024 at "
+      "kappa (never worse than it), on a training grid of {} kappa (40 log-spaced at half-step "
+      "offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 offset cosines, c = "
+      "+-z_k/t, z_k = 0.1..3.1), {} points in all, kappa in [{}, {}] (Ceres, every parameter); "
       "alternating with the exact minimax of the coefficients of every P_j at the fitted t(kappa) "
-      "and s (a linear "
-      "program, COIN-OR CLP) on the dense training grid of the certificate, whose max is the "
-      "objective",
+      "and s (a linear program, COIN-OR CLP) on the dense training grid of the certificate, whose "
+      "max is the objective",
       target, training_kappas(spec.kappa_lo, spec.kappa_hi, 40).size(),
       training_grid(spec.kappa_lo, spec.kappa_hi).size(), spec.kappa_lo, spec.kappa_hi);
   ordered_json achieved = {

@@ -332,14 +332,12 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   out.constant_sets.push_back(make_constant_set(
       recorded, "sglab-fast", variant, "SglabFastParams<double>",
       "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | "
-      "(0,1) | u>=1; "
-      "A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 "
-      "and Q = k^4 + "
-      "q[3]k^3 + ... + q[0] (coefficients lowest order first)",
+      "(0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v "
+      "of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)",
       coefficients,
       fmt::format("minimax of the sglab_fast irradiance peak_rel error (double) over a training "
-                  "grid of {} kappa "
-                  "(log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; start: {}",
+                  "grid of {} kappa (log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; "
+                  "start: {}",
                   kTrainKappas, kTrainKappas, lo, hi, kTrainCosines,
                   committed ? "the committed set (polish)"
                             : "per-kappa optimum, then rational least squares"),
@@ -359,8 +357,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   out.text = fmt::format(
       "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
       "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: "
-      "float {:.4e}, "
-      "double {:.4e}\n",
+      "float {:.4e}, double {:.4e}\n",
       variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
       kHeldOutKappas, kHeldOutCosines, m.held_float, m.worst_kappa, m.worst_cosine, m.held_double,
       m.std_float, m.std_double);

@@ -259,8 +259,7 @@ FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022,
       "lowest order first)",
       coefficients,
       fmt::format("smallest order M meeting max {} irradiance peak_rel <= {} over {} kappa x {} "
-                  "cosines, kappa in "
-                  "[{}, {}]",
+                  "cosines, kappa in [{}, {}]",
                   method, budget, spec.kappa_count, spec.cosine_count, spec.kappa_lo,
                   spec.kappa_hi),
       {{"objective", chosen->error},
@@ -309,8 +308,7 @@ std::string describe_objective(const FitSpec& spec, const std::string& objective
   return objective == "optimal-t"
              ? fmt::format(
                    "minimax of t(kappa)/t*(kappa) - 1 over {} log-spaced kappa in [{}, {}]; t* "
-                   "minimaxes "
-                   "the {} over 201 cosines",
+                   "minimaxes the {} over 201 cosines",
                    kappas, spec.kappa_lo, spec.kappa_hi,
                    y2022 ? "normalized hemispherical integral s" : "2024 interpolation factor")
              : fmt::format(

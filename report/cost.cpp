@@ -57,10 +57,8 @@ std::optional<CostMode> parse_cost_mode(std::string_view s) {
 std::string cost_input_description(std::size_t n) {
   return fmt::format(
       "{} inputs: kappa log-uniform in [1e-3, 1e4], cosine uniform in [-1, 1] (erf: x uniform in "
-      "[0, 4]); "
-      "std::mt19937_64 seed {}, drawn in double and rounded to float; light_eval: {} lights (the "
-      "first kappa) "
-      "x {} cosines each",
+      "[0, 4]); std::mt19937_64 seed {}, drawn in double and rounded to float; light_eval: {} "
+      "lights (the first kappa) x {} cosines each",
       n, kCostSeed, kCostLights, n / kCostLights);
 }
 

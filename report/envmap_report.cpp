@@ -310,22 +310,17 @@ std::string baselines_markdown(const BaselineRun& run) {
   md += "# Environment maps: SG lobe fits against the BakingLab baseline\n\n";
   md += fmt::format(
       "Written by `sglab envmap baselines{}` from the maps in `data/envmaps/` (see its README: "
-      "CC0, "
-      "128 × 64 area-averaged copies of Blender's studio-light worlds).\n\n",
+      "CC0, 128 × 64 area-averaged copies of Blender's studio-light worlds).\n\n",
       run.quick ? " --quick" : "");
   md += fmt::format(
       "Irradiance error = max (and RMS) over {} Fibonacci normals and RGB of |E_lobes(n) − "
-      "E_map(n)| / max E_map, "
-      "where E_map sums every pixel of the map with its solid angle and E_lobes is the lobes' "
-      "exact SG irradiance "
-      "(reference engine). (a) BakingLab baseline: fixed spiral axes, BakingLab's shared "
-      "sharpness, NNLS amplitudes "
-      "on the radiance; (b) sglab radiance fit: every parameter jointly (Ceres) on the solid-angle "
-      "weighted "
-      "radiance; (c) sglab irradiance fit: a radiance fit as (b) on a 64 × 32 copy, then every "
-      "parameter "
-      "jointly on the irradiance at 1024 other "
-      "Fibonacci normals. Ratio = (a) max / (c) max; the target is ≥ 2.\n\n",
+      "E_map(n)| / max E_map, where E_map sums every pixel of the map with its solid angle and "
+      "E_lobes is the lobes' exact SG irradiance (reference engine). (a) BakingLab baseline: fixed "
+      "spiral axes, BakingLab's shared sharpness, NNLS amplitudes on the radiance; (b) sglab "
+      "radiance fit: every parameter jointly (Ceres) on the solid-angle weighted radiance; (c) "
+      "sglab irradiance fit: a radiance fit as (b) on a 64 × 32 copy, then every parameter jointly "
+      "on the irradiance at 1024 other Fibonacci normals. Ratio = (a) max / (c) max; the target is "
+      "≥ 2.\n\n",
       envmap::kEvalNormals);
   std::size_t met = 0, total = 0;
   md +=
@@ -352,9 +347,8 @@ std::string baselines_markdown(const BaselineRun& run) {
   md += "## Lobes needed for a 1 % budget\n\n";
   md +=
       "Fewest lobes (of 1, 2, 3, 4, 6, 8, 12, 16, 24) whose fit has max irradiance error ≤ 1 % "
-      "(exact SG irradiance; "
-      "the error of a diffuse approximation comes on top: `sglab envmap recommend FILE --budget "
-      "0.01`).\n\n";
+      "(exact SG irradiance; the error of a diffuse approximation comes on top: `sglab envmap "
+      "recommend FILE --budget 0.01`).\n\n";
   md += "| map | (a) baseline | (b) radiance fit | (c) irradiance fit |\n|---|---:|---:|---:|\n";
   for (std::size_t m = 0; m < run.maps.size(); ++m) {
     auto need = [&](auto pick) {

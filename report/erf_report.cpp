@@ -59,8 +59,8 @@ std::string erf_reports_json(const std::vector<validate::ErfReport>& reports, bo
   nlohmann::json root;
   root["mode"] = exhaustive ? "exhaustive" : "sample";
   root["ulp_definition"] =
-      "|f(x) - erf(x)| / ulp(erf(x)), exact erf(x); ulp(y) = 2^(floor(log2|y|) - p + 1) "
-      "(p = 24 float, 53 double), 2^-149 / 2^-1074 below the normal range";
+      "|f(x) - erf(x)| / ulp(erf(x)), exact erf(x); ulp(y) = 2^(floor(log2|y|) - p + 1) (p = 24 "
+      "float, 53 double), 2^-149 / 2^-1074 below the normal range";
   nlohmann::json results = nlohmann::json::array();
   for (const validate::ErfReport& r : reports) {
     nlohmann::json j = stats_json(r.stats);
@@ -105,13 +105,11 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
   md +=
       "err_ulp = |f(x) - erf(x)| / ulp(erf(x)) with the exact erf(x) (not its rounding); ulp(y) = "
       "2^(floor(log2|y|) - 23) in float, - 52 in double (subnormal spacing below the normal "
-      "range). "
-      "`cr` = correctly rounded results. Non-finite outputs are counted apart and excluded from "
-      "the rest.\n\n";
+      "range). `cr` = correctly rounded results. Non-finite outputs are counted apart and excluded "
+      "from the rest.\n\n";
   md +=
       "| variant | precision | max ulp | worst x | worst x (hex) | max abs | worst x (abs) | rms "
-      "ulp | cr | points | "
-      "nonfinite | time |\n";
+      "ulp | cr | points | nonfinite | time |\n";
   md += "|---|---|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const validate::ErfReport& r : reports) {
     const validate::ErfStats& s = r.stats;
@@ -144,8 +142,8 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
   md += "\n## Constant region, oddness, references\n\n";
   md +=
       "| variant | precision | constant region from | points | not RN (= not exactly 1) | max ulp "
-      "there | odd checked | "
-      "odd violations | midpoints resolved | reference self-check (double ulps) |\n";
+      "there | odd checked | odd violations | midpoints resolved | reference self-check (double "
+      "ulps) |\n";
   md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const validate::ErfReport& r : reports) {
     md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {}{} | {} | {:.3g} |\n", r.variant,
@@ -198,8 +196,8 @@ std::string erf_reports_markdown(const std::vector<validate::ErfReport>& reports
 std::string erf_summary_csv(const std::vector<validate::ErfReport>& reports) {
   std::string csv =
       "variant,precision,max_ulp,worst_x,worst_x_hex,max_abs,worst_x_abs,rms_ulp,count,correctly_"
-      "rounded,nonfinite,"
-      "tail_from,tail_count,tail_not_rn,odd_checked,odd_violations,ambiguous_resolved,seconds\n";
+      "rounded,nonfinite,tail_from,tail_count,tail_not_rn,odd_checked,odd_violations,ambiguous_"
+      "resolved,seconds\n";
   for (const validate::ErfReport& r : reports) {
     const validate::ErfStats& s = r.stats;
     csv += fmt::format(

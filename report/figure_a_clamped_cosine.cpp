@@ -27,10 +27,9 @@ Figure figure_a(const FiguresOptions& opt) {
   Figure f{"a_clamped_cosine",
            "Clamped-cosine approximation error and float numerical error",
            "α(e^{λu}−1) − u in double (approximation error, line) and float evaluation of "
-           "α(exp(λu)−1) minus its double "
-           "value (numerical error: one dot per float u, thin lines = min and max per 1/80 of the "
-           "interval), "
-           "u = cos θ ∈ [0, 1], published λ, α ([Tokuyoshi2022] supplementary Fig. 1).",
+           "α(exp(λu)−1) minus its double value (numerical error: one dot per float u, thin lines "
+           "= min and max per 1/80 of the interval), u = cos θ ∈ [0, 1], published λ, α "
+           "([Tokuyoshi2022] supplementary Fig. 1).",
            {},
            false,
            ""};

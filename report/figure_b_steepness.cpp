@@ -27,11 +27,9 @@ Figure figure_b(const FiguresOptions& opt) {
   Figure f{"b_steepness",
            "Optimal steepness t*(κ) vs fitted t(κ) and √(κ/2)",
            "Top: per-κ optimal t*(κ) (dots; fit::optimal_steepness, 40 log-spaced κ in [1e-2, "
-           "1e3]), the published "
-           "t(κ) ([Tokuyoshi2022] Eq. 6), sglab's refit steepness2022_optimal_t, and the asymptote "
-           "√(κ/2) "
-           "([Tokuyoshi2022] supplementary Fig. 2). Bottom: relative difference |t/t* − 1| of each "
-           "curve.",
+           "1e3]), the published t(κ) ([Tokuyoshi2022] Eq. 6), sglab's refit "
+           "steepness2022_optimal_t, and the asymptote √(κ/2) ([Tokuyoshi2022] supplementary Fig. "
+           "2). Bottom: relative difference |t/t* − 1| of each curve.",
            {},
            false,
            ""};

@@ -30,18 +30,16 @@ constexpr double kPi = std::numbers::pi;
 
 // ---- (c) irradiance at κ = 4 ------------------------------------------------------
 Figure figure_c(const FiguresOptions& opt) {
-  Figure f{
-      "c_irradiance_kappa4",
-      "Irradiance vs angle at κ = 4, every method, and its peak-relative error",
-      "Top: E(θ) of the reference (quadrature) and Ê(θ) of every registered irradiance method "
-      "(double) for a "
-      "unit-amplitude SG light with κ = 4, θ ∈ [0°, 180°] (the chart of [Pettineo2016]). Bottom: "
-      "|Ê − E| / E(1, κ) on a log scale (the peak_rel error of docs/quantities.md). Solid: "
-      "published constants; "
-      "dashed: sglab refits; thick dash-dot: sglab's own models.",
-      {},
-      false,
-      ""};
+  Figure f{"c_irradiance_kappa4",
+           "Irradiance vs angle at κ = 4, every method, and its peak-relative error",
+           "Top: E(θ) of the reference (quadrature) and Ê(θ) of every registered irradiance method "
+           "(double) for a unit-amplitude SG light with κ = 4, θ ∈ [0°, 180°] (the chart of "
+           "[Pettineo2016]). Bottom: |Ê − E| / E(1, κ) on a log scale (the peak_rel error of "
+           "docs/quantities.md). Solid: published constants; dashed: sglab refits; thick dash-dot: "
+           "sglab's own models.",
+           {},
+           false,
+           ""};
   const double kappa = 4;
   const int n = 181;
   std::vector<validate::Query> q;

@@ -28,12 +28,9 @@ Figure figure_d(const FiguresOptions& opt, const std::vector<validate::SweepMeth
   Figure f{"d_peak_rel_heatmaps",
            "peak_rel error heat maps over (κ, c), float",
            "peak_rel = |Ê − E|/E(1, κ) of every registered irradiance method evaluated in float on "
-           "the standard grid "
-           "(29 κ log-spaced in [1e-3, 1e4] × 41 c, docs/quantities.md), one panel per method, one "
-           "shared log colour "
-           "scale clamped to [1e-7, 10] (errors above 10 show as 10; grey: non-finite output). The "
-           "panel title gives "
-           "the method's max.",
+           "the standard grid (29 κ log-spaced in [1e-3, 1e4] × 41 c, docs/quantities.md), one "
+           "panel per method, one shared log colour scale clamped to [1e-7, 10] (errors above 10 "
+           "show as 10; grey: non-finite output). The panel title gives the method's max.",
            {},
            false,
            ""};

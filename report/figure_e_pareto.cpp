@@ -398,16 +398,12 @@ Figure figure_e(const FiguresOptions& opt) {
       "Pareto chart: cost vs accuracy",
       fmt::format(
           "cost vs max peak_rel (log-log) from `sglab pareto` ({}), one panel per cost source "
-          "(`--cost`: "
-          "GPU inverse throughput is ACO's estimate of the cycles one wave keeps a SIMD busy, a "
-          "compiler "
-          "estimate, not a timing; CPU ns/eval from `sglab bench`); marker shape and colour "
-          "per method family, open = published constants, filled = sglab refit, large filled with "
-          "a "
-          "black ring = sglab's own model; frontier line per precision. Methods whose max peak_rel "
-          "exceeds {} fail on the range and sit in the shaded band at the top, labelled with their "
-          "error; "
-          "the frontier line joins only the methods below the band.",
+          "(`--cost`: GPU inverse throughput is ACO's estimate of the cycles one wave keeps a SIMD "
+          "busy, a compiler estimate, not a timing; CPU ns/eval from `sglab bench`); marker shape "
+          "and colour per method family, open = published constants, filled = sglab refit, large "
+          "filled with a black ring = sglab's own model; frontier line per precision. Methods "
+          "whose max peak_rel exceeds {} fail on the range and sit in the shaded band at the top, "
+          "labelled with their error; the frontier line joins only the methods below the band.",
           fmt::join(paths, ", "), kParetoFail),
       {},
       false,

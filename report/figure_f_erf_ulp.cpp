@@ -29,11 +29,9 @@ Figure figure_f(const FiguresOptions& opt) {
   Figure f{"f_erf_ulp",
            "erf error in float ulps over x",
            "Max ulp error per bin of x ∈ [0, 4) (400 bins) of the erf variants listing5 "
-           "([Tokuyoshi2022] Listing 5), "
-           "as7125 ([AS1964] 7.1.25) and std evaluated in float, against the correctly rounded "
-           "float erf "
-           "(validate/erf_check, sample mode: every 257th float pattern plus a uniform grid of "
-           "2^20 points).",
+           "([Tokuyoshi2022] Listing 5), as7125 ([AS1964] 7.1.25) and std evaluated in float, "
+           "against the correctly rounded float erf (validate/erf_check, sample mode: every 257th "
+           "float pattern plus a uniform grid of 2^20 points).",
            {},
            false,
            ""};

@@ -28,12 +28,10 @@ Figure figure_g(const FiguresOptions& opt, const std::vector<validate::SweepMeth
   Figure f{"g_peak_rel_vs_kappa",
            "Max peak_rel over c against κ, every method, float and double",
            "For each of the 29 κ of the standard grid, the max over the 41 cosines of peak_rel = "
-           "|Ê − E|/E(1, κ), one "
-           "line per registered irradiance method (log-log), in float (left) and double (right). A "
-           "gap: the method "
-           "returned a non-finite value at that κ. The dotted line at 1 is an error as large as "
-           "the peak itself. "
-           "Solid: published constants; dashed: sglab refits; thick dash-dot: sglab's own models.",
+           "|Ê − E|/E(1, κ), one line per registered irradiance method (log-log), in float (left) "
+           "and double (right). A gap: the method returned a non-finite value at that κ. The "
+           "dotted line at 1 is an error as large as the peak itself. Solid: published constants; "
+           "dashed: sglab refits; thick dash-dot: sglab's own models.",
            {},
            false,
            ""};

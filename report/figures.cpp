@@ -61,8 +61,7 @@ std::vector<Figure> make_figures(const FiguresOptions& options) {
 
   std::string md =
       "# sglab figures\n\nWritten by `sglab figures`. Each figure has its data CSV, the gnuplot "
-      "script "
-      "that renders it (run `gnuplot <name>.gp` in this directory), a PNG and an SVG.\n\n";
+      "script that renders it (run `gnuplot <name>.gp` in this directory), a PNG and an SVG.\n\n";
   for (const Figure& f : figs) {
     md += fmt::format("## {} — {}\n\n{}\n\n", f.id, f.title, f.description);
     if (f.skipped) {

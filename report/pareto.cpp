@@ -314,8 +314,8 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
         if (!col.count(r))
           throw std::invalid_argument(
               fmt::format("{}: header lacks column '{}' (expected "
-                          "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,"
-                          "cost_source,max_peak_rel,frontier)",
+                          "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,"
+                          "max_peak_rel,frontier)",
                           path.string(), r));
       legacy = !col.count("cost") && col.count("ns_per_eval");
       for (const char* r : {"cost", "cost_unit", "cost_source"})

@@ -472,8 +472,8 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
   std::string text = slurp(file);
   text = replace_once(text, "\"objective\": \"published\"",
                       "\"objective\": \"published\\n#error objective\", \"key\\n#error key\": "
-                      "\"v\\u0000\\u001b[2J\\\\\", "
-                      "\"nested\": {\"a\\n#error nested\": [\"\\u202e\\n#error\"]}");
+                      "\"v\\u0000\\u001b[2J\\\\\", \"nested\": {\"a\\n#error nested\": "
+                      "[\"\\u202e\\n#error\"]}");
   text = replace_once(text, "\"form\": \"", "\"form\": \"\\r\\n#error form\\\\");
   write(file, text);
   const fs::path header = tmp.path / "h.hpp";

@@ -69,8 +69,7 @@ inline constexpr Precision f32 = Precision::float32, f64 = Precision::float64;
 inline constexpr std::string_view kWellConditioned = "float rounding of a well-conditioned formula";
 inline constexpr std::string_view kTokuyoshi2022Alpha =
     "the difference of two integrals scaled by α ≈ 1182 ([Tokuyoshi2022] supplementary §1.1) "
-    "amplifies float "
-    "rounding ~1e3";
+    "amplifies float rounding ~1e3";
 inline constexpr std::string_view kNoKernel =
     "no dedicated float batch kernel (registry.hpp make_method)";
 inline constexpr std::string_view kNoSplit = "no per-light split in the runtime";
@@ -79,8 +78,7 @@ inline constexpr std::string_view kPublishedError =
     "(data/results/sweep_summary.md, checked by test_readme_numbers)";
 inline constexpr std::string_view kKernel =
     "the vectorizing kernel (branch_free.hpp exp/expm1/erfc; erfc_bf within 6e-7 absolute moves "
-    "the lerp factor "
-    "by at most that)";
+    "the lerp factor by at most that)";
 inline constexpr std::string_view kKernelScalar =
     "both float paths at float noise (kernel: branch_free.hpp exp/expm1/erfc; erfc_bf within 6e-7 "
     "absolute)";

@@ -107,15 +107,12 @@ std::vector<Claim> claims_circular() {
   out.push_back(
       {"circular_gaussian_pointwise",
        "circular Gaussian gc(φ;μ,λ) = exp(2(cos(φ-μ)-1)/λ²) ≈ Gaussian exp(-(φ-μ)²/λ²) with "
-       "relative error < 1.3% "
-       "for φ in [-π, π], λ < π/6",
+       "relative error < 1.3% for φ in [-π, π], λ < π/6",
        "[Xu2011] supplemental §1 (definitions §2, §5)",
        "2nd-order Taylor cos x - 1 ≈ -x²/2; 200 λ in [0.01, π/6] × 20,001 φ in [-π, π]; error "
-       "relative to the "
-       "peak (= 1): max |gc - g|; also |g/gc - 1| where gc >= 1e-2 and everywhere",
+       "relative to the peak (= 1): max |gc - g|; also |g/gc - 1| where gc >= 1e-2 and everywhere",
        fmt::format("max |gc - g| (peak-relative) = {:.3g} (at λ = {:.3f}); |g/gc - 1| where gc >= "
-                   "1e-2: {:.3g} "
-                   "(λ = {:.3f}); pointwise relative over all φ: {:.3g}",
+                   "1e-2: {:.3g} (λ = {:.3f}); pointwise relative over all φ: {:.3g}",
                    max_abs, max_abs_lambda, max_rel_sig, max_rel_sig_lambda, max_rel_all),
        max_abs < 0.013 ? (max_rel_sig < 0.013 ? "holds" : "holds in part") : "does not hold"});
   out.back().measured += max_abs < 0.013 && max_rel_sig >= 0.013
@@ -128,8 +125,7 @@ std::vector<Claim> claims_circular() {
        "1.9% for λ < π/6",
        "[Xu2011] supplemental §4",
        "exact ∫_{-π}^{π} gc dφ (= 2π e^{-a} I0(a), a = 2/λ², by periodic trapezoid, 40,000 nodes) "
-       "vs √π·λ·erf(π/λ) "
-       "(= √π·λ to 1e-16 for λ <= π/6); 200 λ in [0.01, π/6]",
+       "vs √π·λ·erf(π/λ) (= √π·λ to 1e-16 for λ <= π/6); 200 λ in [0.01, π/6]",
        fmt::format("max relative error = {:.4g} (at λ = {:.4f})", max_int, max_int_lambda),
        verdict(max_int < 0.019)});
 
@@ -138,8 +134,7 @@ std::vector<Claim> claims_circular() {
                  "product of two 1D Gaussians is a Gaussian: g1·g2 = b·g3(x; μ3, λ3)",
                  "[Xu2011] supplemental §2",
                  "closed form λ3² = λ1²λ2²/(λ1²+λ2²), μ3 = (μ1λ2² + μ2λ1²)/(λ1²+λ2²), b = "
-                 "exp(-(μ1-μ2)²/(λ1²+λ2²)); "
-                 "20,000 random (μi ∈ [-2,2], λi ∈ [0.1,2], x ∈ [-3,3])",
+                 "exp(-(μ1-μ2)²/(λ1²+λ2²)); 20,000 random (μi ∈ [-2,2], λi ∈ [0.1,2], x ∈ [-3,3])",
                  fmt::format("max |g1 g2 - b g3| / (g1 g2) = {:.3g}", e1), verdict(e1 < 1e-10)});
   const double e2 = gaussian_product_max_rel_error(20000, 54321u, true);
   out.push_back(
@@ -147,8 +142,7 @@ std::vector<Claim> claims_circular() {
        "product of two circular Gaussians is a circular Gaussian: gc1·gc2 = b·gc3(φ; μ3, λ3)",
        "[Xu2011] supplemental §5",
        "with ai = 2/λi², A = |a1 e^{iμ1} + a2 e^{iμ2}|: μ3 = arg(a1 e^{iμ1} + a2 e^{iμ2}), λ3 = "
-       "√(2/A), "
-       "b = exp(A - a1 - a2); 20,000 random (μi ∈ [-π,π], λi ∈ [0.1,2], φ ∈ [-π,π])",
+       "√(2/A), b = exp(A - a1 - a2); 20,000 random (μi ∈ [-π,π], λi ∈ [0.1,2], φ ∈ [-π,π])",
        fmt::format("max |gc1 gc2 - b gc3| / (gc1 gc2) = {:.3g}", e2), verdict(e2 < 1e-10)});
   return out;
 }
@@ -180,13 +174,10 @@ std::vector<Claim> claims_lambda_d() {
        "diffuse lobe max(cos,0)/π ≈ G(ω; n, λd)/A(λd) with λd ≈ 2 obtained by least squares",
        "[Tokuyoshi2015] supplemental Eq. 1",
        "least squares of max(u,0)/π - G(λd)/S(λd) (normalized lobe) over the sphere and over the "
-       "upper hemisphere; "
-       "refitted constants (data/constants) and an independent Simpson + golden-section "
-       "recomputation; "
-       "'≈ 2' read as within 5%",
+       "upper hemisphere; refitted constants (data/constants) and an independent Simpson + "
+       "golden-section recomputation; '≈ 2' read as within 5%",
        fmt::format("sphere LS λd = {:.4f} (recomputed {:.4f}), hemisphere LS λd = {:.4f} "
-                   "(recomputed {:.4f}); "
-                   "sphere objective at λd = 2 is {:.3f}× its minimum",
+                   "(recomputed {:.4f}); sphere objective at λd = 2 is {:.3f}× its minimum",
                    c_sphere, ls_sphere, c_hemi, ls_hemi, obj2 / objls),
        near ? "holds" : (rough ? "holds in part" : "does not hold")});
   const double a2 = sphere_integral(2.0);
@@ -206,8 +197,7 @@ Claim claim_wang_lobe_energy() {
   const double energy = amp * 2 * kPi * (1 - std::exp(-2 * lam)) / lam;
   return {"wang_lobe_energy",
           "Wang et al.'s cosine-lobe SG (λ = 2.133, a = 1.17) keeps the area under the curve "
-          "'somewhat consistent' "
-          "with the clamped cosine",
+          "'somewhat consistent' with the clamped cosine",
           "[Pettineo2016] (Error Analysis)",
           "∫_{S²} 1.17·e^{2.133(cos-1)} dω = 1.17·2π(1-e^{-4.266})/2.133 vs ∫ max(cos,0) dω = π; "
           "'somewhat consistent' read as within 10%",
@@ -261,14 +251,12 @@ Claim claim_mjp_inner_product_back(const Kappa4Chart& c) {
   const bool biggest_back = max_theta > kPi / 2;
   return {"mjp_inner_product_back",
           "κ = 4 chart: the SG inner product (wang2009) is not hugely off; its biggest difference "
-          "is on the side facing "
-          "away from the light, where it has a stronger tail",
+          "is on the side facing away from the light, where it has a stronger tail",
           "[Pettineo2016] (Error Analysis chart)",
           "Ê - E over θ ∈ [0, π] (361 points) at κ = 4: sign of Ê - E for θ > π/2 and where |Ê - "
           "E| is largest",
           fmt::format("max |Ê-E| = {:.4f} ({:.2f}% of E(1)) at θ = {:.1f}°; max on back side "
-                      "{:.4f}, front side {:.4f}; "
-                      "min (Ê-E) for θ > 90° = {:.3g}",
+                      "{:.4f}, front side {:.4f}; min (Ê-E) for θ > 90° = {:.3g}",
                       max_err, 100 * max_err / c.peak, max_theta * 180 / kPi, back_max, front_max,
                       back_min_diff),
           stronger && biggest_back
@@ -345,20 +333,15 @@ Claim claim_numerical_vs_approximation() {
   const double model = p.alpha * 0x1p-23;
   return {"float_numerical_vs_approximation",
           "with the published λ, α the maximum numerical (float rounding) error of α(e^{λ cos}-1) "
-          "is almost the same as the "
-          "maximum approximation error",
+          "is almost the same as the maximum approximation error",
           "[Tokuyoshi2022] supplementary §1.1, Fig. 1",
           "u ∈ [0, 1], 1,000,001 float points: approximation error |α·expm1(λu) - u| in double; "
-          "numerical error "
-          "|float α(expf(λu) - 1) - α·expm1(λu)| with glibc expf; 'almost the same' read as a "
-          "ratio within [0.8, 1.25] "
-          "(holds in part within [0.25, 4])",
+          "numerical error |float α(expf(λu) - 1) - α·expm1(λu)| with glibc expf; 'almost the "
+          "same' read as a ratio within [0.8, 1.25] (holds in part within [0.25, 4])",
           fmt::format("max approximation error {:.4g}, max numerical error {:.4g} (ratio {:.3f}): "
-                      "a correctly rounded expf "
-                      "errs by <= 0.5 ulp, so the numerical error is α·2^-24, half the "
-                      "approximation error; with a 1-ulp exp "
-                      "(GPU-style) it is α·ε_float = {:.4g}, equal to the approximation error (how "
-                      "λ was balanced)",
+                      "a correctly rounded expf errs by <= 0.5 ulp, so the numerical error is "
+                      "α·2^-24, half the approximation error; with a 1-ulp exp (GPU-style) it is "
+                      "α·ε_float = {:.4g}, equal to the approximation error (how λ was balanced)",
                       approx, numerical, ratio, model),
           ratio >= 0.8 && ratio <= 1.25
               ? "holds"
@@ -388,8 +371,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
                  "√(κ/2) as κ → ∞",
                  "[Tokuyoshi2022] supplementary §1.2, Fig. 2",
                  "fit::optimal_steepness (minimax of erf-model s̃ - s over 201 cosines) at κ = "
-                 "1e2..1e5; holds if "
-                 "|t*/√(κ/2) - 1| shrinks with κ and is < 2% at κ = 1e5",
+                 "1e2..1e5; holds if |t*/√(κ/2) - 1| shrinks with κ and is < 2% at κ = 1e5",
                  m,
                  decreasing && dev.back() < 0.02
                      ? "holds"
@@ -409,8 +391,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
   out.push_back(
       {"eq6_close_to_tstar",
        "the fitted t(κ) (Eq. 6, published A, B, C) is close to the numerically optimal t*(κ) and "
-       "also approaches "
-       "√(κ/2)",
+       "also approaches √(κ/2)",
        "[Tokuyoshi2022] supplementary §1.2, Fig. 2",
        "max |t(κ)/t*(κ) - 1| over 21 log-spaced κ in [1e-2, 1e3]; t(1e8)/√(1e8/2); 'close' read as "
        "within 10%",
@@ -447,8 +428,7 @@ std::vector<Claim> claims_fresnel() {
     }
     out.push_back({"schlick_monotone",
                    "Schlick F(cos θh) is monotonically increasing in θh ∈ [0, π/2], so F_max = "
-                   "F(cos θh_max) with "
-                   "cos θh_max = √((1 - √(1 - (ωi·n)²))/2)",
+                   "F(cos θh_max) with cos θh_max = √((1 - √(1 - (ωi·n)²))/2)",
                    "[TokuyoshiHarada2017] supplemental §1 Eq. 1-2",
                    "F0 ∈ {0, 0.05, …, 1} × 2001 θh; identity cos(½ arccos c + π/4) = "
                    "√((1-√(1-c²))/2) at 2001 c ∈ [0, 1]",
@@ -484,17 +464,15 @@ std::vector<Claim> claims_fresnel() {
   }
   out.push_back({"fresnel_monotone_quasiconvex",
                  "unpolarized dielectric Fresnel F(cos θh) is monotonically increasing in θh ∈ [0, "
-                 "π/2] if 2-√3 <= η <= 2+√3, "
-                 "otherwise quasiconvex",
+                 "π/2] if 2-√3 <= η <= 2+√3, otherwise quasiconvex",
                  "[TokuyoshiHarada2017] supplemental §1 Eq. 3-5",
                  fmt::format("{} η log-spaced in [0.05, 20] plus η = (2±√3)(1, 0.99, 1.01); 2001 "
-                             "θh; monotone = non-decreasing, "
-                             "quasiconvex = non-increasing then non-decreasing (tolerance 1e-12); "
-                             "complex sqrt for TIR",
+                             "θh; monotone = non-decreasing, quasiconvex = non-increasing then "
+                             "non-decreasing (tolerance 1e-12); complex sqrt for TIR",
                              etas.size()),
                  fmt::format("inside: {}/{} monotone; outside: {}/{} not monotone, {}/{} "
-                             "quasiconvex; monotonicity fails for "
-                             "η <= {:.4f} and η >= {:.4f} (2-√3 = {:.4f}, 2+√3 = {:.4f})",
+                             "quasiconvex; monotonicity fails for η <= {:.4f} and η >= {:.4f} "
+                             "(2-√3 = {:.4f}, 2+√3 = {:.4f})",
                              inside_mono, inside, outside_nonmono, outside, outside_qc, outside,
                              last_fail_below, first_fail_above, lo, hi),
                  inside_mono == inside && outside_qc == outside

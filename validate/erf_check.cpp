@@ -310,12 +310,10 @@ void finish_float_report(ErfReport& report,
   }
   report.reference = fmt::format(
       "correctly rounded float erf: x < 4 from a degree-6 Taylor expansion in double about "
-      "erfl/expl centres "
-      "(runs of {} points) or std::erf in double, points within 8 double ulps of a float midpoint "
-      "decided with "
-      "Boost.Math erf in cpp_bin_float_50 ({} here); Taylor vs std::erf at run ends: max {:.3g} "
-      "double ulps; "
-      "x >= 4: RN(erf) = 1 (erfc(4) < 2^-25), erf = 1 - erfc(x) with erfc in double",
+      "erfl/expl centres (runs of {} points) or std::erf in double, points within 8 double ulps of "
+      "a float midpoint decided with Boost.Math erf in cpp_bin_float_50 ({} here); Taylor vs "
+      "std::erf at run ends: max {:.3g} double ulps; x >= 4: RN(erf) = 1 (erfc(4) < 2^-25), erf = "
+      "1 - erfc(x) with erfc in double",
       kRun, report.ambiguous_resolved, report.reference_selfcheck_ulps);
 }
 
@@ -331,8 +329,8 @@ std::string float_coverage(const ErfFloatOptions& o, std::uint64_t odd_checked) 
     else
       s = fmt::format(
           "every float in [0, 4) ({} points), every float in [4, 64) ({} points), every {}th bit "
-          "pattern "
-          "in [64, FLT_MAX] ({} points; above 64 erfc underflows in double and e^(-x^2) in float)",
+          "pattern in [64, FLT_MAX] ({} points; above 64 erfc underflows in double and e^(-x^2) in "
+          "float)",
           group_digits(kErfFloatTailBits), group_digits(kErfFloatFarBits - kErfFloatTailBits),
           far_stride, group_digits((kErfFloatMaxBits - kErfFloatFarBits) / far_stride + 1));
   } else {
@@ -397,10 +395,8 @@ bool same_result(double expected, double got) {
 std::string double_coverage(const ErfDoubleSample& s, std::uint64_t odd_checked) {
   return fmt::format(
       "sample: uniform grid i*{}/{} in [0, {}) ({} points), {} evenly spaced bit patterns in (0, "
-      "{}) (every "
-      "binade), {} evenly spaced bit patterns in [{}, DBL_MAX]; negatives by oddness on {} bit "
-      "patterns in "
-      "(0, DBL_MAX]; special values",
+      "{}) (every binade), {} evenly spaced bit patterns in [{}, DBL_MAX]; negatives by oddness on "
+      "{} bit patterns in (0, DBL_MAX]; special values",
       s.options.x_max, s.options.grid_points, s.options.x_max, group_digits(s.grid_end),
       group_digits(s.main_end - s.grid_end), s.options.x_max, group_digits(s.x.size() - s.main_end),
       s.options.x_max, group_digits(odd_checked));

@@ -228,12 +228,10 @@ ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options) {
       throw std::logic_error("erf double sample: erfc(x_max) >= 2^-54, RN(erf) is not 1");
   s.reference = fmt::format(
       "erf in 50 digits (Boost.Math, cpp_bin_float_50), carried in long double: x <= 1/2 by its "
-      "Maclaurin series, "
-      "the grid above by a degree-{} Taylor expansion about a 50-digit centre per run of {} points "
-      "(max deviation "
-      "from direct 50-digit evaluation at spot points: {:.3g} double ulps), the other points "
-      "directly; x >= {}: "
-      "RN(erf) = 1, erf = 1 - erfc(x) with erfc in 50 digits",
+      "Maclaurin series, the grid above by a degree-{} Taylor expansion about a 50-digit centre "
+      "per run of {} points (max deviation from direct 50-digit evaluation at spot points: {:.3g} "
+      "double ulps), the other points directly; x >= {}: RN(erf) = 1, erf = 1 - erfc(x) with erfc "
+      "in 50 digits",
       kDeg - 1, run_len, s.selfcheck_ulps, options.x_max);
   return s;
 }

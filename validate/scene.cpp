@@ -158,8 +158,8 @@ void check_scene_limits(std::size_t lights, std::size_t normals) {
                                  kMaxSceneLights, mb));
   if (lights > kMaxScenePairs / std::max<std::size_t>(normals, 1))
     throw SceneError(fmt::format(
-        "{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} "
-        "MB); use fewer normals",
+        "{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} MB); "
+        "use fewer normals",
         lights, normals, static_cast<double>(lights) * static_cast<double>(normals), kMaxScenePairs,
         mb));
 }

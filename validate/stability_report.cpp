@@ -78,17 +78,14 @@ std::string why(const StabilityRow& row) {
            "by construction";
   if (f == "sg_inner_product_iwasaki" || is("vsgl2015") || is("vsgl2015_refit"))
     return "published approximate product integral [Iwasaki2012]: 2π/(κ1 + κ2) is infinite at κ1 = "
-           "κ2 = 0; "
-           "transcribed as published (κ1κ2/(κ1 + κ2) formed without overflow)";
+           "κ2 = 0; transcribed as published (κ1κ2/(κ1 + κ2) formed without overflow)";
   if (f == "steepness_meder2018" || is("meder2018"))
     return "published t(κ) = √κ(a2κ² + a1κ)/(κ² + b1κ + b0) forms κ² (inf/inf for κ ≳ 1.8e19 in "
-           "float, 1.3e154 in "
-           "double); the published cosine fit a·G(λm) − b makes Ê a difference that goes negative; "
-           "both kept as published";
+           "float, 1.3e154 in double); the published cosine fit a·G(λm) − b makes Ê a difference "
+           "that goes negative; both kept as published";
   if (is("hill") || is("hill_exact"))
     return "Hill's published curve [Pettineo2016] is fitted for larger κ: 1/κ is infinite at κ = 0 "
-           "and the curve goes "
-           "negative below κ ≈ 0.5 (its c = 0 limit at large κ is fixed)";
+           "and the curve goes negative below κ ≈ 0.5 (its c = 0 limit at large κ is fixed)";
   if (f.starts_with("erf/")) return "published erf approximation";
   return "published formula, transcribed as written";
 }
@@ -121,8 +118,8 @@ Table stability_table(const StabilityReport& report) {
   cols.push_back({"findings"});
   cols.push_back({"first_failure"});
   Table t(
-      "Stability: NaN / Inf / negative / out-of-range outputs over special inputs "
-      "(valid inputs: finite κ ≥ 0, c in [-1, 1], unit axes, finite x)",
+      "Stability: NaN / Inf / negative / out-of-range outputs over special inputs (valid inputs: "
+      "finite κ ≥ 0, c in [-1, 1], unit axes, finite x)",
       std::move(cols));
   for (const StabilityRow& r : report.rows) {
     std::vector<Cell> row = {Table::text(r.function), Table::text(to_string(r.origin)),
@@ -197,8 +194,8 @@ HalfAtKappa half_at_kappa(const SweepResult& r, const SweepEntry& f, const Sweep
 
 Table half_ranges_table(const SweepResult& r, double tolerance) {
   Table t(fmt::format("Half precision: κ range each method's half export survives on the device "
-                      "(every cosine finite, "
-                      "non-negative and within {:g} of its float export, relative to E(1, κ))",
+                      "(every cosine finite, non-negative and within {:g} of its float export, "
+                      "relative to E(1, κ))",
                       tolerance),
           {{"method"},
            {"survives_kappa_lo", 4},

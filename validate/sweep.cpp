@@ -80,9 +80,8 @@ void SweepGrid::validate() const {
     const std::size_t entries = registered_sweep_methods().size() * 2;
     throw std::invalid_argument(
         fmt::format("the grid of {} κ × {} cosines = {} points exceeds the limit of {} points; it "
-                    "would need about {:.3g} GB "
-                    "of memory for every method in float and double (use fewer κ or cosines, or "
-                    "several smaller sweeps)",
+                    "would need about {:.3g} GB of memory for every method in float and double "
+                    "(use fewer κ or cosines, or several smaller sweeps)",
                     kappa_count, cosine_count, point_count(), kMaxPoints,
                     static_cast<double>(sweep_memory_estimate(*this, entries)) / 1e9));
   }

@@ -199,8 +199,8 @@ inline constexpr Method irradiance_methods[] = {
     detail::with_light_split<SglabFastLight<float>>(
         detail::with_batch32(
             detail::make_method("sglab_fast",
-                                "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational A, B, C, V in κ "
-                                "(sglab_fast.hpp)",
+                                "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational "
+                                "A, B, C, V in κ (sglab_fast.hpp)",
                                 "sglab_fast_float", [](auto c, auto k) { return irradiance_sglab_fast(c, k); },
                                 Origin::sglab),
             [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_fast_batch(c, k, o, n); }),
