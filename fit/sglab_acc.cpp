@@ -12,8 +12,8 @@
 //                   alternately the exact best coefficients of the P_j at the
 //                   fitted t(κ) and s (an LP, fit/lp_minimax.hpp: f̂, and so Ê,
 //                   is linear in them) on a dense training grid and a Ceres
-//                   polish; measured on the standard grid and on a held-out
-//                   dense grid that the fit never sees. Certified: the LP's
+//                   polish; measured on the standard grid and on the held-out
+//                   grid (fit/model_family.hpp) that the fit never sees. Certified: the LP's
 //                   optimum at the final t, s is the best member with those
 //                   (the lower bound; the report says how far above it the
 //                   fit is), and the per-κ floor (b_j free at each κ) bounds
@@ -34,7 +34,6 @@
 // width ~1/t near c = 0 at large κ is resolved.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -49,9 +48,9 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_acc.hpp>
 
-#include "fit/constants_io.hpp"
 #include "fit/lp_minimax.hpp"
 #include "fit/minimax.hpp"
+#include "fit/model_family.hpp"
 #include "fit/targets.hpp"
 #include "validate/reference.hpp"
 
@@ -182,9 +181,9 @@ struct PeakRelResidual {
 // κ log-spaced at half-step offsets over [lo, hi] plus the ends, and twice as
 // dense where the 2024 form's residual lives (κ ∈ [0.5, 200], clipped to the range).
 std::vector<double> training_kappas(double lo, double hi, int count) {
-  std::vector<double> k{lo};
+  std::vector<double> k = log_midpoints(lo, hi, count);
+  k.push_back(lo);
   const double a = std::log(lo), b = std::log(hi);
-  for (int i = 0; i < count; ++i) k.push_back(std::exp(a + (b - a) * (i + 0.5) / count));
   const double da = std::log(std::max(lo, 0.5)), db = std::log(std::min(hi, 200.0));
   if (db > da) {
     const int dense = 2 * int(std::ceil(count * (db - da) / (b - a)));
@@ -211,14 +210,6 @@ std::vector<validate::Query> training_grid(double lo, double hi) {
   return q;
 }
 
-// Held-out grid: `nk` κ log-spaced over [lo, hi] × `nc` cosines uniform over [−1, 1].
-std::vector<validate::Query> measuring_grid(double lo, double hi, int nk, int nc) {
-  std::vector<validate::Query> q;
-  for (double k : kappa_grid(lo, hi, nk))
-    for (double c : cosine_grid(nc)) q.push_back({k, c});
-  return q;
-}
-
 // Dense training grid of the certificate (and of the LP's exchange): κ as
 // training_kappas with twice the count, per κ c = 0, 64 cosines at half-step
 // offsets of a uniform grid and c = ±z_k/t(κ), z_k = 0.05 … 3.15 (32), sorted
@@ -239,51 +230,11 @@ std::vector<validate::Query> dense_training_grid(double lo, double hi) {
   return q;
 }
 
-struct Measured {
-  double float_max = 0, double_max = 0;
-  double float_kappa = 0, float_cosine = 0;
-  // The rule "never worse than tokuyoshi2024" (float): the max over κ of the
-  // member's max error over c at κ divided by max(tokuyoshi2024's there, 1e−6);
-  // ≤ 1 when the rule holds. never_worse_kappa: where the max is.
-  double never_worse = 0, never_worse_kappa = 0;
-};
-
-// The float error of tokuyoshi2024 (published constants) at one reference point.
-double error_tokuyoshi2024_float(double kappa, double cosine, double reference) {
-  return std::abs(double(irradiance_tokuyoshi2024(float(cosine), float(kappa))) - reference) /
-         irradiance_upper(kappa);
-}
-
+// The errors of member (N, D) with coefficients p on `ref` (model_family.hpp).
 template <std::size_t N, std::size_t D>
 Measured measure(const SglabAccParams<double, N, D>& p,
                  const std::vector<validate::ReferencePoint>& ref) {
-  Measured m;
-  // max over c at the current κ: the member, tokuyoshi2024 (float)
-  double at_kappa = 0, base_at_kappa = 0;
-  const auto close_kappa = [&](double kappa) {
-    const double ratio = at_kappa / std::max(base_at_kappa, 1e-6);
-    if (!(ratio <= m.never_worse)) m.never_worse = ratio, m.never_worse_kappa = kappa;
-    at_kappa = base_at_kappa = 0;
-  };
-  for (std::size_t i = 0; i < ref.size(); ++i) {
-    const auto& r = ref[i];
-    const double peak = irradiance_upper(r.kappa);
-    const double ed = irradiance_sglab_acc(r.cosine, r.kappa, p);
-    const float ef = irradiance_sglab_acc(float(r.cosine), float(r.kappa), p);
-    const double errd = std::abs(ed - r.irradiance) / peak,
-                 errf = std::abs(double(ef) - r.irradiance) / peak;
-    m.double_max = std::isfinite(errd) ? std::max(m.double_max, errd)
-                                       : std::numeric_limits<double>::infinity();
-    if (!(errf <= m.float_max))
-      m.float_max = std::isfinite(errf) ? errf : std::numeric_limits<double>::infinity(),
-      m.float_kappa = r.kappa, m.float_cosine = r.cosine;
-    at_kappa =
-        std::isfinite(errf) ? std::max(at_kappa, errf) : std::numeric_limits<double>::infinity();
-    base_at_kappa =
-        std::max(base_at_kappa, error_tokuyoshi2024_float(r.kappa, r.cosine, r.irradiance));
-    if (i + 1 == ref.size() || ref[i + 1].kappa != r.kappa) close_kappa(r.kappa);
-  }
-  return m;
+  return measure([&](auto c, auto k) { return irradiance_sglab_acc(c, k, p); }, ref);
 }
 
 // The certificate of a member's fit (issue 17 §1), on the dense training
@@ -681,25 +632,21 @@ ordered_json coefficients_json(const MemberFit& f) {
           {"scale", f.values.back()}};
 }
 
-// The committed set `variant` as start values, if it exists with the member's shape.
-std::optional<std::vector<double>> committed(const std::string& variant, Member m) {
-  // Warm start from the project around the working directory, if any.
-  const auto root = find_project_root(std::filesystem::current_path());
-  if (!root) return std::nullopt;
-  const auto path = *root / "data" / "constants" / fmt::format("sglab-acc-{}.json", variant);
-  if (!std::filesystem::exists(path)) return std::nullopt;
+// The committed set `variant` over [lo, hi] as start values, if it exists with the member's shape.
+std::optional<std::vector<double>> committed(const std::string& variant, Member m, double lo,
+                                             double hi) {
+  const auto c = committed_coefficients("sglab-acc", variant, lo, hi);
+  if (!c) return std::nullopt;
   try {
-    // bounded and strict, as every constants file
-    const ordered_json set = load_constant_set(path);
-    const auto& c = set.at("coefficients");
-    std::vector<double> v = c.at("steep").get<std::vector<double>>();
-    const auto num = c.at("num").get<std::vector<double>>();
-    if (!c.contains("scale") || v.size() != 5 || num.size() != m.n * (m.d + 1)) return std::nullopt;
+    std::vector<double> v = c->at("steep").get<std::vector<double>>();
+    const auto num = c->at("num").get<std::vector<double>>();
+    if (!c->contains("scale") || v.size() != 5 || num.size() != m.n * (m.d + 1))
+      return std::nullopt;
     v.insert(v.end(), num.begin(), num.end());
-    v.push_back(c.at("scale").get<double>());
+    v.push_back(c->at("scale").get<double>());
     return v;
   } catch (const std::exception&) {
-    return std::nullopt;
+    return std::nullopt;  // another shape: fit from the lower member
   }
 }
 
@@ -809,7 +756,7 @@ const char* kHeader =
     "held-out(d) never-worse  dense      LP bound    within  floor/k(w)  floor/k(peak_rel)\n";
 
 ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::string& variant,
-                          int held_k, int held_c, double target) {
+                          const MeasuringGrids& grids, double target) {
   const std::string form =
       "E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j "
       "b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + "
@@ -826,20 +773,12 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
       "max is the objective",
       target, training_kappas(spec.kappa_lo, spec.kappa_hi, 40).size(),
       training_grid(spec.kappa_lo, spec.kappa_hi).size(), spec.kappa_lo, spec.kappa_hi);
-  ordered_json achieved = {
-      {"objective", f.certificate.achieved},
-      {"training_grid_objective", f.train},
-      {"standard_grid", fmt::format("{} kappa x {} cosines", spec.kappa_count, spec.cosine_count)},
-      {"standard_max_peak_rel_float", f.standard.float_max},
-      {"standard_max_peak_rel_double", f.standard.double_max},
-      {"held_out_grid",
-       fmt::format("{} kappa x {} cosines, never used in fitting", held_k, held_c)},
-      {"held_out_max_peak_rel_float", f.held_out.float_max},
-      {"held_out_max_peak_rel_double", f.held_out.double_max},
-      {"held_out_never_worse_ratio", f.held_out.never_worse},
-      {"extra_operations_vs_tokuyoshi2024",
-       fmt::format("setup {} (one division), eval {} multiply-adds", operations(f.member).setup,
-                   operations(f.member).eval)}};
+  ordered_json achieved = {{"objective", f.certificate.achieved},
+                           {"training_grid_objective", f.train}};
+  achieved.update(measured_json(grids, f.standard, f.held_out));
+  achieved["extra_operations_vs_tokuyoshi2024"] =
+      fmt::format("setup {} (one division), eval {} multiply-adds", operations(f.member).setup,
+                  operations(f.member).eval);
   ordered_json set =
       make_constant_set(spec, "sglab-acc", variant,
                         fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
@@ -852,8 +791,7 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
 // and the certificate), and two measuring grids no fit uses.
 struct Grids {
   std::vector<SglabAccSample> train, dense;
-  std::vector<validate::ReferencePoint> standard, held_out;
-  int held_k = 200, held_c = 401;
+  MeasuringGrids measuring;
 };
 
 Grids grids_for(const FitSpec& spec) {
@@ -863,15 +801,15 @@ Grids grids_for(const FitSpec& spec) {
     g.train.push_back({r.kappa, r.cosine, r.irradiance});
   for (const auto& r : engine.evaluate(dense_training_grid(spec.kappa_lo, spec.kappa_hi)))
     g.dense.push_back({r.kappa, r.cosine, r.irradiance});
-  g.standard = engine.evaluate(
-      measuring_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count, spec.cosine_count));
-  g.held_out = engine.evaluate(measuring_grid(spec.kappa_lo, spec.kappa_hi, g.held_k, g.held_c));
+  g.measuring = measuring_grids(spec);
   return g;
 }
 
 // --max-error: the cheapest member meeting the budget, each warm-started from the previous one.
 FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
-  const auto& [train, dense, standard, held_out, held_k, held_c] = g;
+  const auto& [train, dense, measuring] = g;
+  const auto& standard = measuring.standard;
+  const auto& held_out = measuring.held_out;
   FitOutcome out;
   // Model order: cheapest member first, each warm-started from the previous one.
   const double budget = *spec.max_error;
@@ -915,7 +853,7 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
   }
   const std::string variant = fmt::format("n{}d{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d,
                                           spec.kappa_lo, spec.kappa_hi, budget);
-  out.constant_sets.push_back(constant_set(spec, *chosen, variant, held_k, held_c, budget));
+  out.constant_sets.push_back(constant_set(spec, *chosen, variant, measuring, budget));
   out.report["chosen"] = member_report(*chosen);
   out.report["chosen"]["variant"] = variant;
   return out;
@@ -923,7 +861,9 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
 
 // The shipped ladder, each rung warm-started from its committed set.
 FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
-  const auto& [train, dense, standard, held_out, held_k, held_c] = g;
+  const auto& [train, dense, measuring] = g;
+  const auto& standard = measuring.standard;
+  const auto& held_out = measuring.held_out;
   FitOutcome out;
   out.report = {{"target", spec.target},
                 {"objective", "peak-rel"},
@@ -940,7 +880,7 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
   for (const Rung& rung : kLadder) {
     std::string variant = rung.variant;
     if (spec.kappa_range_given) variant += fmt::format("-k{}-{}", spec.kappa_lo, spec.kappa_hi);
-    const auto warm = committed(variant, rung.member);
+    const auto warm = committed(variant, rung.member, spec.kappa_lo, spec.kappa_hi);
     MemberFit f = fit_any(rung.member, warm ? *warm : start_for(rung.member, done, floors, train),
                           weighted(train, rung.target), weighted(dense, rung.target), standard,
                           held_out, warm.has_value());
@@ -948,7 +888,7 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
     f.cost = member_cost(rung.member, spec.costs);
     if (!warm) f.floor = floors.floor(rung.member.n, train);
     out.converged = out.converged && f.converged;
-    out.constant_sets.push_back(constant_set(spec, f, variant, held_k, held_c, rung.target));
+    out.constant_sets.push_back(constant_set(spec, f, variant, measuring, rung.target));
     ordered_json r = member_report(f);
     r["variant"] = variant;
     const bool nested = std::any_of(done.begin(), done.end() - 1, [&](const MemberFit& e) {

@@ -17,12 +17,10 @@
 // 40 s of CPU.
 // Training grid: κ at the midpoints of 56 log-spaced cells of [lo, hi] and
 // 161 uniform cosines; it shares no (κ, c) point with the standard 29 × 41
-// grid or with the held-out 211 × 401 grid on which the result is measured
-// (float and double) and recorded in the constant set's provenance.
+// grid or with the held-out grid (fit/model_family.hpp) on which the result is
+// measured (float and double) and recorded in the constant set's provenance.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -31,9 +29,8 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_fast.hpp>
 
-#include "common/io.hpp"
-#include "fit/constants_io.hpp"
 #include "fit/minimax.hpp"
+#include "fit/model_family.hpp"
 #include "fit/targets.hpp"
 #include "validate/reference.hpp"
 
@@ -42,24 +39,12 @@ namespace sglab::fit {
 namespace {
 
 constexpr int kTrainKappas = 56, kTrainCosines = 161;
-constexpr int kHeldOutKappas = 211, kHeldOutCosines = 401;
 constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
 constexpr std::size_t kNumParams = 4 * (kDegree + 1) + kDegree;
 
-// κ at the log-midpoints of `count` cells of [lo, hi].
-std::vector<double> midpoint_kappas(double lo, double hi, int count) {
-  std::vector<double> k;
-  const double a = std::log10(lo), b = std::log10(hi);
-  for (int i = 0; i < count; ++i) k.push_back(std::pow(10.0, a + (b - a) * (i + 0.5) / count));
-  return k;
-}
-
 std::vector<validate::ReferencePoint> reference_grid(const std::vector<double>& kappas,
                                                      const std::vector<double>& cosines) {
-  std::vector<validate::Query> q;
-  for (double k : kappas)
-    for (double c : cosines) q.push_back({k, c});
-  return validate::reference_engine().evaluate(q);
+  return validate::reference_engine().evaluate(product_grid(kappas, cosines));
 }
 
 // Stage 1 residual: peak_rel of E(1)·max(0, s) at one (κ, c), shape values as parameters.
@@ -96,23 +81,6 @@ SglabFastParams<double> to_params(const std::vector<double>& v, double kappa_max
   for (std::size_t j = 0; j < kDegree; ++j) p.q[j] = v[i++];
   p.kappa_max = kappa_max;
   return p;
-}
-
-// Max peak_rel over `ref` of the runtime function in precision T.
-template <class T>
-double max_peak_rel(const SglabFastParams<double>& p,
-                    const std::vector<validate::ReferencePoint>& ref, double* where_kappa = nullptr,
-                    double* where_cosine = nullptr) {
-  double m = 0;
-  for (const auto& r : ref) {
-    const double e = irradiance_sglab_fast(T(r.cosine), T(r.kappa), p);
-    const double err = std::abs(e - r.irradiance) / irradiance_upper(r.kappa);
-    if (!(err <= m)) {
-      m = std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
-      if (where_kappa) *where_kappa = r.kappa, *where_cosine = r.cosine;
-    }
-  }
-  return m;
 }
 
 struct PerKappa {
@@ -193,27 +161,16 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
 // The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
 std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
                                                    double hi) {
-  // Warm start from the project around the working directory, if any.
-  const auto root = find_project_root(std::filesystem::current_path());
-  if (!root) return std::nullopt;
-  const auto path = *root / "data" / "constants" / fmt::format("sglab-fast-{}.json", variant);
-  if (!std::filesystem::exists(path)) return std::nullopt;
-  try {
-    const auto set = load_constant_set(path);  // bounded and strict, as every constants file
-    const auto& range = set.at("provenance").at("kappa_range");
-    if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
-    const auto& c = set.at("coefficients");
-    std::vector<double> values;
-    for (const char* poly : {"a", "b", "c", "v"}) {
-      if (c.at(poly).size() != kDegree + 1) return std::nullopt;
-      for (const auto& x : c.at(poly)) values.push_back(x.get<double>());
-    }
-    if (c.at("q").size() != kDegree) return std::nullopt;
-    for (const auto& x : c.at("q")) values.push_back(x.get<double>());
-    return values;
-  } catch (const std::exception&) {
-    return std::nullopt;  // a placeholder or foreign file: fit from scratch
+  const auto c = committed_coefficients("sglab-fast", variant, lo, hi);
+  if (!c) return std::nullopt;
+  std::vector<double> values;
+  for (const char* poly : {"a", "b", "c", "v"}) {
+    if (!c->contains(poly) || c->at(poly).size() != kDegree + 1) return std::nullopt;
+    for (const auto& x : c->at(poly)) values.push_back(x.get<double>());
   }
+  if (!c->contains("q") || c->at("q").size() != kDegree) return std::nullopt;
+  for (const auto& x : c->at("q")) values.push_back(x.get<double>());
+  return values;
 }
 
 std::vector<std::string> parameter_names() {
@@ -237,23 +194,15 @@ FitOptions fit_options(bool polish) {
   return options;
 }
 
-// The fitted set's errors on its training grid and on two grids no fit used.
-struct Measured {
-  double train_float = 0, held_float = 0, held_double = 0, std_float = 0, std_double = 0;
-  double worst_kappa = 0, worst_cosine = 0;  // of held_float
+// The fitted set's errors on its training grid and on the two measuring grids.
+struct Measurements {
+  Measured train, standard, held_out;
 };
-Measured measure(const SglabFastParams<double>& fitted,
-                 const std::vector<validate::ReferencePoint>& train, double lo, double hi) {
-  const auto held_out =
-      reference_grid(kappa_grid(lo, hi, kHeldOutKappas), cosine_grid(kHeldOutCosines));
-  const auto standard = reference_grid(kappa_grid(lo, hi, 29), cosine_grid(41));
-  Measured m;
-  m.held_float = max_peak_rel<float>(fitted, held_out, &m.worst_kappa, &m.worst_cosine);
-  m.held_double = max_peak_rel<double>(fitted, held_out);
-  m.std_float = max_peak_rel<float>(fitted, standard);
-  m.std_double = max_peak_rel<double>(fitted, standard);
-  m.train_float = max_peak_rel<float>(fitted, train);
-  return m;
+Measurements measure_all(const SglabFastParams<double>& fitted,
+                         const std::vector<validate::ReferencePoint>& train,
+                         const MeasuringGrids& grids) {
+  const auto model = [&](auto c, auto k) { return irradiance_sglab_fast(c, k, fitted); };
+  return {measure(model, train), measure(model, grids.standard), measure(model, grids.held_out)};
 }
 
 // The coefficients in SglabFastParams order: a, b, c, v (degree 4), q (monic: 4), kappa_max.
@@ -270,20 +219,13 @@ ordered_json coefficients_json(const std::vector<double>& values, double hi) {
   return coefficients;
 }
 
-ordered_json achieved_json(double objective, double floor, const Measured& m, double lo,
-                           double hi) {
-  return {
-      {"objective", objective},
-      {"training_max_peak_rel_float", m.train_float},
-      {"per_kappa_floor", floor},
-      {"held_out_grid", fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]",
-                                    kHeldOutKappas, kHeldOutCosines, lo, hi)},
-      {"held_out_max_peak_rel_float", m.held_float},
-      {"held_out_max_peak_rel_double", m.held_double},
-      {"held_out_worst", {m.worst_kappa, m.worst_cosine}},
-      {"standard_max_peak_rel_float", m.std_float},
-      {"standard_max_peak_rel_double", m.std_double},
-  };
+ordered_json achieved_json(double objective, double floor, const Measurements& m,
+                           const MeasuringGrids& grids) {
+  ordered_json achieved = {{"objective", objective},
+                           {"training_max_peak_rel_float", m.train.float_max},
+                           {"per_kappa_floor", floor}};
+  achieved.update(measured_json(grids, m.standard, m.held_out));
+  return achieved;
 }
 
 }  // namespace
@@ -293,7 +235,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
     throw std::invalid_argument(
         fmt::format("sglab-fast has the one objective 'irradiance'; got '{}'", spec.objective));
   const double lo = spec.kappa_lo, hi = spec.kappa_hi;
-  const auto train_k = midpoint_kappas(lo, hi, kTrainKappas);
+  const auto train_k = log_midpoints(lo, hi, kTrainKappas);
   const auto train_c = cosine_grid(kTrainCosines);
   const auto train = reference_grid(train_k, train_c);
 
@@ -320,9 +262,10 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   for (double r : evaluate_residuals(residuals, params.values))
     start_error = std::max(start_error, std::abs(r));
   const FitResult result = fit(residuals, params, fit_options(committed.has_value()));
-  const Measured m = measure(to_params(result.values, hi), train, lo, hi);
+  const MeasuringGrids grids = measuring_grids(spec);
+  const Measurements m = measure_all(to_params(result.values, hi), train, grids);
   const ordered_json coefficients = coefficients_json(result.values, hi);
-  const ordered_json achieved = achieved_json(result.max_abs, floor, m, lo, hi);
+  const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
   FitSpec recorded = spec;
   recorded.kappa_count = kTrainKappas;
@@ -356,11 +299,11 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   out.report["per_kappa"] = table;
   out.text = fmt::format(
       "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
-      "  held-out {}x{}: float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}; standard 29x41: "
-      "float {:.4e}, double {:.4e}\n",
+      "  held-out ({}): float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}\n"
+      "  standard ({}): float {:.4e}, double {:.4e}\n",
       variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
-      kHeldOutKappas, kHeldOutCosines, m.held_float, m.worst_kappa, m.worst_cosine, m.held_double,
-      m.std_float, m.std_double);
+      grids.held_out_name, m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine,
+      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max);
   return out;
 }
 

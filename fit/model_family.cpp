@@ -1,0 +1,81 @@
+// fit/model_family.cpp — see model_family.hpp.
+#include "fit/model_family.hpp"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "common/io.hpp"
+#include "fit/constants_io.hpp"
+
+namespace sglab::fit {
+
+std::vector<validate::Query> product_grid(const std::vector<double>& kappas,
+                                          const std::vector<double>& cosines) {
+  std::vector<validate::Query> q;
+  q.reserve(kappas.size() * cosines.size());
+  for (double k : kappas)
+    for (double c : cosines) q.push_back({k, c});
+  return q;
+}
+
+MeasuringGrids measuring_grids(const FitSpec& spec) {
+  const double lo = spec.kappa_lo, hi = spec.kappa_hi;
+  const double held_lo = kHeldOutLoFactor * lo, held_hi = kHeldOutHiFactor * hi;
+  auto& engine = validate::reference_engine();
+  MeasuringGrids g;
+  g.standard = engine.evaluate(
+      product_grid(kappa_grid(lo, hi, spec.kappa_count), cosine_grid(spec.cosine_count)));
+  g.held_out = engine.evaluate(
+      product_grid(kappa_grid(held_lo, held_hi, kHeldOutKappas), cosine_grid(kHeldOutCosines)));
+  g.standard_name = fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]",
+                                spec.kappa_count, spec.cosine_count, lo, hi);
+  g.held_out_name =
+      fmt::format("{} log-spaced kappa x {} uniform cosines over [{:g}, {:g}], never used in fitting",
+                  kHeldOutKappas, kHeldOutCosines, held_lo, held_hi);
+  return g;
+}
+
+std::vector<double> log_midpoints(double lo, double hi, int count) {
+  std::vector<double> k;
+  const double a = std::log(lo), b = std::log(hi);
+  for (int i = 0; i < count; ++i) k.push_back(std::exp(a + (b - a) * (i + 0.5) / count));
+  return k;
+}
+
+double error_tokuyoshi2024_float(double kappa, double cosine, double reference) {
+  const float e = irradiance_tokuyoshi2024(float(cosine), float(kappa));
+  return std::abs(double(e) - reference) / irradiance_upper(kappa);
+}
+
+ordered_json measured_json(const MeasuringGrids& grids, const Measured& standard,
+                           const Measured& held_out) {
+  return {{"standard_grid", grids.standard_name},
+          {"standard_max_peak_rel_float", standard.float_max},
+          {"standard_max_peak_rel_double", standard.double_max},
+          {"held_out_grid", grids.held_out_name},
+          {"held_out_max_peak_rel_float", held_out.float_max},
+          {"held_out_max_peak_rel_double", held_out.double_max},
+          {"held_out_worst_float", {held_out.float_kappa, held_out.float_cosine}},
+          {"held_out_never_worse_ratio", held_out.never_worse}};
+}
+
+std::optional<ordered_json> committed_coefficients(const std::string& target,
+                                                   const std::string& variant, double lo,
+                                                   double hi) {
+  const auto root = io::find_project_root(std::filesystem::current_path());
+  if (!root) return std::nullopt;
+  const auto path = *root / "data" / "constants" / fmt::format("{}-{}.json", target, variant);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  try {
+    const ordered_json set = load_constant_set(path);
+    const auto& range = set.at("provenance").at("kappa_range");
+    if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
+    return set.at("coefficients");
+  } catch (const std::exception&) {
+    return std::nullopt;  // a placeholder or foreign file: fit from scratch
+  }
+}
+
+}  // namespace sglab::fit

@@ -1,0 +1,107 @@
+// fit/model_family.hpp — what the fitters of sglab's own models (sglab-fast,
+// fit/sglab_fast.cpp; sglab-acc, fit/sglab_acc.cpp) share: the two grids a
+// fitted set is measured on and that no fit uses, the measurement itself (max
+// peak_rel in float and double, where it is, and the per-κ rule "never worse
+// than tokuyoshi2024"), its record in a constant set's provenance, the
+// log-spaced κ at half-step offsets their training grids start from, and the
+// warm start from a committed constant set.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <sglab/irradiance.hpp>
+
+#include "fit/targets.hpp"
+#include "validate/reference.hpp"
+
+namespace sglab::fit {
+
+// The held-out grid: kHeldOutKappas κ log-spaced over [1.1·lo, 0.97·hi] ×
+// kHeldOutCosines uniform cosines over [−1, 1]. Strictly inside the range, so
+// it shares no κ with a training grid that holds the ends; for the default
+// range it is README's held-out grid (`sglab sweep --kappa 1.1e-3:9.7e3:217
+// --cosines 401`, data/results/heldout_sweep.json).
+inline constexpr int kHeldOutKappas = 217, kHeldOutCosines = 401;
+inline constexpr double kHeldOutLoFactor = 1.1, kHeldOutHiFactor = 0.97;
+
+// Every (κ, c) of kappas × cosines, κ-major (the order `measure` expects).
+std::vector<validate::Query> product_grid(const std::vector<double>& kappas,
+                                          const std::vector<double>& cosines);
+
+// The two measuring grids of a fit over [spec.kappa_lo, spec.kappa_hi], with
+// the reference engine's values, and how provenance names them.
+struct MeasuringGrids {
+  std::vector<validate::ReferencePoint> standard, held_out;
+  std::string standard_name, held_out_name;
+};
+// standard: spec.kappa_count log-spaced κ × spec.cosine_count cosines over
+// the range (the grid of `sglab sweep`); held-out as above.
+MeasuringGrids measuring_grids(const FitSpec& spec);
+
+// κ at the log-midpoints of `count` cells of [lo, hi] (half-step offsets:
+// never a point of a log-spaced measuring grid of the same range).
+std::vector<double> log_midpoints(double lo, double hi, int count);
+
+// A fitted model's errors on one grid.
+struct Measured {
+  double float_max = 0, double_max = 0;  // max peak_rel |Ê − E|/E(1, κ)
+  double float_kappa = 0, float_cosine = 0;  // where float_max is
+  // The rule "never worse than tokuyoshi2024" (float): the max over κ of the
+  // model's max error over c at κ divided by max(tokuyoshi2024's there, 1e−6);
+  // ≤ 1 when the rule holds. never_worse_kappa: where the max is.
+  double never_worse = 0, never_worse_kappa = 0;
+};
+
+// The float peak_rel error of tokuyoshi2024 (published constants) at (κ, c),
+// where the exact irradiance is `reference`.
+double error_tokuyoshi2024_float(double kappa, double cosine, double reference);
+
+// `model(c, κ)` is called with float and with double arguments (a generic
+// lambda over the runtime function); `ref` comes κ-major (product_grid). A
+// non-finite output counts as an infinite error.
+template <class Model>
+Measured measure(const Model& model, const std::vector<validate::ReferencePoint>& ref) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Measured m;
+  double at_kappa = 0, base_at_kappa = 0;  // max over c at the current κ: model, tokuyoshi2024
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    const auto& r = ref[i];
+    const double peak = irradiance_upper(r.kappa);
+    const double errd = std::abs(double(model(r.cosine, r.kappa)) - r.irradiance) / peak;
+    const double errf =
+        std::abs(double(model(float(r.cosine), float(r.kappa))) - r.irradiance) / peak;
+    m.double_max = std::isfinite(errd) ? std::max(m.double_max, errd) : kInf;
+    if (!(errf <= m.float_max))
+      m.float_max = std::isfinite(errf) ? errf : kInf, m.float_kappa = r.kappa,
+      m.float_cosine = r.cosine;
+    at_kappa = std::isfinite(errf) ? std::max(at_kappa, errf) : kInf;
+    base_at_kappa = std::max(base_at_kappa, error_tokuyoshi2024_float(r.kappa, r.cosine, r.irradiance));
+    if (i + 1 == ref.size() || ref[i + 1].kappa != r.kappa) {
+      const double ratio = at_kappa / std::max(base_at_kappa, 1e-6);
+      if (!(ratio <= m.never_worse)) m.never_worse = ratio, m.never_worse_kappa = r.kappa;
+      at_kappa = base_at_kappa = 0;
+    }
+  }
+  return m;
+}
+
+// The measurement as provenance records it ("achieved"): each grid's name, its
+// max peak_rel in float and double, where the held-out float max is, and the
+// never-worse ratio on the held-out grid.
+ordered_json measured_json(const MeasuringGrids& grids, const Measured& standard,
+                           const Measured& held_out);
+
+// The coefficients of the committed constant set data/constants/<target>-<variant>.json
+// of the project around the working directory, when it exists, loads (bounded
+// and strict, as every constants file) and was fitted over [lo, hi]: the warm
+// start of a refit. nullopt otherwise (no project, no file, another range, a
+// foreign file): the caller fits from scratch.
+std::optional<ordered_json> committed_coefficients(const std::string& target,
+                                                   const std::string& variant, double lo,
+                                                   double hi);
+
+}  // namespace sglab::fit
