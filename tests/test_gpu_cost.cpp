@@ -310,10 +310,8 @@ struct WorkingDirectory {
 // of other code is not this export's cost: "not measured". No device needed.
 TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
   TempDir dir("gpucost-export");
-  const fs::path checkout = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
-  fs::create_directories(dir.path / "include" / "sglab");
-  fs::create_directories(dir.path / "data" / "results");
-  fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
+  const fs::path checkout = sglab::test::checkout_dir();
+  sglab::test::make_scratch_project(dir.path);
   fs::copy_file(checkout / "data" / "results" / "vulkan_sweep.json",
                 dir.path / "data" / "results" / "vulkan_sweep.json");
   auto doc = nlohmann::ordered_json::parse(
@@ -370,10 +368,8 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
 // the split export in the split wrapper), the unsplit export that of its own row.
 TEST(GpuCostInExport, SplitHeaderReadsTheSplitRow) {
   TempDir dir("gpucost-export-split");
-  const fs::path checkout = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
-  fs::create_directories(dir.path / "include" / "sglab");
-  fs::create_directories(dir.path / "data" / "results");
-  fs::copy(checkout / "data" / "constants", dir.path / "data" / "constants");
+  const fs::path checkout = sglab::test::checkout_dir();
+  sglab::test::make_scratch_project(dir.path);
   auto doc = nlohmann::ordered_json::parse(
       sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
   gpu::Statistics unsplit_stats, split_stats;

@@ -17,6 +17,7 @@
 
 #include <sglab/sglab.hpp>
 
+#include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 #include "validate/reference.hpp"
@@ -33,6 +34,7 @@ using sglab::test::hex;
 using sglab::test::kNone;
 using sglab::test::Precision;
 using sglab::test::Quantity;
+using sglab::test::random_points;
 using sglab::test::Tolerance;
 
 // The row of (method, quantity, precision); fails the test when there is none.
@@ -43,17 +45,6 @@ const Tolerance& row(const sglab::Method& m, Quantity q, Precision p = Precision
         fmt::format("tests/tolerances.hpp has no row for {} {} {}: add one with its reason", m.id,
                     to_string(q), to_string(p)));
   return *t;
-}
-
-// Random (κ, c): κ log-uniform over [1e-3, 1e4], c uniform over [-1, 1],
-// rounded to float so that the float and double paths see the same inputs.
-std::vector<sglab::validate::Query> random_points(int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> lk(std::log(1e-3), std::log(1e4)), uc(-1.0, 1.0);
-  std::vector<sglab::validate::Query> q;
-  for (int i = 0; i < n; ++i)
-    q.push_back({double(float(std::exp(lk(rng)))), double(float(uc(rng)))});
-  return q;
 }
 
 class Registry : public ::testing::TestWithParam<sglab::Method> {};
@@ -231,6 +222,24 @@ TEST(ToleranceTable, EveryRowNamesARegisteredMethodOnceWithAReason) {
     EXPECT_FALSE(t.reason.empty()) << key;
     EXPECT_TRUE(t.bound == kNone || t.bound > 0) << key;
   }
+}
+
+// Every registered method has a row for every quantity (the half ones are
+// checked by tests/test_half_precision.cpp on a Vulkan device, so their rows
+// are required here, where no device is needed).
+TEST(ToleranceTable, EveryMethodHasARowForEveryQuantity) {
+  const std::pair<Quantity, Precision> quantities[] = {
+      {Quantity::float_vs_double, Precision::float32},
+      {Quantity::batch_vs_double, Precision::float32},
+      {Quantity::split_vs_plain, Precision::float32},
+      {Quantity::peak_rel, Precision::float32},
+      {Quantity::half_peak_rel, Precision::float16},
+      {Quantity::half_vs_float, Precision::float16}};
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    for (const auto& [q, p] : quantities)
+      EXPECT_NE(find_tolerance(m.id, q, p), nullptr)
+          << "tests/tolerances.hpp has no row for " << m.id << " " << to_string(q) << " "
+          << to_string(p) << ": add one with its reason";
 }
 
 }  // namespace

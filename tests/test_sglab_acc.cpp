@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,28 +19,19 @@
 
 #include "fit/targets.hpp"
 #include "tests/fit_guard.hpp"
+#include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
 #include "validate/reference.hpp"
 
 namespace {
 
 using sglab::test::hex;
+using sglab::test::random_points;
 using sglab::test::run_sglab;
 
 // The shipped rungs; their bounds are rows of tests/tolerances.hpp, checked
 // by tests/test_methods.cpp with every method.
 constexpr const char* kRungs[] = {"sglab_acc1", "sglab_acc2", "sglab_acc3"};
-
-// Random points, κ log-uniform over [1e−3, 1e4] and c uniform, fixed seed;
-// float-exact so the float and double paths see the same inputs.
-std::vector<sglab::validate::Query> random_points(int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> lk(std::log(1e-3), std::log(1e4)), uc(-1.0, 1.0);
-  std::vector<sglab::validate::Query> q;
-  for (int i = 0; i < n; ++i)
-    q.push_back({double(float(std::exp(lk(rng)))), double(float(uc(rng)))});
-  return q;
-}
 
 const sglab::Method& method(std::string_view id) {
   const sglab::Method* m = sglab::find_method(sglab::irradiance_methods, id);

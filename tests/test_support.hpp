@@ -60,6 +60,20 @@ inline std::vector<std::string> words(std::string_view text) {
   return out;
 }
 
+// The checkout this test binary was built from (the folder above tests/).
+inline std::filesystem::path checkout_dir() {
+  return std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / "..";
+}
+
+// Makes `dir` a project as `sglab export` and gpucost find one: include/sglab/
+// and data/results/ created, the checkout's data/constants copied in.
+inline void make_scratch_project(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  fs::create_directories(dir / "include" / "sglab");
+  fs::create_directories(dir / "data" / "results");
+  fs::copy(checkout_dir() / "data" / "constants", dir / "data" / "constants");
+}
+
 // A fresh folder under the system's temporary directory, named after `name`
 // and the process id with a random suffix (mkdtemp), so that no two tests,
 // processes (ctest -j) or TempDirs of one test ever share it; removed with
