@@ -67,10 +67,10 @@ std::string light_sglab_mid(const Ctx& c, const Slots& slots) {
   const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
   return subst(fmt::format(R"(  float k = min(kappa, {});
   float inv_q = 1.0f / ({} + k * k * k * k);
-  float scale = inv_q * (6.28318548f * {{P}}upper_over_two_pi(kappa));
-  light.a = {} * scale;
-  light.b = {} * scale;
-  light.d = {} * scale;
+  float e1 = 6.28318548f * {{P}}upper_over_two_pi(kappa);
+  light.a = {} * inv_q * e1;
+  light.b = {} * inv_q * e1;
+  light.d = {} * inv_q * e1;
   light.s = {} * inv_q - log(1.0f + k);
   light.v = k * {} * inv_q;
 )",

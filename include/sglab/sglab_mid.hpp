@@ -94,11 +94,11 @@ SglabMidLight<T> sglab_mid_light(const T& kappa,
                                  const SglabMidParams<S>& p = constants::sglab_mid_float) {
   const T k = detail::min_of(kappa, T(p.kappa_max));
   const T inv_q = T(1) / (horner(k, p.q) + k * k * k * k);
-  // A, B, D are O(1) after the division; E(1, κ) ≈ 2π/κ is applied last.
+  // A, B, D are O(1) after the division; E(1, κ) ≈ 2π/κ is applied last, so
+  // nothing underflows before it even at κ near the largest float.
   using std::log;
   const T e1 = two_pi_v<T>() * detail::upper_over_two_pi_fast(kappa);
-  const T scale = inv_q * e1;
-  return {horner(k, p.a) * scale, horner(k, p.b) * scale, horner(k, p.d) * scale,
+  return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.d) * inv_q * e1,
           horner(k, p.s) * inv_q - log(T(1) + k), k * horner(k, p.v) * inv_q};
 }
 
@@ -124,8 +124,7 @@ SGLAB_FORCE_INLINE SglabMidLight<float> sglab_mid_light_branch_free(float kappa,
   const float r = 1.0f / kc;
   const float closed = (1.0f - (1.0f - bf::exp_bf(-bf::min(kc, 80.0f))) * r) * r;
   const float e1 = two_pi_v<float>() * bf::select(kappa < 0.25f, series, closed);
-  const float scale = inv_q * e1;
-  return {horner(k, p.a) * scale, horner(k, p.b) * scale, horner(k, p.d) * scale,
+  return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.d) * inv_q * e1,
           horner(k, p.s) * inv_q - detail::log_bf(1.0f + k), k * horner(k, p.v) * inv_q};
 }
 
