@@ -234,7 +234,7 @@ std::vector<validate::Query> dense_training_grid(double lo, double hi) {
 template <std::size_t N, std::size_t D>
 Measured measure(const SglabAccParams<double, N, D>& p,
                  const std::vector<validate::ReferencePoint>& ref) {
-  return measure([&](auto c, auto k) { return irradiance_sglab_acc(c, k, p); }, ref);
+  return fit::measure([&](auto c, auto k) { return irradiance_sglab_acc(c, k, p); }, ref);
 }
 
 // The certificate of a member's fit (issue 17 §1), on the dense training
