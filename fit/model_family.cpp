@@ -30,9 +30,9 @@ MeasuringGrids measuring_grids(const FitSpec& spec) {
       product_grid(kappa_grid(held_lo, held_hi, kHeldOutKappas), cosine_grid(kHeldOutCosines)));
   g.standard_name = fmt::format("{} log-spaced kappa x {} uniform cosines over [{}, {}]",
                                 spec.kappa_count, spec.cosine_count, lo, hi);
-  g.held_out_name =
-      fmt::format("{} log-spaced kappa x {} uniform cosines over [{:g}, {:g}], never used in fitting",
-                  kHeldOutKappas, kHeldOutCosines, held_lo, held_hi);
+  g.held_out_name = fmt::format(
+      "{} log-spaced kappa x {} uniform cosines over [{:g}, {:g}], never used in fitting",
+      kHeldOutKappas, kHeldOutCosines, held_lo, held_hi);
   return g;
 }
 

@@ -48,7 +48,7 @@ std::vector<double> log_midpoints(double lo, double hi, int count);
 
 // A fitted model's errors on one grid.
 struct Measured {
-  double float_max = 0, double_max = 0;  // max peak_rel |Ê − E|/E(1, κ)
+  double float_max = 0, double_max = 0;      // max peak_rel |Ê − E|/E(1, κ)
   double float_kappa = 0, float_cosine = 0;  // where float_max is
   // The rule "never worse than tokuyoshi2024" (float): the max over κ of the
   // model's max error over c at κ divided by max(tokuyoshi2024's there, 1e−6);
@@ -79,7 +79,8 @@ Measured measure(const Model& model, const std::vector<validate::ReferencePoint>
       m.float_max = std::isfinite(errf) ? errf : kInf, m.float_kappa = r.kappa,
       m.float_cosine = r.cosine;
     at_kappa = std::isfinite(errf) ? std::max(at_kappa, errf) : kInf;
-    base_at_kappa = std::max(base_at_kappa, error_tokuyoshi2024_float(r.kappa, r.cosine, r.irradiance));
+    base_at_kappa =
+        std::max(base_at_kappa, error_tokuyoshi2024_float(r.kappa, r.cosine, r.irradiance));
     if (i + 1 == ref.size() || ref[i + 1].kappa != r.kappa) {
       const double ratio = at_kappa / std::max(base_at_kappa, 1e-6);
       if (!(ratio <= m.never_worse)) m.never_worse = ratio, m.never_worse_kappa = r.kappa;
