@@ -94,36 +94,38 @@ const ConstantSet& slot(const Slots& slots, std::string_view role) {
   throw std::logic_error(fmt::format("shader export: no constant slot '{}'", role));
 }
 
-// The exported code is float: a coefficient beyond the largest float would be
-// written as inf, which is no literal. Throws std::invalid_argument naming the
-// set and the key (coefficients.NAME, or coefficients.NAME[i] in an array).
-void check_finite_in_float(const ConstantSet& set) {
+namespace {
+// Throws std::invalid_argument naming the set and the key (coefficients.NAME,
+// or coefficients.NAME[i] in an array) of the first coefficient that `round`
+// (to the exported precision) makes infinite; `precision` says which.
+template <class Round>
+void check_finite_as(const ConstantSet& set, Round round, std::string_view precision) {
   for (const auto& [name, values] : set.members)
     for (std::size_t i = 0; i < values.size(); ++i)
-      if (!std::isfinite(static_cast<float>(values[i])))
-        throw std::invalid_argument(
-            fmt::format("constant set {}: key '{}': {} is not finite in float, the precision of "
-                        "the exported code",
-                        set.cpp_name,
-                        values.size() == 1 ? "coefficients." + name
-                                           : fmt::format("coefficients.{}[{}]", name, i),
-                        values[i]));
+      if (!std::isfinite(round(values[i])))
+        throw std::invalid_argument(fmt::format(
+            "constant set {}: key '{}': {} is not finite in {}, the precision of the exported code",
+            set.cpp_name,
+            values.size() == 1 ? "coefficients." + name
+                               : fmt::format("coefficients.{}[{}]", name, i),
+            values[i], precision));
+}
+}  // namespace
+
+// The exported code is float: a coefficient beyond the largest float would be
+// written as inf, which is no literal.
+void check_finite_in_float(const ConstantSet& set) {
+  check_finite_as(
+      set, [](double v) { return static_cast<float>(v); }, "float");
 }
 
 // A half export writes every coefficient as a half literal (methods without a
-// half form of their own): one beyond 65504 would be inf. Throws
-// std::invalid_argument naming the set and the key.
+// half form of their own): one beyond 65504 would be inf.
 void check_finite_in_half(const ConstantSet& set) {
-  for (const auto& [name, values] : set.members)
-    for (std::size_t i = 0; i < values.size(); ++i)
-      if (!std::isfinite(static_cast<float>(static_cast<_Float16>(static_cast<float>(values[i])))))
-        throw std::invalid_argument(
-            fmt::format("constant set {}: key '{}': {} is not finite in half (largest 65504), the "
-                        "precision of the exported code",
-                        set.cpp_name,
-                        values.size() == 1 ? "coefficients." + name
-                                           : fmt::format("coefficients.{}[{}]", name, i),
-                        values[i]));
+  check_finite_as(
+      set,
+      [](double v) { return static_cast<float>(static_cast<_Float16>(static_cast<float>(v))); },
+      "half (largest 65504)");
 }
 
 }  // namespace sglab::shader::detail

@@ -91,7 +91,7 @@ std::string pixel_sglab_mid(const Ctx& c, const Slots&) {
 std::vector<LightField> fields_sglab_acc(const Slots& slots) {
   std::vector<LightField> f = {{"t", "steepness t(kappa)"},
                                {"half_erfc_t", "erfc(t)/2"},
-                               {"tail_scale", "1/(2 sqrt(pi) max(t, 2^-23))"},
+                               {"tail_scale", "1/(2 sqrt(pi) (t + 2^-126))"},
                                {"t2", "t^2"},
                                {"lower", "E(-1, kappa)/2 pi"},
                                {"upper", "E(+1, kappa)/2 pi"}};
@@ -101,7 +101,7 @@ std::vector<LightField> fields_sglab_acc(const Slots& slots) {
   return f;
 }
 // sglab_acc.hpp sglab_acc_light: t and the poles as tokuyoshi2024's setup, the tail scale
-// 1/(2 sqrt(pi) max(t, eps)) and b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc_fade).
+// 1/(2 sqrt(pi) (t + FLT_MIN)) and b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc_fade).
 std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto [n, d] = sglab_acc_shape(set);
@@ -113,9 +113,7 @@ std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
   }
   return subst(fmt::format(R"(  light.t = {{P}}steepness(kappa);
   light.half_erfc_t = 0.5f * {{P}}erfc_pos(light.t);
-  float t_or_eps = light.t;
-  if (t_or_eps <= 1.1920929e-7f) t_or_eps = 1.1920929e-7f;
-  light.tail_scale = 0.5f * 0.564189584f / t_or_eps;
+  light.tail_scale = 0.5f * 0.564189584f / (light.t + 1.17549435e-38f);
   light.t2 = light.t * light.t;
   {{VEC2}} poles = {{P}}poles_over_two_pi(kappa);  // (lower, upper)
   light.lower = poles.x;

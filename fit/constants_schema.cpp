@@ -362,8 +362,9 @@ void validate_provenance(const ordered_json& set, const std::string& file) {
     if (const ordered_json* v = find(*a, "objective"); v && !v->is_number())
       fail(file, "provenance.achieved.objective",
            fmt::format("must be a number, got {}", v->type_name()));
-  // A fit's certificate (fit/sglab_acc.cpp): its kind and grid, the max
-  // achieved and the lower bound for the family, both finite numbers.
+  // A fit's certificate (fit/lp_minimax.hpp; sglab-acc, sglab-fast, erf): its
+  // kind and grid, the max achieved and the lower bound for the family, both
+  // finite, the bound positive and not above what the fit achieved.
   if (const ordered_json* c = find(*provenance, "certificate")) {
     if (!c->is_object())
       fail(file, "provenance.certificate",
@@ -377,6 +378,11 @@ void validate_provenance(const ordered_json& set, const std::string& file) {
           !v || !v->is_number() || !std::isfinite(v->get<double>()))
         fail(file, std::string("provenance.certificate.") + key,
              v ? "must be a finite number" : "missing");
+    const double achieved = c->at("achieved").get<double>(),
+                 bound = c->at("lower_bound").get<double>();
+    if (!(bound > 0 && bound <= achieved * (1 + 1e-9)))
+      fail(file, "provenance.certificate.lower_bound",
+           fmt::format("must be positive and at most achieved ({}), got {}", achieved, bound));
   }
 }
 }  // namespace

@@ -9,7 +9,10 @@
 //      log-spaced over the κ range (−Q's roots on the negative axis, so Q > 0),
 //      each numerator a linear least-squares fit to the stage-1 values;
 //   3. a joint minimax of every coefficient on the peak_rel error of the
-//      runtime function itself (Jets through irradiance_sglab_fast).
+//      runtime function itself (Jets through irradiance_sglab_fast);
+// then certified (issue 17 §1, certificate_json below): at the fitted Q and
+// V(κ) the numerators of A, B and C enter linearly, and an LP bounds how well
+// any of their values could do.
 // Unless --cold-start, when the committed constant set of the same variant
 // and κ range exists (data/constants/sglab-fast-<variant>.json), stages 2 and 3
 // start from it instead, with a short polish (a few reweighting rounds and
@@ -21,6 +24,7 @@
 // measured (float and double) and recorded in the constant set's provenance.
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
@@ -29,6 +33,7 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_fast.hpp>
 
+#include "fit/lp_minimax.hpp"
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
@@ -228,6 +233,67 @@ ordered_json achieved_json(double objective, double floor, const Measurements& m
   return achieved;
 }
 
+// The certificate (issue 17 §1). At the fitted Q and V(κ), s' = E1(κ)·(A + B c
+// + C ρ(V c + ½))/E(1, κ) is linear in the numerators of A, B and C, and the
+// residual is max(0, s') − y, y = E/E(1, κ). On the training points with
+// y ≥ L (= kCertificateLevel) the LP (fit/lp_minimax.hpp) gives the best those
+// numerators can do for |s' − y|, LP_R; since |max(0, s') − y| ≥ min(|s' − y|, y)
+// for y ≥ 0 (s' < 0 makes the error y ≤ |s' − y|), every member with this Q and
+// V errs by at least min(LP_R, L) on those points: a lower bound for the family
+// at its fitted nonlinear part, the fit's max there is achieved.
+constexpr double kCertificateLevel = 0.05;
+ordered_json certificate_json(const std::vector<double>& values,
+                              const std::vector<validate::ReferencePoint>& train, double hi) {
+  Residuals residuals;
+  for (const auto& r : train) {
+    const double peak = irradiance_upper(r.kappa);
+    if (r.irradiance >= kCertificateLevel * peak)
+      residuals.push_back(
+          make_residual(ModelResidual{r.kappa, r.cosine, r.irradiance, peak, hi}, kNumParams));
+  }
+  std::vector<std::size_t> linear(3 * (kDegree + 1));  // a, b, c: the first in parameter order
+  std::iota(linear.begin(), linear.end(), 0);
+  const LinearSubproblem sub = linear_subproblem(residuals, values, linear);
+  const LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
+  const double achieved = max_abs_residual(evaluate_residuals(residuals, values));
+  const double bound = std::min(lp.lower_bound, kCertificateLevel);
+  return {
+      {"kind",
+       "lp_at_fitted_denominator_and_v: the numerators of A, B and C free, Q and V(kappa) as "
+       "fitted; bound min(LP optimum, L)"},
+      {"grid", fmt::format("the {} training points with E/E(1) >= L = {} (of {})", residuals.size(),
+                           kCertificateLevel, train.size())},
+      {"achieved", achieved},
+      {"lower_bound", bound},
+      {"within_percent_of_best_member", 100 * (achieved / bound - 1)},
+      {"lp",
+       {{"working_rows", lp.working_rows}, {"rounds", lp.rounds}, {"converged", lp.converged}}}};
+}
+
+// The constant set of a fit: coefficients, form, objective, what it achieved and its certificate.
+ordered_json constant_set(const FitSpec& spec, const std::string& variant, bool committed,
+                          const ordered_json& coefficients, const ordered_json& achieved,
+                          const ordered_json& certificate) {
+  FitSpec recorded = spec;
+  recorded.kappa_count = kTrainKappas;
+  recorded.cosine_count = kTrainCosines;
+  ordered_json set = make_constant_set(
+      recorded, "sglab-fast", variant, "SglabFastParams<double>",
+      "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | "
+      "(0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v "
+      "of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)",
+      coefficients,
+      fmt::format("minimax of the sglab_fast irradiance peak_rel error (double) over a training "
+                  "grid of {} kappa (log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; "
+                  "start: {}",
+                  kTrainKappas, kTrainKappas, spec.kappa_lo, spec.kappa_hi, kTrainCosines,
+                  committed ? "the committed set (polish)"
+                            : "per-kappa optimum, then rational least squares"),
+      achieved);
+  set["provenance"]["certificate"] = certificate;
+  return set;
+}
+
 }  // namespace
 
 FitOutcome fit_sglab_fast(const FitSpec& spec) {
@@ -267,24 +333,12 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   const ordered_json coefficients = coefficients_json(result.values, hi);
   const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
-  FitSpec recorded = spec;
-  recorded.kappa_count = kTrainKappas;
-  recorded.cosine_count = kTrainCosines;
+  const ordered_json certificate = certificate_json(result.values, train, hi);
+
   FitOutcome out;
   out.converged = result.converged;
-  out.constant_sets.push_back(make_constant_set(
-      recorded, "sglab-fast", variant, "SglabFastParams<double>",
-      "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | "
-      "(0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v "
-      "of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)",
-      coefficients,
-      fmt::format("minimax of the sglab_fast irradiance peak_rel error (double) over a training "
-                  "grid of {} kappa (log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; "
-                  "start: {}",
-                  kTrainKappas, kTrainKappas, lo, hi, kTrainCosines,
-                  committed ? "the committed set (polish)"
-                            : "per-kappa optimum, then rational least squares"),
-      achieved));
+  out.constant_sets.push_back(
+      constant_set(spec, variant, committed.has_value(), coefficients, achieved, certificate));
   out.report = {{"target", "sglab-fast"},
                 {"variant", variant},
                 {"converged", result.converged},
@@ -293,6 +347,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
                 {"start_error", start_error},
                 {"objective_error", result.max_abs},
                 {"achieved", achieved},
+                {"certificate", certificate},
                 {"coefficients", coefficients}};
   ordered_json table = ordered_json::array();
   for (const auto& p : per) table.push_back({p.kappa, p.A, p.B, p.C, p.V, p.error});
@@ -300,10 +355,15 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   out.text = fmt::format(
       "sglab-fast ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
       "  held-out ({}): float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}\n"
-      "  standard ({}): float {:.4e}, double {:.4e}\n",
+      "  standard ({}): float {:.4e}, double {:.4e}\n"
+      "  certificate: {:.4e} on {}, within {:.2f}% of the best numerators of A, B, C at the fitted "
+      "Q and V ({:.4e}, LP)\n",
       variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
       grids.held_out_name, m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine,
-      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max);
+      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max,
+      certificate["achieved"].get<double>(), certificate["grid"].get<std::string>(),
+      certificate["within_percent_of_best_member"].get<double>(),
+      certificate["lower_bound"].get<double>());
   return out;
 }
 

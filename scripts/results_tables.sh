@@ -207,6 +207,10 @@ awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1; if (!($2 in seen)) { s
       part[ng] = lobes[k] (ng == 1 ? " lobes" : "") " (" list ")"
     }
     for (g = 1; g <= ng; ++g) groups = groups (g == 1 ? "" : (g == ng ? " or " : ", ")) part[g]
+    # Maps that no lobe count of the results brings within 1 %.
+    list = ""
+    for (i = 1; i <= nm; ++i) if (need[names[i]] == 0) list = list (list == "" ? "" : ", ") names[i]
+    if (list != "") groups = groups ", and more than " lobes[nl] " (" list ")"
     printf "(c) has %.2g× to %.3g× lower max error than (a) on every map at every N (%d of %d cases; the target\n", lo, hi, ok, cases
     printf "was 2×). For a 1 %% budget on the lobe fit alone, (c) needs %s;\n", groups
     print "neither (a) nor (b) reaches 1 % within 24 lobes."

@@ -136,7 +136,7 @@ TEST(ByteOrderMark, ReferencePointsFileWithAMarkGivesTheSameOutput) {
   EXPECT_EQ(bom.exit_code, 0) << bom.output;
   EXPECT_EQ(bom.output, plain.output);
   // A mark anywhere else is still an error.
-  // (The literal is split after the mark: "\xBF1" would be one hex escape.)
+  // (the literal is split after the mark: "\xBF1" would be one hex escape)
   sglab::io::write_file_atomic(dir.path / "late.csv",
                                "kappa,cosine\n\xEF\xBB\xBF"
                                "1,0.5\n");

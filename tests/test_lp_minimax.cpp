@@ -211,7 +211,8 @@ TEST(LpMinimax, LinearSubproblemOfAFitsResidualsIsExact) {
 }
 
 // The schema (fit/constants_schema.cpp) checks a certificate: a set whose
-// certificate lacks its lower bound is refused, naming the file and the key.
+// certificate lacks its lower bound, or whose bound is above what the fit
+// achieved or not positive, is refused, naming the file and the key.
 TEST(LpMinimax, ConstantSetWithAnIncompleteCertificateIsRefused) {
   namespace fs = std::filesystem;
   sglab::test::TempDir tmp("lp_certificate");
@@ -230,6 +231,15 @@ TEST(LpMinimax, ConstantSetWithAnIncompleteCertificateIsRefused) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("sglab-acc-acc3.json"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("provenance.certificate.lower_bound"), std::string::npos) << r.output;
+  // A bound above what the fit achieved, or not positive, is no certificate.
+  for (double bad : {0.6, 0.0}) {
+    set["provenance"]["certificate"]["lower_bound"] = bad;
+    std::ofstream(file, std::ios::trunc) << set.dump(2);
+    const auto refused = sglab::test::run_sglab({"constants", "--dir", dir.string()});
+    EXPECT_EQ(refused.exit_code, 2) << bad << ": " << refused.output;
+    EXPECT_NE(refused.output.find("provenance.certificate.lower_bound"), std::string::npos)
+        << refused.output;
+  }
   set["provenance"]["certificate"]["lower_bound"] = 0.4;
   std::ofstream(file, std::ios::trunc) << set.dump(2);
   EXPECT_EQ(sglab::test::run_sglab({"constants", "--dir", dir.string()}).exit_code, 0);

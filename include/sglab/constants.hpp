@@ -199,14 +199,14 @@ inline constexpr Meder2018Params<double> meder2018_published{
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":29,"cosine_count":41}
-//   achieved: {"objective":0.8011425775956705,"training_grid_objective":0.7991967179065265,"standard_grid":"29 kappa x 41 cosines","standard_max_peak_rel_float":0.0001909530217673818,"standard_max_peak_rel_double":0.00019089415450959752,"held_out_grid":"200 kappa x 401 cosines, never used in fitting","held_out_max_peak_rel_float":0.00019344129577132606,"held_out_max_peak_rel_double":0.00019344637415276875,"held_out_never_worse_ratio":0.843646620769752,"extra_operations_vs_tokuyoshi2024":"setup 10 (one division), eval 4 multiply-adds"}
+//   achieved: {"objective":0.8011425775956705,"training_grid_objective":0.7991967179071956,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":0.0001909530217673818,"standard_max_peak_rel_double":0.00019089415450975782,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":0.00019334810407100567,"held_out_max_peak_rel_double":0.00019331576120791002,"held_out_worst_float":[3.266496594212214,0.51],"held_out_never_worse_ratio":0.8671590659493555,"extra_operations_vs_tokuyoshi2024":"setup 10 (one division), eval 4 multiply-adds"}
 //   command: sglab fit sglab-acc
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
-//   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.8011425775956705,"lower_bound":0.801142577509947,"within_percent_of_best_member":1.0700151875653319e-08,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.774866927705462,"max_peak_rel":0.00018596806264931087},"lp":{"working_rows":182,"rounds":6,"converged":true}}
+//   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.8011425775956705,"lower_bound":0.801142577510018,"within_percent_of_best_member":1.069129229591681e-08,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.774866927705462,"max_peak_rel":0.00018596806264931087},"lp":{"working_rows":182,"rounds":6,"converged":true}}
 inline constexpr SglabAccParams<double, 1, 3> sglab_acc_acc1{
     .steep = {91.3284679317032, 180.85108468347798, 74.43215424337414, 165.1784084030511, 918.0282369820127},
-    .num = {-0.02743976603650284, 0.29708362406015515, 1.1590408279747135, -1.2271882613552896},
+    .num = {-0.02743976603678302, 0.2970836240616903, 1.1590408279720845, -1.2271882613538911},
     .scale = 1.8378739392929977};
 
 // sglab-acc / acc2: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = u*(1 - u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)
@@ -214,14 +214,14 @@ inline constexpr SglabAccParams<double, 1, 3> sglab_acc_acc1{
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":29,"cosine_count":41}
-//   achieved: {"objective":0.8335187561422432,"training_grid_objective":1.0459570460777854,"standard_grid":"29 kappa x 41 cosines","standard_max_peak_rel_float":5.475405626533632e-05,"standard_max_peak_rel_double":5.464932487723285e-05,"held_out_grid":"200 kappa x 401 cosines, never used in fitting","held_out_max_peak_rel_float":5.511900299626611e-05,"held_out_max_peak_rel_double":5.511954268294598e-05,"held_out_never_worse_ratio":0.9567000308391108,"extra_operations_vs_tokuyoshi2024":"setup 14 (one division), eval 5 multiply-adds"}
+//   achieved: {"objective":0.833518756135873,"training_grid_objective":1.0459570460777854,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":5.475405626533632e-05,"standard_max_peak_rel_double":5.464932487723285e-05,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":5.5145137087363516e-05,"held_out_max_peak_rel_double":5.514646558305095e-05,"held_out_worst_float":[3.266496594212214,0.7949999999999999],"held_out_never_worse_ratio":0.9912916191976172,"extra_operations_vs_tokuyoshi2024":"setup 14 (one division), eval 5 multiply-adds"}
 //   command: sglab fit sglab-acc
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
-//   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.8335187561422432,"lower_bound":0.833518756136777,"within_percent_of_best_member":6.5580874064608e-10,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.6472206222347457,"max_peak_rel":4.206934044525847e-05},"lp":{"working_rows":308,"rounds":7,"converged":true}}
+//   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.833518756135873,"lower_bound":0.833518756135044,"within_percent_of_best_member":9.945377854592152e-11,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.6472206222347457,"max_peak_rel":4.206934044525847e-05},"lp":{"working_rows":310,"rounds":7,"converged":true}}
 inline constexpr SglabAccParams<double, 2, 3> sglab_acc_acc2{
     .steep = {107.8213975852337, 422.9821728474969, 77.65019013695745, 264.93949814088126, 1486.402637179233},
-    .num = {0.07249422298965733, 0.2968372932727203, 1.5475429034452333, -1.6948529146612474, -0.006883860721402615, 0.5365457816035413, -0.7812949056278251, 0.22079104011301073},
+    .num = {0.07249422298968243, 0.296837293272364, 1.5475429034463015, -1.6948529146621487, -0.006883860720887948, 0.5365457816009266, -0.781294905623697, 0.22079104011106565},
     .scale = 2.070667775269162};
 
 // sglab-acc / acc3: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = u*(1 - u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)
@@ -229,14 +229,14 @@ inline constexpr SglabAccParams<double, 2, 3> sglab_acc_acc2{
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":29,"cosine_count":41}
-//   achieved: {"objective":0.7481868081486654,"training_grid_objective":0.7557955226562768,"standard_grid":"29 kappa x 41 cosines","standard_max_peak_rel_float":2.036578049491911e-05,"standard_max_peak_rel_double":2.0383578993002507e-05,"held_out_grid":"200 kappa x 401 cosines, never used in fitting","held_out_max_peak_rel_float":2.1192268775467082e-05,"held_out_max_peak_rel_double":2.1189578512374927e-05,"held_out_never_worse_ratio":0.8051328872387702,"extra_operations_vs_tokuyoshi2024":"setup 21 (one division), eval 6 multiply-adds"}
+//   achieved: {"objective":0.7481868081486654,"training_grid_objective":0.7557955226782801,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":2.036578049491911e-05,"standard_max_peak_rel_double":2.0383578993415442e-05,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":2.1051924151632514e-05,"held_out_max_peak_rel_double":2.103680192355775e-05,"held_out_worst_float":[3.517521351878672,0.014999999999999902],"held_out_never_worse_ratio":0.833084646615472,"extra_operations_vs_tokuyoshi2024":"setup 21 (one division), eval 6 multiply-adds"}
 //   command: sglab fit sglab-acc
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
-//   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.7481868081486654,"lower_bound":0.7481868081243322,"within_percent_of_best_member":3.2522873283369336e-09,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.448778822343197,"max_peak_rel":1.2565807025609516e-05},"lp":{"working_rows":559,"rounds":7,"converged":true}}
+//   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.7481868081486654,"lower_bound":0.7481868081404768,"within_percent_of_best_member":1.0944578576754793e-09,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.448778822343197,"max_peak_rel":1.2565807025609516e-05},"lp":{"working_rows":599,"rounds":8,"converged":true}}
 inline constexpr SglabAccParams<double, 3, 4> sglab_acc_acc3{
     .steep = {113.87214382359832, 539.5960410450979, 70.25586677654292, 277.6431678762112, 1919.7339128853478},
-    .num = {0.10316468416768255, 0.47671070086660616, 2.397146761903941, -5.981849288904862, 3.1165754671654673, 0.016108411880836206, 0.4372629684917262, -0.08391967310362283, -1.4784452068163856, 1.121898566034145, 0.06322513923651783, -0.4072592992413808, 1.302440883714779, -1.815432744332423, 0.8724000057505594},
+    .num = {0.10316468416764316, 0.47671070086731543, 2.397146761900296, -5.981849288898217, 3.116575467161647, 0.01577758630602104, 0.4441507883322166, -0.11435377101967849, -1.4317310687872866, 1.0986186316593067, 0.05958712510664693, -0.38207765276540595, 1.2422366108707563, -1.7561251302625607, 0.8518478993463197},
     .scale = 3.1013706349176764};
 
 // sglab-fast / float: E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; A, B, C, V = P(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
@@ -244,16 +244,17 @@ inline constexpr SglabAccParams<double, 3, 4> sglab_acc_acc3{
 //   precision: float
 //   kappa_range: [0.001,10000.0]
 //   grid: {"kappa_count":56,"cosine_count":161}
-//   achieved: {"objective":0.002413371443434366,"training_max_peak_rel_float":0.0024134465702215736,"per_kappa_floor":0.0013453413589298423,"held_out_grid":"211 log-spaced kappa x 401 uniform cosines over [0.001, 10000]","held_out_max_peak_rel_float":0.0025410964246690595,"held_out_max_peak_rel_double":0.002541164308530491,"held_out_worst":[0.7356422544596414,-1.0],"standard_max_peak_rel_float":0.0025206787972312304,"standard_max_peak_rel_double":0.002520679034431741}
+//   achieved: {"objective":0.0023993277044631754,"training_max_peak_rel_float":0.0023997412517543005,"per_kappa_floor":0.0013453413589298458,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":0.002500684933709488,"standard_max_peak_rel_double":0.002500684526956404,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":0.0025332440154374235,"held_out_max_peak_rel_double":0.002533208372602241,"held_out_worst_float":[0.7430046932348471,-1.0],"held_out_never_worse_ratio":2480.325041933767}
 //   command: sglab fit sglab-fast
 //   tool: sglab 0.1.0
-//   date: 2026-12-01
+//   date: 2026-12-02
+//   certificate: {"kind":"lp_at_fitted_denominator_and_v: the numerators of A, B and C free, Q and V(kappa) as fitted; bound min(LP optimum, L)","grid":"the 6876 training points with E/E(1) >= L = 0.05 (of 9016)","achieved":0.0023993277044631754,"lower_bound":0.002063805798827946,"within_percent_of_best_member":16.257435938293007,"lp":{"working_rows":270,"rounds":5,"converged":true}}
 inline constexpr SglabFastParams<double> sglab_fast_float{
-    .a = {11339.644848432306, 757.3676839393171, -90.29049456780528, 3.2842345263239556, -0.0031654732598818216},
-    .b = {540.7840065476308, 4363.174531270498, -399.9444629510631, 9.61190775041535, -0.006414011472768718},
-    .c = {53278.20653365882, 12753.53014431459, 6188.721349594042, 33.47805625981652, 0.04650715457848442},
-    .v = {-209.4749786563194, 3556.6413262507676, 3908.9211933921056, 372.1395417530533, 10.888404463482445},
-    .q = {21324.63102351751, 16992.16644563528, 6535.45152016298, 388.8635128491773},
+    .a = {11339.132331550849, 754.6607582069028, -92.46668781084186, 3.28336605717296, -0.003148330930485255},
+    .b = {539.3809714632993, 4362.705404280039, -399.60487343573027, 9.217282348365531, -0.006336743250173603},
+    .c = {53274.57332803061, 12757.14798275642, 6196.976389282879, 33.51552309397292, 0.046521469666858994},
+    .v = {-210.29348880219032, 3555.8174440815437, 3908.6664467661385, 371.6864170191458, 10.883719639929406},
+    .q = {21325.78757112414, 16993.321038868107, 6531.436534617848, 388.855788616966},
     .kappa_max = 10000.0};
 
 // sglab-mid / float: E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k), V = k*Pv(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)

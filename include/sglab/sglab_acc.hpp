@@ -46,7 +46,7 @@ template <class T, std::size_t N>
 struct SglabAccLight {
   T t;             // steepness t(κ)
   T half_erfc_t;   // ½ erfc(t)
-  T tail_scale;    // 1/(2√π max(t, ε)) (detail::sglab_acc_tail_scale)
+  T tail_scale;    // 1/(2√π (t + m)) (detail::sglab_acc_tail_scale)
   T t2;            // t²
   T lower, upper;  // Ē(−1, κ), Ē(1, κ) (closed_forms.hpp)
   T b[N];          // correction coefficients b_j(κ)
@@ -75,19 +75,18 @@ SGLAB_FORCE_INLINE void sglab_acc_fade(const T& t, const SglabAccParams<S, N, D>
   }
 }
 
-// The scale 1/(2√π max(t, ε)) of the [Tokuyoshi2024] tail term
-// e^{−z²} expm1(−t²(1 − c²))/(2√π t), ε the epsilon of T. 1/t overflows for
-// a subnormal t (t < 1/max: κ ≲ 1e−38 in float, 1e−308 in double), where t²
-// is 0 and the tail became 0·inf = NaN. Dividing by ε instead where t ≤ ε
-// keeps the term below rounding: |expm1(−x)| ≤ x bounds it by
-// t²(1 − c²)/(2√π ε) ≤ t/(2√π) < 0.29ε in f, and Ê = 2π lerp(Ē(−1), Ē(1), f)
-// moves by that times 2π(Ē(1) − Ē(−1)) = O(κ), far below an ulp of Ê ≈ π
-// (κ ≲ 3t there). `Ops::select` keeps the float batch branch-free (one
-// select, not two: the float batch stays within 1.15× of tokuyoshi2024).
+// The scale 1/(2√π (t + m)) of the [Tokuyoshi2024] tail term
+// e^{−z²} expm1(−t²(1 − c²))/(2√π t), m the smallest normal number of T. 1/t
+// overflows for a subnormal t (t < 1/max: κ ≲ 1e−38 in float, 1e−308 in
+// double), where t² is 0 and the tail became 0·inf = NaN; 1/(t + m) ≤ 1/m is
+// finite. t + m rounds to t itself wherever m is below half an ulp of t
+// (t ≥ 2^−101 in float, 2^−969 in double); below that the tail term is at most
+// t(1 − c²)/(2√π) < 1e−30, far below an ulp of f. One addition, where a select
+// of max(t, ε) took four instructions of the float batch (its cost stays within
+// 1.15× of tokuyoshi2024's, data/results/callgrind.csv).
 template <class T, class Ops = LibmOps>
 SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
-  const bool keep = t > std::numeric_limits<T>::epsilon();
-  return T(0.5) * inv_sqrt_pi_v<T>() / Ops::select(keep, t, std::numeric_limits<T>::epsilon());
+  return T(0.5) * inv_sqrt_pi_v<T>() / (t + std::numeric_limits<T>::min());
 }
 
 }  // namespace detail
