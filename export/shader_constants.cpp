@@ -66,6 +66,21 @@ ConstantSet named(std::string cpp_name, const SglabFastParams<double>& p) {
           {}};
 }
 
+ConstantSet named(std::string cpp_name, const SglabMidParams<double>& p) {
+  const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
+  return {"SglabMidParams<double>",
+          std::move(cpp_name),
+          {{"a", vec(p.a)},
+           {"b", vec(p.b)},
+           {"d", vec(p.d)},
+           {"s", vec(p.s)},
+           {"v", vec(p.v)},
+           {"q", vec(p.q)},
+           {"kappa_max", {p.kappa_max}}},
+          {},
+          {}};
+}
+
 const std::vector<double>& member(const ConstantSet& set, std::string_view name) {
   for (const auto& [n, v] : set.members)
     if (n == name) return v;

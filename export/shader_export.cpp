@@ -61,6 +61,7 @@ std::string prelude(const Ctx& c) {
   return "#include <cmath>\n\nnamespace sglab_export_{ID} {\n" + subst(R"(using std::abs;
 using std::exp;
 using std::exp2;
+using std::log;
 using std::sqrt;
 inline float min(float a, float b) { return b < a ? b : a; }
 inline float max(float a, float b) { return a < b ? b : a; }

@@ -243,9 +243,8 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
       c);
 }
 
-std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
-  const ConstantSet& set = slot(slots, "model");
-  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+// E(1, kappa)/2 pi of sglab_fast and sglab_mid (sglab/sglab_fast.hpp upper_over_two_pi_fast).
+std::string upper_over_two_pi_text(const Ctx& c) {
   std::vector<double> series;  // sum_{m<6} (-kappa)^m/(m + 2)!, the float series of sglab_fast.hpp
   {
     const auto all = pole_series(false);
@@ -261,7 +260,18 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
   float r = 1.0f / kappa;
   return (1.0f - (1.0f - exp(-min(kappa, 80.0f))) * r) * r;
 }}
-// The C2 ramp rho(u) = 0 | u^3 (2 - u) | 2u - 1 on u <= 0 | (0, 1) | u >= 1, branch-free.
+)",
+          horner_text("kappa", literals(series))),
+      c);
+}
+
+std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return upper_over_two_pi_text(c) +
+         subst(
+             fmt::format(
+                 R"(// The C2 ramp rho(u) = 0 | u^3 (2 - u) | 2u - 1 on u <= 0 | (0, 1) | u >= 1, branch-free.
 {{INLINE}}float {{P}}ramp(float u) {{
   float over = abs(u - 1.0f);
   float v = 0.5f * (abs(u) - over + 1.0f);
@@ -270,16 +280,42 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
 // sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
 // k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_fast.hpp).
 {{INLINE}}float {{P}}fast(float cosine, float kappa) {{
-  float k = min(kappa, {1});
-  float inv_q = 1.0f / ({2} + k * k * k * k);
+  float k = min(kappa, {0});
+  float inv_q = 1.0f / ({1} + k * k * k * k);
   float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
-  float s = ({3} + {4} * cosine + {5} * {{P}}ramp({6} * inv_q * cosine + 0.5f)) * scale;
+  float s = ({2} + {3} * cosine + {4} * {{P}}ramp({5} * inv_q * cosine + 0.5f)) * scale;
   return 0.5f * (s + abs(s));
 }}
 )",
-          horner_text("kappa", literals(series)), names(c, "model", set, "kappa_max")[0], poly("q"),
-          poly("a"), poly("b"), poly("c"), poly("v")),
-      c);
+                 names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"), poly("c"),
+                 poly("v")),
+             c);
+}
+
+std::string helper_sglab_mid(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return upper_over_two_pi_text(c) +
+         subst(
+             fmt::format(
+                 R"(// sglab_mid: E = E(1, kappa) max(0, A + B (c + sqrt(c^2 + exp(S - V c^2))) + D c^2),
+// the exponent clamped to [-80, 80]; A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k),
+// V = k Pv(k)/Q(k), k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_mid.hpp).
+{{INLINE}}float {{P}}mid(float cosine, float kappa) {{
+  float k = min(kappa, {0});
+  float inv_q = 1.0f / ({1} + k * k * k * k);
+  float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
+  float s_k = {2} * inv_q - log(1.0f + k);
+  float v_k = k * {3} * inv_q;
+  float c2 = cosine * cosine;
+  float x = clamp(s_k - v_k * c2, -80.0f, 80.0f);
+  float s = ({4} + {5} * (cosine + sqrt(c2 + exp(x))) + {6} * c2) * scale;
+  return 0.5f * (s + abs(s));
+}}
+)",
+                 names(c, "model", set, "kappa_max")[0], poly("q"), poly("s"), poly("v"), poly("a"),
+                 poly("b"), poly("d")),
+             c);
 }
 
 // The half form of sglab_fast: its κ-only part (E(1, κ) and the rational A, B,
@@ -500,6 +536,15 @@ const std::vector<ShaderMethod>& shader_methods() {
        ErfUse::none,
        {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
+      {"sglab_mid",
+       "sglab_mid: E(1, kappa) times a line, a smoothed max(c, 0) of varying width and c^2, "
+       "rational in kappa (sglab_mid.hpp)",
+       [] {
+         return Slots{{"model", named("sglab_mid_float", constants::sglab_mid_float)}};
+       },
+       ErfUse::none,
+       {helper_sglab_mid},
+       "  return {P}mid(cosine, kappa);\n"},
       {"sglab_acc1",
        "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 1, D "
        "= 3 (sglab_acc.hpp)",

@@ -60,6 +60,7 @@ std::string helper_hemispherical2022(const Ctx& c, const Slots&);
 std::string helper_poles2024(const Ctx& c, const Slots&);
 std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots);
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots);
+std::string helper_sglab_mid(const Ctx& c, const Slots& slots);
 // The number of correction terms N and the degree D of an SglabAccParams set
 // (from its type, SglabAccParams<double, N, D>, checked against its member
 // sizes: steep 5, num N (D + 1), scale 1).

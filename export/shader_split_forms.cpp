@@ -55,6 +55,39 @@ std::string pixel_sglab_fast(const Ctx& c, const Slots&) {
       c);
 }
 
+std::vector<LightField> fields_sglab_mid(const Slots&) {
+  return {{"a", "A(kappa) E(1, kappa)"},
+          {"b", "B(kappa) E(1, kappa)"},
+          {"d", "D(kappa) E(1, kappa)"},
+          {"s", "S(kappa) = Ps/Q - ln(1 + kappa)"},
+          {"v", "V(kappa) = kappa Pv/Q"}};
+}
+std::string light_sglab_mid(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return subst(fmt::format(R"(  float k = min(kappa, {});
+  float inv_q = 1.0f / ({} + k * k * k * k);
+  float e1 = 6.28318548f * {{P}}upper_over_two_pi(kappa);
+  light.a = {} * inv_q * e1;
+  light.b = {} * inv_q * e1;
+  light.d = {} * inv_q * e1;
+  light.s = {} * inv_q - log(1.0f + k);
+  light.v = k * {} * inv_q;
+)",
+                           names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"),
+                           poly("d"), poly("s"), poly("v")),
+               c);
+}
+std::string pixel_sglab_mid(const Ctx& c, const Slots&) {
+  return subst(
+      R"(  float c2 = cosine * cosine;
+  float x = clamp(light.s - light.v * c2, -80.0f, 80.0f);
+  float s = light.a + light.b * (cosine + sqrt(c2 + exp(x))) + light.d * c2;
+  return 0.5f * (s + abs(s));
+)",
+      c);
+}
+
 std::vector<LightField> fields_sglab_acc(const Slots& slots) {
   std::vector<LightField> f = {{"t", "steepness t(kappa)"},
                                {"half_erfc_t", "erfc(t)/2"},
@@ -251,6 +284,12 @@ const std::vector<SplitForm>& split_forms() {
                  {helper_sglab_fast},
                  light_sglab_fast,
                  pixel_sglab_fast});
+    v.push_back({"sglab_mid",
+                 "sglab::SglabMidLight<float> (sglab/sglab_mid.hpp sglab_mid_light)",
+                 fields_sglab_mid,
+                 {helper_sglab_mid},
+                 light_sglab_mid,
+                 pixel_sglab_mid});
     for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"})
       v.push_back(acc), v.back().id = id;
     return v;

@@ -120,7 +120,7 @@ std::size_t number_end(std::string_view text, std::size_t i) {
 
 // The HLSL intrinsics an export calls, which glslang's HLSL front end (12.0)
 // declares for float only: a half export calls {P}h_<name> (hlsl_half_prelude).
-constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2", "sqrt",  "abs",
+constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2", "log",   "sqrt", "abs",
                                                     "min", "max",  "clamp", "dot"};
 
 // One identifier of the code translated to half: float and the vector types
@@ -171,8 +171,8 @@ std::string to_half_code(std::string_view text, const Ctx& c) {
 }
 
 // The functions an HLSL half export calls in place of the float-only
-// intrinsics: min, max, clamp, abs and dot in half arithmetic; exp, exp2 and
-// sqrt evaluated in float and rounded once to half.
+// intrinsics: min, max, clamp, abs and dot in half arithmetic; exp, exp2, log
+// and sqrt evaluated in float and rounded once to half.
 std::string hlsl_half_prelude(const Ctx& c) {
   return subst(R"(// glslang's HLSL front end declares its intrinsics for float only: half versions.
 half {P}h_min(half a, half b) { return b < a ? b : a; }
@@ -182,6 +182,7 @@ half {P}h_abs(half x) { return x < 0.0h ? -x : x; }
 half {P}h_dot(half3 a, half3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 half {P}h_exp(half x) { return (half)exp((float)x); }
 half {P}h_exp2(half x) { return (half)exp2((float)x); }
+half {P}h_log(half x) { return (half)log((float)x); }
 half {P}h_sqrt(half x) { return (half)sqrt((float)x); }
 )",
                c);

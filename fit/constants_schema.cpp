@@ -34,6 +34,7 @@ std::span<const ParamStruct> param_structs() {
       {"HillParams", {}, {"c0"}},
       {"Meder2018Params", {}, {"a2", "a1", "b1", "b0", "amplitude", "sharpness", "offset"}},
       {"SglabFastParams", {}, {"a[5]", "b[5]", "c[5]", "v[5]", "q[4]", "kappa_max"}},
+      {"SglabMidParams", {}, {"a[5]", "b[5]", "d[5]", "s[5]", "v[5]", "q[4]", "kappa_max"}},
       {"SglabAccParams", {"N", "D"}, {"steep[5]", "num[N * (D + 1)]", "scale"}},
   };
   return table;
@@ -67,6 +68,7 @@ std::span<const RequiredSet> required_sets() {
       {"sglab_acc_acc2", "SglabAccParams<double, 2, 3>"},
       {"sglab_acc_acc3", "SglabAccParams<double, 3, 4>"},
       {"sglab_fast_float", "SglabFastParams<double>"},
+      {"sglab_mid_float", "SglabMidParams<double>"},
       {"steepness2022_irradiance", "Steepness2022Params<double>"},
       {"steepness2022_optimal_t", "Steepness2022Params<double>"},
       {"steepness2022_published", "Steepness2022Params<double>"},

@@ -38,9 +38,9 @@ struct FitSpec {
   int kappa_count = 29, cosine_count = 41;
   bool kappa_range_given = false;   // --kappa was given: the variant name records the range
   std::optional<double> max_error;  // model order: the error budget
-  bool cold_start = false;          // sglab-fast: ignore the committed set as a warm start
-  std::string command;              // the command line, recorded in provenance
-  MethodCosts costs;                // sglab-acc: the cost column of its report
+  bool cold_start = false;  // sglab-fast, sglab-mid: ignore the committed set as a warm start
+  std::string command;      // the command line, recorded in provenance
+  MethodCosts costs;        // sglab-acc: the cost column of its report
 };
 
 struct FitOutcome {
@@ -72,6 +72,7 @@ FitOutcome fit_steepness(const FitSpec& spec);
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
 FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
+FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/sglab_mid.cpp)
 // sglab_acc<N> ladder, or its model order with max_error
 FitOutcome fit_sglab_acc(const FitSpec& spec);
 

@@ -112,6 +112,8 @@ constexpr FitTarget kTargets[] = {
      true, true, false, false, false, false, kDefaultAll},
     {"sglab-fast", fit_sglab_fast, "sglab_fast's rational coefficients", false, false, true, false,
      false, true, false, kDefaultAll},
+    {"sglab-mid", fit_sglab_mid, "sglab_mid's rational coefficients", false, false, true, false,
+     false, true, false, kDefaultAll},
     // --kappa with --max-error: the model order for a range
     {"sglab-acc", fit_sglab_acc,
      "the sglab_acc ladder, or with --max-error the smallest member meeting it", false, false, true,

@@ -41,10 +41,11 @@ cp "$work/vulkan/summary.md" "$results/sweep_summary.md"
 cp "$work/heldout/summary.json" "$results/heldout_sweep.json"
 "$sglab" stability --half --out "$work/stability-half"
 cp "$work/stability-half/stability_half.md" "$results"/
-models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_acc1 sglab_acc2 sglab_acc3)
+models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_mid sglab_acc1 sglab_acc2 sglab_acc3)
 scripts/callgrind_costs.sh "$results/callgrind.csv" "${models[@]}"
 "$sglab" fit sglab-acc --dry-run --costs "$results/costs.json" >"$work/fit-sglab-acc.txt"
 "$sglab" fit sglab-fast --dry-run >"$work/fit-sglab-fast.txt"
+"$sglab" fit sglab-mid --dry-run >"$work/fit-sglab-mid.txt"
 for scene in studio sun_and_sky soft_room; do
   "$sglab" recommend --scene "data/scenes/$scene.json" --budget 5e-3 --costs "$results/costs.json" >"$work/recommend-$scene.txt"
 done

@@ -73,6 +73,7 @@ sglab_acc1|2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P
 sglab_acc2|… + b1(κ)z²|
 sglab_acc3|… + b2(κ)z⁴, P_j of degree 4 (acc1, acc2: 3)|bold
 sglab_fast|exact E(1, κ) × A + Bc + Cρ(Vc + ½), rational A, B, C, V|
+sglab_mid|exact E(1, κ) × A + B(c + √(c² + e^{S − Vc²})) + Dc², rational A, B, D, S, V|
 EOF
 }
 models_table | fill README.md sglab-models
@@ -129,6 +130,27 @@ for scene in studio sun_and_sky soft_room; do
   fence <"$work/recommend-$scene.txt"
   echo
 done | sed '$d' | fill "$results/sglab_fast.md" scenes
+
+# data/results/sglab_mid.md: the fit report, errors on both grids, the costs.
+fence <"$work/fit-sglab-mid.txt" | fill "$results/sglab_mid.md" fit
+{
+  echo "| method | standard float | standard double | held-out float | held-out double | worst κ held-out (float) |"
+  echo "|---|---:|---:|---:|---:|---:|"
+  for m in sglab_mid tokuyoshi2024 sglab_fast; do
+    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(peak "$standard" "$m")" "$(peak "$standard" "$m" double)" \
+      "$(peak "$heldout" "$m")" "$(peak "$heldout" "$m" double)" "$(worst_kappa "$heldout" "$m")"
+  done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), sig($4), sig($5), $6 }'
+} | fill "$results/sglab_mid.md" accuracy
+{
+  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split | gfx1100 split |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+  for m in sglab_mid tokuyoshi2024 sglab_fast; do
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+      "$(instructions "$m" setup)" "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" \
+      "$(cycles "$m" navi21 true)" "$(cycles "$m" gfx1100 true)"
+  done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
+                        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }'
+} | fill "$results/sglab_mid.md" cost
 
 # data/results/vulkan_sweep.md: one row per method, one column per backend.
 {

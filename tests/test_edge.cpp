@@ -250,6 +250,7 @@ constexpr SubnormalLimit kSubnormalLimits[] = {
     {"wang2009_refit", 0.085, "as wang2009 with the refitted (λ, a): 8.3% above π"},
     {"sglab_fast", 2.6e-3,
      "exact E(1, κ) × fitted shape: its max peak_rel 2.52e−3 (sglab_fast.hpp)"},
+    {"sglab_mid", 4.6e-4, "exact E(1, κ) × fitted shape: its max peak_rel 4.2e−4 (sglab_mid.hpp)"},
     {"sglab_acc1", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc2", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc3", kRounding, "exact poles, as tokuyoshi2024"},

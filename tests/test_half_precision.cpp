@@ -99,9 +99,9 @@ TEST(HalfExport, LiteralsAreHalvesAndNoFloatIsLeft) {
       }
       if (id == "sglab_fast") continue;  // its κ-only part is float by design
       EXPECT_GT(count, 0u);
-      // The HLSL prelude converts to float for exp, exp2 and sqrt only.
+      // The HLSL prelude converts to float for exp, exp2, log and sqrt only.
       const std::string rest = std::regex_replace(
-          code, std::regex(R"(\(float\)x|\(half\)(exp|exp2|sqrt)\(\(float\)x\))"), "");
+          code, std::regex(R"(\(float\)x|\(half\)(exp|exp2|log|sqrt)\(\(float\)x\))"), "");
       EXPECT_FALSE(
           std::regex_search(rest, std::regex(R"(\bfloat\b|\bvec[23]\b|\bfloat[23]\b|\d[.]\d*f\b)")))
           << rest;

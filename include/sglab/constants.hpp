@@ -257,6 +257,24 @@ inline constexpr SglabFastParams<double> sglab_fast_float{
     .q = {21325.78757112414, 16993.321038868107, 6531.436534617848, 388.855788616966},
     .kappa_max = 10000.0};
 
+// sglab-mid / float: E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k), V = k*Pv(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
+//   objective: minimax of the sglab_mid irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; start: per-kappa optimum, then rational least squares
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":56,"cosine_count":161}
+//   achieved: {"objective":0.00037182610012647505,"training_max_peak_rel_float":0.0003719665568610543,"per_kappa_floor":6.0126430499005123e-05,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":0.0004174589757937783,"standard_max_peak_rel_double":0.00041744681417811986,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":0.00042030650304178917,"held_out_max_peak_rel_double":0.00042030994463098693,"held_out_worst_float":[5.484839684286692,-1.0],"held_out_never_worse_ratio":373.8598829810249}
+//   command: sglab fit sglab-mid --cold-start
+//   tool: sglab 0.1.0
+//   date: 2026-12-02
+inline constexpr SglabMidParams<double> sglab_mid_float{
+    .a = {1.3453579233252035, 0.2237319669070223, -0.2990360304065809, 0.001290746549294792, -8.011712840774347e-05},
+    .b = {0.0001320297328171209, 0.8893875391096312, 2.4018348782198955, 0.5833690945052744, 0.5010357677278188},
+    .d = {-0.0009243629877370815, -0.08563432268751052, -0.23859894123595454, 0.07591459821600262, -0.0023622247458943368},
+    .s = {3.4462965613821908, 7.289916011913723, 0.8945885544206335, 2.3233277842773243, -0.4728085390351504},
+    .v = {0.4747364740121486, -0.15025753323732605, 2.305553194497529, -0.20449107931584815, 0.5860522560751814},
+    .q = {1.345281413669539, 4.368901397680656, 3.9355484401057357, 1.2455742004842867},
+    .kappa_max = 10000.0};
+
 // steepness2022 / irradiance: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: minimax of the tokuyoshi2022 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
 //   precision: float

@@ -105,6 +105,18 @@ struct SglabFastParams {
   S kappa_max;
 };
 
+// sglab's middle irradiance model (include/sglab/sglab_mid.hpp):
+// Ê = E(1, κ)·max(0, A + B(c + √(c² + e^{S − V c²})) + D c²) with
+// A = Pa(κ̃)/Q(κ̃), B = Pb/Q, D = Pd/Q, S = Ps/Q − ln(1 + κ̃), V = κ̃ Pv/Q, κ̃ = min(κ, kappa_max),
+// numerators of degree 4 and one shared monic quartic Q = κ̃⁴ + q[3]κ̃³ + … + q[0]
+// (coefficients lowest order first).
+template <class S>
+struct SglabMidParams {
+  S a[5], b[5], d[5], s[5], v[5];
+  S q[4];
+  S kappa_max;
+};
+
 // sglab_acc `sglab_acc<N>` (sglab_acc.hpp): the 2024
 // steepness t(κ) with coefficients steep = {A, B, C, D, E} (Steepness2024Params
 // order) and N correction coefficients b_j(κ) = u(1 − u)³ P_j(u) that fade as

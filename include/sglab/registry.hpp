@@ -13,6 +13,7 @@
 #include "irradiance.hpp"
 #include "sglab_acc.hpp"
 #include "sglab_fast.hpp"
+#include "sglab_mid.hpp"
 
 namespace sglab {
 
@@ -206,6 +207,16 @@ inline constexpr Method irradiance_methods[] = {
             [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_fast_batch(c, k, o, n); }),
         [](float k) { return sglab_fast_light(k); },
         [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
+    detail::with_light_split<SglabMidLight<float>>(
+        detail::with_batch32(
+            detail::make_method("sglab_mid",
+                                "sglab: exact E(1, κ) × fitted shape A + B(c + √(c² + e^{S − Vc²})) + Dc², "
+                                "rational A, B, D, S, V/κ in κ (sglab_mid.hpp)",
+                                "sglab_mid_float", [](auto c, auto k) { return irradiance_sglab_mid(c, k); },
+                                Origin::sglab),
+            [](const float* c, const float* k, float* o, std::size_t n) { irradiance_sglab_mid_batch(c, k, o, n); }),
+        [](float k) { return sglab_mid_light(k); },
+        [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
     // sglab's own models (sglab_acc.hpp, `sglab fit sglab-acc`): the
     // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
     // of 1, 2, 3 correction terms.

@@ -15,3 +15,4 @@
 #include "sg.hpp"
 #include "sglab_acc.hpp"
 #include "sglab_fast.hpp"
+#include "sglab_mid.hpp"

@@ -1,0 +1,412 @@
+// `sglab fit sglab-mid`: the coefficients of sglab_mid
+// (include/sglab/sglab_mid.hpp)
+//   Ê = E(1, κ)·max(0, A + B (c + √(c² + e^{S − V c²})) + D c²),
+//   A, B, D = P(κ)/Q(κ), S = Ps(κ)/Q(κ) − ln(1 + κ), V = κ Pv(κ)/Q(κ),
+// in three named stages, each warm-starting the next (as fit/sglab_fast.cpp):
+//   1. per κ of the training grid, the five shape values (A, B, D, S, V) that
+//      minimax the peak_rel error over the training cosines — the family's
+//      floor, no model of the κ dependence can do better on those points;
+//   2. numerators of degree 4 over a shared monic quartic Q whose roots start
+//      log-spaced over the κ range (−Q's roots on the negative axis, so Q > 0),
+//      each numerator a linear least-squares fit to the stage-1 values;
+//   3. a joint minimax of every coefficient on the peak_rel error of the
+//      runtime function itself (Jets through irradiance_sglab_mid).
+// Unless --cold-start, when the committed constant set of the same variant
+// and κ range exists (data/constants/sglab-mid-<variant>.json), stages 2 and 3
+// start from it instead, with a short polish (a few reweighting rounds and
+// penalty decades): that keeps `sglab fit all` fast.
+// Training grid: κ at the midpoints of 56 log-spaced cells of [lo, hi] and
+// 161 uniform cosines; it shares no (κ, c) point with the standard 29 × 41
+// grid or with the held-out grid (fit/model_family.hpp) on which the result is
+// measured (float and double) and recorded in the constant set's provenance.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+#include <Eigen/Dense>
+
+#include <sglab/sglab.hpp>
+#include <sglab/sglab_mid.hpp>
+
+#include "common/io.hpp"
+#include "fit/constants_io.hpp"
+#include "fit/lp_minimax.hpp"
+#include "fit/minimax.hpp"
+#include "fit/model_family.hpp"
+#include "fit/targets.hpp"
+#include "validate/reference.hpp"
+
+namespace sglab::fit {
+
+namespace {
+
+constexpr int kTrainKappas = 56, kTrainCosines = 161;
+constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
+constexpr std::size_t kShapeValues = 5;
+constexpr std::size_t kNumParams = kShapeValues * (kDegree + 1) + kDegree;
+// The numerators in SglabMidParams order.
+constexpr std::array<const char*, kShapeValues> kPolys = {"a", "b", "d", "s", "v"};
+
+std::vector<validate::ReferencePoint> reference_grid(const std::vector<double>& kappas,
+                                                     const std::vector<double>& cosines) {
+  return validate::reference_engine().evaluate(product_grid(kappas, cosines));
+}
+
+// Stage 1 residual: peak_rel of E(1)·s at one (κ, c), shape values as parameters (the clamp
+// at 0 left out: it can only lower the error, and without it the problem at fixed S, V is an LP).
+struct ShapeResidual {
+  double cosine, normalized;  // E(c, κ)/E(1, κ)
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    r[0] = sglab_mid_shape(T(cosine), p[0][0], p[1][0], p[2][0], p[3][0], p[4][0]) - T(normalized);
+    return true;
+  }
+};
+
+template <class T>
+SglabMidParams<T> params_from(const std::vector<T>& v, T kappa_max) {
+  SglabMidParams<T> p{};
+  std::size_t i = 0;
+  for (auto* poly : {p.a, p.b, p.d, p.s, p.v})
+    for (std::size_t j = 0; j <= kDegree; ++j) poly[j] = v[i++];
+  for (std::size_t j = 0; j < kDegree; ++j) p.q[j] = v[i++];
+  p.kappa_max = kappa_max;
+  return p;
+}
+
+// Stage 3 residual: peak_rel of the runtime function with all coefficients as parameters.
+struct ModelResidual {
+  double kappa, cosine, reference, peak, kappa_max;
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    std::vector<T> v(kNumParams);
+    for (std::size_t i = 0; i < kNumParams; ++i) v[i] = p[i][0];
+    const SglabMidParams<T> params = params_from(v, T(kappa_max));
+    r[0] = (irradiance_sglab_mid(T(cosine), T(kappa), params) - T(reference)) / T(peak);
+    return true;
+  }
+};
+
+struct PerKappa {
+  double kappa;
+  std::array<double, kShapeValues> shape;  // A, B, D, S, V
+  double error;
+};
+
+// Stage 1 at one κ. At fixed S and V the shape is linear in A, B, D, and
+// (without the clamp at 0) their minimax is a linear program (fit/lp_minimax.hpp).
+// The problem has many local minima in S and V, so no single start is trusted:
+// a joint minimax of all five runs from the previous κ's optimum (`previous`,
+// when given) and from the kStarts best (S, V) of the LP over a grid of
+// S ∈ [−14, kMaxS] × V/max(κ, 1) ∈ [−2, 3]. The continuation from the previous κ
+// is kept unless another start does clearly better (where the shape hardly
+// depends on S, at small κ, that keeps the optimum smooth in κ).
+constexpr int kStarts = 4;
+// S is held at or below kMaxS: for a broad light (small κ) the shape is nearly
+// a parabola in c and hardly depends on a large S (A absorbs B e^{S/2}), so a
+// free S wanders from κ to κ; held, it stays smooth for stage 2.
+constexpr double kMaxS = 4;
+PerKappa per_kappa_at(double k, const std::vector<double>& cosines,
+                      const std::vector<validate::ReferencePoint>& ref,
+                      const std::optional<PerKappa>& previous) {
+  const double e1 = irradiance_upper(k), v_scale = std::max(k, 1.0);
+  const auto n = static_cast<Eigen::Index>(cosines.size());
+  Eigen::VectorXd y(n), w = Eigen::VectorXd::Ones(n);
+  for (Eigen::Index j = 0; j < n; ++j) y(j) = ref[static_cast<std::size_t>(j)].irradiance / e1;
+  Eigen::MatrixXd a(n, 3);
+  const auto lp_at = [&](double S, double V, Eigen::VectorXd* x) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double c = cosines[static_cast<std::size_t>(j)];
+      a(j, 0) = 1, a(j, 1) = detail::sglab_mid_soft_max2(c, S, V), a(j, 2) = c * c;
+    }
+    const LpMinimaxResult r = lp_minimax(a, y, w);
+    if (x) *x = r.x;
+    return r.achieved;
+  };
+  std::vector<std::array<double, 3>> grid;  // error, S, V
+  for (int i = 0; i <= 36; ++i)
+    for (int j = 0; j <= 50; ++j) {
+      const double S = kMaxS - 0.5 * i, V = (-2 + 0.1 * j) * v_scale;
+      grid.push_back({lp_at(S, V, nullptr), S, V});
+    }
+  std::partial_sort(grid.begin(), grid.begin() + kStarts, grid.end());
+  Residuals residuals;
+  for (std::size_t j = 0; j < cosines.size(); ++j)
+    residuals.push_back(
+        make_residual(ShapeResidual{cosines[j], ref[j].irradiance / e1}, kShapeValues));
+  const auto polish = [&](const std::vector<double>& start) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const FitResult f = fit(residuals, Parameters{{"A", "B", "D", "S", "V"},
+                                                  start,
+                                                  {},
+                                                  {-inf, -inf, -inf, -inf, -inf},
+                                                  {inf, inf, inf, kMaxS, inf}});
+    PerKappa p{k, {}, f.max_abs};
+    std::copy_n(f.values.begin(), kShapeValues, p.shape.begin());
+    return p;
+  };
+  std::optional<PerKappa> best;
+  if (previous) best = polish({previous->shape.begin(), previous->shape.end()});
+  for (int t = 0; t < kStarts; ++t) {
+    Eigen::VectorXd x;
+    const auto& [err, S, V] = grid[static_cast<std::size_t>(t)];
+    lp_at(S, V, &x);
+    const PerKappa p = polish({x(0), x(1), x(2), S, V});
+    // Below 1e−7 (far under any target) the starts tie: keep the continuation.
+    if (!best || (p.error < 0.8 * best->error && best->error > 1e-7)) best = p;
+  }
+  return *best;
+}
+
+// Stage 1 over the training κ, from the largest down.
+std::vector<PerKappa> per_kappa_optimum(const std::vector<double>& kappas,
+                                        const std::vector<double>& cosines,
+                                        const std::vector<validate::ReferencePoint>& ref) {
+  std::vector<PerKappa> out(kappas.size());
+  std::optional<PerKappa> previous;
+  for (std::size_t i = kappas.size(); i-- > 0;) {
+    const std::vector<validate::ReferencePoint> at(
+        ref.begin() + static_cast<std::ptrdiff_t>(i * cosines.size()),
+        ref.begin() + static_cast<std::ptrdiff_t>((i + 1) * cosines.size()));
+    out[i] = per_kappa_at(kappas[i], cosines, at, previous);
+    previous = out[i];
+  }
+  return out;
+}
+
+// Q = Π(κ + r_i), ascending and monic, with r log-spaced over [lo, hi].
+std::vector<double> log_spaced_denominator(double lo, double hi) {
+  std::vector<double> q = {1.0};
+  const double a = std::log10(lo), b = std::log10(hi);
+  for (std::size_t i = 0; i < kDegree; ++i) {
+    const double root =
+        std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
+    std::vector<double> next(q.size() + 1, 0.0);
+    for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
+    q = next;
+  }
+  return q;
+}
+
+// Stage 2: each numerator over the log-spaced Q by linear least squares on the
+// stage-1 values (of S + ln(1 + κ) and V/κ for Ps and Pv).
+std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, double hi) {
+  const std::vector<double> q = log_spaced_denominator(lo, hi);
+  auto Q = [&](double k) {
+    double y = 0;
+    for (std::size_t j = q.size(); j-- > 0;) y = y * k + q[j];
+    return y;
+  };
+  std::vector<double> values;
+  for (std::size_t which = 0; which < kShapeValues; ++which) {
+    Eigen::MatrixXd M(per.size(), kDegree + 1);
+    Eigen::VectorXd y(per.size());
+    for (std::size_t i = 0; i < per.size(); ++i) {
+      const double k = per[i].kappa;
+      const auto& sh = per[i].shape;
+      const double target = which == 4 ? sh[4] / k : which == 3 ? sh[3] + std::log1p(k) : sh[which];
+      const double w = 1;
+      double kp = 1;
+      for (std::size_t j = 0; j <= kDegree; ++j, kp *= k) M(i, j) = w * kp / Q(k);
+      y(i) = w * target;
+    }
+    // Column scaling for conditioning (κ^4 spans 28 decades).
+    Eigen::VectorXd s = M.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < s.size(); ++j) s(j) = s(j) > 0 ? 1 / s(j) : 1;
+    const Eigen::VectorXd x = (M * s.asDiagonal()).colPivHouseholderQr().solve(y);
+    for (Eigen::Index j = 0; j < x.size(); ++j) values.push_back(x(j) * s(j));
+  }
+  for (std::size_t j = 0; j < kDegree; ++j) values.push_back(q[j]);
+  return values;
+}
+
+// The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
+std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
+                                                   double hi) {
+  const auto c = committed_coefficients("sglab-mid", variant, lo, hi);
+  if (!c) return std::nullopt;
+  std::vector<double> values;
+  for (const char* poly : kPolys) {
+    if (!c->contains(poly) || c->at(poly).size() != kDegree + 1) return std::nullopt;
+    for (const auto& x : c->at(poly)) values.push_back(x.get<double>());
+  }
+  if (!c->contains("q") || c->at("q").size() != kDegree) return std::nullopt;
+  for (const auto& x : c->at("q")) values.push_back(x.get<double>());
+  return values;
+}
+
+// The per-κ floor recorded in the committed set of `variant` over [lo, hi], if any.
+std::optional<double> committed_floor(const std::string& variant, double lo, double hi) {
+  const auto root = io::find_project_root(std::filesystem::current_path());
+  if (!root) return std::nullopt;
+  const auto path = *root / "data" / "constants" / fmt::format("sglab-mid-{}.json", variant);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  try {
+    const ordered_json set = load_constant_set(path);
+    const auto& range = set.at("provenance").at("kappa_range");
+    if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
+    return set.at("provenance").at("achieved").at("per_kappa_floor").get<double>();
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+std::vector<std::string> parameter_names() {
+  std::vector<std::string> names;
+  for (const char* poly : kPolys)
+    for (std::size_t j = 0; j <= kDegree; ++j) names.push_back(fmt::format("{}{}", poly, j));
+  for (std::size_t j = 0; j < kDegree; ++j) names.push_back(fmt::format("q{}", j));
+  return names;
+}
+
+// A polish of a converged set: one reweighting round, then the penalty form
+// for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short; a cold
+// start takes the engine's defaults.
+FitOptions fit_options(bool polish) {
+  FitOptions options;
+  if (polish) {
+    options.lawson_iterations = 1;
+    options.penalty_decades = 5;
+    options.solver_iterations = 50;
+  }
+  return options;
+}
+
+// The fitted set's errors on its training grid and on the two measuring grids.
+struct Measurements {
+  Measured train, standard, held_out;
+};
+Measurements measure_all(const SglabMidParams<double>& fitted,
+                         const std::vector<validate::ReferencePoint>& train,
+                         const MeasuringGrids& grids) {
+  const auto model = [&](auto c, auto k) { return irradiance_sglab_mid(c, k, fitted); };
+  return {measure(model, train), measure(model, grids.standard), measure(model, grids.held_out)};
+}
+
+// The coefficients in SglabMidParams order: a, b, d, s, v (degree 4), q (monic: 4), kappa_max.
+ordered_json coefficients_json(const std::vector<double>& values, double hi) {
+  ordered_json coefficients;
+  std::size_t i = 0;
+  for (const char* poly : kPolys) {
+    coefficients[poly] = ordered_json::array();
+    for (std::size_t j = 0; j <= kDegree; ++j) coefficients[poly].push_back(values[i++]);
+  }
+  coefficients["q"] = ordered_json::array();
+  for (std::size_t j = 0; j < kDegree; ++j) coefficients["q"].push_back(values[i++]);
+  coefficients["kappa_max"] = hi;
+  return coefficients;
+}
+
+ordered_json achieved_json(double objective, double floor, const Measurements& m,
+                           const MeasuringGrids& grids) {
+  ordered_json achieved = {{"objective", objective},
+                           {"training_max_peak_rel_float", m.train.float_max},
+                           {"per_kappa_floor", floor}};
+  achieved.update(measured_json(grids, m.standard, m.held_out));
+  return achieved;
+}
+
+ordered_json per_kappa_json(const std::vector<PerKappa>& per) {
+  ordered_json table = ordered_json::array();
+  for (const auto& p : per)
+    table.push_back({p.kappa, p.shape[0], p.shape[1], p.shape[2], p.shape[3], p.shape[4], p.error});
+  return table;
+}
+
+}  // namespace
+
+FitOutcome fit_sglab_mid(const FitSpec& spec) {
+  if (!spec.objective.empty() && spec.objective != "irradiance")
+    throw std::invalid_argument(
+        fmt::format("sglab-mid has the one objective 'irradiance'; got '{}'", spec.objective));
+  const double lo = spec.kappa_lo, hi = spec.kappa_hi;
+  const auto train_k = log_midpoints(lo, hi, kTrainKappas);
+  const auto train_c = cosine_grid(kTrainCosines);
+  const auto train = reference_grid(train_k, train_c);
+
+  const std::string variant = precision_name(spec.precision) +
+                              (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
+  std::optional<std::vector<double>> committed;
+  if (!spec.cold_start) committed = committed_start(variant, lo, hi);
+
+  // 1. Per-κ floor: about a minute of LPs and solves, so a polish of the
+  // committed set takes the floor its provenance records (same grid, same
+  // family) and only a cold start (or a set without one) measures it.
+  const std::optional<double> recorded_floor =
+      committed ? committed_floor(variant, lo, hi) : std::nullopt;
+  std::vector<PerKappa> per;
+  double floor = 0;
+  if (recorded_floor) {
+    floor = *recorded_floor;
+  } else {
+    per = per_kappa_optimum(train_k, train_c, train);
+    for (const auto& p : per) floor = std::max(floor, p.error);
+  }
+
+  // 2. Rational start (or the committed set).
+  Parameters params;
+  params.names = parameter_names();
+  params.values = committed ? *committed : rational_start(per, lo, hi);
+
+  // 3. Joint minimax on the runtime function.
+  Residuals residuals;
+  for (const auto& r : train)
+    residuals.push_back(make_residual(
+        ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi}, kNumParams));
+  double start_error = 0;
+  for (double r : evaluate_residuals(residuals, params.values))
+    start_error = std::max(start_error, std::abs(r));
+  const FitResult result = fit(residuals, params, fit_options(committed.has_value()));
+  const MeasuringGrids grids = measuring_grids(spec);
+  const Measurements m = measure_all(params_from(result.values, hi), train, grids);
+  const ordered_json coefficients = coefficients_json(result.values, hi);
+  const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
+
+  FitSpec recorded = spec;
+  recorded.kappa_count = kTrainKappas;
+  recorded.cosine_count = kTrainCosines;
+  FitOutcome out;
+  out.converged = result.converged;
+  out.constant_sets.push_back(make_constant_set(
+      recorded, "sglab-mid", variant, "SglabMidParams<double>",
+      "E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); "
+      "A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k), V = k*Pv(k)/Q(k) with k = min(kappa, "
+      "kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] "
+      "(coefficients lowest order first)",
+      coefficients,
+      fmt::format("minimax of the sglab_mid irradiance peak_rel error (double) over a training "
+                  "grid of {} kappa (log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; "
+                  "start: {}",
+                  kTrainKappas, kTrainKappas, lo, hi, kTrainCosines,
+                  committed ? "the committed set (polish)"
+                            : "per-kappa optimum, then rational least squares"),
+      achieved));
+  out.report = {{"target", "sglab-mid"},
+                {"variant", variant},
+                {"converged", result.converged},
+                {"start", committed ? "committed constant set" : "rational least squares"},
+                {"per_kappa_floor", floor},
+                {"per_kappa_floor_source",
+                 recorded_floor ? "the committed set's provenance (measured on --cold-start)"
+                                : "measured (stage 1)"},
+                {"start_error", start_error},
+                {"objective_error", result.max_abs},
+                {"achieved", achieved},
+                {"coefficients", coefficients}};
+  out.report["per_kappa"] = per_kappa_json(per);
+  out.text = fmt::format(
+      "sglab-mid ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
+      "  held-out ({}): float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}\n"
+      "  standard ({}): float {:.4e}, double {:.4e}\n",
+      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
+      grids.held_out_name, m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine,
+      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max);
+  return out;
+}
+
+}  // namespace sglab::fit

@@ -1,0 +1,104 @@
+// sglab_mid `sglab_mid` (include/sglab/sglab_mid.hpp): its error against the
+// reference engine on points no fit used, never NaN at the edges, its per-light
+// split against the fused function, its float batch against the scalar path.
+// tests/test_methods.cpp checks it with every method as well.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <sglab/sglab.hpp>
+
+#include "tests/random_points.hpp"
+#include "tests/test_support.hpp"
+#include "tests/tolerances.hpp"
+#include "validate/reference.hpp"
+
+namespace {
+
+using sglab::test::hex;
+
+// The bound the model is shipped with (max peak_rel over κ ∈ [1e−3, 1e4]),
+// its row in tests/tolerances.hpp.
+constexpr double kBound =
+    sglab::test::find_tolerance("sglab_mid", sglab::test::peak_rel, sglab::test::f32)->bound;
+
+TEST(SglabMid, WithinBoundOnPointsNoFitUsed) {
+  // Random points (another seed than test_methods.cpp's) and the poles.
+  auto q = sglab::test::random_points(4000, 17004);
+  for (double k : {1e-3, 0.25, 1.0, 30.0, 1e4})
+    for (double c : {-1.0, 0.0, 1.0}) q.push_back({k, c});
+  const auto ref = sglab::validate::reference_engine().evaluate(q);
+  double worst_f = 0, worst_d = 0;
+  for (const auto& r : ref) {
+    const double peak = sglab::irradiance_upper(r.kappa);
+    const double ef =
+        std::abs(double(sglab::irradiance_sglab_mid(float(r.cosine), float(r.kappa))) -
+                 r.irradiance) /
+        peak;
+    const double ed =
+        std::abs(sglab::irradiance_sglab_mid(r.cosine, r.kappa) - r.irradiance) / peak;
+    worst_f = std::max(worst_f, ef), worst_d = std::max(worst_d, ed);
+    EXPECT_LE(ef, kBound) << "float kappa " << r.kappa << " c " << r.cosine;
+    EXPECT_LE(ed, kBound) << "double kappa " << r.kappa << " c " << r.cosine;
+  }
+  RecordProperty("max_peak_rel_float", std::to_string(worst_f));
+  RecordProperty("max_peak_rel_double", std::to_string(worst_d));
+}
+
+TEST(SglabMid, SplitEqualsFusedAndBatchMatchesScalar) {
+  const auto q = sglab::test::random_points(2000, 17005);
+  std::vector<float> cs, ks, out(q.size());
+  for (const auto& p : q) cs.push_back(float(p.cosine)), ks.push_back(float(p.kappa));
+  sglab::irradiance_sglab_mid_batch(cs.data(), ks.data(), out.data(), q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const float fused = sglab::irradiance_sglab_mid(cs[i], ks[i]);
+    // The same operations in the same order: bit for bit.
+    EXPECT_EQ(sglab::sglab_mid_eval(sglab::sglab_mid_light(ks[i]), cs[i]), fused)
+        << "kappa " << hex(ks[i]) << " c " << hex(cs[i]);
+    // branch_free.hpp's exp and square root: float rounding of the peak.
+    EXPECT_NEAR(out[i], fused, 2e-6 * sglab::irradiance_upper(double(ks[i])))
+        << "kappa " << hex(ks[i]) << " c " << hex(cs[i]);
+  }
+}
+
+TEST(SglabMid, FiniteAndNonNegativeOutsideTheFittedRange) {
+  const float fk[] = {0.0f,  std::numeric_limits<float>::denorm_min(), 1e-30f, 1e-4f, 2e4f, 1e8f,
+                      1e30f, std::numeric_limits<float>::max()};
+  for (float k : fk)
+    for (float c : {-1.0f, -0.3f, -1e-20f, 0.0f, 1e-20f, 1e-6f, 0.5f, 1.0f}) {
+      const float v = sglab::irradiance_sglab_mid(c, k);
+      const double d = sglab::irradiance_sglab_mid(double(c), double(k));
+      float b = 0;
+      sglab::irradiance_sglab_mid_batch(&c, &k, &b, 1);
+      EXPECT_TRUE(std::isfinite(v) && v >= 0)
+          << "float kappa " << hex(k) << " c " << hex(c) << " -> " << v;
+      EXPECT_TRUE(std::isfinite(d) && d >= 0)
+          << "double kappa " << hex(k) << " c " << hex(c) << " -> " << d;
+      EXPECT_TRUE(std::isfinite(b) && b >= 0)
+          << "batch kappa " << hex(k) << " c " << hex(c) << " -> " << b;
+    }
+  // κ → 0: the light is uniform, E = π for every normal.
+  for (float c : {-1.0f, 0.0f, 1.0f})
+    EXPECT_NEAR(sglab::irradiance_sglab_mid(c, 0.0f), M_PI, kBound * M_PI) << c;
+}
+
+TEST(SglabMid, SoftMaxStaysFiniteAtTheExponentBounds) {
+  using sglab::detail::sglab_mid_soft_max2;
+  // The exponent is clamped to [−80, 80]: e^{−80} > 0 keeps the square root's
+  // argument positive at c = 0, e^{80} stays finite in float.
+  for (float s : {-1e30f, -200.0f, 0.0f, 200.0f, 1e30f})
+    for (float c : {-1.0f, 0.0f, 1.0f}) {
+      const float y = sglab_mid_soft_max2(c, s, 0.0f);
+      EXPECT_TRUE(std::isfinite(y) && y >= 0) << "s " << s << " c " << c << " -> " << y;
+      if (c == 0.0f) {
+        EXPECT_GT(y, 0.0f) << "s " << s;
+      }
+    }
+  // Far below the bound it is 2 max(c, 0) to rounding.
+  EXPECT_EQ(sglab_mid_soft_max2(0.5, -70.0, 0.0), 1.0);
+  EXPECT_EQ(sglab_mid_soft_max2(-0.5, -70.0, 0.0), 0.0);
+}
+
+}  // namespace
