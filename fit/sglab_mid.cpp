@@ -14,7 +14,9 @@
 // Unless --cold-start, when the committed constant set of the same variant
 // and κ range exists (data/constants/sglab-mid-<variant>.json), stages 2 and 3
 // start from it instead, with a short polish (a few reweighting rounds and
-// penalty decades): that keeps `sglab fit all` fast.
+// penalty decades, about 18 s of CPU), and stage 1 is skipped: the report
+// gives the floor the set's provenance records. That keeps `sglab fit all`
+// short; a cold start takes about 6 minutes of CPU.
 // Training grid: κ at the midpoints of 56 log-spaced cells of [lo, hi] and
 // 161 uniform cosines; it shares no (κ, c) point with the standard 29 × 41
 // grid or with the held-out grid (fit/model_family.hpp) on which the result is
