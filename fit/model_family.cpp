@@ -60,22 +60,39 @@ ordered_json measured_json(const MeasuringGrids& grids, const Measured& standard
           {"held_out_never_worse_ratio", held_out.never_worse}};
 }
 
-std::optional<ordered_json> committed_coefficients(const std::string& target,
-                                                   const std::string& variant, double lo,
-                                                   double hi) {
+std::optional<ordered_json> committed_set(const std::string& target, const std::string& variant,
+                                          double lo, double hi) {
   const auto root = io::find_project_root(std::filesystem::current_path());
   if (!root) return std::nullopt;
   const auto path = *root / "data" / "constants" / fmt::format("{}-{}.json", target, variant);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
   try {
-    const ordered_json set = load_constant_set(path);
+    ordered_json set = load_constant_set(path);
     const auto& range = set.at("provenance").at("kappa_range");
     if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
-    return set.at("coefficients");
+    return set;
   } catch (const std::exception&) {
     return std::nullopt;  // a placeholder or foreign file: fit from scratch
   }
+}
+
+std::optional<ordered_json> committed_coefficients(const std::string& target,
+                                                   const std::string& variant, double lo,
+                                                   double hi) {
+  const auto set = committed_set(target, variant, lo, hi);
+  if (!set || !set->contains("coefficients")) return std::nullopt;
+  return set->at("coefficients");
+}
+
+FitOptions polish_options(bool polish) {
+  FitOptions options;
+  if (polish) {
+    options.lawson_iterations = 1;
+    options.penalty_decades = 5;
+    options.solver_iterations = 50;
+  }
+  return options;
 }
 
 }  // namespace sglab::fit

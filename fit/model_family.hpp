@@ -15,6 +15,7 @@
 
 #include <sglab/irradiance.hpp>
 
+#include "fit/minimax.hpp"
 #include "fit/targets.hpp"
 #include "validate/reference.hpp"
 
@@ -101,8 +102,16 @@ ordered_json measured_json(const MeasuringGrids& grids, const Measured& standard
 // and strict, as every constants file) and was fitted over [lo, hi]: the warm
 // start of a refit. nullopt otherwise (no project, no file, another range, a
 // foreign file): the caller fits from scratch.
+std::optional<ordered_json> committed_set(const std::string& target, const std::string& variant,
+                                          double lo, double hi);
+// Its "coefficients" object.
 std::optional<ordered_json> committed_coefficients(const std::string& target,
                                                    const std::string& variant, double lo,
                                                    double hi);
+
+// The solver options of a fit from a committed set (`polish`: one reweighting
+// round, then the penalty form for 10^2 … 10^5, each solve capped, to keep
+// `sglab fit all` short) or from scratch (the engine's defaults).
+FitOptions polish_options(bool polish);
 
 }  // namespace sglab::fit

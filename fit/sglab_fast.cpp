@@ -186,19 +186,6 @@ std::vector<std::string> parameter_names() {
   return names;
 }
 
-// A polish of a converged set: one reweighting round, then the penalty form
-// for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short; a cold
-// start takes the engine's defaults.
-FitOptions fit_options(bool polish) {
-  FitOptions options;
-  if (polish) {
-    options.lawson_iterations = 1;
-    options.penalty_decades = 5;
-    options.solver_iterations = 50;
-  }
-  return options;
-}
-
 // The fitted set's errors on its training grid and on the two measuring grids.
 struct Measurements {
   Measured train, standard, held_out;
@@ -327,7 +314,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   double start_error = 0;
   for (double r : evaluate_residuals(residuals, params.values))
     start_error = std::max(start_error, std::abs(r));
-  const FitResult result = fit(residuals, params, fit_options(committed.has_value()));
+  const FitResult result = fit(residuals, params, polish_options(committed.has_value()));
   const MeasuringGrids grids = measuring_grids(spec);
   const Measurements m = measure_all(to_params(result.values, hi), train, grids);
   const ordered_json coefficients = coefficients_json(result.values, hi);

@@ -243,16 +243,10 @@ std::optional<std::vector<double>> committed_start(const std::string& variant, d
 
 // The per-κ floor recorded in the committed set of `variant` over [lo, hi], if any.
 std::optional<double> committed_floor(const std::string& variant, double lo, double hi) {
-  const auto root = io::find_project_root(std::filesystem::current_path());
-  if (!root) return std::nullopt;
-  const auto path = *root / "data" / "constants" / fmt::format("sglab-mid-{}.json", variant);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  const auto set = committed_set("sglab-mid", variant, lo, hi);
+  if (!set) return std::nullopt;
   try {
-    const ordered_json set = load_constant_set(path);
-    const auto& range = set.at("provenance").at("kappa_range");
-    if (range.at(0).get<double>() != lo || range.at(1).get<double>() != hi) return std::nullopt;
-    return set.at("provenance").at("achieved").at("per_kappa_floor").get<double>();
+    return set->at("provenance").at("achieved").at("per_kappa_floor").get<double>();
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -264,19 +258,6 @@ std::vector<std::string> parameter_names() {
     for (std::size_t j = 0; j <= kDegree; ++j) names.push_back(fmt::format("{}{}", poly, j));
   for (std::size_t j = 0; j < kDegree; ++j) names.push_back(fmt::format("q{}", j));
   return names;
-}
-
-// A polish of a converged set: one reweighting round, then the penalty form
-// for 10^2 … 10^5, each solve capped, to keep `sglab fit all` short; a cold
-// start takes the engine's defaults.
-FitOptions fit_options(bool polish) {
-  FitOptions options;
-  if (polish) {
-    options.lawson_iterations = 1;
-    options.penalty_decades = 5;
-    options.solver_iterations = 50;
-  }
-  return options;
 }
 
 // The fitted set's errors on its training grid and on the two measuring grids.
@@ -363,7 +344,7 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   double start_error = 0;
   for (double r : evaluate_residuals(residuals, params.values))
     start_error = std::max(start_error, std::abs(r));
-  const FitResult result = fit(residuals, params, fit_options(committed.has_value()));
+  const FitResult result = fit(residuals, params, polish_options(committed.has_value()));
   const MeasuringGrids grids = measuring_grids(spec);
   const Measurements m = measure_all(params_from(result.values, hi), train, grids);
   const ordered_json coefficients = coefficients_json(result.values, hi);
