@@ -13,10 +13,12 @@
 
 #include <sglab/sglab.hpp>
 
+#include "fit/constants_schema.hpp"
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
 #include "tests/fit_guard.hpp"
 #include "tests/test_support.hpp"
+#include "validate/reference.hpp"
 
 namespace {
 
@@ -257,6 +259,125 @@ TEST(ModelOrder, RationalOrderTwoReproducesThe2024Form) {
                 1e-15 * sglab::steepness2024(k));
     EXPECT_NEAR(sglab::steepness_rational(k, r1), sglab::steepness2022(k),
                 1e-15 * sglab::steepness2022(k));
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// The steepness certificate (issue 17 §1, fit/steepness.cpp): the per-κ floor.
+// In the report and the set's provenance, positive and at most the achieved
+// max, for both targets and objectives and for a --max-error order.
+TEST(SteepnessCertificate, BoundIsPositiveAndAtMostAchieved) {
+  for (const char* target : {"steepness2022", "steepness2024"}) {
+    for (const char* objective : {"irradiance", "optimal-t"}) {
+      FitSpec spec;
+      spec.target = target;
+      spec.objective = objective;
+      const auto out = run_fit(spec);
+      const auto& c = out.report["certificate"];
+      ASSERT_TRUE(c.is_object()) << target << " " << objective << "\n" << out.text;
+      const double achieved = c["achieved"].get<double>(), bound = c["lower_bound"].get<double>();
+      EXPECT_GT(bound, 0) << c["kind"];
+      EXPECT_LE(bound, achieved) << target << " " << objective;
+      EXPECT_NEAR(c["within_percent_of_best_member"].get<double>(), 100 * (achieved / bound - 1),
+                  1e-9);
+      // The irradiance measure for 2024 (either objective), |s~ - s| for 2022.
+      EXPECT_EQ(c["what"].get<std::string>().find("tokuyoshi2024 irradiance") == 0,
+                std::string(target) == "steepness2024")
+          << c["what"];
+      double max_floor = 0, max_achieved = 0;
+      for (const auto& row : c["per_kappa"]["rows"]) {
+        EXPECT_LE(row[2].get<double>(), row[3].get<double>()) << row;
+        max_floor = std::max(max_floor, row[2].get<double>());
+        max_achieved = std::max(max_achieved, row[3].get<double>());
+      }
+      EXPECT_EQ(max_floor, bound);
+      EXPECT_EQ(max_achieved, achieved);
+      EXPECT_NE(out.text.find("of the best t(kappa) form"), std::string::npos) << out.text;
+      ASSERT_EQ(out.constant_sets.size(), 1u);
+      const auto& recorded = out.constant_sets[0]["provenance"]["certificate"];
+      EXPECT_EQ(recorded["lower_bound"], c["lower_bound"]);
+      EXPECT_FALSE(recorded.contains("per_kappa"));  // the table stays in the report
+      EXPECT_NO_THROW(sglab::fit::validate_constant_set(out.constant_sets[0], "fitted"));
+    }
+  }
+  FitSpec order;
+  order.target = "steepness2024";
+  order.kappa_lo = 2;
+  order.kappa_hi = 50;
+  order.kappa_count = 15;
+  order.cosine_count = 21;
+  order.max_error = 1e-2;
+  const auto out = run_fit(order);
+  ASSERT_FALSE(out.report["chosen"].is_null()) << out.text;
+  const auto& c = out.report["certificate"];
+  EXPECT_GT(c["lower_bound"].get<double>(), 0);
+  EXPECT_LE(c["lower_bound"].get<double>(), c["achieved"].get<double>());
+}
+
+// A wrong floor fails here: at every κ of the certificate's grid the floor is
+// at most the error (recomputed here from the runtime and the reference) of
+// the published t(κ), of the fitted t(κ) (which is the row's achieved), of
+// t*(κ) (optimal-t's minimax, the same measure up to a factor per κ for 2024)
+// and of a ladder of fixed t; and it is reached: its t errs by the floor, and
+// at the κ of the bound t* errs by no more than the floor (1 + 1e-6).
+TEST(SteepnessCertificate, FloorIsAtMostTheErrorOfAnySteepness) {
+  const auto cosines = cosine_grid(201);
+  for (const char* target : {"steepness2022", "steepness2024"}) {
+    const bool y2022 = std::string(target) == "steepness2022";
+    FitSpec spec;
+    spec.target = target;
+    spec.objective = "irradiance";
+    const auto out = run_fit(spec);
+    const auto& r = out.report;
+    const auto t_fit = [&](double k) {
+      return y2022
+                 ? sglab::steepness2022(k, sglab::Steepness2022Params<double>{r["A"].get<double>(),
+                                                                              r["B"].get<double>(),
+                                                                              r["C"].get<double>()})
+                 : sglab::steepness2024(
+                       k, sglab::Steepness2024Params<double>{
+                              r["A"].get<double>(), r["B"].get<double>(), r["C"].get<double>(),
+                              r["D"].get<double>(), r["E"].get<double>()});
+    };
+    const auto& rows = r["certificate"]["per_kappa"]["rows"];
+    ASSERT_EQ(rows.size(), 112u);
+    std::vector<double> kappas;
+    for (const auto& row : rows) kappas.push_back(row[0].get<double>());
+    const auto t_star = optimal_steepness(target, kappas);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const double k = kappas[i], t_best = rows[i][1].get<double>();
+      const double floor = rows[i][2].get<double>(), achieved = rows[i][3].get<double>();
+      std::vector<sglab::validate::Query> q;
+      for (double c : cosines) q.push_back({k, c});
+      const auto ref = sglab::validate::reference_engine().evaluate(q);
+      const auto poles = sglab::irradiance_poles_over_two_pi(k);
+      const auto error = [&](double t) {
+        double m = 0;
+        for (const auto& p : ref) {
+          const sglab::Tokuyoshi2024Light<double> light{t, poles.lower, poles.upper};
+          const double e =
+              y2022 ? std::abs(0.5 + 0.5 * sglab::erf_ratio(t, p.cosine) - p.normalized)
+                    : std::abs(sglab::tokuyoshi2024_eval(light, p.cosine) - p.irradiance) /
+                          sglab::irradiance_upper(k);
+          m = std::max(m, e);
+        }
+        return m;
+      };
+      EXPECT_NEAR(error(t_fit(k)), achieved, 1e-12 * achieved) << target << " kappa " << k;
+      EXPECT_NEAR(error(t_best), floor, 1e-12 * floor) << target << " kappa " << k;
+      std::vector<double> ts = {t_fit(k), y2022 ? sglab::steepness2022(k) : sglab::steepness2024(k),
+                                t_star[i]};
+      for (double f : {1e-3, 0.1, 0.5, 0.9, 0.99, 0.999, 1.001, 1.01, 1.1, 2.0, 10.0, 1e3})
+        ts.push_back(f * t_best);
+      for (double t : ts) EXPECT_LE(floor, error(t)) << target << " kappa " << k << " t " << t;
+      // Where the bound is, t* (Brent at a relative step 2^-26 in log t) comes within 1e-6.
+      if (floor == r["certificate"]["lower_bound"].get<double>()) {
+        EXPECT_LE(error(t_star[i]), floor * (1 + 1e-6)) << target << " kappa " << k;
+      }
+    }
   }
 }
 
