@@ -239,7 +239,8 @@ ordered_json certificate_json(bool y2022, const std::vector<KappaFloor>& floors,
   for (const auto& f : floors) per.push_back({f.kappa, f.t_best, f.floor, f.achieved});
   return {
       {"kind",
-       "per_kappa_floor: t free at each kappa (scan of log t and Brent), no t(kappa) form "
+       "per_kappa_floor: t free at each kappa (scan of log t, Brent, golden section to "
+       "the resolution of double), no t(kappa) form "
        "does better"},
       {"what",
        y2022 ? "|s~(c, t(kappa)) - s(c, kappa)|, the normalized hemispherical integral (max over "
