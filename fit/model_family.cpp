@@ -7,6 +7,7 @@
 
 #include "common/io.hpp"
 #include "fit/constants_io.hpp"
+#include "fit/lp_minimax.hpp"
 
 namespace sglab::fit {
 
@@ -93,6 +94,31 @@ FitOptions polish_options(bool polish) {
     options.solver_iterations = 50;
   }
   return options;
+}
+
+ordered_json clamped_lp_certificate(
+    const std::vector<validate::ReferencePoint>& train, const std::vector<double>& values,
+    const std::vector<std::size_t>& linear,
+    const std::function<std::unique_ptr<ceres::CostFunction>(const validate::ReferencePoint&)>&
+        residual,
+    const std::string& kind) {
+  Residuals residuals;
+  for (const auto& r : train)
+    if (r.irradiance >= kCertificateLevel * irradiance_upper(r.kappa))
+      residuals.push_back(residual(r));
+  const LinearSubproblem sub = linear_subproblem(residuals, values, linear);
+  const LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
+  const double achieved = max_abs_residual(evaluate_residuals(residuals, values));
+  const double bound = std::min(lp.lower_bound, kCertificateLevel);
+  return {
+      {"kind", kind},
+      {"grid", fmt::format("the {} training points with E/E(1) >= L = {} (of {})", residuals.size(),
+                           kCertificateLevel, train.size())},
+      {"achieved", achieved},
+      {"lower_bound", bound},
+      {"within_percent_of_best_member", 100 * (achieved / bound - 1)},
+      {"lp",
+       {{"working_rows", lp.working_rows}, {"rounds", lp.rounds}, {"converged", lp.converged}}}};
 }
 
 }  // namespace sglab::fit

@@ -3,12 +3,15 @@
 // fitted set is measured on and that no fit uses, the measurement itself (max
 // peak_rel in float and double, where it is, and the per-κ rule "never worse
 // than tokuyoshi2024"), its record in a constant set's provenance, the
-// log-spaced κ at half-step offsets their training grids start from, and the
-// warm start from a committed constant set.
+// log-spaced κ at half-step offsets their training grids start from, the
+// warm start from a committed constant set, and the LP certificate of a model
+// E(1, κ)·max(0, s') whose numerators enter s' linearly (sglab-fast, sglab-mid).
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -108,6 +111,29 @@ std::optional<ordered_json> committed_set(const std::string& target, const std::
 std::optional<ordered_json> committed_coefficients(const std::string& target,
                                                    const std::string& variant, double lo,
                                                    double hi);
+
+// The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
+// its fitted nonlinear parameters, where s' is linear in the parameters
+// `linear` (the numerators of the shape values that multiply fixed functions
+// of c; sglab-fast: A, B, C at the fitted Q and V; sglab-mid: A, B, D at the
+// fitted Q, S and V). The residual is max(0, s') − y, y = E/E(1, κ). On the
+// training points with y ≥ L (= kCertificateLevel) the LP (fit/lp_minimax.hpp)
+// gives the best those numerators can do for |s' − y|, LP_R; since
+// |max(0, s') − y| ≥ min(|s' − y|, y) for y ≥ 0 (s' < 0 makes the error
+// y ≤ |s' − y|), every member with these nonlinear parameters errs by at
+// least min(LP_R, L) on those points: a lower bound for the family there; the
+// fit's max there is achieved. `residual(r)` makes the fit's residual (the
+// peak_rel of the runtime function, all parameters in the fit's order) at the
+// training point r, where the linearization is taken at `values`. Returns the
+// certificate as provenance records it: kind (`kind`), grid, achieved,
+// lower_bound, within_percent_of_best_member and the LP's statistics.
+inline constexpr double kCertificateLevel = 0.05;
+ordered_json clamped_lp_certificate(
+    const std::vector<validate::ReferencePoint>& train, const std::vector<double>& values,
+    const std::vector<std::size_t>& linear,
+    const std::function<std::unique_ptr<ceres::CostFunction>(const validate::ReferencePoint&)>&
+        residual,
+    const std::string& kind);
 
 // The solver options of a fit from a committed set (`polish`: one reweighting
 // round, then the penalty form for 10^2 … 10^5, each solve capped, to keep

@@ -33,7 +33,6 @@
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_fast.hpp>
 
-#include "fit/lp_minimax.hpp"
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
@@ -220,41 +219,22 @@ ordered_json achieved_json(double objective, double floor, const Measurements& m
   return achieved;
 }
 
-// The certificate (issue 17 §1). At the fitted Q and V(κ), s' = E1(κ)·(A + B c
-// + C ρ(V c + ½))/E(1, κ) is linear in the numerators of A, B and C, and the
-// residual is max(0, s') − y, y = E/E(1, κ). On the training points with
-// y ≥ L (= kCertificateLevel) the LP (fit/lp_minimax.hpp) gives the best those
-// numerators can do for |s' − y|, LP_R; since |max(0, s') − y| ≥ min(|s' − y|, y)
-// for y ≥ 0 (s' < 0 makes the error y ≤ |s' − y|), every member with this Q and
-// V errs by at least min(LP_R, L) on those points: a lower bound for the family
-// at its fitted nonlinear part, the fit's max there is achieved.
-constexpr double kCertificateLevel = 0.05;
+// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp):
+// at the fitted Q and V(κ), s' = E1(κ)·(A + B c + C ρ(V c + ½))/E(1, κ) is
+// linear in the numerators of A, B and C (the first in parameter order).
 ordered_json certificate_json(const std::vector<double>& values,
                               const std::vector<validate::ReferencePoint>& train, double hi) {
-  Residuals residuals;
-  for (const auto& r : train) {
-    const double peak = irradiance_upper(r.kappa);
-    if (r.irradiance >= kCertificateLevel * peak)
-      residuals.push_back(
-          make_residual(ModelResidual{r.kappa, r.cosine, r.irradiance, peak, hi}, kNumParams));
-  }
-  std::vector<std::size_t> linear(3 * (kDegree + 1));  // a, b, c: the first in parameter order
+  std::vector<std::size_t> linear(3 * (kDegree + 1));
   std::iota(linear.begin(), linear.end(), 0);
-  const LinearSubproblem sub = linear_subproblem(residuals, values, linear);
-  const LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
-  const double achieved = max_abs_residual(evaluate_residuals(residuals, values));
-  const double bound = std::min(lp.lower_bound, kCertificateLevel);
-  return {
-      {"kind",
-       "lp_at_fitted_denominator_and_v: the numerators of A, B and C free, Q and V(kappa) as "
-       "fitted; bound min(LP optimum, L)"},
-      {"grid", fmt::format("the {} training points with E/E(1) >= L = {} (of {})", residuals.size(),
-                           kCertificateLevel, train.size())},
-      {"achieved", achieved},
-      {"lower_bound", bound},
-      {"within_percent_of_best_member", 100 * (achieved / bound - 1)},
-      {"lp",
-       {{"working_rows", lp.working_rows}, {"rounds", lp.rounds}, {"converged", lp.converged}}}};
+  return clamped_lp_certificate(
+      train, values, linear,
+      [&](const validate::ReferencePoint& r) {
+        return make_residual(
+            ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi},
+            kNumParams);
+      },
+      "lp_at_fitted_denominator_and_v: the numerators of A, B and C free, Q and V(kappa) as "
+      "fitted; bound min(LP optimum, L)");
 }
 
 // The constant set of a fit: coefficients, form, objective, what it achieved and its certificate.

@@ -10,7 +10,10 @@
 //      log-spaced over the κ range (−Q's roots on the negative axis, so Q > 0),
 //      each numerator a linear least-squares fit to the stage-1 values;
 //   3. a joint minimax of every coefficient on the peak_rel error of the
-//      runtime function itself (Jets through irradiance_sglab_mid).
+//      runtime function itself (Jets through irradiance_sglab_mid);
+// then certified as sglab-fast (issue 17 §1, certificate_json below): at the
+// fitted Q, S(κ) and V(κ) the numerators of A, B and D enter linearly, and an
+// LP bounds how well any of their values could do.
 // Unless --cold-start, when the committed constant set of the same variant
 // and κ range exists (data/constants/sglab-mid-<variant>.json), stages 2 and 3
 // start from it instead, with a short polish (a few reweighting rounds and
@@ -26,6 +29,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
@@ -301,6 +305,25 @@ ordered_json per_kappa_json(const std::vector<PerKappa>& per) {
   return table;
 }
 
+// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp):
+// at the fitted Q, S(κ) and V(κ), s' = E1(κ)·(A + B (c + √(c² + e^{S − V c²}))
+// + D c²)/E(1, κ) is linear in the numerators of A, B and D (the first in
+// parameter order).
+ordered_json certificate_json(const std::vector<double>& values,
+                              const std::vector<validate::ReferencePoint>& train, double hi) {
+  std::vector<std::size_t> linear(3 * (kDegree + 1));
+  std::iota(linear.begin(), linear.end(), 0);
+  return clamped_lp_certificate(
+      train, values, linear,
+      [&](const validate::ReferencePoint& r) {
+        return make_residual(
+            ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi},
+            kNumParams);
+      },
+      "lp_at_fitted_denominator_s_and_v: the numerators of A, B and D free, Q, S(kappa) and "
+      "V(kappa) as fitted; bound min(LP optimum, L)");
+}
+
 }  // namespace
 
 FitOutcome fit_sglab_mid(const FitSpec& spec) {
@@ -350,6 +373,8 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   const ordered_json coefficients = coefficients_json(result.values, hi);
   const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
+  const ordered_json certificate = certificate_json(result.values, train, hi);
+
   FitSpec recorded = spec;
   recorded.kappa_count = kTrainKappas;
   recorded.cosine_count = kTrainCosines;
@@ -369,6 +394,7 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
                   committed ? "the committed set (polish)"
                             : "per-kappa optimum, then rational least squares"),
       achieved));
+  out.constant_sets.back()["provenance"]["certificate"] = certificate;
   out.report = {{"target", "sglab-mid"},
                 {"variant", variant},
                 {"converged", result.converged},
@@ -380,15 +406,21 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
                 {"start_error", start_error},
                 {"objective_error", result.max_abs},
                 {"achieved", achieved},
+                {"certificate", certificate},
                 {"coefficients", coefficients}};
   out.report["per_kappa"] = per_kappa_json(per);
   out.text = fmt::format(
       "sglab-mid ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
       "  held-out ({}): float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}\n"
-      "  standard ({}): float {:.4e}, double {:.4e}\n",
+      "  standard ({}): float {:.4e}, double {:.4e}\n"
+      "  certificate: {:.4e} on {}, within {:.2f}% of the best numerators of A, B, D at the fitted "
+      "Q, S and V ({:.4e}, LP)\n",
       variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
       grids.held_out_name, m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine,
-      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max);
+      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max,
+      certificate["achieved"].get<double>(), certificate["grid"].get<std::string>(),
+      certificate["within_percent_of_best_member"].get<double>(),
+      certificate["lower_bound"].get<double>());
   return out;
 }
 

@@ -3,12 +3,15 @@
 // against the reference engine on random points, its per-light split and its
 // float batch are checked with every method by tests/test_methods.cpp.
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sglab/sglab.hpp>
 
+#include "tests/lp_certificate.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 
@@ -68,6 +71,64 @@ TEST(SglabFast, FiniteAndNonNegativeOutsideTheFittedRange) {
   // κ → 0: the light is uniform, E = π for every normal.
   for (float c : {-1.0f, 0.0f, 1.0f})
     EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kBound * M_PI) << c;
+}
+
+// The fit's residual (fit/sglab_fast.cpp's ModelResidual): peak_rel of the
+// runtime function, parameters a, b, c, v (5 each) and q (4).
+template <class T>
+sglab::SglabFastParams<T> fast_params(const std::vector<T>& v, T kappa_max) {
+  sglab::SglabFastParams<T> p{};
+  std::size_t i = 0;
+  for (auto* poly : {p.a, p.b, p.c, p.v})
+    for (std::size_t j = 0; j < 5; ++j) poly[j] = v[i++];
+  for (std::size_t j = 0; j < 4; ++j) p.q[j] = v[i++];
+  p.kappa_max = kappa_max;
+  return p;
+}
+struct FastResidual {
+  double kappa, cosine, reference, peak, kappa_max;
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    std::vector<T> v(24);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = p[i][0];
+    r[0] = (sglab::irradiance_sglab_fast(T(cosine), T(kappa), fast_params(v, T(kappa_max))) -
+            T(reference)) /
+           T(peak);
+    return true;
+  }
+};
+
+// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp)
+// of the committed coefficients: the check of tests/lp_certificate.hpp, and
+// the numbers the committed set's provenance records (its certificate was
+// made at these coefficients, before the certificate moved into
+// fit/model_family.cpp: the move keeps them).
+TEST(SglabFast, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {
+  const auto& k = sglab::constants::sglab_fast_float;
+  std::vector<double> values;
+  for (const auto* poly : {k.a, k.b, k.c, k.v}) values.insert(values.end(), poly, poly + 5);
+  values.insert(values.end(), k.q, k.q + 4);
+  const auto c = sglab::test::check_clamped_lp_certificate(
+      values, 15,
+      [&](const sglab::validate::ReferencePoint& r) {
+        return sglab::fit::make_residual(
+            FastResidual{r.kappa, r.cosine, r.irradiance, sglab::irradiance_upper(r.kappa),
+                         k.kappa_max},
+            24);
+      },
+      [&](const std::vector<double>& v, const sglab::validate::ReferencePoint& r) {
+        return std::abs(
+                   sglab::irradiance_sglab_fast(r.cosine, r.kappa, fast_params(v, k.kappa_max)) -
+                   r.irradiance) /
+               sglab::irradiance_upper(r.kappa);
+      });
+  std::ifstream in(SGLAB_TEST_SOURCE_DIR "/../data/constants/sglab-fast-float.json");
+  const auto recorded = nlohmann::json::parse(in)["provenance"]["certificate"];
+  EXPECT_EQ(c["grid"], recorded["grid"]);
+  EXPECT_NEAR(c["achieved"].get<double>(), recorded["achieved"].get<double>(),
+              1e-12 * recorded["achieved"].get<double>());
+  EXPECT_NEAR(c["lower_bound"].get<double>(), recorded["lower_bound"].get<double>(),
+              1e-9 * recorded["lower_bound"].get<double>());
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include <sglab/sglab.hpp>
 
+#include "tests/lp_certificate.hpp"
 #include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
@@ -99,6 +100,54 @@ TEST(SglabMid, SoftMaxStaysFiniteAtTheExponentBounds) {
   // Far below the bound it is 2 max(c, 0) to rounding.
   EXPECT_EQ(sglab_mid_soft_max2(0.5, -70.0, 0.0), 1.0);
   EXPECT_EQ(sglab_mid_soft_max2(-0.5, -70.0, 0.0), 0.0);
+}
+
+// The fit's residual (fit/sglab_mid.cpp's ModelResidual): peak_rel of the
+// runtime function, parameters a, b, d, s, v (5 each) and q (4).
+template <class T>
+sglab::SglabMidParams<T> mid_params(const std::vector<T>& v, T kappa_max) {
+  sglab::SglabMidParams<T> p{};
+  std::size_t i = 0;
+  for (auto* poly : {p.a, p.b, p.d, p.s, p.v})
+    for (std::size_t j = 0; j < 5; ++j) poly[j] = v[i++];
+  for (std::size_t j = 0; j < 4; ++j) p.q[j] = v[i++];
+  p.kappa_max = kappa_max;
+  return p;
+}
+struct MidResidual {
+  double kappa, cosine, reference, peak, kappa_max;
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    std::vector<T> v(29);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = p[i][0];
+    r[0] = (sglab::irradiance_sglab_mid(T(cosine), T(kappa), mid_params(v, T(kappa_max))) -
+            T(reference)) /
+           T(peak);
+    return true;
+  }
+};
+
+// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp)
+// at the committed coefficients: the numerators of A, B and D free, Q, S and V
+// as committed; the check of tests/lp_certificate.hpp.
+TEST(SglabMid, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {
+  const auto& k = sglab::constants::sglab_mid_float;
+  std::vector<double> values;
+  for (const auto* poly : {k.a, k.b, k.d, k.s, k.v}) values.insert(values.end(), poly, poly + 5);
+  values.insert(values.end(), k.q, k.q + 4);
+  const auto c = sglab::test::check_clamped_lp_certificate(
+      values, 15,
+      [&](const sglab::validate::ReferencePoint& r) {
+        return sglab::fit::make_residual(MidResidual{r.kappa, r.cosine, r.irradiance,
+                                                     sglab::irradiance_upper(r.kappa), k.kappa_max},
+                                         29);
+      },
+      [&](const std::vector<double>& v, const sglab::validate::ReferencePoint& r) {
+        return std::abs(sglab::irradiance_sglab_mid(r.cosine, r.kappa, mid_params(v, k.kappa_max)) -
+                        r.irradiance) /
+               sglab::irradiance_upper(r.kappa);
+      });
+  RecordProperty("lower_bound", std::to_string(c["lower_bound"].get<double>()));
 }
 
 }  // namespace
