@@ -8,6 +8,8 @@
 //                (the paper's route, [Tokuyoshi2022] supplementary Fig. 2);
 //   irradiance — the coefficients minimax the peak_rel error of the
 //                tokuyoshi2022 / tokuyoshi2024 irradiance over the grid.
+// Every fit (either objective, and --max-error's orders) is certified by the
+// per-κ floor (issue 17 §1, per_kappa_floor and certificate_json below).
 #include <algorithm>
 #include <cmath>
 #include <functional>
