@@ -4,6 +4,7 @@
 // the command's contract.
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -19,6 +20,17 @@
 #include "tests/fit_guard.hpp"
 #include "tests/test_support.hpp"
 #include "validate/reference.hpp"
+
+// A steepness form that is one t at every sharpness (found by argument-dependent lookup).
+namespace probe {
+struct ConstantSteepness {
+  double t;
+};
+template <class T>
+T steepness(const T&, const ConstantSteepness& p) {
+  return T(p.t);
+}
+}  // namespace probe
 
 namespace {
 
@@ -379,6 +391,38 @@ TEST(SteepnessCertificate, FloorIsAtMostTheErrorOfAnySteepness) {
       }
     }
   }
+}
+
+// Why steepness2022's certificate is on |s~ - s|, not on the irradiance: the
+// 2022 irradiance evaluates t at κ and at the product's κ3, which varies with
+// c, so the min over one t at a κ (what a per-κ floor would take) is no bound:
+// at κ = 5.23 it is several times the fitted form's error there.
+TEST(SteepnessCertificate, OneTPerKappaDoesNotBoundThe2022Irradiance) {
+  FitSpec spec;
+  spec.target = "steepness2022";
+  spec.objective = "irradiance";
+  const auto out = run_fit(spec);
+  const auto& r = out.report;
+  const sglab::Steepness2022Params<double> fitted{r["A"].get<double>(), r["B"].get<double>(),
+                                                  r["C"].get<double>()};
+  const double k = 5.23;
+  std::vector<sglab::validate::Query> q;
+  for (double c : cosine_grid(201)) q.push_back({k, c});
+  const auto ref = sglab::validate::reference_engine().evaluate(q);
+  const auto error = [&](const auto& st) {
+    double m = 0;
+    for (const auto& p : ref)
+      m = std::max(m, std::abs(sglab::irradiance_tokuyoshi2022(
+                                   p.cosine, k, sglab::constants::clamped_cosine_published, st) -
+                               p.irradiance) /
+                          sglab::irradiance_upper(k));
+    return m;
+  };
+  double one_t = std::numeric_limits<double>::infinity();
+  const double t0 = sglab::steepness2022(k, fitted);
+  for (int i = -300; i <= 300; ++i)
+    one_t = std::min(one_t, error(probe::ConstantSteepness{t0 * std::exp(0.01 * i)}));
+  EXPECT_GT(one_t, 2 * error(fitted));
 }
 
 }  // namespace
