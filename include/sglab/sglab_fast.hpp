@@ -70,6 +70,18 @@ T upper_over_two_pi_fast(const T& kappa) {
   return use_series * series + (T(1) - use_series) * closed;
 }
 
+// upper_over_two_pi_fast in float without branches or library calls
+// (branch_free.hpp's exp_bf, a select), for the vectorizing setups of
+// sglab_fast and sglab_mid: the same series below ¼ and closed form above.
+SGLAB_FORCE_INLINE float upper_over_two_pi_branch_free(float kappa) {
+  namespace bf = branch_free;
+  const float ks = bf::min(kappa, 0.25f), kc = bf::max(kappa, 0.25f);
+  const float series = sglab::detail::pole_series<false>(ks, std::make_index_sequence<5>{});
+  const float r = 1.0f / kc;
+  const float closed = (1.0f - (1.0f - bf::exp_bf(-bf::min(kc, 80.0f))) * r) * r;
+  return bf::select(kappa < 0.25f, series, closed);
+}
+
 // The C² ramp ρ(u) above, without branches (the cosine varies from one
 // shading point to the next, so a branch on it would be mispredicted): with
 // v = clamp(u, 0, 1) = (|u| − |u − 1| + 1)/2 and max(u − 1, 0) = (u − 1 + |u − 1|)/2,
@@ -134,12 +146,7 @@ SGLAB_FORCE_INLINE SglabFastLight<float> sglab_fast_light_branch_free(float kapp
   namespace bf = branch_free;
   const float k = bf::min(kappa, float(p.kappa_max));
   const float inv_q = 1.0f / (horner(k, p.q) + k * k * k * k);
-  // Ē(1, κ): the series below ¼, (1 − (1 − e^{−κ})/κ)/κ above (upper_over_two_pi_fast).
-  const float ks = bf::min(kappa, 0.25f), kc = bf::max(kappa, 0.25f);
-  const float series = sglab::detail::pole_series<false>(ks, std::make_index_sequence<5>{});
-  const float r = 1.0f / kc;
-  const float closed = (1.0f - (1.0f - bf::exp_bf(-bf::min(kc, 80.0f))) * r) * r;
-  const float e1 = two_pi_v<float>() * bf::select(kappa < 0.25f, series, closed);
+  const float e1 = two_pi_v<float>() * detail::upper_over_two_pi_branch_free(kappa);
   return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.c) * inv_q * e1,
           horner(k, p.v) * inv_q};
 }

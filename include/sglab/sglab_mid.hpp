@@ -118,12 +118,7 @@ SGLAB_FORCE_INLINE SglabMidLight<float> sglab_mid_light_branch_free(float kappa,
   namespace bf = branch_free;
   const float k = bf::min(kappa, float(p.kappa_max));
   const float inv_q = 1.0f / (horner(k, p.q) + k * k * k * k);
-  // Ē(1, κ): the series below ¼, (1 − (1 − e^{−κ})/κ)/κ above (upper_over_two_pi_fast).
-  const float ks = bf::min(kappa, 0.25f), kc = bf::max(kappa, 0.25f);
-  const float series = sglab::detail::pole_series<false>(ks, std::make_index_sequence<5>{});
-  const float r = 1.0f / kc;
-  const float closed = (1.0f - (1.0f - bf::exp_bf(-bf::min(kc, 80.0f))) * r) * r;
-  const float e1 = two_pi_v<float>() * bf::select(kappa < 0.25f, series, closed);
+  const float e1 = two_pi_v<float>() * detail::upper_over_two_pi_branch_free(kappa);
   return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.d) * inv_q * e1,
           horner(k, p.s) * inv_q - detail::log_bf(1.0f + k), k * horner(k, p.v) * inv_q};
 }
