@@ -121,4 +121,40 @@ ordered_json clamped_lp_certificate(
        {{"working_rows", lp.working_rows}, {"rounds", lp.rounds}, {"converged", lp.converged}}}};
 }
 
+std::vector<std::string> RationalLayout::parameter_names() const {
+  std::vector<std::string> names;
+  for (const std::string& poly : numerators)
+    for (std::size_t j = 0; j <= degree; ++j) names.push_back(fmt::format("{}{}", poly, j));
+  for (std::size_t j = 0; j < degree; ++j) names.push_back(fmt::format("q{}", j));
+  return names;
+}
+
+ordered_json RationalLayout::coefficients_json(const std::vector<double>& values,
+                                               double kappa_max) const {
+  ordered_json coefficients;
+  std::size_t i = 0;
+  for (const std::string& poly : numerators) {
+    coefficients[poly] = ordered_json::array();
+    for (std::size_t j = 0; j <= degree; ++j) coefficients[poly].push_back(values.at(i++));
+  }
+  coefficients["q"] = ordered_json::array();
+  for (std::size_t j = 0; j < degree; ++j) coefficients["q"].push_back(values.at(i++));
+  coefficients["kappa_max"] = kappa_max;
+  return coefficients;
+}
+
+std::optional<std::vector<double>> RationalLayout::committed_start(const std::string& variant,
+                                                                   double lo, double hi) const {
+  const auto c = committed_coefficients(target, variant, lo, hi);
+  if (!c) return std::nullopt;
+  std::vector<double> values;
+  for (const std::string& poly : numerators) {
+    if (!c->contains(poly) || c->at(poly).size() != degree + 1) return std::nullopt;
+    for (const auto& x : c->at(poly)) values.push_back(x.get<double>());
+  }
+  if (!c->contains("q") || c->at("q").size() != degree) return std::nullopt;
+  for (const auto& x : c->at("q")) values.push_back(x.get<double>());
+  return values;
+}
+
 }  // namespace sglab::fit

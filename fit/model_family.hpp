@@ -112,6 +112,25 @@ std::optional<ordered_json> committed_coefficients(const std::string& target,
                                                    const std::string& variant, double lo,
                                                    double hi);
 
+// The parameter layout of the rational-shape fitters (sglab-fast,
+// sglab-mid): the numerators named `numerators`, each of degree `degree`
+// (lowest order first), then q₀ … q_{degree−1} of the shared monic
+// denominator; their constant sets hold one array per numerator, "q" and
+// "kappa_max".
+struct RationalLayout {
+  std::string target;  // the fit target whose committed sets these are
+  std::vector<std::string> numerators;
+  std::size_t degree;
+  // "a0", "a1", …, "q0", …: the names of the parameters in fit order
+  std::vector<std::string> parameter_names() const;
+  // The coefficients object of a constant set of `values` (fit order).
+  ordered_json coefficients_json(const std::vector<double>& values, double kappa_max) const;
+  // The committed coefficients of `variant` over [lo, hi] in fit order, if
+  // the set exists with this layout (committed_coefficients).
+  std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
+                                                     double hi) const;
+};
+
 // The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
 // its fitted nonlinear parameters, where s' is linear in the parameters
 // `linear` (the numerators of the shape values that multiply fixed functions

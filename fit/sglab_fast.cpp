@@ -44,6 +44,8 @@ namespace {
 
 constexpr int kTrainKappas = 56, kTrainCosines = 161;
 constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
+// The parameters in fit order and the constant set's coefficients object.
+const RationalLayout kLayout{"sglab-fast", {"a", "b", "c", "v"}, kDegree};
 constexpr std::size_t kNumParams = 4 * (kDegree + 1) + kDegree;
 
 std::vector<validate::ReferencePoint> reference_grid(const std::vector<double>& kappas,
@@ -162,29 +164,6 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
   return values;
 }
 
-// The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
-std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
-                                                   double hi) {
-  const auto c = committed_coefficients("sglab-fast", variant, lo, hi);
-  if (!c) return std::nullopt;
-  std::vector<double> values;
-  for (const char* poly : {"a", "b", "c", "v"}) {
-    if (!c->contains(poly) || c->at(poly).size() != kDegree + 1) return std::nullopt;
-    for (const auto& x : c->at(poly)) values.push_back(x.get<double>());
-  }
-  if (!c->contains("q") || c->at("q").size() != kDegree) return std::nullopt;
-  for (const auto& x : c->at("q")) values.push_back(x.get<double>());
-  return values;
-}
-
-std::vector<std::string> parameter_names() {
-  std::vector<std::string> names;
-  for (const char* poly : {"a", "b", "c", "v"})
-    for (std::size_t j = 0; j <= kDegree; ++j) names.push_back(fmt::format("{}{}", poly, j));
-  for (std::size_t j = 0; j < kDegree; ++j) names.push_back(fmt::format("q{}", j));
-  return names;
-}
-
 // The fitted set's errors on its training grid and on the two measuring grids.
 struct Measurements {
   Measured train, standard, held_out;
@@ -197,19 +176,6 @@ Measurements measure_all(const SglabFastParams<double>& fitted,
 }
 
 // The coefficients in SglabFastParams order: a, b, c, v (degree 4), q (monic: 4), kappa_max.
-ordered_json coefficients_json(const std::vector<double>& values, double hi) {
-  ordered_json coefficients;
-  std::size_t i = 0;
-  for (const char* poly : {"a", "b", "c", "v"}) {
-    coefficients[poly] = ordered_json::array();
-    for (std::size_t j = 0; j <= kDegree; ++j) coefficients[poly].push_back(values[i++]);
-  }
-  coefficients["q"] = ordered_json::array();
-  for (std::size_t j = 0; j < kDegree; ++j) coefficients["q"].push_back(values[i++]);
-  coefficients["kappa_max"] = hi;
-  return coefficients;
-}
-
 ordered_json achieved_json(double objective, double floor, const Measurements& m,
                            const MeasuringGrids& grids) {
   ordered_json achieved = {{"objective", objective},
@@ -281,9 +247,9 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   const std::string variant = precision_name(spec.precision) +
                               (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
   Parameters params;
-  params.names = parameter_names();
+  params.names = kLayout.parameter_names();
   std::optional<std::vector<double>> committed;
-  if (!spec.cold_start) committed = committed_start(variant, lo, hi);
+  if (!spec.cold_start) committed = kLayout.committed_start(variant, lo, hi);
   params.values = committed ? *committed : rational_start(per, lo, hi);
 
   // 3. Joint minimax on the runtime function.
@@ -297,7 +263,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   const FitResult result = fit(residuals, params, polish_options(committed.has_value()));
   const MeasuringGrids grids = measuring_grids(spec);
   const Measurements m = measure_all(to_params(result.values, hi), train, grids);
-  const ordered_json coefficients = coefficients_json(result.values, hi);
+  const ordered_json coefficients = kLayout.coefficients_json(result.values, hi);
   const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
   const ordered_json certificate = certificate_json(result.values, train, hi);

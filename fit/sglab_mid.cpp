@@ -56,6 +56,8 @@ constexpr std::size_t kShapeValues = 5;
 constexpr std::size_t kNumParams = kShapeValues * (kDegree + 1) + kDegree;
 // The numerators in SglabMidParams order.
 constexpr std::array<const char*, kShapeValues> kPolys = {"a", "b", "d", "s", "v"};
+// The parameters in fit order and the constant set's coefficients object.
+const RationalLayout kLayout{"sglab-mid", {kPolys.begin(), kPolys.end()}, kDegree};
 
 std::vector<validate::ReferencePoint> reference_grid(const std::vector<double>& kappas,
                                                      const std::vector<double>& cosines) {
@@ -230,21 +232,6 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
   return values;
 }
 
-// The committed coefficients of `variant` over [lo, hi], in parameter order, if any.
-std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
-                                                   double hi) {
-  const auto c = committed_coefficients("sglab-mid", variant, lo, hi);
-  if (!c) return std::nullopt;
-  std::vector<double> values;
-  for (const char* poly : kPolys) {
-    if (!c->contains(poly) || c->at(poly).size() != kDegree + 1) return std::nullopt;
-    for (const auto& x : c->at(poly)) values.push_back(x.get<double>());
-  }
-  if (!c->contains("q") || c->at("q").size() != kDegree) return std::nullopt;
-  for (const auto& x : c->at("q")) values.push_back(x.get<double>());
-  return values;
-}
-
 // The per-κ floor recorded in the committed set of `variant` over [lo, hi], if any.
 std::optional<double> committed_floor(const std::string& variant, double lo, double hi) {
   const auto set = committed_set("sglab-mid", variant, lo, hi);
@@ -254,14 +241,6 @@ std::optional<double> committed_floor(const std::string& variant, double lo, dou
   } catch (const std::exception&) {
     return std::nullopt;
   }
-}
-
-std::vector<std::string> parameter_names() {
-  std::vector<std::string> names;
-  for (const char* poly : kPolys)
-    for (std::size_t j = 0; j <= kDegree; ++j) names.push_back(fmt::format("{}{}", poly, j));
-  for (std::size_t j = 0; j < kDegree; ++j) names.push_back(fmt::format("q{}", j));
-  return names;
 }
 
 // The fitted set's errors on its training grid and on the two measuring grids.
@@ -276,19 +255,6 @@ Measurements measure_all(const SglabMidParams<double>& fitted,
 }
 
 // The coefficients in SglabMidParams order: a, b, d, s, v (degree 4), q (monic: 4), kappa_max.
-ordered_json coefficients_json(const std::vector<double>& values, double hi) {
-  ordered_json coefficients;
-  std::size_t i = 0;
-  for (const char* poly : kPolys) {
-    coefficients[poly] = ordered_json::array();
-    for (std::size_t j = 0; j <= kDegree; ++j) coefficients[poly].push_back(values[i++]);
-  }
-  coefficients["q"] = ordered_json::array();
-  for (std::size_t j = 0; j < kDegree; ++j) coefficients["q"].push_back(values[i++]);
-  coefficients["kappa_max"] = hi;
-  return coefficients;
-}
-
 ordered_json achieved_json(double objective, double floor, const Measurements& m,
                            const MeasuringGrids& grids) {
   ordered_json achieved = {{"objective", objective},
@@ -338,7 +304,7 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   const std::string variant = precision_name(spec.precision) +
                               (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
   std::optional<std::vector<double>> committed;
-  if (!spec.cold_start) committed = committed_start(variant, lo, hi);
+  if (!spec.cold_start) committed = kLayout.committed_start(variant, lo, hi);
 
   // 1. Per-κ floor: about a minute of LPs and solves, so a polish of the
   // committed set takes the floor its provenance records (same grid, same
@@ -356,7 +322,7 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
 
   // 2. Rational start (or the committed set).
   Parameters params;
-  params.names = parameter_names();
+  params.names = kLayout.parameter_names();
   params.values = committed ? *committed : rational_start(per, lo, hi);
 
   // 3. Joint minimax on the runtime function.
@@ -370,7 +336,7 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   const FitResult result = fit(residuals, params, polish_options(committed.has_value()));
   const MeasuringGrids grids = measuring_grids(spec);
   const Measurements m = measure_all(params_from(result.values, hi), train, grids);
-  const ordered_json coefficients = coefficients_json(result.values, hi);
+  const ordered_json coefficients = kLayout.coefficients_json(result.values, hi);
   const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
   const ordered_json certificate = certificate_json(result.values, train, hi);
