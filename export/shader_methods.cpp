@@ -554,7 +554,7 @@ const std::vector<ShaderMethod>& shader_methods() {
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc2",
        "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 2, D "
-       "= 3 (sglab_acc.hpp)",
+       "= 5 (sglab_acc.hpp)",
        [] {
          return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}};
        },

@@ -65,7 +65,7 @@ std::span<const RequiredSet> required_sets() {
       {"lambda_d_diffuse_lobe_sphere_ls", "DiffuseLobeParams<double>"},
       {"meder2018_published", "Meder2018Params<double>"},
       {"sglab_acc_acc1", "SglabAccParams<double, 1, 3>"},
-      {"sglab_acc_acc2", "SglabAccParams<double, 2, 3>"},
+      {"sglab_acc_acc2", "SglabAccParams<double, 2, 5>"},
       {"sglab_acc_acc3", "SglabAccParams<double, 3, 4>"},
       {"sglab_fast_float", "SglabFastParams<double>"},
       {"sglab_mid_float", "SglabMidParams<double>"},

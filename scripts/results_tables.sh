@@ -71,7 +71,7 @@ vsgl2015|[Tokuyoshi2015] diffuse SG, one exp|
 tokuyoshi2024|[Tokuyoshi2024] lerp of the exact poles, erfc-based factor|
 sglab_acc1|2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P0(u), u = t/(t + s)|
 sglab_acc2|… + b1(κ)z²|
-sglab_acc3|… + b2(κ)z⁴, P_j of degree 4 (acc1, acc2: 3)|bold
+sglab_acc3|… + b2(κ)z⁴; P_j of degree 3, 5, 4 (acc1, acc2, acc3)|bold
 sglab_fast|exact E(1, κ) × A + Bc + Cρ(Vc + ½), rational A, B, C, V|
 sglab_mid|exact E(1, κ) × A + B(c + √(c² + e^{S − Vc²})) + Dc², rational A, B, D, S, V|
 EOF

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -152,9 +153,9 @@ TEST(SglabAccFit, RecoversKnownSyntheticCoefficients) {
 }
 
 // Model order: a narrow scene range with a loose budget gets the cheapest
-// member (one term of degree 2), while the full range with the 3.5e-5 target
-// needs three terms: acc1 and acc2 (the cheaper rungs, fitted on the full
-// range) measurably miss it on random points.
+// member (one term of degree 2), while the full range needs more terms for
+// issue 17 §2's targets: acc1 (one term) measurably misses the two-term
+// target 3.5e-5 and acc2 (two terms) the three-term target 1e-5 on random points.
 //
 // An unbounded trust-region step once made a residual NaN in this search
 // (fit_guard.hpp fails the process then); the
@@ -197,13 +198,14 @@ TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   EXPECT_EQ(out.constant_sets[0]["provenance"]["certificate"]["kind"], "lp_at_fitted_steepness");
 
   const auto ref = sglab::validate::reference_engine().evaluate(random_points(3000, 99));
-  for (const char* id : {"sglab_acc1", "sglab_acc2"}) {
+  for (const auto& [id, target] :
+       {std::pair{"sglab_acc1", 3.5e-5}, std::pair{"sglab_acc2", 1e-5}}) {
     const sglab::Method& m = method(id);
     double worst = 0;
     for (const auto& r : ref)
       worst = std::max(worst, std::abs(m.f64(r.cosine, r.kappa) - r.irradiance) /
                                   sglab::irradiance_upper(r.kappa));
-    EXPECT_GT(worst, 3.5e-5) << id;
+    EXPECT_GT(worst, target) << id;
   }
 }
 

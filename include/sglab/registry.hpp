@@ -224,7 +224,7 @@ inline constexpr Method irradiance_methods[] = {
         "sglab_acc1", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 = u(1-u)^3 P(u), u = t/(t+s), P of degree 3",
         "sglab_acc_acc1"),
     detail::make_sglab_acc<constants::sglab_acc_acc2>(
-        "sglab_acc2", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j = u(1-u)^3 P_j(u), P_j of degree 3",
+        "sglab_acc2", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j = u(1-u)^3 P_j(u), P_j of degree 5",
         "sglab_acc_acc2"),
     detail::make_sglab_acc<constants::sglab_acc_acc3>(
         "sglab_acc3", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j = u(1-u)^3 P_j(u), P_j of degree 4",
