@@ -164,7 +164,18 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome,
     if (fs::exists(path, ec) && !force) {
       try {
         const fit::ordered_json old = fit::load_constant_set(path);
-        if (achieved_objective(old) < achieved_objective(set)) {
+        // Objectives compare only for the same form and the same objective
+        // (sglab-acc's weight names its target): otherwise the new set replaces.
+        const auto field = [](const fit::ordered_json& j, const char* pointer) {
+          return j.value(fit::ordered_json::json_pointer(pointer), std::string());
+        };
+        const bool comparable =
+            field(old, "/cpp_type") == field(set, "/cpp_type") &&
+            field(old, "/provenance/objective") == field(set, "/provenance/objective");
+        if (!comparable)
+          log += fmt::format("  replacing {}: its form or objective differs from the new fit's\n",
+                             path.string());
+        else if (achieved_objective(old) < achieved_objective(set)) {
           log += fmt::format(
               "  kept {}: its objective {:.6e} beats the new {:.6e} (use --force to replace)\n",
               path.string(), achieved_objective(old), achieved_objective(set));
