@@ -68,7 +68,7 @@ struct Member {
 // The family, cheapest first (by the operations counted in `operations`):
 // the one list of the members that are instantiated (with_member below).
 constexpr Member kFamily[] = {{1, 2}, {1, 3}, {2, 2}, {2, 3}, {2, 5},
-                              {3, 3}, {3, 4}, {3, 6}, {4, 4}, {4, 6}};
+                              {3, 3}, {3, 4}, {4, 4}, {3, 6}, {4, 6}};
 
 template <std::size_t V>
 using Size = std::integral_constant<std::size_t, V>;
