@@ -98,6 +98,38 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   EXPECT_FALSE(fs::exists(header));
 }
 
+// Without --force a set in --out is kept when it scores better than the new
+// fit, but only against a set of the same form and objective: one fitted for
+// another objective (or form) is replaced, and the report says so.
+TEST(FitCli, ABetterSetIsKeptOnlyForTheSameObjective) {
+  InCheckout cwd;
+  TempDir tmp("fit_keep");
+  const fs::path out = tmp.path / "sets";
+  fs::create_directories(out);
+  const fs::path json = out / "lambda-d-diffuse-lobe-sphere-ls.json";
+  auto set = sglab::fit::load_constant_set(kRoot / "data" / "constants" /
+                                           "lambda-d-diffuse-lobe-sphere-ls.json");
+  set["provenance"]["achieved"]["objective"] = 1e-300;  // better than any fit
+  std::ofstream(json) << set.dump(2);
+  const std::string better = slurp(json);
+  auto r = run_sglab(quick_fit({"--out", out.string()}));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("kept " + json.string()), std::string::npos) << r.output;
+  EXPECT_EQ(slurp(json), better);
+
+  set["provenance"]["objective"] = "another objective";
+  std::ofstream(json) << set.dump(2);
+  r = run_sglab(quick_fit({"--out", out.string()}));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("replacing " + json.string() + ": its form or objective differs"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(sglab::fit::load_constant_set(json)["provenance"]["objective"],
+            sglab::fit::load_constant_set(
+                kRoot / "data" / "constants" /
+                "lambda-d-diffuse-lobe-sphere-ls.json")["provenance"]["objective"]);
+}
+
 TEST(FitCli, OptionsThatDoNotApplyAreRefused) {
   const std::vector<std::vector<std::string>> refused = {
       {"fit", "erf", "--alpha-free"},
