@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -129,6 +130,14 @@ struct RationalLayout {
   // the set exists with this layout (committed_coefficients).
   std::optional<std::vector<double>> committed_start(const std::string& variant, double lo,
                                                      double hi) const;
+  // The certificate of a fit in this layout (clamped_lp_certificate below):
+  // the first `free_numerators` numerators free, the rest of `values` as
+  // fitted. `Residual` is the fit's residual, made as Residual{κ, c, E,
+  // E(1, κ), kappa_max}.
+  template <class Residual>
+  ordered_json lp_certificate(const std::vector<validate::ReferencePoint>& train,
+                              const std::vector<double>& values, std::size_t free_numerators,
+                              double kappa_max, const std::string& kind) const;
 };
 
 // The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
@@ -153,6 +162,23 @@ ordered_json clamped_lp_certificate(
     const std::function<std::unique_ptr<ceres::CostFunction>(const validate::ReferencePoint&)>&
         residual,
     const std::string& kind);
+
+template <class Residual>
+ordered_json RationalLayout::lp_certificate(const std::vector<validate::ReferencePoint>& train,
+                                            const std::vector<double>& values,
+                                            std::size_t free_numerators, double kappa_max,
+                                            const std::string& kind) const {
+  std::vector<std::size_t> linear(free_numerators * (degree + 1));
+  std::iota(linear.begin(), linear.end(), std::size_t(0));
+  return clamped_lp_certificate(
+      train, values, linear,
+      [&](const validate::ReferencePoint& r) {
+        return make_residual(
+            Residual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), kappa_max},
+            values.size());
+      },
+      kind);
+}
 
 // The solver options of a fit from a committed set (`polish`: one reweighting
 // round, then the penalty form for 10^2 … 10^5, each solve capped, to keep

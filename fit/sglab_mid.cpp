@@ -277,15 +277,8 @@ ordered_json per_kappa_json(const std::vector<PerKappa>& per) {
 // parameter order).
 ordered_json certificate_json(const std::vector<double>& values,
                               const std::vector<validate::ReferencePoint>& train, double hi) {
-  std::vector<std::size_t> linear(3 * (kDegree + 1));
-  std::iota(linear.begin(), linear.end(), 0);
-  return clamped_lp_certificate(
-      train, values, linear,
-      [&](const validate::ReferencePoint& r) {
-        return make_residual(
-            ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi},
-            kNumParams);
-      },
+  return kLayout.lp_certificate<ModelResidual>(
+      train, values, 3, hi,
       "lp_at_fitted_denominator_s_and_v: the numerators of A, B and D free, Q, S(kappa) and "
       "V(kappa) as fitted; bound min(LP optimum, L)");
 }
