@@ -223,21 +223,22 @@ std::string helper_sglab_acc_lerp(const Ctx& c, const Slots&) {
   return subst(
       R"(// f = f2024 + (1 - c^2) e^(-z^2) sum_j b_j z^2j, z = t c, saturated: the [Tokuyoshi2024]
 // Listing 7 factor f2024 = 1/2 (c erfc(-z) + erfc(t)) - e^(-z^2) expm1(t^2 (c^2 - 1))/(2 sqrt(pi) t)
-// with sglab's fitted even correction (sglab/sglab_acc.hpp). Where e^(-z^2) has underflowed
-// the correction is 0 (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
+// with sglab's fitted even correction (sglab/sglab_acc.hpp). With x = -t^2 (1 - c^2) the tail is
+// -e^(-z^2) x E(x)/(2 sqrt(pi) t) = e^(-z^2) (1 - c^2) t E(x)/(2 sqrt(pi)), E(x) = expm1(x)/x, so
+// f = 1/2 (c erfc(-z) + erfc(t)) + e^(-z^2) (1 - c^2) (t E(x)/(2 sqrt(pi)) + sum_j b_j z^2j): no
+// division by t, and the correction shares the tail's factor. Where e^(-z^2) has underflowed the
+// correction is left out (its polynomial would overflow first for huge kappa). t = t(kappa) >= 0,
 // so erfc(t) is erfc_pos(t).
 {INLINE}float {P}lerp_factor(float cosine, float t) {
   float c = clamp(cosine, -1.0f, 1.0f);
   float tz = t * c;
   float z2 = tz * tz;
-  float x = t * t * (c * c - 1.0f);
+  float one_minus_c2 = 1.0f - c * c;
+  float x = -(t * t) * one_minus_c2;
   float g = exp(-z2);
-  float tail = 0.0f;
-  if (t > 0.0f) tail = g * (x * {P}expm1_over_x(x)) / t;
-  float f = 0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail;
-  float corr = 0.0f;
-  if (g > 0.0f) corr = (1.0f - c * c) * g * {P}correction(t, z2);
-  return clamp(f + corr, 0.0f, 1.0f);
+  float h = 0.282094792f * t * {P}expm1_over_x(x);
+  if (g > 0.0f) h += {P}correction(t, z2);
+  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) + g * one_minus_c2 * h, 0.0f, 1.0f);
 }
 )",
       c);

@@ -513,6 +513,8 @@ std::vector<std::pair<float, std::string>> fixed_constants() {
       {static_cast<float>(2 * std::numbers::pi), "2 pi"},
       {static_cast<float>(4 * std::numbers::pi), "4 pi, S(d) of [Wang2009]"},
       {static_cast<float>(std::numbers::inv_sqrtpi), "1/sqrt(pi), [Tokuyoshi2024] Listing 7"},
+      {static_cast<float>(std::numbers::inv_sqrtpi / 2),
+       "1/(2 sqrt(pi)), [Tokuyoshi2024] Listing 7 tail (sglab_acc)"},
   };
   for (std::size_t i = 0, n = t.size(); i < n; ++i) t.emplace_back(-t[i].first, "-" + t[i].second);
   // Taylor coefficients in long double: (e^x - 1)/x = sum x^n/(n+1)!, and the
