@@ -35,7 +35,7 @@ std::optional<Language> parse_language(std::string_view text);
 // GLSL float16_t through GL_EXT_shader_explicit_arithmetic_types_float16, HLSL
 // `half` with glslang's 16-bit types). The half form is the float form with
 // every type, literal and constant in binary16, except where a method has a
-// half form of its own (sglab_fast: its κ-only part stays float). C++ has no
+// half form of its own (sglab_fast, sglab_mid: their κ-only part stays float). C++ has no
 // half export.
 enum class Precision { float32, float16 };
 std::string_view to_string(Precision p);  // "float", "half"

@@ -353,12 +353,53 @@ std::string helper_sglab_fast_half(const Ctx& c, const Slots& slots) {
                c);
 }
 
+// The half form of sglab_mid: as sglab_fast's, its κ-only part (E(1, κ) and the
+// rational A, B, D, S, V, whose κ^4 overflows half above κ = 16) in float, the
+// per-pixel shape in half: the runtime's per-light split (sglab/sglab_mid.hpp
+// sglab_mid_light, sglab_mid_eval) with the light's five numbers rounded to half
+// (S ∈ [−9.7, 2.6] and V ≤ 5.9e3 over κ ∈ [1e−3, 1e4] for the shipped set, so
+// e^{S − V c²} stays within half).
+std::string helper_sglab_mid_half(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  const bool glsl = c.lang == Language::glsl;
+  const std::string h(half_type(c.lang));
+  const std::string fn = glsl ? "" : c.prefix + "h_";  // the HLSL prelude's half intrinsics
+  return subst(
+      fmt::format(
+          R"(// sglab_mid in half: a, b, d = (A, B, D) E(1, kappa), s = S, v = V in float (kappa alone),
+// rounded to half; max(0, a + b (c + sqrt(c^2 + exp(s - v c^2))) + d c^2) in half.
+{0} {{P}}mid_half({0} cosine, float kappa) {{
+  float k = min(kappa, {2});
+  float inv_q = 1.0f / ({3} + k * k * k * k);
+  float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
+  {0} a = {0}({4} * scale);
+  {0} b = {0}({5} * scale);
+  {0} d = {0}({6} * scale);
+  {0} s_k = {0}({7} * inv_q - log(1.0f + k));
+  {0} v_k = {0}(k * {8} * inv_q);
+  {0} c2 = cosine * cosine;
+  {0} x = {1}clamp(s_k - v_k * c2, {0}(-80.0), {0}(80.0));
+  {0} s = a + b * (cosine + {1}sqrt(c2 + {1}exp(x))) + d * c2;
+  return {0}(0.5) * (s + {1}abs(s));
+}}
+)",
+          h, fn, names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"), poly("d"),
+          poly("s"), poly("v")),
+      c);
+}
+
 const std::vector<HalfForm>& half_forms() {
   static const std::vector<HalfForm> table = {
       {"sglab_fast",
        "kappa-only part (E(1, kappa), the rational A, B, C, V) in float, per-pixel shape in half",
        {helper_sglab_fast, helper_sglab_fast_half},
        "  return {P}fast_half(cosine, float(kappa));\n"},
+      {"sglab_mid",
+       "kappa-only part (E(1, kappa), the rational A, B, D, S, V) in float, per-pixel shape in "
+       "half",
+       {helper_sglab_mid, helper_sglab_mid_half},
+       "  return {P}mid_half(cosine, float(kappa));\n"},
   };
   return table;
 }

@@ -97,7 +97,8 @@ TEST(HalfExport, LiteralsAreHalvesAndNoFloatIsLeft) {
         EXPECT_EQ(static_cast<float>(static_cast<_Float16>(v)), v) << (*it)[0].str();
         ++count;
       }
-      if (id == "sglab_fast") continue;  // its κ-only part is float by design
+      if (id == "sglab_fast" || id == "sglab_mid")
+        continue;  // their κ-only part is float by design
       EXPECT_GT(count, 0u);
       // The HLSL prelude converts to float for exp, exp2, log and sqrt only.
       const std::string rest = std::regex_replace(

@@ -223,7 +223,10 @@ inline constexpr Tolerance kTolerances[] = {
     {"wang2009_refit", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_fast", half_peak_rel, f16, 5e-3,
      "issue 16 §4: its own half form (the κ-only part in float: κ⁴ overflows half)"},
-    {"sglab_mid", half_peak_rel, f16, kNone, kNoHalfClaim},
+    {"sglab_mid", half_peak_rel, f16, 2.5e-3,
+     "its own half form (the κ-only part in float: κ⁴ overflows half); half rounding (~1e-3 of "
+     "each "
+     "term) dominates the model's 4.2e-4"},
     {"sglab_acc1", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc2", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc3", half_peak_rel, f16, 5e-3,
@@ -246,7 +249,8 @@ inline constexpr Tolerance kTolerances[] = {
     {"wang2009_refit", half_vs_float, f16, kNone, kNoHalfClaim},
     {"sglab_fast", half_vs_float, f16, 1e-2,
      "half rounding of its own half form; survives [1e-2, 1e3]"},
-    {"sglab_mid", half_vs_float, f16, kNone, kNoHalfClaim},
+    {"sglab_mid", half_vs_float, f16, 1e-2,
+     "half rounding of its own half form; survives [1e-2, 1e3]"},
     {"sglab_acc1", half_vs_float, f16, kNone, kNoHalfClaim},
     {"sglab_acc2", half_vs_float, f16, kNone, kNoHalfClaim},
     {"sglab_acc3", half_vs_float, f16, 1e-2,
