@@ -127,7 +127,9 @@ std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
                c);
 }
 // sglab_acc.hpp sglab_acc_eval: the [Tokuyoshi2024] Listing 7 factor from the light's t, erfc(t)/2,
-// 1/(2 sqrt(pi) t) and t^2, plus (1 - c^2) e^(-z^2) sum_j b_j z^2j (0 where e^(-z^2) underflowed).
+// 1/(2 sqrt(pi) t) and t^2, plus (1 - c^2) e^(-z^2) sum_j b_j z^2j (0 where e^(-z^2) underflowed),
+// the tail written as e^(-z^2) (1 - c^2) t^2 E(x)/(2 sqrt(pi) t), x = -t^2 (1 - c^2), E(x) =
+// expm1(x)/x, so that the correction shares its factor (as the unsplit helper_sglab_acc_lerp).
 std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
   const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
   std::vector<std::string> b;
@@ -138,9 +140,9 @@ std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
   float one_minus_c2 = 1.0f - c * c;
   float g = exp(-z2);
   float x = -light.t2 * one_minus_c2;
-  float f = 0.5f * c * {{P}}erfc(-z) + light.half_erfc_t - g * (x * {{P}}expm1_over_x(x)) * light.tail_scale;
-  if (g > 0.0f) f += one_minus_c2 * g * {};
-  f = clamp(f, 0.0f, 1.0f);
+  float h = light.t2 * light.tail_scale * {{P}}expm1_over_x(x);
+  if (g > 0.0f) h += {};
+  float f = clamp(0.5f * c * {{P}}erfc(-z) + light.half_erfc_t + g * one_minus_c2 * h, 0.0f, 1.0f);
   return 6.28318548f * (light.lower + f * (light.upper - light.lower));
 )",
                            horner_text("z2", b)),
