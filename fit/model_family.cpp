@@ -86,6 +86,35 @@ std::optional<ordered_json> committed_coefficients(const std::string& target,
   return set->at("coefficients");
 }
 
+ordered_json achieved_json(double objective, double floor, const Measurements& m,
+                           const MeasuringGrids& grids) {
+  ordered_json achieved = {{"objective", objective},
+                           {"training_max_peak_rel_float", m.train.float_max},
+                           {"per_kappa_floor", floor}};
+  achieved.update(measured_json(grids, m.standard, m.held_out));
+  return achieved;
+}
+
+std::string rational_fit_text(const std::string& target, const std::string& variant, double floor,
+                              bool committed, double start_error, double objective,
+                              const MeasuringGrids& grids, const Measurements& m,
+                              const ordered_json& certificate, const std::string& numerators,
+                              const std::string& fixed) {
+  return fmt::format(
+      "{} ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
+      "  held-out ({}): float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}\n"
+      "  standard ({}): float {:.4e}, double {:.4e}\n"
+      "  certificate: {:.4e} on {}, within {:.2f}% of the best numerators of {} at the fitted "
+      "{} ({:.4e}, LP)\n",
+      target, variant, floor, committed ? "committed start" : "rational start", start_error,
+      objective, grids.held_out_name, m.held_out.float_max, m.held_out.float_kappa,
+      m.held_out.float_cosine, m.held_out.double_max, grids.standard_name, m.standard.float_max,
+      m.standard.double_max, certificate["achieved"].get<double>(),
+      certificate["grid"].get<std::string>(),
+      certificate["within_percent_of_best_member"].get<double>(), numerators, fixed,
+      certificate["lower_bound"].get<double>());
+}
+
 FitOptions polish_options(bool polish) {
   FitOptions options;
   if (polish) {

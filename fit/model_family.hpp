@@ -138,6 +138,16 @@ struct RationalLayout {
   ordered_json lp_certificate(const std::vector<validate::ReferencePoint>& train,
                               const std::vector<double>& values, std::size_t free_numerators,
                               double kappa_max, const std::string& kind) const;
+  // The joint minimax of every parameter on the training points from
+  // `params` (a polish when `polish`, polish_options), with the same
+  // Residual: the solver's result and the max |residual| at the start.
+  struct JointFit {
+    FitResult result;
+    double start_error = 0;
+  };
+  template <class Residual>
+  JointFit joint_minimax(const std::vector<validate::ReferencePoint>& train,
+                         const Parameters& params, double kappa_max, bool polish) const;
 };
 
 // The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
@@ -185,4 +195,44 @@ ordered_json RationalLayout::lp_certificate(const std::vector<validate::Referenc
 // `sglab fit all` short) or from scratch (the engine's defaults).
 FitOptions polish_options(bool polish);
 
+template <class Residual>
+RationalLayout::JointFit RationalLayout::joint_minimax(
+    const std::vector<validate::ReferencePoint>& train, const Parameters& params, double kappa_max,
+    bool polish) const {
+  Residuals residuals;
+  for (const auto& r : train)
+    residuals.push_back(make_residual(
+        Residual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), kappa_max},
+        params.values.size()));
+  JointFit out;
+  for (double r : evaluate_residuals(residuals, params.values))
+    out.start_error = std::max(out.start_error, std::abs(r));
+  out.result = fit(residuals, params, polish_options(polish));
+  return out;
+}
+
+// A fitted model's errors on its training grid and on the two measuring grids.
+struct Measurements {
+  Measured train, standard, held_out;
+};
+template <class Model>
+Measurements measure_all(const Model& model, const std::vector<validate::ReferencePoint>& train,
+                         const MeasuringGrids& grids) {
+  return {measure(model, train), measure(model, grids.standard), measure(model, grids.held_out)};
+}
+
+// "achieved" of a rational-shape fit's provenance: its objective, its float
+// max on the training grid, the family's per-κ floor, then measured_json.
+ordered_json achieved_json(double objective, double floor, const Measurements& m,
+                           const MeasuringGrids& grids);
+
+// The summary of a rational-shape fit as `sglab fit` prints it: the floor, the
+// start and joint minimax errors (training), both measuring grids and the
+// certificate ("within x% of the best numerators of `numerators` at the fitted
+// `fixed`").
+std::string rational_fit_text(const std::string& target, const std::string& variant, double floor,
+                              bool committed, double start_error, double objective,
+                              const MeasuringGrids& grids, const Measurements& m,
+                              const ordered_json& certificate, const std::string& numerators,
+                              const std::string& fixed);
 }  // namespace sglab::fit

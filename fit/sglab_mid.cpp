@@ -243,27 +243,6 @@ std::optional<double> committed_floor(const std::string& variant, double lo, dou
   }
 }
 
-// The fitted set's errors on its training grid and on the two measuring grids.
-struct Measurements {
-  Measured train, standard, held_out;
-};
-Measurements measure_all(const SglabMidParams<double>& fitted,
-                         const std::vector<validate::ReferencePoint>& train,
-                         const MeasuringGrids& grids) {
-  const auto model = [&](auto c, auto k) { return irradiance_sglab_mid(c, k, fitted); };
-  return {measure(model, train), measure(model, grids.standard), measure(model, grids.held_out)};
-}
-
-// The coefficients in SglabMidParams order: a, b, d, s, v (degree 4), q (monic: 4), kappa_max.
-ordered_json achieved_json(double objective, double floor, const Measurements& m,
-                           const MeasuringGrids& grids) {
-  ordered_json achieved = {{"objective", objective},
-                           {"training_max_peak_rel_float", m.train.float_max},
-                           {"per_kappa_floor", floor}};
-  achieved.update(measured_json(grids, m.standard, m.held_out));
-  return achieved;
-}
-
 ordered_json per_kappa_json(const std::vector<PerKappa>& per) {
   ordered_json table = ordered_json::array();
   for (const auto& p : per)
@@ -319,16 +298,12 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   params.values = committed ? *committed : rational_start(per, lo, hi);
 
   // 3. Joint minimax on the runtime function.
-  Residuals residuals;
-  for (const auto& r : train)
-    residuals.push_back(make_residual(
-        ModelResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), hi}, kNumParams));
-  double start_error = 0;
-  for (double r : evaluate_residuals(residuals, params.values))
-    start_error = std::max(start_error, std::abs(r));
-  const FitResult result = fit(residuals, params, polish_options(committed.has_value()));
+  const auto [result, start_error] =
+      kLayout.joint_minimax<ModelResidual>(train, params, hi, committed.has_value());
   const MeasuringGrids grids = measuring_grids(spec);
-  const Measurements m = measure_all(params_from(result.values, hi), train, grids);
+  const auto fitted = params_from(result.values, hi);
+  const Measurements m =
+      measure_all([&](auto c, auto k) { return irradiance_sglab_mid(c, k, fitted); }, train, grids);
   const ordered_json coefficients = kLayout.coefficients_json(result.values, hi);
   const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
@@ -368,18 +343,8 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
                 {"certificate", certificate},
                 {"coefficients", coefficients}};
   out.report["per_kappa"] = per_kappa_json(per);
-  out.text = fmt::format(
-      "sglab-mid ({}): per-kappa floor {:.4e}, {} {:.4e}, joint minimax {:.4e} (training)\n"
-      "  held-out ({}): float {:.4e} (at kappa {:.4g}, c {:.4g}), double {:.4e}\n"
-      "  standard ({}): float {:.4e}, double {:.4e}\n"
-      "  certificate: {:.4e} on {}, within {:.2f}% of the best numerators of A, B, D at the fitted "
-      "Q, S and V ({:.4e}, LP)\n",
-      variant, floor, committed ? "committed start" : "rational start", start_error, result.max_abs,
-      grids.held_out_name, m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine,
-      m.held_out.double_max, grids.standard_name, m.standard.float_max, m.standard.double_max,
-      certificate["achieved"].get<double>(), certificate["grid"].get<std::string>(),
-      certificate["within_percent_of_best_member"].get<double>(),
-      certificate["lower_bound"].get<double>());
+  out.text = rational_fit_text("sglab-mid", variant, floor, committed.has_value(), start_error,
+                               result.max_abs, grids, m, certificate, "A, B, D", "Q, S and V");
   return out;
 }
 
