@@ -128,15 +128,23 @@ class PenaltyResidual final : public ceres::CostFunction {
     set_num_residuals(1);
     for (std::size_t i = 0; i <= n_; ++i) mutable_parameter_block_sizes()->push_back(1);
   }
+  // The base residual's derivatives only where the constraint is active: near
+  // the minimax point most |r_i| are below E, and their row is 0 (the value
+  // alone costs one double evaluation instead of the autodiff passes).
   bool Evaluate(double const* const* p, double* residual, double** jacobians) const override {
     double r = 0;
-    std::vector<double> jac(n_, 0.0);
-    std::vector<double*> jac_ptrs(n_);
-    for (std::size_t i = 0; i < n_; ++i) jac_ptrs[i] = &jac[i];
-    if (!base_->Evaluate(p, &r, jacobians ? jac_ptrs.data() : nullptr)) return false;
+    if (!base_->Evaluate(p, &r, nullptr)) return false;
     const double E = p[n_][0];
+    bool active = std::abs(r) - E > 0;
+    std::vector<double> jac;
+    if (jacobians && active) {
+      jac.assign(n_, 0.0);
+      std::vector<double*> jac_ptrs(n_);
+      for (std::size_t i = 0; i < n_; ++i) jac_ptrs[i] = &jac[i];
+      if (!base_->Evaluate(p, &r, jac_ptrs.data())) return false;
+      active = std::abs(r) - E > 0;
+    }
     const double excess = std::abs(r) - E;
-    const bool active = excess > 0;
     residual[0] = active ? sqrt_mu_ * excess : 0.0;
     if (jacobians) {
       const double sign = r < 0 ? -1.0 : 1.0;
