@@ -22,7 +22,9 @@
 #include "fit/minimax.hpp"
 #include "fit/solver_log.hpp"
 #include "fit/targets.hpp"
+#include "report/cost_source.hpp"
 #include "report/cost_table.hpp"
+#include "report/pareto.hpp"
 
 namespace sglab::app {
 
@@ -117,9 +119,12 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target,
   return spec;
 }
 
-// The float scalar costs of the cost table (`sglab bench`): --costs FILE, else
-// the project's data/results/costs.json when there is one, else none (the
-// report then says so). A malformed table is bad input.
+// The costs of the cost table (`sglab bench`, `sglab gpucost`): --costs FILE,
+// else the project's data/results/costs.json when there is one, else none (the
+// report then says so). In the default cost source of `pareto` and `recommend`
+// (report/cost_source.hpp: GPU cycles on navi21, a compiler estimate with no
+// run-to-run noise) when the table has a "gpu" section for it, else CPU batch
+// ns/eval (report::default_float_costs). A malformed table is bad input.
 fit::MethodCosts read_method_costs(const std::string& option) {
   std::filesystem::path path = option;
   if (option.empty()) {
@@ -129,13 +134,14 @@ fit::MethodCosts read_method_costs(const std::string& option) {
     path = *found;
   }
   const report::CostTable table = report::read_cost_table(path);
+  const report::MethodCostMap found = report::default_float_costs(table);
   fit::MethodCosts costs;
-  costs.source = fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(), table.info.date,
-                             table.info.cpu, table.info.cores);
-  for (const auto& c : table.costs)
-    if (c.kind == report::CostKind::irradiance && c.precision == validate::FloatFormat::binary32 &&
-        c.mode == report::CostMode::scalar)
-      costs.float_scalar_ns[c.method] = c.ns_per_eval;
+  costs.what = found.source.describe();
+  costs.source = found.source.kind == report::CostSourceKind::gpu
+                     ? fmt::format("{} (sglab gpucost, {})", path.string(), table.gpu->driver)
+                     : fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(),
+                                   table.info.date, table.info.cpu, table.info.cores);
+  costs.per_method = found.cost;
   return costs;
 }
 
@@ -395,8 +401,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
   auto* costs = cmd->add_option(
       "--costs", o->costs,
-      "cost table written by `sglab bench` for the cost column (default: data/results/costs.json "
-      "of the project holding the working directory, if any)" +
+      "cost table for the cost column: its GPU cycles on navi21 (`sglab gpucost --out DIR`), else "
+      "its CPU batch ns (`sglab bench`) (default: data/results/costs.json of the project holding "
+      "the working directory, if any)" +
           taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");

@@ -107,15 +107,16 @@ struct Rung {
 constexpr Rung kLadder[] = {
     {"acc1", {1, 3}, 2.4e-4}, {"acc2", {2, 5}, 3.2e-5}, {"acc3", {3, 4}, 2.8e-5}};
 
-// The cost of a member: float scalar ns/eval of the runtime method of the
-// same form (N, D), the shipped sglab_acc<k> (its cost does not depend on
-// the coefficients), over tokuyoshi2024's, both from the cost table
-// (spec.costs, `sglab bench`). Never timed here: a report is the same for the
-// same inputs. None for a form no shipped method has, or without a table.
+// The cost of a member: the cost of the runtime method of the same form
+// (N, D), the shipped sglab_acc<k> (its cost does not depend on the
+// coefficients), over tokuyoshi2024's, both from the cost table (spec.costs:
+// GPU cycles on navi21 when the table has them, else CPU batch ns). Never
+// measured here: a report is the same for the same inputs. None for a form no
+// shipped method has, or without a table.
 std::optional<double> member_cost(Member m, const MethodCosts& costs) {
   const auto row = [&](const std::string& method) -> std::optional<double> {
-    const auto it = costs.float_scalar_ns.find(method);
-    return it == costs.float_scalar_ns.end() ? std::nullopt : std::optional<double>(it->second);
+    const auto it = costs.per_method.find(method);
+    return it == costs.per_method.end() ? std::nullopt : std::optional<double>(it->second);
   };
   const auto base = row("tokuyoshi2024");
   for (const Rung& r : kLadder)
@@ -665,8 +666,9 @@ std::string cost_source(const MethodCosts& costs) {
   if (costs.source.empty())
     return "none (no cost table; `sglab bench` writes data/results/costs.json): operation counts "
            "only";
-  return "float scalar ns/eval of the shipped method of the same form over tokuyoshi2024's (CPU), "
-         "from the cost table " +
+  return costs.what +
+         " of the shipped method of the same form over tokuyoshi2024's, from the "
+         "cost table " +
          costs.source + "; '-' where no shipped method has the form";
 }
 
@@ -730,7 +732,7 @@ ordered_json member_report(const MemberFit& f) {
           {"coefficients", f.values.size()},
           {"extra_setup_operations", ops.setup},
           {"extra_eval_operations", ops.eval},
-          {"cost_ratio_float_vs_tokuyoshi2024", cost},
+          {"cost_ratio_vs_tokuyoshi2024", cost},
           {"floor_at_2024_steepness", f.floor},
           {"standard_max_peak_rel_float", f.standard.float_max},
           {"standard_max_peak_rel_double", f.standard.double_max},

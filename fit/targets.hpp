@@ -24,9 +24,13 @@ enum class WorkingPrecision { half, single, dbl };
 // table that `sglab bench` wrote (report/cost_table.hpp), read by the caller:
 // a fit that compares costs takes them from here and never times anything,
 // so that its report is the same for the same inputs.
+// The costs of the runtime methods from a cost table (report/cost_table.hpp),
+// in one source (report/cost_source.hpp): by default ACO's inverse throughput
+// of the float GLSL export on navi21 (cycles), else CPU batch ns/eval.
 struct MethodCosts {
-  std::string source;  // the table's file, date and machine; empty: no table
-  std::map<std::string, double> float_scalar_ns;  // method id → ns/eval
+  std::string what;    // which cost, e.g. "GPU inverse throughput on navi21 (cycles per wave)"
+  std::string source;  // the table's file and how it was made; empty: no table
+  std::map<std::string, double> per_method;  // method id → cost in that source's unit
 };
 
 struct FitSpec {

@@ -190,6 +190,21 @@ std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::
   return missing;
 }
 
+MethodCostMap default_float_costs(const CostTable& table) {
+  std::vector<MethodPoint> points;
+  for (const Method& m : irradiance_methods) points.push_back({.method = std::string(m.id)});
+  MethodCostMap out{default_cost_source(validate::FloatFormat::binary32), {}};
+  try {
+    fill_costs(points, validate::FloatFormat::binary32, table, out.source);
+  } catch (const CostTableError&) {  // no GPU rows for it: the CPU timing of `sglab bench`
+    out.source = {.kind = CostSourceKind::cpu_batch};
+    fill_costs(points, validate::FloatFormat::binary32, table, out.source);
+  }
+  for (const MethodPoint& p : points)
+    if (std::isfinite(p.cost)) out.cost[p.method] = p.cost;
+  return out;
+}
+
 validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
                              double kappa_lo, double kappa_hi, const CostSource& source,
                              std::string_view cost_from) {

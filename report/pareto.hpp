@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -88,6 +89,16 @@ void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostM
 // named), std::invalid_argument for gpu:* with f double.
 std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
                                     const CostTable& table, const CostSource& source);
+
+// Every irradiance method's float cost in `table`, in the default source
+// (gpu:navi21, default_cost_source) when the table has GPU rows for it, else
+// in cpu-batch: the source used, and method id → cost (a method without a row
+// is left out). What `sglab fit sglab-acc` puts in its cost column.
+struct MethodCostMap {
+  CostSource source;
+  std::map<std::string, double> cost;
+};
+MethodCostMap default_float_costs(const CostTable& table);
 
 // method, origin, precision, kappa_lo, kappa_hi, cost, cost_unit, cost_source,
 // max_peak_rel, frontier (origin published/refit/sglab, frontier 0/1,

@@ -18,6 +18,8 @@
 #include <sglab/registry.hpp>
 
 #include "report/cost_source.hpp"
+#include "report/cost_table.hpp"
+#include "report/pareto.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -193,6 +195,30 @@ TEST(CostSourceCli, FamilyNotInTheTableIsNamedWithTheOnesItHas) {
   EXPECT_EQ(
       recommend_json({"--costs", t.string(), "--cost", "gpu:navi10"}).value("cost_source", ""),
       "gpu:navi10");
+}
+
+// The cost column of `sglab fit sglab-acc` (report::default_float_costs): the
+// table's navi21 cycles when it has them; with only another family, or no GPU
+// section, its CPU batch ns; a method without a row is left out.
+TEST(CostSource, FitCostColumnIsNavi21CyclesElseCpuBatch) {
+  TempDir dir("cost-source-fit");
+  std::map<std::string, long> gpu = gpu_costs(100);
+  gpu.erase("sglab_acc2");
+  const auto navi21 =
+      sglab::report::read_cost_table(write_table(dir, "navi21.json", table_json(5, gpu)));
+  const auto with_gpu = sglab::report::default_float_costs(navi21);
+  EXPECT_EQ(with_gpu.source.name(), "gpu:navi21");
+  EXPECT_EQ(with_gpu.cost.size(), gpu.size());
+  for (const auto& [method, cycles] : gpu)
+    EXPECT_EQ(with_gpu.cost.at(method), static_cast<double>(cycles)) << method;
+  EXPECT_EQ(with_gpu.cost.count("sglab_acc2"), 0u);
+  for (const auto& table : {table_json(5, gpu_costs(100), "navi10"), table_json(5, {})}) {
+    const auto cpu = sglab::report::default_float_costs(
+        sglab::report::read_cost_table(write_table(dir, "other.json", table)));
+    EXPECT_EQ(cpu.source.name(), "cpu-batch");
+    EXPECT_EQ(cpu.cost.size(), std::size(sglab::irradiance_methods));
+    for (const auto& [method, ns] : cpu.cost) EXPECT_EQ(ns, 5.0) << method;
+  }
 }
 
 TEST(CostSourceCli, BadValuesExit2NamingTheOption) {

@@ -613,8 +613,8 @@ TEST(ReadmeNumbers, EnvmapTableMatchesTheResults) {
   }
 }
 
-// sglab_acc.md: the fit report's cost column (the cost table's scalar ns
-// ratio; the rest of the report is the fitter's own output on a refit from the
+// sglab_acc.md: the fit report's cost column (the cost table's navi21 GPU
+// cycles ratio; the rest of the report is the fitter's own output on a refit from the
 // committed sets, written verbatim by scripts/results.sh, so its errors move on
 // from the sets' provenance), the held-out table and the cost table with every
 // ratio to tokuyoshi2024.
@@ -628,9 +628,8 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
     const auto v = numbers_in(doc.substr(line, doc.find('\n', line) - line));
     ASSERT_GE(v.size(), 6u);
     const std::string what = fmt::format("sglab_acc.md fit row N={}", n);
-    const double cost = r.ns_per_eval(fmt::format("sglab_acc{}", n), "scalar") /
-                        r.ns_per_eval("tokuyoshi2024", "scalar");
-    expect_matches(v[5], cost, what + " cost (costs.json scalar ns ratio)");
+    const double cost = r.cycles(fmt::format("sglab_acc{}", n)) / r.cycles("tokuyoshi2024");
+    expect_matches(v[5], cost, what + " cost (costs.json navi21 cycles ratio)");
   }
   const auto held = table_after(doc, {"method", "float", "double", "worst κ (float)"});
   ASSERT_EQ(held.size(), 4u);

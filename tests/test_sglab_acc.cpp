@@ -169,7 +169,8 @@ TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   spec.kappa_range_given = true;
   spec.max_error = 1e-3;
   spec.costs.source = "a test table";
-  spec.costs.float_scalar_ns = {{"tokuyoshi2024", 10.0}, {"sglab_acc1", 13.0}};
+  spec.costs.what = "a test cost";
+  spec.costs.per_method = {{"tokuyoshi2024", 10.0}, {"sglab_acc1", 13.0}};
   const std::size_t nonfinite_before = sglab::fit::nonfinite_residual_evaluations();
   const auto out = sglab::fit::run_fit(spec);
   EXPECT_EQ(sglab::fit::nonfinite_residual_evaluations(), nonfinite_before) << out.text;
@@ -182,7 +183,7 @@ TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   EXPECT_EQ(out.constant_sets[0]["cpp_type"], "SglabAccParams<double, 1, 2>");
   EXPECT_NE(out.report["cost_source"].get<std::string>().find("a test table"), std::string::npos);
   for (const auto& m : out.report["members"])
-    EXPECT_TRUE(m["cost_ratio_float_vs_tokuyoshi2024"].is_null()) << m;
+    EXPECT_TRUE(m["cost_ratio_vs_tokuyoshi2024"].is_null()) << m;
   // Every fit is certified (issue 17 §1, fit/lp_minimax.hpp): the LP's bound
   // (the best member at the fitted steepness) ≤ the achieved max, the per-κ
   // floor ≤ that bound; in the report and in the set's provenance.
