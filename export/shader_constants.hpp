@@ -47,10 +47,10 @@ ConstantSet named(std::string cpp_name, const AbramowitzStegunParams<double, N>&
           {},
           {}};
 }
-template <std::size_t N, std::size_t D>
-ConstantSet named(std::string cpp_name, const SglabAccParams<double, N, D>& p) {
+template <std::size_t N, std::size_t D, std::size_t M>
+ConstantSet named(std::string cpp_name, const SglabAccParams<double, N, D, M>& p) {
   const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
-  return {fmt::format("SglabAccParams<double, {}, {}>", N, D),
+  return {fmt::format("SglabAccParams<double, {}, {}, {}>", N, D, M),
           std::move(cpp_name),
           {{"steep", vec(p.steep)}, {"num", vec(p.num)}, {"scale", {p.scale}}},
           {},

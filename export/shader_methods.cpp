@@ -157,36 +157,62 @@ std::string helper_hill(const Ctx& c, const Slots&) {
                c);
 }
 
-// The number of correction terms N and the degree D of an SglabAccParams set
-// (from its type, SglabAccParams<double, N, D>, checked against its member
-// sizes: steep 5, num N (D + 1), scale 1).
-std::pair<std::size_t, std::size_t> sglab_acc_shape(const ConstantSet& s) {
-  std::size_t n = 0, d = 0;
+// The number of correction terms N, the degree D and the steepness order M of
+// an SglabAccParams set (from its type, SglabAccParams<double, N, D, M>, checked
+// against its member sizes: steep 2M + 1, num N (D + 1), scale 1).
+SglabAccShape sglab_acc_shape(const ConstantSet& s) {
+  std::size_t n = 0, d = 0, m = 0;
   char tail = 0;
-  const bool typed =
-      std::sscanf(s.cpp_type.c_str(), "SglabAccParams<double, %zu, %zu%c", &n, &d, &tail) == 3 &&
-      tail == '>';
-  if (!typed || n == 0 || member(s, "num").size() != n * (d + 1) ||
-      member(s, "steep").size() != 5 || member(s, "scale").size() != 1)
+  const bool typed = std::sscanf(s.cpp_type.c_str(), "SglabAccParams<double, %zu, %zu, %zu%c", &n,
+                                 &d, &m, &tail) == 4 &&
+                     tail == '>';
+  if (!typed || n == 0 || m == 0 || member(s, "num").size() != n * (d + 1) ||
+      member(s, "steep").size() != 2 * m + 1 || member(s, "scale").size() != 1)
     throw std::invalid_argument(
         fmt::format("constant set {}: member sizes do not form SglabAccParams", s.cpp_name));
-  return {n, d};
+  return {n, d, m};
 }
 
+// t(kappa) = kappa sqrt(0.5 P/Q) of order M (sglab_acc.hpp, steepness_rational in
+// hemispherical.hpp): monic Horner in kappa below 1, in powers of 1/kappa from 1 on.
 std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
-  const auto s = names(c, "model", slot(slots, "model"), "steep");
+  const ConstantSet& set = slot(slots, "model");
+  const std::size_t m = sglab_acc_shape(set).m;
+  const auto s = names(c, "model", set, "steep");
+  // Below 1: P = (..(kappa + s0) kappa + ..) + s[M-1], Q likewise from s[M].
+  const auto monic = [&](std::size_t first, std::size_t count) {
+    std::string t = "kappa";
+    for (std::size_t i = 0; i < count; ++i)
+      t = i + 1 < count ? fmt::format("({} + {}) * kappa", t, s[first + i])
+                        : fmt::format("{} + {}", t, s[first + i]);
+    return t;
+  };
+  // From 1 on: P/kappa^M = 1 + (s0 + (s1 + .. + s[M-1] r) r) r, Q/kappa^(M+1) likewise.
+  const auto reciprocal = [&](std::size_t first, std::size_t count) {
+    std::string t = s[first + count - 1];
+    for (std::size_t i = count - 1; i-- > 0;)
+      t = i + 2 == count ? fmt::format("{} + {} * r", s[first + i], t)
+                         : fmt::format("{} + ({}) * r", s[first + i], t);
+    return count == 1 ? fmt::format("1.0f + {} * r", t) : fmt::format("1.0f + ({}) * r", t);
+  };
+  const std::string form =
+      m == 2 ? "kappa sqrt(0.5((kappa + s0) kappa + s1)/(((kappa + s2) kappa + s3) kappa + s4))\n"
+               "// ([Tokuyoshi2024] Listing 7 form, sglab's coefficients)"
+             : fmt::format(
+                   "kappa sqrt(0.5 P/Q), P monic of degree {}, Q of degree {}\n"
+                   "// (the [Tokuyoshi2024] Listing 7 form of a higher order, sglab's "
+                   "coefficients)",
+                   m, m + 1);
   return subst(
-      fmt::format(
-          R"(// t(kappa) = kappa sqrt(0.5((kappa + s0) kappa + s1)/(((kappa + s2) kappa + s3) kappa + s4))
-// ([Tokuyoshi2024] Listing 7 form, sglab's coefficients), in powers of 1/kappa for kappa >= 1.
+      fmt::format(R"(// t(kappa) = {}, in powers of 1/kappa for kappa >= 1.
 {{INLINE}}float {{P}}steepness(float kappa) {{
   if (kappa < 1.0f)
-    return kappa * sqrt(0.5f * ((kappa + {0}) * kappa + {1}) / (((kappa + {2}) * kappa + {3}) * kappa + {4}));
+    return kappa * sqrt(0.5f * ({}) / ({}));
   float r = 1.0f / kappa;
-  return sqrt(kappa) * sqrt(0.5f * (1.0f + ({0} + {1} * r) * r) / (1.0f + ({2} + ({3} + {4} * r) * r) * r));
+  return sqrt(kappa) * sqrt(0.5f * ({}) / ({}));
 }}
 )",
-          s[0], s[1], s[2], s[3], s[4]),
+                  form, monic(0, m), monic(m, m + 1), reciprocal(0, m), reciprocal(m, m + 1)),
       c);
 }
 
@@ -194,7 +220,7 @@ std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
 // sglab_acc_fade), and sum_j b_j z2^j.
 std::string helper_sglab_acc_correction(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
-  const auto [n, d] = sglab_acc_shape(set);
+  const auto [n, d, m] = sglab_acc_shape(set);
   const auto num = names(c, "model", set, "num"), scale = names(c, "model", set, "scale");
   std::string products;
   std::vector<std::string> b;
@@ -603,9 +629,16 @@ const std::vector<ShaderMethod>& shader_methods() {
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc3",
        "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 3, D "
-       "= 4 (sglab_acc.hpp)",
+       "= 6, steepness of order M = 3 (sglab_acc.hpp)",
        [] {
          return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}};
+       },
+       ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
+      {"sglab_acc4",
+       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 4, D "
+       "= 6, steepness of order M = 3 (sglab_acc.hpp)",
+       [] {
+         return Slots{{"model", named("sglab_acc_acc4", constants::sglab_acc_acc4)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
   };

@@ -61,10 +61,13 @@ std::string helper_poles2024(const Ctx& c, const Slots&);
 std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots);
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots);
 std::string helper_sglab_mid(const Ctx& c, const Slots& slots);
-// The number of correction terms N and the degree D of an SglabAccParams set
-// (from its type, SglabAccParams<double, N, D>, checked against its member
-// sizes: steep 5, num N (D + 1), scale 1).
-std::pair<std::size_t, std::size_t> sglab_acc_shape(const ConstantSet& s);
+// The number of correction terms N, the degree D and the steepness order M
+// of an SglabAccParams set (from its type, SglabAccParams<double, N, D, M>,
+// checked against its member sizes: steep 2M + 1, num N (D + 1), scale 1).
+struct SglabAccShape {
+  std::size_t n, d, m;
+};
+SglabAccShape sglab_acc_shape(const ConstantSet& s);
 
 // ---------------------------------------------------------------------------
 // Per-light split forms (`sglab export --split`): everything that depends on

@@ -95,7 +95,7 @@ std::vector<LightField> fields_sglab_acc(const Slots& slots) {
                                {"t2", "t^2"},
                                {"lower", "E(-1, kappa)/2 pi"},
                                {"upper", "E(+1, kappa)/2 pi"}};
-  const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
+  const std::size_t n = sglab_acc_shape(slot(slots, "model")).n;
   for (std::size_t j = 0; j < n; ++j)
     f.push_back({fmt::format("b{}", j), fmt::format("correction coefficient b_{}(kappa)", j)});
   return f;
@@ -104,7 +104,7 @@ std::vector<LightField> fields_sglab_acc(const Slots& slots) {
 // 1/(2 sqrt(pi) (t + FLT_MIN)) and b_j = u (1 - u)^3 P_j(u), u = t/(t + scale) (sglab_acc_fade).
 std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
-  const auto [n, d] = sglab_acc_shape(set);
+  const auto [n, d, m] = sglab_acc_shape(set);
   const auto num = names(c, "model", set, "num"), scale = names(c, "model", set, "scale");
   std::string products;
   for (std::size_t j = 0; j < n; ++j) {
@@ -131,7 +131,7 @@ std::string light_sglab_acc(const Ctx& c, const Slots& slots) {
 // the tail written as e^(-z^2) (1 - c^2) t^2 E(x)/(2 sqrt(pi) t), x = -t^2 (1 - c^2), E(x) =
 // expm1(x)/x, so that the correction shares its factor (as the unsplit helper_sglab_acc_lerp).
 std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
-  const std::size_t n = sglab_acc_shape(slot(slots, "model")).first;
+  const std::size_t n = sglab_acc_shape(slot(slots, "model")).n;
   std::vector<std::string> b;
   for (std::size_t j = 0; j < n; ++j) b.push_back(fmt::format("light.b{}", j));
   return subst(fmt::format(R"(  float c = clamp(cosine, -1.0f, 1.0f);
@@ -292,7 +292,7 @@ const std::vector<SplitForm>& split_forms() {
                  {helper_sglab_mid},
                  light_sglab_mid,
                  pixel_sglab_mid});
-    for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3"})
+    for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3", "sglab_acc4"})
       v.push_back(acc), v.back().id = id;
     return v;
   }();

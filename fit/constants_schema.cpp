@@ -35,7 +35,7 @@ std::span<const ParamStruct> param_structs() {
       {"Meder2018Params", {}, {"a2", "a1", "b1", "b0", "amplitude", "sharpness", "offset"}},
       {"SglabFastParams", {}, {"a[5]", "b[5]", "c[5]", "v[5]", "q[4]", "kappa_max"}},
       {"SglabMidParams", {}, {"a[5]", "b[5]", "d[5]", "s[5]", "v[5]", "q[4]", "kappa_max"}},
-      {"SglabAccParams", {"N", "D"}, {"steep[5]", "num[N * (D + 1)]", "scale"}},
+      {"SglabAccParams", {"N", "D", "M"}, {"steep[2 * M + 1]", "num[N * (D + 1)]", "scale"}},
   };
   return table;
 }
@@ -64,9 +64,10 @@ std::span<const RequiredSet> required_sets() {
       {"lambda_d_diffuse_lobe_irradiance", "DiffuseLobeParams<double>"},
       {"lambda_d_diffuse_lobe_sphere_ls", "DiffuseLobeParams<double>"},
       {"meder2018_published", "Meder2018Params<double>"},
-      {"sglab_acc_acc1", "SglabAccParams<double, 1, 3>"},
-      {"sglab_acc_acc2", "SglabAccParams<double, 2, 5>"},
-      {"sglab_acc_acc3", "SglabAccParams<double, 3, 4>"},
+      {"sglab_acc_acc1", "SglabAccParams<double, 1, 3, 2>"},
+      {"sglab_acc_acc2", "SglabAccParams<double, 2, 5, 2>"},
+      {"sglab_acc_acc3", "SglabAccParams<double, 3, 6, 3>"},
+      {"sglab_acc_acc4", "SglabAccParams<double, 4, 6, 3>"},
       {"sglab_fast_float", "SglabFastParams<double>"},
       {"sglab_mid_float", "SglabMidParams<double>"},
       {"steepness2022_irradiance", "Steepness2022Params<double>"},

@@ -4,13 +4,16 @@
 // b_j(κ) = u(1 − u)³ P_j(u), u = t/(t + s), P_j polynomials of degree D, and
 // the steepness refitted jointly.
 //
-// The family's order is (N, D): N correction terms, polynomial degree D.
-//   default         fits the shipped ladder acc1 (1, 3), acc2 (2, 5), acc3 (3, 4),
+// The family's order is (N, D, M): N correction terms, polynomial degree D,
+// steepness order M (t(κ) = κ√(0.5 P/Q), P of degree M, Q of M + 1; 2: the 2024 form).
+//   default         fits the shipped ladder acc1 (1, 3, 2), acc2 (2, 5, 2), acc3 (3, 6, 3),
+//                   acc4 (4, 6, 3),
 //                   each warm-started from the committed JSON when present
-//                   (a committed set of the same N and a lower D embedded, its
-//                   added coefficients 0: acc2 went from (2, 3) at 5.5e−5 to
-//                   (2, 5) at 2.9e−5 held-out so; else from the next lower
-//                   member), minimax of the peak_rel
+//                   (a committed set of the same N and a lower D or M embedded
+//                   as the same function: added coefficients 0, P and Q times
+//                   (κ + 1); acc2 went from (2, 3, 2) at 5.5e−5 to (2, 5, 2) at
+//                   2.9e−5 held-out so, acc3 from (3, 4, 2) at 2.1e−5 to (3, 6, 3)
+//                   at 7.8e−6; else from the next lower member), minimax of the peak_rel
 //                   error on a training grid (Ceres, every parameter), then
 //                   alternately the exact best coefficients of the P_j at the
 //                   fitted t(κ) and s (an LP, fit/lp_minimax.hpp: f̂, and so Ê,
@@ -62,28 +65,35 @@ namespace sglab::fit {
 namespace {
 
 struct Member {
-  std::size_t n, d;  // correction terms, rational degree
+  std::size_t n, d;   // correction terms, degree of the P_j
+  std::size_t m = 2;  // order of the rational steepness t(κ) (2: the 2024 form)
+  bool operator==(const Member&) const = default;
 };
+
+// The number of steepness coefficients of order m: P has m, Q m + 1 (params.hpp).
+constexpr std::size_t steep_count(std::size_t m) { return 2 * m + 1; }
 
 // The family, cheapest first (by the operations counted in `operations`):
 // the one list of the members that are instantiated (with_member below).
-constexpr Member kFamily[] = {{1, 2}, {1, 3}, {2, 2}, {2, 3}, {2, 5},
-                              {3, 3}, {3, 4}, {4, 4}, {3, 6}, {4, 6}};
+constexpr Member kFamily[] = {{1, 2},    {1, 3}, {2, 2}, {2, 3},    {2, 5}, {3, 3},   {3, 4},
+                              {3, 4, 3}, {4, 4}, {3, 6}, {3, 6, 3}, {4, 6}, {4, 6, 3}};
 
 template <std::size_t V>
 using Size = std::integral_constant<std::size_t, V>;
 
-// f(Size<N>{}, Size<D>{}) for the member m = {N, D} of kFamily: the one bridge
+// f(Size<N>{}, Size<D>{}, Size<M>{}) for the member m = {N, D, M} of kFamily: the one bridge
 // from a runtime member to the templated code (a fold over kFamily's indices).
 template <class F>
 auto with_member(Member m, F&& f) {
-  using R = decltype(f(Size<kFamily[0].n>{}, Size<kFamily[0].d>{}));
+  using R = decltype(f(Size<kFamily[0].n>{}, Size<kFamily[0].d>{}, Size<kFamily[0].m>{}));
   return [&]<std::size_t... I>(std::index_sequence<I...>)->R {
     std::optional<R> r;
-    ((m.n == kFamily[I].n && m.d == kFamily[I].d &&
-      (r.emplace(f(Size<kFamily[I].n>{}, Size<kFamily[I].d>{})), true)) ||
+    ((m == kFamily[I] &&
+      (r.emplace(f(Size<kFamily[I].n>{}, Size<kFamily[I].d>{}, Size<kFamily[I].m>{})), true)) ||
      ...);
-    if (!r) throw std::invalid_argument(fmt::format("sglab-acc: no member N={} D={}", m.n, m.d));
+    if (!r)
+      throw std::invalid_argument(
+          fmt::format("sglab-acc: no member N={} D={} M={}", m.n, m.d, m.m));
     return std::move(*r);
   }
   (std::make_index_sequence<std::size(kFamily)>{});
@@ -96,7 +106,7 @@ auto with_terms(std::size_t n, F&& f) {
       std::find_if(std::begin(kFamily), std::end(kFamily), [n](Member e) { return e.n == n; });
   if (m == std::end(kFamily))
     throw std::invalid_argument(fmt::format("sglab-acc: no member with N={}", n));
-  return with_member(*m, [&](auto terms, auto) { return f(terms); });
+  return with_member(*m, [&](auto terms, auto, auto) { return f(terms); });
 }
 // The shipped ladder: id suffix and member.
 struct Rung {
@@ -104,8 +114,10 @@ struct Rung {
   Member member;
   double target;  // T of the weight w(κ): the max peak_rel error aimed at
 };
-constexpr Rung kLadder[] = {
-    {"acc1", {1, 3}, 2.4e-4}, {"acc2", {2, 5}, 3.2e-5}, {"acc3", {3, 4}, 2.8e-5}};
+constexpr Rung kLadder[] = {{"acc1", {1, 3}, 2.4e-4},
+                            {"acc2", {2, 5}, 3.2e-5},
+                            {"acc3", {3, 6, 3}, 1e-5},
+                            {"acc4", {4, 6, 3}, 5e-6}};
 
 // The cost of a member: the cost of the runtime method of the same form
 // (N, D), the shipped sglab_acc<k> (its cost does not depend on the
@@ -120,7 +132,7 @@ std::optional<double> member_cost(Member m, const MethodCosts& costs) {
   };
   const auto base = row("tokuyoshi2024");
   for (const Rung& r : kLadder)
-    if (r.member.n == m.n && r.member.d == m.d) {
+    if (r.member == m) {
       const auto own = row(std::string("sglab_") + r.variant);
       if (own && base) return *own / *base;
     }
@@ -129,12 +141,15 @@ std::optional<double> member_cost(Member m, const MethodCosts& costs) {
 
 // Extra operations over tokuyoshi2024 (float): per light (setup) the faded
 // b_j: one division 1/(t + s), 5 multiplications for u, 1 − u and u(1 − u)³,
-// N·D multiply-adds of the P_j and N products; per shading point (eval) N − 1
+// N·D multiply-adds of the P_j and N products, and 2(M − 2) multiply-adds of
+// a steepness of order M above the 2024 form's 2; per shading point (eval) N − 1
 // multiply-adds of the polynomial in z² and 4 for (1 − c²)·e^{−z²}·poly added to f.
 struct Operations {
   int setup, eval;
 };
-Operations operations(Member m) { return {1 + 5 + int(m.n * m.d + m.n), int(m.n) - 1 + 4}; }
+Operations operations(Member m) {
+  return {1 + 5 + int(m.n * m.d + m.n) + 2 * (int(m.m) - 2), int(m.n) - 1 + 4};
+}
 
 // The search space of every solve below, a box (Ceres keeps each trial point
 // inside it): log coefficients (names starting with "log") in [−200, 50],
@@ -158,26 +173,27 @@ void bound(Parameters& p) {
   }
 }
 
-// Parameters: log steep[5], num[N(D+1)], then log scale: the steepness
+// Parameters: log steep[2M + 1], num[N(D+1)], then log scale: the steepness
 // coefficients and the scale stay positive by construction (t(κ) real,
 // b_j(κ) finite for every κ ≥ 0).
-template <class T, std::size_t N, std::size_t D>
-SglabAccParams<T, N, D> unpack(T const* const* p) {
+template <class T, std::size_t N, std::size_t D, std::size_t M>
+SglabAccParams<T, N, D, M> unpack(T const* const* p) {
   using std::exp;
-  SglabAccParams<T, N, D> q{};
-  for (std::size_t i = 0; i < 5; ++i) q.steep[i] = exp(p[i][0]);
-  for (std::size_t i = 0; i < N * (D + 1); ++i) q.num[i] = p[5 + i][0];
-  q.scale = exp(p[5 + N * (D + 1)][0]);
+  constexpr std::size_t K = steep_count(M);
+  SglabAccParams<T, N, D, M> q{};
+  for (std::size_t i = 0; i < K; ++i) q.steep[i] = exp(p[i][0]);
+  for (std::size_t i = 0; i < N * (D + 1); ++i) q.num[i] = p[K + i][0];
+  q.scale = exp(p[K + N * (D + 1)][0]);
   return q;
 }
 
 // The peak_rel error divided by the sample's weight (SglabAccSample::weight).
-template <std::size_t N, std::size_t D>
+template <std::size_t N, std::size_t D, std::size_t M>
 struct PeakRelResidual {
   double kappa, cosine, reference, peak, weight;
   template <class T>
   bool operator()(T const* const* p, T* r) const {
-    const SglabAccParams<T, N, D> q = unpack<T, N, D>(p);
+    const SglabAccParams<T, N, D, M> q = unpack<T, N, D, M>(p);
     r[0] = (irradiance_sglab_acc(T(cosine), T(kappa), q) - T(reference)) / T(peak * weight);
     return true;
   }
@@ -236,8 +252,8 @@ std::vector<validate::Query> dense_training_grid(double lo, double hi) {
 }
 
 // The errors of member (N, D) with coefficients p on `ref` (model_family.hpp).
-template <std::size_t N, std::size_t D>
-Measured measure(const SglabAccParams<double, N, D>& p,
+template <std::size_t N, std::size_t D, std::size_t M>
+Measured measure(const SglabAccParams<double, N, D, M>& p,
                  const std::vector<validate::ReferencePoint>& ref) {
   return fit::measure([&](auto c, auto k) { return irradiance_sglab_acc(c, k, p); }, ref);
 }
@@ -260,7 +276,7 @@ struct Certificate {
 struct MemberFit {
   Member member;
   Certificate certificate;
-  std::vector<double> values;  // steep[5], num, scale (itself, not its log)
+  std::vector<double> values;  // steep[2M + 1], num, scale (itself, not its log)
   double train = 0;  // the fit objective: max of peak_rel/w(κ) on the training grid (double)
   Measured standard, held_out;
   // float scalar ns/eval over tokuyoshi2024's, from the cost table (member_cost)
@@ -269,38 +285,41 @@ struct MemberFit {
   bool converged = false;
 };
 
-template <std::size_t N, std::size_t D>
-SglabAccParams<double, N, D> params_of(const std::vector<double>& v) {
-  SglabAccParams<double, N, D> p{};
-  for (std::size_t i = 0; i < 5; ++i) p.steep[i] = v[i];
-  for (std::size_t i = 0; i < N * (D + 1); ++i) p.num[i] = v[5 + i];
-  p.scale = v[5 + N * (D + 1)];
+template <std::size_t N, std::size_t D, std::size_t M>
+SglabAccParams<double, N, D, M> params_of(const std::vector<double>& v) {
+  constexpr std::size_t K = steep_count(M);
+  SglabAccParams<double, N, D, M> p{};
+  for (std::size_t i = 0; i < K; ++i) p.steep[i] = v[i];
+  for (std::size_t i = 0; i < N * (D + 1); ++i) p.num[i] = v[K + i];
+  p.scale = v[K + N * (D + 1)];
   return p;
 }
 
-// The residuals of member (N, D) on `samples`, of the parameters log steep[5], num, log scale.
-template <std::size_t N, std::size_t D>
+// The residuals of member (N, D, M) on `samples`, of the parameters log steep[2M + 1], num, log
+// scale.
+template <std::size_t N, std::size_t D, std::size_t M>
 Residuals member_residuals(const std::vector<SglabAccSample>& samples) {
   Residuals residuals;
   for (const auto& r : samples)
-    residuals.push_back(make_residual(
-        PeakRelResidual<N, D>{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), r.weight},
-        5 + N * (D + 1) + 1));
+    residuals.push_back(make_residual(PeakRelResidual<N, D, M>{r.kappa, r.cosine, r.irradiance,
+                                                               irradiance_upper(r.kappa), r.weight},
+                                      steep_count(M) + N * (D + 1) + 1));
   return residuals;
 }
 
-template <std::size_t N, std::size_t D>
+template <std::size_t N, std::size_t D, std::size_t M>
 SglabAccFit fit_coefficients(const std::vector<double>& start,
                              const std::vector<SglabAccSample>& samples, bool polish_only) {
+  constexpr std::size_t K = steep_count(M);
   Parameters params;
-  for (std::size_t i = 0; i < 5; ++i) params.names.push_back(fmt::format("log_steep{}", i));
+  for (std::size_t i = 0; i < K; ++i) params.names.push_back(fmt::format("log_steep{}", i));
   for (std::size_t i = 0; i < N * (D + 1); ++i) params.names.push_back(fmt::format("num{}", i));
   params.names.push_back("log_scale");
-  for (std::size_t i = 0; i < 5; ++i) params.values.push_back(std::log(start[i]));
-  params.values.insert(params.values.end(), start.begin() + 5, start.begin() + 5 + N * (D + 1));
-  params.values.push_back(std::log(start[5 + N * (D + 1)]));
+  for (std::size_t i = 0; i < K; ++i) params.values.push_back(std::log(start[i]));
+  params.values.insert(params.values.end(), start.begin() + K, start.begin() + K + N * (D + 1));
+  params.values.push_back(std::log(start[K + N * (D + 1)]));
   bound(params);
-  const Residuals residuals = member_residuals<N, D>(samples);
+  const Residuals residuals = member_residuals<N, D, M>(samples);
   // Fewer rounds than the defaults: the training grid is large and the
   // staged start is close. From a converged set (the committed JSON) a short
   // polish: the full schedule there takes minutes and moves the error < 2%.
@@ -310,9 +329,9 @@ SglabAccFit fit_coefficients(const std::vector<double>& start,
   options.solver_iterations = polish_only ? 30 : 200;
   const FitResult f = fit(residuals, params, options);
   SglabAccFit out;
-  for (std::size_t i = 0; i < 5; ++i) out.values.push_back(std::exp(f.values[i]));
-  out.values.insert(out.values.end(), f.values.begin() + 5, f.values.begin() + 5 + N * (D + 1));
-  out.values.push_back(std::exp(f.values[5 + N * (D + 1)]));
+  for (std::size_t i = 0; i < K; ++i) out.values.push_back(std::exp(f.values[i]));
+  out.values.insert(out.values.end(), f.values.begin() + K, f.values.begin() + K + N * (D + 1));
+  out.values.push_back(std::exp(f.values[K + N * (D + 1)]));
   out.max_abs = f.max_abs;
   out.converged = f.converged;
   return out;
@@ -401,7 +420,7 @@ struct FadeResidual {
   double target;
   template <class T>
   bool operator()(T const* const* p, T* r) const {
-    SglabAccParams<T, N, D> q{};
+    SglabAccParams<T, N, D, 2> q{};  // the fade alone: the steepness is unused
     for (std::size_t i = 0; i < N * (D + 1); ++i) q.num[i] = p[i][0];
     q.scale = exp(p[N * (D + 1)][0]);
     T b[N];
@@ -411,8 +430,27 @@ struct FadeResidual {
   }
 };
 
-// Start values (steep[5], num, scale) for member (N, D) from the per-κ optima.
-template <std::size_t N, std::size_t D>
+// The steepness coefficients steep (params.hpp order, highest first) of order
+// m(steep) raised to order `to`: P and Q both multiplied by (κ + 1) per step,
+// so t(κ) is the same function (a start for a higher order that begins at the
+// lower one's error). Every coefficient stays positive.
+std::vector<double> raise_steepness_order(const std::vector<double>& steep, std::size_t to) {
+  std::size_t m = (steep.size() - 1) / 2;
+  std::vector<double> p{1.0}, q{1.0};  // monic, highest first
+  p.insert(p.end(), steep.begin(), steep.begin() + long(m));
+  q.insert(q.end(), steep.begin() + long(m), steep.end());
+  const auto times_kappa_plus_one = [](std::vector<double>& c) {
+    c.push_back(0.0);
+    for (std::size_t i = c.size() - 1; i > 0; --i) c[i] += c[i - 1];
+  };
+  for (; m < to; ++m) times_kappa_plus_one(p), times_kappa_plus_one(q);
+  std::vector<double> out(p.begin() + 1, p.end());
+  out.insert(out.end(), q.begin() + 1, q.end());
+  return out;
+}
+
+// Start values (steep[2M + 1], num, scale) for member (N, D, M) from the per-κ optima.
+template <std::size_t N, std::size_t D, std::size_t M>
 std::vector<double> staged_start(const std::vector<KappaOptimum>& optima) {
   FitOptions ls;
   ls.norm = Norm::least_squares;
@@ -451,14 +489,16 @@ std::vector<double> staged_start(const std::vector<KappaOptimum>& optima) {
   const FitResult fr = fit(rr, fade, ls);
   std::vector<double> out;
   for (double v : ft.values) out.push_back(std::exp(v));
+  out = raise_steepness_order(out, M);
   out.insert(out.end(), fr.values.begin(), fr.values.begin() + N * (D + 1));
   out.push_back(std::exp(fr.values.back()));
   return out;
 }
 
-// The parameters of member_residuals (log steep, num, log scale) of values (steep, num, scale).
-std::vector<double> log_parameters(std::vector<double> v) {
-  for (std::size_t i = 0; i < 5; ++i) v[i] = std::log(v[i]);
+// The parameters of member_residuals (log steep, num, log scale) of values (steep, num, scale),
+// `k` steepness coefficients.
+std::vector<double> log_parameters(std::vector<double> v, std::size_t k) {
+  for (std::size_t i = 0; i < k; ++i) v[i] = std::log(v[i]);
   v.back() = std::log(v.back());
   return v;
 }
@@ -469,33 +509,36 @@ std::vector<double> log_parameters(std::vector<double> v) {
 // the rows). Returns `values` with those numerators, and the LP's answer
 // with `achieved` taken on the model itself (the clamp of f̂ to [0, 1] lies
 // outside the linear part).
-template <std::size_t N, std::size_t D>
+template <std::size_t N, std::size_t D, std::size_t M>
 std::pair<std::vector<double>, LpMinimaxResult> best_numerators(
     const std::vector<double>& values, const std::vector<SglabAccSample>& samples) {
-  const Residuals residuals = member_residuals<N, D>(samples);
+  constexpr std::size_t K = steep_count(M);
+  const Residuals residuals = member_residuals<N, D, M>(samples);
   std::vector<std::size_t> linear(N * (D + 1));
-  std::iota(linear.begin(), linear.end(), std::size_t(5));
-  const LinearSubproblem sub = linear_subproblem(residuals, log_parameters(values), linear);
+  std::iota(linear.begin(), linear.end(), K);
+  const LinearSubproblem sub = linear_subproblem(residuals, log_parameters(values, K), linear);
   LpMinimaxResult lp = lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
   std::vector<double> out = values;
-  for (std::size_t k = 0; k < linear.size(); ++k) out[5 + k] += lp.x[Eigen::Index(k)];  // x₀ + δ
-  lp.achieved = max_abs_residual(evaluate_residuals(residuals, log_parameters(out)));
+  for (std::size_t k = 0; k < linear.size(); ++k) out[K + k] += lp.x[Eigen::Index(k)];  // x₀ + δ
+  lp.achieved = max_abs_residual(evaluate_residuals(residuals, log_parameters(out, K)));
   return {out, lp};
 }
 
-// The per-κ floor at the steepness steep[5]: at each κ of `samples` (grouped
+// The per-κ floor at the steepness steep[2M + 1]: at each κ of `samples` (grouped
 // by κ) the LP optimum over its cosines with b_0 … b_{N−1} free (PerKappaResidual),
 // t(κ) fixed; no member with that t(κ) does better at that κ, whatever its
 // fade, scale or degree. Returns the max over κ weighted (÷ w(κ)) and plain.
-template <std::size_t N>
+template <std::size_t N, std::size_t M>
 std::pair<double, double> per_kappa_floor(const std::vector<double>& steep,
                                           const std::vector<SglabAccSample>& samples) {
-  const Steepness2024Params<double> sp{steep[0], steep[1], steep[2], steep[3], steep[4]};
+  SglabAccParams<double, 1, 0, M> own{};
+  std::copy(steep.begin(), steep.begin() + long(steep_count(M)), own.steep);
+  const SteepnessRationalParams<double, M> sp = detail::sglab_acc_steepness(own);
   double weighted = 0, plain = 0;
   for (std::size_t i = 0; i < samples.size();) {
     std::size_t end = i;
     while (end < samples.size() && samples[end].kappa == samples[i].kappa) ++end;
-    const double k = samples[i].kappa, t = steepness2024(k, sp);
+    const double k = samples[i].kappa, t = steepness_rational(k, sp);
     Residuals residuals;
     std::vector<std::size_t> rows;
     for (std::size_t s = i; s < end; ++s, rows.push_back(rows.size()))
@@ -519,24 +562,24 @@ std::pair<double, double> per_kappa_floor(const std::vector<double>& steep,
 // of every parameter (t, s move), each round kept only if it lowers the LP's achieved max.
 constexpr int kAlternations = 3;
 
-SglabAccFit fit_coefficients_any(std::size_t n, std::size_t d, const std::vector<double>& start,
+SglabAccFit fit_coefficients_any(Member m, const std::vector<double>& start,
                                  const std::vector<SglabAccSample>& samples,
                                  bool polish_only = false) {
-  return with_member({n, d}, [&](auto N, auto D) {
-    return fit_coefficients<decltype(N)::value, decltype(D)::value>(start, samples, polish_only);
+  return with_member(m, [&](auto N, auto D, auto M) {
+    return fit_coefficients<N(), D(), M()>(start, samples, polish_only);
   });
 }
 
-template <std::size_t N, std::size_t D>
+template <std::size_t N, std::size_t D, std::size_t M>
 MemberFit measure_member(const SglabAccFit& f,
                          const std::vector<validate::ReferencePoint>& standard,
                          const std::vector<validate::ReferencePoint>& held_out) {
   MemberFit out;
-  out.member = {N, D};
+  out.member = {N, D, M};
   out.values = f.values;
   out.train = f.max_abs;
   out.converged = f.converged;
-  const auto p = params_of<N, D>(out.values);
+  const auto p = params_of<N, D, M>(out.values);
   out.standard = measure(p, standard);
   out.held_out = measure(p, held_out);
   return out;
@@ -562,35 +605,34 @@ struct Floors {
 std::vector<double> staged_start_any(Member m, Floors& floors,
                                      const std::vector<SglabAccSample>& train) {
   const auto& optima = floors.get(m.n, train);
-  return with_member(m, [&](auto N, auto D) {
-    return staged_start<decltype(N)::value, decltype(D)::value>(optima);
-  });
+  return with_member(m,
+                     [&](auto N, auto D, auto M) { return staged_start<N(), D(), M()>(optima); });
 }
 
 // Member (N, D) from `start`: Ceres (fit_coefficients) on the training grid,
 // then the LP on the dense grid at its t(κ) and s, alternating with Ceres
 // polishes; measured on the standard and held-out grids, and certified.
-template <std::size_t N, std::size_t D>
+template <std::size_t N, std::size_t D, std::size_t M>
 MemberFit certified_fit(const std::vector<double>& start, const std::vector<SglabAccSample>& train,
                         const std::vector<SglabAccSample>& dense,
                         const std::vector<validate::ReferencePoint>& standard,
                         const std::vector<validate::ReferencePoint>& held_out, bool polish_only) {
   // Round 0: the LP at the start's t(κ) and s (a refit from a committed set
   // is never worse than it); then Ceres and the LP in turn while they gain.
-  auto [values, lp] = best_numerators<N, D>(start, dense);
-  SglabAccFit f = fit_coefficients<N, D>(values, train, polish_only);
+  constexpr std::size_t K = steep_count(M);
+  auto [values, lp] = best_numerators<N, D, M>(start, dense);
+  SglabAccFit f = fit_coefficients<N, D, M>(values, train, polish_only);
   for (int round = 1; round <= kAlternations; ++round) {
-    const SglabAccFit g = round == 1 ? f : fit_coefficients<N, D>(values, train, true);
-    auto [next, next_lp] = best_numerators<N, D>(g.values, dense);
+    const SglabAccFit g = round == 1 ? f : fit_coefficients<N, D, M>(values, train, true);
+    auto [next, next_lp] = best_numerators<N, D, M>(g.values, dense);
     if (!(next_lp.achieved < lp.achieved)) break;
     values = std::move(next), lp = next_lp;
   }
   f.values = values;
-  f.max_abs =
-      max_abs_residual(evaluate_residuals(member_residuals<N, D>(train), log_parameters(values)));
-  MemberFit out = measure_member<N, D>(f, standard, held_out);
-  const auto [floor_weighted, floor_plain] =
-      per_kappa_floor<N>(std::vector<double>(values.begin(), values.begin() + 5), dense);
+  f.max_abs = max_abs_residual(
+      evaluate_residuals(member_residuals<N, D, M>(train), log_parameters(values, K)));
+  MemberFit out = measure_member<N, D, M>(f, standard, held_out);
+  const auto [floor_weighted, floor_plain] = per_kappa_floor<N, M>(values, dense);
   std::size_t kappas = 0;
   for (std::size_t i = 0; i < dense.size(); ++i)
     kappas += i == 0 || dense[i].kappa != dense[i - 1].kappa;
@@ -604,43 +646,50 @@ MemberFit fit_any(Member m, const std::vector<double>& start,
                   const std::vector<SglabAccSample>& dense,
                   const std::vector<validate::ReferencePoint>& standard,
                   const std::vector<validate::ReferencePoint>& held_out, bool polish_only = false) {
-  return with_member(m, [&](auto N, auto D) {
-    return certified_fit<decltype(N)::value, decltype(D)::value>(start, train, dense, standard,
-                                                                 held_out, polish_only);
+  return with_member(m, [&](auto N, auto D, auto M) {
+    return certified_fit<N(), D(), M()>(start, train, dense, standard, held_out, polish_only);
   });
 }
 
+// The values (steep, num, scale) of member `from` embedded in member `to`
+// (no fewer terms, no lower degree or steepness order): the added terms and
+// degrees 0, the steepness raised (raise_steepness_order). The same function.
+std::vector<double> embed(Member from, const std::vector<double>& values, Member to) {
+  const std::size_t kf = steep_count(from.m), kt = steep_count(to.m);
+  std::vector<double> v =
+      raise_steepness_order(std::vector<double>(values.begin(), values.begin() + long(kf)), to.m);
+  v.resize(kt + to.n * (to.d + 1), 0.0);
+  for (std::size_t j = 0; j < from.n; ++j)
+    for (std::size_t k = 0; k <= from.d; ++k)
+      v[kt + j * (to.d + 1) + k] = values[kf + j * (from.d + 1) + k];
+  v.push_back(values.back());  // scale
+  return v;
+}
+
 // Start values for member m: the latest earlier fit nested in it (no more
-// terms, no higher degree) with its coefficients embedded (the added terms
-// and degrees 0: the same function, so the fit starts at that member's
-// error), else the staged start from the per-κ optima.
+// terms, no higher degree or steepness order) embedded (embed: the same function, so the fit
+// starts at that member's error), else the staged start from the per-κ optima.
 std::vector<double> start_for(Member m, const std::vector<MemberFit>& earlier, Floors& floors,
                               const std::vector<SglabAccSample>& train) {
   for (auto it = earlier.rbegin(); it != earlier.rend(); ++it) {
     const Member e = it->member;
-    if (e.n > m.n || e.d > m.d) continue;
-    std::vector<double> v(it->values.begin(), it->values.begin() + 5);
-    v.resize(5 + m.n * (m.d + 1), 0.0);
-    for (std::size_t j = 0; j < e.n; ++j)
-      for (std::size_t k = 0; k <= e.d; ++k)
-        v[5 + j * (m.d + 1) + k] = it->values[5 + j * (e.d + 1) + k];
-    v.push_back(it->values.back());  // scale
-    return v;
+    if (e.n > m.n || e.d > m.d || e.m > m.m) continue;
+    return embed(e, it->values, m);
   }
   return staged_start_any(m, floors, train);
 }
 
 ordered_json coefficients_json(const MemberFit& f) {
-  const std::size_t nn = f.member.n * (f.member.d + 1);
-  return {{"steep", std::vector<double>(f.values.begin(), f.values.begin() + 5)},
-          {"num", std::vector<double>(f.values.begin() + 5, f.values.begin() + 5 + nn)},
+  const std::size_t k = steep_count(f.member.m), nn = f.member.n * (f.member.d + 1);
+  return {{"steep", std::vector<double>(f.values.begin(), f.values.begin() + long(k))},
+          {"num", std::vector<double>(f.values.begin() + long(k), f.values.begin() + long(k + nn))},
           {"scale", f.values.back()}};
 }
 
 // The committed set `variant` over [lo, hi] as start values, if it exists
-// with the member's number of terms and no higher degree (a lower degree is
-// embedded with the added coefficients 0: the same function). The flag says
-// whether it has the member's shape exactly (a polish) or was embedded.
+// with the member's number of terms and no higher degree or steepness order
+// (embedded: the same function). The flag says whether it has the member's
+// shape exactly (a polish) or was embedded.
 std::optional<std::pair<std::vector<double>, bool>> committed(const std::string& variant, Member m,
                                                               double lo, double hi) {
   const auto c = committed_coefficients("sglab-acc", variant, lo, hi);
@@ -648,14 +697,12 @@ std::optional<std::pair<std::vector<double>, bool>> committed(const std::string&
   try {
     std::vector<double> v = c->at("steep").get<std::vector<double>>();
     const auto num = c->at("num").get<std::vector<double>>();
-    if (!c->contains("scale") || v.size() != 5 || num.size() % m.n != 0) return std::nullopt;
-    const std::size_t d = num.size() / m.n - 1;
-    if (d > m.d) return std::nullopt;
-    v.resize(5 + m.n * (m.d + 1), 0.0);
-    for (std::size_t j = 0; j < m.n; ++j)
-      for (std::size_t k = 0; k <= d; ++k) v[5 + j * (m.d + 1) + k] = num[j * (d + 1) + k];
+    if (!c->contains("scale") || v.size() % 2 != 1 || num.size() % m.n != 0) return std::nullopt;
+    const Member own{m.n, num.size() / m.n - 1, (v.size() - 1) / 2};
+    if (own.d > m.d || own.m > m.m || own.m < 1) return std::nullopt;
+    v.insert(v.end(), num.begin(), num.end());
     v.push_back(c->at("scale").get<double>());
-    return std::pair{v, d == m.d};
+    return std::pair{embed(own, v, m), own == m};
   } catch (const std::exception&) {
     return std::nullopt;  // another shape: fit from the lower member
   }
@@ -712,7 +759,7 @@ ordered_json certificate_json(const Certificate& c) {
       {"lp", {{"working_rows", c.working_rows}, {"rounds", c.rounds}, {"converged", c.converged}}}};
 }
 
-std::string member_name(Member m) { return fmt::format("N={} D={}", m.n, m.d); }
+std::string member_name(Member m) { return fmt::format("N={} D={} M={}", m.n, m.d, m.m); }
 
 // "within x% of the best member" (the certificate's achieved over its lower bound).
 std::string within_text(const Certificate& c) {
@@ -729,6 +776,7 @@ ordered_json member_report(const MemberFit& f) {
   const ordered_json cost = f.cost ? ordered_json(*f.cost) : ordered_json(nullptr);
   return {{"terms", f.member.n},
           {"degree", f.member.d},
+          {"steepness_order", f.member.m},
           {"coefficients", f.values.size()},
           {"extra_setup_operations", ops.setup},
           {"extra_eval_operations", ops.eval},
@@ -750,7 +798,7 @@ std::string member_line(const MemberFit& f, const char* mark) {
   const Operations ops = operations(f.member);
   const Certificate& c = f.certificate;
   return fmt::format(
-      "  {:<9} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}   {:.3e}  "
+      "  {:<13} {:>6} {:>5}+{:<4} {:>6}  {:>9}  {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.3f}   {:.3e}  "
       "{:.3e} {:>6.2f}%  {:.3e}  {:.3e}{}\n",
       member_name(f.member), f.values.size(), ops.setup, ops.eval,
       f.cost ? fmt::format("{:.3f}", *f.cost) : "-",
@@ -764,16 +812,18 @@ std::string member_line(const MemberFit& f, const char* mark) {
 // on the dense training grid: achieved, the LP bound (best member at the
 // fitted steepness and scale), how far above it, the per-κ floor weighted and plain.
 const char* kHeader =
-    "  member    coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) held-out(f) "
+    "  member        coeffs  ops(setup+eval) cost   floor@t24    weighted   standard(f) "
+    "held-out(f) "
     "held-out(d) never-worse  dense      LP bound    within  floor/k(w)  floor/k(peak_rel)\n";
 
 ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::string& variant,
                           const MeasuringGrids& grids, double target) {
   const std::string form =
       "E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j "
-      "b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + "
-      "s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = u*(1 - u)^3*(num[j*(D+1)] + "
-      "num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)";
+      "b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*P/Q) with s = steep, P = (..(kappa + "
+      "s0)*kappa + ..)*kappa + s[M-1], Q = (..(kappa + s[M])*kappa + ..)*kappa + s[2M] (M = 2: "
+      "((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)); b_j = u*(1 - "
+      "u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)";
   const std::string objective = fmt::format(
       "minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) divided by w(kappa) = "
       "min(T, max(e2024(kappa), 8e-7)), T = {:g}, e2024(kappa) the float error of tokuyoshi2024 at "
@@ -791,10 +841,10 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
   achieved["extra_operations_vs_tokuyoshi2024"] =
       fmt::format("setup {} (one division), eval {} multiply-adds", operations(f.member).setup,
                   operations(f.member).eval);
-  ordered_json set =
-      make_constant_set(spec, "sglab-acc", variant,
-                        fmt::format("SglabAccParams<double, {}, {}>", f.member.n, f.member.d), form,
-                        coefficients_json(f), objective, achieved);
+  ordered_json set = make_constant_set(
+      spec, "sglab-acc", variant,
+      fmt::format("SglabAccParams<double, {}, {}, {}>", f.member.n, f.member.d, f.member.m), form,
+      coefficients_json(f), objective, achieved);
   set["provenance"]["certificate"] = certificate_json(f.certificate);
   return set;
 }
@@ -863,8 +913,9 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
     out.text += "  no member of the family meets the budget\n";
     return out;
   }
-  const std::string variant = fmt::format("n{}d{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d,
-                                          spec.kappa_lo, spec.kappa_hi, budget);
+  const std::string variant =
+      fmt::format("n{}d{}m{}-k{}-{}-e{:g}", chosen->member.n, chosen->member.d, chosen->member.m,
+                  spec.kappa_lo, spec.kappa_hi, budget);
   out.constant_sets.push_back(constant_set(spec, *chosen, variant, measuring, budget));
   out.report["chosen"] = member_report(*chosen);
   out.report["chosen"]["variant"] = variant;
@@ -905,7 +956,8 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
     ordered_json r = member_report(f);
     r["variant"] = variant;
     const bool nested = std::any_of(done.begin(), done.end() - 1, [&](const MemberFit& e) {
-      return e.member.n <= rung.member.n && e.member.d <= rung.member.d;
+      return e.member.n <= rung.member.n && e.member.d <= rung.member.d &&
+             e.member.m <= rung.member.m;
     });
     r["warm_start"] = warm ? "committed JSON" : nested ? "lower member" : "per-kappa optima";
     out.report["ladder"].push_back(r);
@@ -919,7 +971,7 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
 SglabAccFit fit_sglab_acc_coefficients(std::size_t terms, std::size_t degree,
                                        const std::vector<double>& start,
                                        const std::vector<SglabAccSample>& samples) {
-  return fit_coefficients_any(terms, degree, start, samples);
+  return fit_coefficients_any({terms, degree}, start, samples);
 }
 
 FitOutcome fit_sglab_acc(const FitSpec& spec) {

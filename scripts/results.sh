@@ -41,7 +41,7 @@ cp "$work/vulkan/summary.md" "$results/sweep_summary.md"
 cp "$work/heldout/summary.json" "$results/heldout_sweep.json"
 "$sglab" stability --half --out "$work/stability-half"
 cp "$work/stability-half/stability_half.md" "$results"/
-models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_mid sglab_acc1 sglab_acc2 sglab_acc3)
+models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_mid sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4)
 scripts/callgrind_costs.sh "$results/callgrind.csv" "${models[@]}"
 "$sglab" fit sglab-acc --dry-run --costs "$results/costs.json" >"$work/fit-sglab-acc.txt"
 "$sglab" fit sglab-fast --dry-run >"$work/fit-sglab-fast.txt"

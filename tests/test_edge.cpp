@@ -254,6 +254,7 @@ constexpr SubnormalLimit kSubnormalLimits[] = {
     {"sglab_acc1", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc2", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc3", kRounding, "exact poles, as tokuyoshi2024"},
+    {"sglab_acc4", kRounding, "exact poles, as tokuyoshi2024"},
 };
 
 // κ in every subnormal binade of T: 2^e, 1.5·2^e and the binade's largest

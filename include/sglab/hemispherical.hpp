@@ -63,6 +63,14 @@ T steepness_rational(const T& kappa, const SteepnessRationalParams<S, M>& p) {
   return sqrt(kappa) * sqrt(T(0.5) * (T(1) + P) / (T(1) + Q));
 }
 
+// The 2024 form as the order-2 rational form: p = {B, A}, q = {E, D, C}
+// (SteepnessRationalParams); steepness_rational evaluates it with the same
+// operations as steepness2024.
+template <class S>
+constexpr SteepnessRationalParams<S, 2> steepness_rational_of(const Steepness2024Params<S>& s) {
+  return {{s.B, s.A}, {s.E, s.D, s.C}};
+}
+
 // One name for every steepness form, so methods can take any of them.
 template <class T, class S>
 T steepness(const T& kappa, const Steepness2022Params<S>& p) {

@@ -213,19 +213,27 @@ Tokuyoshi2024Light<T> tokuyoshi2024_light(const T& kappa,
 }
 
 // The same setup in float without branches (both sides of κ < 1 computed and
-// selected; branch_free.hpp elementary functions), for the batch kernel.
-template <class S>
+// selected; branch_free.hpp elementary functions), for the batch kernel, with
+// t(κ) of any rational order M (steepness_rational, hemispherical.hpp).
+template <class S, std::size_t M>
 SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(
-    float kappa, const Steepness2024Params<S>& p) {
+    float kappa, const SteepnessRationalParams<S, M>& p) {
   namespace bf = branch_free;
-  const float A = float(p.A), B = float(p.B), C = float(p.C), D = float(p.D), E = float(p.E);
   const bool small = kappa < 1.0f;
   const float r = 1.0f / bf::max(kappa, 1.0f);
-  // t² = κ² · 0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E), as steepness2024 (κ ≥ 1 in powers of 1/κ).
-  const float num = bf::select(small, kappa * kappa * (0.5f * ((kappa + A) * kappa + B)),
-                               kappa * (0.5f * (1.0f + (A + B * r) * r)));
-  const float den =
-      bf::select(small, ((kappa + C) * kappa + D) * kappa + E, 1.0f + (C + (D + E * r) * r) * r);
+  // t² = κ² · 0.5 P(κ)/Q(κ) as steepness_rational: monic Horner in κ below 1, in powers of 1/κ
+  // (P/κ^M, Q/κ^{M+1}) from 1 on. For M = 2 (the 2024 form, p = {B, A}, q = {E, D, C}):
+  // κ²·0.5((κ + A)κ + B) over ((κ + C)κ + D)κ + E, and κ·0.5(1 + (A + B/κ)/κ) over 1 + (C + (D +
+  // E/κ)/κ)/κ.
+  float ps = 1.0f, qs = 1.0f, pl = 0.0f, ql = 0.0f;
+  if constexpr (M > 0)
+    for (std::size_t i = M; i-- > 0;) ps = ps * kappa + float(p.p[i]);
+  for (std::size_t i = M + 1; i-- > 0;) qs = qs * kappa + float(p.q[i]);
+  if constexpr (M > 0)
+    for (std::size_t i = 0; i < M; ++i) pl = (pl + float(p.p[i])) * r;
+  for (std::size_t i = 0; i <= M; ++i) ql = (ql + float(p.q[i])) * r;
+  const float num = bf::select(small, kappa * kappa * (0.5f * ps), kappa * (0.5f * (1.0f + pl)));
+  const float den = bf::select(small, qs, 1.0f + ql);
   const float t = bf::sqrt_bf(num / den);
   // Poles as irradiance_poles_over_two_pi, with q = (1 − e^{−κ})/κ for κ ≥ 1.
   const float e = bf::exp_bf(-kappa);
@@ -233,6 +241,12 @@ SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(
   const float upper = bf::select(small, detail::upper_pole_series(kappa), (1.0f - q) * r);
   const float lower = e * bf::select(small, detail::lower_pole_series(kappa), (q - e) * r);
   return {t, lower, upper};
+}
+
+template <class S>
+SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(
+    float kappa, const Steepness2024Params<S>& p) {
+  return tokuyoshi2024_light_branch_free(kappa, steepness_rational_of(p));
 }
 
 template <class T, class Ops = detail::LibmOps>

@@ -117,14 +117,17 @@ struct SglabMidParams {
   S kappa_max;
 };
 
-// sglab_acc `sglab_acc<N>` (sglab_acc.hpp): the 2024
-// steepness t(κ) with coefficients steep = {A, B, C, D, E} (Steepness2024Params
-// order) and N correction coefficients b_j(κ) = u(1 − u)³ P_j(u) that fade as
+// sglab_acc `sglab_acc<N>` (sglab_acc.hpp): the steepness t(κ) of rational
+// order M (SteepnessRationalParams) with its coefficients highest order first,
+// steep = {P's κ^{M−1} … κ^0, Q's κ^M … κ^0}: t = κ√(0.5 P/Q),
+// P = (…(κ + steep[0])κ + …)κ + steep[M−1], Q = (…(κ + steep[M])κ + …)κ + steep[2M];
+// for M = 2 the 2024 form, steep = {A, B, C, D, E} (Steepness2024Params order);
+// and N correction coefficients b_j(κ) = u(1 − u)³ P_j(u) that fade as
 // κ → 0 and κ → ∞, u = t/(t + scale) ∈ [0, 1), P_j of degree D:
 // P_j(u) = num[j(D+1)] + num[j(D+1)+1] u + … + num[j(D+1)+D] u^D; scale > 0.
-template <class S, std::size_t N, std::size_t D>
+template <class S, std::size_t N, std::size_t D, std::size_t M>
 struct SglabAccParams {
-  S steep[5];
+  S steep[2 * M + 1];
   S num[N * (D + 1)];
   S scale;
 };

@@ -219,7 +219,7 @@ inline constexpr Method irradiance_methods[] = {
         [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
     // sglab's own models (sglab_acc.hpp, `sglab fit sglab-acc`): the
     // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
-    // of 1, 2, 3 correction terms.
+    // of 1, 2, 3, 4 correction terms.
     detail::make_sglab_acc<constants::sglab_acc_acc1>(
         "sglab_acc1", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 = u(1-u)^3 P(u), u = t/(t+s), P of degree 3",
         "sglab_acc_acc1"),
@@ -227,8 +227,11 @@ inline constexpr Method irradiance_methods[] = {
         "sglab_acc2", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j = u(1-u)^3 P_j(u), P_j of degree 5",
         "sglab_acc_acc2"),
     detail::make_sglab_acc<constants::sglab_acc_acc3>(
-        "sglab_acc3", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j = u(1-u)^3 P_j(u), P_j of degree 4",
+        "sglab_acc3", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j = u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
         "sglab_acc_acc3"),
+    detail::make_sglab_acc<constants::sglab_acc_acc4>(
+        "sglab_acc4", "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4 + b3 z^6), b_j = u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
+        "sglab_acc_acc4"),
 };
 
 // Approximate hemispherical integrals H̃(c, κ) (`erf2022` [Tokuyoshi2022], `meder2018` [Meder2018]).

@@ -8,7 +8,8 @@
 //
 // where f₂₀₂₄ = ½(c erfc(−z) + erfc(t)) − e^{−z²} expm1(t²(c² − 1))/(2√π t) is
 // the factor of [Tokuyoshi2024] supplementary Listing 7, t(κ) its steepness
-// (same rational form, coefficients refitted jointly with the correction),
+// (its rational form κ√(0.5 P/Q), P monic of degree M, Q of M + 1: M = 2 is the
+// 2024 form, acc3 has M = 3; coefficients refitted jointly with the correction),
 // and every b_j(κ) = u(1 − u)³ P_j(u), u = t/(t + s), P_j a polynomial of
 // degree D (sglab_acc_fade): the correction fades where the 2024 form is
 // already exact (like κ as κ → 0, like κ^{−3/2} as κ → ∞). The residual of
@@ -62,8 +63,8 @@ namespace detail {
 // (1 − u)³ ≈ (s/t)³ ∝ κ^{−3/2}, the decay of the form's residual. One
 // division, no branch; t + s ≥ s > 0, and for the largest finite κ
 // (t ≈ 1.3e19 in float) u = 1 and (1 − u)³ underflows to 0, so does b_j.
-template <class T, class S, std::size_t N, std::size_t D>
-SGLAB_FORCE_INLINE void sglab_acc_fade(const T& t, const SglabAccParams<S, N, D>& p, T (&b)[N]) {
+template <class T, class S, std::size_t N, std::size_t D, std::size_t M>
+SGLAB_FORCE_INLINE void sglab_acc_fade(const T& t, const SglabAccParams<S, N, D, M>& p, T (&b)[N]) {
   const T w = T(1) / (t + T(p.scale));
   const T u = t * w, v = T(p.scale) * w;  // u and 1 − u
   const T fade = u * (v * v) * v;
@@ -89,16 +90,25 @@ SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
   return T(0.5) * inv_sqrt_pi_v<T>() / (t + std::numeric_limits<T>::min());
 }
 
+// The steepness of `p` as SteepnessRationalParams (params.hpp): steep lists
+// P's and Q's coefficients highest order first, p and q lowest first.
+template <class S, std::size_t N, std::size_t D, std::size_t M>
+constexpr SteepnessRationalParams<S, M> sglab_acc_steepness(const SglabAccParams<S, N, D, M>& p) {
+  SteepnessRationalParams<S, M> r{};
+  for (std::size_t i = 0; i < M; ++i) r.p[M - 1 - i] = p.steep[i];
+  for (std::size_t i = 0; i <= M; ++i) r.q[M - i] = p.steep[M + i];
+  return r;
+}
+
 }  // namespace detail
 
 // Per-light setup of `sglab_acc<N>`: everything that depends on κ alone.
-template <class T, class S, std::size_t N, std::size_t D>
+template <class T, class S, std::size_t N, std::size_t D, std::size_t M>
 SGLAB_FORCE_INLINE SglabAccLight<T, N> sglab_acc_light(const T& kappa,
-                                                       const SglabAccParams<S, N, D>& p) {
+                                                       const SglabAccParams<S, N, D, M>& p) {
   using std::erfc;
   // t and the poles (one exp for both) as the setup of `tokuyoshi2024` (irradiance.hpp).
-  const Tokuyoshi2024Light<T> base = tokuyoshi2024_light(
-      kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
+  const Tokuyoshi2024Light<T> base = tokuyoshi2024_light(kappa, detail::sglab_acc_steepness(p));
   SglabAccLight<T, N> l;
   l.t = base.t;
   l.half_erfc_t = T(0.5) * erfc(l.t);
@@ -113,11 +123,11 @@ SGLAB_FORCE_INLINE SglabAccLight<T, N> sglab_acc_light(const T& kappa,
 // The same setup in float without branches, for the batch kernel: t and the
 // poles as the vectorizing setup of `tokuyoshi2024` (irradiance.hpp), erfc(t)
 // by branch_free.hpp's erfc_bf (absolute error ≤ 6e−7).
-template <class S, std::size_t N, std::size_t D>
+template <class S, std::size_t N, std::size_t D, std::size_t M>
 SGLAB_FORCE_INLINE SglabAccLight<float, N> sglab_acc_light_branch_free(
-    float kappa, const SglabAccParams<S, N, D>& p) {
-  const Tokuyoshi2024Light<float> base = tokuyoshi2024_light_branch_free(
-      kappa, Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]});
+    float kappa, const SglabAccParams<S, N, D, M>& p) {
+  const Tokuyoshi2024Light<float> base =
+      tokuyoshi2024_light_branch_free(kappa, detail::sglab_acc_steepness(p));
   SglabAccLight<float, N> l;
   l.t = base.t;
   l.half_erfc_t = 0.5f * branch_free::erfc_bf(base.t);
@@ -158,19 +168,19 @@ SGLAB_FORCE_INLINE T sglab_acc_eval(const SglabAccLight<T, N>& l, const T& cosin
 // Distance from the double path: the erfc_bf error (≤ 6e−7 absolute) moves f
 // by at most that, i.e. ≤ 6e−7 of the peak E(1, κ), plus float rounding;
 // tests/test_branch_free.cpp holds it to 1e−6 of the peak.
-template <class S, std::size_t N, std::size_t D>
+template <class S, std::size_t N, std::size_t D, std::size_t M>
 SGLAB_FLATTEN void irradiance_sglab_acc_batch(const float* __restrict cosine,
                                               const float* __restrict kappa, float* __restrict out,
-                                              std::size_t n, const SglabAccParams<S, N, D>& p) {
+                                              std::size_t n, const SglabAccParams<S, N, D, M>& p) {
   for (std::size_t i = 0; i < n; ++i)
     out[i] = sglab_acc_eval(sglab_acc_light_branch_free(kappa[i], p), cosine[i],
                             detail::BranchFreeOps{});
 }
 
 // `sglab_acc<N>` in one call: eval(setup(κ), c).
-template <class T, class S, std::size_t N, std::size_t D>
+template <class T, class S, std::size_t N, std::size_t D, std::size_t M>
 SGLAB_FORCE_INLINE T irradiance_sglab_acc(const T& cosine, const T& kappa,
-                                          const SglabAccParams<S, N, D>& p) {
+                                          const SglabAccParams<S, N, D, M>& p) {
   return sglab_acc_eval(sglab_acc_light(kappa, p), cosine);
 }
 
