@@ -533,12 +533,12 @@ std::pair<double, double> per_kappa_floor(const std::vector<double>& steep,
                                           const std::vector<SglabAccSample>& samples) {
   SglabAccParams<double, 1, 0, M> own{};
   std::copy(steep.begin(), steep.begin() + long(steep_count(M)), own.steep);
-  const SteepnessRationalParams<double, M> sp = detail::sglab_acc_steepness(own);
+  const auto sp = detail::sglab_acc_steepness(own);
   double weighted = 0, plain = 0;
   for (std::size_t i = 0; i < samples.size();) {
     std::size_t end = i;
     while (end < samples.size() && samples[end].kappa == samples[i].kappa) ++end;
-    const double k = samples[i].kappa, t = steepness_rational(k, sp);
+    const double k = samples[i].kappa, t = steepness(k, sp);
     Residuals residuals;
     std::vector<std::size_t> rows;
     for (std::size_t s = i; s < end; ++s, rows.push_back(rows.size()))

@@ -136,7 +136,7 @@ TEST(SglabAcc, SteepnessOfOrderMIsTheRationalForm) {
   const auto& a = sglab::constants::sglab_acc_acc1;
   const sglab::Steepness2024Params<double> s24{a.steep[0], a.steep[1], a.steep[2], a.steep[3],
                                                a.steep[4]};
-  const auto rational = sglab::detail::sglab_acc_steepness(a);
+  const auto rational = sglab::steepness_rational_of(s24);
   for (double k : {1e-3, 0.37, 0.999, 1.0, 2.5, 40.0, 9e3}) {
     EXPECT_EQ(sglab::steepness_rational(k, rational), sglab::steepness2024(k, s24)) << k;
     EXPECT_EQ(sglab::steepness_rational(float(k), rational), sglab::steepness2024(float(k), s24))
