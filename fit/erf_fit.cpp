@@ -15,6 +15,8 @@
 #include <numeric>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include <sglab/sglab.hpp>
 
@@ -73,32 +75,53 @@ std::vector<double> chebyshev_points(double a, double b, int n) {
   return x;
 }
 
+// The worst |erf_variant − erf| of a scan and where it is: the first point of
+// the largest error (a NaN error counts as the largest).
+struct WorstError {
+  double error = 0, where = 0;
+  // `later` covers points after this one's
+  void join(const WorstError& later) {
+    if (!(later.error <= error)) *this = later;
+  }
+};
+
 // Max |erf_variant − erf| over a dense grid of [0, hi] in double ("exact arithmetic").
 template <class F>
 std::pair<double, double> max_error_dense(F f, double hi) {
-  double worst = 0, where = 0;
+  WorstError worst;
   const int n = 200000;
   for (int i = 0; i <= n; ++i) {
     const double x = hi * i / n;
-    const double e = std::abs(f(x) - std::erf(x));
-    if (!(e <= worst)) worst = e, where = x;
+    worst.join({std::abs(f(x) - std::erf(x)), x});
   }
-  return {worst, where};
+  return {worst.error, worst.where};
 }
 
-// Max |erf_variant − erf| over every float in [0, hi] with a stride, in float.
+// Max |erf_variant − erf| over every float in [0, hi] with a stride, in float:
+// tens of millions of points, so split over the cores by TBB's deterministic
+// reduction (its partition depends on the range alone, not on the threads),
+// each part joined in order, so the result is that of the serial scan.
 template <class F>
 std::pair<double, double> max_error_float(F f, float hi, std::uint32_t stride) {
-  double worst = 0, where = 0;
   std::uint32_t bits_hi;
   std::memcpy(&bits_hi, &hi, 4);
-  for (std::uint32_t b = 0; b <= bits_hi; b += stride) {
-    float x;
-    std::memcpy(&x, &b, 4);
-    const double e = std::abs(static_cast<double>(f(x)) - std::erf(static_cast<double>(x)));
-    if (!(e <= worst)) worst = e, where = x;
-  }
-  return {worst, where};
+  const std::uint64_t count = std::uint64_t{bits_hi} / stride + 1;
+  const WorstError worst = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<std::uint64_t>(0, count, 1 << 16), WorstError{},
+      [&](const tbb::blocked_range<std::uint64_t>& r, WorstError w) {
+        for (std::uint64_t k = r.begin(); k != r.end(); ++k) {
+          const auto b = static_cast<std::uint32_t>(k * stride);
+          float x;
+          std::memcpy(&x, &b, 4);
+          w.join({std::abs(static_cast<double>(f(x)) - std::erf(static_cast<double>(x))), x});
+        }
+        return w;
+      },
+      [](WorstError lower, const WorstError& upper) {
+        lower.join(upper);
+        return lower;
+      });
+  return {worst.error, worst.where};
 }
 
 struct Listing5Fit {
@@ -168,22 +191,15 @@ Listing5Fit fit_listing5(const Listing5Shape& shape, std::vector<double> small_s
   return out;
 }
 
-// Evaluates a listing5 fit through the runtime at its exact sizes' padding.
-double listing5_eval(const Listing5Fit& f, double x) {
-  Listing5Params<double, kMaxSmall, kMaxLarge> p{};
-  p.split = f.shape.split;
-  p.cutoff = f.shape.cutoff;
-  for (std::size_t i = 0; i < f.small.size(); ++i) p.small[i] = f.small[i];
-  for (std::size_t i = 0; i < f.large.size(); ++i) p.large[i] = f.large[i];
-  return erf_listing5(x, p);
-}
-float listing5_eval_float(const Listing5Fit& f, float x) {
-  Listing5Params<float, kMaxSmall, kMaxLarge> p{};
-  p.split = static_cast<float>(f.shape.split);
-  p.cutoff = static_cast<float>(f.shape.cutoff);
-  for (std::size_t i = 0; i < f.small.size(); ++i) p.small[i] = static_cast<float>(f.small[i]);
-  for (std::size_t i = 0; i < f.large.size(); ++i) p.large[i] = static_cast<float>(f.large[i]);
-  return erf_listing5(x, p);
+// A listing5 fit as the runtime's parameters at its exact sizes' padding.
+template <class T>
+Listing5Params<T, kMaxSmall, kMaxLarge> listing5_params(const Listing5Fit& f) {
+  Listing5Params<T, kMaxSmall, kMaxLarge> p{};
+  p.split = static_cast<T>(f.shape.split);
+  p.cutoff = static_cast<T>(f.shape.cutoff);
+  for (std::size_t i = 0; i < f.small.size(); ++i) p.small[i] = static_cast<T>(f.small[i]);
+  for (std::size_t i = 0; i < f.large.size(); ++i) p.large[i] = static_cast<T>(f.large[i]);
+  return p;
 }
 
 struct AsFit {
@@ -211,17 +227,13 @@ AsFit fit_as(std::size_t terms, std::vector<double> start, bool round_to_float) 
   return {terms, std::vector<double>(r.values.begin(), r.values.begin() + 1 + terms), r.max_abs};
 }
 
-double as_eval(const std::vector<double>& c, double x) {
-  AbramowitzStegunParams<double, kMaxTerms> p{};
-  p.p = c[0];
-  for (std::size_t i = 1; i < c.size(); ++i) p.a[i - 1] = c[i];
-  return erf_abramowitz_stegun(x, p);
-}
-float as_eval_float(const std::vector<double>& c, float x) {
-  AbramowitzStegunParams<float, kMaxTerms> p{};
-  p.p = static_cast<float>(c[0]);
-  for (std::size_t i = 1; i < c.size(); ++i) p.a[i - 1] = static_cast<float>(c[i]);
-  return erf_abramowitz_stegun(x, p);
+// An as7125 fit (p, a1..aN) as the runtime's parameters.
+template <class T>
+AbramowitzStegunParams<T, kMaxTerms> as_params(const std::vector<double>& c) {
+  AbramowitzStegunParams<T, kMaxTerms> p{};
+  p.p = static_cast<T>(c[0]);
+  for (std::size_t i = 1; i < c.size(); ++i) p.a[i - 1] = static_cast<T>(c[i]);
+  return p;
 }
 
 ordered_json to_json(const std::vector<double>& v) {
@@ -369,13 +381,16 @@ void add_listing5(const FitSpec& spec, bool round, FitOutcome& out) {
       choose_listing5(spec, pub_shape, pub_small, pub_large, round, order_table, out);
   fit_progress_note("listing5: error of the chosen and published models (dense and float grids)");
   const Listing5Fit published{pub_shape, pub_small, pub_large, 0, 0};
-  const auto exact_fit = max_error_dense([&](double x) { return listing5_eval(chosen, x); }, 6.0);
-  const auto exact_pub =
-      max_error_dense([&](double x) { return listing5_eval(published, x); }, 6.0);
-  const auto float_fit =
-      max_error_float([&](float x) { return listing5_eval_float(chosen, x); }, 4.0f, kFloatStride);
-  const auto float_pub = max_error_float([&](float x) { return listing5_eval_float(published, x); },
-                                         4.0f, kFloatStride);
+  const auto error_dense = [](const Listing5Fit& f) {
+    const auto p = listing5_params<double>(f);
+    return max_error_dense([&](double x) { return erf_listing5(x, p); }, 6.0);
+  };
+  const auto error_float = [](const Listing5Fit& f) {
+    const auto p = listing5_params<float>(f);
+    return max_error_float([&](float x) { return erf_listing5(x, p); }, 4.0f, kFloatStride);
+  };
+  const auto exact_fit = error_dense(chosen), exact_pub = error_dense(published);
+  const auto float_fit = error_float(chosen), float_pub = error_float(published);
   std::string variant = "listing5-" + precision_name(spec.precision);
   if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
   ordered_json coefficients = {{"split", chosen.shape.split},
@@ -427,13 +442,17 @@ void add_as7125(const FitSpec& spec, bool round, FitOutcome& out) {
   ordered_json order_table = ordered_json::array();
   const AsFit chosen = choose_as7125(spec, pub, round, order_table, out);
   fit_progress_note("as7125: error of the chosen and published models (dense and float grids)");
-  const auto exact_fit =
-      max_error_dense([&](double x) { return as_eval(chosen.coefficients, x); }, 6.0);
-  const auto exact_pub = max_error_dense([&](double x) { return as_eval(pub, x); }, 6.0);
-  const auto float_fit = max_error_float(
-      [&](float x) { return as_eval_float(chosen.coefficients, x); }, 4.0f, kFloatStride);
-  const auto float_pub =
-      max_error_float([&](float x) { return as_eval_float(pub, x); }, 4.0f, kFloatStride);
+  const auto error_dense = [](const std::vector<double>& c) {
+    const auto p = as_params<double>(c);
+    return max_error_dense([&](double x) { return erf_abramowitz_stegun(x, p); }, 6.0);
+  };
+  const auto error_float = [](const std::vector<double>& c) {
+    const auto p = as_params<float>(c);
+    return max_error_float([&](float x) { return erf_abramowitz_stegun(x, p); }, 4.0f,
+                           kFloatStride);
+  };
+  const auto exact_fit = error_dense(chosen.coefficients), exact_pub = error_dense(pub);
+  const auto float_fit = error_float(chosen.coefficients), float_pub = error_float(pub);
   std::string variant = "as7125-" + precision_name(spec.precision);
   if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
   ordered_json coefficients = {
