@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <thread>
 #include <variant>
 
 #include <fmt/format.h>
@@ -40,6 +41,8 @@ struct FitCliOptions {
   std::string out_dir;  // default: the project's data/constants
   std::string header;   // default: fit::default_header_for(out_dir)
   std::string costs;    // default: the project's data/results/costs.json, if any
+  // fits run at once (fit all): one per core
+  std::size_t jobs = std::max(1u, std::thread::hardware_concurrency());
 };
 
 struct GivenOptions {
@@ -196,22 +199,6 @@ std::vector<fit::ConstantSetFile> sets_to_write(const fit::FitOutcome& outcome,
   return out;
 }
 
-// What the solver saw during one fit: residual evaluations that were not
-// finite (fit::nonfinite_residual_evaluations) and messages Ceres logged
-// (fit::solver_messages). Both 0 in a sound fit; otherwise a line is added to
-// the fit's text.
-fit::ordered_json diagnostics(std::size_t nonfinite, std::size_t messages, std::string& text) {
-  if (nonfinite > 0)
-    text += fmt::format(
-        "  warning: {} residual evaluations were NaN or inf (a defect of the model on the search "
-        "space)\n",
-        nonfinite);
-  if (messages > 0)
-    text += fmt::format("  warning: the solver logged {} messages; the latest: {}\n", messages,
-                        fit::solver_messages().last);
-  return {{"nonfinite_residual_evaluations", nonfinite}, {"solver_messages", messages}};
-}
-
 namespace fs = std::filesystem;
 
 // The command line of one fit as its provenance records it.
@@ -309,35 +296,27 @@ struct FitRuns {
   bool all_converged = true;
 };
 
-// Runs every fit in turn (progress on a terminal); prints each fit's text
-// unless the output is JSON.
+// Runs the fits, --jobs at a time (fit::run_fits; progress on a terminal);
+// prints each fit's text in order unless the output is JSON.
 FitRuns run_fits(const std::vector<fit::FitSpec>& specs, const FitCliOptions& o,
                  const Destination& d) {
   FitRuns runs;
   io::Progress progress("fit", specs.size());
-  for (const auto& spec : specs) {
-    fit::FitOutcome outcome;
-    const std::size_t nonfinite_before = fit::nonfinite_residual_evaluations();
-    const std::size_t messages_before = fit::solver_messages().count;
-    try {
-      // open-ended: counts Ceres solves
-      io::Progress solves(fmt::format("fit {}, solves", spec.target), 0);
-      fit::FitProgressScope scope(solves);
-      outcome = fit::run_fit(spec);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(e.what());
-    }
-    outcome.report["diagnostics"] =
-        diagnostics(fit::nonfinite_residual_evaluations() - nonfinite_before,
-                    fit::solver_messages().count - messages_before, outcome.text);
-    runs.all_converged = runs.all_converged && outcome.converged;
-    progress.advance();
-    if (!o.json) fmt::print("{}", outcome.text);
-    if (!o.dry_run)
-      for (auto& f : sets_to_write(outcome, d.out_dir, o.force, runs.log))
-        runs.to_write.push_back(std::move(f));
-    outcome.report["command"] = spec.command;
-    runs.reports.push_back(outcome.report);
+  try {
+    fit::run_fits(specs, o.jobs, progress, [&](std::size_t i, fit::FitOutcome& outcome) {
+      runs.all_converged = runs.all_converged && outcome.converged;
+      if (!o.json) {
+        fmt::print("{}", outcome.text);
+        std::fflush(stdout);
+      }
+      if (!o.dry_run)
+        for (auto& f : sets_to_write(outcome, d.out_dir, o.force, runs.log))
+          runs.to_write.push_back(std::move(f));
+      outcome.report["command"] = specs[i].command;
+      runs.reports.push_back(std::move(outcome.report));
+    });
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
   }
   progress.finish();
   return runs;
@@ -407,6 +386,10 @@ void add_fit_command(CLI::App& app) {
           taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
+  cmd->add_option("--jobs", o->jobs,
+                  "fits to run at once (fit all), each on a thread of its own; the results do not "
+                  "depend on it (default: the number of cores)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", o->out_dir,
                   "directory of constant-set JSON files (default: data/constants of the sglab "
                   "project found at or above the working directory)")

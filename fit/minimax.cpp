@@ -4,6 +4,7 @@
 #include <atomic>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace sglab::fit {
 
@@ -24,6 +25,9 @@ std::vector<double> evaluate_residuals(const Residuals& residuals,
 namespace {
 
 std::atomic<std::size_t> g_nonfinite_evaluations{0};
+// The same count for the evaluations made on this thread (a fit solves on
+// the thread that runs it: Ceres with one thread).
+thread_local std::size_t t_nonfinite_evaluations = 0;
 
 class CheckedResidual final : public ceres::CostFunction {
  public:
@@ -41,7 +45,10 @@ class CheckedResidual final : public ceres::CostFunction {
     for (std::size_t b = 0; jacobians && b < sizes.size(); ++b)
       for (std::size_t k = 0; jacobians[b] && k < m * static_cast<std::size_t>(sizes[b]); ++k)
         finite = finite && std::isfinite(jacobians[b][k]);
-    if (!finite) counter_.fetch_add(1, std::memory_order_relaxed);
+    if (!finite) {
+      counter_.fetch_add(1, std::memory_order_relaxed);
+      ++t_nonfinite_evaluations;
+    }
     return true;
   }
 
@@ -50,10 +57,11 @@ class CheckedResidual final : public ceres::CostFunction {
   std::atomic<std::size_t>& counter_;
 };
 
-std::atomic<io::Progress*> g_fit_progress{nullptr};
+// The progress of the fit running on this thread (FitProgressScope).
+thread_local io::Progress* t_fit_progress = nullptr;
 
 void count_solve() {
-  if (io::Progress* p = g_fit_progress.load()) p->advance();
+  if (t_fit_progress) t_fit_progress->advance();
 }
 
 // The box of `params` on the free parameter blocks of `problem`.
@@ -211,13 +219,14 @@ std::unique_ptr<ceres::CostFunction> make_checked_residual(
 }
 
 std::size_t nonfinite_residual_evaluations() { return g_nonfinite_evaluations.load(); }
+std::size_t nonfinite_residual_evaluations_on_this_thread() { return t_nonfinite_evaluations; }
 
 FitProgressScope::FitProgressScope(io::Progress& progress)
-    : previous_(g_fit_progress.exchange(&progress)) {}
-FitProgressScope::~FitProgressScope() { g_fit_progress.store(previous_); }
+    : previous_(std::exchange(t_fit_progress, &progress)) {}
+FitProgressScope::~FitProgressScope() { t_fit_progress = previous_; }
 
 void fit_progress_note(std::string status) {
-  if (io::Progress* p = g_fit_progress.load()) p->note(std::move(status));
+  if (t_fit_progress) t_fit_progress->note(std::move(status));
 }
 
 FitResult fit(const Residuals& residuals, const Parameters& params, const FitOptions& options) {

@@ -73,6 +73,11 @@ std::unique_ptr<ceres::CostFunction> make_checked_residual(
 // rejects the step and logs "Error in evaluating the ResidualBlock"). `sglab
 // fit` reports the count of each fit; tests require it to stay 0.
 std::size_t nonfinite_residual_evaluations();
+// The non-finite evaluations made on the calling thread, of every checked
+// residual (whatever its counter): a fit makes all of its evaluations on the
+// thread that runs it, so this attributes them to the fit (run_fits,
+// fit/targets.hpp).
+std::size_t nonfinite_residual_evaluations_on_this_thread();
 
 // A residual functor F has `template <class T> bool operator()(T const* const* p, T* r) const`
 // writing one residual from the N scalar parameters p[0][0] … p[N−1][0].
@@ -104,9 +109,10 @@ FitResult fit_rounded_to_float(const Residuals& residuals, Parameters params,
                                const FitOptions& options = {});
 
 // Progress of a long fit. While a FitProgressScope is alive, every solve that
-// fit() makes advances its Progress, and fit_progress_note() sets the text
-// shown after the count (the model being fitted). `sglab fit` opens one per
-// target; the Progress draws only when stderr is a terminal.
+// fit() makes on the same thread advances its Progress, and
+// fit_progress_note() on that thread sets the text shown after the count (the
+// model being fitted). `sglab fit` opens one per target when it runs one fit
+// at a time; the Progress draws only when stderr is a terminal.
 class FitProgressScope {
  public:
   explicit FitProgressScope(io::Progress& progress);
@@ -117,7 +123,7 @@ class FitProgressScope {
  private:
   io::Progress* previous_;
 };
-// No-op without a scope.
+// No-op without a scope on the calling thread.
 void fit_progress_note(std::string status);
 
 }  // namespace sglab::fit

@@ -13,6 +13,9 @@ namespace {
 
 std::mutex g_mutex;
 SolverMessages g_messages;
+// The messages logged on this thread: glog hands a message to the sink on
+// the thread that logs it, and a fit's solver runs on the fit's thread.
+thread_local SolverMessages t_messages;
 
 // glog calls send() with its own locks held: no logging here, only a count,
 // the text and the progress note (which draws on a terminal only).
@@ -31,6 +34,8 @@ class DiagnosticsSink final : public google::LogSink {
       ++g_messages.count;
       g_messages.last = text;
     }
+    ++t_messages.count;
+    t_messages.last = text;
     fit_progress_note("solver: " + text);
   }
 };
@@ -56,5 +61,7 @@ SolverMessages solver_messages() {
   const std::lock_guard lock(g_mutex);
   return g_messages;
 }
+
+SolverMessages solver_messages_on_this_thread() { return t_messages; }
 
 }  // namespace sglab::fit

@@ -20,5 +20,7 @@ struct SolverMessages {
   std::string last;       // the latest one (its first line), empty when none
 };
 SolverMessages solver_messages();
+// The messages logged on the calling thread (a fit's, when it runs there).
+SolverMessages solver_messages_on_this_thread();
 
 }  // namespace sglab::fit

@@ -14,6 +14,10 @@
 
 #include <nlohmann/json.hpp>
 
+namespace sglab::io {
+class Progress;
+}
+
 namespace sglab::fit {
 
 using ordered_json = nlohmann::ordered_json;
@@ -127,5 +131,20 @@ std::string fit_target_names();
 
 // Dispatch by spec.target; throws std::invalid_argument for an unknown target or objective.
 FitOutcome run_fit(const FitSpec& spec);
+
+// Runs every spec (run_fit), up to `jobs` of them at once, each on one thread
+// (a fit is serial inside, so its outcome is the same whatever `jobs`),
+// started from the last spec to the first (fit all's longest fits are last). To
+// each outcome's report "diagnostics" is added: the residual evaluations of
+// the fit that were not finite (nonfinite_residual_evaluations) and the
+// messages its solver logged (solver_messages), both 0 in a sound fit, with a
+// warning line in its text otherwise. `done(i, outcome)` is called for every
+// spec in order, on the calling thread, as soon as fits 0..i have finished;
+// `finished` advances as each fit finishes. With one job at a time each fit
+// shows its solves on a progress line of its own (FitProgressScope). A fit
+// that throws stops new ones from starting; once the running ones have
+// finished, the first exception in spec order is rethrown.
+void run_fits(const std::vector<FitSpec>& specs, std::size_t jobs, io::Progress& finished,
+              const std::function<void(std::size_t, FitOutcome&)>& done);
 
 }  // namespace sglab::fit

@@ -1,12 +1,20 @@
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <ctime>
+#include <exception>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include <fmt/format.h>
 
 #include "common/args.hpp"
+#include "common/io.hpp"
 #include "fit/constants_schema.hpp"
+#include "fit/minimax.hpp"
+#include "fit/solver_log.hpp"
 #include "fit/targets.hpp"
 
 namespace sglab::fit {
@@ -140,6 +148,124 @@ FitOutcome run_fit(const FitSpec& spec) {
   if (const FitTarget* t = find_fit_target(spec.target)) return t->fit(spec);
   throw std::invalid_argument(
       fmt::format("unknown fit target '{}' (known: {}, all)", spec.target, fit_target_names()));
+}
+
+namespace {
+
+// run_fit with the fit's diagnostics: the residual evaluations that were not
+// finite and the messages the solver logged, both counted on this thread
+// (the fit's: Ceres solves with one thread). Both 0 in a sound fit;
+// otherwise a line is added to the fit's text.
+FitOutcome run_fit_counted(const FitSpec& spec) {
+  const std::size_t nonfinite_before = nonfinite_residual_evaluations_on_this_thread();
+  const std::size_t messages_before = solver_messages_on_this_thread().count;
+  FitOutcome outcome = run_fit(spec);
+  const std::size_t nonfinite = nonfinite_residual_evaluations_on_this_thread() - nonfinite_before;
+  const SolverMessages messages = solver_messages_on_this_thread();
+  const std::size_t logged = messages.count - messages_before;
+  if (nonfinite > 0)
+    outcome.text += fmt::format(
+        "  warning: {} residual evaluations were NaN or inf (a defect of the model on the search "
+        "space)\n",
+        nonfinite);
+  if (logged > 0)
+    outcome.text += fmt::format("  warning: the solver logged {} messages; the latest: {}\n",
+                                logged, messages.last);
+  outcome.report["diagnostics"] = {{"nonfinite_residual_evaluations", nonfinite},
+                                   {"solver_messages", logged}};
+  return outcome;
+}
+
+}  // namespace
+
+void run_fits(const std::vector<FitSpec>& specs, std::size_t jobs, io::Progress& finished,
+              const std::function<void(std::size_t, FitOutcome&)>& done) {
+  if (jobs <= 1 || specs.size() <= 1) {
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      FitOutcome outcome;
+      {
+        // open-ended: counts Ceres solves
+        io::Progress solves(fmt::format("fit {}, solves", specs[i].target), 0);
+        FitProgressScope scope(solves);
+        outcome = run_fit_counted(specs[i]);
+      }
+      finished.advance();
+      done(i, outcome);
+    }
+    return;
+  }
+  // Workers take the specs from the last to the first until none is left or
+  // a fit has thrown (the fit all runs end with the model ladders, the
+  // longest fits: started first they do not finish alone at the end); the
+  // calling thread hands the outcomes to `done` in order.
+  struct Slot {
+    std::optional<FitOutcome> outcome;
+    std::exception_ptr error;
+  };
+  std::vector<Slot> slots(specs.size());
+  std::mutex mutex;
+  std::condition_variable filled;
+  std::size_t left = specs.size();  // specs 0..left-1 are not taken yet
+  bool stop = false;
+  const auto work = [&] {
+    for (;;) {
+      std::size_t i;
+      {
+        const std::lock_guard lock(mutex);
+        if (stop || left == 0) return;
+        i = --left;
+      }
+      finished.note(fmt::format("{} started", specs[i].target));
+      Slot slot;
+      try {
+        slot.outcome = run_fit_counted(specs[i]);
+      } catch (...) {
+        slot.error = std::current_exception();
+      }
+      finished.advance();
+      {
+        const std::lock_guard lock(mutex);
+        stop = stop || slot.error;
+        slots[i] = std::move(slot);
+      }
+      filled.notify_all();
+    }
+  };
+  // Joins the workers on every way out, telling them to take no more specs.
+  struct Workers {
+    std::vector<std::thread> threads;
+    std::mutex& mutex;
+    bool& stop;
+    void join() {
+      {
+        const std::lock_guard lock(mutex);
+        stop = true;
+      }
+      for (auto& t : threads)
+        if (t.joinable()) t.join();
+    }
+    ~Workers() { join(); }
+  } workers{{}, mutex, stop};
+  for (std::size_t k = 0; k < std::min(jobs, specs.size()); ++k) workers.threads.emplace_back(work);
+  // A fit that threw stops new ones; every fit after it was taken, and those
+  // before it are waited for in vain: a worker that sees `stop` takes no
+  // more, so the wait ends at the first slot that will never be filled.
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    Slot slot;
+    {
+      std::unique_lock lock(mutex);
+      filled.wait(lock, [&] { return slots[i].outcome || slots[i].error || (stop && i < left); });
+      slot = std::move(slots[i]);
+    }
+    if (slot.error) std::rethrow_exception(slot.error);
+    if (!slot.outcome) break;  // never started: a later fit threw
+    done(i, *slot.outcome);
+  }
+  // A fit threw after the last one handed over: the first such in spec
+  // order, once the fits still running have finished.
+  workers.join();
+  for (const Slot& slot : slots)
+    if (slot.error) std::rethrow_exception(slot.error);
 }
 
 }  // namespace sglab::fit

@@ -6,6 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -14,6 +18,7 @@
 
 #include <sglab/sglab.hpp>
 
+#include "common/io.hpp"
 #include "fit/constants_schema.hpp"
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
@@ -111,6 +116,29 @@ TEST(Engine, CountsNonFiniteResidualEvaluations) {
   EXPECT_EQ(count.load(), 2u);
 }
 
+// The per-fit count of run_fits is the count of the fit's thread: an
+// evaluation on another thread is not in it.
+TEST(Engine, CountsNonFiniteEvaluationsPerThread) {
+  std::atomic<std::size_t> count{0};
+  auto inner =
+      std::make_unique<ceres::DynamicAutoDiffCostFunction<SqrtBelowOne, 4>>(new SqrtBelowOne);
+  inner->AddParameterBlock(1);
+  inner->SetNumResiduals(1);
+  const auto checked = make_checked_residual(std::move(inner), &count);
+  const std::size_t here_before = nonfinite_residual_evaluations_on_this_thread();
+  std::size_t there_before = 0, there_after = 0;
+  std::thread([&] {
+    there_before = nonfinite_residual_evaluations_on_this_thread();
+    double r = 0, p = 0.5;
+    const double* block = &p;
+    checked->Evaluate(&block, &r, nullptr);  // NaN value
+    there_after = nonfinite_residual_evaluations_on_this_thread();
+  }).join();
+  EXPECT_EQ(there_after - there_before, 1u);
+  EXPECT_EQ(count.load(), 1u);
+  EXPECT_EQ(nonfinite_residual_evaluations_on_this_thread(), here_before);
+}
+
 TEST(Engine, MinimaxMatchesChebyshevEquioscillation) {
   // Best uniform line for e^x on [0, 1]: slope e − 1, error (1 + b ln b − b)/2.
   Residuals residuals;
@@ -193,6 +221,63 @@ TEST(Fit, IsDeterministic) {
   spec.cosine_count = 9;
   const auto a = run_fit(spec), b = run_fit(spec);
   EXPECT_EQ(a.constant_sets[0]["coefficients"].dump(), b.constant_sets[0]["coefficients"].dump());
+}
+
+// Fits that take about a second each, of four targets.
+std::vector<FitSpec> quick_specs() {
+  std::vector<FitSpec> specs(5);
+  specs[0].target = "clamped-cosine";
+  specs[0].precision = WorkingPrecision::half;
+  specs[1].target = "steepness2024";
+  specs[1].objective = "irradiance";
+  specs[2].target = "lambda-d";
+  specs[2].objective = "sphere-ls";
+  specs[3].target = "clamped-cosine";
+  specs[4].target = "steepness2022";
+  specs[4].objective = "optimal-t";
+  return specs;
+}
+
+// Several fits at once on threads of their own give what they give one at a
+// time, handed over in spec order.
+TEST(RunFits, OutcomesDoNotDependOnTheJobs) {
+  const std::vector<FitSpec> specs = quick_specs();
+  std::vector<std::vector<std::string>> runs;
+  for (std::size_t jobs : {1, 3}) {
+    sglab::io::Progress progress("fit", specs.size(), sglab::io::ProgressSink{});
+    std::vector<std::string> got;
+    run_fits(specs, jobs, progress, [&](std::size_t i, FitOutcome& outcome) {
+      EXPECT_EQ(i, got.size()) << "handed over out of order";
+      EXPECT_EQ(outcome.report["diagnostics"]["nonfinite_residual_evaluations"], 0);
+      EXPECT_EQ(outcome.report["diagnostics"]["solver_messages"], 0);
+      got.push_back(outcome.text + outcome.report.dump() +
+                    ordered_json(outcome.constant_sets).dump());
+    });
+    EXPECT_EQ(got.size(), specs.size());
+    runs.push_back(got);
+  }
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  for (std::size_t i = 0; i < runs[0].size(); ++i)
+    EXPECT_EQ(runs[0][i], runs[1][i]) << "fit " << i << " (" << specs[i].target << ")";
+}
+
+// A fit that throws (an unknown target) stops the run: what comes before it
+// is handed over, nothing after it, and its exception reaches the caller.
+TEST(RunFits, AFitThatThrowsEndsTheRunWithItsError) {
+  std::vector<FitSpec> specs = quick_specs();
+  specs[2].target = "no-such-target";
+  for (std::size_t jobs : {1, 2, 5}) {
+    sglab::io::Progress progress("fit", specs.size(), sglab::io::ProgressSink{});
+    std::vector<std::size_t> handed;
+    try {
+      run_fits(specs, jobs, progress, [&](std::size_t i, FitOutcome&) { handed.push_back(i); });
+      ADD_FAILURE() << "no exception with " << jobs << " jobs";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("no-such-target"), std::string::npos) << e.what();
+    }
+    for (std::size_t k = 0; k < handed.size(); ++k) EXPECT_EQ(handed[k], k) << jobs << " jobs";
+    EXPECT_LE(handed.size(), 2u) << jobs << " jobs";
+  }
 }
 
 TEST(Fit, RefitIsNoWorseThanPublishedOnItsObjective) {
