@@ -72,7 +72,7 @@ struct PoleIrradiances {
 // no κ², so no overflow at κ = FLT_MAX; the difference q − e^{−κ} loses at
 // most a factor ~2 at κ = 1.
 template <class T>
-PoleIrradiances<T> irradiance_poles_over_two_pi(const T& kappa) {
+SGLAB_FORCE_INLINE PoleIrradiances<T> irradiance_poles_over_two_pi(const T& kappa) {
   using std::exp;
   const T e = exp(-kappa);
   if (kappa < T(1)) return {e * detail::lower_pole_series(kappa), detail::upper_pole_series(kappa)};

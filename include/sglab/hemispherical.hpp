@@ -45,7 +45,7 @@ T steepness2024(const T& kappa,
 // t(κ) of order M (params.hpp), evaluated as κ√(0.5 P/Q) for κ < 1 and as
 // √κ √(0.5 (P/κ^M)/(Q/κ^{M+1})) in powers of 1/κ above, so nothing overflows.
 template <class T, class S, std::size_t M>
-T steepness_rational(const T& kappa, const SteepnessRationalParams<S, M>& p) {
+SGLAB_FORCE_INLINE T steepness_rational(const T& kappa, const SteepnessRationalParams<S, M>& p) {
   using std::sqrt;
   if (kappa < T(1)) {
     T P = T(1), Q = T(1);
@@ -73,15 +73,15 @@ constexpr SteepnessRationalParams<S, 2> steepness_rational_of(const Steepness202
 
 // One name for every steepness form, so methods can take any of them.
 template <class T, class S>
-T steepness(const T& kappa, const Steepness2022Params<S>& p) {
+SGLAB_FORCE_INLINE T steepness(const T& kappa, const Steepness2022Params<S>& p) {
   return steepness2022(kappa, p);
 }
 template <class T, class S>
-T steepness(const T& kappa, const Steepness2024Params<S>& p) {
+SGLAB_FORCE_INLINE T steepness(const T& kappa, const Steepness2024Params<S>& p) {
   return steepness2024(kappa, p);
 }
 template <class T, class S, std::size_t M>
-T steepness(const T& kappa, const SteepnessRationalParams<S, M>& p) {
+SGLAB_FORCE_INLINE T steepness(const T& kappa, const SteepnessRationalParams<S, M>& p) {
   return steepness_rational(kappa, p);
 }
 

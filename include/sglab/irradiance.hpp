@@ -178,7 +178,7 @@ struct BranchFreeOps {
 // f = ½(c erfc(−tc) + erfc(t)) − e^{−t²c²} expm1(t²(c² − 1))/(2√π t),
 // saturated to [0, 1]. The last term → 0 as t → 0 (it is ~ t(c² − 1)).
 template <class T, class Ops = detail::LibmOps>
-T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, const T& t, Ops = {}) {
+SGLAB_FORCE_INLINE T lerp_factor_tokuyoshi2024_at_steepness(const T& cosine, const T& t, Ops = {}) {
   const T c = Ops::clamp(cosine, T(-1), T(1));
   const T tz = t * c;
   const T ez = Ops::exp(-tz * tz);  // e^{−t²c²}
@@ -206,8 +206,8 @@ struct Tokuyoshi2024Light {
 };
 
 template <class T, class P = Steepness2024Params<double>>
-Tokuyoshi2024Light<T> tokuyoshi2024_light(const T& kappa,
-                                          const P& p = constants::steepness2024_published) {
+SGLAB_FORCE_INLINE Tokuyoshi2024Light<T> tokuyoshi2024_light(
+    const T& kappa, const P& p = constants::steepness2024_published) {
   const PoleIrradiances<T> poles = irradiance_poles_over_two_pi(kappa);
   return {steepness(kappa, p), poles.lower, poles.upper};
 }
@@ -250,7 +250,8 @@ SGLAB_FORCE_INLINE Tokuyoshi2024Light<float> tokuyoshi2024_light_branch_free(
 }
 
 template <class T, class Ops = detail::LibmOps>
-T tokuyoshi2024_eval(const Tokuyoshi2024Light<T>& light, const T& cosine, Ops ops = {}) {
+SGLAB_FORCE_INLINE T tokuyoshi2024_eval(const Tokuyoshi2024Light<T>& light, const T& cosine,
+                                        Ops ops = {}) {
   const T f = lerp_factor_tokuyoshi2024_at_steepness(cosine, light.t, ops);
   return two_pi_v<T>() * lerp(light.lower, light.upper, f);
 }

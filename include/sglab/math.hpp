@@ -10,6 +10,19 @@
 #include <cstddef>
 #include <limits>
 
+// Batch kernels must inline their whole body into the loop to vectorize.
+// SGLAB_FLATTEN on a batch kernel inlines everything it calls, however large
+// the translation unit that instantiates it: without it GCC's unit-growth
+// limits can leave a call in the loop in a big TU, the loop stays scalar, and
+// the linker may keep that copy of the (weak) template instance.
+#if defined(__GNUC__) || defined(__clang__)
+#define SGLAB_FORCE_INLINE inline __attribute__((always_inline))
+#define SGLAB_FLATTEN __attribute__((flatten))
+#else
+#define SGLAB_FORCE_INLINE inline
+#define SGLAB_FLATTEN
+#endif
+
 namespace sglab {
 
 namespace detail {

@@ -90,21 +90,16 @@ SGLAB_FORCE_INLINE T sglab_acc_tail_scale(const T& t, Ops = {}) {
   return T(0.5) * inv_sqrt_pi_v<T>() / (t + std::numeric_limits<T>::min());
 }
 
-// The steepness of `p`: for M = 2 as Steepness2024Params (evaluated by
-// steepness2024, straight-line code that g++ inlines into the setup; the same
-// operations as steepness_rational, tests/test_sglab_acc.cpp), else as
-// SteepnessRationalParams (params.hpp): steep lists P's and Q's coefficients
-// highest order first, p and q lowest first.
+// The steepness of `p` as SteepnessRationalParams (params.hpp,
+// steepness_rational in hemispherical.hpp): steep lists P's and Q's
+// coefficients highest order first, p and q lowest first. For M = 2 the
+// same operations as steepness2024 (tests/test_sglab_acc.cpp).
 template <class S, std::size_t N, std::size_t D, std::size_t M>
-constexpr auto sglab_acc_steepness(const SglabAccParams<S, N, D, M>& p) {
-  if constexpr (M == 2) {
-    return Steepness2024Params<S>{p.steep[0], p.steep[1], p.steep[2], p.steep[3], p.steep[4]};
-  } else {
-    SteepnessRationalParams<S, M> r{};
-    for (std::size_t i = 0; i < M; ++i) r.p[M - 1 - i] = p.steep[i];
-    for (std::size_t i = 0; i <= M; ++i) r.q[M - i] = p.steep[M + i];
-    return r;
-  }
+constexpr SteepnessRationalParams<S, M> sglab_acc_steepness(const SglabAccParams<S, N, D, M>& p) {
+  SteepnessRationalParams<S, M> r{};
+  for (std::size_t i = 0; i < M; ++i) r.p[M - 1 - i] = p.steep[i];
+  for (std::size_t i = 0; i <= M; ++i) r.q[M - i] = p.steep[M + i];
+  return r;
 }
 
 }  // namespace detail
