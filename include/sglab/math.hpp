@@ -15,6 +15,12 @@
 // the translation unit that instantiates it: without it GCC's unit-growth
 // limits can leave a call in the loop in a big TU, the loop stays scalar, and
 // the linker may keep that copy of the (weak) template instance.
+// SGLAB_FORCE_INLINE on the per-light setups and evaluations, and on the
+// steepness forms and poles they call, makes a method's scalar call one
+// function with its coefficients folded into it; left to g++'s inlining
+// budget, which differs per binary, the callgrind counts of
+// data/results/callgrind.csv moved with unrelated code (sglab_acc2's scalar
+// call by 57 instructions when sglab_acc4 was added to the registry).
 #if defined(__GNUC__) || defined(__clang__)
 #define SGLAB_FORCE_INLINE inline __attribute__((always_inline))
 #define SGLAB_FLATTEN __attribute__((flatten))
