@@ -389,7 +389,7 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--jobs", o->jobs,
                   "fits to run at once (fit all), each on a thread of its own; the results do not "
                   "depend on it (default: the number of cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_in(1, 1024));
   cmd->add_option("--out", o->out_dir,
                   "directory of constant-set JSON files (default: data/constants of the sglab "
                   "project found at or above the working directory)")

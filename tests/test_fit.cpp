@@ -312,6 +312,9 @@ TEST(Cli, BadOptionsAreClearErrors) {
   EXPECT_NE(r.output.find("--precision"), std::string::npos) << r.output;
   r = sglab::test::run_sglab({"fit", "steepness2022", "--objective", "best", "--dry-run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = sglab::test::run_sglab({"fit", "all", "--jobs", "0", "--dry-run"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--jobs: must be at least 1"), std::string::npos) << r.output;
 }
 
 TEST(Cli, JsonReportHasNamedCoefficientsAndPublished) {
