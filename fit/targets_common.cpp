@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -207,6 +208,12 @@ void run_fits(const std::vector<FitSpec>& specs, std::size_t jobs, io::Progress&
   std::condition_variable filled;
   std::size_t left = specs.size();  // specs 0..left-1 are not taken yet
   bool stop = false;
+  std::vector<std::size_t> running;  // the specs being fitted, shown as the progress note
+  const auto show_running = [&] {
+    std::string names;
+    for (std::size_t k : running) names += (names.empty() ? "" : ", ") + specs[k].target;
+    finished.note(names.empty() ? "" : "running " + names);
+  };
   const auto work = [&] {
     for (;;) {
       std::size_t i;
@@ -214,19 +221,22 @@ void run_fits(const std::vector<FitSpec>& specs, std::size_t jobs, io::Progress&
         const std::lock_guard lock(mutex);
         if (stop || left == 0) return;
         i = --left;
+        running.push_back(i);
+        show_running();
       }
-      finished.note(fmt::format("{} started", specs[i].target));
       Slot slot;
       try {
         slot.outcome = run_fit_counted(specs[i]);
       } catch (...) {
         slot.error = std::current_exception();
       }
-      finished.advance();
       {
         const std::lock_guard lock(mutex);
         stop = stop || slot.error;
         slots[i] = std::move(slot);
+        running.erase(std::find(running.begin(), running.end(), i));
+        show_running();
+        finished.advance();
       }
       filled.notify_all();
     }
