@@ -94,13 +94,17 @@ struct SqrtBelowOne {
     return true;
   }
 };
-TEST(Engine, CountsNonFiniteResidualEvaluations) {
-  std::atomic<std::size_t> count{0};
+// SqrtBelowOne of one parameter, counting into `count`.
+std::unique_ptr<ceres::CostFunction> checked_sqrt_below_one(std::atomic<std::size_t>& count) {
   auto inner =
       std::make_unique<ceres::DynamicAutoDiffCostFunction<SqrtBelowOne, 4>>(new SqrtBelowOne);
   inner->AddParameterBlock(1);
   inner->SetNumResiduals(1);
-  const auto checked = make_checked_residual(std::move(inner), &count);
+  return make_checked_residual(std::move(inner), &count);
+}
+TEST(Engine, CountsNonFiniteResidualEvaluations) {
+  std::atomic<std::size_t> count{0};
+  const auto checked = checked_sqrt_below_one(count);
   double r = 0, j = 0, p = 2.0;
   const double* block = &p;
   double* jacobian = &j;
@@ -120,11 +124,7 @@ TEST(Engine, CountsNonFiniteResidualEvaluations) {
 // evaluation on another thread is not in it.
 TEST(Engine, CountsNonFiniteEvaluationsPerThread) {
   std::atomic<std::size_t> count{0};
-  auto inner =
-      std::make_unique<ceres::DynamicAutoDiffCostFunction<SqrtBelowOne, 4>>(new SqrtBelowOne);
-  inner->AddParameterBlock(1);
-  inner->SetNumResiduals(1);
-  const auto checked = make_checked_residual(std::move(inner), &count);
+  const auto checked = checked_sqrt_below_one(count);
   const std::size_t here_before = nonfinite_residual_evaluations_on_this_thread();
   std::size_t there_before = 0, there_after = 0;
   std::thread([&] {
