@@ -2,8 +2,10 @@
 #include "fit/model_family.hpp"
 
 #include <filesystem>
+#include <stdexcept>
 
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "common/io.hpp"
 #include "fit/constants_io.hpp"
@@ -183,6 +185,52 @@ std::optional<std::vector<double>> RationalLayout::committed_start(const std::st
   }
   if (!c->contains("q") || c->at("q").size() != degree) return std::nullopt;
   for (const auto& x : c->at("q")) values.push_back(x.get<double>());
+  return values;
+}
+
+std::vector<double> RationalLayout::least_squares_start(
+    const std::vector<double>& kappa, const std::vector<std::vector<double>>& targets,
+    const std::vector<std::vector<double>>& weights, double lo, double hi) const {
+  if (targets.size() != numerators.size() || weights.size() != numerators.size())
+    throw std::invalid_argument(fmt::format("{}: {} numerators, {} targets, {} weights", target,
+                                            numerators.size(), targets.size(), weights.size()));
+  std::vector<double> q = {1.0};  // ascending, monic
+  const double a = std::log10(lo), b = std::log10(hi);
+  for (std::size_t i = 0; i < degree; ++i) {
+    const double root =
+        std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(degree));
+    std::vector<double> next(q.size() + 1, 0.0);
+    for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
+    q = next;
+  }
+  auto Q = [&](double k) {
+    double y = 0;
+    for (std::size_t j = q.size(); j-- > 0;) y = y * k + q[j];
+    return y;
+  };
+  const auto rows = static_cast<Eigen::Index>(kappa.size());
+  std::vector<double> values;
+  for (std::size_t n = 0; n < numerators.size(); ++n) {
+    if (targets[n].size() != kappa.size() || weights[n].size() != kappa.size())
+      throw std::invalid_argument(fmt::format("{}: numerator {}: {} kappas, {} targets, {} weights",
+                                              target, numerators[n], kappa.size(),
+                                              targets[n].size(), weights[n].size()));
+    Eigen::MatrixXd M(rows, static_cast<Eigen::Index>(degree + 1));
+    Eigen::VectorXd y(rows);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      const double k = kappa[u], w = weights[n][u];
+      double kp = 1;
+      for (Eigen::Index j = 0; j < M.cols(); ++j, kp *= k) M(i, j) = w * kp / Q(k);
+      y(i) = w * targets[n][u];
+    }
+    // Column scaling for conditioning (κ^degree spans many decades).
+    Eigen::VectorXd s = M.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < s.size(); ++j) s(j) = s(j) > 0 ? 1 / s(j) : 1;
+    const Eigen::VectorXd x = (M * s.asDiagonal()).colPivHouseholderQr().solve(y);
+    for (Eigen::Index j = 0; j < x.size(); ++j) values.push_back(x(j) * s(j));
+  }
+  for (std::size_t j = 0; j < degree; ++j) values.push_back(q[j]);
   return values;
 }
 

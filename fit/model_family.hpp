@@ -148,6 +148,15 @@ struct RationalLayout {
   template <class Residual>
   JointFit joint_minimax(const std::vector<validate::ReferencePoint>& train,
                          const Parameters& params, double kappa_max, bool polish) const;
+  // The start of a fit from scratch (in fit order): the monic denominator
+  // Q = Π(κ + r_i) with the r_i log-spaced over [lo, hi] (at the midpoints of
+  // `degree` equal steps of log κ), then numerator n by the weighted linear
+  // least squares of targets[n][i] ≈ N_n(κ_i)/Q(κ_i), residual i times
+  // weights[n][i] (one target and weight per κ).
+  std::vector<double> least_squares_start(const std::vector<double>& kappa,
+                                          const std::vector<std::vector<double>>& targets,
+                                          const std::vector<std::vector<double>>& weights,
+                                          double lo, double hi) const;
 };
 
 // The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at

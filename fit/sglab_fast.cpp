@@ -28,7 +28,6 @@
 #include <optional>
 
 #include <fmt/format.h>
-#include <Eigen/Dense>
 
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_fast.hpp>
@@ -124,44 +123,18 @@ std::vector<PerKappa> per_kappa_optimum(const std::vector<double>& kappas,
 // numerator by linear least squares on the stage-1 values (V's residual
 // weighted by |C|, the sensitivity of the shape to V).
 std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, double hi) {
-  std::vector<double> q = {1.0};  // ascending, monic
-  const double a = std::log10(lo), b = std::log10(hi);
-  for (std::size_t i = 0; i < kDegree; ++i) {
-    const double root =
-        std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
-    std::vector<double> next(q.size() + 1, 0.0);
-    for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
-    q = next;
-  }
-  auto Q = [&](double k) {
-    double y = 0;
-    for (std::size_t j = q.size(); j-- > 0;) y = y * k + q[j];
-    return y;
-  };
-  std::vector<double> values;
-  for (int which = 0; which < 4; ++which) {
-    Eigen::MatrixXd M(per.size(), kDegree + 1);
-    Eigen::VectorXd y(per.size());
-    for (std::size_t i = 0; i < per.size(); ++i) {
-      const double k = per[i].kappa;
-      const double target = which == 0   ? per[i].A
-                            : which == 1 ? per[i].B
-                            : which == 2 ? per[i].C
-                                         : per[i].V;
+  std::vector<double> kappa;
+  std::vector<std::vector<double>> targets(4), weights(4);
+  for (const PerKappa& p : per) {
+    kappa.push_back(p.kappa);
+    const double values[] = {p.A, p.B, p.C, p.V};
+    for (std::size_t n = 0; n < 4; ++n) {
+      targets[n].push_back(values[n]);
       // s changes by about C·δV where V is off by δV: weight V's error by |C|.
-      const double w = which == 3 ? std::max(std::abs(per[i].C), 1e-6) : 1.0;
-      double kp = 1;
-      for (std::size_t j = 0; j <= kDegree; ++j, kp *= k) M(i, j) = w * kp / Q(k);
-      y(i) = w * target;
+      weights[n].push_back(n == 3 ? std::max(std::abs(p.C), 1e-6) : 1.0);
     }
-    // Column scaling for conditioning (κ^4 spans 28 decades).
-    Eigen::VectorXd s = M.colwise().norm().transpose();
-    for (Eigen::Index j = 0; j < s.size(); ++j) s(j) = s(j) > 0 ? 1 / s(j) : 1;
-    const Eigen::VectorXd x = (M * s.asDiagonal()).colPivHouseholderQr().solve(y);
-    for (Eigen::Index j = 0; j < x.size(); ++j) values.push_back(x(j) * s(j));
   }
-  for (std::size_t j = 0; j < kDegree; ++j) values.push_back(q[j]);
-  return values;
+  return kLayout.least_squares_start(kappa, targets, weights, lo, hi);
 }
 
 // The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp):

@@ -186,50 +186,20 @@ std::vector<PerKappa> per_kappa_optimum(const std::vector<double>& kappas,
   return out;
 }
 
-// Q = Π(κ + r_i), ascending and monic, with r log-spaced over [lo, hi].
-std::vector<double> log_spaced_denominator(double lo, double hi) {
-  std::vector<double> q = {1.0};
-  const double a = std::log10(lo), b = std::log10(hi);
-  for (std::size_t i = 0; i < kDegree; ++i) {
-    const double root =
-        std::pow(10.0, a + (b - a) * (static_cast<double>(i) + 0.5) / static_cast<double>(kDegree));
-    std::vector<double> next(q.size() + 1, 0.0);
-    for (std::size_t j = 0; j < q.size(); ++j) next[j] += root * q[j], next[j + 1] += q[j];
-    q = next;
-  }
-  return q;
-}
-
 // Stage 2: each numerator over the log-spaced Q by linear least squares on the
 // stage-1 values (of S + ln(1 + κ) and V/κ for Ps and Pv).
 std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, double hi) {
-  const std::vector<double> q = log_spaced_denominator(lo, hi);
-  auto Q = [&](double k) {
-    double y = 0;
-    for (std::size_t j = q.size(); j-- > 0;) y = y * k + q[j];
-    return y;
-  };
-  std::vector<double> values;
-  for (std::size_t which = 0; which < kShapeValues; ++which) {
-    Eigen::MatrixXd M(per.size(), kDegree + 1);
-    Eigen::VectorXd y(per.size());
-    for (std::size_t i = 0; i < per.size(); ++i) {
-      const double k = per[i].kappa;
-      const auto& sh = per[i].shape;
-      const double target = which == 4 ? sh[4] / k : which == 3 ? sh[3] + std::log1p(k) : sh[which];
-      const double w = 1;
-      double kp = 1;
-      for (std::size_t j = 0; j <= kDegree; ++j, kp *= k) M(i, j) = w * kp / Q(k);
-      y(i) = w * target;
+  std::vector<double> kappa;
+  std::vector<std::vector<double>> targets(kShapeValues), weights(kShapeValues);
+  for (const PerKappa& p : per) {
+    kappa.push_back(p.kappa);
+    const auto& sh = p.shape;
+    for (std::size_t n = 0; n < kShapeValues; ++n) {
+      targets[n].push_back(n == 4 ? sh[4] / p.kappa : n == 3 ? sh[3] + std::log1p(p.kappa) : sh[n]);
+      weights[n].push_back(1.0);
     }
-    // Column scaling for conditioning (κ^4 spans 28 decades).
-    Eigen::VectorXd s = M.colwise().norm().transpose();
-    for (Eigen::Index j = 0; j < s.size(); ++j) s(j) = s(j) > 0 ? 1 / s(j) : 1;
-    const Eigen::VectorXd x = (M * s.asDiagonal()).colPivHouseholderQr().solve(y);
-    for (Eigen::Index j = 0; j < x.size(); ++j) values.push_back(x(j) * s(j));
   }
-  for (std::size_t j = 0; j < kDegree; ++j) values.push_back(q[j]);
-  return values;
+  return kLayout.least_squares_start(kappa, targets, weights, lo, hi);
 }
 
 // The per-κ floor recorded in the committed set of `variant` over [lo, hi], if any.
