@@ -139,13 +139,31 @@ std::vector<report::CostCase> selected_cases(
   return cases;
 }
 
-// Times every case with Google Benchmark (the median of the repetitions), and
-// the 1-min load average before and after.
+// Google Benchmark with its repetitions of all cases run in a random order
+// (its --benchmark_enable_random_interleaving, set through Initialize: the flag
+// has no setter), so that a drift of the machine's speed during the run spreads
+// over every case instead of biasing the cases timed last (their ratios are
+// what the tables compare). Once per process.
+void enable_random_interleaving() {
+  static const bool initialized = [] {
+    // static: the library may keep argv[0]
+    static char name[] = "sglab", flag[] = "--benchmark_enable_random_interleaving=true";
+    char* argv[] = {name, flag, nullptr};
+    int argc = 2;
+    benchmark::Initialize(&argc, argv);
+    return true;
+  }();
+  (void)initialized;
+}
+
+// Times every case with Google Benchmark (the median of the repetitions, in
+// random order), and the 1-min load average before and after.
 struct Timings {
   std::vector<report::Cost> costs;
   double load_start = 0, load_end = 0;
 };
 Timings time_cases(const std::vector<report::CostCase>& cases, const BenchArgs& args) {
+  enable_random_interleaving();
   benchmark::ClearRegisteredBenchmarks();
   for (const report::CostCase& c : cases) {
     const report::CostCase* pc = &c;
@@ -184,7 +202,8 @@ void write_bench(const BenchArgs& args, const Timings& t,
                  const std::optional<shader::gpu::Report>& kept_gpu_costs) {
   const std::filesystem::path dir(args.out);
   const std::string timer = fmt::format(
-      "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s; scalar = registry "
+      "Google Benchmark, 1 thread, wall-clock, median of {} repetitions x {} s, repetitions of all "
+      "cases interleaved in random order; scalar = registry "
       "function pointer per element, batch = batch pointer over all inputs, light_setup = ns per "
       "light, light_eval = ns per shading point",
       args.repetitions, args.min_time);
