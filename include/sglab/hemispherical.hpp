@@ -19,8 +19,8 @@ namespace sglab {
 // same ratio is evaluated as √κ √((0.5 + A/κ)/(1 + B/κ + C/κ²)) so that
 // nothing overflows up to the largest finite κ; t → √(κ/2) as κ → ∞.
 template <class T, class S = double>
-T steepness2022(const T& kappa,
-                const Steepness2022Params<S>& p = constants::steepness2022_published) {
+SGLAB_FORCE_INLINE T steepness2022(
+    const T& kappa, const Steepness2022Params<S>& p = constants::steepness2022_published) {
   using std::sqrt;
   const T A = T(p.A), B = T(p.B), C = T(p.C);
   if (kappa < T(1)) return kappa * sqrt((T(0.5) * kappa + A) / ((kappa + B) * kappa + C));
@@ -31,8 +31,8 @@ T steepness2022(const T& kappa,
 // t(κ) = κ √(0.5((κ + A)κ + B)/(((κ + C)κ + D)κ + E))  (Tokuyoshi et al. 2024,
 // supplementary Listing 7), rearranged for κ ≥ 1 as above.
 template <class T, class S = double>
-T steepness2024(const T& kappa,
-                const Steepness2024Params<S>& p = constants::steepness2024_published) {
+SGLAB_FORCE_INLINE T steepness2024(
+    const T& kappa, const Steepness2024Params<S>& p = constants::steepness2024_published) {
   using std::sqrt;
   const T A = T(p.A), B = T(p.B), C = T(p.C), D = T(p.D), E = T(p.E);
   if (kappa < T(1))
