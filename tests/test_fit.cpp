@@ -21,6 +21,7 @@
 #include "common/io.hpp"
 #include "fit/constants_schema.hpp"
 #include "fit/minimax.hpp"
+#include "fit/model_family.hpp"
 #include "fit/targets.hpp"
 #include "tests/fit_guard.hpp"
 #include "tests/test_support.hpp"
@@ -513,6 +514,44 @@ TEST(SteepnessCertificate, OneTPerKappaDoesNotBoundThe2022Irradiance) {
   for (int i = -300; i <= 300; ++i)
     one_t = std::min(one_t, error(probe::ConstantSteepness{t0 * std::exp(0.01 * i)}));
   EXPECT_GT(one_t, 2 * error(fitted));
+}
+
+// The start of the rational fits from scratch (sglab-fast, sglab-mid):
+// targets that are exactly N_n(κ)/Q(κ) for the log-spaced monic Q are
+// recovered exactly (the least squares has a zero residual there), and Q's
+// roots are −r_i with log10 r_i at the midpoints of equal steps over [lo, hi].
+TEST(RationalLayout, LeastSquaresStartRecoversAnExactRational) {
+  const double lo = 1e-3, hi = 1e4;
+  const sglab::fit::RationalLayout layout{"test", {"a", "b"}, 3};
+  std::vector<double> r;
+  for (int i = 0; i < 3; ++i) r.push_back(std::pow(10.0, -3 + 7 * (i + 0.5) / 3));
+  const auto Q = [&](double k) { return (k + r[0]) * (k + r[1]) * (k + r[2]); };
+  const std::vector<std::vector<double>> numerators = {{0.5, -2, 3, 0.25}, {1, 0, -1, 2}};
+  std::vector<double> kappa;
+  std::vector<std::vector<double>> targets(2), weights(2);
+  for (double lk = -3; lk <= 4; lk += 0.125) {
+    const double k = std::pow(10.0, lk);
+    kappa.push_back(k);
+    for (std::size_t n = 0; n < 2; ++n) {
+      const auto& a = numerators[n];
+      targets[n].push_back((((a[3] * k + a[2]) * k + a[1]) * k + a[0]) / Q(k));
+      weights[n].push_back(n == 0 ? 1.0 : 1 + k);  // any positive weights: the fit is exact
+    }
+  }
+  const std::vector<double> v = layout.least_squares_start(kappa, targets, weights, lo, hi);
+  ASSERT_EQ(v.size(), 2 * 4 + 3u);
+  for (std::size_t n = 0; n < 2; ++n)
+    for (std::size_t j = 0; j < 4; ++j)
+      EXPECT_NEAR(v[4 * n + j], numerators[n][j], 1e-9 * (1 + std::abs(numerators[n][j])))
+          << "numerator " << n << ", coefficient " << j;
+  // q0, q1, q2 of the monic Q (lowest first): Q(−r_i) = 0.
+  for (double root : r) {
+    const double x = -root;
+    const double q = ((x + v[10]) * x + v[9]) * x + v[8];
+    EXPECT_NEAR(q, 0, 1e-9 * Q(root)) << "root " << root;
+  }
+  EXPECT_THROW(layout.least_squares_start(kappa, {targets[0]}, weights, lo, hi),
+               std::invalid_argument);
 }
 
 }  // namespace
