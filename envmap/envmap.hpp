@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -43,13 +44,21 @@ inline constexpr std::size_t kMaxPixels = std::size_t{1} << 27;
 inline constexpr std::size_t kMinHeight = 4;
 
 // Reads an OpenEXR file (channels R, G, B; half or float; the data window) or
-// a Radiance .hdr file (stb_image), chosen by the file's contents, not its
-// name. Throws io::InputError naming the file and the problem: missing or not
-// a regular file, neither OpenEXR nor Radiance HDR, unreadable or damaged, no
-// R/G/B channels, not 2:1 (W = 2H), smaller than 8 × 4 or over kMaxPixels, a
-// NaN, infinite or negative value (naming the pixel and channel; see check_map
-// for the tiny negatives of lossy encoders), no positive value.
+// a Radiance .hdr file (envmap/radiance_hdr.hpp: RGBE decoded as Radiance
+// does, (m + ½)·2^(e−136)), chosen by the file's contents, not its name. The
+// size the file declares is checked (check_size) and found in the file (every
+// OpenEXR chunk present within it; every .hdr scanline decoded once) before
+// any pixel buffer is allocated. Throws io::InputError naming the file and
+// the problem: missing or not a regular file, neither OpenEXR nor Radiance
+// HDR, unreadable or damaged (cut short, a chunk or scanline missing), no
+// R/G/B channels, a size check_size refuses, a NaN, infinite or negative value
+// (naming the pixel and channel; see check_map for the tiny negatives of lossy
+// encoders), no positive value.
 Map read_map(const std::filesystem::path& path);
+
+// A W × H map must be 2:1 (W = 2H), at least 8 × 4 and at most kMaxPixels;
+// throws io::InputError naming `source` and the size otherwise.
+void check_size(std::uint64_t width, std::uint64_t height, const std::string& source);
 
 // Checks the rules above on a map in memory (`source` names it in messages),
 // and sets the tiny negative values lossy encoders leave (down to

@@ -15,13 +15,10 @@
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
 #include <ImfTestFile.h>
-
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_HDR
-#define STBI_NO_STDIO_WARNINGS
-#include <stb/stb_image.h>
+#include <openexr.h>
 
 #include "envmap/envmap.hpp"
+#include "envmap/radiance_hdr.hpp"
 
 namespace sglab::envmap {
 
@@ -31,15 +28,88 @@ using io::InputError;
 
 const char* channel_name(std::size_t ch) { return ch == 0 ? "R" : ch == 1 ? "G" : "B"; }
 
+// OpenEXRCore's message for the failure being handled (its error callback
+// has no user pointer: the context's is the file handle).
+thread_local std::string exr_core_message;
+void keep_exr_core_message(exr_const_context_t, exr_result_t, const char* message) {
+  exr_core_message = message ? message : "";
+}
+
+// Before any pixel buffer: the data window of the part Imf::InputFile reads
+// (part 0) passes check_size, and every chunk of its full-resolution level is
+// in the file: its offset table fits in the file, and OpenEXRCore finds each
+// chunk's header where the table says and checks that the chunk ends within
+// the file. A header declaring more pixels than the file holds is so refused
+// in time proportional to its chunk count. Deep parts are left to
+// Imf::InputFile, which refuses them.
+void check_exr_layout(const std::string& name) {
+  exr_core_message.clear();
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = &keep_exr_core_message;
+  exr_context_t raw = nullptr;
+  auto why = [](exr_result_t rv) {
+    return exr_core_message.empty() ? std::string(exr_get_default_error_message(rv))
+                                    : exr_core_message;
+  };
+  const exr_result_t opened = exr_start_read(&raw, name.c_str(), &init);
+  std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> ctxt(
+      &raw, [](exr_context_t* c) { exr_finish(c); });
+  if (opened != EXR_ERR_SUCCESS)
+    throw InputError(fmt::format("{}: unreadable OpenEXR file ({})", name, why(opened)));
+  exr_storage_t storage{};
+  if (exr_get_storage(raw, 0, &storage) != EXR_ERR_SUCCESS ||
+      (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED))
+    return;
+  exr_attr_box2i_t dw{};
+  if (const exr_result_t rv = exr_get_data_window(raw, 0, &dw); rv != EXR_ERR_SUCCESS)
+    throw InputError(fmt::format("{}: unreadable OpenEXR file ({})", name, why(rv)));
+  const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+  const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+  if (w <= 0 || h <= 0) throw InputError(fmt::format("{}: empty data window", name));
+  check_size(static_cast<std::uint64_t>(w), static_cast<std::uint64_t>(h), name);
+  const std::uint64_t file_size = std::filesystem::file_size(name);
+  int32_t chunks = 0;
+  if (const exr_result_t rv = exr_get_chunk_count(raw, 0, &chunks); rv != EXR_ERR_SUCCESS)
+    throw InputError(fmt::format("{}: unreadable OpenEXR file ({})", name, why(rv)));
+  if (chunks <= 0 || static_cast<std::uint64_t>(chunks) * 8 > file_size)
+    throw InputError(fmt::format(
+        "{}: damaged OpenEXR file: {} x {} pixels in {} chunks, whose offset table alone needs "
+        "more than the file's {} bytes",
+        name, w, h, chunks, file_size));
+  auto check_chunk = [&](exr_result_t rv, const std::string& which) {
+    if (rv != EXR_ERR_SUCCESS)
+      throw InputError(
+          fmt::format("{}: damaged OpenEXR file: {} is missing ({})", name, which, why(rv)));
+  };
+  exr_chunk_info_t info{};
+  if (storage == EXR_STORAGE_SCANLINE) {
+    int32_t lines = 0;
+    exr_get_scanlines_per_chunk(raw, 0, &lines);
+    for (long long y = dw.min.y; y <= dw.max.y; y += std::max(lines, 1))
+      check_chunk(exr_read_scanline_chunk_info(raw, 0, static_cast<int>(y), &info),
+                  fmt::format("the chunk of scanline {}", y));
+  } else {
+    int32_t tw = 0, th = 0, lw = 0, lh = 0;
+    if (const exr_result_t rv = exr_get_tile_sizes(raw, 0, 0, 0, &tw, &th);
+        rv != EXR_ERR_SUCCESS || tw <= 0 || th <= 0)
+      throw InputError(fmt::format("{}: unreadable OpenEXR file ({})", name, why(rv)));
+    if (const exr_result_t rv = exr_get_level_sizes(raw, 0, 0, 0, &lw, &lh); rv != EXR_ERR_SUCCESS)
+      throw InputError(fmt::format("{}: unreadable OpenEXR file ({})", name, why(rv)));
+    for (int ty = 0; ty < (lh + th - 1) / th; ++ty)
+      for (int tx = 0; tx < (lw + tw - 1) / tw; ++tx)
+        check_chunk(exr_read_tile_chunk_info(raw, 0, tx, ty, 0, 0, &info),
+                    fmt::format("tile ({}, {})", tx, ty));
+  }
+}
+
 Map read_exr(const std::string& name) {
+  check_exr_layout(name);
   Imf::InputFile file(name.c_str());
   const Imath::Box2i dw = file.header().dataWindow();
   const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
   const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
   if (w <= 0 || h <= 0) throw InputError(fmt::format("{}: empty data window", name));
-  if (static_cast<double>(w) * static_cast<double>(h) > static_cast<double>(kMaxPixels))
-    throw InputError(
-        fmt::format("{}: {} x {} pixels, at most {} pixels are read", name, w, h, kMaxPixels));
+  check_size(static_cast<std::uint64_t>(w), static_cast<std::uint64_t>(h), name);
   const Imf::ChannelList& channels = file.header().channels();
   for (std::size_t ch = 0; ch < 3; ++ch)
     if (!channels.findChannel(channel_name(ch)))
@@ -65,36 +135,25 @@ Map read_exr(const std::string& name) {
   return map;
 }
 
-Map read_hdr(const std::string& name) {
-  int w = 0, h = 0, n = 0;
-  if (!stbi_info(name.c_str(), &w, &h, &n))
-    throw InputError(
-        fmt::format("{}: unreadable Radiance HDR file ({})", name, stbi_failure_reason()));
-  if (static_cast<double>(w) * static_cast<double>(h) > static_cast<double>(kMaxPixels))
-    throw InputError(
-        fmt::format("{}: {} x {} pixels, at most {} pixels are read", name, w, h, kMaxPixels));
-  float* data = stbi_loadf(name.c_str(), &w, &h, &n, 3);
-  if (!data)
-    throw InputError(
-        fmt::format("{}: unreadable Radiance HDR file ({})", name, stbi_failure_reason()));
-  Map map;
-  map.width = static_cast<std::size_t>(w);
-  map.height = static_cast<std::size_t>(h);
-  map.rgb.assign(data, data + map.width * map.height * 3);
-  stbi_image_free(data);
-  return map;
-}
-
 }  // namespace
 
-void check_map(Map& map, const std::string& source) {
-  if (map.width != 2 * map.height)
+void check_size(std::uint64_t width, std::uint64_t height, const std::string& source) {
+  if (width > kMaxPixels || height > kMaxPixels || width * height > kMaxPixels)
+    throw InputError(fmt::format(
+        "{}: {} x {} pixels, more than the {} (16384 x 8192) a map may have (README, Environment "
+        "maps: the memory and time of the largest map)",
+        source, width, height, kMaxPixels));
+  if (width != 2 * height)
     throw InputError(fmt::format(
         "{}: {} x {} pixels is not a 2:1 equirectangular map (width must be twice the height)",
-        source, map.width, map.height));
-  if (map.height < kMinHeight)
-    throw InputError(fmt::format("{}: {} x {} pixels, at least {} x {} needed", source, map.width,
-                                 map.height, 2 * kMinHeight, kMinHeight));
+        source, width, height));
+  if (height < kMinHeight)
+    throw InputError(fmt::format("{}: {} x {} pixels, at least {} x {} needed", source, width,
+                                 height, 2 * kMinHeight, kMinHeight));
+}
+
+void check_map(Map& map, const std::string& source) {
+  check_size(map.width, map.height, source);
   double integral = 0;  // Σ ΔΩ (r + g + b)
   for (std::size_t j = 0; j < map.height; ++j) {
     const double om = pixel_solid_angle(map, j);
@@ -145,8 +204,8 @@ Map read_map(const std::filesystem::path& path) {
   try {
     if (Imf::isOpenExrFile(name.c_str()))
       map = read_exr(name);
-    else if (stbi_is_hdr(name.c_str()))
-      map = read_hdr(name);
+    else if (is_radiance_hdr(path))
+      map = read_radiance_hdr(path);
     else
       throw InputError(
           fmt::format("{}: not an HDR image (neither OpenEXR nor Radiance .hdr)", name));

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(build-essential cmake libceres-dev libeigen3-dev libboost-dev libfmt-dev libgtest-dev
           libbenchmark-dev libcli11-dev nlohmann-json3-dev libtbb-dev gnuplot-nox
           glslang-tools glslang-dev libvulkan-dev mesa-vulkan-drivers spirv-tools vulkan-tools
-          libopenexr-dev libstb-dev coinor-libclp-dev pkg-config "$@")
+          libopenexr-dev coinor-libclp-dev pkg-config "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

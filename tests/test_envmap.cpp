@@ -150,27 +150,6 @@ TEST(Envmap, ExrRoundTrip) {
   EXPECT_EQ(r.rgb, m.rgb);
 }
 
-// A Radiance .hdr file (flat RGBE scanlines) is read through stb_image.
-TEST(Envmap, ReadsRadianceHdr) {
-  TempDir dir("envmap-hdr");
-  auto write_hdr = [&](const std::string& name, int w, int h) {
-    std::ofstream f(dir.path / name, std::ios::binary);
-    f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " << h << " +X " << w << "\n";
-    for (int p = 0; p < w * h; ++p)
-      f << static_cast<char>(128) << static_cast<char>(64) << static_cast<char>(32)
-        << static_cast<char>(129);  // (1, 0.5, 0.25)
-  };
-  write_hdr("m.hdr", 16, 8);
-  const Map m = envmap::read_map(dir.path / "m.hdr");
-  ASSERT_EQ(m.width, 16u);
-  ASSERT_EQ(m.height, 8u);
-  EXPECT_FLOAT_EQ(m.at(3, 5, 0), 1.0f);
-  EXPECT_FLOAT_EQ(m.at(3, 5, 1), 0.5f);
-  EXPECT_FLOAT_EQ(m.at(3, 5, 2), 0.25f);
-  write_hdr("square.hdr", 8, 8);
-  EXPECT_THROW(envmap::read_map(dir.path / "square.hdr"), io::InputError);
-}
-
 // Every bad input exits 2 naming the problem, and leaves no --out file.
 TEST(EnvmapCli, BadFilesExitTwo) {
   TempDir dir("envmap-bad");

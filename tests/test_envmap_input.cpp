@@ -1,0 +1,511 @@
+// Environment-map input and its bounds (envmap/envmap.hpp, envmap/radiance_hdr.hpp):
+// Radiance .hdr files made here byte by byte (every encoding, known values,
+// every truncation), OpenEXR files declaring more than they hold, and the
+// OpenEXR variants that must still read.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <sys/resource.h>
+
+#include <gtest/gtest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfMultiPartOutputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
+#include <ImfTiledOutputFile.h>
+#include <half.h>
+
+#include "envmap/envmap.hpp"
+#include "envmap/radiance_hdr.hpp"
+#include "tests/test_support.hpp"
+
+namespace {
+
+using namespace sglab;
+using envmap::Map;
+using envmap::Vec3;
+using test::run_sglab;
+using test::TempDir;
+using Rgbe = std::array<std::uint8_t, 4>;
+
+// ---- Radiance files made here -----------------------------------------------
+
+// Ward's encoder ([Ward1991], setcolr): the largest channel's frexp exponent
+// and mantissas truncated to 8 bits.
+Rgbe rgbe_of(double r, double g, double b) {
+  const double d = std::max({r, g, b});
+  if (d <= 1e-32) return {0, 0, 0, 0};
+  int e = 0;
+  const double s = std::frexp(d, &e) * 256.0 / d;
+  return {static_cast<std::uint8_t>(r * s), static_cast<std::uint8_t>(g * s),
+          static_cast<std::uint8_t>(b * s), static_cast<std::uint8_t>(e + 128)};
+}
+
+enum class Encoding { flat, rle, repeats };
+
+// One component of a scanline in the adaptive run-length encoding: runs of 3
+// or more equal bytes as (128 + n, value), n ≤ 127; the rest as (n, n bytes),
+// n ≤ 128.
+void encode_component(std::string& out, const std::vector<std::uint8_t>& v) {
+  std::size_t i = 0;
+  while (i < v.size()) {
+    std::size_t run = 1;
+    while (i + run < v.size() && run < 127 && v[i + run] == v[i]) ++run;
+    if (run >= 3) {
+      out += static_cast<char>(128 + run);
+      out += static_cast<char>(v[i]);
+      i += run;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < v.size() && j - i < 128 &&
+           !(j + 2 < v.size() && v[j] == v[j + 1] && v[j] == v[j + 2]))
+      ++j;
+    out += static_cast<char>(j - i);
+    for (; i < j; ++i) out += static_cast<char>(v[i]);
+  }
+}
+
+// A Radiance picture of w × h RGBE pixels (rows from the top) in one encoding:
+// flat, run-length encoded scanlines, or flat pixels with Radiance's old
+// repeats (1, 1, 1, n), consecutive repeats counting n << 8, n << 16.
+std::string hdr_file(std::size_t w, std::size_t h, const std::vector<Rgbe>& px, Encoding enc,
+                     const std::string& header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n") {
+  std::string s = header + "-Y " + std::to_string(h) + " +X " + std::to_string(w) + "\n";
+  for (std::size_t j = 0; j < h; ++j) {
+    const Rgbe* row = px.data() + j * w;
+    if (enc == Encoding::rle) {
+      s += {2, 2, static_cast<char>(w >> 8), static_cast<char>(w & 255)};
+      for (std::size_t c = 0; c < 4; ++c) {
+        std::vector<std::uint8_t> v(w);
+        for (std::size_t i = 0; i < w; ++i) v[i] = row[i][c];
+        encode_component(s, v);
+      }
+      continue;
+    }
+    for (std::size_t i = 0; i < w;) {
+      s.append(reinterpret_cast<const char*>(row[i].data()), 4);
+      std::size_t n = 0;
+      while (enc == Encoding::repeats && i + 1 + n < w && row[i + 1 + n] == row[i]) ++n;
+      for (std::size_t left = n; left > 0; left >>= 8)
+        s += {1, 1, 1, static_cast<char>(left & 255)};
+      i += 1 + n;
+    }
+  }
+  return s;
+}
+
+void write_bytes(const std::filesystem::path& p, const std::string& bytes) {
+  std::ofstream(p, std::ios::binary) << bytes;
+}
+
+// Pixels whose bytes vary in every channel, with runs (equal neighbours along
+// rows) for the run-length encodings; no pixel starts (2, 2) or is (1, 1, 1, n).
+std::vector<Rgbe> test_pixels(std::size_t w, std::size_t h) {
+  std::vector<Rgbe> px(w * h);
+  for (std::size_t j = 0; j < h; ++j)
+    for (std::size_t i = 0; i < w; ++i) {
+      const std::size_t k = i / 3;  // runs of 3 pixels
+      px[j * w + i] = {static_cast<std::uint8_t>(40 + (k * 37 + j * 11) % 200),
+                       static_cast<std::uint8_t>((k * 53 + j * 7) % 256),
+                       static_cast<std::uint8_t>(i % 4 == 0 ? 0 : 9 + (j * 29) % 230),
+                       static_cast<std::uint8_t>(120 + (k + j) % 20)};
+    }
+  return px;
+}
+
+double radiance_decode(std::uint8_t m, std::uint8_t e) {
+  return e == 0 ? 0.0 : std::ldexp(m + 0.5, e - 136);
+}
+
+long peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+// ---- RGBE values --------------------------------------------------------------
+
+TEST(EnvmapInput, RgbeChannelIsRadiancesDecoding) {
+  // Radiance's colr_color: (m + ½)·2^(e − 136); exponent 0 is black.
+  EXPECT_EQ(envmap::rgbe_channel(128, 129), 1.00390625f);  // 128.5 / 128
+  EXPECT_EQ(envmap::rgbe_channel(64, 129), 0.50390625f);
+  EXPECT_EQ(envmap::rgbe_channel(0, 136), 0.5f);
+  EXPECT_EQ(envmap::rgbe_channel(255, 0), 0.0f);
+  EXPECT_EQ(envmap::rgbe_channel(0, 1), std::ldexp(1.0f, -136));  // subnormal, exact
+  EXPECT_EQ(envmap::rgbe_channel(255, 255), std::ldexp(511.0f, 118));
+  EXPECT_TRUE(std::isfinite(envmap::rgbe_channel(255, 255)));
+  for (int e = 1; e < 256; ++e)
+    for (int m = 0; m < 256; ++m)
+      ASSERT_EQ(static_cast<double>(envmap::rgbe_channel(static_cast<std::uint8_t>(m),
+                                                         static_cast<std::uint8_t>(e))),
+                std::ldexp(2 * m + 1, e - 137))
+          << "m " << m << " e " << e;
+}
+
+// A hand-made map of known bytes reads the same in every encoding, each value
+// (m + ½)·2^(e − 136), rows from the top and columns from the left.
+TEST(EnvmapInput, RadianceEncodingsReadTheirKnownValues) {
+  TempDir dir("envmap-hdr-known");
+  const std::size_t w = 32, h = 16;
+  const std::vector<Rgbe> px = test_pixels(w, h);
+  for (Encoding enc : {Encoding::flat, Encoding::rle, Encoding::repeats}) {
+    const auto path = dir.path / "m.hdr";
+    write_bytes(path, hdr_file(w, h, px, enc));
+    const Map m = envmap::read_map(path);
+    ASSERT_EQ(m.width, w);
+    ASSERT_EQ(m.height, h);
+    for (std::size_t j = 0; j < h; ++j)
+      for (std::size_t i = 0; i < w; ++i)
+        for (std::size_t ch = 0; ch < 3; ++ch)
+          ASSERT_EQ(static_cast<double>(m.at(i, j, ch)),
+                    radiance_decode(px[j * w + i][ch], px[j * w + i][3]))
+              << "encoding " << static_cast<int>(enc) << " pixel " << i << ", " << j;
+  }
+  // The encodings differ: the run-length file is smaller than the flat one.
+  EXPECT_LT(hdr_file(w, h, px, Encoding::rle).size(), hdr_file(w, h, px, Encoding::flat).size());
+  // Without FORMAT (Radiance assumes RGBE) and with "#?RGBE".
+  write_bytes(dir.path / "f.hdr", hdr_file(w, h, px, Encoding::rle, "#?RGBE\nEXPOSURE=2\n\n"));
+  EXPECT_EQ(envmap::read_map(dir.path / "f.hdr").at(5, 3, 1),
+            static_cast<float>(radiance_decode(px[3 * w + 5][1], px[3 * w + 5][3])));
+}
+
+// Old-style repeats count n << 8 after a first repeat (600 wide: one pixel and
+// repeats of 87 and 2·256 fill each constant row).
+TEST(EnvmapInput, RadianceRepeatsShiftByEightBits) {
+  TempDir dir("envmap-hdr-shift");
+  const std::size_t w = 600, h = 300;
+  std::vector<Rgbe> px(w * h);
+  for (std::size_t j = 0; j < h; ++j)
+    for (std::size_t i = 0; i < w; ++i)
+      px[j * w + i] = {static_cast<std::uint8_t>(100 + j % 50), 90, 80, 130};
+  const std::string bytes = hdr_file(w, h, px, Encoding::repeats);
+  EXPECT_LT(bytes.size(), 13 * h + 64);  // 12 bytes a row
+  write_bytes(dir.path / "m.hdr", bytes);
+  const Map m = envmap::read_map(dir.path / "m.hdr");
+  for (std::size_t j = 0; j < h; j += 37)
+    for (std::size_t i : {std::size_t{0}, std::size_t{87}, std::size_t{88}, w - 1})
+      ASSERT_EQ(m.at(i, j, 0), static_cast<float>(radiance_decode(px[j * w][0], 130)))
+          << i << ", " << j;
+}
+
+// Ward's truncating encoder loses half a mantissa step on average; decoding at
+// the step's centre, as Radiance does, keeps the map's irradiance (a map of
+// known lobes, its float values against its RGBE file).
+TEST(EnvmapInput, RadianceDecodingKeepsTheIrradiance) {
+  TempDir dir("envmap-hdr-bias");
+  const std::vector<envmap::Lobe> lobes = {
+      {{0.3, 0.4, std::sqrt(1 - 0.25)}, 40.0, {4.0, 3.5, 3.0}},
+      {{-0.8, 0.0, -0.6}, 6.0, {0.5, 0.8, 1.2}},
+      {{0.0, -1.0, 0.0}, 15.0, {1.5, 1.0, 0.5}},
+  };
+  Map truth = envmap::reconstruct(lobes, 128, 64);
+  for (float& v : truth.rgb) v += 0.05f;  // no black pixel
+  std::vector<Rgbe> px(truth.width * truth.height);
+  for (std::size_t p = 0; p < px.size(); ++p)
+    px[p] = rgbe_of(truth.rgb[3 * p], truth.rgb[3 * p + 1], truth.rgb[3 * p + 2]);
+  write_bytes(dir.path / "m.hdr", hdr_file(truth.width, truth.height, px, Encoding::rle));
+  const Map read = envmap::read_map(dir.path / "m.hdr");
+  const auto normals = validate::fibonacci_normals(400);
+  const auto err = envmap::irradiance_error(envmap::irradiance(read, normals),
+                                            envmap::irradiance(truth, normals));
+  std::printf("RGBE round trip: max irradiance error %.3g\n", err.max_rel);
+  // Measured 9.5e-5; decoded as m·2^(e−136) (no ½) 3.2e-3.
+  EXPECT_LT(err.max_rel, 5e-4);
+}
+
+// ---- damaged and oversized Radiance files -------------------------------------
+
+// Every truncation of a file is refused as damaged, in each encoding (the
+// run-length decoder of stb_image never returned on some of these).
+TEST(EnvmapInput, EveryTruncatedRadianceFileIsDamaged) {
+  TempDir dir("envmap-hdr-cut");
+  const std::size_t w = 8, h = 4;  // the smallest map; run-length encoding from width 8
+  const std::vector<Rgbe> px = test_pixels(w, h);
+  for (Encoding enc : {Encoding::flat, Encoding::rle, Encoding::repeats}) {
+    const std::string full = hdr_file(w, h, px, enc);
+    const std::size_t header = full.find("+X 8\n") + 5;
+    for (std::size_t n = header; n < full.size(); ++n) {
+      write_bytes(dir.path / "cut.hdr", full.substr(0, n));
+      try {
+        envmap::read_map(dir.path / "cut.hdr");
+        ADD_FAILURE() << "encoding " << static_cast<int>(enc) << " cut at " << n << " of "
+                      << full.size() << " was read";
+      } catch (const io::InputError& e) {
+        ASSERT_NE(std::string(e.what()).find("damaged Radiance HDR file"), std::string::npos)
+            << e.what();
+      }
+    }
+  }
+}
+
+TEST(EnvmapInput, MalformedRadianceFilesNameTheirFault) {
+  TempDir dir("envmap-hdr-bad");
+  const std::size_t w = 16, h = 8;
+  const std::vector<Rgbe> px = test_pixels(w, h);
+  const std::string good = hdr_file(w, h, px, Encoding::rle);
+  const std::size_t data = good.find("+X 16\n") + 6;
+  struct Case {
+    std::string name, bytes, says;
+  };
+  std::string run_past_end = good;  // scanline 0, R: a run of 127
+  run_past_end[data + 4] = static_cast<char>(255);
+  std::string length = good;  // scanline 0 declares 17 pixels
+  length[data + 3] = 17;
+  std::string repeat_first = hdr_file(w, h, px, Encoding::flat);
+  repeat_first.replace(data, 4, std::string{1, 1, 1, 5});
+  const std::vector<Case> cases = {
+      {"run.hdr", run_past_end, "scanline 0 has a run of 127 past its end"},
+      {"length.hdr", length, "scanline 0 declares 17 pixels, the width is 16"},
+      {"repeat.hdr", repeat_first, "scanline 0 starts with a run-length repeat"},
+      {"xyze.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 8 +X 16\n", "FORMAT=32-bit_rle_xyze"},
+      {"flip.hdr", "#?RADIANCE\n\n+Y 8 +X 16\n" + good.substr(data), "standard orientation"},
+      {"cols.hdr", "#?RADIANCE\n\n+X 16 -Y 8\n" + good.substr(data), "standard orientation"},
+      {"res.hdr", "#?RADIANCE\n\n-Y 8 +X 1x6\n" + good.substr(data), "resolution line"},
+      {"noend.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n", "ends inside its header"},
+      {"long.hdr", "#?RADIANCE\n" + std::string(envmap::kMaxHeaderBytes, 'x'),
+       "no end of the header"},
+      {"square.hdr", hdr_file(8, 8, test_pixels(8, 8), Encoding::rle), "not a 2:1"},
+      {"huge.hdr", "#?RADIANCE\n\n-Y 16384 +X 32768\n", "more than the 134217728"},
+  };
+  for (const Case& c : cases) {
+    write_bytes(dir.path / c.name, c.bytes);
+    try {
+      envmap::read_map(dir.path / c.name);
+      ADD_FAILURE() << c.name << " was read";
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos)
+          << c.name << ": " << e.what();
+    }
+  }
+}
+
+// A 1 KB file declaring 16384 × 8192 (1.5 GiB as float RGB) is refused as
+// damaged without the map's memory ever being taken.
+TEST(EnvmapInput, RadianceDeclaredSizeIsCheckedBeforeAllocation) {
+  TempDir dir("envmap-hdr-big");
+  std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n";
+  bytes.resize(1024, static_cast<char>(77));
+  write_bytes(dir.path / "big.hdr", bytes);
+  const long before = peak_rss_kb();
+  EXPECT_THROW(envmap::read_map(dir.path / "big.hdr"), io::InputError);
+  EXPECT_LT(peak_rss_kb() - before, 64 * 1024) << "KB of peak memory taken";
+}
+
+// ---- OpenEXR ------------------------------------------------------------------
+
+// An EXR header of w × h float RGB whose first `lines` scanlines are written
+// (the rest missing, as a writer stopped early leaves them).
+void write_partial_exr(const std::filesystem::path& p, int w, int h, int lines) {
+  Imf::Header header(w, h);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+  Imf::OutputFile out(p.c_str(), header);
+  std::vector<float> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(lines) * 3, 1.0f);
+  Imf::FrameBuffer fb;
+  const std::size_t xs = 3 * sizeof(float), ys = xs * static_cast<std::size_t>(w);
+  for (std::size_t c = 0; c < 3; ++c)
+    fb.insert(std::string(1, "RGB"[c]),
+              Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c), xs, ys));
+  out.setFrameBuffer(fb);
+  out.writePixels(lines);
+}
+
+// A 16384 × 8192 header over 16 written lines (7 KB), that file cut to 6 KB,
+// and a tiled one with one tile written: refused as damaged before the map's
+// 1.5 GiB is taken.
+TEST(EnvmapInput, ExrDeclaredSizeIsCheckedBeforeAllocation) {
+  TempDir dir("envmap-exr-big");
+  const auto p = dir.path / "big.exr";
+  write_partial_exr(p, 16384, 8192, 16);
+  std::string bytes;
+  {
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_LT(bytes.size(), 16384u);
+  write_bytes(dir.path / "cut.exr", bytes.substr(0, 6144));
+  {  // tiled, 64 x 64 tiles, one of 32768 written
+    Imf::Header hd(16384, 8192);
+    for (const char* c : {"R", "G", "B"}) hd.channels().insert(c, Imf::Channel(Imf::HALF));
+    hd.setTileDescription(Imf::TileDescription(64, 64, Imf::ONE_LEVEL));
+    Imf::TiledOutputFile out((dir.path / "tiled.exr").c_str(), hd);
+    std::vector<half> px(64 * 64 * 3, half(1.0f));
+    Imf::FrameBuffer fb;
+    for (std::size_t c = 0; c < 3; ++c)
+      fb.insert(std::string(1, "RGB"[c]),
+                Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + c), 3 * sizeof(half),
+                           3 * sizeof(half) * 64));
+    out.setFrameBuffer(fb);
+    out.writeTile(0, 0);
+  }
+  const long before = peak_rss_kb();
+  for (const char* name : {"big.exr", "cut.exr", "tiled.exr"}) {
+    try {
+      envmap::read_map(dir.path / name);
+      ADD_FAILURE() << name << " was read";
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("damaged OpenEXR file"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_LT(peak_rss_kb() - before, 64 * 1024) << "KB of peak memory taken";
+}
+
+// A tiled EXR whose tile description is patched to 1 × 1 tiles declares 512
+// chunks, whose offset table alone is larger than the file: refused before
+// the table is read (at 16384 × 8192 that table would be 1 GiB).
+TEST(EnvmapInput, ExrChunkTableLargerThanTheFileIsRefused) {
+  TempDir dir("envmap-exr-tiles");
+  const auto p = dir.path / "tiled.exr";
+  {
+    Imf::Header hd(32, 16);
+    for (const char* c : {"R", "G", "B"}) hd.channels().insert(c, Imf::Channel(Imf::HALF));
+    hd.setTileDescription(Imf::TileDescription(32, 16, Imf::ONE_LEVEL));
+    Imf::TiledOutputFile out(p.c_str(), hd);
+    std::vector<half> px(32 * 16 * 3, half(1.0f));
+    Imf::FrameBuffer fb;
+    for (std::size_t c = 0; c < 3; ++c)
+      fb.insert(std::string(1, "RGB"[c]),
+                Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + c), 3 * sizeof(half),
+                           3 * sizeof(half) * 32));
+    out.setFrameBuffer(fb);
+    out.writeTile(0, 0);
+  }
+  std::string bytes;
+  {
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_NO_THROW(envmap::read_map(p));
+  // "tiles\0tiledesc\0", the size 9, then the tile width and height (uint32 LE).
+  const std::size_t at = bytes.find(std::string("tiles\0tiledesc\0", 15));
+  ASSERT_NE(at, std::string::npos);
+  for (std::size_t k = 0; k < 8; ++k) bytes[at + 19 + k] = k % 4 == 0 ? 1 : 0;
+  ASSERT_LT(bytes.size(), 512u * 8);
+  write_bytes(p, bytes);
+  try {
+    envmap::read_map(p);
+    ADD_FAILURE() << "read";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("offset table alone needs more than the file's"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Every truncation of a small EXR is refused (InputError), never read.
+TEST(EnvmapInput, TruncatedExrIsRefused) {
+  TempDir dir("envmap-exr-cut");
+  Map m = envmap::reconstruct({{{0, 0, 1}, 5.0, {1, 2, 3}}}, 32, 16);
+  envmap::write_exr(dir.path / "m.exr", m);
+  std::string bytes;
+  {
+    std::ifstream in(dir.path / "m.exr", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  for (std::size_t n = 1; n < bytes.size(); n += 7) {
+    write_bytes(dir.path / "cut.exr", bytes.substr(0, n));
+    EXPECT_THROW(envmap::read_map(dir.path / "cut.exr"), io::InputError) << "cut at " << n;
+  }
+}
+
+// What the layout check must let through: tiled (one level and mipmaps),
+// multi-part, an offset data window, half channels, other compressions.
+TEST(EnvmapInput, ExrVariantsStillRead) {
+  TempDir dir("envmap-exr-variants");
+  const int w = 32, h = 16;
+  const Map m = envmap::reconstruct({{{0.6, 0, 0.8}, 7.0, {1, 2, 3}}}, w, h);
+  std::vector<float> px = m.rgb;
+  std::vector<half> px_half(px.begin(), px.end());
+  // The pixels as a frame buffer whose data window starts at (x0, y0).
+  auto frame = [&](int x0, int y0, Imf::PixelType type) {
+    Imf::FrameBuffer fb;
+    const std::ptrdiff_t size = type == Imf::HALF ? sizeof(half) : sizeof(float);
+    const std::ptrdiff_t xs = 3 * size, ys = xs * w;
+    char* data = type == Imf::HALF ? reinterpret_cast<char*>(px_half.data())
+                                   : reinterpret_cast<char*>(px.data());
+    char* base = data - x0 * xs - y0 * ys;
+    for (std::ptrdiff_t c = 0; c < 3; ++c)
+      fb.insert(std::string(1, "RGB"[c]),
+                Imf::Slice(type, base + c * size, static_cast<std::size_t>(xs),
+                           static_cast<std::size_t>(ys)));
+    return fb;
+  };
+  auto header = [&](Imf::Compression comp, Imf::PixelType type, int x0, int y0) {
+    Imf::Header hd(Imath::Box2i({0, 0}, {w - 1, h - 1}),
+                   Imath::Box2i({x0, y0}, {x0 + w - 1, y0 + h - 1}));
+    hd.compression() = comp;
+    for (const char* c : {"R", "G", "B"}) hd.channels().insert(c, Imf::Channel(type));
+    return hd;
+  };
+  auto check = [&](const std::string& name, bool half) {
+    SCOPED_TRACE(name);
+    const Map r = envmap::read_map(dir.path / name);
+    ASSERT_EQ(r.width, static_cast<std::size_t>(w));
+    ASSERT_EQ(r.height, static_cast<std::size_t>(h));
+    for (std::size_t k = 0; k < r.rgb.size(); ++k)
+      ASSERT_NEAR(r.rgb[k], m.rgb[k], half ? 1e-3 * (1 + m.rgb[k]) : 0) << k;
+  };
+  for (auto [comp, type, name] : {std::tuple{Imf::NO_COMPRESSION, Imf::FLOAT, "none.exr"},
+                                  std::tuple{Imf::PIZ_COMPRESSION, Imf::HALF, "piz_half.exr"},
+                                  std::tuple{Imf::RLE_COMPRESSION, Imf::FLOAT, "rle.exr"},
+                                  std::tuple{Imf::ZIPS_COMPRESSION, Imf::FLOAT, "zips.exr"}}) {
+    {
+      Imf::OutputFile out((dir.path / name).c_str(), header(comp, type, 5, -3));
+      out.setFrameBuffer(frame(5, -3, type));
+      out.writePixels(h);
+    }
+    check(name, type == Imf::HALF);
+  }
+  for (auto [mode, name] :
+       {std::pair{Imf::ONE_LEVEL, "tiled.exr"}, std::pair{Imf::MIPMAP_LEVELS, "mipmap.exr"}}) {
+    Imf::Header hd = header(Imf::ZIP_COMPRESSION, Imf::FLOAT, 0, 0);
+    hd.setTileDescription(Imf::TileDescription(8, 4, mode));
+    {
+      Imf::TiledOutputFile out((dir.path / name).c_str(), hd);
+      out.setFrameBuffer(frame(0, 0, Imf::FLOAT));
+      out.writeTiles(0, out.numXTiles(0) - 1, 0, out.numYTiles(0) - 1, 0);
+      for (int level = 1; level < out.numLevels(); ++level) {
+        std::vector<float> small(static_cast<std::size_t>(out.levelWidth(level)) *
+                                     static_cast<std::size_t>(out.levelHeight(level)) * 3,
+                                 1.0f);
+        Imf::FrameBuffer fb;
+        const std::size_t xs = 3 * sizeof(float),
+                          ys = xs * static_cast<std::size_t>(out.levelWidth(level));
+        for (std::size_t c = 0; c < 3; ++c)
+          fb.insert(std::string(1, "RGB"[c]),
+                    Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(small.data() + c), xs, ys));
+        out.setFrameBuffer(fb);
+        out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1, level);
+      }
+    }
+    check(name, false);
+  }
+  {
+    std::vector<Imf::Header> parts = {header(Imf::ZIP_COMPRESSION, Imf::FLOAT, 0, 0),
+                                      header(Imf::ZIP_COMPRESSION, Imf::FLOAT, 0, 0)};
+    for (int part = 0; part < 2; ++part) {
+      parts[static_cast<std::size_t>(part)].setName(part == 0 ? "beauty" : "other");
+      parts[static_cast<std::size_t>(part)].setType(Imf::SCANLINEIMAGE);
+    }
+    Imf::MultiPartOutputFile file((dir.path / "parts.exr").c_str(), parts.data(), 2);
+    for (int part = 0; part < 2; ++part) {
+      Imf::OutputPart out(file, part);
+      out.setFrameBuffer(frame(0, 0, Imf::FLOAT));
+      out.writePixels(h);
+    }
+  }
+  check("parts.exr", false);
+}
+
+}  // namespace
