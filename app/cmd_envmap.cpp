@@ -282,7 +282,8 @@ void add_envmap_command(CLI::App& app) {
         env->add_subcommand("downsample", "Area-averaged copy of a map as float RGB OpenEXR");
     cmd->add_option("IN", a->in, "input map (OpenEXR or Radiance .hdr)")->required();
     cmd->add_option("OUT", a->out, "output OpenEXR file")->required()->check(non_empty_path());
-    cmd->add_option("--width", a->width, "output width (divides the input width)")
+    cmd->add_option("--width", a->width,
+                    "output width (even, at most the input width; height width/2)")
         ->check(count_in(8, 1 << 20))
         ->capture_default_str();
     cmd->callback([a] {

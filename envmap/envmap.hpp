@@ -38,8 +38,10 @@ struct Map {
   }
 };
 
-// Largest map read: 2^27 pixels (16384 × 8192; 1.5 GiB as float RGB), and
-// the smallest: 8 × 4.
+// Largest map read: 2^27 pixels (16384 × 8192), and the smallest: 8 × 4. The
+// largest holds 1.5 GiB as float RGB, and every envmap command keeps at most
+// one such map (plus O(W + H) and its 128-wide working copy): README,
+// "Environment maps", gives the memory and time measured at that size.
 inline constexpr std::size_t kMaxPixels = std::size_t{1} << 27;
 inline constexpr std::size_t kMinHeight = 4;
 
@@ -70,15 +72,16 @@ void check_map(Map& map, const std::string& source);
 // (io::write_file_atomic: a temporary renamed into place).
 void write_exr(const std::filesystem::path& path, const Map& map);
 
-// Area average to `width` × width/2: each output pixel is the solid-angle
-// weighted mean of the f × f input pixels it covers (f = W/width, which must
-// be a whole number), so every pixel's radiance times its solid angle — the
-// map's integral — is kept. Throws io::InputError if width does not divide W
-// or is < 8.
+// Area average to `width` × width/2 (width even, 8 … W): each output pixel is
+// the solid-angle weighted mean of the input pixels it overlaps, each weighed
+// by the solid angle of the overlap (whole pixels when width divides W, parts
+// of the pixels on its edges otherwise), so every pixel's radiance times its
+// solid angle — the map's integral — is kept. Throws io::InputError for an
+// odd width, one below 8 or one above W.
 Map downsample(const Map& map, std::size_t width);
 
 // A copy at the fitting resolution: the map itself when W ≤ max_width, else
-// the downsample to the largest even divisor of W that is ≤ max_width.
+// its downsample to max_width (rounded down to even), whatever W is.
 Map working_copy(const Map& map, std::size_t max_width = 128);
 
 // Pixel geometry (the convention above).

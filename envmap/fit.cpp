@@ -321,7 +321,6 @@ FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
   // start of the irradiance objective, on a 64 × 32 copy (4× fewer residuals
   // for a 128 × 64 map; the irradiance stage refines every parameter anyway).
   const bool coarse = options.objective == Objective::irradiance && work.width > kCoarseWidth &&
-                      work.width % kCoarseWidth == 0 &&
                       options.lobes <= kCoarseWidth * kCoarseWidth / 64;
   const Samples rs = coarse ? samples_of(downsample(work, kCoarseWidth)) : s;
   Params p = baseline_params(options.lobes, kappa_max(rs));

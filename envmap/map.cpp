@@ -243,6 +243,71 @@ void write_exr(const std::filesystem::path& path, const Map& map) {
   io::write_file_atomic(path, bytes);
 }
 
+namespace {
+
+// The pixel geometry of envmap.hpp as a row factor times a column factor, so
+// that the per-pixel values are products of per-row and per-column ones.
+struct RowGeometry {
+  double sin_theta, cos_theta;  // at the pixel centre
+  double s2, sc;                // ∫ sin²θ dθ and ∫ sinθ cosθ dθ over the row
+};
+struct ColumnGeometry {
+  double cos_phi, sin_phi;  // at the pixel centre
+  double dsin, dcos, dphi;  // sin φ1 − sin φ0, cos φ1 − cos φ0, φ1 − φ0
+};
+
+RowGeometry row_geometry(const Map& map, std::size_t j) {
+  const double h = static_cast<double>(map.height);
+  const double theta = M_PI * (static_cast<double>(j) + 0.5) / h;
+  const double t0 = M_PI * static_cast<double>(j) / h, t1 = M_PI * static_cast<double>(j + 1) / h;
+  return {std::sin(theta), std::cos(theta),
+          (t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4,
+          (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2};
+}
+
+ColumnGeometry column_geometry(const Map& map, std::size_t i) {
+  const double w = static_cast<double>(map.width);
+  const double phi = 2 * M_PI * (static_cast<double>(i) + 0.5) / w;
+  const double p0 = 2 * M_PI * static_cast<double>(i) / w,
+               p1 = 2 * M_PI * static_cast<double>(i + 1) / w;
+  return {std::cos(phi), std::sin(phi), std::sin(p1) - std::sin(p0), std::cos(p1) - std::cos(p0),
+          p1 - p0};
+}
+
+Vec3 direction(const RowGeometry& r, const ColumnGeometry& c) {
+  return {r.sin_theta * c.cos_phi, -r.sin_theta * c.sin_phi, r.cos_theta};
+}
+
+Vec3 moment(const RowGeometry& r, const ColumnGeometry& c) {
+  return {r.s2 * c.dsin, r.s2 * c.dcos, r.sc * c.dphi};
+}
+
+// A piece of an input pixel that an output pixel of downsample covers: the
+// input row or column and its weight.
+struct Piece {
+  std::size_t index;
+  double weight;
+};
+
+// For each of `out` output pixels along an axis of `in` input pixels, the
+// input pixels it covers: input pixel i spans [i·out, (i+1)·out] and output
+// pixel o spans [o·in, (o+1)·in], in exact integer units of 1/(in·out) of the
+// axis; weight(i, lo, hi) weighs the overlap [lo, hi].
+template <class Weight>
+std::vector<std::vector<Piece>> pieces(std::size_t in, std::size_t out, Weight weight) {
+  std::vector<std::vector<Piece>> r(out);
+  for (std::size_t o = 0; o < out; ++o) {
+    const std::uint64_t a = std::uint64_t{o} * in, b = a + in;
+    for (std::uint64_t i = a / out; i * out < b; ++i) {
+      const std::uint64_t lo = std::max(i * out, a), hi = std::min((i + 1) * out, b);
+      if (hi > lo) r[o].push_back({static_cast<std::size_t>(i), weight(i, lo, hi)});
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
 double pixel_solid_angle(const Map& map, std::size_t row) {
   const double h = static_cast<double>(map.height);
   const double t0 = M_PI * static_cast<double>(row) / h,
@@ -251,65 +316,70 @@ double pixel_solid_angle(const Map& map, std::size_t row) {
 }
 
 Vec3 pixel_direction(const Map& map, std::size_t i, std::size_t j) {
-  const double theta = M_PI * (static_cast<double>(j) + 0.5) / static_cast<double>(map.height);
-  const double phi = 2 * M_PI * (static_cast<double>(i) + 0.5) / static_cast<double>(map.width);
-  return {std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), std::cos(theta)};
+  return direction(row_geometry(map, j), column_geometry(map, i));
 }
 
 Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j) {
-  const double h = static_cast<double>(map.height), w = static_cast<double>(map.width);
-  const double t0 = M_PI * static_cast<double>(j) / h, t1 = M_PI * static_cast<double>(j + 1) / h;
-  const double p0 = 2 * M_PI * static_cast<double>(i) / w,
-               p1 = 2 * M_PI * static_cast<double>(i + 1) / w;
-  const double s2 = (t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4;  // ∫ sin²θ dθ
-  // ∫ sinθ cosθ dθ
-  const double sc = (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;
-  return {s2 * (std::sin(p1) - std::sin(p0)), s2 * (std::cos(p1) - std::cos(p0)), sc * (p1 - p0)};
+  return moment(row_geometry(map, j), column_geometry(map, i));
 }
 
 Map downsample(const Map& map, std::size_t width) {
-  if (width < 2 * kMinHeight || width > map.width || map.width % width != 0)
-    throw InputError(fmt::format("--width {}: must divide the map's width {} and be at least {}",
-                                 width, map.width, 2 * kMinHeight));
-  const std::size_t f = map.width / width;
+  if (width < 2 * kMinHeight || width % 2 != 0)
+    throw InputError(
+        fmt::format("--width {}: must be even and at least {} (the result is width x width/2, 2:1)",
+                    width, 2 * kMinHeight));
+  if (width > map.width)
+    throw InputError(fmt::format("--width {}: more than the map's width {} (downsample reduces)",
+                                 width, map.width));
   Map out;
   out.width = width;
   out.height = width / 2;
   out.rgb.assign(out.width * out.height * 3, 0.0f);
-  std::vector<double> omega(map.height);
-  for (std::size_t j = 0; j < map.height; ++j) omega[j] = pixel_solid_angle(map, j);
+  // Rows weigh the solid angle of the part of the row covered (a whole row
+  // exactly pixel_solid_angle), columns the fraction of the column covered.
+  const double H = static_cast<double>(map.height), h = static_cast<double>(out.height);
+  const auto rows =
+      pieces(map.height, out.height, [&](std::uint64_t j, std::uint64_t lo, std::uint64_t hi) {
+        if (hi - lo == out.height) return pixel_solid_angle(map, static_cast<std::size_t>(j));
+        return 2 * M_PI / static_cast<double>(map.width) *
+               (std::cos(M_PI * static_cast<double>(lo) / (H * h)) -
+                std::cos(M_PI * static_cast<double>(hi) / (H * h)));
+      });
+  const auto columns =
+      pieces(map.width, out.width, [&](std::uint64_t, std::uint64_t lo, std::uint64_t hi) {
+        return static_cast<double>(hi - lo) / static_cast<double>(out.width);
+      });
   tbb::parallel_for(std::size_t{0}, out.height, [&](std::size_t oj) {
-    double total = 0;
-    for (std::size_t b = 0; b < f; ++b) total += omega[oj * f + b] * static_cast<double>(f);
-    for (std::size_t oi = 0; oi < out.width; ++oi)
+    for (std::size_t oi = 0; oi < out.width; ++oi) {
+      double covered = 0;  // input columns covered, in pixels
+      for (const Piece& c : columns[oi]) covered += c.weight;
+      double total = 0;  // the output pixel's solid angle
+      for (const Piece& r : rows[oj]) total += r.weight * covered;
       for (std::size_t ch = 0; ch < 3; ++ch) {
         double sum = 0;
-        for (std::size_t b = 0; b < f; ++b)
-          for (std::size_t a = 0; a < f; ++a)
-            sum += omega[oj * f + b] * map.at(oi * f + a, oj * f + b, ch);
+        for (const Piece& r : rows[oj])
+          for (const Piece& c : columns[oi])
+            sum += r.weight * c.weight * map.at(c.index, r.index, ch);
         out.rgb[(oj * out.width + oi) * 3 + ch] = static_cast<float>(sum / total);
       }
+    }
   });
   return out;
 }
 
 Map working_copy(const Map& map, std::size_t max_width) {
   if (map.width <= max_width) return map;
-  for (std::size_t w = max_width - max_width % 2; w >= 2 * kMinHeight; w -= 2)
-    if (map.width % w == 0) return downsample(map, w);
-  return map;  // no divisor: fit at full resolution
+  return downsample(map, max_width - max_width % 2);
 }
 
 std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
-  const std::size_t n = map.width * map.height, W = map.width, H = map.height,
-                    S = kHorizonSubdivision;
-  std::vector<Vec3> moment(n), centre(n);
-  tbb::parallel_for(std::size_t{0}, H, [&](std::size_t j) {
-    for (std::size_t i = 0; i < W; ++i) {
-      moment[j * W + i] = pixel_moment(map, i, j);
-      centre[j * W + i] = pixel_direction(map, i, j);
-    }
-  });
+  const std::size_t W = map.width, H = map.height, S = kHorizonSubdivision;
+  // Per-row and per-column factors of every pixel's centre and moment (memory
+  // O(W + H) beside the map, whatever its size).
+  std::vector<RowGeometry> rows(H);
+  std::vector<ColumnGeometry> columns(W);
+  for (std::size_t j = 0; j < H; ++j) rows[j] = row_geometry(map, j);
+  for (std::size_t i = 0; i < W; ++i) columns[i] = column_geometry(map, i);
   // A pixel lies within ρ = Δθ/2 + Δφ/2 of its centre ω_c (along the meridian,
   // then along the parallel, whose arc is at least the great circle's), so
   // n·ω > 0 on all of it when n·ω_c > sin ρ and n·ω < 0 when n·ω_c < −sin ρ.
@@ -335,32 +405,34 @@ std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
   tbb::parallel_for(std::size_t{0}, normals.size(), [&](std::size_t k) {
     const Vec3& nv = normals[k];
     double r = 0, g = 0, b = 0;
-    for (std::size_t p = 0; p < n; ++p) {
-      const Vec3& c = centre[p];
-      const double nc = nv[0] * c[0] + nv[1] * c[1] + nv[2] * c[2];
-      double w;
-      if (nc >= sin_rho) {
-        w = nv[0] * moment[p][0] + nv[1] * moment[p][1] + nv[2] * moment[p][2];
-      } else if (nc <= -sin_rho) {
-        continue;
-      } else {
-        w = 0;
-        const std::size_t j = p / W, i = p % W;
-        for (std::size_t a = 0; a < S; ++a) {
-          const std::size_t row = j * S + a;
-          for (std::size_t bb = 0; bb < S; ++bb) {
-            const std::size_t col = i * S + bb;
-            const double x = nv[0] * s2[row] * dsin[col] + nv[1] * s2[row] * dcos[col] +
-                             nv[2] * sc[row] * dphi_sub;
-            if (x > 0) w += x;
+    for (std::size_t j = 0; j < H; ++j)
+      for (std::size_t i = 0; i < W; ++i) {
+        const std::size_t p = j * W + i;
+        const Vec3 c = direction(rows[j], columns[i]);
+        const double nc = nv[0] * c[0] + nv[1] * c[1] + nv[2] * c[2];
+        double w;
+        if (nc >= sin_rho) {
+          const Vec3 m = moment(rows[j], columns[i]);
+          w = nv[0] * m[0] + nv[1] * m[1] + nv[2] * m[2];
+        } else if (nc <= -sin_rho) {
+          continue;
+        } else {
+          w = 0;
+          for (std::size_t a = 0; a < S; ++a) {
+            const std::size_t row = j * S + a;
+            for (std::size_t bb = 0; bb < S; ++bb) {
+              const std::size_t col = i * S + bb;
+              const double x = nv[0] * s2[row] * dsin[col] + nv[1] * s2[row] * dcos[col] +
+                               nv[2] * sc[row] * dphi_sub;
+              if (x > 0) w += x;
+            }
           }
         }
+        if (w <= 0) continue;
+        r += w * map.rgb[3 * p];
+        g += w * map.rgb[3 * p + 1];
+        b += w * map.rgb[3 * p + 2];
       }
-      if (w <= 0) continue;
-      r += w * map.rgb[3 * p];
-      g += w * map.rgb[3 * p + 1];
-      b += w * map.rgb[3 * p + 2];
-    }
     out[k] = {r, g, b};
   });
   return out;

@@ -200,9 +200,11 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
     throw std::runtime_error(fmt::format("gnuplot failed on {}", (out / (stem + ".gp")).string()));
 }
 
+// A map's working copy and its exact irradiance (from the full map, which is
+// not kept: memory holds one full map at a time, whatever the number of maps).
 struct MapData {
   std::string name;
-  envmap::Map map, work;
+  envmap::Map work;
   std::vector<envmap::Vec3> exact_fit, exact_eval;
 };
 
@@ -245,10 +247,10 @@ std::vector<MapData> load_maps(const std::vector<std::filesystem::path>& files,
   std::vector<MapData> maps(files.size());
   for (std::size_t m = 0; m < files.size(); ++m) {
     maps[m].name = files[m].stem().string();
-    maps[m].map = envmap::read_map(files[m]);
-    maps[m].work = envmap::working_copy(maps[m].map);
-    maps[m].exact_fit = irradiance(maps[m].map, fit_normals);
-    maps[m].exact_eval = irradiance(maps[m].map, eval_normals);
+    const envmap::Map map = envmap::read_map(files[m]);
+    maps[m].work = envmap::working_copy(map);
+    maps[m].exact_fit = irradiance(map, fit_normals);
+    maps[m].exact_eval = irradiance(map, eval_normals);
   }
   return maps;
 }

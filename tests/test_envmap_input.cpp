@@ -1,7 +1,8 @@
 // Environment-map input and its bounds (envmap/envmap.hpp, envmap/radiance_hdr.hpp):
 // Radiance .hdr files made here byte by byte (every encoding, known values,
-// every truncation), OpenEXR files declaring more than they hold, and the
-// OpenEXR variants that must still read.
+// every truncation), OpenEXR files declaring more than they hold, the OpenEXR
+// variants that must still read, and the area-averaging downsample at widths
+// that do not divide the map.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -506,6 +507,142 @@ TEST(EnvmapInput, ExrVariantsStillRead) {
     }
   }
   check("parts.exr", false);
+}
+
+// ---- downsample and the working copy ------------------------------------------
+
+// The solid angle of the region θ ∈ [t0, t1], φ ∈ [p0, p1].
+double region_solid_angle(double t0, double t1, double p0, double p1) {
+  return (p1 - p0) * (std::cos(t0) - std::cos(t1));
+}
+
+// One bright input pixel straddling output rows and columns (100 → 48 wide):
+// each output pixel holds its radiance times the solid angle of their overlap
+// over the output pixel's own, the overlap computed here in radians.
+TEST(EnvmapInput, DownsampleToAnyEvenWidthAveragesByArea) {
+  const std::size_t W = 100, H = 50, w = 48, h = 24, i0 = 37, j0 = 22;
+  Map m;
+  m.width = W;
+  m.height = H;
+  m.rgb.assign(W * H * 3, 0.0f);
+  m.rgb[(j0 * W + i0) * 3 + 1] = 7.0f;
+  const Map d = envmap::downsample(m, w);
+  ASSERT_EQ(d.width, w);
+  ASSERT_EQ(d.height, h);
+  // θ of row boundary k of n rows, φ of column boundary k of n columns.
+  auto theta = [](std::size_t k, std::size_t n) {
+    return M_PI * static_cast<double>(k) / static_cast<double>(n);
+  };
+  auto phi = [](std::size_t k, std::size_t n) {
+    return 2 * M_PI * static_cast<double>(k) / static_cast<double>(n);
+  };
+  const double t0 = theta(j0, H), t1 = theta(j0 + 1, H);
+  const double p0 = phi(i0, W), p1 = phi(i0 + 1, W);
+  int touched = 0;
+  for (std::size_t oj = 0; oj < h; ++oj)
+    for (std::size_t oi = 0; oi < w; ++oi) {
+      const double a0 = theta(oj, h), a1 = theta(oj + 1, h);
+      const double b0 = phi(oi, w), b1 = phi(oi + 1, w);
+      const double lo_t = std::max(t0, a0), hi_t = std::min(t1, a1);
+      const double lo_p = std::max(p0, b0), hi_p = std::min(p1, b1);
+      const double overlap =
+          hi_t > lo_t && hi_p > lo_p ? region_solid_angle(lo_t, hi_t, lo_p, hi_p) : 0;
+      const double expected = 7.0 * overlap / region_solid_angle(a0, a1, b0, b1);
+      touched += expected > 0;
+      EXPECT_NEAR(d.at(oi, oj, 1), expected, 1e-6 * 7) << oi << ", " << oj;
+      EXPECT_EQ(d.at(oi, oj, 0), 0.0f);
+    }
+  EXPECT_EQ(touched, 4);  // two rows by two columns
+}
+
+double integral(const Map& m) {
+  double s = 0;
+  for (std::size_t j = 0; j < m.height; ++j)
+    for (std::size_t i = 0; i < m.width; ++i)
+      for (std::size_t ch = 0; ch < 3; ++ch) s += envmap::pixel_solid_angle(m, j) * m.at(i, j, ch);
+  return s;
+}
+
+// A 2062 × 1031 map (no even divisor of 2062 in [8, 128]) is fitted on its
+// 128 × 64 area average, which keeps its integral; so is every width.
+TEST(EnvmapInput, WorkingCopyOfAnyWidthIs128Wide) {
+  const std::vector<envmap::Lobe> lobes = {{{0.3, 0.4, std::sqrt(0.75)}, 40.0, {4, 3.5, 3}},
+                                           {{-0.8, 0, -0.6}, 6.0, {0.5, 0.8, 1.2}}};
+  for (std::size_t width : {2062, 1000, 130}) {
+    const Map m = envmap::reconstruct(lobes, width, width / 2);
+    const Map work = envmap::working_copy(m);
+    EXPECT_EQ(work.width, 128u) << width;
+    EXPECT_EQ(work.height, 64u) << width;
+    EXPECT_NEAR(integral(work) / integral(m), 1.0, 1e-6) << width;
+  }
+}
+
+TEST(EnvmapInput, DownsampleRefusesWidthsWithoutA21Result) {
+  const Map m = envmap::reconstruct({{{0, 0, 1}, 5.0, {1, 1, 1}}}, 36, 18);
+  for (std::size_t width : {9, 17, 6, 0}) {
+    try {
+      envmap::downsample(m, width);
+      ADD_FAILURE() << width << " accepted";
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("must be even and at least 8"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_THROW(envmap::downsample(m, 38), io::InputError);
+  EXPECT_EQ(envmap::downsample(m, 36).rgb, m.rgb);
+  EXPECT_EQ(envmap::downsample(m, 10).height, 5u);
+}
+
+// ---- the command line ---------------------------------------------------------
+
+// Damaged and oversized maps exit 2 naming the damage, at once, from every
+// command that reads maps; a downsample to an odd width exits 2 and writes
+// nothing.
+TEST(EnvmapInputCli, DamagedMapsExitTwo) {
+  TempDir dir("envmap-input-cli");
+  const auto p = [&](const char* name) { return (dir.path / name).string(); };
+  const std::vector<Rgbe> px = test_pixels(64, 32);
+  const std::string rle = hdr_file(64, 32, px, Encoding::rle);
+  const std::string flat = hdr_file(64, 32, px, Encoding::flat);
+  write_bytes(p("cut55.hdr"), rle.substr(0, 55));
+  write_bytes(p("half.hdr"), flat.substr(0, flat.size() / 2));
+  std::string big = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n";
+  big.resize(1024, static_cast<char>(77));
+  write_bytes(p("big.hdr"), big);
+  write_partial_exr(p("big.exr"), 16384, 8192, 16);
+  write_bytes(p("good.hdr"), rle);
+  std::filesystem::create_directory(p("maps"));
+  write_bytes(p("maps/cut.hdr"), rle.substr(0, 55));
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{"envmap", "irradiance", p("cut55.hdr")}, "damaged Radiance HDR file"},
+      {{"envmap", "fit", p("cut55.hdr"), "--lobes", "2", "--out", p("o.json")},
+       "damaged Radiance HDR file"},
+      {{"envmap", "baselines", "--maps", p("maps"), "--out", p("out"), "--quick"},
+       "damaged Radiance HDR file"},
+      {{"envmap", "irradiance", p("half.hdr")}, "damaged Radiance HDR file"},
+      {{"envmap", "irradiance", p("big.hdr")}, "damaged Radiance HDR file"},
+      {{"envmap", "irradiance", p("big.exr")}, "damaged OpenEXR file"},
+      {{"envmap", "downsample", p("good.hdr"), p("o.exr"), "--width", "9"}, "must be even"},
+      {{"envmap", "downsample", p("good.hdr"), p("o.exr"), "--width", "66"},
+       "more than the map's width 64"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_sglab(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args[1] << " " << c.args[2] << ": " << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args[2] << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(p("o.json")));
+    EXPECT_FALSE(std::filesystem::exists(p("o.exr")));
+  }
+  // A width that does not divide the map's is area-averaged to a 2:1 map.
+  const auto ok = run_sglab({"envmap", "downsample", p("good.hdr"), p("o.exr"), "--width", "24"});
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  const Map d = envmap::read_map(p("o.exr"));
+  EXPECT_EQ(d.width, 24u);
+  EXPECT_EQ(d.height, 12u);
 }
 
 }  // namespace
