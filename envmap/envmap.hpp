@@ -137,9 +137,24 @@ struct FitReport {
 };
 
 // Largest lobe count a map supports: one lobe per 32 pixels of the working
-// copy, at most 256. check_lobe_count throws io::InputError for 0 lobes or
-// more than that, naming the limit.
+// copy, at most 256.
 std::size_t max_lobes(const Map& work);
+
+// The memory a fit holds grows with pixels × lobes: Ceres' Jacobian of the
+// radiance stage (3 residuals × 7 parameters × 8 bytes per pixel and lobe)
+// and its workspace, 224 bytes per pixel and lobe in all (the slope of the
+// peak resident size of `envmap fit data/envmaps/city.exr --objective
+// radiance` from 8 to 32 lobes: 32.0 MB and 75.1 MB). A fit may hold at most
+// kMaxFitBytes, so that `envmap baselines`' two fits at a time stay within
+// 2 GiB beside the largest map; a 128 × 64 working copy with 256 lobes needs
+// 0.47 GB.
+inline constexpr std::size_t kFitBytesPerPixelLobe = 224;
+inline constexpr std::size_t kMaxFitBytes = std::size_t{1} << 30;
+double fit_memory_bytes(const Map& work, std::size_t lobes);
+
+// Throws io::InputError for 0 lobes, more than max_lobes(work) (naming the
+// limit) or a fit needing more than kMaxFitBytes (naming the memory needed),
+// before any fitting.
 void check_lobe_count(const Map& work, std::size_t lobes);
 
 // Fibonacci normals every envmap error is measured at by default (a set
@@ -156,8 +171,8 @@ inline constexpr std::size_t kEvalNormals = 2000;
 //   differences, from the radiance fit. `exact` is the map's irradiance at
 //   those normals (from the full map, not the working copy).
 // Single-threaded Ceres (the same input gives the same bytes); run fits in
-// parallel over maps or lobe counts. Throws io::InputError for 0 lobes or more
-// than max_lobes(work).
+// parallel over maps or lobe counts. Throws io::InputError as
+// check_lobe_count does.
 FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
               const FitOptions& options);
 

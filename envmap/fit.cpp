@@ -296,6 +296,19 @@ void check_lobe_count(const Map& work, std::size_t lobes) {
         "--lobes {}: more than the map supports (at most {} for a {} x {} working copy: one lobe "
         "per 32 pixels, at most 256)",
         lobes, max_lobes(work), work.width, work.height));
+  const double bytes = fit_memory_bytes(work, lobes);
+  if (bytes > static_cast<double>(kMaxFitBytes))
+    throw InputError(fmt::format(
+        "--lobes {} on a {} x {} map: the fit would hold about {:.3g} GB ({} bytes per pixel "
+        "and lobe), more than the {:.3g} GB a fit may hold; fit its working copy (at most 128 x "
+        "64)",
+        lobes, work.width, work.height, bytes / 1e9, kFitBytesPerPixelLobe,
+        static_cast<double>(kMaxFitBytes) / 1e9));
+}
+
+double fit_memory_bytes(const Map& work, std::size_t lobes) {
+  return static_cast<double>(work.width) * static_cast<double>(work.height) *
+         static_cast<double>(lobes) * static_cast<double>(kFitBytesPerPixelLobe);
 }
 
 const char* to_string(Objective o) { return o == Objective::radiance ? "radiance" : "irradiance"; }

@@ -1,8 +1,8 @@
 // Environment-map input and its bounds (envmap/envmap.hpp, envmap/radiance_hdr.hpp):
 // Radiance .hdr files made here byte by byte (every encoding, known values,
 // every truncation), OpenEXR files declaring more than they hold, the OpenEXR
-// variants that must still read, and the area-averaging downsample at widths
-// that do not divide the map.
+// variants that must still read, the area-averaging downsample at widths that
+// do not divide the map, and the fit's memory bound.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -591,6 +591,32 @@ TEST(EnvmapInput, DownsampleRefusesWidthsWithoutA21Result) {
   EXPECT_THROW(envmap::downsample(m, 38), io::InputError);
   EXPECT_EQ(envmap::downsample(m, 36).rgb, m.rgb);
   EXPECT_EQ(envmap::downsample(m, 10).height, 5u);
+}
+
+// ---- the fit's memory -------------------------------------------------------
+
+// pixels × lobes is bounded before any fitting: a full 2062 × 1031 map with
+// 256 lobes would hold about 122 GB; the 128 × 64 working copy holds 0.47 GB.
+TEST(EnvmapInput, FitMemoryIsBoundedUpFront) {
+  Map full;
+  full.width = 2062;
+  full.height = 1031;
+  full.rgb.assign(full.width * full.height * 3, 1.0f);
+  EXPECT_NEAR(envmap::fit_memory_bytes(full, 256), 2062.0 * 1031 * 256 * 224, 1);
+  envmap::FitOptions o;
+  o.lobes = 256;
+  o.objective = envmap::Objective::radiance;
+  try {
+    envmap::fit(full, {}, o);
+    ADD_FAILURE() << "a 2062 x 1031 fit with 256 lobes was attempted";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would hold about 122 GB"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(envmap::fit_baseline(full, 256), io::InputError);
+  const Map work = envmap::working_copy(full);
+  EXPECT_NO_THROW(envmap::check_lobe_count(work, 256));
+  EXPECT_LE(envmap::fit_memory_bytes(work, envmap::max_lobes(work)),
+            static_cast<double>(envmap::kMaxFitBytes));
 }
 
 // ---- the command line ---------------------------------------------------------
