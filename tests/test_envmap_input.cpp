@@ -322,6 +322,29 @@ void write_partial_exr(const std::filesystem::path& p, int w, int h, int lines) 
   out.writePixels(lines);
 }
 
+// A tiled EXR of w × h half RGB in square tiles of `tile` pixels whose first
+// tile only is written.
+void write_first_tile_exr(const std::filesystem::path& p, int w, int h, int tile) {
+  Imf::Header hd(w, h);
+  for (const char* c : {"R", "G", "B"}) hd.channels().insert(c, Imf::Channel(Imf::HALF));
+  hd.setTileDescription(Imf::TileDescription(static_cast<unsigned>(tile),
+                                             static_cast<unsigned>(tile), Imf::ONE_LEVEL));
+  Imf::TiledOutputFile out(p.c_str(), hd);
+  std::vector<half> px(static_cast<std::size_t>(tile * tile * 3), half(1.0f));
+  Imf::FrameBuffer fb;
+  for (std::size_t c = 0; c < 3; ++c)
+    fb.insert(std::string(1, "RGB"[c]),
+              Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + c), 3 * sizeof(half),
+                         3 * sizeof(half) * static_cast<std::size_t>(tile)));
+  out.setFrameBuffer(fb);
+  out.writeTile(0, 0);
+}
+
+std::string read_bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 // A 16384 × 8192 header over 16 written lines (7 KB), that file cut to 6 KB,
 // and a tiled one with one tile written: refused as damaged before the map's
 // 1.5 GiB is taken.
@@ -329,27 +352,10 @@ TEST(EnvmapInput, ExrDeclaredSizeIsCheckedBeforeAllocation) {
   TempDir dir("envmap-exr-big");
   const auto p = dir.path / "big.exr";
   write_partial_exr(p, 16384, 8192, 16);
-  std::string bytes;
-  {
-    std::ifstream in(p, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  const std::string bytes = read_bytes(p);
   ASSERT_LT(bytes.size(), 16384u);
   write_bytes(dir.path / "cut.exr", bytes.substr(0, 6144));
-  {  // tiled, 64 x 64 tiles, one of 32768 written
-    Imf::Header hd(16384, 8192);
-    for (const char* c : {"R", "G", "B"}) hd.channels().insert(c, Imf::Channel(Imf::HALF));
-    hd.setTileDescription(Imf::TileDescription(64, 64, Imf::ONE_LEVEL));
-    Imf::TiledOutputFile out((dir.path / "tiled.exr").c_str(), hd);
-    std::vector<half> px(64 * 64 * 3, half(1.0f));
-    Imf::FrameBuffer fb;
-    for (std::size_t c = 0; c < 3; ++c)
-      fb.insert(std::string(1, "RGB"[c]),
-                Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + c), 3 * sizeof(half),
-                           3 * sizeof(half) * 64));
-    out.setFrameBuffer(fb);
-    out.writeTile(0, 0);
-  }
+  write_first_tile_exr(dir.path / "tiled.exr", 16384, 8192, 64);  // 1 of 32768 tiles
   const long before = peak_rss_kb();
   for (const char* name : {"big.exr", "cut.exr", "tiled.exr"}) {
     try {
@@ -368,25 +374,8 @@ TEST(EnvmapInput, ExrDeclaredSizeIsCheckedBeforeAllocation) {
 TEST(EnvmapInput, ExrChunkTableLargerThanTheFileIsRefused) {
   TempDir dir("envmap-exr-tiles");
   const auto p = dir.path / "tiled.exr";
-  {
-    Imf::Header hd(32, 16);
-    for (const char* c : {"R", "G", "B"}) hd.channels().insert(c, Imf::Channel(Imf::HALF));
-    hd.setTileDescription(Imf::TileDescription(32, 16, Imf::ONE_LEVEL));
-    Imf::TiledOutputFile out(p.c_str(), hd);
-    std::vector<half> px(32 * 16 * 3, half(1.0f));
-    Imf::FrameBuffer fb;
-    for (std::size_t c = 0; c < 3; ++c)
-      fb.insert(std::string(1, "RGB"[c]),
-                Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + c), 3 * sizeof(half),
-                           3 * sizeof(half) * 32));
-    out.setFrameBuffer(fb);
-    out.writeTile(0, 0);
-  }
-  std::string bytes;
-  {
-    std::ifstream in(p, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  write_first_tile_exr(p, 32, 16, 32);  // the one tile
+  std::string bytes = read_bytes(p);
   ASSERT_NO_THROW(envmap::read_map(p));
   // "tiles\0tiledesc\0", the size 9, then the tile width and height (uint32 LE).
   const std::size_t at = bytes.find(std::string("tiles\0tiledesc\0", 15));
@@ -409,11 +398,7 @@ TEST(EnvmapInput, TruncatedExrIsRefused) {
   TempDir dir("envmap-exr-cut");
   Map m = envmap::reconstruct({{{0, 0, 1}, 5.0, {1, 2, 3}}}, 32, 16);
   envmap::write_exr(dir.path / "m.exr", m);
-  std::string bytes;
-  {
-    std::ifstream in(dir.path / "m.exr", std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  const std::string bytes = read_bytes(dir.path / "m.exr");
   for (std::size_t n = 1; n < bytes.size(); n += 7) {
     write_bytes(dir.path / "cut.exr", bytes.substr(0, n));
     EXPECT_THROW(envmap::read_map(dir.path / "cut.exr"), io::InputError) << "cut at " << n;
