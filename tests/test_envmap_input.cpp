@@ -227,8 +227,9 @@ TEST(EnvmapInput, RadianceDecodingKeepsTheIrradiance) {
 
 // ---- damaged and oversized Radiance files -------------------------------------
 
-// Every truncation of a file is refused as damaged, in each encoding (the
-// run-length decoder of stb_image never returned on some of these).
+// Every truncation of a file is refused as damaged, in each encoding (a
+// decoder that reads past the end as zero bytes spins on the zero run counts
+// of a cut run-length scanline, and fills a cut flat one with black).
 TEST(EnvmapInput, EveryTruncatedRadianceFileIsDamaged) {
   TempDir dir("envmap-hdr-cut");
   const std::size_t w = 8, h = 4;  // the smallest map; run-length encoding from width 8
