@@ -6,8 +6,11 @@
 //
 // FIFOs, symbolic links and directories are made in a TempDir; nothing
 // outside it is touched.
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,6 +20,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "common/args.hpp"
 #include "common/atomic_files.hpp"
@@ -105,6 +109,101 @@ TEST(AtomicWrite, RefusesAFolderThatIsNotAFolderAndEmptyPaths) {
   EXPECT_THROW(sglab::io::write_file_atomic("", "x"), sglab::io::InputError);
   EXPECT_THROW(sglab::io::check_output_folder(""), sglab::io::InputError);
   odd.expect_untouched();
+}
+
+// Whether `dir` holds a temporary of write_files_atomic (.NAME.PID.tmp).
+bool holds_temporary(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.front() == '.' && name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0)
+      return true;
+  }
+  return false;
+}
+
+// SIGINT or SIGTERM while temporaries exist: they are removed, and the process
+// still ends by the signal. A child writes 40 files of 256 KiB as one unit, over
+// and over; it is signalled as soon as a temporary shows.
+TEST(AtomicWrite, ASignalDuringTheWriteRemovesTheTemporaries) {
+  TempDir dir("io-signal");
+  std::vector<sglab::io::FileContent> files;
+  for (int i = 0; i < 40; ++i)
+    files.push_back({dir.path / fmt::format("set-{}.json", i), std::string(256 * 1024, 'x')});
+  int rounds = 0;
+  for (const int signal : {SIGINT, SIGTERM})
+    for (int round = 0; round < 5; ++round) {
+      const pid_t pid = ::fork();
+      ASSERT_GE(pid, 0);
+      if (pid == 0) {
+        try {
+          for (;;) sglab::io::write_files_atomic(files);
+        } catch (...) {
+        }
+        ::_exit(3);
+      }
+      bool seen = false;
+      for (int i = 0; i < 200000 && !seen; ++i) seen = holds_temporary(dir.path);
+      ::kill(pid, signal);
+      int status = 0;
+      for (int i = 0; i < 500 && ::waitpid(pid, &status, WNOHANG) == 0; ++i) ::usleep(10'000);
+      if (::waitpid(pid, &status, WNOHANG) == 0) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, &status, 0);
+        FAIL() << "the writer did not end on signal " << signal;
+      }
+      EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+          << "signal " << signal << ", status " << status;
+      EXPECT_FALSE(holds_temporary(dir.path)) << "signal " << signal << " round " << round;
+      rounds += seen;
+    }
+  EXPECT_GT(rounds, 0) << "no temporary was ever seen while writing";
+}
+
+// ---- a folder replaced as a whole ---------------------------------------------------
+
+TEST(ReplaceFolder, AManifestNamingPathsOutsideTheFolderIsRefused) {
+  TempDir dir("io-manifest");
+  const fs::path out = dir.path / "out";
+  fs::create_directories(out / "sub");
+  write_text(dir.path / "victim.txt", "keep");
+  for (const char* entry : {"../victim.txt", "/etc/passwd", "sub/../../victim.txt", "./x", ""}) {
+    write_text(out / "sglab-output.json",
+               fmt::format(R"({{"format": "sglab-output", "version": 1, "command": "x", )"
+                           R"("entries": ["sub/", "{}"]}})",
+                           entry));
+    try {
+      sglab::io::check_replaceable_folder(out, "--out");
+      ADD_FAILURE() << "accepted the entry " << entry;
+    } catch (const sglab::io::InputError& e) {
+      EXPECT_TRUE(contains(e.what(), "is not a plain relative path")) << e.what();
+    }
+    const fs::path staging = sglab::io::make_staging_folder(out);
+    EXPECT_THROW(sglab::io::replace_folder(staging, out, "--out"), sglab::io::InputError);
+    fs::remove(staging);
+  }
+  EXPECT_EQ(read_text(dir.path / "victim.txt"), "keep");
+  EXPECT_TRUE(fs::is_directory(out / "sub"));
+}
+
+TEST(ReplaceFolder, RemovesWhatTheManifestListsAndSwapsTheNewContentIn) {
+  TempDir dir("io-replace");
+  const fs::path out = dir.path / "out";
+  for (int run = 0; run < 3; ++run) {
+    const fs::path staging = sglab::io::make_staging_folder(out);
+    EXPECT_EQ(staging.parent_path(), fs::weakly_canonical(dir.path));
+    fs::create_directories(staging / "logs" / "deep");
+    write_text(staging / "logs" / "deep" / "a.log", fmt::format("run {}", run));
+    write_text(staging / "index.md", fmt::format("run {}", run));
+    sglab::io::write_output_manifest(staging, "test");
+    EXPECT_EQ(sglab::io::replace_folder(staging, out, "--out"), "");
+    EXPECT_EQ(read_text(out / "logs" / "deep" / "a.log"), fmt::format("run {}", run));
+    const auto manifest = nlohmann::json::parse(read_text(out / "sglab-output.json"));
+    EXPECT_EQ(manifest.at("entries"),
+              nlohmann::json::array({"index.md", "logs/", "logs/deep/", "logs/deep/a.log"}));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1)
+        << "the previous output or the staging folder is left beside it";
+  }
 }
 
 TEST(OutputCommands, HeaderOverAFifoOrSymlinkExitsTwoAndLeavesItAlone) {
