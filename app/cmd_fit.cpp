@@ -18,6 +18,7 @@
 
 #include "app/commands.hpp"
 #include "common/args.hpp"
+#include "common/atomic_files.hpp"
 #include "common/io.hpp"
 #include "fit/constants_io.hpp"
 #include "fit/minimax.hpp"
@@ -251,14 +252,20 @@ struct Destination {
   std::vector<fit::SkippedFile> skipped;  // files of the folders read that are not constant sets
 };
 
-// Resolved before the (long) fits so that a missing project is reported at
-// once. A dry run writes nothing and needs none.
+// Resolved and checked before the (long) fits so that a missing project or an
+// unusable output is reported at once. A dry run writes nothing and needs none.
 Destination resolve_destination(const FitCliOptions& o) {
   Destination d;
   try {
     if (!o.dry_run || !o.out_dir.empty()) {
       d.out_dir = o.out_dir.empty() ? fit::default_constants_dir() : fs::path(o.out_dir);
       d.header = o.header.empty() ? fit::default_header_for(d.out_dir) : fs::path(o.header);
+    }
+    if (!o.dry_run) {
+      // The outputs, before the fits: a folder that is not one, or a header
+      // that is not a regular file, is refused now rather than after them.
+      io::check_output_folder(d.out_dir);
+      io::check_output_path(d.header);
     }
     std::error_code ec;
     if (const auto root = fit::find_project_root(fs::current_path(ec)); root && !ec)
