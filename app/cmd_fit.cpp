@@ -385,12 +385,14 @@ void add_fit_command(CLI::App& app) {
                     "fit from scratch instead of polishing the committed constant set" +
                         taken_by(&fit::FitTarget::cold_start));
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
-  auto* costs = cmd->add_option(
-      "--costs", o->costs,
-      "cost table for the cost column: its GPU cycles on navi21 (`sglab gpucost --out DIR`), else "
-      "its CPU batch ns (`sglab bench`) (default: data/results/costs.json of the project holding "
-      "the working directory, if any)" +
-          taken_by(&fit::FitTarget::costs));
+  auto* costs = cmd->add_option("--costs", o->costs,
+                                "cost table for the cost column: its GPU cycles on navi21 (`sglab "
+                                "gpucost --out DIR`), else "
+                                "its CPU batch ns (`sglab bench`) (default: "
+                                "data/results/costs.json of the project holding "
+                                "the working directory, if any)" +
+                                    taken_by(&fit::FitTarget::costs))
+                    ->check(non_empty_path());
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--jobs", o->jobs,

@@ -238,28 +238,56 @@ TEST(OutputCommands, SweepOutputOverASymlinkOrIntoAFifoExitsTwo) {
   odd.expect_untouched();
 }
 
-TEST(OutputCommands, EmptyOutputPathsExitTwo) {
-  // In an empty folder outside any checkout: should an empty path be taken as
-  // the working directory or the checkout's defaults, nothing of value is hit.
+TEST(OutputCommands, EmptyPathsExitTwoNamingTheOption) {
+  // Every path option, input or output. In an empty folder outside any
+  // checkout: should an empty path be taken as the working directory, the
+  // checkout's defaults or the compiled-in data, nothing of value is hit.
   TempDir dir("io-empty-out");
   const fs::path cwd = fs::current_path();
   fs::current_path(dir.path);
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"run", "--out", ""},
-           {"fit", "clamped-cosine", "--out", ""},
-           {"fit", "clamped-cosine", "--out", "x", "--header", ""},
-           {"constants", "--write-header", "--header", ""},
-           {"constants", "--dir", ""},
-           {"sweep", "--out", ""},
-           {"stability", "--out", ""},
-           {"claims", "--out", ""},
-           {"erf", "--out", ""},
-           {"bench", "--out", ""},
-           {"pareto", "--out", ""},
-           {"figures", "--out", ""}}) {
-    const auto r = run_sglab(args);
-    EXPECT_EQ(r.exit_code, 2) << fmt::format("{}", fmt::join(args, " ")) << ": " << r.output;
-    EXPECT_TRUE(contains(r.output, "empty path")) << r.output;
+  const std::string map =
+      (fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "envmaps" / "city.exr").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string option;
+  };
+  for (const Case& c : std::vector<Case>{
+           {{"run", "--out", ""}, "--out"},
+           {{"fit", "clamped-cosine", "--out", ""}, "--out"},
+           {{"fit", "clamped-cosine", "--out", "x", "--header", ""}, "--header"},
+           {{"fit", "sglab-acc", "--dry-run", "--costs", ""}, "--costs"},
+           {{"constants", "--write-header", "--header", ""}, "--header"},
+           {{"constants", "--dir", ""}, "--dir"},
+           {{"sweep", "--out", ""}, "--out"},
+           {{"stability", "--out", ""}, "--out"},
+           {{"claims", "--out", ""}, "--out"},
+           {{"erf", "--out", ""}, "--out"},
+           {{"bench", "--out", ""}, "--out"},
+           {{"pareto", "--out", ""}, "--out"},
+           {{"pareto", "--costs", ""}, "--costs"},
+           {{"recommend", "--kappa", "1:10", "--budget", "0.01", "--costs", ""}, "--costs"},
+           {{"recommend", "--scene", "", "--budget", "0.01"}, "--scene"},
+           {{"figures", "--out", ""}, "--out"},
+           {{"figures", "--pareto", ""}, "--pareto"},
+           {{"figures", "--costs", ""}, "--costs"},
+           {{"figures", "--gnuplot", ""}, "--gnuplot"},
+           {{"export", "--lang", "glsl", "--method", "hill", "--constants", ""}, "--constants"},
+           {{"eval", "--method", "hill", "--points", ""}, "--points"},
+           {{"reference", "--points", ""}, "--points"},
+           {{"gpucost", "--out", ""}, "--out"},
+           {{"envmap", "downsample", "", "out.exr"}, "IN"},
+           {{"envmap", "downsample", map, ""}, "OUT"},
+           {{"envmap", "irradiance", ""}, "FILE"},
+           {{"envmap", "fit", "", "--lobes", "1"}, "FILE"},
+           {{"envmap", "fit", map, "--lobes", "1", "--out", ""}, "--out"},
+           {{"envmap", "recommend", "", "--budget", "0.1"}, "FILE"},
+           {{"envmap", "recommend", map, "--budget", "0.1", "--costs", ""}, "--costs"},
+           {{"envmap", "baselines", "--maps", ""}, "--maps"},
+           {{"envmap", "baselines", "--out", ""}, "--out"}}) {
+    const auto r = run_sglab(c.args);
+    const std::string what = fmt::format("{}: {}", fmt::join(c.args, " "), r.output);
+    EXPECT_EQ(r.exit_code, 2) << what;
+    EXPECT_TRUE(contains(r.output, c.option + ": an empty path is not allowed")) << what;
   }
   fs::current_path(cwd);
   EXPECT_TRUE(fs::is_empty(dir.path)) << "something was written into the working directory";
