@@ -280,7 +280,9 @@ void add_envmap_command(CLI::App& app) {
     auto a = std::make_shared<DownsampleArgs>();
     auto* cmd =
         env->add_subcommand("downsample", "Area-averaged copy of a map as float RGB OpenEXR");
-    cmd->add_option("IN", a->in, "input map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("IN", a->in, "input map (OpenEXR or Radiance .hdr)")
+        ->required()
+        ->check(non_empty_path());
     cmd->add_option("OUT", a->out, "output OpenEXR file")->required()->check(non_empty_path());
     cmd->add_option("--width", a->width,
                     "output width (even, at most the input width; height width/2)")
@@ -296,7 +298,9 @@ void add_envmap_command(CLI::App& app) {
     auto a = std::make_shared<IrradianceArgs>();
     auto* cmd = env->add_subcommand("irradiance",
                                     "The map's exact diffuse irradiance at Fibonacci normals, CSV");
-    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")
+        ->required()
+        ->check(non_empty_path());
     cmd->add_option("--normals", a->normals, "number of Fibonacci normals")
         ->check(count_in(1, 1000000))
         ->capture_default_str();
@@ -315,7 +319,9 @@ void add_envmap_command(CLI::App& app) {
     auto a = std::make_shared<FitArgs>();
     auto* cmd = env->add_subcommand(
         "fit", "SG lobes fitted to a map with Ceres; --out writes a scene file");
-    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")
+        ->required()
+        ->check(non_empty_path());
     cmd->add_option("--lobes", a->lobes, "number of SG lobes")
         ->required()
         ->check(count_in(0, 1 << 20));
@@ -333,7 +339,9 @@ void add_envmap_command(CLI::App& app) {
     auto* cmd = env->add_subcommand(
         "recommend",
         "Fewest lobes and cheapest irradiance method whose combined error meets a budget");
-    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
+    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")
+        ->required()
+        ->check(non_empty_path());
     cmd->add_option("--budget", a->budget,
                     "max irradiance error allowed, relative to the largest irradiance (> 0)")
         ->required();
@@ -353,7 +361,8 @@ void add_envmap_command(CLI::App& app) {
     auto* cmd = env->add_subcommand(
         "baselines",
         "Every map: BakingLab baseline vs radiance and irradiance fits, tables and figures");
-    cmd->add_option("--maps", a->maps, "folder of maps (default: data/envmaps of the project)");
+    cmd->add_option("--maps", a->maps, "folder of maps (default: data/envmaps of the project)")
+        ->check(non_empty_path());
     cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")
         ->check(non_empty_path());
     cmd->add_flag("--quick", a->quick, "12 lobes only, no curves or figures");

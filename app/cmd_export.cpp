@@ -162,7 +162,8 @@ void add_export_command(CLI::App& app) {
       ->required();
   cmd->add_option("--constants", args->constants,
                   "constant-set JSON replacing the compiled-in set of the same type (e.g. one "
-                  "`sglab fit ... --out DIR` wrote)");
+                  "`sglab fit ... --out DIR` wrote)")
+      ->check(non_empty_path());
   cmd->add_flag("--split", args->split,
                 "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills "
                 "it once per light, and sglab_irradiance_<ID>(light, float cosine) per pixel");

@@ -18,6 +18,7 @@
 
 #include "app/commands.hpp"
 #include "common/args.hpp"
+#include "common/atomic_files.hpp"
 #include "common/io.hpp"
 #include "fit/constants_io.hpp"
 #include "fit/minimax.hpp"
@@ -251,14 +252,20 @@ struct Destination {
   std::vector<fit::SkippedFile> skipped;  // files of the folders read that are not constant sets
 };
 
-// Resolved before the (long) fits so that a missing project is reported at
-// once. A dry run writes nothing and needs none.
+// Resolved and checked before the (long) fits so that a missing project or an
+// unusable output is reported at once. A dry run writes nothing and needs none.
 Destination resolve_destination(const FitCliOptions& o) {
   Destination d;
   try {
     if (!o.dry_run || !o.out_dir.empty()) {
       d.out_dir = o.out_dir.empty() ? fit::default_constants_dir() : fs::path(o.out_dir);
       d.header = o.header.empty() ? fit::default_header_for(d.out_dir) : fs::path(o.header);
+    }
+    if (!o.dry_run) {
+      // The outputs, before the fits: a folder that is not one, or a header
+      // that is not a regular file, is refused now rather than after them.
+      io::check_output_folder(d.out_dir);
+      io::check_output_path(d.header);
     }
     std::error_code ec;
     if (const auto root = fit::find_project_root(fs::current_path(ec)); root && !ec)
@@ -378,12 +385,14 @@ void add_fit_command(CLI::App& app) {
                     "fit from scratch instead of polishing the committed constant set" +
                         taken_by(&fit::FitTarget::cold_start));
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
-  auto* costs = cmd->add_option(
-      "--costs", o->costs,
-      "cost table for the cost column: its GPU cycles on navi21 (`sglab gpucost --out DIR`), else "
-      "its CPU batch ns (`sglab bench`) (default: data/results/costs.json of the project holding "
-      "the working directory, if any)" +
-          taken_by(&fit::FitTarget::costs));
+  auto* costs = cmd->add_option("--costs", o->costs,
+                                "cost table for the cost column: its GPU cycles on navi21 (`sglab "
+                                "gpucost --out DIR`), else "
+                                "its CPU batch ns (`sglab bench`) (default: "
+                                "data/results/costs.json of the project holding "
+                                "the working directory, if any)" +
+                                    taken_by(&fit::FitTarget::costs))
+                    ->check(non_empty_path());
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--jobs", o->jobs,

@@ -13,6 +13,8 @@
 #include <fmt/ranges.h>
 
 #include "app/commands.hpp"
+#include "common/args.hpp"
+#include "common/atomic_files.hpp"
 #include "common/io.hpp"
 #include "export/gpu_cost.hpp"
 #include "report/cost_source.hpp"
@@ -38,16 +40,32 @@ struct GpucostArgs {
   std::string worker_family, worker_dir;  // the per-family process (internal)
 };
 
+// The families of --families (each value a comma-separated list; default
+// gpu::kDefaultFamilies), in order, without repeats. An empty item or a family
+// RADV does not know (gpu::kKnownFamilies) is refused before any work, naming
+// --families and listing the known ones.
 std::vector<std::string> checked_families(const std::vector<std::string>& asked) {
   std::vector<std::string> families;
   if (asked.empty())
     for (const gpu::Family& f : gpu::kDefaultFamilies) families.emplace_back(f.name);
-  for (const std::string& f : asked) {
-    if (!report::is_gpu_family_name(f))
-      throw InputError(fmt::format(
-          "--families: '{}' is not a chip name (lower-case letters and digits, e.g. navi21)",
-          f.substr(0, 40)));
-    if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);
+  const auto refuse = [](const std::string& why) {
+    return InputError(fmt::format("--families: {}; the families RADV knows: {}", why,
+                                  fmt::join(gpu::kKnownFamilies, ",")));
+  };
+  for (const std::string& value : asked) {
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = value.find(',', start);
+      const std::string f =
+          value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      if (f.empty()) throw refuse(fmt::format("{} has an empty item", io::quote_escaped(value)));
+      if (std::find(std::begin(gpu::kKnownFamilies), std::end(gpu::kKnownFamilies), f) ==
+          std::end(gpu::kKnownFamilies))
+        throw refuse(fmt::format("unknown family {}", io::quote_escaped(f)));
+      if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
   }
   return families;
 }
@@ -82,6 +100,17 @@ std::string command_line(const GpucostArgs& a) {
   return c;
 }
 
+// DIR/costs.json (DIR's cost table with this report as its "gpu" section)
+// and DIR/gpu_costs.md: both are checked (each a regular file or absent, the
+// table valid) before anything is measured.
+void check_outputs(const fs::path& dir) {
+  io::check_output_folder(dir);
+  io::check_output_path(dir / "costs.json");
+  io::check_output_path(dir / "gpu_costs.md");
+  report::read_existing_cost_table(dir / "costs.json");
+}
+
+// Writes both outputs as one unit (io::write_files_atomic): both or neither.
 void write_outputs(const gpu::Report& report, const fs::path& dir) {
   const fs::path table_path = dir / "costs.json";
   std::optional<report::CostTable> table = report::read_existing_cost_table(table_path);
@@ -92,19 +121,20 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
     table->info.command = "(no CPU costs: run `sglab bench --out DIR`)";
   }
   table->gpu = report;
-  report::write_cost_table(*table, table_path);
-  io::write_file_atomic(
-      dir / "gpu_costs.md",
-      fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
-                  "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
-                  "the sweep's compute wrapper minus the same wrapper around a trivial body (VGPRs "
-                  "and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate of the "
-                  "cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and HLSL "
-                  "exports are the same code with the same control flow (a conditional with a "
-                  "costly arm is an if, never ?:, which glslang's HLSL front end evaluates on both "
-                  "sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% "
-                  "on navi21 and gfx1100.\n\n{}",
-                  report.driver, report.command, gpu::to_markdown(report)));
+  io::write_files_atomic(
+      {{table_path, report::to_json(*table).dump(2) + "\n"},
+       {dir / "gpu_costs.md",
+        fmt::format(
+            "# GPU cost: ACO statistics on RADV null devices\n\n"
+            "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
+            "the sweep's compute wrapper minus the same wrapper around a trivial body (VGPRs "
+            "and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate of the "
+            "cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and HLSL "
+            "exports are the same code with the same control flow (a conditional with a "
+            "costly arm is an if, never ?:, which glslang's HLSL front end evaluates on both "
+            "sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% "
+            "on navi21 and gfx1100.\n\n{}",
+            report.driver, report.command, gpu::to_markdown(report))}});
 }
 
 // The (method, split) pairs to cost: unsplit rows for every method, then
@@ -199,8 +229,7 @@ void add_gpucost_command(CLI::App& app) {
                                  "(ACO on Mesa's RADV null devices)");
   cmd->add_option("--families,--family", args->families,
                   "comma-separated AMD chips (RADV_FORCE_FAMILY names; default "
-                  "polaris10,vega10,navi10,navi21,gfx1100)")
-      ->delimiter(',');
+                  "polaris10,vega10,navi10,navi21,gfx1100)");
   cmd->add_option("--method", args->methods,
                   "method id (repeatable; default every exportable method)");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or both")->capture_default_str();
@@ -230,6 +259,7 @@ void add_gpucost_command(CLI::App& app) {
       return;
     }
     const auto families = checked_families(args->families);
+    if (!args->out.empty()) check_outputs(args->out);
     const auto languages = checked_languages(args->lang);
     const auto methods = checked_methods(args->methods);
     if (args->form != "unsplit" && args->form != "split" && args->form != "both")
@@ -249,8 +279,8 @@ void add_gpucost_command(CLI::App& app) {
           "--form split with --precision half: the per-light split export is float only (its light "
           "struct is std430 floats filled by the float runtime); use --precision float");
     if (args->disasm &&
-        (args->methods.size() != 1 || args->families.size() != 1 || languages.size() != 1 ||
-         precisions.size() != 1 || args->json || !args->out.empty()))
+        (args->methods.size() != 1 || args->families.empty() || families.size() != 1 ||
+         languages.size() != 1 || precisions.size() != 1 || args->json || !args->out.empty()))
       throw InputError(
           "--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one "
           "--precision, and no --json or --out (--form split: the split export)");

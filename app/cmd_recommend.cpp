@@ -157,7 +157,8 @@ void add_recommend_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene,
                   "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": "
                   "[r, g, b]}, …]}: rank the methods by their error on the scene's irradiance "
-                  "instead");
+                  "instead")
+      ->check(non_empty_path());
   cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")
       ->check(count_in(1, 1000000))
       ->capture_default_str();

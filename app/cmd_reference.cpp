@@ -135,7 +135,9 @@ void add_reference_command(CLI::App& app) {
                                  "quadrature at the points of a CSV file");
   auto points = std::make_shared<std::string>();
   auto precision = std::make_shared<std::string>("standard");
-  cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")->required();
+  cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")
+      ->required()
+      ->check(non_empty_path());
   cmd->add_option("--precision", *precision,
                   "standard (double quadrature) or high (50-digit, slow)")
       ->check(CLI::IsMember({"standard", "high"}))

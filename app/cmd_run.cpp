@@ -6,11 +6,15 @@
 // rewrites the committed data/.
 //
 // Everything is written into a fresh staging folder beside OUT
-// (OUT.staging-PID), which replaces OUT only when the run has finished (an
-// atomic exchange of the two folders where the file system allows it): an
-// interrupted run leaves the previous OUT as it was, never an index.md whose
-// steps and logs disagree. Each log is written beside its final name and
-// renamed when its step ends.
+// (OUT.staging-PID-RANDOM), which replaces OUT only when the run has finished
+// (io::replace_folder: an atomic exchange of the two folders where the file
+// system allows it): an interrupted run leaves the previous OUT as it was,
+// never an index.md whose steps and logs disagree. OUT is replaced only when
+// it is absent, empty or an earlier run's output whose manifest
+// (OUT/sglab-output.json) lists everything in it, and never when it is the
+// working folder, the checkout, /, $HOME or the like
+// (io::check_replaceable_folder, checked before any step runs). Each log is
+// written beside its final name and renamed when its step ends.
 //
 // OUT/index.md: one H1, one H2 per step, one H3 per Markdown file a step
 // wrote. A short Markdown file is inlined with its headings moved below that
@@ -18,7 +22,6 @@
 // than kInlineLines lines, e.g. the per-κ sweep table) is linked instead.
 // Every figure is shown once.
 #include <fcntl.h>
-#include <stdio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -361,42 +364,6 @@ bool has_gpu_costs(const Step& step) {
   }
 }
 
-// A fresh folder beside `out` (beside the folder it links to, if it is a
-// symbolic link), on the same file system so that it can be renamed over it.
-fs::path staging_folder(const fs::path& out) {
-  std::error_code ec;
-  const fs::path target =
-      fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
-  const fs::path name = target.has_filename() ? target.filename() : target.parent_path().filename();
-  const fs::path parent =
-      target.has_filename() ? target.parent_path() : target.parent_path().parent_path();
-  const fs::path staging = parent / fmt::format("{}.staging-{}", name.string(), ::getpid());
-  fs::remove_all(staging);  // a leftover of a killed run with the same process id
-  fs::create_directories(staging);
-  return staging;
-}
-
-// Puts the finished `staging` folder in the place of `out` (which may not
-// exist): one atomic exchange of the two, then the previous output is
-// removed. Where the file system cannot exchange, two renames.
-void replace_folder(const fs::path& staging, const fs::path& out) {
-  std::error_code ec;
-  const fs::path target =
-      fs::is_symlink(out, ec) ? fs::canonical(out) : fs::absolute(out).lexically_normal();
-  if (!fs::exists(target, ec)) {
-    fs::rename(staging, target);
-    return;
-  }
-  if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
-    fs::remove_all(staging);  // now the previous output
-    return;
-  }
-  const fs::path previous = staging.string() + ".previous";
-  fs::rename(target, previous);
-  fs::rename(staging, target);
-  fs::remove_all(previous);
-}
-
 // Runs one step with its output in `log`, written beside it and renamed when
 // the step ends (so that a log is never seen half-written).
 int run_logged(const Step& step, const fs::path& log) {
@@ -408,6 +375,15 @@ int run_logged(const Step& step, const fs::path& log) {
   }
   fs::rename(partial, log);
   return status;
+}
+
+// The arguments of this run (after `sglab`), for its manifest.
+std::vector<std::string> run_arguments(const fs::path& out, bool quick,
+                                       const std::vector<std::string>& skip) {
+  std::vector<std::string> a = {"run", "--out", out.string()};
+  if (quick) a.emplace_back("--quick");
+  for (const std::string& s : skip) a.insert(a.end(), {"--skip", s});
+  return a;
 }
 
 }  // namespace
@@ -428,7 +404,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
   cmd->callback([out, quick, skip] {
     const fs::path root = *out;
-    io::check_output_folder(root);
+    io::check_replaceable_folder(root, "--out");
     const auto skipped = [&skip](const std::string& name) {
       return std::find(skip->begin(), skip->end(), name) != skip->end();
     };
@@ -437,7 +413,7 @@ void add_run_command(CLI::App& app) {
       if (std::none_of(shown.begin(), shown.end(), [&](const Step& st) { return st.name == s; }))
         throw InputError(fmt::format("--skip: unknown step '{}'", s));
     }
-    const fs::path staging = staging_folder(root);
+    const fs::path staging = io::make_staging_folder(root);
     const std::vector<Step> steps = run_steps(staging, *quick, skipped("bench"));
     fs::create_directories(staging / "logs");
     std::string index =
@@ -475,8 +451,10 @@ void add_run_command(CLI::App& app) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     index += fmt::format("Total: {:.1f} s.\n", total);
     io::write_file_atomic(staging / "index.md", index);
-    replace_folder(staging, root);
+    io::write_output_manifest(staging, display_command(run_arguments(root, *quick, *skip)));
+    const std::string kept = io::replace_folder(staging, root, "--out");
     fmt::print("total {:.1f} s; wrote {}\n", total, (root / "index.md").string());
+    if (!kept.empty()) fmt::print(stderr, "sglab run: {}", kept);
     if (failures) throw std::runtime_error(fmt::format("{} step(s) failed", failures));
   });
 }

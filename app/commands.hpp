@@ -21,9 +21,10 @@ namespace sglab::app {
 // common/io.hpp, so that the readers and writers below app/ raise it too.
 using InputError = io::InputError;
 
-// The check of every output path option (--out, --header, --dir): an empty
-// name is refused (exit 2) rather than taken as the working directory or the
-// checkout's default files.
+// The check of every path option, input or output (--out, --header, --dir,
+// --costs, --constants, --maps, --points, --scene, a map FILE, ...): an empty
+// name is refused (exit 2) rather than taken as the working directory, the
+// checkout's default files or the compiled-in data.
 inline CLI::Validator non_empty_path() {
   return CLI::Validator(
       [](std::string& value) {

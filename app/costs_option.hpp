@@ -38,7 +38,9 @@ struct CostsOption {
         "bench`). Default gpu:navi21; cpu-batch under --precision double or --live-timing");
     cmd->add_option("--costs", costs,
                     "cost table written by `sglab bench` and `sglab gpucost` (default: "
-                    "data/results/costs.json of the project holding the working directory)");
+                    "data/results/costs.json of the project holding the working directory; "
+                    "outside a checkout, the one compiled into sglab)")
+        ->check(non_empty_path());
     cmd->add_flag("--live-timing", live_timing,
                   "time the methods on this CPU now instead of reading a cost table (answers vary "
                   "from run to run)");
@@ -71,10 +73,10 @@ struct CostsOption {
   };
 
   // Fills cost and cost_unit of `points` from source(f); returns where they
-  // came from. A method without a cost there is named on stderr and keeps NaN
-  // ("no cost"). Throws InputError (exit 2) for a bad --cost, a missing or
-  // malformed table, or a table without the source (no gpu section, family
-  // absent).
+  // came from (the file, or kBuiltinCostTableName). A method without a cost
+  // there is named on stderr and keeps NaN ("no cost"). Throws InputError
+  // (exit 2) for a bad --cost, a missing or malformed table, or a table
+  // without the source (no gpu section, family absent).
   From fill(std::vector<report::MethodPoint>& points, validate::FloatFormat f, int repetitions,
             double min_time) const {
     const report::CostSource s = source(f);
@@ -85,17 +87,14 @@ struct CostsOption {
           "live timing now: median of {} repetitions (varies from run to run)", repetitions);
       return {fmt::format("{}, {}", s.describe(), provenance), provenance};
     }
-    std::filesystem::path path = costs;
-    if (costs.empty()) {
-      const auto found = report::default_cost_table_path();
-      if (!found)
-        throw InputError(
-            "no cost table: no project folder (with data/constants and include/sglab) above the "
-            "working directory; pass --costs FILE (written by `sglab bench` and `sglab gpucost`) "
-            "or --live-timing");
-      path = *found;
-    }
-    const report::CostTable table = report::read_cost_table(path);
+    report::CostTable table;
+    if (!costs.empty())
+      table = report::read_cost_table(costs);
+    else if (const auto found = report::default_cost_table_path())
+      table = report::read_cost_table(*found);
+    else
+      table = report::builtin_cost_table();  // outside a checkout
+    const std::filesystem::path& path = table.path;
     const std::vector<std::string> missing = report::fill_costs(points, f, table, s);
     for (const std::string& m : missing)
       fmt::print(

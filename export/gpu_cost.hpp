@@ -55,6 +55,16 @@ inline constexpr Family kDefaultFamilies[] = {{"polaris10", "GCN4"},
                                               {"navi10", "RDNA1"},
                                               {"navi21", "RDNA2"},
                                               {"gfx1100", "RDNA3"}};
+// Every family Debian 12's RADV (Mesa 22.3) makes a null device for: the names
+// of Mesa's ac_get_family_name (amd_family.h, GFX6 to GFX11), lower case, that
+// are chip names of letters and digits. `sglab gpucost --families` takes these.
+inline constexpr const char* kKnownFamilies[] = {
+    "tahiti",    "pitcairn",  "verde",     "oland",    "hainan",    "bonaire", "kaveri",
+    "kabini",    "hawaii",    "tonga",     "iceland",  "carrizo",   "fiji",    "stoney",
+    "polaris10", "polaris11", "polaris12", "vegam",    "vega10",    "vega12",  "vega20",
+    "raven",     "raven2",    "renoir",    "arcturus", "aldebaran", "navi10",  "navi12",
+    "navi14",    "navi21",    "navi22",    "navi23",   "navi24",    "vangogh", "rembrandt",
+    "gfx1036",   "gfx1100",   "gfx1101",   "gfx1102"};
 
 // ACO's statistics of one compiled function (after the wrapper's are
 // subtracted, except vgprs and sgprs, which are the pipeline's).

@@ -20,6 +20,10 @@
 #define SGLAB_BUILD_TYPE "unknown"
 #endif
 
+namespace sglab::embedded {
+std::string_view cost_table_json();  // builtin_cost_table.cpp, generated (report/CMakeLists.txt)
+}  // namespace sglab::embedded
+
 namespace sglab::report {
 
 namespace fs = std::filesystem;
@@ -120,16 +124,10 @@ std::string text_field(const fs::path& path, const json& obj, const char* key,
 
 }  // namespace
 
-CostTable read_cost_table(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec))
-    fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
-  json doc;
-  try {
-    doc = io::read_json_file(path, kMaxCostTableBytes, "a cost table");
-  } catch (const io::InputError& e) {
-    throw CostTableError(fmt::format("cost table {}", e.what()));
-  }
+namespace {
+
+// The table `doc` read from `path` (named in messages), validated.
+CostTable cost_table_from_json(const json& doc, const fs::path& path) {
   if (!doc.is_object()) fail(path, "expected a JSON object");
   if (!doc.contains("format") || doc.at("format") != "sglab-costs")
     fail(path, "\"format\" must be \"sglab-costs\"");
@@ -210,6 +208,32 @@ CostTable read_cost_table(const fs::path& path) {
     }
   }
   return t;
+}
+
+}  // namespace
+
+CostTable read_cost_table(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
+  json doc;
+  try {
+    doc = io::read_json_file(path, kMaxCostTableBytes, "a cost table");
+  } catch (const io::InputError& e) {
+    throw CostTableError(fmt::format("cost table {}", e.what()));
+  }
+  return cost_table_from_json(doc, path);
+}
+
+CostTable builtin_cost_table() {
+  const fs::path name(kBuiltinCostTableName);
+  json doc;
+  try {
+    doc = io::parse_json_strict(embedded::cost_table_json(), name.string());
+  } catch (const io::InputError& e) {
+    throw CostTableError(fmt::format("cost table {}", e.what()));
+  }
+  return cost_table_from_json(doc, name);
 }
 
 std::optional<CostTable> read_existing_cost_table(const fs::path& path) {

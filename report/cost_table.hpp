@@ -24,6 +24,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -80,5 +81,13 @@ std::optional<CostTable> read_existing_cost_table(const std::filesystem::path& p
 // data/results/costs.json of the project that holds the working directory
 // (the first folder upwards with data/results and include/sglab), or nullopt.
 std::optional<std::filesystem::path> default_cost_table_path();
+
+// The committed cost table compiled into sglab: data/results/costs.json of the
+// source it was built from, as it was at build time. Commands that read costs
+// fall back to it outside a checkout and name it (kBuiltinCostTableName); its
+// `path` is that name.
+CostTable builtin_cost_table();
+inline constexpr std::string_view kBuiltinCostTableName =
+    "compiled into sglab (the data/results/costs.json it was built with)";
 
 }  // namespace sglab::report

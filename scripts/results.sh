@@ -3,7 +3,7 @@
 # the measured tables of README.md, from the commands that produce them. One
 # command, so that no number in them is ever typed: `sglab run` (sweep, erf,
 # stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
-# out/results, the curated files copied from it, then the runs `sglab run`
+# out/results/run, the curated files copied from it, then the runs `sglab run`
 # does not make (GPU cost of the half exports, the Vulkan sweep with split and
 # half rows, the held-out sweep, half stability, callgrind instruction counts),
 # and the generated blocks of the Markdown files filled from them: each lies
@@ -21,16 +21,19 @@ cmake --build build --target method_cost -j"$(nproc)"
 
 results=data/results
 work=out/results
+# `sglab run` replaces its folder as a whole (only ever its own earlier output),
+# so the other runs below write beside it, never into it.
+run="$work/run"
 sglab=build/sglab
 
 # 1. The main job, then the files of it that are committed.
-"$sglab" run --out "$work" "$@"
-cp "$work"/bench/{bench.csv,bench.md,bench_summary.csv,bench_summary.md,costs.json,gpu_costs.md} "$results"/
-cp "$work"/claims/claims.md "$work"/erf/erf_summary.md "$results"/
-cp "$work"/stability/{stability.md,findings.md} "$results"/
-cp "$work"/pareto/{pareto.csv,pareto.md} "$results"/
-cp "$work"/figures/[a-g]_*.{png,svg} "$results"/
-cp "$work"/envmap/{envmaps.csv,envmaps.md,envmap_city.png,envmap_curves.png} "$results"/
+"$sglab" run --out "$run" "$@"
+cp "$run"/bench/{bench.csv,bench.md,bench_summary.csv,bench_summary.md,costs.json,gpu_costs.md} "$results"/
+cp "$run"/claims/claims.md "$run"/erf/erf_summary.md "$results"/
+cp "$run"/stability/{stability.md,findings.md} "$results"/
+cp "$run"/pareto/{pareto.csv,pareto.md} "$results"/
+cp "$run"/figures/[a-g]_*.{png,svg} "$results"/
+cp "$run"/envmap/{envmaps.csv,envmaps.md,envmap_city.png,envmap_curves.png} "$results"/
 
 # 2. What `sglab run` does not make.
 "$sglab" gpucost --lang both --precision both --out "$results"  # the gpu section of costs.json, gpu_costs.md

@@ -265,9 +265,15 @@ TEST(RunProgram, PassesArgumentsAsGivenInTheWorkingDirectory) {
 
 // ---- progress on a terminal only -------------------------------------------
 
+// What a run with standard error on a terminal printed, and its exit code.
+struct TerminalRun {
+  std::string out, terminal;
+  int exit_code = -1;
+};
+
 // Runs `sglab ARGS` with standard error on a pseudo-terminal and standard
-// output on a pipe; returns {stdout, what the terminal received}.
-std::pair<std::string, std::string> run_with_terminal_stderr(const std::vector<std::string>& args) {
+// output on a pipe.
+TerminalRun run_with_terminal_stderr(const std::vector<std::string>& args) {
   int master = -1, slave = -1;
   if (::openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) return {};
   int out[2];
@@ -295,18 +301,20 @@ std::pair<std::string, std::string> run_with_terminal_stderr(const std::vector<s
     while ((n = ::read(out[0], buffer, sizeof buffer)) > 0)
       stdout_text.append(buffer, static_cast<std::size_t>(n));
   ::close(out[0]);
-  if (rc == 0) ::waitpid(pid, nullptr, 0);
+  int status = 0;
+  if (rc == 0) ::waitpid(pid, &status, 0);
   while ((n = ::read(master, buffer, sizeof buffer)) > 0)
     terminal.append(buffer, static_cast<std::size_t>(n));
   ::close(master);
-  return {stdout_text, terminal};
+  return {stdout_text, terminal, rc == 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1};
 }
 
 TEST(Progress, ReferenceShowsProgressOnATerminalOnly) {
   TempDir dir("progress");
   write_points(dir.path / "p.csv", 5'000);
   const std::string file = (dir.path / "p.csv").string();
-  const auto [out, terminal] = run_with_terminal_stderr({"reference", "--points", file});
+  const auto [out, terminal, exit_code] = run_with_terminal_stderr({"reference", "--points", file});
+  EXPECT_EQ(exit_code, 0);
   EXPECT_EQ(out.rfind("kappa,cosine,", 0), 0u) << out.substr(0, 200);
   EXPECT_EQ(out.find("reference:"), std::string::npos);
   // The file is read once, so the count is open-ended: "reference: ROWS 0.1s".
@@ -317,6 +325,35 @@ TEST(Progress, ReferenceShowsProgressOnATerminalOnly) {
   EXPECT_EQ(piped.exit_code, 0);
   EXPECT_EQ(piped.output.find("reference:"), std::string::npos);
   EXPECT_EQ(piped.output.find('\r'), std::string::npos);
+}
+
+// Outputs are checked before the work: `gpucost --out /dev/null` and `fit
+// TARGET --out FILE` (a regular file where a folder belongs) exit 2 at once.
+// On a terminal, work would show: progress on stderr (gpucost notes each
+// export it compiles) and each fit's report on stdout.
+TEST(Progress, OutputsAreCheckedBeforeAnyWork) {
+  TempDir dir("outputs-first");
+  sglab::io::write_file_atomic(dir.path / "file", "not a folder\n");
+  const std::string file = (dir.path / "file").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string error;
+  };
+  for (const Case& c : std::vector<Case>{
+           {{"gpucost", "--families", "navi21", "--method", "hill", "--out", "/dev/null"},
+            "/dev/null: is a character device, not a folder"},
+           {{"fit", "clamped-cosine", "--out", file}, file + ": is a regular file, not a folder"},
+           {{"fit", "clamped-cosine", "--out", dir.path.string(), "--header", "/dev/null"},
+            "/dev/null: is a character device, not a regular file"}}) {
+    const TerminalRun r = run_with_terminal_stderr(c.args);
+    const std::string what = fmt::format("{}: {}{}", fmt::join(c.args, " "), r.out, r.terminal);
+    EXPECT_EQ(r.exit_code, 2) << what;
+    EXPECT_NE(r.terminal.find(c.error), std::string::npos) << what;
+    // a progress line ends by clearing the rest of the line
+    EXPECT_EQ(r.terminal.find("\033[K"), std::string::npos) << "progress was shown: " << what;
+    EXPECT_EQ(r.out, "") << what;
+  }
+  EXPECT_EQ(sglab::io::read_file(dir.path / "file"), "not a folder\n");
 }
 
 }  // namespace

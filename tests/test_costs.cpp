@@ -211,6 +211,40 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
   }
 }
 
+// The table compiled into sglab is the committed one, byte for byte as read:
+// a build after the file changed compiles in the new one.
+TEST(CostTable, TheCompiledInTableIsTheCommittedOne) {
+  const fs::path committed = sglab::test::checkout_dir() / "data" / "results" / "costs.json";
+  const auto builtin = sglab::report::builtin_cost_table();
+  EXPECT_EQ(builtin.path.string(), sglab::report::kBuiltinCostTableName);
+  EXPECT_EQ(sglab::report::to_json(builtin).dump(),
+            sglab::report::to_json(sglab::report::read_cost_table(committed)).dump());
+}
+
+// Outside a checkout (no --costs, no project above the working folder),
+// `recommend`, `pareto` and `envmap recommend` use the compiled-in table and
+// name it; a checkout's own table still comes first (test_cost_source).
+TEST(CostTable, OutsideACheckoutTheCompiledInTableIsUsedAndNamed) {
+  const sglab::test::TempDir tmp("costs-outside");
+  const fs::path cwd = fs::current_path();
+  fs::current_path(tmp.path);
+  const std::string map =
+      (sglab::test::checkout_dir() / "data" / "envmaps" / "city.exr").lexically_normal().string();
+  const std::vector<std::vector<std::string>> runs = {
+      {"recommend", "--kappa", "1:100", "--budget", "1e-2"},
+      {"pareto", "--out", (tmp.path / "pareto").string()},
+      {"envmap", "recommend", map, "--budget", "0.1", "--max-lobes", "1", "--normals", "50"}};
+  for (const auto& args : runs) {
+    const auto r = run_sglab(args);
+    EXPECT_EQ(r.exit_code, 0) << args[0] << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string("from cost table ") +
+                            std::string(sglab::report::kBuiltinCostTableName)),
+              std::string::npos)
+        << args[0] << ": " << r.output;
+  }
+  fs::current_path(cwd);
+}
+
 TEST(CostTable, BenchWritesATableThatReadsBack) {
   const sglab::test::TempDir tmp("test_costs bench");
   const fs::path& dir = tmp.path;

@@ -253,10 +253,75 @@ TEST_F(OnRadv, SplitRowsCostThePerPixelFunction) {
   EXPECT_NE(bad.output.find("--form"), std::string::npos) << bad.output;
 }
 
-TEST_F(OnRadv, AFamilyRadvDoesNotKnowIsReported) {
-  const auto r = run_sglab({"gpucost", "--families", "nosuchchip", "--method", "hill"});
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("nosuchchip"), std::string::npos) << r.output;
+// Every family `gpucost --families` takes is one the installed RADV makes a
+// null device for (a compiler statistic of the trivial wrapper, measured
+// against itself, on each).
+TEST_F(OnRadv, EveryKnownFamilyHasANullDevice) {
+  const gpu::Shader baseline = gpu::baseline_shader(shader::Language::glsl);
+  gpu::Shader same = baseline;
+  same.method = "same";
+  const std::vector<std::string> known(std::begin(gpu::kKnownFamilies),
+                                       std::end(gpu::kKnownFamilies));
+  const gpu::Report r = measure(known, {baseline, same});
+  ASSERT_EQ(r.rows.size(), known.size());
+  for (std::size_t i = 0; i < known.size(); ++i) {
+    EXPECT_EQ(r.rows[i].family, known[i]);
+    EXPECT_GT(r.rows[i].stats.vgprs, 0) << known[i];
+  }
+  for (const gpu::Family& f : gpu::kDefaultFamilies)
+    EXPECT_NE(std::find(known.begin(), known.end(), f.name), known.end()) << f.name;
+}
+
+// A family RADV does not know, or an empty item of the list, is refused
+// before any work (exit 2), naming --families and listing the known ones.
+TEST(GpuCostCli, AnUnknownFamilyOrAnEmptyItemIsRefusedListingTheKnownOnes) {
+  for (const char* families :
+       {"gfx9999", "nosuchchip", "navi21,,", ",navi21", "navi21,,gfx1100", ""}) {
+    const auto r = run_sglab({"gpucost", "--families", families, "--method", "hill"});
+    EXPECT_EQ(r.exit_code, 2) << families << ": " << r.output;
+    EXPECT_NE(r.output.find("--families: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the families RADV knows: tahiti,pitcairn,"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("navi21,navi22"), std::string::npos) << r.output;
+  }
+  // Repeated lists and repeated names are one list.
+  const auto r = run_sglab({"gpucost", "--families", "navi21,gfx1100", "--families", "navi21",
+                            "--disasm", "--method", "hill"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--disasm: takes one --method, one --family"), std::string::npos)
+      << r.output;
+}
+
+// Every output of `gpucost --out D` is checked before anything is measured or
+// written: D/gpu_costs.md a folder or a link leaves D/costs.json as it was.
+// (That nothing is measured first: test_cli_inputs, OutputsAreCheckedBeforeAnyWork.)
+TEST(GpuCostCli, EveryOutputIsCheckedBeforeAnyWork) {
+  TempDir dir("gpucost-outputs");
+  const fs::path committed =
+      fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json";
+  fs::copy_file(committed, dir.path / "costs.json");
+  const std::string before = sglab::io::read_file(dir.path / "costs.json");
+  fs::create_directories(dir.path / "elsewhere");
+  for (const bool link : {false, true}) {
+    fs::remove_all(dir.path / "gpu_costs.md");
+    if (link)
+      fs::create_symlink(dir.path / "elsewhere" / "gpu_costs.md", dir.path / "gpu_costs.md");
+    else
+      fs::create_directories(dir.path / "gpu_costs.md");
+    const auto r = run_sglab(
+        {"gpucost", "--families", "navi21", "--method", "hill", "--out", dir.path.string()});
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("gpu_costs.md: is a"), std::string::npos) << r.output;
+    EXPECT_EQ(sglab::io::read_file(dir.path / "costs.json"), before);
+  }
+  EXPECT_FALSE(fs::exists(dir.path / "elsewhere" / "gpu_costs.md"));
+  // A malformed cost table in D is refused before the work too.
+  fs::remove(dir.path / "gpu_costs.md");
+  sglab::io::write_file_atomic(dir.path / "costs.json", "{}");
+  const auto r = run_sglab({"gpucost", "--out", dir.path.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("costs.json"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path / "gpu_costs.md"));
 }
 
 TEST(GpuCostCli, BadInputExitsTwoNamingIt) {

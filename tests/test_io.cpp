@@ -6,8 +6,11 @@
 //
 // FIFOs, symbolic links and directories are made in a TempDir; nothing
 // outside it is touched.
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,6 +20,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "common/args.hpp"
 #include "common/atomic_files.hpp"
@@ -107,6 +111,101 @@ TEST(AtomicWrite, RefusesAFolderThatIsNotAFolderAndEmptyPaths) {
   odd.expect_untouched();
 }
 
+// Whether `dir` holds a temporary of write_files_atomic (.NAME.PID.tmp).
+bool holds_temporary(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.front() == '.' && name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0)
+      return true;
+  }
+  return false;
+}
+
+// SIGINT or SIGTERM while temporaries exist: they are removed, and the process
+// still ends by the signal. A child writes 40 files of 256 KiB as one unit, over
+// and over; it is signalled as soon as a temporary shows.
+TEST(AtomicWrite, ASignalDuringTheWriteRemovesTheTemporaries) {
+  TempDir dir("io-signal");
+  std::vector<sglab::io::FileContent> files;
+  for (int i = 0; i < 40; ++i)
+    files.push_back({dir.path / fmt::format("set-{}.json", i), std::string(256 * 1024, 'x')});
+  int rounds = 0;
+  for (const int signal : {SIGINT, SIGTERM})
+    for (int round = 0; round < 5; ++round) {
+      const pid_t pid = ::fork();
+      ASSERT_GE(pid, 0);
+      if (pid == 0) {
+        try {
+          for (;;) sglab::io::write_files_atomic(files);
+        } catch (...) {
+        }
+        ::_exit(3);
+      }
+      bool seen = false;
+      for (int i = 0; i < 200000 && !seen; ++i) seen = holds_temporary(dir.path);
+      ::kill(pid, signal);
+      int status = 0;
+      for (int i = 0; i < 500 && ::waitpid(pid, &status, WNOHANG) == 0; ++i) ::usleep(10'000);
+      if (::waitpid(pid, &status, WNOHANG) == 0) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, &status, 0);
+        FAIL() << "the writer did not end on signal " << signal;
+      }
+      EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+          << "signal " << signal << ", status " << status;
+      EXPECT_FALSE(holds_temporary(dir.path)) << "signal " << signal << " round " << round;
+      rounds += seen;
+    }
+  EXPECT_GT(rounds, 0) << "no temporary was ever seen while writing";
+}
+
+// ---- a folder replaced as a whole ---------------------------------------------------
+
+TEST(ReplaceFolder, AManifestNamingPathsOutsideTheFolderIsRefused) {
+  TempDir dir("io-manifest");
+  const fs::path out = dir.path / "out";
+  fs::create_directories(out / "sub");
+  write_text(dir.path / "victim.txt", "keep");
+  for (const char* entry : {"../victim.txt", "/etc/passwd", "sub/../../victim.txt", "./x", ""}) {
+    write_text(out / "sglab-output.json",
+               fmt::format(R"({{"format": "sglab-output", "version": 1, "command": "x", )"
+                           R"("entries": ["sub/", "{}"]}})",
+                           entry));
+    try {
+      sglab::io::check_replaceable_folder(out, "--out");
+      ADD_FAILURE() << "accepted the entry " << entry;
+    } catch (const sglab::io::InputError& e) {
+      EXPECT_TRUE(contains(e.what(), "is not a plain relative path")) << e.what();
+    }
+    const fs::path staging = sglab::io::make_staging_folder(out);
+    EXPECT_THROW(sglab::io::replace_folder(staging, out, "--out"), sglab::io::InputError);
+    fs::remove(staging);
+  }
+  EXPECT_EQ(read_text(dir.path / "victim.txt"), "keep");
+  EXPECT_TRUE(fs::is_directory(out / "sub"));
+}
+
+TEST(ReplaceFolder, RemovesWhatTheManifestListsAndSwapsTheNewContentIn) {
+  TempDir dir("io-replace");
+  const fs::path out = dir.path / "out";
+  for (int run = 0; run < 3; ++run) {
+    const fs::path staging = sglab::io::make_staging_folder(out);
+    EXPECT_EQ(staging.parent_path(), fs::weakly_canonical(dir.path));
+    fs::create_directories(staging / "logs" / "deep");
+    write_text(staging / "logs" / "deep" / "a.log", fmt::format("run {}", run));
+    write_text(staging / "index.md", fmt::format("run {}", run));
+    sglab::io::write_output_manifest(staging, "test");
+    EXPECT_EQ(sglab::io::replace_folder(staging, out, "--out"), "");
+    EXPECT_EQ(read_text(out / "logs" / "deep" / "a.log"), fmt::format("run {}", run));
+    const auto manifest = nlohmann::json::parse(read_text(out / "sglab-output.json"));
+    EXPECT_EQ(manifest.at("entries"),
+              nlohmann::json::array({"index.md", "logs/", "logs/deep/", "logs/deep/a.log"}));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1)
+        << "the previous output or the staging folder is left beside it";
+  }
+}
+
 TEST(OutputCommands, HeaderOverAFifoOrSymlinkExitsTwoAndLeavesItAlone) {
   TempDir dir("io-header");
   const NotRegularFiles odd(dir.path);
@@ -139,28 +238,56 @@ TEST(OutputCommands, SweepOutputOverASymlinkOrIntoAFifoExitsTwo) {
   odd.expect_untouched();
 }
 
-TEST(OutputCommands, EmptyOutputPathsExitTwo) {
-  // In an empty folder outside any checkout: should an empty path be taken as
-  // the working directory or the checkout's defaults, nothing of value is hit.
+TEST(OutputCommands, EmptyPathsExitTwoNamingTheOption) {
+  // Every path option, input or output. In an empty folder outside any
+  // checkout: should an empty path be taken as the working directory, the
+  // checkout's defaults or the compiled-in data, nothing of value is hit.
   TempDir dir("io-empty-out");
   const fs::path cwd = fs::current_path();
   fs::current_path(dir.path);
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"run", "--out", ""},
-           {"fit", "clamped-cosine", "--out", ""},
-           {"fit", "clamped-cosine", "--out", "x", "--header", ""},
-           {"constants", "--write-header", "--header", ""},
-           {"constants", "--dir", ""},
-           {"sweep", "--out", ""},
-           {"stability", "--out", ""},
-           {"claims", "--out", ""},
-           {"erf", "--out", ""},
-           {"bench", "--out", ""},
-           {"pareto", "--out", ""},
-           {"figures", "--out", ""}}) {
-    const auto r = run_sglab(args);
-    EXPECT_EQ(r.exit_code, 2) << fmt::format("{}", fmt::join(args, " ")) << ": " << r.output;
-    EXPECT_TRUE(contains(r.output, "empty path")) << r.output;
+  const std::string map =
+      (fs::path(SGLAB_TEST_SOURCE_DIR).parent_path() / "data" / "envmaps" / "city.exr").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string option;
+  };
+  for (const Case& c : std::vector<Case>{
+           {{"run", "--out", ""}, "--out"},
+           {{"fit", "clamped-cosine", "--out", ""}, "--out"},
+           {{"fit", "clamped-cosine", "--out", "x", "--header", ""}, "--header"},
+           {{"fit", "sglab-acc", "--dry-run", "--costs", ""}, "--costs"},
+           {{"constants", "--write-header", "--header", ""}, "--header"},
+           {{"constants", "--dir", ""}, "--dir"},
+           {{"sweep", "--out", ""}, "--out"},
+           {{"stability", "--out", ""}, "--out"},
+           {{"claims", "--out", ""}, "--out"},
+           {{"erf", "--out", ""}, "--out"},
+           {{"bench", "--out", ""}, "--out"},
+           {{"pareto", "--out", ""}, "--out"},
+           {{"pareto", "--costs", ""}, "--costs"},
+           {{"recommend", "--kappa", "1:10", "--budget", "0.01", "--costs", ""}, "--costs"},
+           {{"recommend", "--scene", "", "--budget", "0.01"}, "--scene"},
+           {{"figures", "--out", ""}, "--out"},
+           {{"figures", "--pareto", ""}, "--pareto"},
+           {{"figures", "--costs", ""}, "--costs"},
+           {{"figures", "--gnuplot", ""}, "--gnuplot"},
+           {{"export", "--lang", "glsl", "--method", "hill", "--constants", ""}, "--constants"},
+           {{"eval", "--method", "hill", "--points", ""}, "--points"},
+           {{"reference", "--points", ""}, "--points"},
+           {{"gpucost", "--out", ""}, "--out"},
+           {{"envmap", "downsample", "", "out.exr"}, "IN"},
+           {{"envmap", "downsample", map, ""}, "OUT"},
+           {{"envmap", "irradiance", ""}, "FILE"},
+           {{"envmap", "fit", "", "--lobes", "1"}, "FILE"},
+           {{"envmap", "fit", map, "--lobes", "1", "--out", ""}, "--out"},
+           {{"envmap", "recommend", "", "--budget", "0.1"}, "FILE"},
+           {{"envmap", "recommend", map, "--budget", "0.1", "--costs", ""}, "--costs"},
+           {{"envmap", "baselines", "--maps", ""}, "--maps"},
+           {{"envmap", "baselines", "--out", ""}, "--out"}}) {
+    const auto r = run_sglab(c.args);
+    const std::string what = fmt::format("{}: {}", fmt::join(c.args, " "), r.output);
+    EXPECT_EQ(r.exit_code, 2) << what;
+    EXPECT_TRUE(contains(r.output, c.option + ": an empty path is not allowed")) << what;
   }
   fs::current_path(cwd);
   EXPECT_TRUE(fs::is_empty(dir.path)) << "something was written into the working directory";

@@ -1,7 +1,9 @@
 // `sglab run`: the steps run without a shell (an output path with spaces,
-// quotes and a semicolon works and runs nothing), and OUT/index.md is a
-// clean report: every relative link resolves to a file, no image is shown
-// twice, heading levels never skip, and no long table is inlined.
+// quotes and a semicolon works and runs nothing), OUT/index.md is a clean
+// report (every relative link resolves to a file, no image is shown twice,
+// heading levels never skip, no long table is inlined), and OUT is replaced
+// only when it is absent, empty or an earlier output listed whole by its
+// manifest, never the checkout, the working folder, $HOME or /.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -19,6 +21,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sglab/registry.hpp>
 
@@ -259,28 +262,36 @@ TEST(RunCommand, ParetoWithoutGpuCostsIsSkippedWithTheReason) {
   EXPECT_NE(sglab::io::read_file(out / "index.md").find("no GPU costs"), std::string::npos);
 }
 
+// The folder of `out.staging-PID-*` beside `out`, or an empty path.
+fs::path staging_of(const fs::path& out, pid_t pid) {
+  const std::string prefix = fmt::format("{}.staging-{}-", out.filename().string(), pid);
+  for (const auto& e : fs::directory_iterator(out.parent_path()))
+    if (e.path().filename().string().rfind(prefix, 0) == 0) return e.path();
+  return {};
+}
+
 TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   sglab::test::TempDir base("run-interrupted");
   const fs::path out = base.path / "out";
-  // A complete earlier output: its index says the sweep step was ok, with its log.
-  fs::create_directories(out / "logs");
-  fs::create_directories(out / "sweep");
-  sglab::io::write_file_atomic(out / "index.md",
-                               "# sglab results\n\n## sweep\n\n`sglab sweep` — ok\n");
-  sglab::io::write_file_atomic(out / "logs" / "sweep.log", "the previous sweep's log\n");
-  sglab::io::write_file_atomic(out / "sweep" / "summary.csv", "previous\n");
-  const auto before = files_under(out);
   const std::vector<std::string> args = {
       "run",    "--quick",    "--out",  out.string(), "--skip", "fit",    "--skip",
       "erf",    "--skip",     "claims", "--skip",     "bench",  "--skip", "pareto",
       "--skip", "pareto-cpu", "--skip", "figures",    "--skip", "envmap"};
+  // A complete earlier output, its files marked so that a change shows.
+  ASSERT_EQ(sglab::test::run_sglab(args).exit_code, 0);
+  for (const char* name : {"index.md", "logs/sweep.log", "sweep/summary.csv"})
+    sglab::io::write_file_atomic(out / name, fmt::format("previous {}\n", name));
+  const auto before = files_under(out);
   for (const int signal : {SIGINT, SIGTERM}) {
     const pid_t pid = spawn_sglab(args);
     ASSERT_GT(pid, 0);
     // Interrupt it while its first step (sweep) is writing its log.
-    const fs::path partial_log =
-        base.path / fmt::format("out.staging-{}", pid) / "logs" / ".sweep.log.partial";
-    for (int i = 0; i < 2000 && !fs::exists(partial_log); ++i) ::usleep(10'000);
+    fs::path partial_log;
+    for (int i = 0; i < 2000 && !fs::exists(partial_log); ++i) {
+      ::usleep(10'000);
+      if (const fs::path staging = staging_of(out, pid); !staging.empty())
+        partial_log = staging / "logs" / ".sweep.log.partial";
+    }
     ASSERT_TRUE(fs::exists(partial_log)) << "the run did not start its first step within 20 s";
     ::kill(pid, signal);
     int status = 0;
@@ -294,10 +305,142 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   const auto after = files_under(out);
   EXPECT_NE(after.at("logs/sweep.log"), before.at("logs/sweep.log"));
   EXPECT_TRUE(after.count("stability/stability.csv"));
-  EXPECT_NE(after.at("sweep/summary.csv"), "previous\n");
+  EXPECT_NE(after.at("sweep/summary.csv"), before.at("sweep/summary.csv"));
   EXPECT_NE(after.at("index.md").find("## stability"), std::string::npos);
   for (const auto& [name, text] : after)
     EXPECT_EQ(name.find(".partial"), std::string::npos) << name;
+}
+
+// ---- `run --out D` replaces only what it wrote ------------------------------------
+
+// `sglab run` with every step skipped: it writes only index.md, logs/ and
+// its manifest, at once.
+std::vector<std::string> empty_run(const fs::path& out) {
+  std::vector<std::string> args = {"run", "--out", out.string()};
+  for (const char* step : {"fit", "sweep", "erf", "stability", "claims", "bench", "gpucost",
+                           "pareto", "pareto-cpu", "figures", "envmap"})
+    args.insert(args.end(), {"--skip", step});
+  return args;
+}
+
+// Every entry under `dir` (files with their content, folders, links), by path
+// relative to it, not following links.
+std::map<std::string, std::string> everything_under(const fs::path& dir) {
+  std::map<std::string, std::string> all;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string name = fs::relative(e.path(), dir).generic_string();
+    all[name] = e.is_symlink()        ? "link to " + fs::read_symlink(e.path()).string()
+                : e.is_regular_file() ? sglab::io::read_file(e.path())
+                                      : "folder";
+  }
+  return all;
+}
+
+// Runs in `dir` with $HOME set to `home` for the lifetime of the object.
+struct InFolderWithHome {
+  fs::path cwd = fs::current_path();
+  std::string home = std::getenv("HOME") ? std::getenv("HOME") : "";
+  InFolderWithHome(const fs::path& dir, const fs::path& home_dir) {
+    fs::current_path(dir);
+    ::setenv("HOME", home_dir.c_str(), 1);
+  }
+  ~InFolderWithHome() {
+    fs::current_path(cwd);
+    ::setenv("HOME", home.c_str(), 1);
+  }
+};
+
+TEST(RunCommand, NeverReplacesTheCheckoutHomeOrAFolderItDidNotWrite) {
+  sglab::test::TempDir base("run-refuses");
+  // A checkout with its .git and an untracked note, the working folder below it.
+  const fs::path checkout = base.path / "checkout";
+  fs::create_directories(checkout / "data" / "constants");
+  fs::create_directories(checkout / "include" / "sglab");
+  fs::create_directories(checkout / ".git");
+  fs::create_directories(checkout / "work");
+  sglab::io::write_file_atomic(checkout / "notes.txt", "untracked notes\n");
+  const fs::path home = base.path / "home";
+  fs::create_directories(home);
+  sglab::io::write_file_atomic(home / ".profile", "mine\n");
+  const fs::path repo = base.path / "repo";  // another folder holding .git
+  fs::create_directories(repo / ".git");
+  const fs::path precious = base.path / "precious";  // a folder of the user's
+  fs::create_directories(precious);
+  sglab::io::write_file_atomic(precious / "precious.txt", "keep\n");
+  const fs::path tarball = base.path / "tarball";  // a checkout without .git
+  fs::create_directories(tarball / "data" / "constants");
+  fs::create_directories(tarball / "include" / "sglab");
+  fs::create_directory_symlink(checkout, base.path / "link-to-checkout");
+  const auto before = everything_under(base.path);
+
+  struct Case {
+    std::string out, why;
+  };
+  const Case cases[] = {
+      {".", "is the working folder"},
+      {"..", "is the project root"},
+      {checkout.string(), "is the project root"},
+      {(checkout / "work" / ".." / "..").string(), "is an ancestor of the project root"},
+      {base.path.string(), "is an ancestor of the project root"},
+      {"/", "is the root folder"},
+      {home.string(), "is the home folder"},
+      {(base.path / "link-to-checkout").string(), "is the project root"},
+      {repo.string(), "holds .git"},
+      {tarball.string(), "is an sglab checkout"},
+      {precious.string(), "is not empty and has no sglab-output.json"},
+  };
+  {
+    const InFolderWithHome here(checkout / "work", home);
+    for (const Case& c : cases) {
+      const auto r = sglab::test::run_sglab(empty_run(c.out));
+      EXPECT_EQ(r.exit_code, 2) << c.out << ": " << r.output;
+      EXPECT_NE(r.output.find("--out " + c.out + ": " + c.why), std::string::npos)
+          << c.out << ": " << r.output;
+    }
+  }
+  EXPECT_EQ(everything_under(base.path), before) << "a refused run changed something";
+}
+
+TEST(RunCommand, ReplacesAnEarlierOutputButNothingItDidNotWrite) {
+  sglab::test::TempDir base("run-replaces");
+  const fs::path out = base.path / "out";
+  // Absent, then its own earlier output: replaced.
+  auto r = sglab::test::run_sglab(empty_run(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto manifest = nlohmann::json::parse(sglab::io::read_file(out / "sglab-output.json"));
+  EXPECT_EQ(manifest.at("format"), "sglab-output");
+  EXPECT_EQ(manifest.at("entries"), nlohmann::json::array({"index.md", "logs/"}));
+  sglab::io::write_file_atomic(out / "index.md", "edited\n");  // a listed file may change
+  r = sglab::test::run_sglab(empty_run(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(sglab::io::read_file(out / "index.md"), "edited\n");
+  // A file it did not write, anywhere inside: refused, the file kept.
+  sglab::io::write_file_atomic(out / "logs" / "mine.txt", "keep\n");
+  const auto before = everything_under(base.path);
+  r = sglab::test::run_sglab(empty_run(out));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find((out / "logs" / "mine.txt").string()), std::string::npos) << r.output;
+  EXPECT_EQ(everything_under(base.path), before);
+  // A folder it listed turned into a link to the user's files: refused, nothing followed.
+  fs::remove_all(out / "logs");
+  const fs::path elsewhere = base.path / "elsewhere";
+  fs::create_directories(elsewhere);
+  sglab::io::write_file_atomic(elsewhere / "f.txt", "keep\n");
+  fs::create_directory_symlink(elsewhere, out / "logs");
+  r = sglab::test::run_sglab(empty_run(out));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(sglab::io::read_file(elsewhere / "f.txt"), "keep\n");
+  // An empty folder, and a link to one (the link stays, its folder is replaced).
+  const fs::path empty = base.path / "empty", link = base.path / "link";
+  fs::create_directories(empty);
+  fs::create_directory_symlink(empty, link);
+  r = sglab::test::run_sglab(empty_run(link));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_TRUE(fs::is_regular_file(empty / "index.md"));
+  // Only the outputs are left: no staging folder beside them.
+  for (const auto& e : fs::directory_iterator(base.path))
+    EXPECT_EQ(e.path().filename().string().find(".staging-"), std::string::npos) << e.path();
 }
 
 // ---- `sglab table` prints every value with 5 significant digits --------------
