@@ -3,7 +3,8 @@
 // poles, the fitter on synthetic data with known coefficients, and the `eval`
 // / `methods --json` commands. Their error against the reference engine on
 // random points, per-light split and float batch are checked with every
-// method by tests/test_methods.cpp, bounds in tests/tolerances.hpp.
+// method by tests/test_methods.cpp, bounds on their registry cards
+// (tests/test_kappa_range.cpp).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -30,8 +31,8 @@ using sglab::test::hex;
 using sglab::test::random_points;
 using sglab::test::run_sglab;
 
-// The shipped rungs; their bounds are rows of tests/tolerances.hpp, checked
-// by tests/test_methods.cpp with every method.
+// The shipped rungs; their bounds are on their registry cards, checked by
+// tests/test_methods.cpp and tests/test_kappa_range.cpp with every method.
 constexpr const char* kRungs[] = {"sglab_acc1", "sglab_acc2", "sglab_acc3", "sglab_acc4"};
 
 const sglab::Method& method(std::string_view id) {

@@ -33,6 +33,7 @@
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 #include "tests/vulkan_fixture.hpp"
+#include "validate/kappa_range.hpp"
 #include "validate/sweep.hpp"
 
 namespace fs = std::filesystem;
@@ -171,6 +172,23 @@ TEST(ShaderExport, CoversEveryRegisteredIrradianceMethod) {
 TEST(ShaderExport, EntryPointName) {
   EXPECT_EQ(sh::entry_point_name("tokuyoshi2024"), "sglab_irradiance_tokuyoshi2024");
   EXPECT_EQ(sh::entry_point_name("a-b.c"), "sglab_irradiance_a_b_c");
+}
+
+// Every irradiance export states its method's registry card: the bound and the κ range it
+// holds on (sglab_fast's stops at 1.1e4), or nothing where the card does not apply.
+TEST(ShaderExport, HeaderStatesTheRegistryCard) {
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::cpp}) {
+      const std::string src =
+          sh::export_source(sh::standard_request(lang, std::string(m.id))).source;
+      const std::string line = fmt::format(
+          "max |E~ - E|/E(1, kappa) <= {:.2g} for kappa in {}; outside it that bound does not hold",
+          m.valid.max_peak_rel, sglab::validate::kappa_range_text(m.valid));
+      EXPECT_NE(src.find(line), std::string::npos) << m.id << ": " << line;
+    }
+  const std::string fast =
+      sh::export_source(sh::standard_request(sh::Language::hlsl, "sglab_fast")).source;
+  EXPECT_NE(fast.find("<= 0.0026 for kappa in [0, 1.1e+04]"), std::string::npos);
 }
 
 // glslang compiles every GLSL and HLSL export inside the compute shader of
