@@ -5,6 +5,7 @@
 // random points, per-light split and float batch are checked with every
 // method by tests/test_methods.cpp, bounds on their registry cards
 // (tests/test_kappa_range.cpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -194,6 +195,40 @@ TEST(SglabAccFit, RecoversKnownSyntheticCoefficients) {
     EXPECT_GT(-std::log10(std::abs(f.values[i] - want[i]) / std::abs(want[i])), 5)
         << "coefficient " << i << " = " << f.values[i];
   EXPECT_LT(f.max_abs, 1e-12);
+}
+
+// The grid the certificate's bound is computed on: at every κ the cosines are distinct, sorted,
+// within (−1, 1), symmetric about 0 (c and −c both, c = 0 once), and hold the ±z_k/t(κ) pairs.
+TEST(SglabAccFit, CertificateGridIsSymmetricAndDistinctAtEveryKappa) {
+  const auto q = sglab::fit::sglab_acc_dense_grid(1e-3, 1e4);
+  ASSERT_FALSE(q.empty());
+  std::size_t kappas = 0;
+  for (std::size_t first = 0; first < q.size();) {
+    std::size_t last = first;
+    while (last + 1 < q.size() && q[last + 1].kappa == q[first].kappa) ++last;
+    ++kappas;
+    const double k = q[first].kappa;
+    std::vector<double> c;
+    for (std::size_t i = first; i <= last; ++i) c.push_back(q[i].cosine);
+    ASSERT_GE(c.size(), 65u) << "kappa " << k;  // c = 0 and 64 uniform at least
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      EXPECT_GT(c[i], -1.0) << "kappa " << k;
+      EXPECT_LT(c[i], 1.0) << "kappa " << k;
+      if (i > 0) {
+        EXPECT_LT(c[i - 1], c[i]) << "kappa " << k << ": not sorted and distinct";
+      }
+      EXPECT_EQ(c[i], -c[c.size() - 1 - i]) << "kappa " << k << ": not symmetric";
+    }
+    EXPECT_EQ(std::count(c.begin(), c.end(), 0.0), 1) << "kappa " << k;
+    // the first z pair: c = ±0.05/t(κ), whenever it lies inside (−1, 1)
+    const double t = sglab::steepness2024(k, sglab::constants::steepness2024_irradiance);
+    if (0.05 / t < 1) {
+      EXPECT_NE(std::find(c.begin(), c.end(), 0.05 / t), c.end()) << "kappa " << k;
+      EXPECT_NE(std::find(c.begin(), c.end(), -0.05 / t), c.end()) << "kappa " << k;
+    }
+    first = last + 1;
+  }
+  EXPECT_GE(kappas, 80u);
 }
 
 // Model order: a narrow scene range with a loose budget gets the cheapest
