@@ -89,6 +89,17 @@ TEST(Frontier, SyntheticPoints) {
   EXPECT_FALSE(on_frontier(v, "same_err"));
 }
 
+// Two methods at the same cost and error: neither dominates the other (domination needs one
+// strictly better coordinate), so both stay on the frontier; a third, worse in both, does not.
+TEST(Frontier, EqualPointsAreBothOnIt) {
+  std::vector<MethodPoint> v{pt("twin_a", 2.0, 1e-3), pt("twin_b", 2.0, 1e-3),
+                             pt("worse", 2.5, 2e-3)};
+  sglab::report::mark_frontier(v);
+  EXPECT_TRUE(on_frontier(v, "twin_a"));
+  EXPECT_TRUE(on_frontier(v, "twin_b"));
+  EXPECT_FALSE(on_frontier(v, "worse"));
+}
+
 // A point outside its method's valid κ range is never on the frontier and dominates nothing.
 TEST(Frontier, OutsideItsValidRangeNeverOnItNorDominating) {
   std::vector<MethodPoint> v{pt("outside", 1.0, 1e-4), pt("inside", 2.0, 1e-3)};
