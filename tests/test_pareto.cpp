@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -134,6 +135,18 @@ TEST(Recommend, BudgetIsInclusive) {
   const auto r = recommend({pt("x", 1.0, 1e-3), pt("y", 2.0, 1e-4)}, 1e-3);
   ASSERT_TRUE(r.choice);
   EXPECT_EQ(r.choice->method, "x");
+}
+
+// Of two methods equally accurate the cheaper is the most accurate one, in either order.
+TEST(Recommend, MostAccurateTieGoesToTheCheaper) {
+  for (const bool cheap_first : {true, false}) {
+    std::vector<MethodPoint> v{pt("cheap", 1.0, 1e-4), pt("dear", 3.0, 1e-4),
+                               pt("poor", 0.5, 1e-2)};
+    if (!cheap_first) std::swap(v[0], v[1]);
+    const auto r = recommend(v, 1e-1);
+    ASSERT_TRUE(r.most_accurate);
+    EXPECT_EQ(r.most_accurate->method, "cheap") << (cheap_first ? "cheap first" : "dear first");
+  }
 }
 
 TEST(Recommend, TiesWithinMarginBrokenByError) {

@@ -231,6 +231,23 @@ TEST(SglabAccFit, CertificateGridIsSymmetricAndDistinctAtEveryKappa) {
   EXPECT_GE(kappas, 80u);
 }
 
+// The grid's κ are log-spaced with a band three times as dense over [0.5, 200], where the
+// irradiance changes shape fastest: κ per decade in each part of the band against outside it.
+TEST(SglabAccFit, CertificateGridIsDenserOverHalfToTwoHundred) {
+  std::vector<double> k;
+  for (const auto& p : sglab::fit::sglab_acc_dense_grid(1e-3, 1e4))
+    if (k.empty() || k.back() != p.kappa) k.push_back(p.kappa);
+  const auto per_decade = [&k](double lo, double hi) {
+    const auto n = std::count_if(k.begin(), k.end(), [&](double x) { return lo <= x && x < hi; });
+    return double(n) / std::log10(hi / lo);
+  };
+  const double outside = per_decade(1e-3, 0.5), above = per_decade(200, 1e4);
+  EXPECT_NEAR(outside / above, 1.0, 0.15);  // 80 cells over the 7 decades: 11.4 per decade
+  EXPECT_NEAR(above, 80 / 7.0, 1.0);
+  for (const auto& [lo, hi] : {std::pair{0.5, 5.0}, std::pair{5.0, 50.0}, std::pair{50.0, 200.0}})
+    EXPECT_GE(per_decade(lo, hi), 2.5 * outside) << "[" << lo << ", " << hi << ")";
+}
+
 // Model order: a narrow scene range with a loose budget gets the cheapest
 // member (one term of degree 2), while the full range needs more terms for
 // issue 17 §2's targets: acc1 (one term) measurably misses the two-term
