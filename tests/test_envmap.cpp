@@ -96,6 +96,18 @@ TEST(Envmap, DownsampleKeepsTheIntegral) {
   EXPECT_NEAR(integral(coarse) / integral(fine), 1.0, 1e-6);
 }
 
+// The fitting copy of a map wider than the fitting width (128) is the map area-averaged to that
+// width (384 = 3 × 128); a map no wider is fitted as it is.
+TEST(Envmap, WorkingCopyIsAtTheFittingWidth) {
+  const Map wide = envmap::reconstruct(kKnown, 384, 192);
+  const Map work = envmap::working_copy(wide);
+  EXPECT_EQ(work.width, 128u);
+  EXPECT_EQ(work.height, 64u);
+  EXPECT_EQ(work.rgb, envmap::downsample(wide, 128).rgb);
+  const Map narrow = envmap::reconstruct(kKnown, 64, 32);
+  EXPECT_EQ(envmap::working_copy(narrow).rgb, narrow.rgb);
+}
+
 TEST(Envmap, FitRecoversKnownLobes) {
   const Map m = envmap::reconstruct(kKnown, 128, 64);
   envmap::FitOptions o;
