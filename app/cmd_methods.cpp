@@ -13,6 +13,7 @@
 #include <sglab/registry.hpp>
 
 #include "app/commands.hpp"
+#include "validate/kappa_range.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::app {
@@ -21,10 +22,12 @@ void add_methods_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("methods", "List every method id with its source and constants");
   auto json = std::make_shared<bool>(false);
   cmd->add_flag("--json", *json,
-                "print every method as JSON: id, origin, source, constant sets, per-light split");
+                "print every method as JSON: id, origin, source, constant sets, per-light split, "
+                "valid κ range (registry card)");
   cmd->callback([json] {
     if (*json) {
-      // {"irradiance": [{id, origin, source, constants: [...], per_light_split}], "hemispherical":
+      // {"irradiance": [{id, origin, source, constants: [...], per_light_split, valid_range}],
+      //  "hemispherical":
       // [...],
       //  "normalized": [...], "erf": [{id, source}]}
       auto constant_sets = [](std::string_view text) {
@@ -49,7 +52,12 @@ void add_methods_command(CLI::App& app) {
                {"origin", std::string(to_string(m.origin))},
                {"source", std::string(m.source)},
                {"constants", constant_sets(m.constants)},
-               {"per_light_split", m.light_setup32 != nullptr && m.light_eval32 != nullptr}});
+               {"per_light_split", m.light_setup32 != nullptr && m.light_eval32 != nullptr},
+               {"valid_range", m.valid.max_peak_rel > 0
+                                   ? nlohmann::ordered_json{{"max_peak_rel", m.valid.max_peak_rel},
+                                                            {"kappa_lo", m.valid.kappa_lo},
+                                                            {"kappa_hi", m.valid.kappa_hi}}
+                                   : nlohmann::ordered_json(nullptr)}});
         return a;
       };
       nlohmann::ordered_json out;
@@ -65,8 +73,12 @@ void add_methods_command(CLI::App& app) {
     auto list = [](const char* title, std::span<const Method> methods) {
       fmt::print("{}:\n", title);
       for (const Method& m : methods)
-        fmt::print("  {:<18} {}{}\n", m.id, m.source,
-                   m.constants.empty() ? "" : fmt::format(" [{}]", m.constants));
+        fmt::print("  {:<18} {}{}{}\n", m.id, m.source,
+                   m.constants.empty() ? "" : fmt::format(" [{}]", m.constants),
+                   m.valid.max_peak_rel > 0
+                       ? fmt::format("; max peak_rel ≤ {:.2g} for κ in {}", m.valid.max_peak_rel,
+                                     validate::kappa_range_text(m.valid))
+                       : std::string());
     };
     list("irradiance", irradiance_methods);
     list("hemispherical", hemispherical_methods);

@@ -8,7 +8,9 @@
 // costs within 5% of the cheapest remaining
 // candidate are ties, broken by the smaller error (validate/pareto.hpp).
 // When no method meets the budget, says so and names the most accurate (exit
-// 0: that is an answer). --json adds every candidate.
+// 0: that is an answer). A method whose valid κ range (its registry card,
+// sglab::ValidRange) does not hold [LO, HI] is not considered and is named as
+// such. --json adds every candidate.
 // `sglab recommend --scene FILE --budget E` ranks the methods by their error on
 // a scene of SG lights instead (app/recommend_scene.cpp, validate/scene.hpp).
 #include <cmath>
@@ -19,6 +21,8 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include <sglab/registry.hpp>
 
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
@@ -51,7 +55,8 @@ nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
           {"origin", std::string(to_string(p->origin))},
           {"max_peak_rel", number(p->max_peak_rel)},
           {"cost", number(p->cost)},
-          {"cost_unit", p->cost_unit}};
+          {"cost_unit", p->cost_unit},
+          {"in_valid_range", p->in_valid_range}};
 }
 
 std::string describe(const report::MethodPoint& p) {
@@ -81,16 +86,23 @@ void print_recommendation_json(double lo, double hi, double budget, validate::Fl
   nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
   for (const auto& p : points) {
     auto j = point_json(p);
-    j["qualifies"] =
-        std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) && p.max_peak_rel <= budget;
+    j["qualifies"] = std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) &&
+                     p.max_peak_rel <= budget && p.in_valid_range;
+    if (const Method* m = find_method(irradiance_methods, p.method))
+      j["valid_kappa"] = {m->valid.kappa_lo, m->valid.kappa_hi};
     candidates.push_back(std::move(j));
   }
   doc["candidates"] = std::move(candidates);
+  nlohmann::ordered_json outside = nlohmann::ordered_json::array();
+  for (const auto& p : points)
+    if (!p.in_valid_range) outside.push_back(p.method);
+  doc["outside_valid_range"] = std::move(outside);
   fmt::print("{}\n", doc.dump(2));
 }
 
 // The κ-range answer as text.
 void print_recommendation_text(double lo, double hi, double budget, validate::FloatFormat precision,
+                               const std::vector<report::MethodPoint>& points,
                                const report::Recommendation& r, const report::CostSource& cost,
                                const CostsOption::From& source) {
   fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi,
@@ -108,6 +120,11 @@ void print_recommendation_text(double lo, double hi, double budget, validate::Fl
     else
       fmt::print("  no method has a finite error over this range.\n");
   }
+  if (const std::string outside = report::outside_valid_range_text(points); !outside.empty())
+    fmt::print(
+        "  not considered: outside their valid κ range (registry card; their stated bound does "
+        "not hold there): {}\n",
+        outside);
   fmt::print("(cost in {}: {}; costs within {}% are ties, broken by error)\n", cost.unit(),
              source.text, report::kCostTieMargin * 100);
 }
@@ -143,7 +160,7 @@ void run_recommend(const RecommendArgs& args) {
   if (args.json)
     print_recommendation_json(lo, hi, budget, *precision, points, r, cost, source);
   else
-    print_recommendation_text(lo, hi, budget, *precision, r, cost, source);
+    print_recommendation_text(lo, hi, budget, *precision, points, r, cost, source);
 }
 
 }  // namespace

@@ -94,5 +94,6 @@ void add_export_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_gpucost_command(CLI::App& app);
 void add_envmap_command(CLI::App& app);
+void add_range_command(CLI::App& app);
 
 }  // namespace sglab::app

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   sglab::app::add_erf_command(app);
   sglab::app::add_sweep_command(app);
   sglab::app::add_stability_command(app);
+  sglab::app::add_range_command(app);
   sglab::app::add_reference_command(app);
   sglab::app::add_figures_command(app);
   sglab::app::add_claims_command(app);

@@ -100,13 +100,19 @@ void print_json(const SceneOutput& o) {
                        {"scene_error", number(p.max_peak_rel)},
                        {"cost", number(p.cost)},
                        {"cost_unit", p.cost_unit},
+                       {"in_valid_range", p.in_valid_range},
                        {"qualifies", std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) &&
-                                         p.max_peak_rel <= o.args.budget}});
+                                         p.max_peak_rel <= o.args.budget && p.in_valid_range}});
   doc["methods"] = std::move(methods);
+  nlohmann::ordered_json outside = nlohmann::ordered_json::array();
+  for (const auto& p : o.points)
+    if (!p.in_valid_range) outside.push_back(p.method);
+  doc["outside_valid_range"] = std::move(outside);
   nlohmann::ordered_json sg = nlohmann::ordered_json::array();
   for (const auto& m : o.ranking.models_on_range)
     sg.push_back({{"method", m.method},
                   {"range_max_peak_rel", number(m.max_peak_rel)},
+                  {"in_valid_range", m.in_valid_range},
                   {"meets_budget", m.max_peak_rel <= o.args.budget}});
   const auto& sufficient = o.ranking.sufficient;
   doc["sglab_models_on_range"] = {
@@ -130,7 +136,14 @@ void print_text(const SceneOutput& o) {
   for (const auto& p : o.points)
     fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", p.method, to_string(p.origin),
                p.max_peak_rel, report::cost_text(p),
-               std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes" : "no");
+               !p.in_valid_range ? "outside its valid κ range"
+               : std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes"
+                                                                                  : "no");
+  if (const std::string outside = report::outside_valid_range_text(o.points); !outside.empty())
+    fmt::print(
+        "  not considered: a light's κ is outside their valid κ range (registry card; their "
+        "stated bound does not hold there): {}\n",
+        outside);
   fmt::print("\n");
   if (r.choice) {
     fmt::print("  choice:    {} (scene error {:.4g}, {})\n", r.choice->method,
@@ -149,7 +162,9 @@ void print_text(const SceneOutput& o) {
       o.ranking.kappa_lo, o.ranking.kappa_hi);
   for (const auto& m : o.ranking.models_on_range)
     fmt::print("    {:<22} {:.4g}{}\n", m.method, m.max_peak_rel,
-               m.max_peak_rel <= o.args.budget ? "  meets the budget" : "");
+               !m.in_valid_range                 ? "  outside its valid κ range"
+               : m.max_peak_rel <= o.args.budget ? "  meets the budget"
+                                                 : "");
   if (o.ranking.sufficient)
     fmt::print("  cheapest sglab model sufficient for the range: {}\n",
                o.ranking.sufficient->method);

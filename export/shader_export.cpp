@@ -13,6 +13,7 @@
 #include "export/shader_elementary.hpp"
 #include "export/shader_methods.hpp"
 #include "export/shader_text.hpp"
+#include "validate/kappa_range.hpp"
 #include "validate/sweep.hpp"
 
 namespace sglab::shader {
@@ -294,6 +295,13 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
   if (b.vulkan)
     h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device),
                      fmt_error(b.vulkan));
+  // The registry card holds for the compiled-in constants only.
+  if (const Method* card = find_method(irradiance_methods, m.id);
+      card && card->valid.max_peak_rel > 0 && request.overrides.empty())
+    h += fmt::format(
+        "// Valid kappa range (registry card of the runtime, `sglab range`): max |E~ - E|/E(1, "
+        "kappa) <= {:.2g} for kappa in {}; outside it that bound does not hold.\n",
+        card->valid.max_peak_rel, validate::kappa_range_text(card->valid));
   if (request.lang != Language::cpp) h += gpu_cost_line(request);
   if (request.precision == Precision::float16) h += half_header(m, request.lang);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));

@@ -326,14 +326,15 @@ std::string helper_sglab_mid(const Ctx& c, const Slots& slots) {
          subst(
              fmt::format(
                  R"(// sglab_mid: E = E(1, kappa) max(0, A + B (c + sqrt(c^2 + exp(S - V c^2))) + D c^2),
-// the exponent clamped to [-80, 80]; A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k),
-// V = k Pv(k)/Q(k), k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_mid.hpp).
+// the exponent clamped to [-80, 80]; A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + kappa),
+// V = kappa Pv(k)/Q(k) = k Pv(k)/Q(k) max(1, kappa/kappa_max), k = min(kappa, kappa_max),
+// Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_mid.hpp).
 {{INLINE}}float {{P}}mid(float cosine, float kappa) {{
   float k = min(kappa, {0});
   float inv_q = 1.0f / ({1} + k * k * k * k);
   float scale = 6.28318548f * {{P}}upper_over_two_pi(kappa) * inv_q;
-  float s_k = {2} * inv_q - log(1.0f + k);
-  float v_k = k * {3} * inv_q;
+  float s_k = {2} * inv_q - log(1.0f + kappa);
+  float v_k = k * {3} * inv_q * max(1.0f, kappa / {0});
   float c2 = cosine * cosine;
   float x = clamp(s_k - v_k * c2, -80.0f, 80.0f);
   float s = ({4} + {5} * (cosine + sqrt(c2 + exp(x))) + {6} * c2) * scale;
@@ -384,7 +385,10 @@ std::string helper_sglab_fast_half(const Ctx& c, const Slots& slots) {
 // per-pixel shape in half: the runtime's per-light split (sglab/sglab_mid.hpp
 // sglab_mid_light, sglab_mid_eval) with the light's five numbers rounded to half
 // (S ∈ [−9.7, 2.6] and V ≤ 5.9e3 over κ ∈ [1e−3, 1e4] for the shipped set, so
-// e^{S − V c²} stays within half).
+// e^{S − V c²} stays within half). Unlike the float form, S and V take
+// k = min(κ, kappa_max) throughout: κ·Pv/Q itself would leave half's range
+// (65504) above κ ≈ 1e5, so beyond kappa_max the half form keeps the shape of
+// kappa_max (its claims are on κ ∈ [1e−2, 1e3], tests/tolerances.hpp).
 std::string helper_sglab_mid_half(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };

@@ -65,14 +65,14 @@ std::vector<LightField> fields_sglab_mid(const Slots&) {
 std::string light_sglab_mid(const Ctx& c, const Slots& slots) {
   const ConstantSet& set = slot(slots, "model");
   const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
-  return subst(fmt::format(R"(  float k = min(kappa, {});
-  float inv_q = 1.0f / ({} + k * k * k * k);
+  return subst(fmt::format(R"(  float k = min(kappa, {0});
+  float inv_q = 1.0f / ({1} + k * k * k * k);
   float e1 = 6.28318548f * {{P}}upper_over_two_pi(kappa);
-  light.a = {} * inv_q * e1;
-  light.b = {} * inv_q * e1;
-  light.d = {} * inv_q * e1;
-  light.s = {} * inv_q - log(1.0f + k);
-  light.v = k * {} * inv_q;
+  light.a = {2} * inv_q * e1;
+  light.b = {3} * inv_q * e1;
+  light.d = {4} * inv_q * e1;
+  light.s = {5} * inv_q - log(1.0f + kappa);
+  light.v = k * {6} * inv_q * max(1.0f, kappa / {0});
 )",
                            names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"),
                            poly("d"), poly("s"), poly("v")),

@@ -236,7 +236,10 @@ std::vector<validate::Query> training_grid(double lo, double hi) {
 // offsets of a uniform grid and c = ±z_k/t(κ), z_k = 0.05 … 3.15 (32), sorted
 // by c (the exchange adds a peak's neighbours in c). Never a measuring grid.
 constexpr int kDenseKappas = 80, kDenseUniform = 64;
-std::vector<validate::Query> dense_training_grid(double lo, double hi) {
+
+}  // namespace
+
+std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi) {
   std::vector<validate::Query> q;
   const int uniform = kDenseUniform, zcount = 32;
   for (double k : training_kappas(lo, hi, kDenseKappas)) {
@@ -251,6 +254,8 @@ std::vector<validate::Query> dense_training_grid(double lo, double hi) {
   return q;
 }
 
+namespace {
+
 // The errors of member (N, D) with coefficients p on `ref` (model_family.hpp).
 template <std::size_t N, std::size_t D, std::size_t M>
 Measured measure(const SglabAccParams<double, N, D, M>& p,
@@ -259,7 +264,7 @@ Measured measure(const SglabAccParams<double, N, D, M>& p,
 }
 
 // The certificate of a member's fit (issue 17 §1), on the dense training
-// grid (dense_training_grid), in the units of the fit's objective, peak_rel/w(κ):
+// grid (sglab_acc_dense_grid), in the units of the fit's objective, peak_rel/w(κ):
 // achieved ≥ lower_bound ≥ per_kappa_floor.
 struct Certificate {
   double achieved = 0;  // max at the final coefficients (double), every row
@@ -861,7 +866,7 @@ Grids grids_for(const FitSpec& spec) {
   auto& engine = validate::reference_engine();
   for (const auto& r : engine.evaluate(training_grid(spec.kappa_lo, spec.kappa_hi)))
     g.train.push_back({r.kappa, r.cosine, r.irradiance});
-  for (const auto& r : engine.evaluate(dense_training_grid(spec.kappa_lo, spec.kappa_hi)))
+  for (const auto& r : engine.evaluate(sglab_acc_dense_grid(spec.kappa_lo, spec.kappa_hi)))
     g.dense.push_back({r.kappa, r.cosine, r.irradiance});
   g.measuring = measuring_grids(spec);
   return g;

@@ -287,8 +287,9 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   out.constant_sets.push_back(make_constant_set(
       recorded, "sglab-mid", variant, "SglabMidParams<double>",
       "E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); "
-      "A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k), V = k*Pv(k)/Q(k) with k = min(kappa, "
-      "kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] "
+      "A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + kappa), V = kappa*Pv(k)/Q(k) with k = "
+      "min(kappa, kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + "
+      "q[0] "
       "(coefficients lowest order first)",
       coefficients,
       fmt::format("minimax of the sglab_mid irradiance peak_rel error (double) over a training "

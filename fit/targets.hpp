@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "validate/reference.hpp"
+
 namespace sglab::io {
 class Progress;
 }
@@ -83,6 +85,12 @@ FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.c
 FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/sglab_mid.cpp)
 // sglab_acc<N> ladder, or its model order with max_error
 FitOutcome fit_sglab_acc(const FitSpec& spec);
+
+// The dense training grid of sglab-acc's certificate and LP exchange over [lo, hi]
+// (fit/sglab_acc.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200]) plus
+// the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ),
+// z_k = 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
+std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
 // peak_rel error of SglabAccParams<double, terms, degree> on `samples`, each

@@ -16,14 +16,37 @@
 #include <sglab/registry.hpp>
 
 #include "common/io.hpp"
+#include "validate/kappa_range.hpp"
 
 namespace sglab::report {
 
 namespace {
 
-bool usable(const MethodPoint& p) { return std::isfinite(p.cost) && std::isfinite(p.max_peak_rel); }
+// A point that may be recommended or on the frontier: finite cost and error, in its valid range.
+bool usable(const MethodPoint& p) {
+  return std::isfinite(p.cost) && std::isfinite(p.max_peak_rel) && p.in_valid_range;
+}
 
 }  // namespace
+
+void mark_valid_range(std::vector<MethodPoint>& points, double kappa_lo, double kappa_hi) {
+  for (MethodPoint& p : points) {
+    const Method* m = find_method(irradiance_methods, p.method);
+    p.in_valid_range = m != nullptr && m->valid.covers(kappa_lo, kappa_hi);
+  }
+}
+
+std::string outside_valid_range_text(const std::vector<MethodPoint>& points) {
+  std::vector<std::string> out;
+  for (const MethodPoint& p : points) {
+    if (p.in_valid_range) continue;
+    const Method* m = find_method(irradiance_methods, p.method);
+    out.push_back(
+        m ? fmt::format("{} (valid for κ in {})", p.method, validate::kappa_range_text(m->valid))
+          : fmt::format("{} (not registered)", p.method));
+  }
+  return fmt::format("{}", fmt::join(out, ", "));
+}
 
 std::string cost_text(const MethodPoint& p) {
   if (!std::isfinite(p.cost)) return "no cost";
@@ -111,6 +134,7 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
       p.max_peak_rel = e->summary.peak_rel.max;
     out.push_back(std::move(p));
   }
+  mark_valid_range(out, kappa_lo, kappa_hi);
   return out;
 }
 
@@ -208,11 +232,17 @@ MethodCostMap default_float_costs(const CostTable& table) {
 validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
                              double kappa_lo, double kappa_hi, const CostSource& source,
                              std::string_view cost_from) {
+  const std::string outside = outside_valid_range_text(points);
   validate::Table t(
       fmt::format("Speed against accuracy ({}): {} against max peak_rel over κ in [{}, {}] "
-                  "(29 κ × 41 c); frontier = not dominated{}",
+                  "(29 κ × 41 c); frontier = not dominated{}{}",
                   to_string(f), source.describe(), kappa_lo, kappa_hi,
-                  cost_from.empty() ? std::string() : fmt::format(". Cost: {}", cost_from)),
+                  cost_from.empty() ? std::string() : fmt::format(". Cost: {}", cost_from),
+                  outside.empty()
+                      ? std::string()
+                      : fmt::format(". Outside their valid κ range (registry card; their "
+                                    "stated bound does not hold, never on the frontier): {}",
+                                    outside)),
       {{"method"},
        {"origin"},
        {"precision"},
@@ -222,14 +252,16 @@ validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::F
        {"cost_unit"},
        {"cost_source"},
        {"max_peak_rel", 3},
-       {"frontier"}});
+       {"frontier"},
+       {"in_valid_range"}});
   for (const MethodPoint& p : points)
-    t.add_row(
-        {validate::Table::text(p.method), validate::Table::text(std::string(to_string(p.origin))),
-         validate::Table::text(to_string(f)), validate::Table::real(kappa_lo),
-         validate::Table::real(kappa_hi), validate::Table::real(p.cost),
-         validate::Table::text(p.cost_unit), validate::Table::text(source.name()),
-         validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0)});
+    t.add_row({validate::Table::text(p.method),
+               validate::Table::text(std::string(to_string(p.origin))),
+               validate::Table::text(to_string(f)), validate::Table::real(kappa_lo),
+               validate::Table::real(kappa_hi), validate::Table::real(p.cost),
+               validate::Table::text(p.cost_unit), validate::Table::text(source.name()),
+               validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0),
+               validate::Table::integer(p.in_valid_range ? 1 : 0)});
   return t;
 }
 
@@ -361,6 +393,9 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
     if (!parse_bool(cells[col["frontier"]], r.frontier))
       throw std::invalid_argument(
           fmt::format("{}:{}: frontier must be true/false", path.string(), lineno));
+    if (col.count("in_valid_range") && !parse_bool(cells[col["in_valid_range"]], r.in_valid_range))
+      throw std::invalid_argument(
+          fmt::format("{}:{}: in_valid_range must be true/false", path.string(), lineno));
     r.kappa_lo = parse_number(cells[col["kappa_lo"]], path, lineno, "kappa_lo");
     r.kappa_hi = parse_number(cells[col["kappa_hi"]], path, lineno, "kappa_hi");
     r.cost = parse_number(cells[col[legacy ? "ns_per_eval" : "cost"]], path, lineno,

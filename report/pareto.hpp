@@ -39,14 +39,27 @@ struct MethodPoint {
   std::string cost_unit = "ns";       // CostSource::unit(): "cycles" or "ns"
   double max_peak_rel = 0;            // +inf on non-finite output, NaN if nothing was measured
   bool frontier = false;
+  // Whether every κ asked about lies in the method's valid range (its registry
+  // card, sglab::ValidRange; mark_valid_range): outside it the method's stated
+  // bound does not hold, so the point is listed and flagged but never
+  // recommended nor on the frontier.
+  bool in_valid_range = true;
 };
+
+// Sets each point's in_valid_range: whether [kappa_lo, kappa_hi] lies in the
+// valid range on its method's registry card (false for an id not registered).
+void mark_valid_range(std::vector<MethodPoint>& points, double kappa_lo, double kappa_hi);
+
+// The ids of the points outside their valid range, each with its range:
+// "sglab_fast (valid for κ in [0, 1.1e+04])", joined by ", "; empty when none.
+std::string outside_valid_range_text(const std::vector<MethodPoint>& points);
 
 // "132 cycles", "15.1 ns" (3 significant digits), or "no cost" when the cost
 // is not finite: how every text output shows a point's cost.
 std::string cost_text(const MethodPoint& p);
 
 // Marks the Pareto frontier in place: a point is on it iff its cost and error
-// are finite and no other point with finite cost and error dominates it
+// are finite, it is in its valid range, and no other such point dominates it
 // (cost ≤ and error ≤, at least one strictly). NaN/inf error: never on it.
 void mark_frontier(std::vector<MethodPoint>& points);
 
@@ -58,7 +71,8 @@ struct Recommendation {
   std::vector<MethodPoint> ranked;           // every qualifying point, in ranking order
 };
 
-// Ranking of the qualifying points (finite error ≤ budget): repeatedly take
+// Ranking of the qualifying points (finite error ≤ budget, in their valid
+// range; most_accurate is taken among those in range too): repeatedly take
 // the cheapest remaining cost C, and among the remaining points costing
 // ≤ C·(1 + tie_margin) pick the one with the smallest error (then the cheaper,
 // then the id). Timing noise of a few percent therefore cannot put a less
@@ -67,7 +81,8 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget,
                          double tie_margin = kCostTieMargin);
 
 // Max peak_rel of every irradiance method in precision `f` over the grid
-// {lo, hi, 29, 41} (see above). In registry order; cost left 0.
+// {lo, hi, 29, 41} (see above), with in_valid_range marked for [lo, hi]. In
+// registry order; cost left 0.
 // Throws std::invalid_argument on an invalid range.
 validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
 std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
@@ -101,9 +116,10 @@ struct MethodCostMap {
 MethodCostMap default_float_costs(const CostTable& table);
 
 // method, origin, precision, kappa_lo, kappa_hi, cost, cost_unit, cost_source,
-// max_peak_rel, frontier (origin published/refit/sglab, frontier 0/1,
-// cost_source CostSource::name()); the title names the source and, when
-// given, where its costs came from (`cost_from`: table, driver or machine).
+// max_peak_rel, frontier, in_valid_range (origin published/refit/sglab,
+// frontier and in_valid_range 0/1, cost_source CostSource::name()); the title
+// names the source, when given where its costs came from (`cost_from`:
+// table, driver or machine), and the methods outside their valid range.
 validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
                              double kappa_lo, double kappa_hi, const CostSource& source,
                              std::string_view cost_from = {});
@@ -114,8 +130,9 @@ bool parse_number(std::string_view text, double& out);
 std::optional<validate::FloatFormat> parse_precision(std::string_view text);
 
 // Parses `sglab pareto`'s CSV (RFC 4180; header
-// method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier;
-// origin is published, refit or sglab, frontier true/false or 1/0). The CSV of
+// method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier
+// and optionally in_valid_range; origin is published, refit or sglab, frontier and
+// in_valid_range true/false or 1/0, in_valid_range true when absent). The CSV of
 // an older sglab, with ns_per_eval instead of the three cost columns, reads as
 // cost_unit "ns", cost_source "cpu-batch".
 struct ParetoRow {
@@ -124,6 +141,7 @@ struct ParetoRow {
   double kappa_lo = 0, kappa_hi = 0, cost = 0, max_peak_rel = 0;
   std::string cost_unit = "ns", cost_source = "cpu-batch";
   bool frontier = false;
+  bool in_valid_range = true;
 };
 // The largest Pareto CSV read (io::read_input_file); `sglab pareto` writes a few KB.
 inline constexpr std::size_t kMaxParetoCsvBytes = 16 << 20;

@@ -23,6 +23,7 @@ std::vector<MethodPoint> scene_points(const validate::Scene& scene,
     p.max_peak_rel = errors[i];
     points.push_back(p);
   }
+  mark_valid_range(points, scene.kappa_min(), scene.kappa_max());
   return points;
 }
 
@@ -43,7 +44,7 @@ SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::
       }
   }
   for (const auto& m : r.models_on_range)
-    if (m.max_peak_rel <= budget && std::isfinite(m.cost) &&
+    if (m.max_peak_rel <= budget && std::isfinite(m.cost) && m.in_valid_range &&
         (!r.sufficient || m.cost < r.sufficient->cost))
       r.sufficient = m;
   return r;

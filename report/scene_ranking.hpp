@@ -14,8 +14,9 @@
 namespace sglab::report {
 
 // Every irradiance method of the registry with its scene error in
-// max_peak_rel (validate::scene_errors at `normals`); cost left 0 for the
-// caller's cost source.
+// max_peak_rel (validate::scene_errors at `normals`) and in_valid_range set
+// when every light's κ lies in the method's valid range (registry card); cost
+// left 0 for the caller's cost source.
 std::vector<MethodPoint> scene_points(const validate::Scene& scene,
                                       const std::vector<validate::Vec3>& normals,
                                       validate::FloatFormat precision);
@@ -26,7 +27,8 @@ struct SceneRanking {
   // range [kappa_lo, kappa_hi] (irradiance_errors) and their scene cost.
   double kappa_lo = 0, kappa_hi = 0;
   std::vector<MethodPoint> models_on_range;
-  std::optional<MethodPoint> sufficient;  // the cheapest of them meeting the budget on the range
+  // the cheapest of them meeting the budget on the range, in its valid range
+  std::optional<MethodPoint> sufficient;
 };
 
 // `points` with costs filled. κ = 0 lights: the range starts at 1e-3.

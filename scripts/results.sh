@@ -5,7 +5,8 @@
 # stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
 # out/results/run, the curated files copied from it, then the runs `sglab run`
 # does not make (GPU cost of the half exports, the Vulkan sweep with split and
-# half rows, the held-out sweep, half stability, callgrind instruction counts),
+# half rows, the held-out sweep, half stability, the κ range of every method's
+# registry card, callgrind instruction counts),
 # and the generated blocks of the Markdown files filled from them: each lies
 # between `<!-- generated: NAME (scripts/results.sh) -->` and
 # `<!-- end: NAME -->` and is replaced whole; the prose around it is not
@@ -44,6 +45,8 @@ cp "$work/vulkan/summary.md" "$results/sweep_summary.md"
 cp "$work/heldout/summary.json" "$results/heldout_sweep.json"
 "$sglab" stability --half --out "$work/stability-half"
 cp "$work/stability-half/stability_half.md" "$results"/
+"$sglab" range --out "$work/range"  # every method's card from κ = 0 to FLT_MAX
+cp "$work"/range/kappa_range.{csv,md} "$results"/
 models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_mid sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4)
 scripts/callgrind_costs.sh "$results/callgrind.csv" "${models[@]}"
 "$sglab" fit sglab-acc --dry-run --costs "$results/costs.json" >"$work/fit-sglab-acc.txt"

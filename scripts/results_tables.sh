@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # scripts/results_tables.sh WORK: fills the generated blocks of README.md and
 # data/results/*.md from data/results (costs.json, callgrind.csv,
-# heldout_sweep.json, vulkan_sweep.json) and from the fit reports that
+# heldout_sweep.json, vulkan_sweep.json, kappa_range.csv) and from the fit reports that
 # scripts/results.sh leaves in WORK. Called by scripts/results.sh; on its own
 # it redraws the tables from the committed sources without rerunning anything.
 # A block is the text between `<!-- generated: NAME (scripts/results.sh) -->`
@@ -79,6 +79,26 @@ EOF
 }
 models_table | fill README.md sglab-models
 
+# The registry cards against `sglab range` (data/results/kappa_range.csv): each METHOD's bound
+# and valid κ range, its worst error on that range and where, the measured range where the bound
+# holds, and its worst error over every κ a float holds. No METHOD: every method.
+kappa_range=$results/kappa_range.csv
+range_table() {
+  echo "| method | bound (card) | valid κ (card) | worst on it | at κ, c | holds | bound holds on (measured) | worst anywhere | at κ |"
+  echo "|---|---:|---|---:|---|---|---|---:|---:|"
+  awk -F, -v want="$*" "$fmt_awk"'
+    function k(x) { return x + 0 >= 3.4e38 ? "FLT_MAX" : (x + 0 == 0 ? "0" : sprintf("%.2g", x)) }
+    BEGIN { n = split(want, w, " "); for (i = 1; i <= n; ++i) pick[w[i]] = 1 }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    n == 0 || ($col["method"] in pick) {
+      any = $col["max_peak_rel_anywhere"]; any = any == "inf" ? "inf" : sig(any)
+      printf "| %s | %s | [%s, %s] | %s | %.3g, %.3g | %s | [%s, %s] | %s | %.3g |\n", $col["method"], sig($col["bound"]),
+        k($col["kappa_lo"]), k($col["kappa_hi"]), sig($col["max_peak_rel"]), $col["at_kappa"], $col["at_cosine"],
+        $col["holds"], k($col["holds_from"]), k($col["holds_to"]), any, $col["anywhere_at_kappa"] }' \
+    "$kappa_range"
+}
+range_table | fill README.md kappa-range
+
 # data/results/sglab_acc.md: the fit report, the held-out errors, the costs.
 fence() { echo '```'; cat; echo '```'; }
 fence <"$work/fit-sglab-acc.txt" | fill "$results/sglab_acc.md" fit
@@ -102,6 +122,7 @@ cost_table() {  # METHOD...: callgrind and GPU cost, ratios to the first
         $4, $5, $6, ratio($6, n), $7, ratio($7, g), $8 }'
 }
 cost_table tokuyoshi2024 sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4 | fill "$results/sglab_acc.md" cost
+range_table sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4 tokuyoshi2024 | fill "$results/sglab_acc.md" kappa-range
 
 # data/results/sglab_fast.md: the fit report, errors on both grids, the costs.
 fence <"$work/fit-sglab-fast.txt" | fill "$results/sglab_fast.md" fit
@@ -123,6 +144,7 @@ fence <"$work/fit-sglab-fast.txt" | fill "$results/sglab_fast.md" fit
   done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
                         printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8 }'
 } | fill "$results/sglab_fast.md" cost
+range_table sglab_fast tokuyoshi2024 vsgl2015 | fill "$results/sglab_fast.md" kappa-range
 for scene in studio sun_and_sky soft_room; do
   echo '```sh'
   echo "build/sglab recommend --scene data/scenes/$scene.json --budget 5e-3 --costs data/results/costs.json"
@@ -152,6 +174,7 @@ fence <"$work/fit-sglab-mid.txt" | fill "$results/sglab_mid.md" fit
   done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
                         printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }'
 } | fill "$results/sglab_mid.md" cost
+range_table sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" kappa-range
 
 # data/results/vulkan_sweep.md: one row per method, one column per backend.
 {

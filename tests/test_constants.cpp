@@ -1,15 +1,22 @@
-// The generated runtime header agrees with data/constants/*.json, and the
-// published constants are the published digits.
+// The generated runtime header agrees with data/constants/*.json, the
+// published constants are the published digits, and sglab's own models have
+// the errors their fits recorded.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sglab/constants.hpp>
+#include <sglab/registry.hpp>
 
 #include "common/io.hpp"
 #include "fit/constants_io.hpp"
+#include "fit/model_family.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -37,6 +44,44 @@ TEST(Constants, PublishedValuesAreThePublishedDigits) {
   EXPECT_EQ(sglab::constants::steepness2024_published.E, 76.087896272360737);
   EXPECT_EQ(sglab::constants::erf_as7125_published.p, 0.47047);
   EXPECT_EQ(sglab::constants::erf_listing5_published.large[6], 2.58907676e-5);
+}
+
+// Each of sglab's own models, at the coefficients the runtime compiles in (the header, tied
+// to the JSON by HeaderMatchesJson), has the errors its fit recorded in the JSON's provenance:
+// the max peak_rel in double on the held-out grid and on the standard grid, measured again
+// here as the fitter measures (fit/model_family.hpp), and within the bound its registry card
+// states. A coefficient changed after the fit, in the JSON and the header alike, moves them
+// (a[0] of sglab_mid moved in its 5th digit fails both recorded maxima).
+TEST(Constants, SglabModelsHaveTheErrorsTheirFitRecorded) {
+  const sglab::fit::MeasuringGrids grids = sglab::fit::measuring_grids(sglab::fit::FitSpec{});
+  std::size_t models = 0;
+  for (const sglab::Method& m : sglab::irradiance_methods) {
+    if (m.origin != sglab::Origin::sglab) continue;
+    ++models;
+    std::string file(m.constants);  // one set: sglab_mid_float -> sglab-mid-float.json
+    std::replace(file.begin(), file.end(), '_', '-');
+    const auto set = nlohmann::json::parse(
+        sglab::io::read_file(kRoot / "data" / "constants" / (file + ".json")));
+    const auto& achieved = set.at("provenance").at("achieved");
+    const auto model = [&m](auto c, auto k) {
+      if constexpr (std::is_same_v<decltype(c), float>)
+        return double(m.f32(c, k));
+      else
+        return m.f64(c, k);
+    };
+    const auto held_out = sglab::fit::measure(model, grids.held_out);
+    const auto standard = sglab::fit::measure(model, grids.standard);
+    EXPECT_EQ(achieved.at("held_out_grid"), grids.held_out_name) << m.id;
+    // the held-out points are none of the fit's: its registry card's bound holds on them
+    EXPECT_LE(std::max(held_out.float_max, held_out.double_max), m.valid.max_peak_rel) << m.id;
+    for (const auto& [measured, key] :
+         {std::pair{held_out.double_max, "held_out_max_peak_rel_double"},
+          std::pair{standard.double_max, "standard_max_peak_rel_double"}}) {
+      const double recorded = achieved.at(key).get<double>();
+      EXPECT_NEAR(measured, recorded, 1e-9 * recorded) << m.id << " " << key;
+    }
+  }
+  EXPECT_GE(models, 6u);
 }
 
 TEST(Constants, MalformedJsonIsRejectedNamingTheFile) {

@@ -96,6 +96,18 @@ TEST(Envmap, DownsampleKeepsTheIntegral) {
   EXPECT_NEAR(integral(coarse) / integral(fine), 1.0, 1e-6);
 }
 
+// The fitting copy of a map wider than the fitting width (128) is the map area-averaged to that
+// width (384 = 3 × 128); a map no wider is fitted as it is.
+TEST(Envmap, WorkingCopyIsAtTheFittingWidth) {
+  const Map wide = envmap::reconstruct(kKnown, 384, 192);
+  const Map work = envmap::working_copy(wide);
+  EXPECT_EQ(work.width, 128u);
+  EXPECT_EQ(work.height, 64u);
+  EXPECT_EQ(work.rgb, envmap::downsample(wide, 128).rgb);
+  const Map narrow = envmap::reconstruct(kKnown, 64, 32);
+  EXPECT_EQ(envmap::working_copy(narrow).rgb, narrow.rgb);
+}
+
 TEST(Envmap, FitRecoversKnownLobes) {
   const Map m = envmap::reconstruct(kKnown, 128, 64);
   envmap::FitOptions o;
@@ -137,6 +149,42 @@ TEST(Envmap, FitIsDeterministic) {
     EXPECT_EQ(a.lobes[k].sharpness, b.lobes[k].sharpness);
     EXPECT_EQ(a.lobes[k].axis, b.lobes[k].axis);
     EXPECT_EQ(a.lobes[k].amplitude, b.lobes[k].amplitude);
+  }
+}
+
+// A lobe is no narrower than one pixel of the working copy: the fitted sharpness never exceeds
+// (H/π)², H the height. A map lit by one pixel asks for an infinitely sharp lobe and gets the
+// cap, (8/π)² = 6.48 for a 16 × 8 map (the width would allow four times that).
+TEST(Envmap, FitCapsTheSharpnessAtOnePixelOfTheHeight) {
+  Map m = constant_map(16, {1e-3, 1e-3, 1e-3});
+  for (std::size_t ch = 0; ch < 3; ++ch) m.rgb[(2 * m.width + 5) * 3 + ch] = 50.0f;
+  envmap::FitOptions o;
+  o.lobes = 1;
+  o.objective = envmap::Objective::radiance;
+  const envmap::FitReport r = envmap::fit(m, {}, o);
+  ASSERT_EQ(r.lobes.size(), 1u);
+  const double cap = (8 / M_PI) * (8 / M_PI);
+  EXPECT_LE(r.lobes[0].sharpness, cap * (1 + 1e-9));
+  EXPECT_GE(r.lobes[0].sharpness, 0.9 * cap) << "the lobe should press against the cap";
+}
+
+// Lossy encoders leave tiny negative values: down to −5 % of the map's mean radiance they are
+// read as 0, beyond that the map is refused naming the pixel.
+TEST(Envmap, TinyNegativesAreZeroLargerOnesRefused) {
+  Map ok = constant_map(16, {1, 1, 1});
+  ok.rgb[(3 * ok.width + 4) * 3 + 1] = -0.01f;  // mean ≈ 1
+  envmap::check_map(ok, "tiny.exr");
+  EXPECT_EQ(ok.at(4, 3, 1), 0.0f);
+  EXPECT_EQ(ok.at(4, 3, 0), 1.0f);
+  Map bad = constant_map(16, {1, 1, 1});
+  bad.rgb[(3 * bad.width + 4) * 3 + 1] = -0.1f;
+  try {
+    envmap::check_map(bad, "negative.exr");
+    ADD_FAILURE() << "-0.1 x the mean accepted";
+  } catch (const io::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("negative.exr: pixel (4, 3) channel G is negative"), std::string::npos)
+        << msg;
   }
 }
 

@@ -516,6 +516,32 @@ TEST(SteepnessCertificate, OneTPerKappaDoesNotBoundThe2022Irradiance) {
   EXPECT_GT(one_t, 2 * error(fitted));
 }
 
+// The rule "never worse than tokuyoshi2024" (fit/model_family.hpp measure): the ratio of a
+// model's max float error over c at each κ to tokuyoshi2024's there (or 1e−6). A model that is
+// tokuyoshi2024 with its error doubled, halved or as is gives 2, 1/2 and 1: the rule can fail.
+TEST(ModelFamily, NeverWorseRatioIsTheErrorOverTokuyoshi2024s) {
+  std::vector<sglab::validate::Query> q;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 40; ++j)
+      q.push_back({double(float(std::pow(10.0, -3 + 7.0 * i / 20))), double(float(-1 + j / 20.0))});
+  const auto& engine = sglab::validate::reference_engine();
+  const auto ref = engine.evaluate(q);
+  // E + f·(tokuyoshi2024 − E): its error is f times tokuyoshi2024's, in float and in double.
+  const auto scaled = [&](double f) {
+    return [&engine, f](auto c, auto k) {
+      const double e = engine.evaluate(double(k), double(c)).irradiance;
+      return e + f * (double(sglab::irradiance_tokuyoshi2024(c, k)) - e);
+    };
+  };
+  const double measured_2024 = sglab::fit::measure(scaled(1.0), ref).never_worse;
+  EXPECT_NEAR(measured_2024, 1.0, 1e-9);
+  EXPECT_NEAR(sglab::fit::measure(scaled(2.0), ref).never_worse, 2.0, 1e-9);
+  EXPECT_NEAR(sglab::fit::measure(scaled(0.5), ref).never_worse, 0.5, 1e-9);
+  // Where tokuyoshi2024 errs by less than 1e−6 the ratio is over 1e−6: the exact model
+  // (f = 0) scores 0, and the float error of the 2024 form decides nothing below that floor.
+  EXPECT_EQ(sglab::fit::measure(scaled(0.0), ref).never_worse, 0.0);
+}
+
 // The start of the rational fits from scratch (sglab-fast, sglab-mid):
 // targets that are exactly N_n(κ)/Q(κ) for the log-spaced monic Q are
 // recovered exactly (the least squares has a zero residual there), and Q's

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -368,6 +369,37 @@ TEST(JsonInput, NumbersBeyondDoubleNameTheKeyInAShortMessage) {
       EXPECT_TRUE(contains(msg, "out of range (larger than any double)")) << msg;
       EXPECT_FALSE(contains(msg, "json.exception")) << msg;
       EXPECT_LT(msg.size(), 300u) << msg.substr(0, 300);
+    }
+  }
+}
+
+// The depth limit at its boundary: kMaxJsonDepth (64) nested containers are read, one more is
+// refused naming the limit; arrays and objects count alike.
+TEST(JsonInput, DepthLimitIsExactlySixtyFourLevels) {
+  ASSERT_EQ(sglab::io::kMaxJsonDepth, 64);
+  const auto arrays = [](int depth) {
+    return std::string(std::size_t(depth), '[') + std::string(std::size_t(depth), ']');
+  };
+  const auto objects = [](int depth) {
+    std::string t;
+    for (int i = 1; i < depth; ++i) t += R"({"a": )";
+    t += "{}";
+    for (int i = 1; i < depth; ++i) t += "}";
+    return t;
+  };
+  for (const auto& nest :
+       {std::function<std::string(int)>(arrays), std::function<std::string(int)>(objects)}) {
+    const auto doc = sglab::io::parse_json_strict(nest(64), "deep.json");
+    const nlohmann::ordered_json* inner = &doc;
+    int depth = 1;
+    while (!inner->empty()) inner = inner->is_array() ? &(*inner)[0] : &(*inner)["a"], ++depth;
+    EXPECT_EQ(depth, 64);
+    try {
+      sglab::io::parse_json_strict(nest(65), "deep.json");
+      ADD_FAILURE() << "65 levels accepted";
+    } catch (const sglab::io::InputError& e) {
+      EXPECT_TRUE(contains(e.what(), "deep.json: ")) << e.what();
+      EXPECT_TRUE(contains(e.what(), "nested deeper than 64 levels")) << e.what();
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -89,6 +90,26 @@ TEST(Frontier, SyntheticPoints) {
   EXPECT_FALSE(on_frontier(v, "same_err"));
 }
 
+// Two methods at the same cost and error: neither dominates the other (domination needs one
+// strictly better coordinate), so both stay on the frontier; a third, worse in both, does not.
+TEST(Frontier, EqualPointsAreBothOnIt) {
+  std::vector<MethodPoint> v{pt("twin_a", 2.0, 1e-3), pt("twin_b", 2.0, 1e-3),
+                             pt("worse", 2.5, 2e-3)};
+  sglab::report::mark_frontier(v);
+  EXPECT_TRUE(on_frontier(v, "twin_a"));
+  EXPECT_TRUE(on_frontier(v, "twin_b"));
+  EXPECT_FALSE(on_frontier(v, "worse"));
+}
+
+// A point outside its method's valid κ range is never on the frontier and dominates nothing.
+TEST(Frontier, OutsideItsValidRangeNeverOnItNorDominating) {
+  std::vector<MethodPoint> v{pt("outside", 1.0, 1e-4), pt("inside", 2.0, 1e-3)};
+  v[0].in_valid_range = false;
+  sglab::report::mark_frontier(v);
+  EXPECT_FALSE(on_frontier(v, "outside"));
+  EXPECT_TRUE(on_frontier(v, "inside"));
+}
+
 TEST(Frontier, AllNaNHasNoFrontier) {
   std::vector<MethodPoint> v{pt("a", 1, kNaN), pt("b", 2, kNaN)};
   sglab::report::mark_frontier(v);
@@ -116,6 +137,18 @@ TEST(Recommend, BudgetIsInclusive) {
   EXPECT_EQ(r.choice->method, "x");
 }
 
+// Of two methods equally accurate the cheaper is the most accurate one, in either order.
+TEST(Recommend, MostAccurateTieGoesToTheCheaper) {
+  for (const bool cheap_first : {true, false}) {
+    std::vector<MethodPoint> v{pt("cheap", 1.0, 1e-4), pt("dear", 3.0, 1e-4),
+                               pt("poor", 0.5, 1e-2)};
+    if (!cheap_first) std::swap(v[0], v[1]);
+    const auto r = recommend(v, 1e-1);
+    ASSERT_TRUE(r.most_accurate);
+    EXPECT_EQ(r.most_accurate->method, "cheap") << (cheap_first ? "cheap first" : "dear first");
+  }
+}
+
 TEST(Recommend, TiesWithinMarginBrokenByError) {
   // b is 3% dearer than a but more accurate: a tie, b wins; c is 20% dearer.
   const std::vector<MethodPoint> v{pt("a", 1.00, 8e-4), pt("b", 1.03, 1e-4), pt("c", 1.2, 1e-6)};
@@ -134,6 +167,52 @@ TEST(Recommend, NoneQualifiesNamesMostAccurate) {
   EXPECT_FALSE(r.runner_up);
   ASSERT_TRUE(r.most_accurate);
   EXPECT_EQ(r.most_accurate->method, "b");
+}
+
+// Outside its valid κ range a method is neither chosen nor the most accurate, however cheap
+// and accurate its measured error looks.
+TEST(Recommend, OutsideItsValidRangeIsNotConsidered) {
+  std::vector<MethodPoint> v{pt("outside", 1.0, 1e-5), pt("a", 2.0, 5e-4), pt("b", 3.0, 1e-2)};
+  v[0].in_valid_range = false;
+  auto r = recommend(v, 1e-3);
+  ASSERT_TRUE(r.choice);
+  EXPECT_EQ(r.choice->method, "a");
+  EXPECT_FALSE(r.runner_up);
+  ASSERT_TRUE(r.most_accurate);
+  EXPECT_EQ(r.most_accurate->method, "a");
+  ASSERT_EQ(r.ranked.size(), 1u);
+  v[0].in_valid_range = true;  // the same point in range is the choice
+  r = recommend(v, 1e-3);
+  ASSERT_TRUE(r.choice);
+  EXPECT_EQ(r.choice->method, "outside");
+}
+
+// mark_valid_range reads each method's registry card: [LO, HI] must lie in its range,
+// compared as floats; an id the registry does not have is outside.
+TEST(Recommend, ValidRangeFromTheRegistryCard) {
+  std::vector<MethodPoint> v;
+  for (const auto& m : sglab::irradiance_methods) v.push_back(pt(std::string(m.id), 1.0, 1e-3));
+  v.push_back(pt("no_such_method", 1.0, 1e-3));
+  const std::pair<double, double> ranges[] = {
+      {1e-3, 1e4}, {1, 2e4}, {1e-4, 1}, {0, 1e30}, {1e-45, 1e-40}, {1e10, 3.4028234663852886e38}};
+  for (const auto& [lo, hi] : ranges) {
+    sglab::report::mark_valid_range(v, lo, hi);
+    for (std::size_t i = 0; i < std::size(sglab::irradiance_methods); ++i)
+      EXPECT_EQ(v[i].in_valid_range, sglab::irradiance_methods[i].valid.covers(lo, hi))
+          << v[i].method << " [" << lo << ", " << hi << "]";
+    EXPECT_FALSE(v.back().in_valid_range);
+  }
+  // The fitted range lies in every card (1e-3 compared as the float 1e-3f), and the cards that
+  // end short say so.
+  sglab::report::mark_valid_range(v, 1e-3, 1e4);
+  for (std::size_t i = 0; i < std::size(sglab::irradiance_methods); ++i)
+    EXPECT_TRUE(v[i].in_valid_range) << v[i].method;
+  sglab::report::mark_valid_range(v, 1, 2e4);
+  const auto* fast = sglab::find_method(sglab::irradiance_methods, "sglab_fast");
+  EXPECT_FALSE(v[static_cast<std::size_t>(fast - sglab::irradiance_methods)].in_valid_range);
+  EXPECT_TRUE(sglab::report::outside_valid_range_text(v).find(
+                  "sglab_fast (valid for κ in [0, 1.1e+04])") != std::string::npos)
+      << sglab::report::outside_valid_range_text(v);
 }
 
 TEST(Recommend, ParseKappaRange) {
@@ -214,11 +293,12 @@ void check_recommend(const std::string& kappa, double budget) {
   const double margin = doc.at("tie_margin").get<double>();
   for (const auto& c : candidates) {
     if (!c.at("qualifies").get<bool>()) {
-      if (c.at("max_peak_rel").is_number()) {
+      if (c.at("max_peak_rel").is_number() && c.at("in_valid_range").get<bool>()) {
         EXPECT_GT(c.at("max_peak_rel").get<double>(), budget) << c.dump();
       }
       continue;
     }
+    EXPECT_TRUE(c.at("in_valid_range").get<bool>()) << c.dump();
     // No qualifying method is cheaper than the choice by more than the tie margin.
     EXPECT_GE(c.at("cost").get<double>() * (1 + margin) * (1 + 1e-12), ns) << c.dump();
   }
@@ -244,6 +324,40 @@ TEST(RecommendCli, SubnormalRangeGivesEverySglabModelAnError) {
       EXPECT_TRUE(c.at("max_peak_rel").is_number()) << c.dump();
     }
   EXPECT_GE(own, 4u);
+}
+
+// Above sglab_fast's valid range (κ ≤ 1.1e4 on its card) it is listed, flagged and not
+// considered, in JSON and in text; within the range it is considered.
+TEST(RecommendCli, FlagsMethodsOutsideTheirValidRange) {
+  const Output r = run_stdout("recommend --kappa 1e3:1e5 --budget 1e-2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  bool seen = false;
+  for (const auto& c : doc.at("candidates")) {
+    const auto* m =
+        sglab::find_method(sglab::irradiance_methods, c.at("method").get<std::string>());
+    ASSERT_NE(m, nullptr) << c.dump();
+    EXPECT_EQ(c.at("in_valid_range").get<bool>(), m->valid.covers(1e3, 1e5)) << c.dump();
+    EXPECT_EQ(c.at("valid_kappa")[1].get<double>(), double(m->valid.kappa_hi)) << c.dump();
+    if (c.at("method") == "sglab_fast") {
+      seen = true;
+      EXPECT_FALSE(c.at("in_valid_range").get<bool>());
+      EXPECT_FALSE(c.at("qualifies").get<bool>());
+      EXPECT_LE(c.at("max_peak_rel").get<double>(), 1e-2);  // it would meet the budget
+    }
+  }
+  EXPECT_TRUE(seen);
+  EXPECT_NE(doc.at("choice").at("method"), "sglab_fast");
+  EXPECT_EQ(doc.at("outside_valid_range"), nlohmann::json::array({"sglab_fast"}));
+  const auto text = sglab::test::run_sglab({"recommend", "--kappa", "1e3:1e5", "--budget", "1e-2"});
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("not considered: outside their valid κ range"), std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("sglab_fast (valid for κ in [0, 1.1e+04])"), std::string::npos)
+      << text.output;
+  const Output inside = run_stdout("recommend --kappa 1e3:1e4 --budget 1e-2 --json");
+  ASSERT_EQ(inside.exit_code, 0) << inside.out;
+  EXPECT_TRUE(nlohmann::json::parse(inside.out).at("outside_valid_range").empty()) << inside.out;
 }
 
 TEST(RecommendCli, NoneQualifyingExitsZero) {
@@ -283,7 +397,18 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   std::fclose(f);
   EXPECT_EQ(std::string(line),
             "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
-            "frontier\n");
+            "frontier,in_valid_range\n");
+  // The column as read back, and a method flagged above its valid range.
+  for (const auto& row : sglab::report::read_pareto_csv(std::filesystem::path(dir) / "pareto.csv"))
+    EXPECT_TRUE(row.in_valid_range) << row.method;
+  ASSERT_EQ(sglab::test::run_sglab({"pareto", "--kappa", "1e3:1e5", "--out", dir}).exit_code, 0);
+  for (const auto& row :
+       sglab::report::read_pareto_csv(std::filesystem::path(dir) / "pareto.csv")) {
+    EXPECT_EQ(row.in_valid_range, row.method != "sglab_fast") << row.method;
+    if (!row.in_valid_range) {
+      EXPECT_FALSE(row.frontier) << row.method;
+    }
+  }
   EXPECT_EQ(sglab::test::run_sglab({"pareto", "--kappa", "0:1", "--out", dir}).exit_code, 2);
 }
 

@@ -25,6 +25,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sglab/registry.hpp>
+
 #include "tests/tolerances.hpp"
 
 namespace {
@@ -867,17 +869,65 @@ TEST(ResultsDocs, EnvmapsMatchTheirCsv) {
   }
 }
 
+// kappa_range.csv (`sglab range`) judged the registry cards as they are now: one row per
+// irradiance method with its card's bound and κ range, each holding; and the tables of README and
+// of the model documents are drawn from it.
+TEST(ResultsDocs, KappaRangeIsTheRegistryCards) {
+  const Csv file = read_csv("kappa_range.csv");
+  ASSERT_EQ(file.header,
+            "method,origin,bound,kappa_lo,kappa_hi,max_peak_rel,at_kappa,at_cosine,holds,"
+            "holds_from,holds_to,max_peak_rel_anywhere,anywhere_at_kappa");
+  std::map<std::string, std::vector<std::string>> csv;
+  for (const auto& f : file.rows) {
+    ASSERT_EQ(f.size(), 13u) << f[0];
+    csv[f[0]] = f;
+  }
+  ASSERT_EQ(csv.size(), std::size(sglab::irradiance_methods));
+  for (const sglab::Method& m : sglab::irradiance_methods) {
+    ASSERT_TRUE(csv.count(std::string(m.id))) << m.id;
+    const auto& f = csv[std::string(m.id)];
+    EXPECT_EQ(std::stod(f[2]), m.valid.max_peak_rel) << m.id << ": kappa_range.csv is stale";
+    EXPECT_EQ(std::stod(f[3]), double(m.valid.kappa_lo)) << m.id << ": kappa_range.csv is stale";
+    EXPECT_EQ(std::stod(f[4]), double(m.valid.kappa_hi)) << m.id << ": kappa_range.csv is stale";
+    EXPECT_EQ(f[8], "yes") << m.id;
+    EXPECT_LE(std::stod(f[5]), m.valid.max_peak_rel) << m.id;
+  }
+  const std::pair<fs::path, std::size_t> docs[] = {{kRoot / "README.md", csv.size()},
+                                                   {kResults / "sglab_fast.md", 3},
+                                                   {kResults / "sglab_mid.md", 3},
+                                                   {kResults / "sglab_acc.md", 5}};
+  for (const auto& [doc, count] : docs) {
+    const auto rows = table_after(slurp(doc), {"method", "bound (card)", "valid κ (card)"});
+    EXPECT_EQ(rows.size(), count) << doc;
+    for (const auto& row : rows) {
+      ASSERT_EQ(row.size(), 9u) << doc;
+      ASSERT_TRUE(csv.count(row[0])) << doc << " " << row[0];
+      const auto& f = csv[row[0]];
+      const std::string what = fmt::format("{} {}", doc.filename().string(), row[0]);
+      expect_matches(number(row[1], what), std::stod(f[2]), what + " bound");
+      expect_matches(number(row[3], what), std::stod(f[5]), what + " worst on the range");
+      EXPECT_EQ(row[5], f[8]) << what;
+      if (f[11] == "inf") {
+        EXPECT_EQ(row[7], "inf") << what;
+      } else {
+        expect_matches(number(row[7], what), std::stod(f[11]), what + " worst anywhere");
+      }
+    }
+  }
+}
+
 // pareto.md (`sglab pareto`) is pareto.csv, whose costs are costs.json's
 // navi21 cycles and whose errors are the sweep summary's float errors.
 TEST(ResultsDocs, ParetoMatchesItsSources) {
   const Results& r = results();
   std::map<std::string, std::vector<std::string>> csv;
   const Csv file = read_csv("pareto.csv");
-  ASSERT_EQ(
-      file.header,
-      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier");
+  ASSERT_EQ(file.header,
+            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
+            "frontier,in_valid_range");
   for (const auto& f : file.rows) {
-    ASSERT_EQ(f.size(), 10u) << f[0];
+    ASSERT_EQ(f.size(), 11u) << f[0];
+    EXPECT_EQ(f[10], "1") << f[0] << ": every method is in its valid range on [1e-3, 1e4]";
     ASSERT_EQ(f[7], "gpu:navi21") << f[0];
     EXPECT_EQ(std::stod(f[5]), r.cycles(f[0])) << "pareto.csv cost " << f[0];
     // The float rows of the same standard-grid sweep, to the digit.
@@ -889,7 +939,7 @@ TEST(ResultsDocs, ParetoMatchesItsSources) {
       table_after(slurp(kResults / "pareto.md"), {"method", "origin", "precision", "kappa_lo"});
   ASSERT_EQ(rows.size(), csv.size());
   for (const auto& row : rows) {
-    ASSERT_EQ(row.size(), 10u);
+    ASSERT_EQ(row.size(), 11u);
     ASSERT_TRUE(csv.count(row[0])) << row[0];
     const auto& f = csv[row[0]];
     for (std::size_t c : {3u, 4u, 5u, 8u, 9u})

@@ -24,6 +24,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/special_functions/bessel.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
@@ -154,6 +155,70 @@ TEST(ReferenceLimits, KappaToZero) {
       EXPECT_NEAR(p.hemispherical, 2 * kPi, 4 * kPi * kappa + 1e-14) << "κ=" << kappa << " c=" << c;
       EXPECT_NEAR(p.irradiance, kPi, 2 * kPi * kappa + 1e-14) << "κ=" << kappa << " c=" << c;
       EXPECT_NEAR(p.normalized, (1 + c) / 2, kappa + 4e-16) << "κ=" << kappa << " c=" << c;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Large κ, to the largest float and beyond, against closed forms written here.
+//
+// E(0, κ) = 2π e^{−κ} I₁(κ)/κ exactly: with v ⊥ n and ω in polar angles θ from v,
+// φ around it, ω·v = cos θ and ω·n = sin θ cos φ, so E = ∫₀^π e^{κ(cos θ − 1)} sin²θ dθ
+// ∫_{−π/2}^{π/2} cos φ dφ = 2 e^{−κ} π I₁(κ)/κ ([AS1964] 9.6.18). e^{−x}I₁(x) in 50 digits:
+// Boost's I₁ below x = 50, above it the Hankel series ([AS1964] 9.7.1,
+// a_k = a_{k−1}(4 − (2k − 1)²)/(8k), alternating), summed while its terms shrink (the
+// smallest is ~e^{−2x}, below 1e−43 at x = 50).
+mp scaled_bessel_i1(const mp& x) {
+  if (x < 50) return boost::math::cyl_bessel_i(1, x) * exp(-x);
+  mp term = 1, sum = 1;
+  for (int k = 1; k < 400; ++k) {
+    const mp next = -term * mp(4 - (2 * k - 1) * (2 * k - 1)) / (8 * k * x);
+    if (abs(next) >= abs(term)) break;
+    term = next;
+    sum += term;
+  }
+  return sum / sqrt(2 * boost::math::constants::pi<mp>() * x);
+}
+
+TEST(ReferenceLargeKappa, EquatorIsTheBesselClosedForm) {
+  ReferenceEngine engine;
+  const double flt_max = std::numeric_limits<float>::max();
+  for (double kappa :
+       {0.5, 3.0, 49.9, 50.0, 700.0, 1e4, 1e6, 1e9, 1e12, 1e20, 1e30, flt_max, 1e200, 1e300}) {
+    const mp k = kappa;
+    const mp exact = 2 * boost::math::constants::pi<mp>() * scaled_bessel_i1(k) / k;
+    expect_rel(engine.evaluate(kappa, 0.0).irradiance, exact, "E(0,κ) = 2π e^{-κ}I1(κ)/κ", kappa,
+               0.0);
+  }
+}
+
+// For a sharp light the lobe is a Gaussian of width 1/√κ on the tangent plane at v, and
+// ω·n = c + √(1 − c²)·x₁ to first order, so
+//   E(c, κ) = (2π/κ)[c Φ(z) + (r/√κ) φ(z)] (1 + O(1/κ)),  z = c√κ/r, r = √(1 − c²),
+// with Φ, φ the standard normal distribution and density: the expectation of
+// max(c + r x₁, 0) under that Gaussian. Checked across the layer |c| ≤ 6/√κ where the
+// irradiance turns on, and at c = ±1/2 where it is c·2π/κ or 0, to κ = FLT_MAX.
+TEST(ReferenceLargeKappa, FollowsTheGaussianLimitAcrossTheHorizon) {
+  ReferenceEngine engine;
+  for (double kappa : {1e12, 1e16, 1e20, 1e30, double(std::numeric_limits<float>::max())}) {
+    // the O(1/κ) term: 5.5e-10 measured at κ = 1e12 (t = −6)
+    const double tol = kRelTol + 1e3 / kappa;
+    std::vector<double> cosines;
+    for (int i = -48; i <= 48; ++i) cosines.push_back(i / 8.0 / std::sqrt(kappa));
+    for (double c : {-0.5, 0.5}) cosines.push_back(c);
+    for (double c : cosines) {
+      const mp km = kappa, cm = c, r = sqrt((1 - cm) * (1 + cm)), z = cm * sqrt(km) / r;
+      const mp two_pi = 2 * boost::math::constants::pi<mp>();
+      const mp big_phi = boost::math::erfc(-z / sqrt(mp(2))) / 2;
+      const mp small_phi = exp(-z * z / 2) / sqrt(two_pi);
+      const mp limit = two_pi / km * (cm * big_phi + r / sqrt(km) * small_phi);
+      const double value = engine.evaluate(kappa, c).irradiance;
+      if (static_cast<double>(limit) < kSmallest) {
+        EXPECT_LE(value, 1e-285) << "κ=" << hex(kappa) << " c=" << hex(c);
+        continue;
+      }
+      EXPECT_LE(rel_err(value, static_cast<double>(limit)), tol)
+          << "κ=" << hex(kappa) << " c=" << hex(c) << " (t = c√κ = " << c * std::sqrt(kappa) << ")";
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -403,6 +404,46 @@ TEST(RecommendScene, SubnormalSharpnessGivesFiniteErrors) {
     if (row["origin"] != "published") {
       EXPECT_TRUE(row["scene_error"].is_number()) << row.dump();
     }
+}
+
+// A light beyond a method's valid κ range (its registry card) puts the method out of the
+// ranking, flagged in JSON and in text: sglab_fast above 1.1e4, punctual and Hill's curves
+// below 1e-3.
+TEST(RecommendScene, FlagsMethodsOutsideTheirValidRange) {
+  const sglab::test::TempDir dir("scene-range");
+  const auto scene = write_temp(dir, "sharp.json", R"({"lights": [
+      {"axis": [0, 0, 1], "sharpness": 1e5, "amplitude": [1, 1, 1]},
+      {"axis": [1, 0, 0], "sharpness": 1e-4, "amplitude": [0.2, 0.3, 0.4]}]})");
+  const auto r = sglab::test::run_sglab(
+      {"recommend", "--scene", scene.string(), "--budget", "1", "--normals", "64", "--json"},
+      false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  std::vector<std::string> outside;
+  for (const auto& row : doc["methods"]) {
+    const auto* m = sglab::find_method(sglab::irradiance_methods, row["method"].get<std::string>());
+    ASSERT_NE(m, nullptr) << row.dump();
+    const bool in = m->valid.covers(1e-4, 1e5);
+    EXPECT_EQ(row["in_valid_range"].get<bool>(), in) << row.dump();
+    if (!in) {
+      outside.push_back(row["method"]);
+      EXPECT_FALSE(row["qualifies"].get<bool>()) << row.dump();  // the budget is 1: all else do
+      EXPECT_NE(doc["choice"]["method"], row["method"]);
+    }
+  }
+  EXPECT_EQ(outside, (std::vector<std::string>{"punctual", "hill", "hill_exact", "sglab_fast"}));
+  EXPECT_EQ(doc["outside_valid_range"], nlohmann::json(outside));
+  for (const auto& m : doc["sglab_models_on_range"]["models"])
+    EXPECT_EQ(m["in_valid_range"].get<bool>(), m["method"] != "sglab_fast") << m.dump();
+  EXPECT_NE(doc["sglab_models_on_range"]["sufficient"], "sglab_fast");
+  const auto text = sglab::test::run_sglab(
+      {"recommend", "--scene", scene.string(), "--budget", "1", "--normals", "64"});
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("not considered: a light's κ is outside their valid κ range"),
+            std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("sglab_fast (valid for κ in [0, 1.1e+04])"), std::string::npos)
+      << text.output;
 }
 
 TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {

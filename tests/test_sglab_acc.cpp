@@ -3,7 +3,9 @@
 // poles, the fitter on synthetic data with known coefficients, and the `eval`
 // / `methods --json` commands. Their error against the reference engine on
 // random points, per-light split and float batch are checked with every
-// method by tests/test_methods.cpp, bounds in tests/tolerances.hpp.
+// method by tests/test_methods.cpp, bounds on their registry cards
+// (tests/test_kappa_range.cpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -30,8 +32,8 @@ using sglab::test::hex;
 using sglab::test::random_points;
 using sglab::test::run_sglab;
 
-// The shipped rungs; their bounds are rows of tests/tolerances.hpp, checked
-// by tests/test_methods.cpp with every method.
+// The shipped rungs; their bounds are on their registry cards, checked by
+// tests/test_methods.cpp and tests/test_kappa_range.cpp with every method.
 constexpr const char* kRungs[] = {"sglab_acc1", "sglab_acc2", "sglab_acc3", "sglab_acc4"};
 
 const sglab::Method& method(std::string_view id) {
@@ -193,6 +195,57 @@ TEST(SglabAccFit, RecoversKnownSyntheticCoefficients) {
     EXPECT_GT(-std::log10(std::abs(f.values[i] - want[i]) / std::abs(want[i])), 5)
         << "coefficient " << i << " = " << f.values[i];
   EXPECT_LT(f.max_abs, 1e-12);
+}
+
+// The grid the certificate's bound is computed on: at every κ the cosines are distinct, sorted,
+// within (−1, 1), symmetric about 0 (c and −c both, c = 0 once), and hold the ±z_k/t(κ) pairs.
+TEST(SglabAccFit, CertificateGridIsSymmetricAndDistinctAtEveryKappa) {
+  const auto q = sglab::fit::sglab_acc_dense_grid(1e-3, 1e4);
+  ASSERT_FALSE(q.empty());
+  std::size_t kappas = 0;
+  for (std::size_t first = 0; first < q.size();) {
+    std::size_t last = first;
+    while (last + 1 < q.size() && q[last + 1].kappa == q[first].kappa) ++last;
+    ++kappas;
+    const double k = q[first].kappa;
+    std::vector<double> c;
+    for (std::size_t i = first; i <= last; ++i) c.push_back(q[i].cosine);
+    ASSERT_GE(c.size(), 65u) << "kappa " << k;  // c = 0 and 64 uniform at least
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      EXPECT_GT(c[i], -1.0) << "kappa " << k;
+      EXPECT_LT(c[i], 1.0) << "kappa " << k;
+      if (i > 0) {
+        EXPECT_LT(c[i - 1], c[i]) << "kappa " << k << ": not sorted and distinct";
+      }
+      EXPECT_EQ(c[i], -c[c.size() - 1 - i]) << "kappa " << k << ": not symmetric";
+    }
+    EXPECT_EQ(std::count(c.begin(), c.end(), 0.0), 1) << "kappa " << k;
+    // the first z pair: c = ±0.05/t(κ), whenever it lies inside (−1, 1)
+    const double t = sglab::steepness2024(k, sglab::constants::steepness2024_irradiance);
+    if (0.05 / t < 1) {
+      EXPECT_NE(std::find(c.begin(), c.end(), 0.05 / t), c.end()) << "kappa " << k;
+      EXPECT_NE(std::find(c.begin(), c.end(), -0.05 / t), c.end()) << "kappa " << k;
+    }
+    first = last + 1;
+  }
+  EXPECT_GE(kappas, 80u);
+}
+
+// The grid's κ are log-spaced with a band three times as dense over [0.5, 200], where the
+// irradiance changes shape fastest: κ per decade in each part of the band against outside it.
+TEST(SglabAccFit, CertificateGridIsDenserOverHalfToTwoHundred) {
+  std::vector<double> k;
+  for (const auto& p : sglab::fit::sglab_acc_dense_grid(1e-3, 1e4))
+    if (k.empty() || k.back() != p.kappa) k.push_back(p.kappa);
+  const auto per_decade = [&k](double lo, double hi) {
+    const auto n = std::count_if(k.begin(), k.end(), [&](double x) { return lo <= x && x < hi; });
+    return double(n) / std::log10(hi / lo);
+  };
+  const double outside = per_decade(1e-3, 0.5), above = per_decade(200, 1e4);
+  EXPECT_NEAR(outside / above, 1.0, 0.15);  // 80 cells over the 7 decades: 11.4 per decade
+  EXPECT_NEAR(above, 80 / 7.0, 1.0);
+  for (const auto& [lo, hi] : {std::pair{0.5, 5.0}, std::pair{5.0, 50.0}, std::pair{50.0, 200.0}})
+    EXPECT_GE(per_decade(lo, hi), 2.5 * outside) << "[" << lo << ", " << hi << ")";
 }
 
 // Model order: a narrow scene range with a loose budget gets the cheapest

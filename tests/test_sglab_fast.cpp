@@ -13,16 +13,15 @@
 
 #include "tests/lp_certificate.hpp"
 #include "tests/test_support.hpp"
-#include "tests/tolerances.hpp"
 
 namespace {
 
 using sglab::test::hex;
 
-// The bound the model is shipped with (max peak_rel over κ ∈ [1e−3, 1e4]),
-// its row in tests/tolerances.hpp.
-constexpr double kBound =
-    sglab::test::find_tolerance("sglab_fast", sglab::test::peak_rel, sglab::test::f32)->bound;
+// The bound on the model's registry card (max peak_rel; its κ range is checked in
+// tests/test_kappa_range.cpp).
+const double kBound =
+    sglab::find_method(sglab::irradiance_methods, "sglab_fast")->valid.max_peak_rel;
 
 TEST(SglabFast, UpperPoleWithinBoundAndSeriesMatchesClosedForm) {
   // At c = 1 the model is E(1, κ)·s(1) with s(1) fitted, not forced.

@@ -13,17 +13,16 @@
 #include "tests/lp_certificate.hpp"
 #include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
-#include "tests/tolerances.hpp"
 #include "validate/reference.hpp"
 
 namespace {
 
 using sglab::test::hex;
 
-// The bound the model is shipped with (max peak_rel over κ ∈ [1e−3, 1e4]),
-// its row in tests/tolerances.hpp.
-constexpr double kBound =
-    sglab::test::find_tolerance("sglab_mid", sglab::test::peak_rel, sglab::test::f32)->bound;
+// The bound on the model's registry card (max peak_rel; its κ range is checked in
+// tests/test_kappa_range.cpp).
+const double kBound =
+    sglab::find_method(sglab::irradiance_methods, "sglab_mid")->valid.max_peak_rel;
 
 TEST(SglabMid, WithinBoundOnPointsNoFitUsed) {
   // Random points (another seed than test_methods.cpp's) and the poles.

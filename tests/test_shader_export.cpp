@@ -29,10 +29,12 @@
 
 #include "export/shader_elementary.hpp"
 #include "export/shader_export.hpp"
+#include "export/shader_text.hpp"
 #include "export/vulkan_runner.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 #include "tests/vulkan_fixture.hpp"
+#include "validate/kappa_range.hpp"
 #include "validate/sweep.hpp"
 
 namespace fs = std::filesystem;
@@ -171,6 +173,44 @@ TEST(ShaderExport, CoversEveryRegisteredIrradianceMethod) {
 TEST(ShaderExport, EntryPointName) {
   EXPECT_EQ(sh::entry_point_name("tokuyoshi2024"), "sglab_irradiance_tokuyoshi2024");
   EXPECT_EQ(sh::entry_point_name("a-b.c"), "sglab_irradiance_a_b_c");
+}
+
+// The half translation of a float literal (export/shader_text.cpp): rounded to the nearest
+// half and written so that the language reads exactly that half; a literal beyond the largest
+// half (65504; 65520 and above round to infinity) is refused, not written as inf.
+TEST(ShaderExport, HalfLiteralsRoundToHalfAndRefuseOverflow) {
+  const sh::detail::Ctx glsl{sh::Language::glsl, "m", "sglab_m_"};
+  const sh::detail::Ctx hlsl{sh::Language::hlsl, "m", "sglab_m_"};
+  EXPECT_EQ(sh::detail::to_half_code("y = 65504.0f * x;", glsl), "y = 65504.0hf * x;");
+  EXPECT_EQ(sh::detail::to_half_code("y = 65519.0f;", glsl), "y = 65504.0hf;");  // rounds down
+  EXPECT_EQ(sh::detail::to_half_code("y = 0.1f;", hlsl), "y = 0.0999755859h;");
+  EXPECT_EQ(sh::detail::to_half_code("y = 1e-9f;", glsl), "y = 0.0hf;");  // underflows to 0
+  EXPECT_EQ(sh::detail::to_half_code("y = 3;", glsl), "y = 3;");          // not a float literal
+  for (const char* big : {"y = 65520.0f;", "y = 1e5f;", "y = 3.4e38f;"}) {
+    try {
+      sh::detail::to_half_code(big, glsl);
+      ADD_FAILURE() << big << " written in half";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("not finite in half"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Every irradiance export states its method's registry card: the bound and the κ range it
+// holds on (sglab_fast's stops at 1.1e4), or nothing where the card does not apply.
+TEST(ShaderExport, HeaderStatesTheRegistryCard) {
+  for (const sglab::Method& m : sglab::irradiance_methods)
+    for (sh::Language lang : {sh::Language::glsl, sh::Language::cpp}) {
+      const std::string src =
+          sh::export_source(sh::standard_request(lang, std::string(m.id))).source;
+      const std::string line = fmt::format(
+          "max |E~ - E|/E(1, kappa) <= {:.2g} for kappa in {}; outside it that bound does not hold",
+          m.valid.max_peak_rel, sglab::validate::kappa_range_text(m.valid));
+      EXPECT_NE(src.find(line), std::string::npos) << m.id << ": " << line;
+    }
+  const std::string fast =
+      sh::export_source(sh::standard_request(sh::Language::hlsl, "sglab_fast")).source;
+  EXPECT_NE(fast.find("<= 0.0026 for kappa in [0, 1.1e+04]"), std::string::npos);
 }
 
 // glslang compiles every GLSL and HLSL export inside the compute shader of

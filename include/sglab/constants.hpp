@@ -272,7 +272,7 @@ inline constexpr SglabFastParams<double> sglab_fast_float{
     .q = {21325.41915528404, 16994.59337458461, 6529.2015402335455, 388.8615338427354},
     .kappa_max = 10000.0};
 
-// sglab-mid / float: E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + k), V = k*Pv(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
+// sglab-mid / float: E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + kappa), V = kappa*Pv(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
 //   objective: minimax of the sglab_mid irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; start: the committed set (polish)
 //   precision: float
 //   kappa_range: [0.001,10000.0]

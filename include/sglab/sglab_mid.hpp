@@ -19,13 +19,24 @@
 // family's per-κ floor) and costs are in data/results/sglab_mid.md, regenerated
 // by scripts/results.sh.
 //
+// Beyond the fitted range: the rational functions are evaluated at
+// κ̃ = min(κ, kappa_max), but the two factors that carry the scale of a sharp
+// light, κ in V and −ln(1 + κ) in S, take κ itself. As κ → ∞ the exact shape
+// E(c, κ)/E(1, κ) tends to c Φ(c√κ) + φ(c√κ)/√κ (Φ, φ the normal distribution
+// and density; docs/quantities.md), a function of c√κ scaled by 1/√κ, and with
+// V ∝ κ and e^{S/2} ∝ 1/√κ the smoothed max narrows the same way, so the error
+// at kappa_max carries over to every larger κ: `sglab range` measures it to
+// κ = FLT_MAX (data/results/kappa_range.md) and tests/test_kappa_range.cpp
+// holds it to the bound of the registry.
+//
 // Never NaN for finite κ ≥ 0 and c ∈ [−1, 1]: E(1, κ) is formed as in
-// sglab_fast (no κ², a Taylor series below κ = ¼); the rational functions are
-// evaluated at κ̃ = min(κ, kappa_max), where Q ≥ kappa_max⁴ is finite, so A, B,
-// D, S, V are finite; the exponent S − V c² is clamped to [−80, 80], so e^{…}
-// lies in [1.8e−35, 5.6e34], finite and positive in float, and the square root
-// takes a positive finite argument. Beyond kappa_max the shape stays that of
-// kappa_max.
+// sglab_fast (no κ², a Taylor series below κ = ¼); Q(κ̃) ≥ kappa_max⁴ is
+// finite, so A, B, D and the rational parts of S and V are finite, and V =
+// V(kappa_max)·κ/kappa_max beyond kappa_max stays finite to the largest float
+// as long as V(kappa_max) < kappa_max (5.9e3 for the shipped set;
+// tests/test_methods.cpp evaluates κ = FLT_MAX); the exponent
+// S − V c² is clamped to [−80, 80], so e^{…} lies in [1.8e−35, 5.6e34], finite
+// and positive in float, and the square root takes a positive finite argument.
 #pragma once
 
 #include <bit>
@@ -98,8 +109,11 @@ SglabMidLight<T> sglab_mid_light(const T& kappa,
   // nothing underflows before it even at κ near the largest float.
   using std::log;
   const T e1 = two_pi_v<T>() * detail::upper_over_two_pi_fast(kappa);
+  // κ·Pv(κ̃)/Q(κ̃) written as κ̃·Pv/Q·max(1, κ/kappa_max): the factor is exactly 1 on the
+  // fitted range, and κ̃·Pv/Q < kappa_max, so the product stays finite to FLT_MAX.
+  const T grow = detail::max_of(T(1), kappa / T(p.kappa_max));
   return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.d) * inv_q * e1,
-          horner(k, p.s) * inv_q - log(T(1) + k), k * horner(k, p.v) * inv_q};
+          horner(k, p.s) * inv_q - log(T(1) + kappa), k * horner(k, p.v) * inv_q * grow};
 }
 
 // Per-shading-point evaluation.
@@ -119,8 +133,9 @@ SGLAB_FORCE_INLINE SglabMidLight<float> sglab_mid_light_branch_free(float kappa,
   const float k = bf::min(kappa, float(p.kappa_max));
   const float inv_q = 1.0f / (horner(k, p.q) + k * k * k * k);
   const float e1 = two_pi_v<float>() * detail::upper_over_two_pi_branch_free(kappa);
+  const float grow = bf::max(1.0f, kappa / float(p.kappa_max));
   return {horner(k, p.a) * inv_q * e1, horner(k, p.b) * inv_q * e1, horner(k, p.d) * inv_q * e1,
-          horner(k, p.s) * inv_q - detail::log_bf(1.0f + k), k * horner(k, p.v) * inv_q};
+          horner(k, p.s) * inv_q - detail::log_bf(1.0f + kappa), k * horner(k, p.v) * inv_q * grow};
 }
 
 // The per-shading-point evaluation without library calls (exp_bf, sqrt_bf),
