@@ -120,7 +120,7 @@ std::string text_field(const fs::path& path, const json& obj, const char* key,
 
 }  // namespace
 
-CostTable read_cost_table(const fs::path& path) {
+CostTable read_cost_table(const fs::path& path, GpuSection gpu) {
   std::error_code ec;
   if (!fs::exists(path, ec))
     fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
@@ -202,7 +202,7 @@ CostTable read_cost_table(const fs::path& path) {
                              c.method, precision, mode));
     t.costs.push_back(std::move(c));
   }
-  if (doc.contains("gpu")) {
+  if (gpu == GpuSection::read && doc.contains("gpu")) {
     try {
       t.gpu = shader::gpu::report_from_json(doc.at("gpu"), "gpu");
     } catch (const std::runtime_error& e) {
@@ -212,10 +212,10 @@ CostTable read_cost_table(const fs::path& path) {
   return t;
 }
 
-std::optional<CostTable> read_existing_cost_table(const fs::path& path) {
+std::optional<CostTable> read_existing_cost_table(const fs::path& path, GpuSection gpu) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return std::nullopt;
-  return read_cost_table(path);
+  return read_cost_table(path, gpu);
 }
 
 std::optional<fs::path> default_cost_table_path() {
