@@ -51,7 +51,8 @@ nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
           {"origin", std::string(to_string(p->origin))},
           {"max_peak_rel", number(p->max_peak_rel)},
           {"cost", number(p->cost)},
-          {"cost_unit", p->cost_unit}};
+          {"cost_unit", p->cost_unit},
+          {"cost_form", p->cost_form}};
 }
 
 std::string describe(const report::MethodPoint& p) {

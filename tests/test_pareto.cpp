@@ -282,8 +282,8 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   ASSERT_TRUE(std::fgets(line, sizeof line, f));
   std::fclose(f);
   EXPECT_EQ(std::string(line),
-            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
-            "frontier\n");
+            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,cost_form,"
+            "max_peak_rel,frontier\n");
   EXPECT_EQ(sglab::test::run_sglab({"pareto", "--kappa", "0:1", "--out", dir}).exit_code, 2);
 }
 
