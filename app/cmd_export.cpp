@@ -106,9 +106,10 @@ constexpr const char* kHeaderFamilies[] = {"navi21", "gfx1100"};
 
 // The GPU cost of exactly this code in the committed cost table
 // (data/results/costs.json, "gpu" section, written by `sglab gpucost --out`):
-// the rows of the method and language whose SPIR-V hash is that of `exported`
-// in the gpucost wrapper (comments do not reach the SPIR-V, so the header
-// itself does not change it). Other code (--constants, a stale table): not measured.
+// the rows of the method and language of one call per invocation (harness
+// single, compile path none) whose SPIR-V hash is that of `exported` in that
+// harness (comments do not reach the SPIR-V, so the header itself does not
+// change it). Other code (--constants, a stale table): not measured.
 void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& exported) {
   for (const char* family : kHeaderFamilies) req.gpu_cost.push_back({family, std::nullopt});
   const auto path = report::default_cost_table_path();
@@ -121,7 +122,8 @@ void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& export
     for (const shader::gpu::Row& row : table->gpu->rows)
       if (row.family == cost.family && row.method == req.method && row.lang == req.lang &&
           row.split == req.split && row.precision == shader::to_string(req.precision) &&
-          row.spirv_hash == hash)
+          row.harness == shader::gpu::Harness::single &&
+          row.compile == shader::gpu::CompilePath::none && row.spirv_hash == hash)
         cost.inverse_throughput = row.stats.inverse_throughput;
   req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
 }

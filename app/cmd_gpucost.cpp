@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
@@ -33,6 +34,9 @@ struct GpucostArgs {
   std::string lang = "glsl";
   std::string form = "both";  // unsplit, split (the per-pixel function of `export --split`) or both
   std::string precision = "float";
+  std::vector<std::string> harnesses;  // single, loop, setup (default all)
+  std::vector<std::string> lights;     // the loop harness's light counts (default 8)
+  std::vector<std::string> compiles;   // none, legalized, optimized (default none)
   bool json = false;
   bool disasm = false;
   bool skip_unavailable = false;
@@ -89,6 +93,57 @@ std::vector<std::string> checked_methods(const std::vector<std::string>& asked) 
   return asked;
 }
 
+std::vector<gpu::Harness> checked_harnesses(const std::vector<std::string>& asked) {
+  if (asked.empty()) return {gpu::Harness::single, gpu::Harness::loop, gpu::Harness::setup};
+  std::vector<gpu::Harness> out;
+  for (const std::string& h : asked) {
+    const auto parsed = gpu::parse_harness(h);
+    if (!parsed)
+      throw InputError(
+          fmt::format("--harness: expected single, loop or setup, got {}", io::quote_escaped(h)));
+    if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<int> checked_lights(const std::vector<std::string>& asked) {
+  if (asked.empty()) return {gpu::kRendererLights};
+  std::vector<int> out;
+  for (const std::string& n : asked) {
+    const auto parsed = io::parse_count(n, 1, gpu::kMaxLights);
+    if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--lights: " + *why);
+    const int v = static_cast<int>(std::get<long long>(parsed));
+    if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<gpu::CompilePath> checked_compiles(const std::vector<std::string>& asked,
+                                               const std::vector<shader::Language>& languages) {
+  if (asked.empty()) return {gpu::CompilePath::none};
+  std::vector<gpu::CompilePath> out;
+  for (const std::string& c : asked) {
+    const auto parsed = gpu::parse_compile_path(c);
+    if (!parsed)
+      throw InputError(fmt::format("--compile: expected none, legalized or optimized, got {}",
+                                   io::quote_escaped(c)));
+    if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
+  }
+  std::sort(out.begin(), out.end());
+  if (out == std::vector{gpu::CompilePath::legalized} &&
+      std::find(languages.begin(), languages.end(), shader::Language::hlsl) == languages.end())
+    throw InputError(
+        "--compile legalized: legalization is HLSL's (GLSL needs none); add --lang hlsl or both");
+  return out;
+}
+
+// A shader of `lang` exists on compile path `c`: legalization is HLSL's.
+bool applies(gpu::CompilePath c, shader::Language lang) {
+  return c != gpu::CompilePath::legalized || lang == shader::Language::hlsl;
+}
+
 std::string command_line(const GpucostArgs& a) {
   std::string c = "sglab gpucost";
   if (!a.families.empty()) c += " --families " + fmt::format("{}", fmt::join(a.families, ","));
@@ -96,6 +151,9 @@ std::string command_line(const GpucostArgs& a) {
   if (a.lang != "glsl") c += " --lang " + a.lang;
   if (a.form != "both") c += " --form " + a.form;
   if (a.precision != "float") c += " --precision " + a.precision;
+  if (!a.harnesses.empty()) c += " --harness " + fmt::format("{}", fmt::join(a.harnesses, ","));
+  if (!a.lights.empty()) c += " --lights " + fmt::format("{}", fmt::join(a.lights, ","));
+  if (!a.compiles.empty()) c += " --compile " + fmt::format("{}", fmt::join(a.compiles, ","));
   if (!a.out.empty()) c += " --out " + a.out;
   return c;
 }
@@ -113,7 +171,8 @@ void check_outputs(const fs::path& dir) {
 // Writes both outputs as one unit (io::write_files_atomic): both or neither.
 void write_outputs(const gpu::Report& report, const fs::path& dir) {
   const fs::path table_path = dir / "costs.json";
-  std::optional<report::CostTable> table = report::read_existing_cost_table(table_path);
+  std::optional<report::CostTable> table =
+      report::read_existing_cost_table(table_path, report::GpuSection::skip);
   if (!table) {
     // No CPU measurements yet: a table holding only the GPU section.
     table.emplace();
@@ -124,17 +183,22 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
   io::write_files_atomic(
       {{table_path, report::to_json(*table).dump(2) + "\n"},
        {dir / "gpu_costs.md",
-        fmt::format(
-            "# GPU cost: ACO statistics on RADV null devices\n\n"
-            "Driver: {}. Command: `{}`. Each figure is the function's own: the method inside "
-            "the sweep's compute wrapper minus the same wrapper around a trivial body (VGPRs "
-            "and SGPRs: the whole pipeline's). Inverse throughput is ACO's estimate of the "
-            "cycles one wave keeps a SIMD busy, not a timing. A method's GLSL and HLSL "
-            "exports are the same code with the same control flow (a conditional with a "
-            "costly arm is an if, never ?:, which glslang's HLSL front end evaluates on both "
-            "sides); OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% "
-            "on navi21 and gfx1100.\n\n{}",
-            report.driver, report.command, gpu::to_markdown(report))}});
+        fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
+                  "Driver: {}. Command: `{}`. Each figure is the function's own: the method in its "
+                  "harness minus the same harness around a trivial body (VGPRs and SGPRs: the "
+                  "whole pipeline's). Every harness is dispatched in whole workgroups, so the "
+                  "method's call is in no branch (ACO's estimate counts the code under a "
+                  "divergent branch at 0.75 of its cost). Inverse throughput is ACO's estimate of "
+                  "the cycles one wave keeps a SIMD busy, not a timing. Compile path: none "
+                  "(glslang's SPIR-V), legalized (HLSL: SPIRV-Tools' legalization passes), "
+                  "optimized (SPIRV-Tools' performance passes, after legalization for HLSL). A "
+                  "method's GLSL and HLSL exports are the same code with the same control flow "
+                  "(a conditional with a costly arm is an if, never ?:, which glslang's HLSL "
+                  "front end evaluates on both sides; one return per function, so that the "
+                  "legalization's merge-return leaves the branches ACO keeps); "
+                  "OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% on "
+                  "navi21 and gfx1100, unoptimized and legalized.\n\n{}",
+                  report.driver, report.command, gpu::to_markdown(report)}});
 }
 
 // The (method, split) pairs to cost: unsplit rows for every method, then
@@ -151,12 +215,74 @@ std::vector<std::pair<std::string, bool>> costed_forms(const GpucostArgs& a,
   return forms;
 }
 
+struct Plan {
+  std::vector<std::string> methods;
+  std::vector<shader::Language> languages;
+  std::vector<shader::Precision> precisions;
+  std::vector<gpu::Harness> harnesses;
+  std::vector<int> lights;
+  std::vector<gpu::CompilePath> compiles;
+};
+
+// Every shader of the plan, each baseline before its methods, harness-major
+// (so each family's rows come in one section per harness): single for every
+// precision, then loop and setup (float only, as the split export).
+template <class Visit>
+void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
+  const auto forms = costed_forms(a, p.methods);
+  const auto split_ids = shader::split_methods();
+  for (gpu::Harness harness : p.harnesses)
+    for (shader::Language lang : p.languages)
+      for (gpu::CompilePath compile : p.compiles) {
+        if (!applies(compile, lang)) continue;
+        if (harness == gpu::Harness::single) {
+          for (shader::Precision precision : p.precisions) {
+            visit([=] { return gpu::baseline_shader(lang, precision, harness, 1, compile); }, "");
+            for (const auto& [m, split] : forms) {
+              if (split && precision == shader::Precision::float16) continue;
+              visit(
+                  [=, m = m, split = split] {
+                    return split ? gpu::split_method_shader(m, lang, compile)
+                                 : gpu::method_shader(m, lang, precision, compile);
+                  },
+                  fmt::format("{}{} ({}, {}, {})", m, split ? " --split" : "",
+                              shader::to_string(lang), shader::to_string(precision),
+                              gpu::to_string(compile)));
+            }
+          }
+        } else if (std::find(p.precisions.begin(), p.precisions.end(),
+                             shader::Precision::float32) != p.precisions.end()) {
+          if (harness == gpu::Harness::loop) {
+            for (int n : p.lights) {
+              visit([=] { return gpu::baseline_shader(lang, {}, harness, n, compile); }, "");
+              for (const auto& [m, split] : forms)
+                visit([=, m = m,
+                       split = split] { return gpu::loop_shader(m, lang, split, n, compile); },
+                      fmt::format("{}{} in a {}-light loop ({}, {})", m, split ? " --split" : "", n,
+                                  shader::to_string(lang), gpu::to_string(compile)));
+            }
+          } else if (a.form != "unsplit") {
+            visit([=] { return gpu::baseline_shader(lang, {}, harness, 1, compile); }, "");
+            for (const std::string& m : p.methods)
+              if (std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end())
+                visit([=] { return gpu::setup_shader(m, lang, compile); },
+                      fmt::format("{} setup ({}, {})", m, shader::to_string(lang),
+                                  gpu::to_string(compile)));
+          }
+        }
+      }
+}
+
 // Measures (or with --disasm disassembles) and prints / writes the results.
 // Throws gpu::Unavailable when RADV cannot create a null device.
 void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& families,
-                        const std::vector<shader::Language>& languages,
-                        const std::vector<std::string>& methods,
-                        const std::vector<shader::Precision>& precisions) {
+                        const Plan& p) {
+  std::size_t count = 0;
+  for_each_shader(a, p, [&](auto&&, const std::string&) { ++count; });
+  if (count == 0)
+    throw InputError(
+        "gpucost: nothing to cost (the loop and setup harnesses are float only, the setup is the "
+        "split form's, legalization is HLSL's)");
   const auto manifest = gpu::find_radv_manifest();
   if (!manifest)
     throw gpu::Unavailable(
@@ -169,40 +295,50 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
     throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
   if (a.disasm) {
     const bool split = a.form == "split";
-    const gpu::Shader s = split ? gpu::split_method_shader(methods[0], languages[0])
-                                : gpu::method_shader(methods[0], languages[0], precisions[0]);
-    const char* option = split                                         ? " --form split"
-                         : precisions[0] == shader::Precision::float16 ? " --precision half"
-                                                                       : "";
+    const shader::Language lang = p.languages[0];
+    const gpu::CompilePath compile = p.compiles[0];
+    const gpu::Harness harness = p.harnesses[0];
+    gpu::Shader s;
+    std::string what;
+    switch (harness) {
+      case gpu::Harness::single:
+        s = split ? gpu::split_method_shader(p.methods[0], lang, compile)
+                  : gpu::method_shader(p.methods[0], lang, p.precisions[0], compile);
+        what = split ? "one float load, the light struct at the workgroup's index, one float store"
+                     : "one float2 load, one float store";
+        break;
+      case gpu::Harness::loop:
+        s = gpu::loop_shader(p.methods[0], lang, split, p.lights[0], compile);
+        what =
+            fmt::format("a per-pixel loop over {} lights, one normal per invocation", p.lights[0]);
+        break;
+      case gpu::Harness::setup:
+        s = gpu::setup_shader(p.methods[0], lang, compile);
+        what = "the per-light setup: one kappa in, one light struct out";
+        break;
+    }
+    std::string options;
+    if (split && harness != gpu::Harness::setup) options += " --form split";
+    if (p.precisions[0] == shader::Precision::float16) options += " --precision half";
+    if (harness != gpu::Harness::single)
+      options += fmt::format(" --harness {}", gpu::to_string(harness));
+    if (harness == gpu::Harness::loop) options += fmt::format(" --lights {}", p.lights[0]);
+    if (compile != gpu::CompilePath::none)
+      options += fmt::format(" --compile {}", gpu::to_string(compile));
     fmt::print(
         "; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of "
-        "the whole pipeline: the sweep's compute wrapper ({}) around the export\n{}",
-        methods[0], families[0], shader::to_string(languages[0]), option,
-        split ? "one float load, the light struct at the workgroup's index, one float store"
-              : "one float2 load, one float store",
+        "the whole pipeline: the harness ({}) around the export\n{}",
+        p.methods[0], families[0], shader::to_string(lang), options, what,
         gpu::disassemble(self, *manifest, families[0], s));
     return;
   }
-  const auto forms = costed_forms(a, methods);
-  std::size_t exports = 0;
-  for (shader::Precision precision : precisions)
-    for (const auto& [m, split] : forms)
-      exports += split && precision == shader::Precision::float16 ? 0 : 1;
-  io::Progress progress("gpucost", families.size() + exports * languages.size());
+  io::Progress progress("gpucost", families.size() + count);
   std::vector<gpu::Shader> shaders;
-  for (shader::Precision precision : precisions)
-    for (shader::Language lang : languages) {
-      shaders.push_back(gpu::baseline_shader(lang, precision));
-      for (const auto& [m, split] : forms) {
-        if (split && precision == shader::Precision::float16)
-          continue;  // the split export is float only
-        progress.note(fmt::format("export {}{} ({}, {})", m, split ? " --split" : "",
-                                  shader::to_string(lang), shader::to_string(precision)));
-        shaders.push_back(split ? gpu::split_method_shader(m, lang)
-                                : gpu::method_shader(m, lang, precision));
-        progress.advance();
-      }
-    }
+  for_each_shader(a, p, [&](auto&& make, const std::string& note) {
+    if (!note.empty()) progress.note("export " + note);
+    shaders.push_back(make());
+    progress.advance();
+  });
   gpu::Report report =
       gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
         progress.note(fmt::format("ACO, {}", family));
@@ -216,8 +352,8 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   else
     fmt::print(
         "GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler "
-        "estimate)\n\n{}",
-        report.driver, gpu::to_markdown(report));
+        "estimate). Command: `{}`\n\n{}",
+        report.driver, report.command, gpu::to_markdown(report));
 }
 
 }  // namespace
@@ -241,6 +377,20 @@ void add_gpucost_command(CLI::App& app) {
          "--precision", args->precision,
          "float, half (`sglab export --precision half`, rows with precision \"half\") or both")
       ->capture_default_str();
+  cmd->add_option("--harness", args->harnesses,
+                  "comma-separated harnesses: single (one call per invocation), loop (a "
+                  "renderer's per-pixel loop over --lights lights), setup (the split form's "
+                  "per-light setup); default all three")
+      ->delimiter(',');
+  cmd->add_option("--lights", args->lights,
+                  "comma-separated light counts of the loop harness, 1 to 64 (default 8, the "
+                  "figure of --cost gpu:FAMILY)")
+      ->delimiter(',');
+  cmd->add_option("--compile", args->compiles,
+                  "comma-separated compile paths: none (glslang's SPIR-V), legalized (HLSL: "
+                  "spirv-opt's legalization), optimized (spirv-opt -O, after legalization for "
+                  "HLSL); default none")
+      ->delimiter(',');
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
   cmd->add_option("--out", args->out,
                   "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
@@ -249,8 +399,8 @@ void add_gpucost_command(CLI::App& app) {
                 "when RADV cannot create a null device, say why and exit 0 without writing "
                 "anything (sglab run)");
   cmd->add_flag("--disasm", args->disasm,
-                "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl]) "
-                "instead of the table");
+                "print ACO's assembly of one method (--method ID --family F [--lang glsl|hlsl] "
+                "[--harness H] [--lights N] [--compile C]) instead of the table");
   cmd->add_option("--worker-family", args->worker_family)->group("");
   cmd->add_option("--worker-dir", args->worker_dir)->group("");
   cmd->callback([args] {
@@ -274,18 +424,30 @@ void add_gpucost_command(CLI::App& app) {
                           m, fmt::join(split, ", ")));
     }
     const auto precisions = checked_precisions(args->precision);
+    // --disasm prints one shader: by default the single harness's.
+    auto harnesses = checked_harnesses(args->harnesses);
+    if (args->disasm && args->harnesses.empty()) harnesses = {gpu::Harness::single};
+    const auto lights = checked_lights(args->lights);
+    const auto compiles = checked_compiles(args->compiles, languages);
+    if (!args->lights.empty() &&
+        std::find(harnesses.begin(), harnesses.end(), gpu::Harness::loop) == harnesses.end())
+      throw InputError("--lights: applies to the loop harness only (--harness loop)");
     if (args->form == "split" && args->precision == "half")
       throw InputError(
           "--form split with --precision half: the per-light split export is float only (its light "
           "struct is std430 floats filled by the float runtime); use --precision float");
     if (args->disasm &&
         (args->methods.size() != 1 || args->families.empty() || families.size() != 1 ||
-         languages.size() != 1 || precisions.size() != 1 || args->json || !args->out.empty()))
+         languages.size() != 1 || precisions.size() != 1 || harnesses.size() != 1 ||
+         compiles.size() != 1 || (harnesses[0] == gpu::Harness::loop && lights.size() != 1) ||
+         args->json || !args->out.empty()))
       throw InputError(
-          "--disasm: takes one --method, one --family, one --lang (glsl or hlsl) and one "
-          "--precision, and no --json or --out (--form split: the split export)");
+          "--disasm: takes one --method, one --family, one --lang (glsl or hlsl), one "
+          "--precision, one --harness (default single), with loop one --lights, and one "
+          "--compile, and no --json or --out (--form split: the split export)");
     try {
-      measure_and_report(*args, families, languages, methods, precisions);
+      measure_and_report(*args, families,
+                         {methods, languages, precisions, harnesses, lights, compiles});
     } catch (const gpu::Unavailable& e) {
       if (!args->skip_unavailable) throw;
       fmt::print(stderr, "sglab: gpucost skipped: {}\n", e.what());

@@ -56,6 +56,7 @@ nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
           {"max_peak_rel", number(p->max_peak_rel)},
           {"cost", number(p->cost)},
           {"cost_unit", p->cost_unit},
+          {"cost_form", p->cost_form},
           {"in_valid_range", p->in_valid_range}};
 }
 

@@ -33,9 +33,11 @@ struct CostsOption {
   void add_to(CLI::App* cmd) {
     cost_option = cmd->add_option(
         "--cost", cost,
-        "speed axis: gpu:FAMILY (ACO's inverse throughput of the GLSL export on that RADV family, "
-        "cycles per wave; from `sglab gpucost`), cpu-batch or cpu-scalar (ns/eval; from `sglab "
-        "bench`). Default gpu:navi21; cpu-batch under --precision double or --live-timing");
+        "speed axis: gpu:FAMILY (GPU cycles per light per pixel on that RADV family: ACO's "
+        "inverse throughput of the GLSL export in an 8-light per-pixel loop, split where the "
+        "method has one; from `sglab gpucost`), gpu-single:FAMILY (the same for one unsplit "
+        "call), cpu-batch or cpu-scalar (ns/eval; from `sglab bench`). Default gpu:navi21; "
+        "cpu-batch under --precision double or --live-timing");
     cmd->add_option("--costs", costs,
                     "cost table written by `sglab bench` and `sglab gpucost` (default: "
                     "data/results/costs.json of the project holding the working directory; "
@@ -102,7 +104,10 @@ struct CostsOption {
           "sglab: warning: cost table {} has no {} cost for method '{}' ({}); it is listed as \"no "
           "cost\" and left out of the ranking (run `sglab {}` to measure it)\n",
           path.string(), s.name(), m,
-          s.kind == report::CostSourceKind::gpu ? "GLSL, float" : validate::to_string(f),
+          s.kind == report::CostSourceKind::gpu
+              ? (s.figure == report::GpuFigure::single ? "GLSL, float, one call"
+                                                       : "GLSL, float, 8-light loop")
+              : validate::to_string(f),
           s.kind == report::CostSourceKind::gpu ? "gpucost" : "bench");
     const std::string provenance =
         s.kind == report::CostSourceKind::gpu

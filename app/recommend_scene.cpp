@@ -10,6 +10,7 @@
 // own models on the standard 29 κ × 41 c sub-grid: which of them suffices.
 #include "app/recommend_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iterator>
@@ -88,7 +89,8 @@ void print_json(const SceneOutput& o) {
     return {{"method", p->method},
             {"scene_error", number(p->max_peak_rel)},
             {"cost", number(p->cost)},
-            {"cost_unit", p->cost_unit}};
+            {"cost_unit", p->cost_unit},
+            {"cost_form", p->cost_form}};
   };
   doc["choice"] = point(r.choice);
   doc["runner_up"] = point(r.runner_up);
@@ -100,6 +102,7 @@ void print_json(const SceneOutput& o) {
                        {"scene_error", number(p.max_peak_rel)},
                        {"cost", number(p.cost)},
                        {"cost_unit", p.cost_unit},
+                       {"cost_form", p.cost_form},
                        {"in_valid_range", p.in_valid_range},
                        {"qualifies", std::isfinite(p.max_peak_rel) && std::isfinite(p.cost) &&
                                          p.max_peak_rel <= o.args.budget && p.in_valid_range}});
@@ -131,14 +134,19 @@ void print_text(const SceneOutput& o) {
   fmt::print(
       "error = max over normals and RGB channels of |Ê − E| / the scene's largest exact "
       "irradiance\n\n");
+  // The GPU figure's form (gpu:FAMILY: per light in the loop, split or kappa per light) last.
+  const bool forms = std::any_of(o.points.begin(), o.points.end(),
+                                 [](const report::MethodPoint& p) { return !p.cost_form.empty(); });
   fmt::print("  {:<24} {:<10} {:>12} {:>12}  {}\n", "method", "origin", "scene error", "cost",
-             "meets budget");
-  for (const auto& p : o.points)
+             forms ? "meets budget  cost form" : "meets budget");
+  for (const auto& p : o.points) {
+    const char* meets = !p.in_valid_range ? "outside its valid κ range"
+                        : std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes"
+                                                                                           : "no";
     fmt::print("  {:<24} {:<10} {:>12.4g} {:>12}  {}\n", p.method, to_string(p.origin),
-               p.max_peak_rel, report::cost_text(p),
-               !p.in_valid_range ? "outside its valid κ range"
-               : std::isfinite(p.max_peak_rel) && p.max_peak_rel <= o.args.budget ? "yes"
-                                                                                  : "no");
+               p.max_peak_rel, report::cost_text(p, /*with_form=*/false),
+               forms ? fmt::format("{:<12}  {}", meets, p.cost_form) : std::string(meets));
+  }
   if (const std::string outside = report::outside_valid_range_text(o.points); !outside.empty())
     fmt::print(
         "  not considered: a light's κ is outside their valid κ range (registry card; their "

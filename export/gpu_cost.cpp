@@ -9,8 +9,11 @@
 #include <fstream>
 #include <map>
 #include <system_error>
+#include <tuple>
 
 #include <fmt/format.h>
+#include <spirv-tools/libspirv.hpp>
+#include <spirv-tools/optimizer.hpp>
 
 #include "common/io.hpp"
 #include "export/vulkan_runner.hpp"
@@ -23,12 +26,13 @@ using json = nlohmann::ordered_json;
 namespace {
 
 constexpr std::string_view kBaselineEntry = "sglab_gpucost_baseline";
+constexpr std::string_view kBaselineLight = "SglabGpucostBaseline";
 
 // ACO's names for the statistics sglab keeps (radv_pipeline.c, Mesa 22.3).
 struct StatisticName {
   const char* aco;
   std::int64_t Statistics::*member;
-  bool additive;  // subtract the wrapper's (registers are a peak: not subtracted)
+  bool additive;  // subtract the baseline's (registers are a peak: not subtracted)
 };
 constexpr StatisticName kStatistics[] = {
     {"Instructions", &Statistics::instructions, true},
@@ -143,8 +147,115 @@ std::string upper(std::string_view s) {
 
 }  // namespace
 
-Shader baseline_shader(shader::Language lang, shader::Precision precision) {
+std::string_view to_string(Harness h) {
+  switch (h) {
+    case Harness::single:
+      return "single";
+    case Harness::loop:
+      return "loop";
+    case Harness::setup:
+      return "setup";
+  }
+  return "?";
+}
+
+std::optional<Harness> parse_harness(std::string_view text) {
+  for (Harness h : {Harness::single, Harness::loop, Harness::setup})
+    if (text == to_string(h)) return h;
+  return std::nullopt;
+}
+
+std::string_view to_string(CompilePath c) {
+  switch (c) {
+    case CompilePath::none:
+      return "none";
+    case CompilePath::legalized:
+      return "legalized";
+    case CompilePath::optimized:
+      return "optimized";
+  }
+  return "?";
+}
+
+std::optional<CompilePath> parse_compile_path(std::string_view text) {
+  for (CompilePath c : {CompilePath::none, CompilePath::legalized, CompilePath::optimized})
+    if (text == to_string(c)) return c;
+  return std::nullopt;
+}
+
+std::vector<std::uint32_t> apply_compile_path(shader::Language lang, CompilePath compile,
+                                              std::vector<std::uint32_t> spirv) {
+  if (compile == CompilePath::none) return spirv;
+  const bool hlsl = lang == shader::Language::hlsl;
+  if (compile == CompilePath::legalized && !hlsl)
+    throw std::invalid_argument("gpucost: the legalized compile path is HLSL's (GLSL needs none)");
+  std::string messages;
+  const auto consumer = [&](spv_message_level_t level, const char*, const spv_position_t& at,
+                            const char* message) {
+    if (level <= SPV_MSG_WARNING) messages += fmt::format("\n  word {}: {}", at.index, message);
+  };
+  spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_0);
+  optimizer.SetMessageConsumer(consumer);
+  if (hlsl) optimizer.RegisterLegalizationPasses();
+  if (compile == CompilePath::optimized) optimizer.RegisterPerformancePasses();
+  std::vector<std::uint32_t> out;
+  if (!optimizer.Run(spirv.data(), spirv.size(), &out))
+    throw std::runtime_error(fmt::format("gpucost: SPIRV-Tools' optimizer ({}) failed:{}",
+                                         to_string(compile), messages));
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+  tools.SetMessageConsumer(consumer);
+  if (!tools.Validate(out))
+    throw std::runtime_error(fmt::format("gpucost: the SPIR-V after the {} passes is not valid:{}",
+                                         to_string(compile), messages));
+  return out;
+}
+
+std::uint32_t binding_count(const Shader& s) {
+  switch (s.harness) {
+    case Harness::single:
+      return s.split ? 3 : 2;
+    case Harness::loop:
+      return 4;
+    case Harness::setup:
+      return 2;
+  }
+  return 2;
+}
+
+namespace {
+
+Shader compiled(std::string_view method, shader::Language lang, const std::string& source,
+                shader::Precision precision, bool split, Harness harness, int lights,
+                CompilePath compile) {
+  return {std::string(method),
+          lang,
+          apply_compile_path(lang, compile, vulkan::compile_compute(lang, source, precision)),
+          split,
+          precision,
+          harness,
+          lights,
+          compile};
+}
+
+shader::ExportResult split_export(std::string_view method, shader::Language lang) {
+  shader::ExportRequest request = shader::standard_request(lang, method);
+  request.split = true;
+  return shader::export_source(request);
+}
+
+void require_lights(int lights) {
+  if (lights < 1 || lights > kMaxLights)
+    throw std::invalid_argument(
+        fmt::format("gpucost: {} lights (the loop harness takes 1 to {})", lights, kMaxLights));
+}
+
+}  // namespace
+
+Shader baseline_shader(shader::Language lang, shader::Precision precision, Harness harness,
+                       int lights, CompilePath compile) {
   const bool half = precision == shader::Precision::float16;
+  if (half && harness != Harness::single)
+    throw std::invalid_argument("gpu::baseline_shader: the half exports are costed one call each");
   const std::string type = half ? (lang == shader::Language::glsl ? "float16_t" : "half") : "float";
   const std::string body =
       fmt::format("{}{} {}({} cosine, {} kappa) {{ return cosine + kappa; }}\n",
@@ -152,22 +263,68 @@ Shader baseline_shader(shader::Language lang, shader::Precision precision) {
                       ? "#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n"
                       : "",
                   type, kBaselineEntry, type, type);
-  return {std::string(kBaseline), lang,
-          vulkan::compile_compute(
-              lang, shader::compute_shader(lang, body, kBaselineEntry, precision), precision),
-          false, precision};
+  std::string source;
+  switch (harness) {
+    case Harness::single:
+      source = shader::compute_shader(lang, body, kBaselineEntry, precision,
+                                      shader::Dispatch::whole_groups);
+      break;
+    case Harness::loop:
+      require_lights(lights);
+      source = shader::loop_compute_shader(lang, body, kBaselineEntry, {}, lights);
+      break;
+    case Harness::setup: {
+      shader::ExportResult ex;
+      ex.light_struct = kBaselineLight;
+      ex.light_function = kBaselineEntry;
+      ex.entry_point = kBaselineEntry;
+      ex.light_floats = 1;
+      ex.source = fmt::format(
+          "struct {0} {{\n  float kappa;\n}};\n{0} {1}(float kappa) {{\n  {0} light;\n  "
+          "light.kappa = kappa;\n  return light;\n}}\n",
+          kBaselineLight, kBaselineEntry);
+      source = shader::light_compute_shader(lang, ex.source, ex, shader::Dispatch::whole_groups);
+      break;
+    }
+  }
+  return compiled(kBaseline, lang, source, precision, false, harness,
+                  harness == Harness::loop ? lights : 1, compile);
 }
 
-Shader method_shader(std::string_view method, shader::Language lang, shader::Precision precision) {
-  return export_shader(method, lang,
-                       shader::export_source(shader::standard_request(lang, method, precision)),
-                       precision);
+Shader method_shader(std::string_view method, shader::Language lang, shader::Precision precision,
+                     CompilePath compile) {
+  const shader::ExportResult ex =
+      shader::export_source(shader::standard_request(lang, method, precision));
+  return compiled(method, lang,
+                  shader::compute_shader(lang, ex.source, ex.entry_point, precision,
+                                         shader::Dispatch::whole_groups),
+                  precision, false, Harness::single, 1, compile);
 }
 
-Shader split_method_shader(std::string_view method, shader::Language lang) {
-  shader::ExportRequest request = shader::standard_request(lang, method);
-  request.split = true;
-  return export_shader(method, lang, shader::export_source(request));
+Shader split_method_shader(std::string_view method, shader::Language lang, CompilePath compile) {
+  const shader::ExportResult ex = split_export(method, lang);
+  return compiled(method, lang,
+                  shader::split_compute_shader(lang, ex.source, ex, shader::Dispatch::whole_groups),
+                  shader::Precision::float32, true, Harness::single, 1, compile);
+}
+
+Shader loop_shader(std::string_view method, shader::Language lang, bool split, int lights,
+                   CompilePath compile) {
+  require_lights(lights);
+  const shader::ExportResult ex =
+      split ? split_export(method, lang)
+            : shader::export_source(shader::standard_request(lang, method));
+  return compiled(
+      method, lang,
+      shader::loop_compute_shader(lang, ex.source, ex.entry_point, ex.light_struct, lights),
+      shader::Precision::float32, split, Harness::loop, lights, compile);
+}
+
+Shader setup_shader(std::string_view method, shader::Language lang, CompilePath compile) {
+  const shader::ExportResult ex = split_export(method, lang);
+  return compiled(method, lang,
+                  shader::light_compute_shader(lang, ex.source, ex, shader::Dispatch::whole_groups),
+                  shader::Precision::float32, true, Harness::setup, 1, compile);
 }
 
 Shader export_shader(std::string_view method, shader::Language lang,
@@ -176,10 +333,43 @@ Shader export_shader(std::string_view method, shader::Language lang,
   if (split && precision != shader::Precision::float32)
     throw std::invalid_argument("gpu::export_shader: the split export is float only");
   const std::string source =
-      split ? shader::split_compute_shader(lang, exported.source, exported)
-            : shader::compute_shader(lang, exported.source, exported.entry_point, precision);
-  return {std::string(method), lang, vulkan::compile_compute(lang, source, precision), split,
-          precision};
+      split ? shader::split_compute_shader(lang, exported.source, exported,
+                                           shader::Dispatch::whole_groups)
+            : shader::compute_shader(lang, exported.source, exported.entry_point, precision,
+                                     shader::Dispatch::whole_groups);
+  return compiled(method, lang, source, precision, split, Harness::single, 1, CompilePath::none);
+}
+
+double cycles_per_light(const Row& r) {
+  return static_cast<double>(r.stats.inverse_throughput) / r.lights;
+}
+
+namespace {
+
+const Row* find_row(const Report& report, std::string_view method, std::string_view family,
+                    Harness harness, int lights, bool split) {
+  for (const Row& r : report.rows)
+    if (r.method == method && r.family == family && r.lang == shader::Language::glsl &&
+        r.compile == CompilePath::none && r.precision == "float" && r.harness == harness &&
+        r.lights == lights && r.split == split)
+      return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+const Row* renderer_row(const Report& report, std::string_view method, std::string_view family) {
+  if (const Row* split = find_row(report, method, family, Harness::loop, kRendererLights, true))
+    return split;
+  return find_row(report, method, family, Harness::loop, kRendererLights, false);
+}
+
+const Row* single_row(const Report& report, std::string_view method, std::string_view family) {
+  return find_row(report, method, family, Harness::single, 1, false);
+}
+
+std::string renderer_form(const Row& r) {
+  return fmt::format("{}-light loop ({})", r.lights, r.split ? "split" : "kappa per light");
 }
 
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {
@@ -248,7 +438,7 @@ Measured measure_here(std::string_view family, const std::vector<Shader>& shader
   Measured m;
   m.driver = fmt::format("{} {}", device->driver_name(), device->driver_info());
   for (const Shader& s : shaders)
-    m.stats.push_back(from_driver(device->pipeline_statistics(s.spirv, s.split ? 3 : 2)));
+    m.stats.push_back(from_driver(device->pipeline_statistics(s.spirv, binding_count(s))));
   return m;
 }
 
@@ -256,10 +446,15 @@ void run_worker(std::string_view family, const fs::path& dir) {
   const json manifest = json::parse(io::read_file(dir / "shaders.json"));
   const bool disassemble = manifest.at("disassemble").get<bool>();
   std::vector<Shader> shaders;
-  for (std::size_t i = 0; i < manifest.at("shaders").size(); ++i)
-    shaders.push_back({manifest.at("shaders")[i].at("method").get<std::string>(),
-                       shader::Language::glsl, read_spirv(dir / shader_file(i)),
-                       manifest.at("shaders")[i].value("split", false)});
+  for (std::size_t i = 0; i < manifest.at("shaders").size(); ++i) {
+    const json& entry = manifest.at("shaders")[i];
+    Shader s;
+    s.method = entry.at("method").get<std::string>();
+    s.spirv = read_spirv(dir / shader_file(i));
+    s.split = entry.at("split").get<bool>();
+    s.harness = parse_harness(entry.at("harness").get<std::string>()).value();
+    shaders.push_back(std::move(s));
+  }
   json out;
   try {
     const Measured m = measure_here(family, shaders);
@@ -272,7 +467,7 @@ void run_worker(std::string_view family, const fs::path& dir) {
       for (const Shader& s : shaders) {
         std::string text;
         for (auto& [name, representation] :
-             device.pipeline_representations(s.spirv, s.split ? 3 : 2))
+             device.pipeline_representations(s.spirv, binding_count(s)))
           if (name == "Assembly") text = std::move(representation);
         out["assembly"].push_back(text);
       }
@@ -294,8 +489,8 @@ json run_family(const fs::path& self, const fs::path& manifest, const std::strin
   for (std::size_t i = 0; i < shaders.size(); ++i) {
     write_spirv(scratch.path() / shader_file(i), shaders[i].spirv);
     list.push_back({{"method", shaders[i].method},
-                    {"lang", std::string(shader::to_string(shaders[i].lang))},
-                    {"split", shaders[i].split}});
+                    {"split", shaders[i].split},
+                    {"harness", std::string(to_string(shaders[i].harness))}});
   }
   io::write_file_atomic(scratch.path() / "shaders.json",
                         json{{"shaders", list}, {"disassemble", disassemble}}.dump() + "\n");
@@ -329,21 +524,25 @@ Report measure(const fs::path& self, const fs::path& manifest,
     const json r = run_family(self, manifest, family, shaders, false);
     if (report.driver.empty()) report.driver = r.at("driver").get<std::string>();
     const std::string where = fmt::format("gpucost worker for '{}'", family);
-    std::map<std::pair<shader::Language, shader::Precision>, Statistics> baseline;
+    std::map<std::tuple<shader::Language, shader::Precision, Harness, int, CompilePath>, Statistics>
+        baseline;
     for (std::size_t i = 0; i < shaders.size(); ++i) {
+      const Shader& sh = shaders[i];
       const Statistics s =
           stats_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
-      const auto key = std::make_pair(shaders[i].lang, shaders[i].precision);
-      if (shaders[i].method == kBaseline) {
+      const auto key = std::make_tuple(sh.lang, sh.precision, sh.harness, sh.lights, sh.compile);
+      if (sh.method == kBaseline) {
         baseline[key] = s;
         continue;
       }
       if (!baseline.count(key))
-        throw std::logic_error(
-            "gpu::measure: a language and precision's baseline must come before its methods");
-      report.rows.push_back({shaders[i].method, family, shaders[i].lang, shaders[i].split,
-                             std::string(shader::to_string(shaders[i].precision)),
-                             subtract(s, baseline[key]), spirv_hash(shaders[i].spirv)});
+        throw std::logic_error(fmt::format(
+            "gpu::measure: the baseline of {} {} {} ({} lights, {}) must come before its methods",
+            shader::to_string(sh.lang), shader::to_string(sh.precision), to_string(sh.harness),
+            sh.lights, to_string(sh.compile)));
+      report.rows.push_back(
+          {sh.method, family, sh.lang, sh.split, std::string(shader::to_string(sh.precision)),
+           subtract(s, baseline[key]), spirv_hash(sh.spirv), sh.harness, sh.lights, sh.compile});
     }
   }
   return report;
@@ -361,17 +560,29 @@ json to_json(const Report& report) {
   json j;
   j["driver"] = report.driver;
   j["command"] = report.command;
-  j["wrapper"] =
-      "the sweep's compute wrapper (one float2 load, one float store, 64 threads), minus the same "
-      "wrapper around `return cosine + kappa;`; vgprs and sgprs are the whole pipeline's. Rows "
-      "with split = true: the per-pixel function of the split export in the split wrapper (one "
-      "float load, the light struct loaded at the workgroup's index, one float store), minus the "
-      "same baseline: the struct's loads count as the function's";
+  j["harnesses"] =
+      "each row: the method in its harness minus the same harness around a trivial body (vgprs "
+      "and sgprs: the whole pipeline's); every harness is dispatched in whole workgroups of 64, "
+      "so no bounds check puts the call in a branch. single: one call per invocation ((cosine, "
+      "kappa) loaded, the value stored; split: one float load, the light struct at the "
+      "workgroup's index, one store), minus the same wrapper around `return cosine + kappa;`: "
+      "the struct's loads count as the function's. loop: a renderer's per-pixel loop, one normal "
+      "per invocation, `lights` lights written out (axis and amplitude, and kappa or the split "
+      "struct, at wave-uniform indices), the irradiance summed, minus the same loop around "
+      "`return cosine + kappa;` with kappa per light: the figures are those of all the lights "
+      "(cycles per light per pixel = inverse_throughput / lights). setup: the split form's "
+      "per-light setup, one kappa in and one struct out per invocation, minus the same kernel "
+      "filling a struct of kappa alone. compile: none (glslang's SPIR-V), legalized (HLSL, "
+      "SPIRV-Tools' legalization passes), optimized (SPIRV-Tools' performance passes, after "
+      "legalization for HLSL)";
   j["rows"] = json::array();
   for (const Row& r : report.rows) {
     json row = {{"method", r.method},
                 {"family", r.family},
                 {"lang", std::string(shader::to_string(r.lang))},
+                {"compile", std::string(to_string(r.compile))},
+                {"harness", std::string(to_string(r.harness))},
+                {"lights", r.lights},
                 {"split", r.split},
                 {"precision", r.precision}};
     row.update(stats_json(r.stats));
@@ -402,6 +613,30 @@ Report report_from_json(const json& j, std::string_view where) {
     if (!lang || *lang == shader::Language::cpp)
       throw std::runtime_error(fmt::format("{}: {}lang must be glsl or hlsl", where, at));
     x.lang = *lang;
+    if (!row.contains("harness"))
+      throw std::runtime_error(fmt::format(
+          "{}: {}harness is missing: a row of an older `sglab gpucost`, whose harness put the "
+          "call inside a bounds check (a discount of about a quarter); rerun `sglab gpucost "
+          "--out DIR`",
+          where, at));
+    const auto compile = parse_compile_path(text(row, "compile", at));
+    if (!compile || (*compile == CompilePath::legalized && x.lang != shader::Language::hlsl))
+      throw std::runtime_error(
+          fmt::format("{}: {}compile must be none, legalized (HLSL only) or optimized", where, at));
+    x.compile = *compile;
+    const auto harness = parse_harness(text(row, "harness", at));
+    if (!harness)
+      throw std::runtime_error(
+          fmt::format("{}: {}harness must be single, loop or setup", where, at));
+    x.harness = *harness;
+    if (!row.contains("lights") || !row.at("lights").is_number_integer() ||
+        row.at("lights").get<std::int64_t>() < 1 ||
+        row.at("lights").get<std::int64_t>() > kMaxLights ||
+        (x.harness != Harness::loop && row.at("lights").get<std::int64_t>() != 1))
+      throw std::runtime_error(
+          fmt::format("{}: {}lights must be an integer from 1 to {} (1 outside the loop harness)",
+                      where, at, kMaxLights));
+    x.lights = row.at("lights").get<int>();
     if (!row.contains("split") || !row.at("split").is_boolean())
       throw std::runtime_error(fmt::format("{}: {}split must be true or false", where, at));
     x.split = row.at("split").get<bool>();
@@ -418,23 +653,47 @@ Report report_from_json(const json& j, std::string_view where) {
 std::string to_markdown(const Report& report) {
   std::string out;
   std::string family;
+  int section = -1;
   for (const Row& r : report.rows) {
     if (r.family != family) {
       family = r.family;
+      section = -1;
       std::string generation;
       for (const Family& f : kDefaultFamilies)
         if (family == f.name) generation = fmt::format(" ({})", f.generation);
-      out += fmt::format("{}## {}{}\n\n", out.empty() ? "" : "\n", family, generation);
-      out +=
-          "| method | lang | instructions | inverse throughput | latency | VGPRs | SGPRs | code "
-          "size | branches |\n";
-      out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+      out += fmt::format("{}## {}{}\n", out.empty() ? "" : "\n", family, generation);
     }
-    out += fmt::format("| {}{} | {}{} | {} | {} | {} | {} | {} | {} | {} |\n", r.method,
-                       r.split ? " (split)" : "", shader::to_string(r.lang),
-                       r.precision == "half" ? " half" : "", r.stats.instructions,
-                       r.stats.inverse_throughput, r.stats.latency, r.stats.vgprs, r.stats.sgprs,
-                       r.stats.code_size, r.stats.branches);
+    if (static_cast<int>(r.harness) != section) {
+      section = static_cast<int>(r.harness);
+      switch (r.harness) {
+        case Harness::single:
+          out += "\nOne call per invocation (harness `single`):\n\n";
+          break;
+        case Harness::loop:
+          out +=
+              "\nA renderer's per-pixel loop over N lights (harness `loop`; the statistics are "
+              "those of all N lights, cycles per light = inverse throughput / N):\n\n";
+          break;
+        case Harness::setup:
+          out += "\nThe per-light setup of the split form as its own kernel (harness `setup`):\n\n";
+          break;
+      }
+      out += fmt::format(
+          "| method | lang | compile |{} instructions | inverse throughput |{} latency | VGPRs | "
+          "SGPRs | code size | branches |\n|---|---|---|{}---:|---:|{}---:|---:|---:|---:|---:|\n",
+          r.harness == Harness::loop ? " N |" : "",
+          r.harness == Harness::loop ? " cycles per light |" : "",
+          r.harness == Harness::loop ? "---:|" : "", r.harness == Harness::loop ? "---:|" : "");
+    }
+    const std::string method =
+        r.method + (r.harness != Harness::setup && r.split ? " (split)" : "");
+    out += fmt::format(
+        "| {} | {}{} | {} |{} {} | {} |{} {} | {} | {} | {} | {} |\n", method,
+        shader::to_string(r.lang), r.precision == "half" ? " half" : "", to_string(r.compile),
+        r.harness == Harness::loop ? fmt::format(" {} |", r.lights) : "", r.stats.instructions,
+        r.stats.inverse_throughput,
+        r.harness == Harness::loop ? fmt::format(" {:.1f} |", cycles_per_light(r)) : "",
+        r.stats.latency, r.stats.vgprs, r.stats.sgprs, r.stats.code_size, r.stats.branches);
   }
   return out;
 }

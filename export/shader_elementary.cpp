@@ -137,8 +137,12 @@ std::string helper_expm1(const Ctx& c, const Slots&) {
           R"(// (e^x - 1)/x: Taylor series sum x^n/(n+1)!, n <= 10, for |x| < 1 (first omitted
 // term < 2.1e-9), (e^x - 1)/x beyond (no expm1 in shading languages).
 {{INLINE}}float {{P}}expm1_over_x(float x) {{
-  if (abs(x) < 1.0f) return {};
-  return (exp(x) - 1.0f) / x;
+  float r;
+  if (abs(x) < 1.0f)
+    r = {};
+  else
+    r = (exp(x) - 1.0f) / x;
+  return r;
 }}
 )",
           horner_text("x", literals(expm1_over_x_series()))),
@@ -156,9 +160,14 @@ std::string helper_erf(const Ctx& c, const Slots& slots) {
         R"(// erf/erfc, [Tokuyoshi2022] Listing 5 structure: erf = x P(x^2) for |x| <= split,
 // erfc(|x|) = 2^(-|x| Q(|x|)) for split < |x| < cutoff (no 1 - erf cancellation), 0 beyond.
 {{INLINE}}float {{P}}erfc_pos(float a) {{
-  if (a >= {1}) return 0.0f;
-  if (a > {0}) return exp2(-a * {3});
-  return 1.0f - a * {2};
+  float r;
+  if (a >= {1})
+    r = 0.0f;
+  else if (a > {0})
+    r = exp2(-a * {3});
+  else
+    r = 1.0f - a * {2};
+  return r;
 }}
 {{INLINE}}float {{P}}erf(float x) {{
   float a = abs(x);

@@ -153,12 +153,14 @@ std::string gpu_cost_line(const ExportRequest& request) {
   }
   if (!measured)
     return fmt::format(
-        "// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`): not measured{}\n",
+        "// GPU cost of one call (ACO inverse throughput, cycles per wave, `sglab gpucost`): not "
+        "measured{}\n",
         request.gpu_cost_source.empty()
             ? std::string()
             : fmt::format(" for this code in {}", io::comment_text(request.gpu_cost_source)));
   return fmt::format(
-      "// GPU cost (ACO inverse throughput, cycles per wave, `sglab gpucost`; {}): {}\n",
+      "// GPU cost of one call (ACO inverse throughput, cycles per wave, `sglab gpucost`; {}): "
+      "{}\n",
       io::comment_text(request.gpu_cost_source), io::comment_text(costs));
 }
 }  // namespace

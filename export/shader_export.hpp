@@ -166,6 +166,14 @@ ElementaryError measure_elementary(std::string_view tier_id);
 // most accurate tier).
 ElementaryTier choose_tier(std::optional<double> model_error);
 
+// How a wrapper is dispatched. any_size: over buffers of any length, each
+// invocation checks its index against the buffer's length (the Vulkan sweep).
+// whole_groups: over exactly a whole number of 64-thread workgroups, so no
+// invocation checks anything and the method's call is in no branch (the
+// harnesses of `sglab gpucost`: ACO's estimate weights the code under a
+// divergent branch by 0.75, which would discount the method's cost).
+enum class Dispatch { any_size, whole_groups };
+
 // The sweep-grid wrapper: a compute shader (GLSL) or compute entry point
 // `main` (HLSL) reading float2 (cosine, kappa) from binding 0 and writing the
 // method's value to binding 1, both storage buffers of set 0, 64 threads per
@@ -173,7 +181,8 @@ ElementaryTier choose_tier(std::optional<double> model_error);
 // buffers stay float: the wrapper converts (cosine, kappa) to half before the
 // call and the result back to float after it.
 std::string compute_shader(Language lang, std::string_view exported_source,
-                           std::string_view entry_point, Precision precision = Precision::float32);
+                           std::string_view entry_point, Precision precision = Precision::float32,
+                           Dispatch dispatch = Dispatch::any_size);
 
 // The wrapper of a split export's per-pixel function: binding 0 holds the
 // cosines (float), binding 2 the lights (the export's struct, std430), binding
@@ -181,12 +190,32 @@ std::string compute_shader(Language lang, std::string_view exported_source,
 // for the n cosines; dispatched as (ceil(n / 64), number of lights, 1)
 // workgroups of 64 threads, so the light index is the workgroup's (uniform).
 std::string split_compute_shader(Language lang, std::string_view exported_source,
-                                 const ExportResult& exported);
+                                 const ExportResult& exported,
+                                 Dispatch dispatch = Dispatch::any_size);
 
 // The pre-pass of a split export: binding 0 holds kappas (float), binding 1
 // receives lights[i] = sglab_light_<ID>(kappas[i]) (light_floats floats each),
 // 64 threads per group.
 std::string light_compute_shader(Language lang, std::string_view exported_source,
-                                 const ExportResult& exported);
+                                 const ExportResult& exported,
+                                 Dispatch dispatch = Dispatch::any_size);
+
+// The per-pixel loop of a renderer over `lights` SG lights (1 to 64), one
+// invocation per pixel, dispatched in whole workgroups of 64 threads: binding 0
+// holds each pixel's normal (float4, xyz), binding 2 each light's axis and
+// amplitude (float4: xyz axis, w amplitude), binding 3 each light's state,
+// binding 1 receives the pixel's irradiance, sum over the lights of amplitude
+// times the method at cosine dot(axis, normal). With `light_struct` empty the
+// state is the light's kappa (float) and `entry_point` is the unsplit
+// (cosine, kappa) function; otherwise it is the split export's struct of that
+// name and `entry_point` its per-pixel (light, cosine) function. The light
+// index is the same in every invocation (wave-uniform loads). The lights are
+// written out one statement each, not as a loop: ACO's estimate counts the
+// body of any loop as 8 iterations whatever its trip count (Mesa's
+// aco_statistics.cpp), so only written-out lights make its figure the cost of
+// exactly `lights` lights.
+std::string loop_compute_shader(Language lang, std::string_view exported_source,
+                                std::string_view entry_point, std::string_view light_struct,
+                                int lights);
 
 }  // namespace sglab::shader

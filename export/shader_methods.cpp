@@ -16,16 +16,19 @@ std::string helper_product(const Ctx& c, const Slots&) {
 // cancellation or overflow (sglab/sg.hpp sg_product_with_normal; [Tokuyoshi2022] Eq. 1-2).
 {INLINE}{VEC3} {P}product_with_normal(float c, float kappa, float lambda) {
   float m = max(kappa, lambda);
-  if (!(m > 0.0f)) return {VEC3}(0.0f, 0.0f, 1.0f);
-  float ks = kappa / m;
-  float ls = lambda / m;
-  float diff = (kappa - lambda) / m;  // exact where kappa - lambda cancels (Sterbenz)
-  float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
-  float kmin = min(kappa, lambda);
-  float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
-  float c3 = 1.0f;
-  if (k3s > 0.0f) c3 = clamp((ks * c + ls) / k3s, -1.0f, 1.0f);
-  return {VEC3}(m * k3s, log_amp, c3);
+  {VEC3} prod = {VEC3}(0.0f, 0.0f, 1.0f);
+  if (m > 0.0f) {
+    float ks = kappa / m;
+    float ls = lambda / m;
+    float diff = (kappa - lambda) / m;  // exact where kappa - lambda cancels (Sterbenz)
+    float k3s = sqrt(diff * diff + 2.0f * ks * ls * (1.0f + c));
+    float kmin = min(kappa, lambda);
+    float log_amp = -2.0f * (kmin * ((1.0f - c) / (k3s + ks + ls)));
+    float c3 = 1.0f;
+    if (k3s > 0.0f) c3 = clamp((ks * c + ls) / k3s, -1.0f, 1.0f);
+    prod = {VEC3}(m * k3s, log_amp, c3);
+  }
+  return prod;
 }
 )",
                c);
@@ -36,10 +39,14 @@ std::string helper_steepness2022(const Ctx& c, const Slots&) {
       R"(// t(kappa) = kappa sqrt((0.5 kappa + A)/((kappa + B) kappa + C)) ([Tokuyoshi2022] Eq. 6),
 // in powers of 1/kappa for kappa >= 1 so that nothing overflows.
 {INLINE}float {P}steepness(float kappa) {
-  if (kappa < 1.0f)
-    return kappa * sqrt((0.5f * kappa + {P}steepness_A) / ((kappa + {P}steepness_B) * kappa + {P}steepness_C));
-  float r = 1.0f / kappa;
-  return sqrt(kappa) * sqrt((0.5f + {P}steepness_A * r) / (1.0f + ({P}steepness_B + {P}steepness_C * r) * r));
+  float t;
+  if (kappa < 1.0f) {
+    t = kappa * sqrt((0.5f * kappa + {P}steepness_A) / ((kappa + {P}steepness_B) * kappa + {P}steepness_C));
+  } else {
+    float r = 1.0f / kappa;
+    t = sqrt(kappa) * sqrt((0.5f + {P}steepness_A * r) / (1.0f + ({P}steepness_B + {P}steepness_C * r) * r));
+  }
+  return t;
 }
 )",
       c);
@@ -50,12 +57,16 @@ std::string helper_steepness2024(const Ctx& c, const Slots&) {
       R"(// t(kappa) = kappa sqrt(0.5((kappa + A) kappa + B)/(((kappa + C) kappa + D) kappa + E))
 // ([Tokuyoshi2024] Listing 7), in powers of 1/kappa for kappa >= 1.
 {INLINE}float {P}steepness(float kappa) {
-  if (kappa < 1.0f)
-    return kappa * sqrt(0.5f * ((kappa + {P}steepness_A) * kappa + {P}steepness_B) /
-                        (((kappa + {P}steepness_C) * kappa + {P}steepness_D) * kappa + {P}steepness_E));
-  float r = 1.0f / kappa;
-  return sqrt(kappa) * sqrt(0.5f * (1.0f + ({P}steepness_A + {P}steepness_B * r) * r) /
-                            (1.0f + ({P}steepness_C + ({P}steepness_D + {P}steepness_E * r) * r) * r));
+  float t;
+  if (kappa < 1.0f) {
+    t = kappa * sqrt(0.5f * ((kappa + {P}steepness_A) * kappa + {P}steepness_B) /
+                     (((kappa + {P}steepness_C) * kappa + {P}steepness_D) * kappa + {P}steepness_E));
+  } else {
+    float r = 1.0f / kappa;
+    t = sqrt(kappa) * sqrt(0.5f * (1.0f + ({P}steepness_A + {P}steepness_B * r) * r) /
+                           (1.0f + ({P}steepness_C + ({P}steepness_D + {P}steepness_E * r) * r) * r));
+  }
+  return t;
 }
 )",
       c);
@@ -89,9 +100,14 @@ std::string helper_poles2024(const Ctx& c, const Slots&) {
 // m = (1 - e)/kappa (one branch, one exp for both).
 {{INLINE}}{{VEC2}} {{P}}poles_over_two_pi(float kappa) {{
   float e = exp(-kappa);
-  if (kappa < 1.0f) return {{VEC2}}(e * {}, {});
-  float m = (1.0f - e) / kappa;
-  return {{VEC2}}(e * ((m - e) / kappa), (1.0f - m) / kappa);
+  {{VEC2}} poles = {{VEC2}}(0.0f, 0.0f);
+  if (kappa < 1.0f) {{
+    poles = {{VEC2}}(e * {}, {});
+  }} else {{
+    float m = (1.0f - e) / kappa;
+    poles = {{VEC2}}(e * ((m - e) / kappa), (1.0f - m) / kappa);
+  }}
+  return poles;
 }}
 )",
           horner_text("kappa", literals(pole_series(true))),
@@ -109,7 +125,7 @@ std::string helper_lerp2024(const Ctx& c, const Slots&) {
   float x = t * t * (c * c - 1.0f);
   float tail = 0.0f;
   if (t > 0.0f) tail = exp(-tz * tz) * (x * {P}expm1_over_x(x)) / t;
-  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t)) - 0.5f * 0.564189584f * tail, 0.0f, 1.0f);
+  return clamp(0.5f * (c * {P}erfc(-tz) + {P}erfc_pos(t) - 0.564189584f * tail), 0.0f, 1.0f);
 }
 )",
       c);
@@ -206,10 +222,14 @@ std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots) {
   return subst(
       fmt::format(R"(// t(kappa) = {}, in powers of 1/kappa for kappa >= 1.
 {{INLINE}}float {{P}}steepness(float kappa) {{
-  if (kappa < 1.0f)
-    return kappa * sqrt(0.5f * ({}) / ({}));
-  float r = 1.0f / kappa;
-  return sqrt(kappa) * sqrt(0.5f * ({}) / ({}));
+  float t;
+  if (kappa < 1.0f) {{
+    t = kappa * sqrt(0.5f * ({}) / ({}));
+  }} else {{
+    float r = 1.0f / kappa;
+    t = sqrt(kappa) * sqrt(0.5f * ({}) / ({}));
+  }}
+  return t;
 }}
 )",
                   form, monic(0, m), monic(m, m + 1), reciprocal(0, m), reciprocal(m, m + 1)),
@@ -283,9 +303,14 @@ std::string upper_over_two_pi_text(const Ctx& c) {
 // (1 - (1 - e^-kappa)/kappa)/kappa from there on, e^-kappa's argument stopped at 80
 // (sglab/sglab_fast.hpp upper_over_two_pi_fast).
 {{INLINE}}float {{P}}upper_over_two_pi(float kappa) {{
-  if (kappa < 0.25f) return {0};
-  float r = 1.0f / kappa;
-  return (1.0f - (1.0f - exp(-min(kappa, 80.0f))) * r) * r;
+  float upper;
+  if (kappa < 0.25f) {{
+    upper = {0};
+  }} else {{
+    float r = 1.0f / kappa;
+    upper = (1.0f - (1.0f - exp(-min(kappa, 80.0f))) * r) * r;
+  }}
+  return upper;
 }}
 )",
           horner_text("kappa", literals(series))),

@@ -139,7 +139,7 @@ std::string pixel_sglab_acc(const Ctx& c, const Slots& slots) {
   float z2 = z * z;
   float one_minus_c2 = 1.0f - c * c;
   float g = exp(-z2);
-  float x = -light.t2 * one_minus_c2;
+  float x = -(light.t2 * one_minus_c2);
   float h = light.t2 * light.tail_scale * {{P}}expm1_over_x(x);
   if (g > 0.0f) h += {};
   float f = clamp(0.5f * c * {{P}}erfc(-z) + light.half_erfc_t + g * one_minus_c2 * h, 0.0f, 1.0f);

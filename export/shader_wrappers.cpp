@@ -29,6 +29,13 @@ std::string call_text(Language lang, std::string_view entry, std::string_view x,
   return fmt::format("(float){}((half){}, (half){})", entry, x, y);
 }
 
+// The HLSL bounds check of an any_size dispatch, up to the guarded statement:
+// the buffer's length and `if (index < n) `.
+std::string hlsl_bounds_check(std::string_view buffer, std::string_view index) {
+  return fmt::format("uint n, stride;\n  {}.GetDimensions(n, stride);\n  if ({} < n) ", buffer,
+                     index);
+}
+
 // The prologue of a split wrapper (the per-pixel function and the light
 // pre-pass): in GLSL the version and workgroup size before the export, whose
 // light struct the buffers below it use.
@@ -41,14 +48,16 @@ std::string split_prologue(Language lang, std::string_view exported) {
 }  // namespace
 
 std::string compute_shader(Language lang, std::string_view exported, std::string_view entry,
-                           Precision precision) {
+                           Precision precision, Dispatch dispatch) {
   require_shader_language(lang, "compute_shader");
+  const bool checked = dispatch == Dispatch::any_size;
   if (lang == Language::glsl) {
     const std::string call =
         call_text(lang, entry, "cosine_kappa[i].x", "cosine_kappa[i].y", precision);
     // The half call is long: its assignment goes on a line of its own.
     const char* sep = precision == Precision::float16 ? "\n    " : " ";
-    return fmt::format(R"(#version 450
+    return fmt::format(
+        R"(#version 450
 layout(local_size_x = 64) in;
 layout(std430, set = 0, binding = 0) readonly buffer Inputs {{ vec2 cosine_kappa[]; }};
 layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[]; }};
@@ -56,10 +65,10 @@ layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[];
 {}
 void main() {{
   uint i = gl_GlobalInvocationID.x;
-  if (i < uint(cosine_kappa.length())){}result[i] = {};
+  {}result[i] = {};
 }}
 )",
-                       exported, sep, call);
+        exported, checked ? fmt::format("if (i < uint(cosine_kappa.length())){}", sep) : "", call);
   }
   return fmt::format(
       R"([[vk::binding(0, 0)]] StructuredBuffer<float2> cosine_kappa;
@@ -68,17 +77,18 @@ void main() {{
 {}
 [numthreads(64, 1, 1)]
 void main(uint3 id : SV_DispatchThreadID) {{
-  uint n, stride;
-  cosine_kappa.GetDimensions(n, stride);
-  if (id.x < n) result[id.x] = {};
+  {}result[id.x] = {};
 }}
 )",
-      exported, call_text(lang, entry, "cosine_kappa[id.x].x", "cosine_kappa[id.x].y", precision));
+      exported, checked ? hlsl_bounds_check("cosine_kappa", "id.x") : "",
+      call_text(lang, entry, "cosine_kappa[id.x].x", "cosine_kappa[id.x].y", precision));
 }
 
-std::string split_compute_shader(Language lang, std::string_view exported, const ExportResult& ex) {
+std::string split_compute_shader(Language lang, std::string_view exported, const ExportResult& ex,
+                                 Dispatch dispatch) {
   require_split(ex, "split_compute_shader");
   require_shader_language(lang, "split_compute_shader");
+  const bool checked = dispatch == Dispatch::any_size;
   if (lang == Language::glsl)
     return split_prologue(lang, exported) +
            fmt::format(
@@ -90,10 +100,10 @@ void main() {{
   uint i = gl_GlobalInvocationID.x;
   uint l = gl_WorkGroupID.y;
   uint n = uint(cosines.length());
-  if (i < n) result[l * n + i] = {1}(lights[l], cosines[i]);
+  {2}result[l * n + i] = {1}(lights[l], cosines[i]);
 }}
 )",
-               ex.light_struct, ex.entry_point);
+               ex.light_struct, ex.entry_point, checked ? "if (i < n) " : "");
   return split_prologue(lang, exported) +
          fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float> cosines;
 [[vk::binding(1, 0)]] RWStructuredBuffer<float> result;
@@ -103,15 +113,17 @@ void main() {{
 void main(uint3 id : SV_DispatchThreadID, uint3 group : SV_GroupID) {{
   uint n, stride;
   cosines.GetDimensions(n, stride);
-  if (id.x < n) result[group.y * n + id.x] = {1}(lights[group.y], cosines[id.x]);
+  {2}result[group.y * n + id.x] = {1}(lights[group.y], cosines[id.x]);
 }}
 )",
-                     ex.light_struct, ex.entry_point);
+                     ex.light_struct, ex.entry_point, checked ? "if (id.x < n) " : "");
 }
 
-std::string light_compute_shader(Language lang, std::string_view exported, const ExportResult& ex) {
+std::string light_compute_shader(Language lang, std::string_view exported, const ExportResult& ex,
+                                 Dispatch dispatch) {
   require_split(ex, "light_compute_shader");
   require_shader_language(lang, "light_compute_shader");
+  const bool checked = dispatch == Dispatch::any_size;
   if (lang == Language::glsl)
     return split_prologue(lang, exported) +
            fmt::format(
@@ -120,22 +132,71 @@ layout(std430, set = 0, binding = 1) writeonly buffer Lights {{ {0} lights[]; }}
 
 void main() {{
   uint i = gl_GlobalInvocationID.x;
-  if (i < uint(kappas.length())) lights[i] = {1}(kappas[i]);
+  {2}lights[i] = {1}(kappas[i]);
 }}
 )",
-               ex.light_struct, ex.light_function);
+               ex.light_struct, ex.light_function,
+               checked ? "if (i < uint(kappas.length())) " : "");
   return split_prologue(lang, exported) +
          fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float> kappas;
 [[vk::binding(1, 0)]] RWStructuredBuffer<{0}> lights;
 
 [numthreads(64, 1, 1)]
 void main(uint3 id : SV_DispatchThreadID) {{
-  uint n, stride;
-  kappas.GetDimensions(n, stride);
-  if (id.x < n) lights[id.x] = {1}(kappas[id.x]);
+  {2}lights[id.x] = {1}(kappas[id.x]);
 }}
 )",
-                     ex.light_struct, ex.light_function);
+                     ex.light_struct, ex.light_function,
+                     checked ? hlsl_bounds_check("kappas", "id.x") : "");
+}
+
+std::string loop_compute_shader(Language lang, std::string_view exported, std::string_view entry,
+                                std::string_view light_struct, int lights) {
+  require_shader_language(lang, "loop_compute_shader");
+  if (lights < 1 || lights > 64)
+    throw std::invalid_argument(
+        fmt::format("loop_compute_shader: {} lights (1 to 64 are written out)", lights));
+  const bool glsl = lang == Language::glsl;
+  const bool split = !light_struct.empty();
+  std::string sum;
+  for (int k = 0; k < lights; ++k) {
+    const std::string cosine = fmt::format("dot(axes[{}].xyz, n)", k);
+    sum += fmt::format("  e += axes[{}].w * {}({});\n", k, entry,
+                       split ? fmt::format("lights[{}], {}", k, cosine)
+                             : fmt::format("{}, kappas[{}]", cosine, k));
+  }
+  const std::string state =
+      split ? fmt::format("{} lights[]", light_struct) : std::string("float kappas[]");
+  if (glsl)
+    return split_prologue(lang, exported) +
+           fmt::format(
+               R"(layout(std430, set = 0, binding = 0) readonly buffer Normals {{ vec4 normals[]; }};
+layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[]; }};
+layout(std430, set = 0, binding = 2) readonly buffer Axes {{ vec4 axes[]; }};
+layout(std430, set = 0, binding = 3) readonly buffer States {{ {0}; }};
+
+void main() {{
+  uint i = gl_GlobalInvocationID.x;
+  vec3 n = normals[i].xyz;
+  float e = 0.0f;
+{1}  result[i] = e;
+}}
+)",
+               state, sum);
+  return split_prologue(lang, exported) +
+         fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float4> normals;
+[[vk::binding(1, 0)]] RWStructuredBuffer<float> result;
+[[vk::binding(2, 0)]] StructuredBuffer<float4> axes;
+[[vk::binding(3, 0)]] StructuredBuffer<{0}> {1};
+
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {{
+  float3 n = normals[id.x].xyz;
+  float e = 0.0f;
+{2}  result[id.x] = e;
+}}
+)",
+                     split ? light_struct : "float", split ? "lights" : "kappas", sum);
 }
 
 }  // namespace sglab::shader

@@ -126,8 +126,9 @@ std::string text_field(const fs::path& path, const json& obj, const char* key,
 
 namespace {
 
-// The table `doc` read from `path` (named in messages), validated.
-CostTable cost_table_from_json(const json& doc, const fs::path& path) {
+// The table `doc` read from `path` (named in messages), validated; its GPU
+// section read or skipped as `gpu` says.
+CostTable cost_table_from_json(const json& doc, const fs::path& path, GpuSection gpu) {
   if (!doc.is_object()) fail(path, "expected a JSON object");
   if (!doc.contains("format") || doc.at("format") != "sglab-costs")
     fail(path, "\"format\" must be \"sglab-costs\"");
@@ -200,7 +201,7 @@ CostTable cost_table_from_json(const json& doc, const fs::path& path) {
                              c.method, precision, mode));
     t.costs.push_back(std::move(c));
   }
-  if (doc.contains("gpu")) {
+  if (gpu == GpuSection::read && doc.contains("gpu")) {
     try {
       t.gpu = shader::gpu::report_from_json(doc.at("gpu"), "gpu");
     } catch (const std::runtime_error& e) {
@@ -212,7 +213,7 @@ CostTable cost_table_from_json(const json& doc, const fs::path& path) {
 
 }  // namespace
 
-CostTable read_cost_table(const fs::path& path) {
+CostTable read_cost_table(const fs::path& path, GpuSection gpu) {
   std::error_code ec;
   if (!fs::exists(path, ec))
     fail(path, "no such file (run `sglab bench --out DIR` to write DIR/costs.json)");
@@ -222,7 +223,7 @@ CostTable read_cost_table(const fs::path& path) {
   } catch (const io::InputError& e) {
     throw CostTableError(fmt::format("cost table {}", e.what()));
   }
-  return cost_table_from_json(doc, path);
+  return cost_table_from_json(doc, path, gpu);
 }
 
 CostTable builtin_cost_table() {
@@ -233,13 +234,13 @@ CostTable builtin_cost_table() {
   } catch (const io::InputError& e) {
     throw CostTableError(fmt::format("cost table {}", e.what()));
   }
-  return cost_table_from_json(doc, name);
+  return cost_table_from_json(doc, name, GpuSection::read);
 }
 
-std::optional<CostTable> read_existing_cost_table(const fs::path& path) {
+std::optional<CostTable> read_existing_cost_table(const fs::path& path, GpuSection gpu) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return std::nullopt;
-  return read_cost_table(path);
+  return read_cost_table(path, gpu);
 }
 
 std::optional<fs::path> default_cost_table_path() {

@@ -72,11 +72,16 @@ nlohmann::ordered_json to_json(const CostTable& table);
 void write_cost_table(const CostTable& table, const std::filesystem::path& path);
 // The largest cost table read (io::read_json_file); one written by `sglab bench` is about 20 KB.
 inline constexpr std::size_t kMaxCostTableBytes = 1 << 20;
+// Which parts of a table a reader takes: all of it, or all but the "gpu"
+// section (left unread and unchecked: for `sglab gpucost --out`, which
+// replaces it).
+enum class GpuSection { read, skip };
 // Reads and validates; throws CostTableError naming `path` and what is wrong.
-CostTable read_cost_table(const std::filesystem::path& path);
+CostTable read_cost_table(const std::filesystem::path& path, GpuSection gpu = GpuSection::read);
 // The table at `path` when it exists (validated), for a writer that replaces
 // one part of it; nullopt when there is no file.
-std::optional<CostTable> read_existing_cost_table(const std::filesystem::path& path);
+std::optional<CostTable> read_existing_cost_table(const std::filesystem::path& path,
+                                                  GpuSection gpu = GpuSection::read);
 
 // data/results/costs.json of the project that holds the working directory
 // (the first folder upwards with data/results and include/sglab), or nullopt.

@@ -52,10 +52,10 @@ struct PanelFrame {
   }
 };
 
-// The x-axis label of a cost source ("gpu:navi21" → GPU inverse throughput …).
+// The x-axis label of a cost source ("gpu:navi21" → GPU cycles per light per pixel …).
 std::string cost_axis_label(const ParetoPanel& p) {
   const auto parsed = parse_cost_source(p.source);
-  if (const auto* s = std::get_if<CostSource>(&parsed)) return s->describe();
+  if (const auto* s = std::get_if<CostSource>(&parsed)) return s->label();
   return fmt::format("cost ({})", p.unit);
 }
 
@@ -217,10 +217,11 @@ std::string pareto_plot(const FiguresOptions& opt, const std::string& stem,
   return plot;
 }
 
-// The GPU panel's companion: the inverse throughput (cycles) of its methods on
-// every other family of the cost table's "gpu" section (unsplit float GLSL
-// rows), written as <stem>_families.csv and drawn as a monospaced table at
-// screen position (x, y) downwards. Empty when there is no other family.
+// The GPU panel's companion: the same GPU figure (gpu_row, gpu_cost: per light
+// per pixel for gpu:FAMILY, one call for gpu-single:FAMILY) of its methods on
+// every other family of the cost table's "gpu" section, written as
+// <stem>_families.csv and drawn as a monospaced table at screen position
+// (x, y) downwards. Empty when there is no other family.
 std::string gpu_family_table(const FiguresOptions& opt, const ParetoPanel& p,
                              const std::string& stem, double x, double y, double line,
                              std::vector<fs::path>& files) {
@@ -228,29 +229,33 @@ std::string gpu_family_table(const FiguresOptions& opt, const ParetoPanel& p,
   const auto* source = std::get_if<CostSource>(&parsed);
   if (!opt.gpu || !source || source->kind != CostSourceKind::gpu) return "";
   std::vector<std::string> others;
-  std::map<std::pair<std::string, std::string>, std::int64_t> cycles;  // (method, family)
-  for (const shader::gpu::Row& r : opt.gpu->rows) {
-    if (r.lang != shader::Language::glsl || r.split || r.precision != "float" ||
-        r.family == source->family)
-      continue;
-    if (std::find(others.begin(), others.end(), r.family) == others.end())
+  for (const shader::gpu::Row& r : opt.gpu->rows)
+    if (r.family != source->family &&
+        std::find(others.begin(), others.end(), r.family) == others.end())
       others.push_back(r.family);
-    cycles[{r.method, r.family}] = r.stats.inverse_throughput;
-  }
+  std::map<std::pair<std::string, std::string>, double> cycles;  // (method, family)
+  for (const std::string& family : others)
+    for (const ParetoRow& r : p.rows) {
+      CostSource other = *source;
+      other.family = family;
+      if (const shader::gpu::Row* row = gpu_row(*opt.gpu, r.method, other))
+        cycles[{r.method, family}] = gpu_cost(*row);
+    }
   if (others.empty()) return "";
   std::string csv = "method," + fmt::format("{}", fmt::join(others, ",")) + "\n";
-  std::vector<std::string> lines = {"ACO inverse throughput (cycles per wave)",
-                                    fmt::format("on the other families, {}:", opt.gpu->driver),
-                                    fmt::format("{:<22}", "method")};
+  std::vector<std::string> lines = {
+      source->figure == GpuFigure::single ? "GPU cycles of one call (ACO estimate)"
+                                          : "GPU cycles per light per pixel (ACO estimate)",
+      fmt::format("on the other families, {}:", opt.gpu->driver), fmt::format("{:<22}", "method")};
   for (const std::string& family : others) lines.back() += fmt::format("{:>10}", family);
   for (const ParetoRow& r : p.rows) {
     csv += csv_field(r.method);
     lines.push_back(fmt::format("{:<22}", r.method));
     for (const std::string& family : others) {
       const auto it = cycles.find({r.method, family});
-      csv += it == cycles.end() ? "," : fmt::format(",{}", it->second);
+      csv += it == cycles.end() ? "," : fmt::format(",{:.4g}", it->second);
       lines.back() +=
-          it == cycles.end() ? fmt::format("{:>10}", "-") : fmt::format("{:>10}", it->second);
+          it == cycles.end() ? fmt::format("{:>10}", "-") : fmt::format("{:>10.3g}", it->second);
     }
     csv += "\n";
   }

@@ -48,9 +48,11 @@ std::string outside_valid_range_text(const std::vector<MethodPoint>& points) {
   return fmt::format("{}", fmt::join(out, ", "));
 }
 
-std::string cost_text(const MethodPoint& p) {
+std::string cost_text(const MethodPoint& p, bool with_form) {
   if (!std::isfinite(p.cost)) return "no cost";
-  return fmt::format("{:.3g} {}", p.cost, p.cost_unit);
+  return p.cost_form.empty() || !with_form
+             ? fmt::format("{:.3g} {}", p.cost, p.cost_unit)
+             : fmt::format("{:.3g} {}, {}", p.cost, p.cost_unit, p.cost_form);
 }
 
 void mark_frontier(std::vector<MethodPoint>& points) {
@@ -157,32 +159,42 @@ void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostM
 
 namespace {
 
-// The rows of gpu:FAMILY in the table (unsplit float GLSL), or CostTableError.
-std::vector<const shader::gpu::Row*> gpu_rows(const CostTable& table, const std::string& family) {
+// The gpu section of the table, refused (CostTableError) when it has no GLSL
+// float row of `source`'s figure on its family (the families it has are named).
+const shader::gpu::Report& gpu_report(const CostTable& table, const CostSource& source) {
   const std::string where =
       table.path.empty() ? std::string("the cost table") : table.path.string();
   if (!table.gpu)
     throw CostTableError(
-        fmt::format("--cost gpu:{}: {} has no \"gpu\" section (write it with `sglab gpucost --out "
+        fmt::format("--cost {}: {} has no \"gpu\" section (write it with `sglab gpucost --out "
                     "DIR`, or choose --cost cpu-batch)",
-                    family, where));
-  std::vector<const shader::gpu::Row*> rows;
+                    source.name(), where));
   std::vector<std::string> families;
+  bool found = false;
   for (const shader::gpu::Row& r : table.gpu->rows) {
     if (std::find(families.begin(), families.end(), r.family) == families.end())
       families.push_back(r.family);
-    if (r.family == family && r.lang == shader::Language::glsl && !r.split &&
-        r.precision == "float")
-      rows.push_back(&r);
+    found = found || (r.family == source.family && gpu_row(*table.gpu, r.method, source) == &r);
   }
-  if (rows.empty())
+  if (!found)
     throw CostTableError(fmt::format(
-        "--cost gpu:{}: {} has no GLSL rows for family '{}' (it has: {})", family, where, family,
-        families.empty() ? "none" : fmt::format("{}", fmt::join(families, ", "))));
-  return rows;
+        "--cost {}: {} has no GLSL rows {} for family '{}' (it has: {})", source.name(), where,
+        source.figure == GpuFigure::single ? "of one call (harness single)"
+                                           : "of the renderer's loop (harness loop)",
+        source.family, families.empty() ? "none" : fmt::format("{}", fmt::join(families, ", "))));
+  return *table.gpu;
 }
 
 }  // namespace
+
+const shader::gpu::Row* gpu_row(const shader::gpu::Report& report, std::string_view method,
+                                const CostSource& source) {
+  return source.figure == GpuFigure::single
+             ? shader::gpu::single_row(report, method, source.family)
+             : shader::gpu::renderer_row(report, method, source.family);
+}
+
+double gpu_cost(const shader::gpu::Row& row) { return shader::gpu::cycles_per_light(row); }
 
 std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
                                     const CostTable& table, const CostSource& source) {
@@ -194,14 +206,15 @@ std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::
           fmt::format("--cost {}: the GPU cost is that of the float shader export; use "
                       "--precision float or a cpu-* cost",
                       source.name()));
-    const std::vector<const shader::gpu::Row*> rows = gpu_rows(table, source.family);
+    const shader::gpu::Report& report = gpu_report(table, source);
     for (MethodPoint& p : points) {
-      const auto it = std::find_if(rows.begin(), rows.end(), [&](const shader::gpu::Row* r) {
-        return r->method == p.method;
-      });
-      p.cost = it == rows.end() ? none : static_cast<double>((*it)->stats.inverse_throughput);
+      const shader::gpu::Row* row = gpu_row(report, p.method, source);
+      p.cost = row ? gpu_cost(*row) : none;
       p.cost_unit = std::string(source.unit());
-      if (it == rows.end()) missing.push_back(p.method);
+      p.cost_form = row ? (source.figure == GpuFigure::single ? std::string("single call")
+                                                              : shader::gpu::renderer_form(*row))
+                        : std::string();
+      if (!row) missing.push_back(p.method);
     }
     return missing;
   }
@@ -251,6 +264,7 @@ validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::F
        {"cost", 3},
        {"cost_unit"},
        {"cost_source"},
+       {"cost_form"},
        {"max_peak_rel", 3},
        {"frontier"},
        {"in_valid_range"}});
@@ -260,7 +274,8 @@ validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::F
                validate::Table::text(to_string(f)), validate::Table::real(kappa_lo),
                validate::Table::real(kappa_hi), validate::Table::real(p.cost),
                validate::Table::text(p.cost_unit), validate::Table::text(source.name()),
-               validate::Table::real(p.max_peak_rel), validate::Table::integer(p.frontier ? 1 : 0),
+               validate::Table::text(p.cost_form), validate::Table::real(p.max_peak_rel),
+               validate::Table::integer(p.frontier ? 1 : 0),
                validate::Table::integer(p.in_valid_range ? 1 : 0)});
   return t;
 }
@@ -362,7 +377,7 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
           throw std::invalid_argument(
               fmt::format("{}: header lacks column '{}' (expected "
                           "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,"
-                          "max_peak_rel,frontier)",
+                          "cost_form,max_peak_rel,frontier,in_valid_range)",
                           path.string(), r));
       legacy = !col.count("cost") && col.count("ns_per_eval");
       for (const char* r : {"cost", "cost_unit", "cost_source"})
@@ -402,6 +417,7 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
                           legacy ? "ns_per_eval" : "cost");
     r.cost_unit = legacy ? "ns" : cells[col["cost_unit"]];
     r.cost_source = legacy ? "cpu-batch" : cells[col["cost_source"]];
+    if (col.count("cost_form")) r.cost_form = cells[col["cost_form"]];
     r.max_peak_rel = parse_number(cells[col["max_peak_rel"]], path, lineno, "max_peak_rel");
     rows.push_back(std::move(r));
   }

@@ -37,7 +37,11 @@ struct MethodPoint {
   Origin origin = Origin::published;  // from the registry (Method::origin)
   double cost = 0;                    // in cost_unit; NaN: no cost in the chosen source
   std::string cost_unit = "ns";       // CostSource::unit(): "cycles" or "ns"
-  double max_peak_rel = 0;            // +inf on non-finite output, NaN if nothing was measured
+  // Which GPU figure the cost is: "8-light loop (split)", "8-light loop (kappa
+  // per light)" (gpu:FAMILY, gpu::renderer_form) or "single call"
+  // (gpu-single:FAMILY); empty for CPU costs and methods without a cost.
+  std::string cost_form{};
+  double max_peak_rel = 0;  // +inf on non-finite output, NaN if nothing was measured
   bool frontier = false;
   // Whether every κ asked about lies in the method's valid range (its registry
   // card, sglab::ValidRange; mark_valid_range): outside it the method's stated
@@ -54,9 +58,11 @@ void mark_valid_range(std::vector<MethodPoint>& points, double kappa_lo, double 
 // "sglab_fast (valid for κ in [0, 1.1e+04])", joined by ", "; empty when none.
 std::string outside_valid_range_text(const std::vector<MethodPoint>& points);
 
-// "132 cycles", "15.1 ns" (3 significant digits), or "no cost" when the cost
-// is not finite: how every text output shows a point's cost.
-std::string cost_text(const MethodPoint& p);
+// "83.6 cycles, 8-light loop (split)", "15.1 ns" (3 significant digits, then
+// the GPU figure's form unless `with_form` is false, for a table that gives it
+// a column of its own), or "no cost" when the cost is not finite: how every
+// text output shows a point's cost.
+std::string cost_text(const MethodPoint& p, bool with_form = true);
 
 // Marks the Pareto frontier in place: a point is on it iff its cost and error
 // are finite, it is in its valid range, and no other such point dominates it
@@ -94,14 +100,21 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
 void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode,
                 int repetitions = 5, double min_time = 0.01);
 
-// Fills cost and cost_unit from a cost table (cost_table.hpp) in `source`:
-// cpu-*: the irradiance batch/scalar ns of precision `f`; gpu:FAMILY: the
-// inverse throughput of the unsplit float GLSL row of FAMILY (the shaders are
-// float: f must be float). A method without its row gets NaN ("no cost": it is
+// The row of the gpu section a GPU source reads for `method`
+// (gpu::renderer_row for gpu:FAMILY, gpu::single_row for gpu-single:FAMILY),
+// or nullptr; and its cost in cycles (per light: gpu::cycles_per_light).
+const shader::gpu::Row* gpu_row(const shader::gpu::Report& report, std::string_view method,
+                                const CostSource& source);
+double gpu_cost(const shader::gpu::Row& row);
+
+// Fills cost, cost_unit and cost_form from a cost table (cost_table.hpp) in
+// `source`: cpu-*: the irradiance batch/scalar ns of precision `f`;
+// gpu:FAMILY, gpu-single:FAMILY: gpu_cost of gpu_row (the shaders are float:
+// f must be float). A method without its row gets NaN ("no cost": it is
 // listed but neither recommended nor on the frontier); returns the ids of
 // those methods. Throws CostTableError naming the table when the source has no
-// rows at all (no "gpu" section, FAMILY not in it: the families it has are
-// named), std::invalid_argument for gpu:* with f double.
+// rows at all (no "gpu" section, no row of the figure on FAMILY: the families
+// it has are named), std::invalid_argument for gpu:* with f double.
 std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
                                     const CostTable& table, const CostSource& source);
 
@@ -116,10 +129,11 @@ struct MethodCostMap {
 MethodCostMap default_float_costs(const CostTable& table);
 
 // method, origin, precision, kappa_lo, kappa_hi, cost, cost_unit, cost_source,
-// max_peak_rel, frontier, in_valid_range (origin published/refit/sglab,
-// frontier and in_valid_range 0/1, cost_source CostSource::name()); the title
-// names the source, when given where its costs came from (`cost_from`:
-// table, driver or machine), and the methods outside their valid range.
+// cost_form, max_peak_rel, frontier, in_valid_range (origin
+// published/refit/sglab, frontier and in_valid_range 0/1, cost_source
+// CostSource::name(), cost_form MethodPoint::cost_form); the title names the
+// source and, when given, where its costs came from (`cost_from`: table,
+// driver or machine), and the methods outside their valid range.
 validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
                              double kappa_lo, double kappa_hi, const CostSource& source,
                              std::string_view cost_from = {});
@@ -130,16 +144,17 @@ bool parse_number(std::string_view text, double& out);
 std::optional<validate::FloatFormat> parse_precision(std::string_view text);
 
 // Parses `sglab pareto`'s CSV (RFC 4180; header
-// method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier
-// and optionally in_valid_range; origin is published, refit or sglab, frontier and
-// in_valid_range true/false or 1/0, in_valid_range true when absent). The CSV of
-// an older sglab, with ns_per_eval instead of the three cost columns, reads as
-// cost_unit "ns", cost_source "cpu-batch".
+// method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,cost_form,max_peak_rel,
+// frontier and optionally in_valid_range; origin is published, refit or sglab,
+// frontier and in_valid_range true/false or 1/0, in_valid_range true when
+// absent; cost_form may be absent). The CSV of an older sglab, with
+// ns_per_eval instead of the cost columns, reads as cost_unit "ns",
+// cost_source "cpu-batch".
 struct ParetoRow {
   std::string method, precision;
   Origin origin = Origin::published;
   double kappa_lo = 0, kappa_hi = 0, cost = 0, max_peak_rel = 0;
-  std::string cost_unit = "ns", cost_source = "cpu-batch";
+  std::string cost_unit = "ns", cost_source = "cpu-batch", cost_form;
   bool frontier = false;
   bool in_valid_range = true;
 };

@@ -4,9 +4,10 @@
 # command, so that no number in them is ever typed: `sglab run` (sweep, erf,
 # stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
 # out/results/run, the curated files copied from it, then the runs `sglab run`
-# does not make (GPU cost of the half exports, the Vulkan sweep with split and
-# half rows, the held-out sweep, half stability, the κ range of every method's
-# registry card, callgrind instruction counts),
+# does not make (GPU cost of the half exports, per light over 1 to 64 lights
+# and by compile path, the Vulkan sweep with split and half rows, the held-out
+# sweep, half stability, the κ range of every method's registry card,
+# callgrind instruction counts),
 # and the generated blocks of the Markdown files filled from them: each lies
 # between `<!-- generated: NAME (scripts/results.sh) -->` and
 # `<!-- end: NAME -->` and is replaced whole; the prose around it is not
@@ -38,6 +39,16 @@ cp "$run"/envmap/{envmaps.csv,envmaps.md,envmap_city.png,envmap_curves.png} "$re
 
 # 2. What `sglab run` does not make.
 "$sglab" gpucost --lang both --precision both --out "$results"  # the gpu section of costs.json, gpu_costs.md
+{ # cycles per light over 1, 8 and 64 lights (the 8-light loop is the default figure)
+  echo "# GPU cost per light against the number of lights"
+  echo
+  "$sglab" gpucost --families navi21,gfx1100 --harness loop --lights 1,8,64
+} >"$results/gpu_loop_lights.md"
+{ # what spirv-opt does to each language's exports
+  echo "# GPU cost by compile path: glslang's SPIR-V, legalized (HLSL), optimized"
+  echo
+  "$sglab" gpucost --families navi21,gfx1100 --lang both --compile none,legalized,optimized --harness single,loop
+} >"$results/gpu_compile_paths.md"
 "$sglab" sweep --backend cpu,vulkan --precision float,half --lang both --out "$work/vulkan"
 cp "$work/vulkan/summary.json" "$results/vulkan_sweep.json"
 cp "$work/vulkan/summary.md" "$results/sweep_summary.md"

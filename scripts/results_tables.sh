@@ -49,24 +49,29 @@ peak() { jq -r --arg m "$2" --arg p "${3:-float}" \
   '[.results[] | select(.method == $m and .quantity == "irradiance" and .precision == $p)][0].max_peak_rel // ""' "$1"; }
 worst_kappa() { jq -r --arg m "$2" \
   '[.results[] | select(.method == $m and .quantity == "irradiance" and .precision == "float")][0].worst_kappa // ""' "$1"; }
-# ACO inverse throughput of METHOD's GLSL float export on FAMILY (split: true|false).
+# ACO inverse throughput of one call of METHOD's GLSL float export (glslang's SPIR-V, harness
+# single) on FAMILY (split: true|false).
 cycles() { jq -r --arg m "$1" --arg f "$2" --argjson s "${3:-false}" \
-  '[.gpu.rows[] | select(.method == $m and .family == $f and .lang == "glsl" and .precision == "float" and .split == $s)][0].inverse_throughput // ""' "$costs"; }
+  '[.gpu.rows[] | select(.method == $m and .family == $f and .lang == "glsl" and .compile == "none" and .precision == "float" and .harness == "single" and .split == $s)][0].inverse_throughput // ""' "$costs"; }
+# GPU cycles per light per pixel of METHOD on FAMILY (--cost gpu:FAMILY): the 8-light loop of its
+# GLSL float export, the split form where it has one.
+per_light() { jq -r --arg m "$1" --arg f "$2" \
+  '[.gpu.rows[] | select(.method == $m and .family == $f and .lang == "glsl" and .compile == "none" and .precision == "float" and .harness == "loop" and .lights == 8)] | ([.[] | select(.split)] + [.[] | select(.split | not)])[0] | if . == null then "" else .inverse_throughput / .lights end' "$costs"; }
 batch_ns() { jq -r --arg m "$1" \
   '[.costs[] | select(.method == $m and .kind == "irradiance" and .precision == "float" and .mode == "batch")][0].ns_per_eval // ""' "$costs"; }
 instructions() { awk -F, -v m="$1" -v mode="$2" '$1 == m && $2 == mode { print $3 }' "$callgrind"; }
 
 # README.md: the table of sglab's own models.
 models_table() {
-  echo "| method | form | held-out max peak_rel | standard grid | GPU cycles | batch ns |"
-  echo "|---|---|---:|---:|---:|---:|"
+  echo "| method | form | held-out max peak_rel | standard grid | GPU cycles per light per pixel | GPU cycles, one call | batch ns |"
+  echo "|---|---|---:|---:|---:|---:|---:|"
   while IFS='|' read -r method form bold; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$method" "$form" "$bold" "$(peak "$heldout" "$method")" \
-      "$(peak "$standard" "$method")" "$(cycles "$method" navi21)" "$(batch_ns "$method")"
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$method" "$form" "$bold" "$(peak "$heldout" "$method")" \
+      "$(peak "$standard" "$method")" "$(per_light "$method" navi21)" "$(cycles "$method" navi21)" "$(batch_ns "$method")"
   done <<'EOF' | awk -F'\t' "$fmt_awk"'
     { name = $1; if (name !~ /^(vsgl2015|tokuyoshi2024)$/) name = "`" name "`"; else name = name " (published)";
       h = sig($4); s = sig($5); if ($3 == "bold") { h = "**" h "**"; s = "**" s "**" }
-      printf "| %s | %s | %s | %s | %s | %s |\n", name, $2, h, s, $6, sprintf("%.3g", $7) }'
+      printf "| %s | %s | %s | %s | %s | %s | %s |\n", name, $2, h, s, sprintf("%.3g", $6), $7, sprintf("%.3g", $8) }'
 vsgl2015|[Tokuyoshi2015] diffuse SG, one exp|
 tokuyoshi2024|[Tokuyoshi2024] lerp of the exact poles, erfc-based factor|
 sglab_acc1|2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P0(u), u = t/(t + s)|
@@ -110,16 +115,16 @@ fence <"$work/fit-sglab-acc.txt" | fill "$results/sglab_acc.md" fit
   done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), $4 }'
 } | fill "$results/sglab_acc.md" heldout
 cost_table() {  # METHOD...: callgrind and GPU cost, ratios to the first
-  echo "| method | scalar Ir | ratio | batch Ir | ratio | setup Ir | eval Ir | navi21 | ratio | gfx1100 | ratio | navi21 split |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| method | scalar Ir | ratio | batch Ir | ratio | setup Ir | eval Ir | navi21 | ratio | gfx1100 | ratio | navi21 split | navi21 per light | ratio |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   for m in "$@"; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
       "$(instructions "$m" setup)" "$(instructions "$m" eval)" \
-      "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" "$(cycles "$m" navi21 true)"
+      "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" "$(cycles "$m" navi21 true)" "$(per_light "$m" navi21)"
   done | awk -F'\t' "$fmt_awk"'
-    NR == 1 { s = $2; b = $3; n = $6; g = $7 }
-    { printf "| %s | %.0f | %s | %.0f | %s | %.0f | %.0f | %s | %s | %s | %s | %s |\n", $1, $2, ratio($2, s), $3, ratio($3, b),
-        $4, $5, $6, ratio($6, n), $7, ratio($7, g), $8 }'
+    NR == 1 { s = $2; b = $3; n = $6; g = $7; l = $9 }
+    { printf "| %s | %.0f | %s | %.0f | %s | %.0f | %.0f | %s | %s | %s | %s | %s | %.3g | %s |\n", $1, $2, ratio($2, s), $3, ratio($3, b),
+        $4, $5, $6, ratio($6, n), $7, ratio($7, g), $8, $9, ratio($9, l) }'
 }
 cost_table tokuyoshi2024 sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4 | fill "$results/sglab_acc.md" cost
 range_table sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4 tokuyoshi2024 | fill "$results/sglab_acc.md" kappa-range
@@ -135,14 +140,14 @@ fence <"$work/fit-sglab-fast.txt" | fill "$results/sglab_fast.md" fit
   done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), sig($4), sig($5), $6 }'
 } | fill "$results/sglab_fast.md" accuracy
 {
-  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split | navi21 per light |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
   for m in sglab_fast vsgl2015 tokuyoshi2024; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
       "$(instructions "$m" setup)" "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" \
-      "$(cycles "$m" navi21 true)"
+      "$(cycles "$m" navi21 true)" "$(per_light "$m" navi21)"
   done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
-                        printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8 }'
+                        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.3g |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }'
 } | fill "$results/sglab_fast.md" cost
 range_table sglab_fast tokuyoshi2024 vsgl2015 | fill "$results/sglab_fast.md" kappa-range
 for scene in studio sun_and_sky soft_room; do
@@ -165,14 +170,14 @@ fence <"$work/fit-sglab-mid.txt" | fill "$results/sglab_mid.md" fit
   done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), sig($4), sig($5), $6 }'
 } | fill "$results/sglab_mid.md" accuracy
 {
-  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split | gfx1100 split |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split | gfx1100 split | navi21 per light |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   for m in sglab_mid tokuyoshi2024 sglab_fast; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
       "$(instructions "$m" setup)" "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" \
-      "$(cycles "$m" navi21 true)" "$(cycles "$m" gfx1100 true)"
+      "$(cycles "$m" navi21 true)" "$(cycles "$m" gfx1100 true)" "$(per_light "$m" navi21)"
   done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
-                        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }'
+                        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.3g |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10 }'
 } | fill "$results/sglab_mid.md" cost
 range_table sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" kappa-range
 

@@ -43,6 +43,7 @@ TEST(CostSource, ParsesTheThreeForms) {
   for (const Case& c : {Case{"gpu:navi21", CostSourceKind::gpu, "navi21", "cycles"},
                         Case{"gpu:gfx1100", CostSourceKind::gpu, "gfx1100", "cycles"},
                         Case{"gpu:polaris10", CostSourceKind::gpu, "polaris10", "cycles"},
+                        Case{"gpu-single:navi21", CostSourceKind::gpu, "navi21", "cycles"},
                         Case{"cpu-batch", CostSourceKind::cpu_batch, "", "ns"},
                         Case{"cpu-scalar", CostSourceKind::cpu_scalar, "", "ns"}}) {
     const auto parsed = parse_cost_source(c.text);
@@ -52,6 +53,9 @@ TEST(CostSource, ParsesTheThreeForms) {
     EXPECT_EQ(s.kind, c.kind) << c.text;
     if (s.kind == CostSourceKind::gpu) {
       EXPECT_EQ(s.family, c.family) << c.text;
+      EXPECT_EQ(s.figure == sglab::report::GpuFigure::single,
+                std::string(c.text).starts_with("gpu-single:"))
+          << c.text;
     }
     EXPECT_EQ(s.unit(), c.unit) << c.text;
     EXPECT_EQ(s.name(), c.text);  // the name is what --cost takes back
@@ -63,10 +67,26 @@ TEST(CostSource, ParsesTheThreeForms) {
 }
 
 TEST(CostSource, RefusesEverythingElseQuotingIt) {
-  for (const std::string& bad : std::vector<std::string>{
-           "", "gpu", "gpu:", "gpu:Navi21", "GPU:navi21", "gpu:navi 21", " cpu-batch", "cpu-batch ",
-           "cpu", "cpu_batch", "cpu-batch,gpu:navi21", "gpu:navi21:x", "gpu:navi-21",
-           std::string("gpu:navi21\0x", 12), "gpu:" + std::string(33, 'a')}) {
+  for (const std::string& bad : std::vector<std::string>{"",
+                                                         "gpu",
+                                                         "gpu:",
+                                                         "gpu:Navi21",
+                                                         "GPU:navi21",
+                                                         "gpu:navi 21",
+                                                         " cpu-batch",
+                                                         "cpu-batch ",
+                                                         "gpu-single",
+                                                         "gpu-single:",
+                                                         "gpu-single:Navi21",
+                                                         "gpu_single:navi21",
+                                                         "gpu-loop:navi21",
+                                                         "cpu",
+                                                         "cpu_batch",
+                                                         "cpu-batch,gpu:navi21",
+                                                         "gpu:navi21:x",
+                                                         "gpu:navi-21",
+                                                         std::string("gpu:navi21\0x", 12),
+                                                         "gpu:" + std::string(33, 'a')}) {
     const auto parsed = parse_cost_source(bad);
     ASSERT_TRUE(std::holds_alternative<std::string>(parsed)) << "accepted '" << bad << "'";
     const std::string& why = std::get<std::string>(parsed);
@@ -89,8 +109,9 @@ TEST(CostSource, DefaultIsGpuInverseThroughputOnNavi21ForFloat) {
 // ---- cost tables ------------------------------------------------------------------
 
 // A well-formed table with a float batch cost for every irradiance method and,
-// when `gpu` is not empty, a GPU section with those inverse throughputs
-// (method → cycles) on `family`.
+// when `gpu` is not empty, a GPU section with those costs (method → cycles) on
+// `family`: rows of the renderer's loop over 8 lights (8 × cycles for all of
+// them, so cycles per light) and, at 1000 + cycles, of one call.
 nlohmann::ordered_json table_json(double ns, const std::map<std::string, long>& gpu,
                                   const std::string& family = "navi21") {
   nlohmann::ordered_json doc = {{"format", "sglab-costs"},
@@ -112,20 +133,25 @@ nlohmann::ordered_json table_json(double ns, const std::map<std::string, long>& 
   doc["costs"] = rows;
   if (gpu.empty()) return doc;
   auto g = nlohmann::ordered_json::array();
-  for (const auto& [method, cycles] : gpu)
-    g.push_back({{"method", method},
-                 {"family", family},
-                 {"lang", "glsl"},
-                 {"split", false},
-                 {"precision", "float"},
-                 {"instructions", 1},
-                 {"inverse_throughput", cycles},
-                 {"latency", 1},
-                 {"vgprs", 1},
-                 {"sgprs", 1},
-                 {"code_size", 4},
-                 {"branches", 0},
-                 {"spirv_hash", "0000000000000000"}});
+  for (const char* harness : {"loop", "single"})
+    for (const auto& [method, cycles] : gpu)
+      g.push_back(
+          {{"method", method},
+           {"family", family},
+           {"lang", "glsl"},
+           {"compile", "none"},
+           {"harness", harness},
+           {"lights", harness == std::string("loop") ? 8 : 1},
+           {"split", false},
+           {"precision", "float"},
+           {"instructions", 1},
+           {"inverse_throughput", harness == std::string("loop") ? 8 * cycles : 1000 + cycles},
+           {"latency", 1},
+           {"vgprs", 1},
+           {"sgprs", 1},
+           {"code_size", 4},
+           {"branches", 0},
+           {"spirv_hash", "0000000000000000"}});
   doc["gpu"] = {{"driver", "radv test"}, {"command", "hand-made"}, {"rows", g}};
   return doc;
 }
@@ -189,7 +215,8 @@ TEST(CostSourceCli, FamilyNotInTheTableIsNamedWithTheOnesItHas) {
   const auto r =
       run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--costs", t.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("navi10.json has no GLSL rows for family 'navi21' (it has: navi10)"),
+  EXPECT_NE(r.output.find("navi10.json has no GLSL rows of the renderer's loop (harness loop) "
+                          "for family 'navi21' (it has: navi10)"),
             std::string::npos)
       << r.output;
   EXPECT_EQ(
@@ -253,17 +280,27 @@ TEST(CostSourceCli, BadValuesExit2NamingTheOption) {
 // ---- the default and the recommendation under GPU cost -------------------------------
 
 // The project's committed cost table, parsed here as plain JSON: navi21's
-// inverse throughput of each method's unsplit float GLSL export.
-std::map<std::string, double> committed_navi21() {
+// cycles per light per pixel of each method's float GLSL export (no spirv-opt)
+// in the 8-light loop, its split form where it has one (`single`: the
+// inverse throughput of one unsplit call instead).
+std::map<std::string, double> committed_navi21(bool single = false) {
   std::ifstream in(fs::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" / "results" / "costs.json");
   std::stringstream text;
   text << in.rdbuf();
   const auto doc = nlohmann::json::parse(text.str());
   std::map<std::string, double> out;
-  for (const auto& row : doc.at("gpu").at("rows"))
-    if (row.at("family") == "navi21" && row.at("lang") == "glsl" && !row.at("split").get<bool>() &&
-        row.at("precision") == "float")
-      out[row.at("method")] = row.at("inverse_throughput").get<double>();
+  std::map<std::string, bool> split;
+  for (const auto& row : doc.at("gpu").at("rows")) {
+    if (row.at("family") != "navi21" || row.at("lang") != "glsl" || row.at("compile") != "none" ||
+        row.at("precision") != "float" || row.at("harness") != (single ? "single" : "loop") ||
+        row.at("lights") != (single ? 1 : 8))
+      continue;
+    const std::string method = row.at("method");
+    const bool is_split = row.at("split").get<bool>();
+    if (single ? is_split : (out.count(method) && split[method] && !is_split)) continue;
+    out[method] = row.at("inverse_throughput").get<double>() / row.at("lights").get<double>();
+    split[method] = is_split;
+  }
   return out;
 }
 
@@ -292,9 +329,24 @@ TEST(CostSourceCli, DefaultIsNavi21FromTheCostTable) {
     ++rows;
     EXPECT_NE(line.find(",cycles,gpu:navi21,"), std::string::npos) << line;
     const std::string method = line.substr(0, line.find(','));
-    EXPECT_NE(line.find(fmt::format(",{},cycles,", navi21.at(method))), std::string::npos) << line;
+    std::vector<std::string> fields;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+    ASSERT_GE(fields.size(), 9u) << line;
+    EXPECT_NEAR(std::stod(fields[5]), navi21.at(method), 5e-3 * navi21.at(method)) << line;
+    EXPECT_TRUE(fields[8] == "8-light loop (split)" ||
+                fields[8] == "8-light loop (kappa per light)")
+        << line;
   }
   EXPECT_EQ(rows, std::size(sglab::irradiance_methods));
+  // gpu-single:navi21: one unsplit call.
+  const auto single = committed_navi21(/*single=*/true);
+  const auto one_call = recommend_json({"--cost", "gpu-single:navi21"});
+  EXPECT_EQ(one_call.value("cost_source", ""), "gpu-single:navi21");
+  for (const auto& c : one_call["candidates"]) {
+    EXPECT_EQ(c["cost"].get<double>(), single.at(c["method"])) << c.dump();
+    EXPECT_EQ(c["cost_form"], "single call") << c.dump();
+  }
 }
 
 // README names the driver that measured the committed GPU costs: the one the

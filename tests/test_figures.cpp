@@ -98,30 +98,37 @@ TEST(Figures, OnePanelPerCostSource) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   sglab::test::TempDir dir("figures-panels");
   const std::string header =
-      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
-      "frontier\n";
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,cost_form,"
+      "max_peak_rel,frontier\n";
   sglab::io::write_file_atomic(
       dir.path / "gpu.csv",
       header +
-          "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,0.15,1\n"
-          "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,3e-5,1\n");
+          "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,8-light loop (split),0.15,1\n"
+          "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,8-light loop (split),3e-5,"
+          "1\n");
   sglab::io::write_file_atomic(
       dir.path / "cpu.csv",
       "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
       "vsgl2015,published,float,0.001,10000,3.7,0.15,1\n"
       "sglab_acc3,sglab,float,0.001,10000,18.3,3e-5,1\n");
   // The cost table's GPU rows: beside the navi21 panel, a table of the other families (here
-  // navi10).
+  // navi10) in the panel's figure, per light per pixel in the 8-light loop, the split form
+  // where there is one (vsgl2015's: 36/8 = 4.5 beside its unsplit 5.5), not one call (1000).
   std::string gpu_rows;
-  for (const auto& [method, family, cycles] : {std::tuple{"vsgl2015", "navi21", 3},
-                                               {"vsgl2015", "navi10", 4},
-                                               {"sglab_acc3", "navi21", 169},
-                                               {"sglab_acc3", "navi10", 177}})
+  for (const auto& [method, family, harness, split, cycles] :
+       {std::tuple{"vsgl2015", "navi21", "loop", true, 24},
+        {"vsgl2015", "navi10", "loop", true, 36},
+        {"vsgl2015", "navi10", "loop", false, 44},
+        {"vsgl2015", "navi10", "single", false, 1000},
+        {"sglab_acc3", "navi21", "loop", true, 1352},
+        {"sglab_acc3", "navi10", "loop", true, 1416}})
     gpu_rows += fmt::format(
-        R"({}{{"method": "{}", "family": "{}", "lang": "glsl", "split": false, "precision": "float", )"
-        R"("instructions": 1, "inverse_throughput": {}, "latency": 1, "vgprs": 1, "sgprs": 1, )"
+        R"({}{{"method": "{}", "family": "{}", "lang": "glsl", "compile": "none", "harness": "{}", )"
+        R"("lights": {}, "split": {}, "precision": "float", "instructions": 1, )"
+        R"("inverse_throughput": {}, "latency": 1, "vgprs": 1, "sgprs": 1, )"
         R"("code_size": 4, "branches": 0, "spirv_hash": "0"}})",
-        gpu_rows.empty() ? "" : ", ", method, family, cycles);
+        gpu_rows.empty() ? "" : ", ", method, family, harness,
+        harness == std::string("loop") ? 8 : 1, split, cycles);
   sglab::io::write_file_atomic(
       dir.path / "costs.json",
       R"({"format": "sglab-costs", "version": 1, "date": "2026-01-01T00:00:00Z", "command": "test", "machine": )"
@@ -134,7 +141,7 @@ TEST(Figures, OnePanelPerCostSource) {
        (dir.path / "cpu.csv").string(), "--costs", (dir.path / "costs.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(sglab::io::read_file(out / "e_pareto_1_families.csv"),
-            "method,navi10\nvsgl2015,4\nsglab_acc3,177\n");
+            "method,navi10\nvsgl2015,4.5\nsglab_acc3,177\n");
   EXPECT_FALSE(fs::exists(out / "e_pareto_2_families.csv"));  // the CPU panel has none
   const std::string gpu = sglab::io::read_file(out / "e_pareto_1_points.csv");
   const std::string cpu = sglab::io::read_file(out / "e_pareto_2_points.csv");
@@ -143,9 +150,8 @@ TEST(Figures, OnePanelPerCostSource) {
   EXPECT_EQ(gpu.find("18.3"), std::string::npos) << gpu;
   const std::string script = sglab::io::read_file(out / "e_pareto.gp");
   EXPECT_NE(script.find("set title '--cost gpu:navi21'"), std::string::npos);
-  EXPECT_NE(
-      script.find("set xlabel 'GPU inverse throughput on navi21 (cycles per wave, ACO estimate)'"),
-      std::string::npos);
+  EXPECT_NE(script.find("set xlabel 'GPU cycles per light per pixel on navi21 (ACO estimate)'"),
+            std::string::npos);
   EXPECT_NE(script.find("set title '--cost cpu-batch'"), std::string::npos);
   EXPECT_NE(script.find("set xlabel 'CPU batch ns/eval'"), std::string::npos);
   EXPECT_GT(fs::file_size(out / "e_pareto.png"), 1000u);

@@ -294,14 +294,15 @@ TEST(OnRadv, HalfRowsCostTheHalfExports) {
   EXPECT_EQ(alone.rows[0].stats.inverse_throughput, 0);
   EXPECT_EQ(alone.rows[0].stats.instructions, 0);
 
-  const auto r =
-      run_sglab({"gpucost", "--families", "navi21,gfx1100", "--precision", "both", "--lang", "both",
-                 "--method", "sglab_fast", "--method", "sglab_acc3", "--json"},
-                false);
+  const auto r = run_sglab(
+      {"gpucost", "--families", "navi21,gfx1100", "--precision", "both", "--lang", "both",
+       "--method", "sglab_fast", "--method", "sglab_acc3", "--harness", "single", "--json"},
+      false);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto doc = nlohmann::json::parse(r.output);
   int half = 0, single = 0, half_split = 0, single_split = 0;
   for (const auto& row : doc.at("rows")) {
+    EXPECT_EQ(row.at("harness"), "single");
     if (row.at("split").get<bool>())
       (row.at("precision") == "half" ? half_split : single_split) += 1;
     else
@@ -313,6 +314,11 @@ TEST(OnRadv, HalfRowsCostTheHalfExports) {
   // The default --form both adds the split rows, float only: the split export has no half form.
   EXPECT_EQ(single_split, 2 * 2 * 2);
   EXPECT_EQ(half_split, 0);
+  // The loop and setup harnesses are float only: with half alone they have nothing to cost.
+  const auto loop = run_sglab({"gpucost", "--families", "navi21", "--precision", "half", "--method",
+                               "sglab_fast", "--harness", "loop", "--json"},
+                              false);
+  EXPECT_EQ(loop.exit_code, 2) << loop.output;
 }
 
 }  // namespace

@@ -396,8 +396,8 @@ TEST(ParetoCli, WritesCsvWithExactHeader) {
   ASSERT_TRUE(std::fgets(line, sizeof line, f));
   std::fclose(f);
   EXPECT_EQ(std::string(line),
-            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
-            "frontier,in_valid_range\n");
+            "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,cost_form,"
+            "max_peak_rel,frontier,in_valid_range\n");
   // The column as read back, and a method flagged above its valid range.
   for (const auto& row : sglab::report::read_pareto_csv(std::filesystem::path(dir) / "pareto.csv"))
     EXPECT_TRUE(row.in_valid_range) << row.method;
