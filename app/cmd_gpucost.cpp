@@ -183,22 +183,23 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
   io::write_files_atomic(
       {{table_path, report::to_json(*table).dump(2) + "\n"},
        {dir / "gpu_costs.md",
-        fmt::format("# GPU cost: ACO statistics on RADV null devices\n\n"
-                  "Driver: {}. Command: `{}`. Each figure is the function's own: the method in its "
-                  "harness minus the same harness around a trivial body (VGPRs and SGPRs: the "
-                  "whole pipeline's). Every harness is dispatched in whole workgroups, so the "
-                  "method's call is in no branch (ACO's estimate counts the code under a "
-                  "divergent branch at 0.75 of its cost). Inverse throughput is ACO's estimate of "
-                  "the cycles one wave keeps a SIMD busy, not a timing. Compile path: none "
-                  "(glslang's SPIR-V), legalized (HLSL: SPIRV-Tools' legalization passes), "
-                  "optimized (SPIRV-Tools' performance passes, after legalization for HLSL). A "
-                  "method's GLSL and HLSL exports are the same code with the same control flow "
-                  "(a conditional with a costly arm is an if, never ?:, which glslang's HLSL "
-                  "front end evaluates on both sides; one return per function, so that the "
-                  "legalization's merge-return leaves the branches ACO keeps); "
-                  "OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% on "
-                  "navi21 and gfx1100, unoptimized and legalized.\n\n{}",
-                  report.driver, report.command, gpu::to_markdown(report)}});
+        fmt::format(
+            "# GPU cost: ACO statistics on RADV null devices\n\n"
+            "Driver: {}. Command: `{}`. Each figure is the function's own: the method in its "
+            "harness minus the same harness around a trivial body (VGPRs and SGPRs: the "
+            "whole pipeline's). Every harness is dispatched in whole workgroups, so the "
+            "method's call is in no branch (ACO's estimate counts the code under a "
+            "divergent branch at 0.75 of its cost). Inverse throughput is ACO's estimate of "
+            "the cycles one wave keeps a SIMD busy, not a timing. Compile path: none "
+            "(glslang's SPIR-V), legalized (HLSL: SPIRV-Tools' legalization passes), "
+            "optimized (SPIRV-Tools' performance passes, after legalization for HLSL). A "
+            "method's GLSL and HLSL exports are the same code with the same control flow "
+            "(a conditional with a costly arm is an if, never ?:, which glslang's HLSL "
+            "front end evaluates on both sides; one return per function, so that the "
+            "legalization's merge-return leaves the branches ACO keeps); "
+            "OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% on "
+            "navi21 and gfx1100, unoptimized and legalized.\n\n{}",
+            report.driver, report.command, gpu::to_markdown(report))}});
 }
 
 // The (method, split) pairs to cost: unsplit rows for every method, then

@@ -1074,7 +1074,7 @@ TEST(ResultsDocs, ParetoMatchesItsSources) {
       table_after(slurp(kResults / "pareto.md"), {"method", "origin", "precision", "kappa_lo"});
   ASSERT_EQ(rows.size(), csv.size());
   for (const auto& row : rows) {
-    ASSERT_EQ(row.size(), 11u);
+    ASSERT_EQ(row.size(), 12u);
     ASSERT_TRUE(csv.count(row[0])) << row[0];
     const auto& f = csv[row[0]];
     EXPECT_EQ(row[8], f[8]) << "pareto.md " << row[0] << " cost_form";
