@@ -13,6 +13,7 @@
 #include "common/args.hpp"
 #include "common/io.hpp"
 #include "common/json_input.hpp"
+#include "validate/irradiance_table.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::validate {
@@ -144,8 +145,8 @@ std::vector<Vec3> fibonacci_normals(std::size_t n) {
 }
 
 std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals) {
-  return lights * 2 * sizeof(SceneLight) + normals * sizeof(Vec3) +
-         std::max(kSceneChunkQueries, lights) * (sizeof(Query) + sizeof(ReferencePoint));
+  return lights * (2 * sizeof(SceneLight) + sizeof(IrradianceTable::Slice)) +
+         normals * sizeof(Vec3) + std::max(kSceneChunkQueries, lights) * sizeof(Query);
 }
 
 void check_scene_limits(std::size_t lights, std::size_t normals) {
@@ -158,7 +159,7 @@ void check_scene_limits(std::size_t lights, std::size_t normals) {
                                  kMaxSceneLights, mb));
   if (lights > kMaxScenePairs / std::max<std::size_t>(normals, 1))
     throw SceneError(fmt::format(
-        "{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} MB); "
+        "{} lights x {} normals = {} (light, normal) pairs, at most {} (it would hold {:.0f} MB); "
         "use fewer normals",
         lights, normals, static_cast<double>(lights) * static_cast<double>(normals), kMaxScenePairs,
         mb));
@@ -208,10 +209,11 @@ double method_value(const Method& m, FloatFormat precision, double cosine, doubl
 
 // The scene's RGB sums at every normal, exact (when `with_exact`) and with
 // each method, in units of the largest amplitude: visit(j, exact, approx) is
-// called once per normal j, from parallel tasks. The normals are taken in
-// chunks of at most kSceneChunkQueries (lobe, normal) pairs (one normal at
-// least); each chunk's reference points are evaluated in parallel, then its
-// normals summed in parallel.
+// called once per normal j, from parallel tasks. The exact value is the
+// irradiance table's (validate/irradiance_table.hpp: the reference quadrature
+// to 1e−10 of each lobe's peak), one slice E(·, κ) per lobe. The normals are
+// taken in chunks of at most kSceneChunkQueries (lobe, normal) pairs (one
+// normal at least), each chunk's normals summed in parallel.
 template <class Visit>
 void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
                       std::span<const Method> methods, FloatFormat precision, bool with_exact,
@@ -220,20 +222,18 @@ void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
   const std::size_t nl = lobes.size();
   const std::size_t per_chunk =
       std::max<std::size_t>(1, kSceneChunkQueries / std::max<std::size_t>(nl, 1));
+  // E(·, κ) of each lobe (the irradiance table: the quadrature to 1e−10 of the peak).
+  std::vector<IrradianceTable::Slice> exact_of;
+  if (with_exact) {
+    exact_of.reserve(nl);
+    for (const Lobe& l : lobes) exact_of.push_back(irradiance_table().slice(l.kappa));
+  }
   std::vector<Query> queries;
-  std::vector<ReferencePoint> ref;
   for (std::size_t j0 = 0; j0 < normals.size(); j0 += per_chunk) {
     const std::size_t j1 = std::min(normals.size(), j0 + per_chunk);
     queries.clear();
     for (std::size_t j = j0; j < j1; ++j)
       for (const Lobe& l : lobes) queries.push_back({l.kappa, cosine(l.axis, normals[j])});
-    if (with_exact) {
-      ref = reference_engine().evaluate(queries);
-      // The engine caches every point; a scene's points are met once, so keep
-      // the cache from growing with the scene (as `sglab reference` does).
-      if (reference_engine().cache_size() > 4 * kSceneChunkQueries)
-        reference_engine().clear_cache();
-    }
     tbb::parallel_for(j0, j1, [&](std::size_t j) {
       Vec3 exact{0, 0, 0};
       std::vector<Vec3> approx(methods.size(), Vec3{0, 0, 0});
@@ -241,7 +241,7 @@ void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
       for (std::size_t i = 0; i < nl; ++i) {
         const Query& q = queries[q0 + i];
         const Vec3& a = lobes[i].amplitude;
-        const double e = with_exact ? ref[q0 + i].irradiance : 0.0;
+        const double e = with_exact ? exact_of[i](q.cosine) : 0.0;
         for (std::size_t ch = 0; ch < 3; ++ch) exact[ch] += a[ch] * e;
         for (std::size_t m = 0; m < methods.size(); ++m) {
           const double v = method_value(methods[m], precision, q.cosine, q.kappa);
