@@ -21,6 +21,7 @@
 #include <boost/math/special_functions/bessel.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
+#include "sglab/closed_forms.hpp"
 #include "tests/test_support.hpp"
 #include "validate/irradiance_table.hpp"
 #include "validate/reference.hpp"
@@ -30,7 +31,6 @@ namespace {
 using sglab::test::hex;
 using sglab::validate::check_irradiance_table;
 using sglab::validate::irradiance_odd_slope;
-using sglab::validate::irradiance_peak;
 using sglab::validate::irradiance_table;
 using sglab::validate::irradiance_table_check_points;
 using sglab::validate::irradiance_table_cosine_range;
@@ -141,7 +141,7 @@ TEST(IrradianceTable, ClosedFormsAtThePolesAndTheEquator) {
           << "E(0, κ) at κ=" << kappa;
     }
     // The closed forms the table itself uses, relative to themselves.
-    EXPECT_NEAR(irradiance_peak(kappa) / peak, 1.0, 1e-15) << "E(1, κ) at κ=" << kappa;
+    EXPECT_NEAR(sglab::irradiance_upper(kappa) / peak, 1.0, 1e-15) << "E(1, κ) at κ=" << kappa;
     const double slope = static_cast<double>(e_plus - e_minus);
     EXPECT_NEAR(irradiance_odd_slope(kappa) / slope, 1.0, 1e-15) << "M(κ) at κ=" << kappa;
   }
@@ -158,7 +158,7 @@ TEST(IrradianceTable, OddPartIsLinearInTheCosine) {
     for (double c : {0.05, 0.3, 0.7, 0.99}) {
       const double odd =
           engine.evaluate(kappa, c).irradiance - engine.evaluate(kappa, -c).irradiance;
-      EXPECT_NEAR(odd, c * irradiance_odd_slope(kappa), 2e-15 * irradiance_peak(kappa))
+      EXPECT_NEAR(odd, c * irradiance_odd_slope(kappa), 2e-15 * sglab::irradiance_upper(kappa))
           << "κ=" << kappa << " c=" << c;
     }
 }
@@ -170,7 +170,7 @@ TEST(IrradianceTable, ShadowBeyondTheRangeIsBelowTheBound) {
   for (double kappa : {64.0, 64.5, 100.0, 1e3, 1e4, 1e6, 1e10, 1e15, 1e30, 1e300}) {
     const double a_max = irradiance_table_cosine_range(kappa);
     ASSERT_LE(a_max, 1.0);
-    const double peak = irradiance_peak(kappa);
+    const double peak = sglab::irradiance_upper(kappa);
     EXPECT_LE(engine.evaluate(kappa, -a_max).irradiance, 1e-16 * peak) << "κ=" << kappa;
     double previous = 0;
     for (int i = 0; i <= 64; ++i) {

@@ -18,6 +18,7 @@
 #include <tbb/task_arena.h>
 
 #include "common/io.hpp"
+#include "sglab/closed_forms.hpp"
 
 namespace sglab::validate {
 
@@ -87,20 +88,6 @@ void chebyshev_coefficients(std::vector<double>& v, int n, std::size_t stride, i
 double value_scale(double kappa) { return std::sqrt(std::max(kappa, 1.0)); }
 
 }  // namespace
-
-double irradiance_peak(double kappa) {
-  if (kappa < 1) {
-    // (κ − 1 + e^{−κ})/κ² = Σ_{k≥0} (−κ)^k/(k + 2)!: alternating, terms decreasing.
-    double term = 0.5, sum = 0;
-    for (int k = 0; k < 40 && term != 0; ++k) {
-      sum += term;
-      term *= -kappa / (k + 3);
-    }
-    return kTwoPi * sum;
-  }
-  // 2π/κ · (1 − (1 − e^{−κ})/κ): no κ², so no overflow.
-  return kTwoPi / kappa * (1 + std::expm1(-kappa) / kappa);
-}
 
 double irradiance_odd_slope(double kappa) {
   if (kappa < 1) {
@@ -198,7 +185,7 @@ IrradianceTable::IrradianceTable() {
       for (int j = 0; j < nc; ++j, ++at) {
         const ReferencePoint& r = ref[at];
         v[static_cast<std::size_t>(i * nc + j)] =
-            value_scale(r.kappa) * r.irradiance / irradiance_peak(r.kappa);
+            value_scale(r.kappa) * r.irradiance / irradiance_upper(r.kappa);
       }
     chebyshev_coefficients(v, nc, 1, nk, static_cast<std::size_t>(nc));  // along a
     chebyshev_coefficients(v, nk, static_cast<std::size_t>(nc), nc, 1);  // along κ
@@ -222,7 +209,7 @@ IrradianceTable::Slice IrradianceTable::slice(double kappa) const {
   s.n_ = p.cosine_nodes;
   s.a_max_ = irradiance_table_cosine_range(kappa);
   s.two_over_a_max_ = 2 / s.a_max_;
-  s.scale_ = irradiance_peak(kappa) / value_scale(kappa);
+  s.scale_ = irradiance_upper(kappa) / value_scale(kappa);
   s.slope_ = irradiance_odd_slope(kappa);
   // b_n = Σ_m a_mn T_m(y_κ); T_{m+1} = 2y T_m − T_{m−1}, started from T_{−1} = y, T_0 = 1.
   const double y = p.y_of_kappa(kappa);
@@ -293,7 +280,7 @@ IrradianceTableCheck check_irradiance_table(std::span<const Query> points, bool 
     engine.clear_cache();
     for (std::size_t i = 0; i < chunk.size(); ++i) {
       const double e = table.irradiance(chunk[i].kappa, chunk[i].cosine);
-      const double err = std::abs(e - ref[i].irradiance) / irradiance_peak(chunk[i].kappa);
+      const double err = std::abs(e - ref[i].irradiance) / irradiance_upper(chunk[i].kappa);
       if (!(err <= out.max_error)) {  // NaN is the worst
         out.max_error = std::isnan(err) ? kInf : err;
         out.worst_kappa = chunk[i].kappa;

@@ -57,9 +57,6 @@ namespace sglab::validate {
 // The stated bound, relative to the peak E(1, κ) (see above).
 inline constexpr double kIrradianceTableBound = 1e-10;
 
-// E(1, κ) = 2π(κ − 1 + e^{−κ})/κ² (docs/quantities.md), without cancellation
-// (a series below κ = 1) and without overflow up to the largest double.
-double irradiance_peak(double kappa);
 // M(κ) = E(1, κ) − E(−1, κ) = 2π((κ − 1) + (κ + 1)e^{−2κ})/κ², the slope of
 // the odd part E(c) − E(−c) = c·M (see above), likewise.
 double irradiance_odd_slope(double kappa);
