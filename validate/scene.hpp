@@ -27,9 +27,9 @@
 // per (distinct light, normal).
 // Lights with the same sharpness and axis are one lobe (their amplitudes
 // summed: the exact and the approximate per-light values depend on κ and c
-// only). The normals are walked in chunks of at most kSceneChunkQueries
-// (light, normal) pairs, each evaluated in parallel (TBB), so memory does not
-// grow with the light or normal count beyond the scene and normals themselves.
+// only). The normals are summed in parallel (TBB) in blocks of at most
+// kSceneBlockNormals, each holding its sums alone, so memory does not grow
+// with the (light, normal) pairs beyond the scene and normals themselves.
 #pragma once
 
 #include <array>
@@ -73,7 +73,7 @@ struct SceneError : std::invalid_argument {
 inline constexpr std::size_t kMaxSceneLights = 100000;
 inline constexpr std::size_t kMaxSceneNormals = 1000000;
 inline constexpr std::size_t kMaxScenePairs = 50000000;
-inline constexpr std::size_t kSceneChunkQueries = std::size_t{1} << 16;
+inline constexpr std::size_t kSceneBlockNormals = 16;
 
 // The largest scene file read (io::read_input_file), about 100,000 lights.
 inline constexpr std::size_t kMaxSceneFileBytes = 16 << 20;
@@ -84,7 +84,8 @@ inline constexpr std::size_t kMaxSceneFileBytes = 16 << 20;
 Scene parse_scene(std::string_view text, std::string_view source);
 
 // Bytes a scene evaluation of `lights` lights at `normals` normals holds at
-// most (the lights, the normals and one chunk of queries and results).
+// most: the lights (with one slice of the irradiance table each) and the
+// normals; each parallel task adds one block's sums (a few KB).
 std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals);
 
 // Throws SceneError (naming the limit, the pair count and the memory) when
