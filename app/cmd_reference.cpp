@@ -1,5 +1,9 @@
 // `sglab reference --points FILE [--precision standard|high]`: the reference
 // engine (validate/reference.hpp) on the points of a CSV file.
+// `sglab reference --check-table [--oversample K]`: the irradiance table
+// (validate/irradiance_table.hpp) against the quadrature on the grid K times
+// finer than its nodes (check_irradiance_table), per piece; exit 1 when any
+// point is beyond its bound.
 //
 // Input: a header line `kappa,cosine`, then one `κ,c` per line (finite
 // κ ≥ 0, c ∈ [−1, 1]); CRLF line ends and blanks around fields are accepted,
@@ -12,6 +16,7 @@
 // mark before the header is skipped. Rows are streamed (memory does not grow
 // with the file); progress on stderr when it is a terminal.
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +34,7 @@
 #include "app/points.hpp"
 #include "common/args.hpp"
 #include "common/io.hpp"
+#include "validate/irradiance_table.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::app {
@@ -53,6 +59,49 @@ std::vector<std::string_view> split(std::string_view line) {
     start = comma + 1;
   }
   return fields;
+}
+
+// The dense check of the irradiance table, one line per piece, then the whole.
+void check_table(int oversample) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const validate::IrradianceTable& table = validate::irradiance_table();
+  const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::size_t nodes = 0;
+  for (const auto& p : table.pieces()) nodes += p.coefficients.size();
+  fmt::print(
+      "irradiance table: {} pieces, {} nodes, built in {:.2f} s; checked against the quadrature "
+      "at the angles πj/(kn), k = {}, of each piece's n nodes per direction (between the nodes, "
+      "none of them a node, and on the piece edges), both signs of c\n\n",
+      table.pieces().size(), nodes, build, oversample);
+  fmt::print("  {:<22} {:>7} {:>9} {:>13}  {}\n", "piece (κ)", "nodes", "points", "max error",
+             "worst (κ, c)");
+  const auto points = validate::irradiance_table_check_points(oversample);
+  validate::IrradianceTableCheck all;
+  for (const auto& p : table.pieces()) {
+    std::vector<validate::Query> mine;
+    for (const auto& q : points)
+      if (&table.piece_of(q.kappa) == &p) mine.push_back(q);
+    const auto r = validate::check_irradiance_table(mine, true);
+    const char* axis = p.axis == validate::IrradianceTable::Axis::linear
+                           ? "κ"
+                           : (p.axis == validate::IrradianceTable::Axis::log ? "ln κ" : "1/κ");
+    fmt::print("  {:<22} {:>7} {:>9} {:>13.3g}  ({:.6g}, {:.6g})\n",
+               fmt::format("[{:g}, {:g}] in {}", p.kappa_lo, p.kappa_hi, axis),
+               fmt::format("{}x{}", p.kappa_nodes, p.cosine_nodes), r.points, r.max_error,
+               r.worst_kappa, r.worst_cosine);
+    all.points += r.points;
+    if (!(r.max_error <= all.max_error))
+      all = {all.points, r.max_error, r.worst_kappa, r.worst_cosine};
+  }
+  fmt::print(
+      "\n  all: {} points, max |E_table − E| / E(1, κ) = {:.3g} at κ = {:.17g}, c = {:.17g} "
+      "(bound {:g})\n",
+      all.points, all.max_error, all.worst_kappa, all.worst_cosine,
+      validate::kIrradianceTableBound);
+  std::fflush(stdout);
+  if (!(all.max_error <= validate::kIrradianceTableBound))
+    throw std::runtime_error(fmt::format("the irradiance table exceeds its bound {:g}: {:.3g}",
+                                         validate::kIrradianceTableBound, all.max_error));
 }
 
 }  // namespace
@@ -135,14 +184,32 @@ void add_reference_command(CLI::App& app) {
                                  "quadrature at the points of a CSV file");
   auto points = std::make_shared<std::string>();
   auto precision = std::make_shared<std::string>("standard");
+  auto check = std::make_shared<bool>(false);
+  auto oversample = std::make_shared<int>(9);
   cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")
-      ->required()
       ->check(non_empty_path());
   cmd->add_option("--precision", *precision,
                   "standard (double quadrature) or high (50-digit, slow)")
       ->check(CLI::IsMember({"standard", "high"}))
       ->capture_default_str();
-  cmd->callback([points, precision] {
+  cmd->add_flag("--check-table", *check,
+                "instead: check the irradiance table (the fast E of scenes and envmaps) against "
+                "the quadrature between its nodes; exit 1 beyond its bound");
+  cmd->add_option("--oversample", *oversample,
+                  "--check-table: the grid is this many times finer than the nodes (odd)")
+      ->check(count_in(1, 31))
+      ->capture_default_str();
+  cmd->callback([points, precision, check, oversample] {
+    if (points->empty() == !*check)
+      throw InputError("give exactly one of --points FILE and --check-table");
+    if (*check) {
+      if (*oversample % 2 == 0)
+        throw InputError(fmt::format(
+            "--oversample: must be odd (an even one puts grid points on the nodes), got {}",
+            *oversample));
+      check_table(*oversample);
+      return;
+    }
     // One pass: rows are evaluated and printed a chunk at a time, so memory
     // does not grow with the file; a bad row stops the command after the
     // rows before it are printed.

@@ -3,6 +3,10 @@
 // uniform in [−1, 1]) so that nothing is served from the cache. Read
 // `items_per_second`. The batch benchmark uses every core (TBB) and is timed
 // in wall-clock time; the single benchmark is one thread.
+// Then the irradiance table (validate/irradiance_table.hpp), E alone to 1e−10
+// of the peak, on the same kind of points, one thread: a point at a time
+// (a slice per point), many cosines per κ (the slice of a scene's lobe), and
+// the build at first use.
 //
 //   build-ref/bench/bench_reference --benchmark_min_time=2
 #include <cmath>
@@ -12,10 +16,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include "validate/irradiance_table.hpp"
 #include "validate/reference.hpp"
 
 namespace {
 
+using sglab::validate::irradiance_table;
+using sglab::validate::IrradianceTable;
 using sglab::validate::Precision;
 using sglab::validate::Query;
 using sglab::validate::ReferenceEngine;
@@ -89,5 +96,42 @@ void BM_ReferenceHighBatch(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * 32));
 }
 BENCHMARK(BM_ReferenceHighBatch)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The irradiance table, one point at a time: a slice of its κ, then E.
+void BM_IrradianceTableSingle(benchmark::State& state) {
+  std::mt19937_64 rng(5);
+  const auto points = random_points(rng, 1 << 16);
+  const IrradianceTable& table = irradiance_table();  // built outside the timing
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(table.irradiance(points[i].kappa, points[i].cosine));
+    i = (i + 1) & (points.size() - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_IrradianceTableSingle)->Unit(benchmark::kNanosecond);
+
+// The irradiance table, 4096 cosines per slice (a scene's lobe at every normal).
+void BM_IrradianceTableSlice(benchmark::State& state) {
+  std::mt19937_64 rng(6);
+  const auto points = random_points(rng, 4096);
+  const IrradianceTable& table = irradiance_table();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const IrradianceTable::Slice slice = table.slice(points[k].kappa);
+    double sum = 0;
+    for (const auto& p : points) sum += slice(p.cosine);
+    benchmark::DoNotOptimize(sum);
+    k = (k + 1) % points.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * points.size()));
+}
+BENCHMARK(BM_IrradianceTableSlice)->Unit(benchmark::kMicrosecond);
+
+// Building the table: one quadrature per node, on every core (wall-clock).
+void BM_IrradianceTableBuild(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(IrradianceTable().pieces().size());
+}
+BENCHMARK(BM_IrradianceTableBuild)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace

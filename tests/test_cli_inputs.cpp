@@ -211,6 +211,35 @@ TEST(ReferenceStreaming, OutputKeepsEveryRowInOrderAcrossChunks) {
   EXPECT_EQ(lines, static_cast<std::size_t>(rows) + 1);
 }
 
+// `sglab reference --check-table`: one line per piece of the irradiance table
+// and the whole, within the bound; exactly one of --points and --check-table,
+// and an odd --oversample (an even one puts grid points on the nodes), else exit 2.
+TEST(ReferenceCheckTable, ReportsEveryPieceWithinTheBoundAndRefusesBadArguments) {
+  const auto r = sglab::test::run_sglab({"reference", "--check-table", "--oversample", "1"}, false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::regex piece(R"(\n  \[[^\]]+\] in .+? +\d+x\d+ +\d+ +([0-9.e+-]+)  \()");
+  int pieces = 0;
+  for (auto it = std::sregex_iterator(r.output.begin(), r.output.end(), piece);
+       it != std::sregex_iterator(); ++it, ++pieces)
+    EXPECT_LE(std::stod((*it)[1].str()), 1e-10) << (*it)[0].str();
+  EXPECT_EQ(pieces, 7) << r.output;
+  std::smatch all;
+  ASSERT_TRUE(
+      std::regex_search(r.output, all, std::regex(R"(all: (\d+) points, .* = ([0-9.e+-]+) at)")))
+      << r.output;
+  EXPECT_GT(std::stoul(all[1].str()), 5000u);
+  EXPECT_LE(std::stod(all[2].str()), 1e-10);
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"reference"},
+        {"reference", "--check-table", "--points", "points.csv"},
+        {"reference", "--check-table", "--oversample", "2"},
+        {"reference", "--check-table", "--oversample", "0"}}) {
+    const auto b = sglab::test::run_sglab(bad);
+    EXPECT_EQ(b.exit_code, 2) << bad.back() << ": " << b.output;
+    EXPECT_EQ(b.output.find("irradiance table:"), std::string::npos) << b.output;
+  }
+}
+
 TEST(ReferenceStreaming, MemoryDoesNotGrowWithTheFile) {
 #if defined(__SANITIZE_ADDRESS__)
   // AddressSanitizer keeps freed memory in quarantine, so peak RSS grows with

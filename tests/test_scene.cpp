@@ -288,10 +288,10 @@ TEST(Scene, ErrorOfExtremeAmplitudesEqualsUnitAmplitudes) {
   EXPECT_NEAR(bright, error(two_lights("1")), 1e-12);
 }
 
-// The streamed, all-methods pass equals the per-method sums, across more than
-// one chunk of (light, normal) pairs; lights with the same sharpness and axis
+// The all-methods pass equals the per-method sums, over many blocks of normals
+// and a partial one; lights with the same sharpness and axis
 // are one lobe (two half-amplitude copies give the same errors exactly).
-TEST(Scene, StreamedErrorsEqualPerMethodSumsAcrossChunks) {
+TEST(Scene, ErrorsOfAllMethodsEqualPerMethodSumsAcrossBlocks) {
   const Scene scene = parse_scene(R"({"lights": [
       {"axis": [0, 0, 1], "sharpness": 6, "amplitude": [0.5, 0.5, 0.5]},
       {"axis": [1, 0, 1], "sharpness": 60, "amplitude": [1, 0.25, 0]},
@@ -301,7 +301,7 @@ TEST(Scene, StreamedErrorsEqualPerMethodSumsAcrossChunks) {
       {"axis": [1, 0, 1], "sharpness": 60, "amplitude": [1, 0.25, 0]},
       {"axis": [0, 0, 1], "sharpness": 6, "amplitude": [1, 1, 1]}]})",
                                    "test");
-  const std::size_t n = kSceneChunkQueries / 2 + 7;  // two lobes: two chunks
+  const std::size_t n = 100 * kSceneBlockNormals + 7;
   const auto normals = fibonacci_normals(n);
   const std::span<const sglab::Method> methods = sglab::irradiance_methods;
   const auto errors = scene_errors(scene, normals, methods, FloatFormat::binary32);

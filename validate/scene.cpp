@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <stdexcept>
 #include <tuple>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
@@ -13,6 +16,7 @@
 #include "common/args.hpp"
 #include "common/io.hpp"
 #include "common/json_input.hpp"
+#include "validate/irradiance_table.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::validate {
@@ -144,8 +148,8 @@ std::vector<Vec3> fibonacci_normals(std::size_t n) {
 }
 
 std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals) {
-  return lights * 2 * sizeof(SceneLight) + normals * sizeof(Vec3) +
-         std::max(kSceneChunkQueries, lights) * (sizeof(Query) + sizeof(ReferencePoint));
+  return lights * (2 * sizeof(SceneLight) + sizeof(IrradianceTable::Slice)) +
+         normals * sizeof(Vec3);
 }
 
 void check_scene_limits(std::size_t lights, std::size_t normals) {
@@ -158,7 +162,7 @@ void check_scene_limits(std::size_t lights, std::size_t normals) {
                                  kMaxSceneLights, mb));
   if (lights > kMaxScenePairs / std::max<std::size_t>(normals, 1))
     throw SceneError(fmt::format(
-        "{} lights x {} normals = {} reference quadratures, at most {} (it would hold {:.0f} MB); "
+        "{} lights x {} normals = {} (light, normal) pairs, at most {} (it would hold {:.0f} MB); "
         "use fewer normals",
         lights, normals, static_cast<double>(lights) * static_cast<double>(normals), kMaxScenePairs,
         mb));
@@ -208,49 +212,53 @@ double method_value(const Method& m, FloatFormat precision, double cosine, doubl
 
 // The scene's RGB sums at every normal, exact (when `with_exact`) and with
 // each method, in units of the largest amplitude: visit(j, exact, approx) is
-// called once per normal j, from parallel tasks. The normals are taken in
-// chunks of at most kSceneChunkQueries (lobe, normal) pairs (one normal at
-// least); each chunk's reference points are evaluated in parallel, then its
-// normals summed in parallel.
+// called once per normal j, from parallel tasks, approx[m] the sum of method m.
+// The exact value is the irradiance table's (validate/irradiance_table.hpp:
+// the reference quadrature to 1e−10 of each lobe's peak), one slice E(·, κ)
+// per lobe. The normals are split into blocks of at most kSceneBlockNormals,
+// summed in parallel; within a block one lobe and one method at a time over
+// its normals (one function over many cosines), the cosines formed as they
+// are used. Every sum adds the lobes in their order, so the result does not
+// depend on the blocks.
 template <class Visit>
 void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
                       std::span<const Method> methods, FloatFormat precision, bool with_exact,
                       Visit&& visit) {
   const std::vector<Lobe> lobes = lobes_of(scene);
-  const std::size_t nl = lobes.size();
-  const std::size_t per_chunk =
-      std::max<std::size_t>(1, kSceneChunkQueries / std::max<std::size_t>(nl, 1));
-  std::vector<Query> queries;
-  std::vector<ReferencePoint> ref;
-  for (std::size_t j0 = 0; j0 < normals.size(); j0 += per_chunk) {
-    const std::size_t j1 = std::min(normals.size(), j0 + per_chunk);
-    queries.clear();
-    for (std::size_t j = j0; j < j1; ++j)
-      for (const Lobe& l : lobes) queries.push_back({l.kappa, cosine(l.axis, normals[j])});
-    if (with_exact) {
-      ref = reference_engine().evaluate(queries);
-      // The engine caches every point; a scene's points are met once, so keep
-      // the cache from growing with the scene (as `sglab reference` does).
-      if (reference_engine().cache_size() > 4 * kSceneChunkQueries)
-        reference_engine().clear_cache();
-    }
-    tbb::parallel_for(j0, j1, [&](std::size_t j) {
-      Vec3 exact{0, 0, 0};
-      std::vector<Vec3> approx(methods.size(), Vec3{0, 0, 0});
-      const std::size_t q0 = (j - j0) * nl;
-      for (std::size_t i = 0; i < nl; ++i) {
-        const Query& q = queries[q0 + i];
-        const Vec3& a = lobes[i].amplitude;
-        const double e = with_exact ? ref[q0 + i].irradiance : 0.0;
-        for (std::size_t ch = 0; ch < 3; ++ch) exact[ch] += a[ch] * e;
-        for (std::size_t m = 0; m < methods.size(); ++m) {
-          const double v = method_value(methods[m], precision, q.cosine, q.kappa);
-          for (std::size_t ch = 0; ch < 3; ++ch) approx[m][ch] += a[ch] * v;
-        }
-      }
-      visit(j, exact, approx);
-    });
+  const std::size_t nm = methods.size();
+  // E(·, κ) of each lobe (the irradiance table: the quadrature to 1e−10 of the peak).
+  std::vector<IrradianceTable::Slice> exact_of;
+  if (with_exact) {
+    exact_of.reserve(lobes.size());
+    for (const Lobe& l : lobes) exact_of.push_back(irradiance_table().slice(l.kappa));
   }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, normals.size(), kSceneBlockNormals),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        const std::size_t j0 = r.begin(), nb = r.size();
+        if (nb > kSceneBlockNormals)  // the simple partitioner keeps blocks within the grain
+          throw std::logic_error("sum_over_normals: a block larger than kSceneBlockNormals");
+        std::array<double, kSceneBlockNormals> c{};
+        std::array<Vec3, kSceneBlockNormals> exact{};
+        std::vector<Vec3> approx(nb * nm, Vec3{0, 0, 0});
+        for (std::size_t i = 0; i < lobes.size(); ++i) {
+          const Lobe& l = lobes[i];
+          for (std::size_t b = 0; b < nb; ++b) c[b] = cosine(l.axis, normals[j0 + b]);
+          if (with_exact)
+            for (std::size_t b = 0; b < nb; ++b) {
+              const double e = exact_of[i](c[b]);
+              for (std::size_t ch = 0; ch < 3; ++ch) exact[b][ch] += l.amplitude[ch] * e;
+            }
+          for (std::size_t m = 0; m < nm; ++m)
+            for (std::size_t b = 0; b < nb; ++b) {
+              const double v = method_value(methods[m], precision, c[b], l.kappa);
+              for (std::size_t ch = 0; ch < 3; ++ch) approx[b * nm + m][ch] += l.amplitude[ch] * v;
+            }
+        }
+        for (std::size_t b = 0; b < nb; ++b)
+          visit(j0 + b, exact[b], std::span<const Vec3>(approx.data() + b * nm, nm));
+      },
+      tbb::simple_partitioner());
 }
 
 }  // namespace
@@ -259,7 +267,7 @@ std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vect
   std::vector<Vec3> out(normals.size());
   sum_over_normals(
       scene, normals, {}, FloatFormat::binary64, true,
-      [&](std::size_t j, const Vec3& exact, const std::vector<Vec3>&) { out[j] = exact; });
+      [&](std::size_t j, const Vec3& exact, std::span<const Vec3>) { out[j] = exact; });
   return out;
 }
 
@@ -268,7 +276,7 @@ std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& 
   std::vector<Vec3> out(normals.size());
   sum_over_normals(
       scene, normals, std::span<const Method>(&method, 1), precision, false,
-      [&](std::size_t j, const Vec3&, const std::vector<Vec3>& approx) { out[j] = approx[0]; });
+      [&](std::size_t j, const Vec3&, std::span<const Vec3> approx) { out[j] = approx[0]; });
   return out;
 }
 
@@ -279,7 +287,7 @@ std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& no
   tbb::combinable<std::vector<double>> partial(
       [&] { return std::vector<double>(methods.size() + 1, 0.0); });
   sum_over_normals(scene, normals, methods, precision, true,
-                   [&](std::size_t, const Vec3& exact, const std::vector<Vec3>& approx) {
+                   [&](std::size_t, const Vec3& exact, std::span<const Vec3> approx) {
                      std::vector<double>& w = partial.local();
                      for (std::size_t ch = 0; ch < 3; ++ch) {
                        w[peak] = std::max(w[peak], exact[ch]);

@@ -12,7 +12,9 @@
 //
 // The scene's irradiance at a normal n, per channel ch:
 //   E_ch(n) = Σ_lights amplitude_ch · E(axis·n, κ),
-// exactly (the reference engine) or with a method's Ê in float or double.
+// exactly (the reference engine's E through the irradiance table,
+// validate/irradiance_table.hpp: within 1e−10 of each light's peak E(1, κ))
+// or with a method's Ê in float or double.
 // Error of a method: max over the normals and the three channels of
 // |Ê_ch(n) − E_ch(n)| divided by the scene's largest exact irradiance
 // max_{n, ch} E_ch(n) — per channel, relative to one scene-wide scale, so a
@@ -21,12 +23,13 @@
 // scene's largest amplitude (amplitude / max amplitude ∈ [0, 1]), which
 // neither overflows (1e308-bright lights) nor underflows (1e−300-dim ones).
 //
-// Work and memory: one reference quadrature per (distinct light, normal).
+// Work and memory: one table evaluation and one evaluation of each method
+// per (distinct light, normal).
 // Lights with the same sharpness and axis are one lobe (their amplitudes
 // summed: the exact and the approximate per-light values depend on κ and c
-// only). The normals are walked in chunks of at most kSceneChunkQueries
-// (light, normal) pairs, each evaluated in parallel (TBB), so memory does not
-// grow with the light or normal count beyond the scene and normals themselves.
+// only). The normals are summed in parallel (TBB) in blocks of at most
+// kSceneBlockNormals, each holding its sums alone, so memory does not grow
+// with the (light, normal) pairs beyond the scene and normals themselves.
 #pragma once
 
 #include <array>
@@ -65,11 +68,12 @@ struct SceneError : std::invalid_argument {
 
 // Limits of a scene evaluation (README "Choosing a method for a scene"),
 // refused before any work: lights per scene, normals, and (light, normal)
-// pairs, each pair one reference quadrature (about 10 µs of one core).
+// pairs, each pair one evaluation of every method (about 1 µs of one core
+// for the registry in float) and of the irradiance table.
 inline constexpr std::size_t kMaxSceneLights = 100000;
 inline constexpr std::size_t kMaxSceneNormals = 1000000;
 inline constexpr std::size_t kMaxScenePairs = 50000000;
-inline constexpr std::size_t kSceneChunkQueries = std::size_t{1} << 16;
+inline constexpr std::size_t kSceneBlockNormals = 16;
 
 // The largest scene file read (io::read_input_file), about 100,000 lights.
 inline constexpr std::size_t kMaxSceneFileBytes = 16 << 20;
@@ -80,7 +84,8 @@ inline constexpr std::size_t kMaxSceneFileBytes = 16 << 20;
 Scene parse_scene(std::string_view text, std::string_view source);
 
 // Bytes a scene evaluation of `lights` lights at `normals` normals holds at
-// most (the lights, the normals and one chunk of queries and results).
+// most: the lights (with one slice of the irradiance table each) and the
+// normals; each parallel task adds one block's sums (a few KB).
 std::size_t scene_memory_bytes(std::size_t lights, std::size_t normals);
 
 // Throws SceneError (naming the limit, the pair count and the memory) when
@@ -92,7 +97,7 @@ void check_scene_limits(std::size_t lights, std::size_t normals);
 std::vector<Vec3> fibonacci_normals(std::size_t n);
 
 // Per-normal RGB irradiance of the scene in units of its largest amplitude,
-// exact (reference engine, in parallel).
+// exact (the reference E through the irradiance table, in parallel).
 std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals);
 // The same with a method's f32 (binary32: cosine and κ rounded to float, the
 // per-light value in float, summed in double) or f64.
