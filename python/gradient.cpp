@@ -13,12 +13,11 @@ namespace sglab::python {
 namespace {
 
 template <class F>
-void gradient_of(const double* cosine, const double* kappa, double* value, double* d_kappa,
-                 double* d_cosine, std::size_t n) {
+void gradient_of(const double* cosine, const double* kappa, double* d_kappa, double* d_cosine,
+                 std::size_t n) {
   using Jet = ceres::Jet<double, 2>;
   for (std::size_t i = 0; i < n; ++i) {
     const Jet e = F{}(Jet(cosine[i], 1), Jet(kappa[i], 0));
-    value[i] = e.a;
     d_kappa[i] = e.v[0];
     d_cosine[i] = e.v[1];
   }

@@ -10,14 +10,15 @@
 
 namespace sglab::python {
 
-// E, ∂E/∂κ and ∂E/∂c of irradiance method `index` (its position in
-// sglab::irradiance_methods) at n points, in double: the value is the
-// runtime's f64 at (c, κ) bit for bit, the derivatives those of the same
-// template. Double only: the float instantiations are the runtime's own float
-// code paths (sglab_mid's float log, the branch-free kernels), which a Jet of
-// floats would not follow, and a float derivative would round the steps.
-using GradientBatch = void (*)(const double* cosine, const double* kappa, double* value,
-                               double* d_kappa, double* d_cosine, std::size_t n);
+// ∂E/∂κ and ∂E/∂c of irradiance method `index` (its position in
+// sglab::irradiance_methods) at n points, in double: the derivatives of the
+// template the runtime's f64 instantiates. (The Jet's own value is not
+// returned: Ceres divides by multiplying with the reciprocal, so it may differ
+// from f64 in the last bit; the caller takes E from the runtime.) Double only: the float
+// instantiations are the runtime's own float code paths (sglab_mid's float log, the branch-free
+// kernels), which a Jet of floats would not follow, and a float derivative would round the steps.
+using GradientBatch = void (*)(const double* cosine, const double* kappa, double* d_kappa,
+                               double* d_cosine, std::size_t n);
 
 GradientBatch gradient_batch(std::size_t index);
 

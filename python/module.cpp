@@ -6,13 +6,15 @@
 // shape, check every point by the rules of `sglab eval` (io::point_error),
 // and do the batch work with the GIL released.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -62,52 +64,74 @@ void check_pair(const py::array& kappa, const py::array& cosine) {
 
 std::vector<py::ssize_t> shape_of(const py::array& a) { return {a.shape(), a.shape() + a.ndim()}; }
 
-double value_at(const py::array& a, std::size_t i) {
-  return is_float32(a) ? static_cast<double>(static_cast<const float*>(a.data())[i])
-                       : static_cast<const double*>(a.data())[i];
-}
+// A float32 or float64 array's memory, read with the GIL held and used
+// without it.
+struct Column {
+  const void* data;
+  bool f32;
+  std::size_t size;
+  explicit Column(const py::array& a)
+      : data(a.data()), f32(is_float32(a)), size(static_cast<std::size_t>(a.size())) {}
+  double operator[](std::size_t i) const {
+    return f32 ? static_cast<double>(static_cast<const float*>(data)[i])
+               : static_cast<const double*>(data)[i];
+  }
+  // The values in T: the array's own memory when it is T, else a converted
+  // copy in `storage`.
+  template <class T>
+  const T* as(std::vector<T>& storage) const {
+    if (f32 == std::is_same_v<T, float>) return static_cast<const T*>(data);
+    storage.resize(size);
+    for (std::size_t i = 0; i < size; ++i) storage[i] = static_cast<T>((*this)[i]);
+    return storage.data();
+  }
+};
 
 // The first point breaking io::point_error's rules, as the CLI's message with
-// the flat index; nothing when every point is fine. Runs without the GIL.
-std::optional<std::string> first_bad_point(const py::array& kappa, const py::array& cosine,
+// the flat index; nothing when every point is fine.
+template <class K, class C>
+std::optional<std::string> first_bad_point(const K* kappa, const C* cosine, std::size_t n,
                                            const io::NumberFormat* kappa_format) {
-  const auto n = static_cast<std::size_t>(kappa.size());
   for (std::size_t i = 0; i < n; ++i) {
-    const double k = value_at(kappa, i), c = value_at(cosine, i);
+    const auto k = static_cast<double>(kappa[i]), c = static_cast<double>(cosine[i]);
     if (!io::point_ok(k, c, kappa_format))
       return fmt::format("{} (at flat index {})", io::point_error(k, c, kappa_format), i);
   }
   return std::nullopt;
 }
 
-// The values of a float32 or float64 array in T: the array's own memory when
-// it already is T, else a converted copy in `storage`.
-template <class T>
-const T* values_as(const py::array& a, std::vector<T>& storage) {
-  if (a.dtype().is(py::dtype::of<T>())) return static_cast<const T*>(a.data());
-  const auto n = static_cast<std::size_t>(a.size());
-  storage.resize(n);
-  for (std::size_t i = 0; i < n; ++i) storage[i] = static_cast<T>(value_at(a, i));
-  return storage.data();
+std::optional<std::string> first_bad_point(const Column& kappa, const Column& cosine,
+                                           const io::NumberFormat* kappa_format) {
+  // One loop per dtype pair, so the common case (both float32 or both
+  // float64) is a tight loop.
+  const auto run = [&](const auto* k) {
+    return cosine.f32 ? first_bad_point(k, static_cast<const float*>(cosine.data), kappa.size,
+                                        kappa_format)
+                      : first_bad_point(k, static_cast<const double*>(cosine.data), kappa.size,
+                                        kappa_format);
+  };
+  return kappa.f32 ? run(static_cast<const float*>(kappa.data))
+                   : run(static_cast<const double*>(kappa.data));
 }
 
 template <class T>
-py::array_t<T> evaluate(const Method& m, const py::array& kappa, const py::array& cosine) {
-  py::array_t<T> out(shape_of(kappa));
+py::array_t<T> evaluate(const Method& m, const py::array& kappa_array,
+                        const py::array& cosine_array) {
+  py::array_t<T> out(shape_of(kappa_array));
   T* o = out.mutable_data();
-  const auto n = static_cast<std::size_t>(kappa.size());
+  const Column kappa(kappa_array), cosine(cosine_array);
   std::optional<std::string> bad;
   {
     py::gil_scoped_release release;
     bad = first_bad_point(kappa, cosine, std::is_same_v<T, float> ? &io::kFloatFormat : nullptr);
     if (!bad) {
       std::vector<T> ks, cs;
-      const T* k = values_as(kappa, ks);
-      const T* c = values_as(cosine, cs);
+      const T* k = kappa.as(ks);
+      const T* c = cosine.as(cs);
       if constexpr (std::is_same_v<T, float>)
-        m.batch32(c, k, o, n);
+        m.batch32(c, k, o, kappa.size);
       else
-        m.batch64(c, k, o, n);
+        m.batch64(c, k, o, kappa.size);
     }
   }
   if (bad) throw io::InputError(*bad);
@@ -132,14 +156,17 @@ py::tuple irradiance_grad(const std::string& method, const py::array& kappa,
   const auto shape = shape_of(kappa);
   py::array_t<double> value(shape), d_kappa(shape), d_cosine(shape);
   double *v = value.mutable_data(), *dk = d_kappa.mutable_data(), *dc = d_cosine.mutable_data();
-  const auto n = static_cast<std::size_t>(kappa.size());
+  const Column kc(kappa), cc(cosine);
   std::optional<std::string> bad;
   {
     py::gil_scoped_release release;
-    bad = first_bad_point(kappa, cosine, nullptr);
+    bad = first_bad_point(kc, cc, nullptr);
     if (!bad) {
       std::vector<double> ks, cs;
-      gradient(values_as(cosine, cs), values_as(kappa, ks), v, dk, dc, n);
+      const double* k = kc.as(ks);
+      const double* c = cc.as(cs);
+      m.batch64(c, k, v, kc.size);
+      gradient(c, k, dk, dc, kc.size);
     }
   }
   if (bad) throw io::InputError(*bad);
@@ -161,19 +188,19 @@ py::array_t<double> reference(const py::array& kappa, const py::array& cosine,
         "quantity must be irradiance, hemispherical or normalized; got '{}'", quantity));
   py::array_t<double> out(shape_of(kappa));
   double* o = out.mutable_data();
-  const auto n = static_cast<std::size_t>(kappa.size());
+  const Column kc(kappa), cc(cosine);
+  const std::size_t n = kc.size;
   std::optional<std::string> bad;
   {
     py::gil_scoped_release release;
-    bad = first_bad_point(kappa, cosine, nullptr);
+    bad = first_bad_point(kc, cc, nullptr);
     if (!bad) {
       validate::ReferenceEngine engine;
       std::vector<validate::Query> queries;
       for (std::size_t start = 0; start < n; start += kReferenceChunk) {
         const std::size_t end = std::min(n, start + kReferenceChunk);
         queries.clear();
-        for (std::size_t i = start; i < end; ++i)
-          queries.push_back({value_at(kappa, i), value_at(cosine, i)});
+        for (std::size_t i = start; i < end; ++i) queries.push_back({kc[i], cc[i]});
         const auto points = engine.evaluate(queries);
         for (std::size_t i = start; i < end; ++i) o[i] = points[i - start].*field;
         engine.clear_cache();
@@ -260,7 +287,10 @@ std::vector<validate::Vec3> normals_from(const py::array_t<double, py::array::c_
     if (!(std::isfinite(len) && len > 0))
       throw io::InputError(fmt::format("{}[{}]: ({}, {}, {}) is not a nonzero finite vector", name,
                                        i, n[0], n[1], n[2]));
-    for (double& x : n) x /= len;
+    // Rows of unit length up to rounding are kept as they are (so the CLI's
+    // Fibonacci normals give the CLI's values); others are divided by it.
+    if (std::abs(len - 1) > 4 * std::numeric_limits<double>::epsilon())
+      for (double& x : n) x /= len;
   }
   return normals;
 }
@@ -415,22 +445,20 @@ PYBIND11_MODULE(_sglab, m) {
   m.def("reference", &reference, py::arg("kappa"), py::arg("cosine"), py::arg("quantity"));
   m.def("export", &export_method, py::arg("method"), py::arg("lang"), py::arg("precision"),
         py::arg("split"));
-  // The C++ float batch alone on prepared arrays (no checks, no conversion):
-  // the baseline of python/bench_irradiance.py. Returns the best of `repeats`
-  // wall-clock seconds.
-  m.def("_time_batch32", [](const std::string& method, const py::array_t<float>& kappa,
-                            const py::array_t<float>& cosine, int repeats) {
-    const Method& meth = irradiance_method(method);
-    std::vector<float> out(static_cast<std::size_t>(kappa.size()));
-    py::gil_scoped_release release;
-    double best = INFINITY;
-    for (int r = 0; r < repeats; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      meth.batch32(cosine.data(), kappa.data(), out.data(), out.size());
-      best = std::min(best,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    return best;
-  });
+  // The registry's float batch alone on float32 arrays of one size (no checks,
+  // no conversion, no broadcasting): what sglab.irradiance(..., "float")
+  // must equal, and the baseline of python/bench_irradiance.py.
+  m.def("_batch32",
+        [](const std::string& method, const py::array_t<float, py::array::c_style>& kappa,
+           const py::array_t<float, py::array::c_style>& cosine) {
+          const Method& meth = irradiance_method(method);
+          if (kappa.size() != cosine.size()) throw py::value_error("_batch32: one size please");
+          py::array_t<float> out(kappa.size());
+          const float *k = kappa.data(), *c = cosine.data();
+          float* o = out.mutable_data();
+          py::gil_scoped_release release;
+          meth.batch32(c, k, o, static_cast<std::size_t>(kappa.size()));
+          return out;
+        });
   bind_envmap(m);
 }

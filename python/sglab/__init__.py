@@ -49,7 +49,7 @@ def _prepare(kappa, cosine):
     except ValueError:
         raise InputError(f"kappa and cosine: shapes {k.shape} and {c.shape} do not broadcast "
                          "to one shape") from None
-    return _np.ascontiguousarray(k, dtype=kt), _np.ascontiguousarray(c, dtype=ct)
+    return _np.asarray(k, dtype=kt, order="C"), _np.asarray(c, dtype=ct, order="C")
 
 
 def _result(a):
