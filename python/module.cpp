@@ -82,7 +82,13 @@ struct Column {
   const T* as(std::vector<T>& storage) const {
     if (f32 == std::is_same_v<T, float>) return static_cast<const T*>(data);
     storage.resize(size);
-    for (std::size_t i = 0; i < size; ++i) storage[i] = static_cast<T>((*this)[i]);
+    const auto convert = [&](const auto* from) {
+      for (std::size_t i = 0; i < size; ++i) storage[i] = static_cast<T>(from[i]);
+    };
+    if (f32)
+      convert(static_cast<const float*>(data));
+    else
+      convert(static_cast<const double*>(data));
     return storage.data();
   }
 };
@@ -447,7 +453,7 @@ PYBIND11_MODULE(_sglab, m) {
         py::arg("split"));
   // The registry's float batch alone on float32 arrays of one size (no checks,
   // no conversion, no broadcasting): what sglab.irradiance(..., "float")
-  // must equal, and the baseline of python/bench_irradiance.py.
+  // must equal, and the baseline of bench/python_irradiance.py.
   m.def("_batch32",
         [](const std::string& method, const py::array_t<float, py::array::c_style>& kappa,
            const py::array_t<float, py::array::c_style>& cosine) {

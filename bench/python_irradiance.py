@@ -6,7 +6,7 @@ The module's time includes its checks of every point and the output array;
 the C++ time is the registry's batch32 alone on the same arrays
 (sglab._sglab._batch32, which only allocates the output besides).
 A wall-clock benchmark, not a test:
-    PYTHONPATH=build/python /usr/bin/python3 python/bench_irradiance.py [METHOD ...]"""
+    PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py [METHOD ...]"""
 
 import os
 import sys
@@ -35,11 +35,17 @@ def main(methods):
     cosine = rng.uniform(-1, 1, N).astype(np.float32)
     print(f"{N} float32 points, best of {REPEATS}; load average before: "
           f"{os.getloadavg()[0]:.2f} ({os.cpu_count()} CPUs)")
-    print(f"{'method':<16} {'sglab.irradiance ns':>20} {'C++ batch32 ns':>16} {'ratio':>7}")
+    kappa64, cosine64 = kappa.astype(np.float64), cosine.astype(np.float64)
+    print("ns per element; 'float64 in': the same points as float64 arrays, which the module "
+          "checks and rounds to float32 first")
+    print(f"{'method':<16} {'C++ batch32':>12} {'sglab.irradiance':>17} {'ratio':>7} "
+          f"{'float64 in':>11} {'ratio':>7}")
     for method in methods:
-        py = best_seconds(lambda: sglab.irradiance(method, kappa, cosine))
         cpp = best_seconds(lambda: _sglab._batch32(method, kappa, cosine))
-        print(f"{method:<16} {py / N * 1e9:>20.2f} {cpp / N * 1e9:>16.2f} {py / cpp:>7.3f}")
+        py = best_seconds(lambda: sglab.irradiance(method, kappa, cosine))
+        py64 = best_seconds(lambda: sglab.irradiance(method, kappa64, cosine64))
+        print(f"{method:<16} {cpp / N * 1e9:>12.2f} {py / N * 1e9:>17.2f} {py / cpp:>7.3f} "
+              f"{py64 / N * 1e9:>11.2f} {py64 / cpp:>7.3f}")
     print(f"load average after: {os.getloadavg()[0]:.2f}")
 
 
