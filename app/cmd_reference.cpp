@@ -157,19 +157,10 @@ std::size_t for_each_point(const std::string& path,
         throw fail(fmt::format("{} is not a number: {}", name, io::quote_escaped(f)));
     }
     const double kappa = value[0], cosine = value[1];
-    if (!(std::isfinite(kappa) && kappa >= 0))
-      throw fail(fmt::format("kappa must be finite and >= 0, got {}", kappa));
-    if (!(cosine >= -1 && cosine <= 1))
-      throw fail(fmt::format("cosine must be in [-1, 1], got {}", cosine));
-    if (kappa_format && io::exceeds_max_finite(kappa, *kappa_format))
-      throw fail(fmt::format(
-          "kappa {} exceeds the largest finite {} ({:g}), the precision it is evaluated in", kappa,
-          kappa_format->name, kappa_format->max_finite));
-    if (kappa_format && io::rounds_to_zero(kappa, *kappa_format))
-      throw fail(
-          fmt::format("kappa {} rounds to 0 in {}, the precision it is evaluated in (smallest "
-                      "positive {}: {:g})",
-                      kappa, kappa_format->name, kappa_format->name, kappa_format->denorm_min));
+    if (const std::string why =
+            io::point_error(kappa, cosine, kappa_format ? &*kappa_format : nullptr);
+        !why.empty())
+      throw fail(why);
     on_point(validate::Query{kappa, cosine});
     ++count;
   }

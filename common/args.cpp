@@ -27,6 +27,22 @@ std::string quote_escaped(std::string_view text, std::size_t max_chars) {
   return out + "'";
 }
 
+std::string point_error(double kappa, double cosine, const NumberFormat* kappa_format) {
+  if (!(std::isfinite(kappa) && kappa >= 0))
+    return fmt::format("kappa must be finite and >= 0, got {}", kappa);
+  if (!(cosine >= -1 && cosine <= 1))
+    return fmt::format("cosine must be in [-1, 1], got {}", cosine);
+  if (kappa_format && exceeds_max_finite(kappa, *kappa_format))
+    return fmt::format(
+        "kappa {} exceeds the largest finite {} ({:g}), the precision it is evaluated in", kappa,
+        kappa_format->name, kappa_format->max_finite);
+  if (kappa_format && rounds_to_zero(kappa, *kappa_format))
+    return fmt::format(
+        "kappa {} rounds to 0 in {}, the precision it is evaluated in (smallest positive {}: {:g})",
+        kappa, kappa_format->name, kappa_format->name, kappa_format->denorm_min);
+  return {};
+}
+
 namespace {
 
 // The plain decimal syntax: -?(digits(.digits?)?|.digits)([eE][+-]?digits)?

@@ -60,6 +60,19 @@ constexpr bool exceeds_max_finite(double value, const NumberFormat& f) {
   return (value < 0 ? -value : value) > f.max_finite;
 }
 
+// The rules a (κ, c) point of `sglab eval` and `sglab reference` meets (and
+// of the Python module's arrays): finite κ ≥ 0, c ∈ [−1, 1], and, when κ is
+// evaluated in a narrower precision (kappa_format), a κ that neither exceeds
+// its largest finite value nor rounds to 0 there. point_ok says whether it
+// does; point_error gives the message of the first rule it breaks (empty when
+// none).
+constexpr bool point_ok(double kappa, double cosine, const NumberFormat* kappa_format) {
+  const bool base = kappa >= 0 && kappa <= 0x1.fffffffffffffp1023 && cosine >= -1 && cosine <= 1;
+  return base && (!kappa_format || (!exceeds_max_finite(kappa, *kappa_format) &&
+                                    !rounds_to_zero(kappa, *kappa_format)));
+}
+std::string point_error(double kappa, double cosine, const NumberFormat* kappa_format);
+
 struct KappaRangeRules {
   bool with_count = false;             // LO:HI:N (true) or LO:HI (false)
   NumberFormat format = kFloatFormat;  // the precision the κ values are used in

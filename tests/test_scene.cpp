@@ -310,7 +310,7 @@ TEST(Scene, ErrorsOfAllMethodsEqualPerMethodSumsAcrossBlocks) {
   for (const char* id : {"tokuyoshi2024", "sglab_acc3", "punctual"}) {
     const auto* m = sglab::find_method(sglab::irradiance_methods, id);
     ASSERT_NE(m, nullptr) << id;
-    const std::size_t i = static_cast<std::size_t>(m - sglab::irradiance_methods);
+    const std::size_t i = static_cast<std::size_t>(m - sglab::irradiance_methods.data());
     EXPECT_DOUBLE_EQ(
         errors[i],
         scene_relative_error(scene_irradiance(scene, normals, *m, FloatFormat::binary32), exact))

@@ -2,6 +2,7 @@
 // benchmark and document iterates (no static self-registration).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstring>
 #include <limits>
@@ -87,12 +88,21 @@ struct Method {
   float (*light_eval32)(const float* state, float cosine) = nullptr;
 };
 
+// A Method together with the type of the generic functor F(cosine, κ) it
+// was made from, so that code outside the runtime can instantiate the same
+// template with another scalar type (the Python module differentiates it with
+// Ceres Jets: python/gradient.hpp). Converts to Method by slicing.
+template <class F>
+struct MethodOf : Method {
+  using Functor = F;
+};
+
 namespace detail {
 template <class F>
-constexpr Method make_method(std::string_view id, std::string_view source,
-                             std::string_view constants, ValidRange valid, F,
-                             Origin origin = Origin::published) {
-  return Method{
+constexpr MethodOf<F> make_method(std::string_view id, std::string_view source,
+                                  std::string_view constants, ValidRange valid, F,
+                                  Origin origin = Origin::published) {
+  return {Method{
       id,
       source,
       constants,
@@ -106,20 +116,20 @@ constexpr Method make_method(std::string_view id, std::string_view source,
       },
       origin,
       valid,
-  };
+  }};
 }
 
 // A method whose float batch is a dedicated kernel (e.g. one that vectorizes).
-constexpr Method with_batch32(Method m,
-                              void (*batch32)(const float*, const float*, float*, std::size_t)) {
+template <class M>
+constexpr M with_batch32(M m, void (*batch32)(const float*, const float*, float*, std::size_t)) {
   m.batch32 = batch32;
   return m;
 }
 
 // A method with the per-light split: Setup(κ) returns a Light (a struct of at
 // most kLightStateFloats floats), Eval(light, c) the value.
-template <class Light, class Setup, class Eval>
-constexpr Method with_light_split(Method m, Setup, Eval) {
+template <class Light, class M, class Setup, class Eval>
+constexpr M with_light_split(M m, Setup, Eval) {
   static_assert(sizeof(Light) <= kLightStateFloats * sizeof(float) &&
                 alignof(Light) <= alignof(float));
   m.light_setup32 = [](float kappa, float* state) {
@@ -152,9 +162,9 @@ struct SglabAccSplit {
 };
 
 template <const auto& P>
-constexpr Method make_sglab_acc(std::string_view id, std::string_view source,
-                                std::string_view constants, ValidRange valid) {
-  Method m = make_method(
+constexpr auto make_sglab_acc(std::string_view id, std::string_view source,
+                              std::string_view constants, ValidRange valid) {
+  auto m = make_method(
       id, source, constants, valid, [](auto c, auto k) { return irradiance_sglab_acc(c, k, P); },
       Origin::sglab);
   m.light_setup32 = &SglabAccSplit<P>::setup;
@@ -167,145 +177,159 @@ constexpr Method make_sglab_acc(std::string_view id, std::string_view source,
 }
 }  // namespace detail
 
-// Irradiance approximations Ê(c, κ) (docs/references.md), with published constants.
-inline constexpr Method irradiance_methods[] = {
-    detail::make_method(
-        "wang2009", "[Wang2009] cosine-lobe SG (λ=2.133, a=1.17) inner product, via [Pettineo2016]",
-        "cosine_lobe_published", ValidRange{.max_peak_rel = 0.18},
-        [](auto c, auto k) { return irradiance_wang2009(c, k); }),
-    detail::make_method("punctual", "cosine pulled out, approximate integral 2π/κ [Pettineo2016]",
-                        "", ValidRange{.max_peak_rel = 2.1e3, .kappa_lo = 9.8e-4f},
-                        [](auto c, auto k) { return irradiance_punctual(c, k); }),
-    detail::make_method("hill", "Stephen Hill's fitted curve × 2π/κ [Pettineo2016]",
-                        "hill_published", ValidRange{.max_peak_rel = 3.2e7, .kappa_lo = 1e-3f},
-                        [](auto c, auto k) { return irradiance_hill(c, k); }),
-    detail::make_method("hill_exact", "Hill's fitted curve × exact S(κ) (as Probulator)",
-                        "hill_published", ValidRange{.max_peak_rel = 6.4e4, .kappa_lo = 1e-3f},
-                        [](auto c, auto k) { return irradiance_hill_exact(c, k); }),
-    detail::make_method("vsgl2015",
-                        "[Tokuyoshi2015] diffuse SG λd=2, [Iwasaki2012] product integral",
-                        "diffuse_lobe_published", ValidRange{.max_peak_rel = 0.16},
-                        [](auto c, auto k) { return irradiance_vsgl2015(c, k); }),
-    detail::make_method("meder2018",
-                        "Meder & Brüderlin 2018 logistic hemispherical integral + SG cosine fit",
-                        "meder2018_published", ValidRange{.max_peak_rel = 0.013, .kappa_hi = 2e15f},
-                        [](auto c, auto k) { return irradiance_meder2018(c, k); }),
-    detail::make_method(
-        "tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, supplementary Listings 1-4, std::erf",
-        "clamped_cosine_published, steepness2022_published", ValidRange{.max_peak_rel = 5.1e-3},
-        [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
-    detail::with_light_split<Tokuyoshi2024Light<float>>(
-        detail::with_batch32(
-            detail::make_method("tokuyoshi2024",
-                                "[Tokuyoshi2024] supplementary Listings 6-7 (author's VSGL code)",
-                                "steepness2024_published", ValidRange{.max_peak_rel = 1.6e-3},
-                                [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
-            [](const float* c, const float* k, float* o, std::size_t n) {
-              irradiance_tokuyoshi2024_batch(c, k, o, n);
-            }),
-        [](float k) { return tokuyoshi2024_light(k); },
-        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
-    // The published formulas with sglab's refitted constants (`sglab fit all`)
-    // and the shader path of the 2022 method (Listing 5 erf).
-    detail::make_method("tokuyoshi2022_listing5",
-                        "tokuyoshi2022 with the [Tokuyoshi2022] Listing 5 erf, as a shader runs it",
-                        "clamped_cosine_published, steepness2022_published, erf_listing5_published",
-                        ValidRange{.max_peak_rel = 5e-3},
-                        [](auto c, auto k) {
-                          return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_published,
-                                                          constants::steepness2022_published,
-                                                          ErfListing5{});
-                        }),
-    detail::make_method(
-        "tokuyoshi2022_refit", "tokuyoshi2022 refitted: float clamped cosine, t(κ) on irradiance",
-        "clamped_cosine_float, steepness2022_irradiance", ValidRange{.max_peak_rel = 4e-3},
-        [](auto c, auto k) {
-          return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_float,
-                                          constants::steepness2022_irradiance);
-        },
-        Origin::refit),
-    detail::with_light_split<Tokuyoshi2024Light<float>>(
-        detail::with_batch32(detail::make_method(
-                                 "tokuyoshi2024_refit",
-                                 "tokuyoshi2024 refitted: t(κ) on irradiance",
-                                 "steepness2024_irradiance", ValidRange{.max_peak_rel = 1.5e-3},
-                                 [](auto c, auto k) {
-                                   return irradiance_tokuyoshi2024(
-                                       c, k, constants::steepness2024_irradiance);
-                                 },
-                                 Origin::refit),
-                             [](const float* c, const float* k, float* o, std::size_t n) {
-                               irradiance_tokuyoshi2024_batch(c, k, o, n,
-                                                              constants::steepness2024_irradiance);
-                             }),
-        [](float k) { return tokuyoshi2024_light(k, constants::steepness2024_irradiance); },
-        [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
-    detail::
-        make_method(
-            "vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
-            "lambda_d_diffuse_lobe_irradiance", ValidRange{.max_peak_rel = 0.15},
-            [](auto c, auto k) {
-              return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance);
-            },
-            Origin::refit),
-    detail::make_method(
-        "wang2009_refit", "wang2009 refitted: cosine lobe (λ, a) by least squares over the sphere",
-        "lambda_d_cosine_lobe_free_amplitude", ValidRange{.max_peak_rel = 0.18},
-        [](auto c, auto k) {
-          return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude);
-        },
-        Origin::refit),
-    // sglab's own models (fitted by `sglab fit`), with their per-light split.
-    detail::with_light_split<SglabFastLight<float>>(
-        detail::with_batch32(
-            detail::make_method(
-                "sglab_fast",
-                "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational "
-                "A, B, C, V in κ (sglab_fast.hpp)",
-                "sglab_fast_float", ValidRange{.max_peak_rel = 2.6e-3, .kappa_hi = 1.1e4f},
-                [](auto c, auto k) { return irradiance_sglab_fast(c, k); }, Origin::sglab),
-            [](const float* c, const float* k, float* o, std::size_t n) {
-              irradiance_sglab_fast_batch(c, k, o, n);
-            }),
-        [](float k) { return sglab_fast_light(k); },
-        [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
-    detail::with_light_split<SglabMidLight<float>>(
-        detail::with_batch32(
-            detail::make_method(
-                "sglab_mid",
-                "sglab: exact E(1, κ) × fitted shape A + B(c + √(c² + e^{S − Vc²})) + Dc², "
-                "rational A, B, D, S, V/κ in κ (sglab_mid.hpp)",
-                "sglab_mid_float", ValidRange{.max_peak_rel = 4.3e-4},
-                [](auto c, auto k) { return irradiance_sglab_mid(c, k); }, Origin::sglab),
-            [](const float* c, const float* k, float* o, std::size_t n) {
-              irradiance_sglab_mid_batch(c, k, o, n);
-            }),
-        [](float k) { return sglab_mid_light(k); },
-        [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
-    // sglab's own models (sglab_acc.hpp, `sglab fit sglab-acc`): the
-    // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
-    // of 1, 2, 3, 4 correction terms.
-    detail::make_sglab_acc<constants::sglab_acc_acc1>(
-        "sglab_acc1",
-        "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 = u(1-u)^3 P(u), u = "
-        "t/(t+s), P of degree 3",
-        "sglab_acc_acc1", ValidRange{.max_peak_rel = 2e-4}),
-    detail::make_sglab_acc<constants::sglab_acc_acc2>(
-        "sglab_acc2",
-        "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j = u(1-u)^3 P_j(u), "
-        "P_j of degree 5",
-        "sglab_acc_acc2", ValidRange{.max_peak_rel = 3e-5}),
-    detail::make_sglab_acc<constants::sglab_acc_acc3>(
-        "sglab_acc3",
-        "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j = u(1-u)^3 "
-        "P_j(u), P_j of degree 6, t(kappa) rational of order 3",
-        "sglab_acc_acc3", ValidRange{.max_peak_rel = 7.8e-6}),
-    detail::make_sglab_acc<constants::sglab_acc_acc4>(
-        "sglab_acc4",
-        "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4 + b3 z^6), b_j = "
-        "u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
-        "sglab_acc_acc4", ValidRange{.max_peak_rel = 4.8e-6}),
+// Irradiance approximations Ê(c, κ) (docs/references.md), with published
+// constants: the one list, passed to `visit` as MethodOf<F> arguments in order
+// (irradiance_methods below is visit = collect into an array of Method).
+template <class Visitor>
+constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
+  return visit(
+      detail::make_method(
+          "wang2009",
+          "[Wang2009] cosine-lobe SG (λ=2.133, a=1.17) inner product, via [Pettineo2016]",
+          "cosine_lobe_published", ValidRange{.max_peak_rel = 0.18},
+          [](auto c, auto k) { return irradiance_wang2009(c, k); }),
+      detail::make_method("punctual", "cosine pulled out, approximate integral 2π/κ [Pettineo2016]",
+                          "", ValidRange{.max_peak_rel = 2.1e3, .kappa_lo = 9.8e-4f},
+                          [](auto c, auto k) { return irradiance_punctual(c, k); }),
+      detail::make_method("hill", "Stephen Hill's fitted curve × 2π/κ [Pettineo2016]",
+                          "hill_published", ValidRange{.max_peak_rel = 3.2e7, .kappa_lo = 1e-3f},
+                          [](auto c, auto k) { return irradiance_hill(c, k); }),
+      detail::make_method("hill_exact", "Hill's fitted curve × exact S(κ) (as Probulator)",
+                          "hill_published", ValidRange{.max_peak_rel = 6.4e4, .kappa_lo = 1e-3f},
+                          [](auto c, auto k) { return irradiance_hill_exact(c, k); }),
+      detail::make_method("vsgl2015",
+                          "[Tokuyoshi2015] diffuse SG λd=2, [Iwasaki2012] product integral",
+                          "diffuse_lobe_published", ValidRange{.max_peak_rel = 0.16},
+                          [](auto c, auto k) { return irradiance_vsgl2015(c, k); }),
+      detail::make_method(
+          "meder2018", "Meder & Brüderlin 2018 logistic hemispherical integral + SG cosine fit",
+          "meder2018_published", ValidRange{.max_peak_rel = 0.013, .kappa_hi = 2e15f},
+          [](auto c, auto k) { return irradiance_meder2018(c, k); }),
+      detail::make_method(
+          "tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, supplementary Listings 1-4, std::erf",
+          "clamped_cosine_published, steepness2022_published", ValidRange{.max_peak_rel = 5.1e-3},
+          [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
+      detail::with_light_split<Tokuyoshi2024Light<float>>(
+          detail::with_batch32(
+              detail::make_method("tokuyoshi2024",
+                                  "[Tokuyoshi2024] supplementary Listings 6-7 (author's VSGL code)",
+                                  "steepness2024_published", ValidRange{.max_peak_rel = 1.6e-3},
+                                  [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
+              [](const float* c, const float* k, float* o, std::size_t n) {
+                irradiance_tokuyoshi2024_batch(c, k, o, n);
+              }),
+          [](float k) { return tokuyoshi2024_light(k); },
+          [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
+      // The published formulas with sglab's refitted constants (`sglab fit all`)
+      // and the shader path of the 2022 method (Listing 5 erf).
+      detail::make_method(
+          "tokuyoshi2022_listing5",
+          "tokuyoshi2022 with the [Tokuyoshi2022] Listing 5 erf, as a shader runs it",
+          "clamped_cosine_published, steepness2022_published, erf_listing5_published",
+          ValidRange{.max_peak_rel = 5e-3},
+          [](auto c, auto k) {
+            return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_published,
+                                            constants::steepness2022_published, ErfListing5{});
+          }),
+      detail::make_method(
+          "tokuyoshi2022_refit", "tokuyoshi2022 refitted: float clamped cosine, t(κ) on irradiance",
+          "clamped_cosine_float, steepness2022_irradiance", ValidRange{.max_peak_rel = 4e-3},
+          [](auto c, auto k) {
+            return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_float,
+                                            constants::steepness2022_irradiance);
+          },
+          Origin::refit),
+      detail::with_light_split<Tokuyoshi2024Light<float>>(
+          detail::with_batch32(
+              detail::make_method(
+                  "tokuyoshi2024_refit", "tokuyoshi2024 refitted: t(κ) on irradiance",
+                  "steepness2024_irradiance", ValidRange{.max_peak_rel = 1.5e-3},
+                  [](auto c, auto k) {
+                    return irradiance_tokuyoshi2024(c, k, constants::steepness2024_irradiance);
+                  },
+                  Origin::refit),
+              [](const float* c, const float* k, float* o, std::size_t n) {
+                irradiance_tokuyoshi2024_batch(c, k, o, n, constants::steepness2024_irradiance);
+              }),
+          [](float k) { return tokuyoshi2024_light(k, constants::steepness2024_irradiance); },
+          [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
+      detail::make_method(
+          "vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
+          "lambda_d_diffuse_lobe_irradiance", ValidRange{.max_peak_rel = 0.15},
+          [](auto c, auto k) {
+            return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance);
+          },
+          Origin::refit),
+      detail::make_method(
+          "wang2009_refit",
+          "wang2009 refitted: cosine lobe (λ, a) by least squares over the sphere",
+          "lambda_d_cosine_lobe_free_amplitude", ValidRange{.max_peak_rel = 0.18},
+          [](auto c, auto k) {
+            return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude);
+          },
+          Origin::refit),
+      // sglab's own models (fitted by `sglab fit`), with their per-light split.
+      detail::with_light_split<SglabFastLight<float>>(
+          detail::with_batch32(
+              detail::make_method(
+                  "sglab_fast",
+                  "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational "
+                  "A, B, C, V in κ (sglab_fast.hpp)",
+                  "sglab_fast_float", ValidRange{.max_peak_rel = 2.6e-3, .kappa_hi = 1.1e4f},
+                  [](auto c, auto k) { return irradiance_sglab_fast(c, k); }, Origin::sglab),
+              [](const float* c, const float* k, float* o, std::size_t n) {
+                irradiance_sglab_fast_batch(c, k, o, n);
+              }),
+          [](float k) { return sglab_fast_light(k); },
+          [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
+      detail::with_light_split<SglabMidLight<float>>(
+          detail::with_batch32(
+              detail::make_method(
+                  "sglab_mid",
+                  "sglab: exact E(1, κ) × fitted shape A + B(c + √(c² + e^{S − Vc²})) + Dc², "
+                  "rational A, B, D, S, V/κ in κ (sglab_mid.hpp)",
+                  "sglab_mid_float", ValidRange{.max_peak_rel = 4.3e-4},
+                  [](auto c, auto k) { return irradiance_sglab_mid(c, k); }, Origin::sglab),
+              [](const float* c, const float* k, float* o, std::size_t n) {
+                irradiance_sglab_mid_batch(c, k, o, n);
+              }),
+          [](float k) { return sglab_mid_light(k); },
+          [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
+      // sglab's own models (sglab_acc.hpp, `sglab fit sglab-acc`): the
+      // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
+      // of 1, 2, 3, 4 correction terms.
+      detail::make_sglab_acc<constants::sglab_acc_acc1>(
+          "sglab_acc1",
+          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 = u(1-u)^3 P(u), u = "
+          "t/(t+s), P of degree 3",
+          "sglab_acc_acc1", ValidRange{.max_peak_rel = 2e-4}),
+      detail::make_sglab_acc<constants::sglab_acc_acc2>(
+          "sglab_acc2",
+          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j = u(1-u)^3 P_j(u), "
+          "P_j of degree 5",
+          "sglab_acc_acc2", ValidRange{.max_peak_rel = 3e-5}),
+      detail::make_sglab_acc<constants::sglab_acc_acc3>(
+          "sglab_acc3",
+          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j = "
+          "u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
+          "sglab_acc_acc3", ValidRange{.max_peak_rel = 7.8e-6}),
+      detail::make_sglab_acc<constants::sglab_acc_acc4>(
+          "sglab_acc4",
+          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4 + b3 z^6), b_j "
+          "= u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
+          "sglab_acc_acc4", ValidRange{.max_peak_rel = 4.8e-6}));
+}
+
+namespace detail {
+struct CollectMethods {
+  template <class... M>
+  constexpr std::array<Method, sizeof...(M)> operator()(const M&... m) const {
+    return {static_cast<const Method&>(m)...};
+  }
 };
+}  // namespace detail
+
+inline constexpr auto irradiance_methods = with_irradiance_methods(detail::CollectMethods{});
 
 // Approximate hemispherical integrals H̃(c, κ) (`erf2022` [Tokuyoshi2022], `meder2018` [Meder2018]).
 inline constexpr Method hemispherical_methods[] = {
