@@ -89,7 +89,7 @@ std::vector<std::vector<Worst>> worst_of_every_method(const std::vector<double>&
 std::size_t index_of(const sglab::Method& m) {
   const sglab::Method* it = sglab::find_method(sglab::irradiance_methods, m.id);
   if (!it) throw std::runtime_error("not registered: " + std::string(m.id));
-  return static_cast<std::size_t>(it - sglab::irradiance_methods);
+  return static_cast<std::size_t>(it - sglab::irradiance_methods.data());
 }
 
 // κ from 0 and the smallest positive float to FLT_MAX, 2 per decade, with 1e−3, 1e4 and every

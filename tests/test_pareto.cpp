@@ -209,7 +209,7 @@ TEST(Recommend, ValidRangeFromTheRegistryCard) {
     EXPECT_TRUE(v[i].in_valid_range) << v[i].method;
   sglab::report::mark_valid_range(v, 1, 2e4);
   const auto* fast = sglab::find_method(sglab::irradiance_methods, "sglab_fast");
-  EXPECT_FALSE(v[static_cast<std::size_t>(fast - sglab::irradiance_methods)].in_valid_range);
+  EXPECT_FALSE(v[static_cast<std::size_t>(fast - sglab::irradiance_methods.data())].in_valid_range);
   EXPECT_TRUE(sglab::report::outside_valid_range_text(v).find(
                   "sglab_fast (valid for κ in [0, 1.1e+04])") != std::string::npos)
       << sglab::report::outside_valid_range_text(v);
