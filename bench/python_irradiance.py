@@ -6,7 +6,9 @@ The module's time includes its checks of every point and the output array;
 the C++ time is the registry's batch32 alone on the same arrays
 (sglab._sglab._batch32, which only allocates the output besides).
 A wall-clock benchmark, not a test:
-    PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py [METHOD ...]"""
+    PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py [--out FILE.md] [METHOD ...]
+With --out, the table is also written to FILE.md (scripts/results.sh writes
+data/results/python_speed.md)."""
 
 import os
 import sys
@@ -29,25 +31,45 @@ def best_seconds(f):
     return best
 
 
-def main(methods):
+def main(methods, out=None):
     rng = np.random.default_rng(20261204)
     kappa = (10.0 ** rng.uniform(-3, 4, N)).astype(np.float32)
     cosine = rng.uniform(-1, 1, N).astype(np.float32)
-    print(f"{N} float32 points, best of {REPEATS}; load average before: "
-          f"{os.getloadavg()[0]:.2f} ({os.cpu_count()} CPUs)")
     kappa64, cosine64 = kappa.astype(np.float64), cosine.astype(np.float64)
-    print("ns per element; 'float64 in': the same points as float64 arrays, which the module "
-          "checks and rounds to float32 first")
-    print(f"{'method':<16} {'C++ batch32':>12} {'sglab.irradiance':>17} {'ratio':>7} "
-          f"{'float64 in':>11} {'ratio':>7}")
+    load_before = os.getloadavg()[0]
+    rows = []
     for method in methods:
         cpp = best_seconds(lambda: _sglab._batch32(method, kappa, cosine))
         py = best_seconds(lambda: sglab.irradiance(method, kappa, cosine))
         py64 = best_seconds(lambda: sglab.irradiance(method, kappa64, cosine64))
-        print(f"{method:<16} {cpp / N * 1e9:>12.2f} {py / N * 1e9:>17.2f} {py / cpp:>7.3f} "
-              f"{py64 / N * 1e9:>11.2f} {py64 / cpp:>7.3f}")
-    print(f"load average after: {os.getloadavg()[0]:.2f}")
+        rows.append((method, cpp / N * 1e9, py / N * 1e9, py / cpp, py64 / N * 1e9, py64 / cpp))
+    load_after = os.getloadavg()[0]
+    lines = [
+        f"{N} float32 points (kappa log-uniform over [1e-3, 1e4], cosine uniform over [-1, 1]), "
+        f"best of {REPEATS} runs each; load average {load_before:.2f} before, {load_after:.2f} "
+        f"after ({os.cpu_count()} CPUs). ns per element; 'float64 in': the same points as "
+        "float64 arrays, which the module checks and rounds to float32 first. Command: "
+        "`PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py`.",
+        "",
+        "| method | C++ batch32 | sglab.irradiance | ratio | float64 in | ratio |",
+        "|:---|---:|---:|---:|---:|---:|",
+    ]
+    lines += [f"| {m} | {c:.2f} | {p:.2f} | {r:.3f} | {p64:.2f} | {r64:.3f} |"
+              for m, c, p, r, p64, r64 in rows]
+    text = "\n".join(lines) + "\n"
+    print(text, end="")
+    if out:
+        tmp = f"{out}.{os.getpid()}.tmp"
+        with open(tmp, "w") as f:
+            f.write("# Python: sglab.irradiance against the C++ float batch\n\n" + text)
+        os.replace(tmp, out)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or ["tokuyoshi2024", "sglab_acc4", "sglab_fast", "hill"])
+    args = sys.argv[1:]
+    out = None
+    if args[:1] == ["--out"]:
+        if len(args) < 2 or not args[1]:
+            sys.exit("python_irradiance.py: --out needs a file")
+        out, args = args[1], args[2:]
+    main(args or ["tokuyoshi2024", "sglab_acc4", "sglab_fast", "hill"], out)

@@ -54,6 +54,8 @@ cp "$work/vulkan/summary.json" "$results/vulkan_sweep.json"
 cp "$work/vulkan/summary.md" "$results/sweep_summary.md"
 "$sglab" sweep --kappa 1.1e-3:9.7e3:217 --cosines 401 --out "$work/heldout"
 cp "$work/heldout/summary.json" "$results/heldout_sweep.json"
+# Python against the C++ float batch (a wall-clock benchmark: it states its load).
+PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py --out "$results/python_speed.md"
 "$sglab" stability --half --out "$work/stability-half"
 cp "$work/stability-half/stability_half.md" "$results"/
 "$sglab" range --out "$work/range"  # every method's card from κ = 0 to FLT_MAX
