@@ -392,6 +392,35 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
   EXPECT_EQ(compared, 2 * 3 * (methods.size() + split.size()));
 }
 
+// The renderer's loop (8 lights, split form, the default GPU figure): HLSL
+// after legalization costs what GLSL costs as glslang writes it, within 5 %,
+// on navi21 (spirv-opt must not undo what the exports leave ACO to fold).
+TEST_F(OnRadv, HlslCostsWhatGlslCostsInTheLoop) {
+  std::vector<gpu::Shader> shaders;
+  for (const auto& [lang, c] : {std::pair{shader::Language::glsl, gpu::CompilePath::none},
+                                std::pair{shader::Language::hlsl, gpu::CompilePath::legalized}}) {
+    shaders.push_back(
+        gpu::baseline_shader(lang, shader::Precision::float32, gpu::Harness::loop, 8, c));
+    for (const std::string& m : shader::split_methods())
+      shaders.push_back(gpu::loop_shader(m, lang, /*split=*/true, 8, c));
+  }
+  const gpu::Report r = measure({"navi21"}, shaders);
+  ASSERT_EQ(r.rows.size(), 2 * shader::split_methods().size());
+  std::map<std::string, std::int64_t> glsl;
+  for (const gpu::Row& row : r.rows)
+    if (row.lang == shader::Language::glsl) glsl[row.method] = row.stats.inverse_throughput;
+  std::size_t compared = 0;
+  for (const gpu::Row& row : r.rows) {
+    if (row.lang != shader::Language::hlsl) continue;
+    const std::int64_t g = glsl.at(row.method), h = row.stats.inverse_throughput;
+    EXPECT_GT(g, 0) << row.method;
+    EXPECT_LE(static_cast<double>(h - g), 0.05 * static_cast<double>(g))
+        << row.method << " (split, 8 lights): GLSL " << g << ", HLSL legalized " << h;
+    ++compared;
+  }
+  EXPECT_EQ(compared, shader::split_methods().size());
+}
+
 // Split rows: the per-pixel function of `sglab export --split`,
 // the light struct loaded from a buffer, for the methods that have a split
 // (none for wang2009). On RDNA2 and RDNA3 the per-pixel cost of split
