@@ -70,6 +70,10 @@ if __name__ == "__main__":
     out = None
     if args[:1] == ["--out"]:
         if len(args) < 2 or not args[1]:
-            sys.exit("python_irradiance.py: --out needs a file")
+            print("python_irradiance.py: --out needs a file", file=sys.stderr)
+            sys.exit(2)
         out, args = args[1], args[2:]
+        if os.path.lexists(out) and not os.path.isfile(out) or os.path.islink(out):
+            print(f"python_irradiance.py: --out {out}: not a regular file; refused", file=sys.stderr)
+            sys.exit(2)
     main(args or ["tokuyoshi2024", "sglab_acc4", "sglab_fast", "hill"], out)
