@@ -159,7 +159,7 @@ struct RationalLayout {
                                           double lo, double hi) const;
 };
 
-// The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
+// The certificate of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
 // its fitted nonlinear parameters, where s' is linear in the parameters
 // `linear` (the numerators of the shape values that multiply fixed functions
 // of c; sglab-fast: A, B, C at the fitted Q and V; sglab-mid: A, B, D at the

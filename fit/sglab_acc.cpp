@@ -1,43 +1,7 @@
-// `sglab fit sglab-acc`: sglab_acc `sglab_acc<N>`
-// (include/sglab/sglab_acc.hpp) — the [Tokuyoshi2024] lerp factor plus the
-// correction (1 − c²) e^{−z²} Σ_j b_j(κ) z^{2j}, z = t c, with the faded
-// b_j(κ) = u(1 − u)³ P_j(u), u = t/(t + s), P_j polynomials of degree D, and
-// the steepness refitted jointly.
-//
-// The family's order is (N, D, M): N correction terms, polynomial degree D,
-// steepness order M (t(κ) = κ√(0.5 P/Q), P of degree M, Q of M + 1; 2: the 2024 form).
-//   default         fits the shipped ladder acc1 (1, 3, 2), acc2 (2, 5, 2), acc3 (3, 6, 3),
-//                   acc4 (4, 6, 3),
-//                   each warm-started from the committed JSON when present
-//                   (a committed set of the same N and a lower D or M embedded
-//                   as the same function: added coefficients 0, P and Q times
-//                   (κ + 1); acc2 went from (2, 3, 2) at 5.5e−5 to (2, 5, 2) at
-//                   2.9e−5 held-out so, acc3 from (3, 4, 2) at 2.1e−5 to (3, 6, 3)
-//                   at 7.8e−6; else from the next lower member), minimax of the peak_rel
-//                   error on a training grid (Ceres, every parameter), then
-//                   alternately the exact best coefficients of the P_j at the
-//                   fitted t(κ) and s (an LP, fit/lp_minimax.hpp: f̂, and so Ê,
-//                   is linear in them) on a dense training grid and a Ceres
-//                   polish; measured on the standard grid and on the held-out
-//                   grid (fit/model_family.hpp) that the fit never sees. Certified: the LP's
-//                   optimum at the final t, s is the best member with those
-//                   (the lower bound; the report says how far above it the
-//                   fit is), and the per-κ floor (b_j free at each κ) bounds
-//                   every member with that steepness.
-//                   Never worse than tokuyoshi2024: the residual at κ is divided
-//                   by w(κ) = min(T, max(e₂₀₂₄(κ), 8e−7)), e₂₀₂₄(κ) the float
-//                   error of tokuyoshi2024 at that κ (max over its training
-//                   cosines), T the member's target; a weighted max ≤ 1 means
-//                   the max error is ≤ T and at each κ ≤ the 2024 error (or
-//                   8e−7 below it, under the 1e−6 of the rule with room for
-//                   float rounding).
-//   --max-error E   the cheapest member of the family whose held-out max peak_rel
-//                   (float) on --kappa LO:HI meets E, with its cost from the cost table.
-//
-// Training grid (never a grid that is used for measuring): κ log-spaced at
-// half-step offsets plus the range ends; per κ, cosines at half-step offsets of
-// a uniform grid and at c = ±z_k/t(κ) for a uniform z grid, so the structure of
-// width ~1/t near c = 0 at large κ is resolved.
+// `sglab fit sglab-acc`: the sglab_acc ladder (include/sglab/sglab_acc.hpp), the
+// [Tokuyoshi2024] lerp factor plus a faded even correction, members (N, D, M). Warm starts,
+// the Ceres/LP alternation, the never-worse-than-tokuyoshi2024 weight, the training grid and
+// the certificate: docs/models.md#sglab_acc1--sglab_acc4.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -263,7 +227,7 @@ Measured measure(const SglabAccParams<double, N, D, M>& p,
   return fit::measure([&](auto c, auto k) { return irradiance_sglab_acc(c, k, p); }, ref);
 }
 
-// The certificate of a member's fit (issue 17 §1), on the dense training
+// The certificate of a member's fit, on the dense training
 // grid (sglab_acc_dense_grid), in the units of the fit's objective, peak_rel/w(κ):
 // achieved ≥ lower_bound ≥ per_kappa_floor.
 struct Certificate {

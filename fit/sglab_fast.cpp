@@ -1,27 +1,7 @@
-// `sglab fit sglab-fast`: the coefficients of sglab_fast
-// (include/sglab/sglab_fast.hpp)
+// `sglab fit sglab-fast`: the coefficients of sglab_fast (include/sglab/sglab_fast.hpp),
 //   Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)),  A, B, C, V = P(κ)/Q(κ),
-// in three named stages, each warm-starting the next:
-//   1. per κ of the training grid, the four shape values (A, B, C, V) that
-//      minimax the peak_rel error over the training cosines — the family's
-//      floor, no model of the κ dependence can do better on those points;
-//   2. numerators of degree 4 over a shared monic quartic Q whose roots start
-//      log-spaced over the κ range (−Q's roots on the negative axis, so Q > 0),
-//      each numerator a linear least-squares fit to the stage-1 values;
-//   3. a joint minimax of every coefficient on the peak_rel error of the
-//      runtime function itself (Jets through irradiance_sglab_fast);
-// then certified (issue 17 §1, certificate_json below): at the fitted Q and
-// V(κ) the numerators of A, B and C enter linearly, and an LP bounds how well
-// any of their values could do.
-// Unless --cold-start, when the committed constant set of the same variant
-// and κ range exists (data/constants/sglab-fast-<variant>.json), stages 2 and 3
-// start from it instead, with a short polish (a few reweighting rounds and
-// penalty decades): that keeps `sglab fit all` fast; a cold start takes about
-// 40 s of CPU.
-// Training grid: κ at the midpoints of 56 log-spaced cells of [lo, hi] and
-// 161 uniform cosines; it shares no (κ, c) point with the standard 29 × 41
-// grid or with the held-out grid (fit/model_family.hpp) on which the result is
-// measured (float and double) and recorded in the constant set's provenance.
+// in three stages (per-κ floor, rational least squares, joint minimax) and an LP
+// certificate: docs/models.md#sglab_fast.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -137,7 +117,7 @@ std::vector<double> rational_start(const std::vector<PerKappa>& per, double lo, 
   return kLayout.least_squares_start(kappa, targets, weights, lo, hi);
 }
 
-// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp):
+// The certificate (clamped_lp_certificate in fit/model_family.hpp):
 // at the fitted Q and V(κ), s' = E1(κ)·(A + B c + C ρ(V c + ½))/E(1, κ) is
 // linear in the numerators of A, B and C (the first in parameter order).
 ordered_json certificate_json(const std::vector<double>& values,

@@ -1,29 +1,6 @@
-// `sglab fit sglab-mid`: the coefficients of sglab_mid
-// (include/sglab/sglab_mid.hpp)
+// `sglab fit sglab-mid`: the coefficients of sglab_mid (include/sglab/sglab_mid.hpp),
 //   Ê = E(1, κ)·max(0, A + B (c + √(c² + e^{S − V c²})) + D c²),
-//   A, B, D = P(κ)/Q(κ), S = Ps(κ)/Q(κ) − ln(1 + κ), V = κ Pv(κ)/Q(κ),
-// in three named stages, each warm-starting the next (as fit/sglab_fast.cpp):
-//   1. per κ of the training grid, the five shape values (A, B, D, S, V) that
-//      minimax the peak_rel error over the training cosines — the family's
-//      floor, no model of the κ dependence can do better on those points;
-//   2. numerators of degree 4 over a shared monic quartic Q whose roots start
-//      log-spaced over the κ range (−Q's roots on the negative axis, so Q > 0),
-//      each numerator a linear least-squares fit to the stage-1 values;
-//   3. a joint minimax of every coefficient on the peak_rel error of the
-//      runtime function itself (Jets through irradiance_sglab_mid);
-// then certified as sglab-fast (issue 17 §1, certificate_json below): at the
-// fitted Q, S(κ) and V(κ) the numerators of A, B and D enter linearly, and an
-// LP bounds how well any of their values could do.
-// Unless --cold-start, when the committed constant set of the same variant
-// and κ range exists (data/constants/sglab-mid-<variant>.json), stages 2 and 3
-// start from it instead, with a short polish (a few reweighting rounds and
-// penalty decades, about 18 s of CPU), and stage 1 is skipped: the report
-// gives the floor the set's provenance records. That keeps `sglab fit all`
-// short; a cold start takes about 6 minutes of CPU.
-// Training grid: κ at the midpoints of 56 log-spaced cells of [lo, hi] and
-// 161 uniform cosines; it shares no (κ, c) point with the standard 29 × 41
-// grid or with the held-out grid (fit/model_family.hpp) on which the result is
-// measured (float and double) and recorded in the constant set's provenance.
+// in the three stages of fit/sglab_fast.cpp and an LP certificate: docs/models.md#sglab_mid.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -220,7 +197,7 @@ ordered_json per_kappa_json(const std::vector<PerKappa>& per) {
   return table;
 }
 
-// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp):
+// The certificate (clamped_lp_certificate in fit/model_family.hpp):
 // at the fitted Q, S(κ) and V(κ), s' = E1(κ)·(A + B (c + √(c² + e^{S − V c²}))
 // + D c²)/E(1, κ) is linear in the numerators of A, B and D (the first in
 // parameter order).
