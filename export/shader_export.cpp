@@ -55,6 +55,13 @@ using namespace detail;
 
 namespace {
 
+// The registry card of an exportable method (every one has a card: test_shader_export).
+const Method& registry_card(std::string_view id) {
+  const Method* m = find_method(irradiance_methods, id);
+  if (!m) throw std::logic_error(fmt::format("exported method {} has no registry card", id));
+  return *m;
+}
+
 // The C++ export's prelude: <cmath>, its namespace (opened here, closed by
 // export_source) and the shading-language functions and types its code calls.
 std::string prelude(const Ctx& c) {
@@ -121,8 +128,8 @@ std::string half_header(const ShaderMethod& m, Language lang) {
                                          : "// Precision: half (binary16, `half` with 16-bit "
                                            "types: DXC -enable-16bit-types, glslang "
                                            "--hlsl-enable-16bit-types);\n";
-  if (const HalfForm* form = find_half_form(m.id))
-    h += fmt::format("//   the method's half form: {}.\n", form->description);
+  if (find_half_form(m.id))
+    h += fmt::format("//   the method's half form: {}.\n", registry_card(m.id).half);
   else
     h += "//   every operation and constant in half.\n";
   if (lang == Language::hlsl)
@@ -260,7 +267,9 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
   h += fmt::format(
       "// Irradiance E(c, kappa) = integral of exp(kappa (w.v - 1)) max(w.n, 0) dw, c = v.n, of a\n"
       "// unit-amplitude SG light of sharpness kappa >= 0.\n");
-  h += fmt::format("// Source: {}.\n", m.citation);
+  const Method& card = registry_card(m.id);
+  h += fmt::format("// {}: {}.\n// Source: {}.\n", m.id, io::comment_text(card.summary),
+                   io::comment_text(card.source));
   h += "// Constants:\n";
   for (const auto& [role, set] : slots) {
     std::string prov = set.provenance;
@@ -298,12 +307,11 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
     h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device),
                      fmt_error(b.vulkan));
   // The registry card holds for the compiled-in constants only.
-  if (const Method* card = find_method(irradiance_methods, m.id);
-      card && card->valid.max_peak_rel > 0 && request.overrides.empty())
+  if (card.valid.max_peak_rel > 0 && request.overrides.empty())
     h += fmt::format(
         "// Valid kappa range (registry card of the runtime, `sglab range`): max |E~ - E|/E(1, "
         "kappa) <= {:.2g} for kappa in {}; outside it that bound does not hold.\n",
-        card->valid.max_peak_rel, validate::kappa_range_text(card->valid));
+        card.valid.max_peak_rel, validate::kappa_range_text(card.valid));
   if (request.lang != Language::cpp) h += gpu_cost_line(request);
   if (request.precision == Precision::float16) h += half_header(m, request.lang);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));

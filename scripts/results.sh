@@ -60,7 +60,10 @@ PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py --out "$resu
 cp "$work/stability-half/stability_half.md" "$results"/
 "$sglab" range --out "$work/range"  # every method's card from κ = 0 to FLT_MAX
 cp "$work"/range/kappa_range.{csv,md} "$results"/
-models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_mid sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4)
+# sglab's own models (origin sglab on their registry cards) and the published methods their
+# documents compare them with.
+mapfile -t models < <("$sglab" methods --json |
+  jq -r '.irradiance[] | select(.origin == "sglab" or .id == "vsgl2015" or .id == "tokuyoshi2024") | .id')
 scripts/callgrind_costs.sh "$results/callgrind.csv" "${models[@]}"
 "$sglab" fit sglab-acc --dry-run --costs "$results/costs.json" >"$work/fit-sglab-acc.txt"
 "$sglab" fit sglab-fast --dry-run >"$work/fit-sglab-fast.txt"

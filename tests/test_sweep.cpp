@@ -35,7 +35,7 @@ sv::SweepOptions quiet(std::vector<sv::FloatFormat> precisions = {sv::FloatForma
 
 sglab::Method method(std::string_view id, float (*f32)(float, float),
                      double (*f64)(double, double)) {
-  return sglab::Method{id, "test", "", f32, f64, nullptr, nullptr};
+  return sglab::Method{{.id = id, .source = "test"}, f32, f64, nullptr, nullptr};
 }
 
 // The exact closed forms at c = ±1 (and H at c = 0) "as methods" (docs/quantities.md).
