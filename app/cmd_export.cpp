@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <string>
 
 #include <fmt/format.h>
@@ -36,9 +35,7 @@ std::string provenance_line(const fit::ordered_json& j) {
   if (p.contains("date") && p["date"].is_string()) add(p["date"].get<std::string>());
   if (p.contains("source") && p["source"].is_string())
     add("source: " + p["source"].get<std::string>());
-  // Older records cite internal working documents as "(seed NNN)"; exported
-  // sources cite papers only.
-  return std::regex_replace(prov, std::regex(R"( ?\(?(quoted in )?seed \d{3}\)?)"), "");
+  return prov;
 }
 
 // A constant-set JSON (data/constants/*.json, or one `sglab fit … --out DIR`

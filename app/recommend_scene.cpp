@@ -117,8 +117,10 @@ void print_json(const SceneOutput& o) {
                   {"range_max_peak_rel", number(m.max_peak_rel)},
                   {"in_valid_range", m.in_valid_range},
                   {"meets_budget", m.max_peak_rel <= o.args.budget}});
+  // sglab's models' errors over the scene's κ range alone (not its lights), and the cheapest
+  // of them meeting the budget there.
   const auto& sufficient = o.ranking.sufficient;
-  doc["sglab_models_on_range"] = {
+  doc["errors_on_kappa_range"] = {
       {"kappa_lo", o.ranking.kappa_lo},
       {"kappa_hi", o.ranking.kappa_hi},
       {"models", sg},

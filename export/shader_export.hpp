@@ -59,7 +59,7 @@ struct ConstantSet {
 // stand in for expm1): a tier per accuracy. The exporter takes the cheapest
 // tier whose measured erf/erfc error is at most 1/100 of the model's error.
 struct ElementaryTier {
-  std::string id;           // "fast", "accurate"
+  std::string id;           // "as7125", "listing5" (export/shader_elementary.cpp)
   std::string description;  // for the header comment
 };
 

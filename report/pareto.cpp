@@ -362,9 +362,9 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
   std::vector<std::string> header;
   std::map<std::string, std::size_t> col;
   std::vector<ParetoRow> rows;
-  static const char* kRequired[] = {"method",   "origin",       "precision", "kappa_lo",
-                                    "kappa_hi", "max_peak_rel", "frontier"};
-  bool legacy = false;  // ns_per_eval instead of cost, cost_unit, cost_source
+  static const char* kRequired[] = {"method",       "origin",  "precision", "kappa_lo",
+                                    "kappa_hi",     "cost",    "cost_unit", "cost_source",
+                                    "max_peak_rel", "frontier"};
   while (std::getline(in, line)) {
     ++lineno;
     if (line.empty() || line == "\r") continue;
@@ -378,13 +378,6 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
               fmt::format("{}: header lacks column '{}' (expected "
                           "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,"
                           "cost_form,max_peak_rel,frontier,in_valid_range)",
-                          path.string(), r));
-      legacy = !col.count("cost") && col.count("ns_per_eval");
-      for (const char* r : {"cost", "cost_unit", "cost_source"})
-        if (!legacy && !col.count(r))
-          throw std::invalid_argument(
-              fmt::format("{}: header lacks column '{}' (nor has it the ns_per_eval of an "
-                          "older `sglab pareto`)",
                           path.string(), r));
       continue;
     }
@@ -413,10 +406,9 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
           fmt::format("{}:{}: in_valid_range must be true/false", path.string(), lineno));
     r.kappa_lo = parse_number(cells[col["kappa_lo"]], path, lineno, "kappa_lo");
     r.kappa_hi = parse_number(cells[col["kappa_hi"]], path, lineno, "kappa_hi");
-    r.cost = parse_number(cells[col[legacy ? "ns_per_eval" : "cost"]], path, lineno,
-                          legacy ? "ns_per_eval" : "cost");
-    r.cost_unit = legacy ? "ns" : cells[col["cost_unit"]];
-    r.cost_source = legacy ? "cpu-batch" : cells[col["cost_source"]];
+    r.cost = parse_number(cells[col["cost"]], path, lineno, "cost");
+    r.cost_unit = cells[col["cost_unit"]];
+    r.cost_source = cells[col["cost_source"]];
     if (col.count("cost_form")) r.cost_form = cells[col["cost_form"]];
     r.max_peak_rel = parse_number(cells[col["max_peak_rel"]], path, lineno, "max_peak_rel");
     rows.push_back(std::move(r));

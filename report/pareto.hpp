@@ -147,9 +147,7 @@ std::optional<validate::FloatFormat> parse_precision(std::string_view text);
 // method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,cost_form,max_peak_rel,
 // frontier and optionally in_valid_range; origin is published, refit or sglab,
 // frontier and in_valid_range true/false or 1/0, in_valid_range true when
-// absent; cost_form may be absent). The CSV of an older sglab, with
-// ns_per_eval instead of the cost columns, reads as cost_unit "ns",
-// cost_source "cpu-batch".
+// absent; cost_form may be absent).
 struct ParetoRow {
   std::string method, precision;
   Origin origin = Origin::published;

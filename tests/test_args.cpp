@@ -210,7 +210,7 @@ TEST(KappaRangeCli, FitAcceptsSubnormalKappaInDouble) {
   EXPECT_NE(r.output.find("rounds to 0 in float"), std::string::npos) << r.output;
 }
 
-// The sweep rounds κ to float, which hides the 1-ulp error of the old nominal
+// The sweep rounds κ to float, which would hide a 1-ulp error of a nominal
 // grid (LogSpaced.SortedAndExactAtTheEnds catches that); this checks the end
 // to end result.
 TEST(KappaRangeCli, SweepEqualBoundsGiveEqualKappas) {

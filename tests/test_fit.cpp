@@ -369,7 +369,7 @@ TEST(ModelOrder, RationalOrderTwoReproducesThe2024Form) {
 
 namespace {
 
-// The steepness certificate (issue 17 §1, fit/steepness.cpp): the per-κ floor.
+// The steepness certificate (fit/steepness.cpp): the per-κ floor.
 // In the report and the set's provenance, positive and at most the achieved
 // max, for both targets and objectives and for a --max-error order.
 TEST(SteepnessCertificate, BoundIsPositiveAndAtMostAchieved) {

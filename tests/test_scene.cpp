@@ -259,7 +259,7 @@ TEST(Scene, ErrorIsIndependentOfTheAmplitudeUnit) {
   }
 }
 
-// The repros of issue 14 §6: one dim sharp light, two 1e308-bright lights,
+// Extreme amplitudes: one dim sharp light, two 1e308-bright lights,
 // and a 1e−323 (subnormal) amplitude, each against the same scene in unit amplitudes.
 TEST(Scene, ErrorOfExtremeAmplitudesEqualsUnitAmplitudes) {
   const auto normals = fibonacci_normals(128);
@@ -433,9 +433,9 @@ TEST(RecommendScene, FlagsMethodsOutsideTheirValidRange) {
   }
   EXPECT_EQ(outside, (std::vector<std::string>{"punctual", "hill", "hill_exact", "sglab_fast"}));
   EXPECT_EQ(doc["outside_valid_range"], nlohmann::json(outside));
-  for (const auto& m : doc["sglab_models_on_range"]["models"])
+  for (const auto& m : doc["errors_on_kappa_range"]["models"])
     EXPECT_EQ(m["in_valid_range"].get<bool>(), m["method"] != "sglab_fast") << m.dump();
-  EXPECT_NE(doc["sglab_models_on_range"]["sufficient"], "sglab_fast");
+  EXPECT_NE(doc["errors_on_kappa_range"]["sufficient"], "sglab_fast");
   const auto text = sglab::test::run_sglab(
       {"recommend", "--scene", scene.string(), "--budget", "1", "--normals", "64"});
   ASSERT_EQ(text.exit_code, 0) << text.output;

@@ -97,11 +97,9 @@ struct FastResidual {
   }
 };
 
-// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp)
-// of the committed coefficients: the check of tests/lp_certificate.hpp, and
-// the numbers the committed set's provenance records (its certificate was
-// made at these coefficients, before the certificate moved into
-// fit/model_family.cpp: the move keeps them).
+// The certificate (clamped_lp_certificate in fit/model_family.hpp) of the committed
+// coefficients: the check of tests/lp_certificate.hpp, and the numbers the committed set's
+// provenance records (its certificate was made at these coefficients).
 TEST(SglabFast, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {
   const auto& k = sglab::constants::sglab_fast_float;
   std::vector<double> values;

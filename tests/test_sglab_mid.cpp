@@ -126,7 +126,7 @@ struct MidResidual {
   }
 };
 
-// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp)
+// The certificate (clamped_lp_certificate in fit/model_family.hpp)
 // at the committed coefficients: the numerators of A, B and D free, Q, S and V
 // as committed; the check of tests/lp_certificate.hpp.
 TEST(SglabMid, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {

@@ -187,7 +187,7 @@ inline constexpr Tolerance kTolerances[] = {
     {"vsgl2015_refit", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"wang2009_refit", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_fast", half_peak_rel, f16, 5e-3,
-     "issue 16 §4: its own half form (the κ-only part in float: κ⁴ overflows half)"},
+     "its own half form (the κ-only part in float: κ⁴ overflows half)"},
     {"sglab_mid", half_peak_rel, f16, 2.5e-3,
      "its own half form (the κ-only part in float: κ⁴ overflows half); half rounding (~1e-3 of "
      "each "
@@ -196,7 +196,7 @@ inline constexpr Tolerance kTolerances[] = {
     {"sglab_acc2", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc4", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc3", half_peak_rel, f16, 5e-3,
-     "issue 16 §4: half rounding (~1e-3 of each term) dominates the model's 2e-5"},
+     "half rounding (~1e-3 of each term) dominates the model's 2e-5"},
 
     // ---- half_vs_float: the half export against the float export, κ ∈ [1e-2, 1e3]
     {"wang2009", half_vs_float, f16, kNone, kNoHalfClaim},
