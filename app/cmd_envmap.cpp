@@ -274,7 +274,7 @@ void add_envmap_command(CLI::App& app) {
   env->require_subcommand(1);
   env->footer(
       "Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth φ = "
-      "2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
+      "2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (docs/envmaps.md).");
 
   {
     auto a = std::make_shared<DownsampleArgs>();

@@ -49,7 +49,7 @@ validate::Scene read_scene(const SceneRecommendArgs& args) {
   } catch (const validate::SceneError& e) {
     throw InputError(e.what());
   }
-  // Limits (validate/scene.hpp, README) before anything is allocated for the normals.
+  // Limits (validate/scene.hpp, docs/cli.md) before anything is allocated for the normals.
   try {
     validate::check_scene_limits(scene.lights.size(), args.normals);
   } catch (const validate::SceneError& e) {

@@ -28,7 +28,7 @@ namespace sglab::fit {
 // The held-out grid: kHeldOutKappas κ log-spaced over [1.1·lo, 0.97·hi] ×
 // kHeldOutCosines uniform cosines over [−1, 1]. Strictly inside the range, so
 // it shares no κ with a training grid that holds the ends; for the default
-// range it is README's held-out grid (`sglab sweep --kappa 1.1e-3:9.7e3:217
+// range it is the held-out grid of docs/models.md (`sglab sweep --kappa 1.1e-3:9.7e3:217
 // --cosines 401`, data/results/heldout_sweep.json).
 inline constexpr int kHeldOutKappas = 217, kHeldOutCosines = 401;
 inline constexpr double kHeldOutLoFactor = 1.1, kHeldOutHiFactor = 0.97;

@@ -385,8 +385,7 @@ py::dict fit(const envmap::Map& map, std::size_t lobes, const std::string& objec
 
 void bind_envmap(py::module_& parent) {
   py::module_ m = parent.def_submodule("envmap", "HDR environment maps (sglab envmap)");
-  py::class_<envmap::Map>(m, "Map",
-                          "An equirectangular RGB radiance map (README, Environment maps)")
+  py::class_<envmap::Map>(m, "Map", "An equirectangular RGB radiance map (docs/envmaps.md)")
       .def_property_readonly("width", [](const envmap::Map& map) { return map.width; })
       .def_property_readonly("height", [](const envmap::Map& map) { return map.height; })
       .def_property_readonly("rgb", &map_rgb, "a copy of the radiance, shape (height, width, 3)");

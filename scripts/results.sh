@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/results.sh: regenerates every committed result, data/results/ and
-# the measured tables of README.md, from the commands that produce them. One
+# the measured tables of README.md and docs/*.md, from the commands that produce them. One
 # command, so that no number in them is ever typed: `sglab run` (sweep, erf,
 # stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
 # out/results/run, the curated files copied from it, then the runs `sglab run`
@@ -11,7 +11,7 @@
 # and the generated blocks of the Markdown files filled from them: each lies
 # between `<!-- generated: NAME (scripts/results.sh) -->` and
 # `<!-- end: NAME -->` and is replaced whole; the prose around it is not
-# touched. tests/test_readme_numbers.cpp checks the README's numbers against
+# touched. tests/test_readme_numbers.cpp checks their numbers against
 # the same sources. Takes about 15 minutes on 2 cores; the bench timings depend
 # on the machine's load, the instruction counts and GPU statistics do not.
 # Extra arguments go to `sglab run` (e.g. --quick).
@@ -74,4 +74,4 @@ done
 
 # 3. The generated blocks.
 scripts/results_tables.sh "$work"
-echo "results.sh: data/results and README.md regenerated (git diff shows what moved)"
+echo "results.sh: data/results, README.md and docs/ regenerated (git diff shows what moved)"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/results_tables.sh WORK: fills the generated blocks of README.md and
+# scripts/results_tables.sh WORK: fills the generated blocks of README.md, docs/*.md and
 # data/results/*.md from data/results (costs.json, callgrind.csv,
 # heldout_sweep.json, vulkan_sweep.json, kappa_range.csv), from the fit reports that
 # scripts/results.sh leaves in WORK, and from the registry cards (`sglab methods`; $SGLAB, by
@@ -110,7 +110,7 @@ range_table() {
         $col["holds"], k($col["holds_from"]), k($col["holds_to"]), any, $col["anywhere_at_kappa"] }' \
     "$kappa_range"
 }
-range_table | fill README.md kappa-range
+range_table | fill docs/cli.md kappa-range
 
 # data/results/sglab_acc.md: the fit report, the held-out errors, the costs.
 fence() { echo '```'; cat; echo '```'; }
@@ -203,7 +203,7 @@ range_table sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" ka
     awk -F'\t' '{ printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", ($i == "" ? "" : sprintf("%.3g", $i)); printf "\n" }'
 } | fill "$results/vulkan_sweep.md" vulkan-table
 
-# README.md: the environment-map baselines (data/results/envmaps.csv, `sglab envmap baselines`):
+# docs/envmaps.md: the environment-map baselines (data/results/envmaps.csv, `sglab envmap baselines`):
 # per lobe count the range over the maps of each fit's max error, and the worst map's (a)/(c).
 envmaps=$results/envmaps.csv
 awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1 }
@@ -223,7 +223,7 @@ awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1 }
       for (m in maps) { q = v[m "," n ",baseline"] / v[m "," n ",irradiance"]; if (worst == "" || q < worst) { worst = q; wm = m } }
       print line sprintf(" %.3g (%s) |", worst, wm)
     }
-  }' "$envmaps" | fill README.md envmap-table
+  }' "$envmaps" | fill docs/envmaps.md envmap-table
 awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1; if (!($2 in seen)) { seen[$2] = 1; lobes[++nl] = $2 + 0 } }
   END {
     split("4 8 12 24", ns, " "); lo = ""; hi = ""; cases = 0; ok = 0
@@ -251,7 +251,7 @@ awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1; if (!($2 in seen)) { s
     printf "(c) has %.2g× to %.3g× lower max error than (a) on every map at every N (%d of %d cases; the target\n", lo, hi, ok, cases
     printf "was 2×). For a 1 %% budget on the lobe fit alone, (c) needs %s;\n", groups
     print "neither (a) nor (b) reaches 1 % within 24 lobes."
-  }' "$envmaps" | fill README.md envmap-summary
+  }' "$envmaps" | fill docs/envmaps.md envmap-summary
 
 # docs/references.md: the methods by source, every registry card as `sglab methods --format md`.
 "$sglab" methods --format md | fill docs/references.md methods

@@ -349,11 +349,11 @@ TEST(CostSourceCli, DefaultIsNavi21FromTheCostTable) {
   }
 }
 
-// README names the driver that measured the committed GPU costs: the one the
+// docs/costs.md names the driver that measured the committed GPU costs: the one the
 // cost table records (it must follow the table when the table is regenerated).
-TEST(CostSourceCli, ReadmeNamesTheDriverOfTheCommittedTable) {
+TEST(CostSourceCli, CostsPageNamesTheDriverOfTheCommittedTable) {
   const fs::path root = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
-  std::ifstream table(root / "data" / "results" / "costs.json"), readme(root / "README.md");
+  std::ifstream table(root / "data" / "results" / "costs.json"), readme(root / "docs" / "costs.md");
   std::stringstream t, r;
   t << table.rdbuf();
   r << readme.rdbuf();

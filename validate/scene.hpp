@@ -66,7 +66,7 @@ struct SceneError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Limits of a scene evaluation (README "Choosing a method for a scene"),
+// Limits of a scene evaluation (docs/cli.md, "Choosing a method for a scene"),
 // refused before any work: lights per scene, normals, and (light, normal)
 // pairs, each pair one evaluation of every method (about 1 µs of one core
 // for the registry in float) and of the irradiance table.

@@ -66,7 +66,7 @@ struct SweepGrid {
   // method and precision, the value and its error and a row of points.csv:
   // about kSweepBytesPerPointEntry bytes per point and entry, so the full
   // registry in float and double needs about 2.4 GB of memory at the limit
-  // (and writes a 500 MB points.csv). The limit admits README's held-out grid
+  // (and writes a 500 MB points.csv). The limit admits the held-out grid
   // of 217 κ × 401 cosines (87,017 points).
   static constexpr std::uint64_t kMaxPoints = 100'000;
 
