@@ -128,7 +128,8 @@ struct FitTarget {
   FitOutcome (*fit)(const FitSpec&);
   std::string_view help;  // one line for `sglab fit --help`
   // The options the target takes; any other is refused, never ignored.
-  bool precision, objective, kappa, max_error, alpha_free, cold_start, costs;
+  bool precision = false, objective = false, kappa = false, max_error = false, alpha_free = false,
+       cold_start = false, costs = false;
   std::span<const FitAllRun> all;  // the runs of `fit all`, in order
 };
 std::span<const FitTarget> fit_targets();
@@ -147,7 +148,7 @@ FitOutcome run_fit(const FitSpec& spec);
 // the fit that were not finite (nonfinite_residual_evaluations) and the
 // messages its solver logged (solver_messages), both 0 in a sound fit, with a
 // warning line in its text otherwise. `done(i, outcome)` is called for every
-// spec in order, on the calling thread, as soon as fits 0..i have finished;
+// spec in order, one call at a time, as soon as fits 0..i have finished;
 // `finished` advances as each fit finishes. With one job at a time each fit
 // shows its solves on a progress line of its own (FitProgressScope). A fit
 // that throws stops new ones from starting; once the running ones have
