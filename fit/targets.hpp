@@ -81,13 +81,13 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec);
 FitOutcome fit_steepness(const FitSpec& spec);
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
-FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
-FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/sglab_mid.cpp)
+FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/fit_sglab_fast.cpp)
+FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/fit_sglab_mid.cpp)
 // sglab_acc<N> ladder, or its model order with max_error
 FitOutcome fit_sglab_acc(const FitSpec& spec);
 
 // The dense training grid of sglab-acc's certificate and LP exchange over [lo, hi]
-// (fit/sglab_acc.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200]) plus
+// (fit/fit_sglab_acc_grids.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200]) plus
 // the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ),
 // z_k = 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
 std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
@@ -97,7 +97,7 @@ std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 // divided by its weight, from `start` = steep[5], num[terms(degree+1)], scale (> 0).
 struct SglabAccSample {
   double kappa, cosine, irradiance;
-  double weight = 1;  // the residual is peak_rel/weight (fit/sglab_acc.cpp: w(κ))
+  double weight = 1;  // the residual is peak_rel/weight (fit/fit_sglab_acc.cpp: w(κ))
 };
 struct SglabAccFit {
   std::vector<double> values;  // same layout as start

@@ -20,7 +20,7 @@
 // Everything that depends on κ alone (t, erfc(t), 1/t, the poles, the b_j)
 // is computed once per light by `sglab_acc_light`; `sglab_acc_eval` is the
 // per-shading-point part. The plain function is exactly eval(setup(κ), c).
-// Fitted by `sglab fit sglab-acc` (fit/sglab_acc.cpp), each
+// Fitted by `sglab fit sglab-acc` (fit/fit_sglab_acc.cpp), each
 // residual divided by min(T, max(e₂₀₂₄(κ), 8e−7)) so that at every κ the
 // error stays at or below tokuyoshi2024's (or 1e−6). The measured errors
 // (standard and held-out grids, float and double) and costs (callgrind

@@ -11,7 +11,7 @@
 // denominator (SglabFastParams), so the whole κ dependence costs one exp, two
 // divisions and five Horner steps of degree 4, all of it once per light
 // (SglabFastLight); a shading point then pays a multiply-add, the ramp and a
-// clamp. Fitted by `sglab fit sglab-fast` (fit/sglab_fast.cpp): minimax of
+// clamp. Fitted by `sglab fit sglab-fast` (fit/fit_sglab_fast.cpp): minimax of
 // peak_rel over a training grid of κ ∈ [1e−3, 1e4]. Its measured errors
 // (standard and held-out grids, float and double, the family's per-κ floor)
 // and costs (callgrind instructions of the fused function and of each half

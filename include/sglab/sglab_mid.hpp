@@ -14,7 +14,7 @@
 // two divisions and six Horner steps of degree 4, all of it once per light
 // (SglabMidLight); a shading point then pays one exp, one square root and a
 // few multiply-adds. Fitted by `sglab fit sglab-mid`
-// (fit/sglab_mid.cpp): minimax of peak_rel over a training grid of κ ∈ [1e−3, 1e4].
+// (fit/fit_sglab_mid.cpp): minimax of peak_rel over a training grid of κ ∈ [1e−3, 1e4].
 // Its measured errors (standard and held-out grids, float and double, the
 // family's per-κ floor) and costs are in data/results/sglab_mid.md, regenerated
 // by scripts/results.sh.
