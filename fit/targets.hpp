@@ -87,9 +87,9 @@ FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/fit_sglab_mid
 FitOutcome fit_sglab_acc(const FitSpec& spec);
 
 // The dense training grid of sglab-acc's certificate and LP exchange over [lo, hi]
-// (fit/fit_sglab_acc_grids.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200]) plus
-// the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ),
-// z_k = 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
+// (fit/fit_sglab_acc_grids.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200])
+// plus the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ), z_k =
+// 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
 std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
