@@ -1,5 +1,5 @@
 // fit/model_family.hpp — what the fitters of sglab's own models (sglab-fast,
-// fit/sglab_fast.cpp; sglab-acc, fit/sglab_acc.cpp) share: the two grids a
+// fit/fit_sglab_fast.cpp; sglab-acc, fit/fit_sglab_acc.cpp) share: the two grids a
 // fitted set is measured on and that no fit uses, the measurement itself (max
 // peak_rel in float and double, where it is, and the per-κ rule "never worse
 // than tokuyoshi2024"), its record in a constant set's provenance, the

@@ -81,15 +81,15 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec);
 FitOutcome fit_steepness(const FitSpec& spec);
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
-FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
-FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/sglab_mid.cpp)
+FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/fit_sglab_fast.cpp)
+FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/fit_sglab_mid.cpp)
 // sglab_acc<N> ladder, or its model order with max_error
 FitOutcome fit_sglab_acc(const FitSpec& spec);
 
 // The dense training grid of sglab-acc's certificate and LP exchange over [lo, hi]
-// (fit/sglab_acc.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200]) plus
-// the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ),
-// z_k = 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
+// (fit/fit_sglab_acc_grids.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200])
+// plus the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ), z_k =
+// 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
 std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
@@ -97,7 +97,7 @@ std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 // divided by its weight, from `start` = steep[5], num[terms(degree+1)], scale (> 0).
 struct SglabAccSample {
   double kappa, cosine, irradiance;
-  double weight = 1;  // the residual is peak_rel/weight (fit/sglab_acc.cpp: w(κ))
+  double weight = 1;  // the residual is peak_rel/weight (fit/fit_sglab_acc.cpp: w(κ))
 };
 struct SglabAccFit {
   std::vector<double> values;  // same layout as start
@@ -128,7 +128,8 @@ struct FitTarget {
   FitOutcome (*fit)(const FitSpec&);
   std::string_view help;  // one line for `sglab fit --help`
   // The options the target takes; any other is refused, never ignored.
-  bool precision, objective, kappa, max_error, alpha_free, cold_start, costs;
+  bool precision = false, objective = false, kappa = false, max_error = false, alpha_free = false,
+       cold_start = false, costs = false;
   std::span<const FitAllRun> all;  // the runs of `fit all`, in order
 };
 std::span<const FitTarget> fit_targets();
@@ -147,7 +148,7 @@ FitOutcome run_fit(const FitSpec& spec);
 // the fit that were not finite (nonfinite_residual_evaluations) and the
 // messages its solver logged (solver_messages), both 0 in a sound fit, with a
 // warning line in its text otherwise. `done(i, outcome)` is called for every
-// spec in order, on the calling thread, as soon as fits 0..i have finished;
+// spec in order, one call at a time, as soon as fits 0..i have finished;
 // `finished` advances as each fit finishes. With one job at a time each fit
 // shows its solves on a progress line of its own (FitProgressScope). A fit
 // that throws stops new ones from starting; once the running ones have

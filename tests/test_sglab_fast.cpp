@@ -72,7 +72,7 @@ TEST(SglabFast, FiniteAndNonNegativeOutsideTheFittedRange) {
     EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kBound * M_PI) << c;
 }
 
-// The fit's residual (fit/sglab_fast.cpp's ModelResidual): peak_rel of the
+// The fit's residual (fit/fit_sglab_fast.cpp's ModelResidual): peak_rel of the
 // runtime function, parameters a, b, c, v (5 each) and q (4).
 template <class T>
 sglab::SglabFastParams<T> fast_params(const std::vector<T>& v, T kappa_max) {
