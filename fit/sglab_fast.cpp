@@ -189,7 +189,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec) {
   for (const auto& p : per) floor = std::max(floor, p.error);
 
   // 2. Rational start (or the committed set).
-  const std::string variant = precision_name(spec.precision) +
+  const std::string variant = std::string(io::to_string(spec.precision)) +
                               (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
   Parameters params;
   params.names = kLayout.parameter_names();

@@ -243,7 +243,7 @@ FitOutcome fit_sglab_mid(const FitSpec& spec) {
   const auto train_c = cosine_grid(kTrainCosines);
   const auto train = reference_grid(train_k, train_c);
 
-  const std::string variant = precision_name(spec.precision) +
+  const std::string variant = std::string(io::to_string(spec.precision)) +
                               (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
   std::optional<std::vector<double>> committed;
   if (!spec.cold_start) committed = kLayout.committed_start(variant, lo, hi);
