@@ -77,7 +77,7 @@ void print_json(const SceneOutput& o) {
   doc["normals"] = o.normals;
   doc["kappa_range"] = {o.scene.kappa_min(), o.scene.kappa_max()};
   doc["budget"] = o.args.budget;
-  doc["precision"] = std::string(validate::to_string(o.args.precision));
+  doc["precision"] = std::string(io::to_string(o.args.precision));
   doc["cost_source"] = o.cost.name();
   doc["cost_unit"] = std::string(o.cost.unit());
   doc["cost_from"] = o.source.text;
@@ -132,7 +132,7 @@ void print_text(const SceneOutput& o) {
   const report::Recommendation& r = o.ranking.recommendation;
   fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n",
              o.args.scene, o.scene.lights.size(), o.scene.kappa_min(), o.scene.kappa_max(),
-             o.normals, validate::to_string(o.args.precision), o.args.budget);
+             o.normals, io::to_string(o.args.precision), o.args.budget);
   fmt::print(
       "error = max over normals and RGB channels of |Ê − E| / the scene's largest exact "
       "irradiance\n\n");

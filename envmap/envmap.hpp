@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "common/io.hpp"
+#include "common/vocabulary.hpp"
 #include "validate/scene.hpp"
 
 namespace sglab::envmap {
@@ -110,7 +111,9 @@ struct Lobe {
 };
 
 enum class Objective { radiance, irradiance };
-const char* to_string(Objective o);
+constexpr std::array<io::EnumName<Objective>, 2> names_of(Objective) {
+  return {{{Objective::radiance, "radiance"}, {Objective::irradiance, "irradiance"}}};
+}
 
 // The BakingLab baseline ([BakingLab], SG.cpp GenerateUniformSGs / SolveNNLS):
 // N axes on BakingLab's spherical Fibonacci spiral (z_k = (2k + 1)/N − 1,

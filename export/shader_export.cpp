@@ -18,33 +18,6 @@
 
 namespace sglab::shader {
 
-std::string_view to_string(Language lang) {
-  switch (lang) {
-    case Language::glsl:
-      return "glsl";
-    case Language::hlsl:
-      return "hlsl";
-    case Language::cpp:
-      return "cpp";
-  }
-  return "?";
-}
-
-std::optional<Language> parse_language(std::string_view text) {
-  if (text == "glsl") return Language::glsl;
-  if (text == "hlsl") return Language::hlsl;
-  if (text == "cpp") return Language::cpp;
-  return std::nullopt;
-}
-
-std::string_view to_string(Precision p) { return p == Precision::float16 ? "half" : "float"; }
-
-std::optional<Precision> parse_precision(std::string_view text) {
-  if (text == "float") return Precision::float32;
-  if (text == "half") return Precision::float16;
-  return std::nullopt;
-}
-
 std::string entry_point_name(std::string_view method) {
   std::string out = "sglab_irradiance_";
   for (char ch : method) out += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
@@ -196,10 +169,9 @@ ErrorBudget runtime_budget(std::string_view method) {
   const std::vector<validate::SweepMethod> one{{validate::Quantity::irradiance, *m}};
   const validate::SweepResult r = sweep(validate::SweepGrid{}, one, options);
   if (const validate::SweepEntry* e =
-          r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary64))
+          r.find(method, validate::Quantity::irradiance, io::kCpuDouble))
     b.model = e->summary.peak_rel.max;
-  if (const validate::SweepEntry* e =
-          r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary32))
+  if (const validate::SweepEntry* e = r.find(method, validate::Quantity::irradiance, io::kCpuFloat))
     b.float_cpp = e->summary.peak_rel.max;
   return b;
 }

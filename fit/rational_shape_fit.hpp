@@ -123,7 +123,7 @@ FitOutcome fit_rational_shape(const FitSpec& spec) {
   const auto train_c = cosine_grid(kRationalTrainCosines);
   const auto train = rational_reference_grid(train_k, train_c);
 
-  const std::string variant = precision_name(spec.precision) +
+  const std::string variant = std::string(io::to_string(spec.precision)) +
                               (spec.kappa_range_given ? fmt::format("-k{}-{}", lo, hi) : "");
   std::optional<std::vector<double>> committed;
   if (!spec.cold_start) committed = layout.committed_start(variant, lo, hi);

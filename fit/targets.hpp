@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/vocabulary.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::io {
@@ -23,8 +24,6 @@ class Progress;
 namespace sglab::fit {
 
 using ordered_json = nlohmann::ordered_json;
-
-enum class WorkingPrecision { half, single, dbl };
 
 // Float scalar costs of runtime methods (ns per evaluation) from the cost
 // table that `sglab bench` wrote (report/cost_table.hpp), read by the caller:
@@ -41,7 +40,7 @@ struct MethodCosts {
 
 struct FitSpec {
   std::string target;  // a name of fit_targets()
-  WorkingPrecision precision = WorkingPrecision::single;
+  io::Precision precision = io::Precision::float32;
   std::string objective;    // target-specific; empty = the target's default
   bool alpha_free = false;  // clamped-cosine: α free instead of tied by energy conservation
   double kappa_lo = 1e-3, kappa_hi = 1e4;
@@ -61,9 +60,7 @@ struct FitOutcome {
 };
 
 // Machine epsilon (spacing of 1) of the working precision: 2^−10, 2^−23, 2^−52.
-double machine_epsilon(WorkingPrecision p);
-std::string precision_name(WorkingPrecision p);
-std::optional<WorkingPrecision> parse_precision(const std::string& name);
+double machine_epsilon(io::Precision p);
 
 // Log-spaced κ grid of `count` values over [lo, hi] (io::log_spaced; count 1: lo) and
 // cosine grid c_i = −1 + 2i/(count − 1).

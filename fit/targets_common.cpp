@@ -20,35 +20,16 @@
 
 namespace sglab::fit {
 
-double machine_epsilon(WorkingPrecision p) {
+double machine_epsilon(io::Precision p) {
   switch (p) {
-    case WorkingPrecision::half:
+    case io::Precision::float16:
       return std::ldexp(1.0, -10);
-    case WorkingPrecision::single:
+    case io::Precision::float32:
       return std::ldexp(1.0, -23);
-    case WorkingPrecision::dbl:
+    case io::Precision::float64:
       return std::ldexp(1.0, -52);
   }
   return 0;
-}
-
-std::string precision_name(WorkingPrecision p) {
-  switch (p) {
-    case WorkingPrecision::half:
-      return "half";
-    case WorkingPrecision::single:
-      return "float";
-    case WorkingPrecision::dbl:
-      return "double";
-  }
-  return "?";
-}
-
-std::optional<WorkingPrecision> parse_precision(const std::string& name) {
-  if (name == "half") return WorkingPrecision::half;
-  if (name == "float") return WorkingPrecision::single;
-  if (name == "double") return WorkingPrecision::dbl;
-  return std::nullopt;
 }
 
 std::vector<double> kappa_grid(double lo, double hi, int count) {
@@ -82,7 +63,7 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
   set["coefficients"] = std::move(coefficients);
   ordered_json prov;
   prov["objective"] = std::move(objective);
-  prov["precision"] = precision_name(spec.precision);
+  prov["precision"] = std::string(io::to_string(spec.precision));
   prov["kappa_range"] = {spec.kappa_lo, spec.kappa_hi};
   prov["grid"] = {{"kappa_count", spec.kappa_count}, {"cosine_count", spec.cosine_count}};
   prov["achieved"] = std::move(achieved);

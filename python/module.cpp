@@ -242,12 +242,10 @@ py::list methods() {
 
 std::string export_method(const std::string& method, const std::string& lang,
                           const std::string& precision, bool split) {
-  const auto l = shader::parse_language(lang);
-  if (!l) throw io::InputError(fmt::format("lang: expected glsl, hlsl or cpp, got '{}'", lang));
-  const auto p = shader::parse_precision(precision);
-  if (!p)
-    throw io::InputError(fmt::format("precision: expected float or half, got '{}'", precision));
-  shader::ExportRequest req = shader::standard_request(*l, method, *p);
+  const auto l = io::parse_option<io::Language>("lang", lang);
+  const auto p =
+      io::parse_option("precision", precision, {io::Precision::float32, io::Precision::float16});
+  shader::ExportRequest req = shader::standard_request(l, method, p);
   req.split = split;
   if (split) req.command += " --split";
   try {

@@ -97,12 +97,12 @@ TEST(CostSource, RefusesEverythingElseQuotingIt) {
 }
 
 TEST(CostSource, DefaultIsGpuInverseThroughputOnNavi21ForFloat) {
-  const CostSource f = sglab::report::default_cost_source(sglab::validate::FloatFormat::binary32);
+  const CostSource f = sglab::report::default_cost_source(sglab::io::Precision::float32);
   EXPECT_EQ(f.kind, CostSourceKind::gpu);
   EXPECT_EQ(f.family, "navi21");
   EXPECT_EQ(f.unit(), "cycles");
   // The shader exports are float: double is costed on the CPU.
-  const CostSource d = sglab::report::default_cost_source(sglab::validate::FloatFormat::binary64);
+  const CostSource d = sglab::report::default_cost_source(sglab::io::Precision::float64);
   EXPECT_EQ(d.name(), "cpu-batch");
 }
 

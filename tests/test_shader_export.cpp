@@ -1191,13 +1191,13 @@ TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
   vk::add_device_entries(r, hlsl_methods, sh::Language::hlsl, *device_);
   const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()),
       cosines(r.cosines.begin(), r.cosines.end());
-  using F = sglab::validate::FloatFormat;
   const sglab::validate::Quantity E = sglab::validate::Quantity::irradiance;
   for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl})
     for (const auto& sm : lang == sh::Language::glsl ? methods : hlsl_methods) {
       const std::string id(sm.method.id);
       SCOPED_TRACE(id + " " + std::string(sh::to_string(lang)));
-      const auto* unsplit = r.find(id, E, lang == sh::Language::hlsl ? F::vulkan_hlsl : F::vulkan);
+      const auto* unsplit =
+          r.find(id, E, sglab::io::on_vulkan(lang, sglab::io::Precision::float32));
       ASSERT_TRUE(unsplit);
       const sh::ExportResult ex = split_export(lang, id);
       const std::vector<float> prepass =

@@ -7,8 +7,11 @@
 // slip through; a row naming no registered method fails ToleranceTable.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <string_view>
+
+#include "common/vocabulary.hpp"
 
 namespace sglab::test {
 
@@ -34,26 +37,15 @@ enum class Quantity {
   // whole range). kNone: no claim in half (stability_half.md says where it fails).
   half_vs_float,
 };
-enum class Precision { float16, float32, float64 };
-
-constexpr std::string_view to_string(Quantity q) {
-  switch (q) {
-    case Quantity::float_vs_double:
-      return "float_vs_double";
-    case Quantity::batch_vs_double:
-      return "batch_vs_double";
-    case Quantity::split_vs_plain:
-      return "split_vs_plain";
-    case Quantity::half_peak_rel:
-      return "half_peak_rel";
-    case Quantity::half_vs_float:
-      return "half_vs_float";
-  }
-  return "?";
+constexpr std::array<io::EnumName<Quantity>, 5> names_of(Quantity) {
+  return {{{Quantity::float_vs_double, "float_vs_double"},
+           {Quantity::batch_vs_double, "batch_vs_double"},
+           {Quantity::split_vs_plain, "split_vs_plain"},
+           {Quantity::half_peak_rel, "half_peak_rel"},
+           {Quantity::half_vs_float, "half_vs_float"}}};
 }
-constexpr std::string_view to_string(Precision p) {
-  return p == Precision::float16 ? "half" : p == Precision::float32 ? "float" : "double";
-}
+using io::Precision;
+using io::to_string;
 
 // A bound that is not a number: the property is absent (see Quantity).
 inline constexpr double kNone = -1;
