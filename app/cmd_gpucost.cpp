@@ -250,7 +250,12 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
                              shader::Precision::float32) != p.precisions.end()) {
           if (harness == gpu::Harness::loop) {
             for (int n : p.lights) {
-              visit([=] { return gpu::baseline_shader(lang, {}, harness, n, compile); }, "");
+              visit(
+                  [=] {
+                    return gpu::baseline_shader(lang, shader::Precision::float32, harness, n,
+                                                compile);
+                  },
+                  "");
               for (const auto& [m, split] : forms)
                 visit([=, m = m,
                        split = split] { return gpu::loop_shader(m, lang, split, n, compile); },
@@ -258,7 +263,12 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
                                   shader::to_string(lang), gpu::to_string(compile)));
             }
           } else if (a.form != "unsplit") {
-            visit([=] { return gpu::baseline_shader(lang, {}, harness, 1, compile); }, "");
+            visit(
+                [=] {
+                  return gpu::baseline_shader(lang, shader::Precision::float32, harness, 1,
+                                              compile);
+                },
+                "");
             for (const std::string& m : p.methods)
               if (std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end())
                 visit([=] { return gpu::setup_shader(m, lang, compile); },
