@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # scripts/results.sh: regenerates every committed result, data/results/ and
 # the measured tables of README.md and docs/*.md, from the commands that produce them. One
-# command, so that no number in them is ever typed: `sglab run` (sweep, erf,
+# command, so that no number in them is ever typed: `sglab run --full` (every
+# step in its full form: the exhaustive erf check, the long benchmark
+# repetitions; sweep, erf,
 # stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
 # out/results/run, the curated files copied from it, then the runs `sglab run`
 # does not make (GPU cost of the half exports, per light over 1 to 64 lights
@@ -14,7 +16,7 @@
 # touched. tests/test_readme_numbers.cpp checks their numbers against
 # the same sources. Takes about 15 minutes on 2 cores; the bench timings depend
 # on the machine's load, the instruction counts and GPU statistics do not.
-# Extra arguments go to `sglab run` (e.g. --quick).
+# Extra arguments go to `sglab run`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh jq valgrind
@@ -28,8 +30,8 @@ work=out/results
 run="$work/run"
 sglab=build/sglab
 
-# 1. The main job, then the files of it that are committed.
-"$sglab" run --out "$run" "$@"
+# 1. The main job in its full form, then the files of it that are committed.
+"$sglab" run --full --out "$run" "$@"
 cp "$run"/bench/{bench.csv,bench.md,bench_summary.csv,bench_summary.md,costs.json,gpu_costs.md} "$results"/
 cp "$run"/claims/claims.md "$run"/erf/erf_summary.md "$results"/
 cp "$run"/stability/{stability.md,findings.md} "$results"/

@@ -285,7 +285,7 @@ TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
 // ---------------------------------------------------------------------------
 // RADV's null devices: `gpucost --precision half` (RDNA has packed 16-bit math).
 
-TEST(OnRadv, HalfRowsCostTheHalfExports) {
+TEST(OnRadvHalf, HalfRowsCostTheHalfExports) {
   const auto manifest = gpu::find_radv_manifest();
   if (!manifest)
     GTEST_SKIP() << "no RADV null device: no radeon_icd.*.json in the Vulkan loader's folders";

@@ -591,6 +591,36 @@ TEST(ReadmeNumbers, ProseMatchesTheResults) {
   }
 }
 
+// README's times of its two commands and of the main job are the ones
+// scripts/time_readme_commands.sh measured into data/results/job_times.md.
+TEST(ReadmeNumbers, JobTimesAreTheMeasuredOnes) {
+  const std::string readme = slurp(kRoot / "README.md");
+  const std::string begin = "<!-- generated: job-times (scripts/time_readme_commands.sh) -->\n";
+  const std::size_t at = readme.find(begin);
+  ASSERT_NE(at, std::string::npos) << "README.md has no block job-times";
+  const std::size_t stop = readme.find("<!-- end: job-times -->", at);
+  ASSERT_NE(stop, std::string::npos);
+  const std::string block = readme.substr(at + begin.size(), stop - at - begin.size());
+  if (!fs::exists(kResults / "job_times.md")) {
+    EXPECT_EQ(block, "") << "README states times that data/results/job_times.md does not hold";
+    GTEST_SKIP() << "no data/results/job_times.md yet: scripts/time_readme_commands.sh measures it";
+  }
+  const auto rows = table_after(slurp(kResults / "job_times.md"), {"command", "wall"});
+  const auto wall = [&rows](std::string_view command) {
+    for (const auto& row : rows)
+      if (row[0].starts_with(command)) return row[1];
+    ADD_FAILURE() << "job_times.md has no row " << command;
+    return std::string("(none)");
+  };
+  for (const auto& [readme_says, row] : {std::pair{"`scripts/test.sh` ", "scripts/test.sh "},
+                                         std::pair{"`scripts/run.sh` after it ", "scripts/run.sh "},
+                                         std::pair{"the main job `sglab run` ", "main job "}}) {
+    const std::string stated = std::string(readme_says) + wall(row);
+    EXPECT_NE(block.find(stated), std::string::npos)
+        << "README's job-times block does not say '" << stated << "': " << block;
+  }
+}
+
 // What README says in words rather than numbers.
 TEST(ReadmeNumbers, WordedClaimsHold) {
   const std::string& readme = docs_text();
