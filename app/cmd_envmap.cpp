@@ -31,6 +31,7 @@
 #include "envmap/envmap.hpp"
 #include "report/envmap_report.hpp"
 #include "report/pareto.hpp"
+#include "report/probes_report.hpp"
 
 namespace sglab::app {
 
@@ -101,7 +102,7 @@ struct RecommendArgs {
 
 struct BaselinesArgs {
   std::string maps, out;
-  bool quick = false;
+  bool quick = false, probes = false;
 };
 
 void run_fit(const FitArgs& a, const std::string& command) {
@@ -365,8 +366,17 @@ void add_envmap_command(CLI::App& app) {
         ->check(non_empty_path());
     cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")
         ->check(non_empty_path());
-    cmd->add_flag("--quick", a->quick, "12 lobes only, no curves or figures");
-    cmd->callback([a] { report::run_envmap_baselines(a->maps, a->out, a->quick); });
+    cmd->add_flag("--quick", a->quick,
+                  "12 lobes only, no curves or figures (--probes: budgets 15 and 27 floats only)");
+    cmd->add_flag("--probes", a->probes,
+                  "the probe table instead (probes.md: SH, ZH3, SG lobes, SH + lobes at 15, 27, "
+                  "48, 75 floats on the full maps; default maps: blender-data's when installed)");
+    cmd->callback([a] {
+      if (a->probes)
+        report::run_probe_table(a->maps, a->out, a->quick);
+      else
+        report::run_envmap_baselines(a->maps, a->out, a->quick);
+    });
   }
 }
 
