@@ -324,8 +324,10 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
   std::vector<std::string> erf = {"erf"};
   if (!quick) erf.emplace_back("--exhaustive");
   erf.insert(erf.end(), {"--out", in("erf")});
-  std::vector<std::string> envmap = {"envmap", "baselines", "--out", in("envmap")};
-  if (quick) envmap.emplace_back("--quick");
+  // A representative part of the probe table (every third map at 27 floats); the
+  // full table is scripts/results.sh's.
+  std::vector<std::string> envmap = {"envmap",  "baselines", "--probes",
+                                     "--quick", "--out",     in("envmap")};
   return {
       {"fit",
        {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")},
@@ -343,7 +345,7 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       {"pareto", pareto, "pareto"},
       {"pareto-cpu", pareto_cpu, "pareto-cpu"},
       {"figures", figures, "figures"},
-      // The committed maps (data/envmaps): BakingLab baseline against sglab's fits.
+      // Probes (SH, ZH3, SG lobes) on the full maps when blender-data is installed.
       {"envmap", envmap, "envmap"},
   };
 }

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numeric>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <Eigen/Dense>
 
 #include "common/io.hpp"
 #include "validate/irradiance_table.hpp"
@@ -29,8 +29,8 @@ Vec3 normalized(const Vec3& v) {
 // Two unit tangents of the unit vector n.
 std::pair<Vec3, Vec3> tangents(const Vec3& n) {
   const Vec3 a = std::abs(n[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  const Vec3 t1 = normalized({a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2],
-                              a[0] * n[1] - a[1] * n[0]});
+  const Vec3 t1 =
+      normalized({a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]});
   const Vec3 t2 = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
                    n[0] * t1[1] - n[1] * t1[0]};
   return {t1, t2};
@@ -304,15 +304,15 @@ Probe Probe::from_json(const nlohmann::ordered_json& j) {
     throw InputError("probe: expected an object with a string 'kind'");
   const std::string kind = j["kind"].get<std::string>();
   bool known = false;
-  for (ProbeKind k : {ProbeKind::sh, ProbeKind::sh_nonneg, ProbeKind::zh3, ProbeKind::lobes,
-                      ProbeKind::hybrid})
+  for (ProbeKind k :
+       {ProbeKind::sh, ProbeKind::sh_nonneg, ProbeKind::zh3, ProbeKind::lobes, ProbeKind::hybrid})
     if (kind == kind_name(k)) {
       p.kind = k;
       known = true;
     }
   if (!known)
-    throw InputError(fmt::format(
-        "probe: 'kind' must be sh, sh_nonneg, zh3, lobes or hybrid, got '{}'", kind));
+    throw InputError(
+        fmt::format("probe: 'kind' must be sh, sh_nonneg, zh3, lobes or hybrid, got '{}'", kind));
   if (j.contains("fit") && j["fit"].is_string()) p.fit = j["fit"].get<std::string>();
   if (p.kind != ProbeKind::lobes) {
     if (!j.contains("sh_order") || !j["sh_order"].is_number_integer())
@@ -325,8 +325,7 @@ Probe Probe::from_json(const nlohmann::ordered_json& j) {
     if (p.kind == ProbeKind::hybrid && p.order != 2)
       throw InputError("probe: 'sh_order' must be 2 for hybrid");
     if (!j.contains("sh") || !j["sh"].is_array() || j["sh"].size() != sh_count(p.order))
-      throw InputError(
-          fmt::format("probe: 'sh' must hold {} RGB coefficients", sh_count(p.order)));
+      throw InputError(fmt::format("probe: 'sh' must hold {} RGB coefficients", sh_count(p.order)));
     for (const auto& c : j["sh"]) p.sh.push_back(vec3(c, "sh"));
   }
   if (p.kind == ProbeKind::zh3) {
@@ -351,8 +350,7 @@ Probe Probe::from_json(const nlohmann::ordered_json& j) {
       lobe.amplitude = vec3(l["amplitude"], "amplitude");
       p.lobes.push_back(lobe);
     }
-    if (p.kind == ProbeKind::lobes && p.lobes.empty())
-      throw InputError("probe: 'lobes' is empty");
+    if (p.kind == ProbeKind::lobes && p.lobes.empty()) throw InputError("probe: 'lobes' is empty");
   }
   return p;
 }
@@ -463,8 +461,7 @@ Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, i
   return p;
 }
 
-Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact,
-              const Vec3& axis) {
+Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, const Vec3& axis) {
   Eigen::MatrixXd a(static_cast<Eigen::Index>(normals.size()), 5);
   std::array<double, sh_count(kMaxShOrder)> y{};
   for (std::size_t k = 0; k < normals.size(); ++k) {

@@ -149,8 +149,7 @@ Probe project_zh3(const std::vector<Vec3>& radiance_sh);
 // on: linear least squares of E_map at `normals` (ZH3: with the projection's
 // axis).
 Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, int order);
-Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact,
-              const Vec3& axis);
+Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, const Vec3& axis);
 
 // ---- Fits of lobes and hybrids (envmap/fit.cpp) -------------------------------
 

@@ -11,7 +11,7 @@ namespace sglab::report {
 // when blender-data is installed, else the project's data/envmaps copies) →
 // probes.md, probes.csv, probes.png and one probe file per map and
 // representation (probes/<map>_<label>.json) in `out` (default
-// data/results). quick: budgets 15 and 27 floats only (the envmap step of
+// data/results). quick: every third map, 27 floats only (the envmap step of
 // `sglab run`).
 void run_probe_table(const std::string& maps, const std::string& out, bool quick);
 

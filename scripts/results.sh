@@ -17,7 +17,7 @@
 # Extra arguments go to `sglab run` (e.g. --quick).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/deps.sh jq valgrind
+scripts/deps.sh jq valgrind blender-data
 scripts/build.sh
 cmake --build build --target method_cost -j"$(nproc)"
 
@@ -35,9 +35,11 @@ cp "$run"/claims/claims.md "$run"/erf/erf_summary.md "$results"/
 cp "$run"/stability/{stability.md,findings.md} "$results"/
 cp "$run"/pareto/{pareto.csv,pareto.md} "$results"/
 cp "$run"/figures/[a-g]_*.{png,svg} "$results"/
-cp "$run"/envmap/{envmaps.csv,envmaps.md,envmap_city.png,envmap_curves.png} "$results"/
+
 
 # 2. What `sglab run` does not make.
+"$sglab" envmap baselines --out "$results"  # envmaps.md: lobe fits against the BakingLab baseline
+"$sglab" envmap baselines --probes --out "$results"  # probes.md: the full probe table, full maps
 "$sglab" gpucost --lang both --precision both --out "$results"  # the gpu section of costs.json, gpu_costs.md
 { # cycles per light over 1, 8 and 64 lights (the 8-light loop is the default figure)
   echo "# GPU cost per light against the number of lights"
