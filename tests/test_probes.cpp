@@ -51,7 +51,8 @@ TEST(Probes, TiledIrradianceOfAConstantMapIsPiL) {
   const envmap::MapIrradiance field(m);
   // Exact but for the sub-pixels n's horizon cuts (as envmap::irradiance: 8.4e−7 at this size).
   for (const Vec3& n : random_normals(200, 1))
-    for (std::size_t ch = 0; ch < 3; ++ch) EXPECT_NEAR(field.at(n)[ch], M_PI * L[ch], 2e-6 * M_PI * L[ch]);
+    for (std::size_t ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(field.at(n)[ch], M_PI * L[ch], 2e-6 * M_PI * L[ch]);
   // At the poles the horizon runs along pixel edges: exact to rounding.
   for (std::size_t ch = 0; ch < 3; ++ch)
     EXPECT_NEAR(field.at(Vec3{0, 0, -1})[ch], M_PI * L[ch], 1e-12 * M_PI * L[ch]);
@@ -97,8 +98,9 @@ TEST(Probes, DenseErrorOfAConstantMap) {
   const envmap::MapIrradiance field(m);
   const envmap::DenseTruth truth = envmap::dense_truth(field, 2000);
   EXPECT_NEAR(truth.peak, 2 * M_PI, 3e-5 * 2 * M_PI);  // the horizon sub-pixels at 32 × 16
-  const auto e = envmap::dense_error(
-      truth, [&](const Vec3&) { return Vec3{M_PI * L[0], M_PI * L[1], M_PI * L[2]}; });
+  const auto e = envmap::dense_error(truth, [&](const Vec3&) {
+    return Vec3{M_PI * L[0], M_PI * L[1], M_PI * L[2]};
+  });
   EXPECT_LT(e.max_rel, 3e-5);
   // A probe off by 1 % of the peak everywhere in one channel: exactly that.
   const auto off = envmap::dense_error(truth, [&](const Vec3& n) {
@@ -167,7 +169,8 @@ TEST(Probes, RadianceProjectionIsOrthonormal) {
       return Vec3{y[k], 0, 0};
     });
     const auto c = envmap::radiance_sh(m, 4);
-    for (std::size_t q = 0; q < 25; ++q) EXPECT_NEAR(c[q][0], q == k ? 1 : 0, 1e-3) << k << " " << q;
+    for (std::size_t q = 0; q < 25; ++q)
+      EXPECT_NEAR(c[q][0], q == k ? 1 : 0, 1e-3) << k << " " << q;
   }
 }
 
@@ -176,7 +179,8 @@ TEST(Probes, ShOfAConstantMapAndOfABandLimitedMap) {
   const Probe p = envmap::project_sh(envmap::radiance_sh(flat, 4), 4);
   const auto f = envmap::probe_irradiance(p);
   for (const Vec3& n : random_normals(50, 4))
-    for (std::size_t ch = 0; ch < 3; ++ch) EXPECT_NEAR(f(n)[ch], M_PI * static_cast<double>(ch + 1), 1e-6);
+    for (std::size_t ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(f(n)[ch], M_PI * static_cast<double>(ch + 1), 1e-6);
   // Radiance of bands 0–2: E in closed form, E = Σ_l Â_l × band l.
   const auto radiance = [](const Vec3& w) {
     const double v = 1 + 0.5 * w[0] - 0.3 * w[2] + 0.1 * (3 * w[2] * w[2] - 1) + 0.2 * w[0] * w[1];
