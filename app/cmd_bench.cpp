@@ -48,7 +48,7 @@ struct BenchArgs {
 };
 
 double find_ns(const std::vector<report::Cost>& costs, report::CostKind kind,
-               const std::string& method, validate::FloatFormat f, report::CostMode mode) {
+               const std::string& method, io::Precision f, report::CostMode mode) {
   for (const report::Cost& c : costs)
     if (c.kind == kind && c.method == method && c.precision == f && c.mode == mode)
       return c.ns_per_eval;
@@ -70,7 +70,7 @@ validate::Table summary_table(const std::vector<report::Cost>& costs) {
        {"batch_speedup", 3},
        {"setup_ns_per_light", 3},
        {"eval_ns_per_point", 3}});
-  std::vector<std::tuple<report::CostKind, std::string, validate::FloatFormat>> keys;
+  std::vector<std::tuple<report::CostKind, std::string, io::Precision>> keys;
   for (const report::Cost& c : costs) {
     const auto key = std::make_tuple(c.kind, c.method, c.precision);
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
@@ -82,7 +82,7 @@ validate::Table summary_table(const std::vector<report::Cost>& costs) {
     const double scalar = find_ns(costs, kind, method, f, CostMode::scalar);
     const double batch = find_ns(costs, kind, method, f, CostMode::batch);
     t.add_row({Table::text(report::to_string(kind)), Table::text(method),
-               Table::text(validate::to_string(f)), cell(scalar), cell(batch), cell(scalar / batch),
+               Table::text(io::to_string(f)), cell(scalar), cell(batch), cell(scalar / batch),
                cell(find_ns(costs, kind, method, f, CostMode::light_setup)),
                cell(find_ns(costs, kind, method, f, CostMode::light_eval))});
   }

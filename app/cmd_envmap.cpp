@@ -107,14 +107,7 @@ struct BaselinesArgs {
 };
 
 void run_fit(const FitArgs& a, const std::string& command) {
-  envmap::Objective objective;
-  if (a.objective == "radiance")
-    objective = envmap::Objective::radiance;
-  else if (a.objective == "irradiance")
-    objective = envmap::Objective::irradiance;
-  else
-    throw InputError(
-        fmt::format("--objective: expected radiance or irradiance, got '{}'", a.objective));
+  const auto objective = io::parse_option<envmap::Objective>("--objective", a.objective);
   if (!a.out.empty()) io::check_output_path(a.out);
   const auto t0 = std::chrono::steady_clock::now();
   const envmap::Map map = envmap::read_map(a.file);
@@ -193,12 +186,14 @@ void run_fit(const FitArgs& a, const std::string& command) {
 
 void run_recommend(const RecommendArgs& a) {
   double budget = 0;
-  if (!report::parse_number(a.budget, budget))
-    throw InputError(fmt::format("--budget: '{}' is not a finite number", a.budget));
+  if (const auto parsed = io::parse_decimal(a.budget);
+      const auto* why = std::get_if<std::string>(&parsed))
+    throw InputError("--budget: " + *why);
+  else
+    budget = std::get<double>(parsed);
   if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
-  const auto precision = report::parse_precision(a.precision);
-  if (!precision)
-    throw InputError(fmt::format("--precision: expected float or double, got '{}'", a.precision));
+  const auto precision = io::parse_option("--precision", a.precision,
+                                          {io::Precision::float32, io::Precision::float64});
   const auto t0 = std::chrono::steady_clock::now();
   const envmap::Map map = envmap::read_map(a.file);
   const envmap::Map work = envmap::working_copy(map);
@@ -211,10 +206,10 @@ void run_recommend(const RecommendArgs& a) {
     p.origin = m.origin;
     costs.push_back(p);
   }
-  const std::string cost_source = a.costs.fill(costs, *precision, 7, 0.01).text;
+  const std::string cost_source = a.costs.fill(costs, precision, 7, 0.01).text;
   io::Progress progress(fmt::format("envmap recommend {}", a.file), 0);
   const report::EnvmapSelection sel =
-      report::select_envmap_method(map, work, budget, a.max_lobes, a.normals, *precision, costs,
+      report::select_envmap_method(map, work, budget, a.max_lobes, a.normals, precision, costs,
                                    [&](const std::string& s) { progress.note(s); });
   progress.finish();
 
@@ -222,7 +217,7 @@ void run_recommend(const RecommendArgs& a) {
     json doc;
     doc["map"] = a.file;
     doc["budget"] = budget;
-    doc["precision"] = std::string(validate::to_string(*precision));
+    doc["precision"] = std::string(io::to_string(precision));
     doc["normals"] = a.normals;
     doc["error"] =
         "max over normals and RGB of |E_method(lobes) - E_map| / max E_map (lobe fit + "
@@ -246,7 +241,7 @@ void run_recommend(const RecommendArgs& a) {
   } else {
     fmt::print(
         "map {} ({} x {}): budget {} on the irradiance error (lobe fit + method, {}), {} normals\n",
-        a.file, map.width, map.height, budget, validate::to_string(*precision), a.normals);
+        a.file, map.width, map.height, budget, io::to_string(precision), a.normals);
     fmt::print(
         "error = max over normals and RGB of |E_method(lobes) − E_map| / max E_map; cost = lobes × "
         "cost per evaluation (--cost)\n\n");
@@ -284,7 +279,7 @@ void add_envmap_command(CLI::App& app) {
   env->require_subcommand(1);
   env->footer(
       "Direction convention: equirectangular, +z up; row 0 at the zenith; column i at azimuth φ = "
-      "2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (README, Environment maps).");
+      "2π(i + ½)/W, ω = (sin θ cos φ, −sin θ sin φ, cos θ) (docs/envmaps.md).");
 
   {
     auto a = std::make_shared<DownsampleArgs>();

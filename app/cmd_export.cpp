@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <string>
 
 #include <fmt/format.h>
@@ -36,9 +35,7 @@ std::string provenance_line(const fit::ordered_json& j) {
   if (p.contains("date") && p["date"].is_string()) add(p["date"].get<std::string>());
   if (p.contains("source") && p["source"].is_string())
     add("source: " + p["source"].get<std::string>());
-  // Older records cite internal working documents as "(seed NNN)"; exported
-  // sources cite papers only.
-  return std::regex_replace(prov, std::regex(R"( ?\(?(quoted in )?seed \d{3}\)?)"), "");
+  return prov;
 }
 
 // A constant-set JSON (data/constants/*.json, or one `sglab fit … --out DIR`
@@ -174,14 +171,10 @@ void add_export_command(CLI::App& app) {
          "float, or half (16-bit floats: GLSL float16_t, HLSL half with 16-bit types; not for cpp)")
       ->capture_default_str();
   cmd->callback([args] {
-    const auto lang = shader::parse_language(args->lang);
-    if (!lang)
-      throw InputError(fmt::format("--lang: expected glsl, hlsl or cpp, got '{}'", args->lang));
-    const auto precision = shader::parse_precision(args->precision);
-    if (!precision)
-      throw InputError(fmt::format("--precision: expected float or half, got '{}'",
-                                   args->precision.substr(0, 40)));
-    if (*precision == shader::Precision::float16 && *lang == shader::Language::cpp)
+    const auto lang = io::parse_option<io::Language>("--lang", args->lang);
+    const auto precision = io::parse_option("--precision", args->precision,
+                                            {io::Precision::float32, io::Precision::float16});
+    if (precision == io::Precision::float16 && lang == io::Language::cpp)
       throw InputError(
           "--precision half: the C++ export is float only (g++'s _Float16 may keep float "
           "intermediates, so it would not be a faithful half twin); use --lang glsl or hlsl");
@@ -190,7 +183,7 @@ void add_export_command(CLI::App& app) {
       throw InputError(
           fmt::format("--method: unknown or non-exportable method '{}'; exportable: {}",
                       args->method, fmt::join(known, ", ")));
-    shader::ExportRequest req = shader::standard_request(*lang, args->method, *precision);
+    shader::ExportRequest req = shader::standard_request(lang, args->method, precision);
     if (args->split) set_split(req);
     // Provenance of the compiled-in sets from the JSON they were generated
     // from, when the source tree is at hand.
@@ -210,7 +203,7 @@ void add_export_command(CLI::App& app) {
       req.budget = {};
       req.budget.model = req.overrides.back().achieved_irradiance_error;
     } else {
-      add_vulkan_error(req.budget, args->method, *lang, req.split, *precision);
+      add_vulkan_error(req.budget, args->method, lang, req.split, precision);
     }
     shader::ExportResult result;
     try {

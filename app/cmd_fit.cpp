@@ -94,11 +94,7 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target,
                        const std::string& command) {
   fit::FitSpec spec;
   spec.target = target;
-  const auto precision = fit::parse_precision(o.precision);
-  if (!precision)
-    throw InputError(
-        fmt::format("--precision must be half, float or double; got '{}'", o.precision));
-  spec.precision = *precision;
+  spec.precision = io::parse_option<io::Precision>("--precision", o.precision);
   spec.objective = o.objective;
   spec.alpha_free = o.alpha_free;
   spec.cold_start = o.cold_start;
@@ -106,9 +102,7 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target,
   if (!o.kappa.empty()) {
     // κ must survive the precision the constants are fitted for.
     io::KappaRangeRules rules;
-    rules.format = spec.precision == fit::WorkingPrecision::half     ? io::kHalfFormat
-                   : spec.precision == fit::WorkingPrecision::single ? io::kFloatFormat
-                                                                     : io::kDoubleFormat;
+    rules.format = io::number_format(spec.precision);
     const auto parsed = io::parse_kappa_range(o.kappa, rules);
     if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--kappa: " + *why);
     spec.kappa_lo = std::get<io::KappaRange>(parsed).lo;

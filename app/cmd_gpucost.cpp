@@ -97,11 +97,8 @@ std::vector<gpu::Harness> checked_harnesses(const std::vector<std::string>& aske
   if (asked.empty()) return {gpu::Harness::single, gpu::Harness::loop, gpu::Harness::setup};
   std::vector<gpu::Harness> out;
   for (const std::string& h : asked) {
-    const auto parsed = gpu::parse_harness(h);
-    if (!parsed)
-      throw InputError(
-          fmt::format("--harness: expected single, loop or setup, got {}", io::quote_escaped(h)));
-    if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
+    const auto parsed = io::parse_option<gpu::Harness>("--harness", h);
+    if (std::find(out.begin(), out.end(), parsed) == out.end()) out.push_back(parsed);
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -125,11 +122,8 @@ std::vector<gpu::CompilePath> checked_compiles(const std::vector<std::string>& a
   if (asked.empty()) return {gpu::CompilePath::none};
   std::vector<gpu::CompilePath> out;
   for (const std::string& c : asked) {
-    const auto parsed = gpu::parse_compile_path(c);
-    if (!parsed)
-      throw InputError(fmt::format("--compile: expected none, legalized or optimized, got {}",
-                                   io::quote_escaped(c)));
-    if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
+    const auto parsed = io::parse_option<gpu::CompilePath>("--compile", c);
+    if (std::find(out.begin(), out.end(), parsed) == out.end()) out.push_back(parsed);
   }
   std::sort(out.begin(), out.end());
   if (out == std::vector{gpu::CompilePath::legalized} &&
@@ -256,7 +250,12 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
                              shader::Precision::float32) != p.precisions.end()) {
           if (harness == gpu::Harness::loop) {
             for (int n : p.lights) {
-              visit([=] { return gpu::baseline_shader(lang, {}, harness, n, compile); }, "");
+              visit(
+                  [=] {
+                    return gpu::baseline_shader(lang, shader::Precision::float32, harness, n,
+                                                compile);
+                  },
+                  "");
               for (const auto& [m, split] : forms)
                 visit([=, m = m,
                        split = split] { return gpu::loop_shader(m, lang, split, n, compile); },
@@ -264,7 +263,12 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
                                   shader::to_string(lang), gpu::to_string(compile)));
             }
           } else if (a.form != "unsplit") {
-            visit([=] { return gpu::baseline_shader(lang, {}, harness, 1, compile); }, "");
+            visit(
+                [=] {
+                  return gpu::baseline_shader(lang, shader::Precision::float32, harness, 1,
+                                              compile);
+                },
+                "");
             for (const std::string& m : p.methods)
               if (std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end())
                 visit([=] { return gpu::setup_shader(m, lang, compile); },

@@ -58,22 +58,20 @@ void add_pareto_command(CLI::App& app) {
       lo = std::get<io::KappaRange>(parsed).lo;
       hi = std::get<io::KappaRange>(parsed).hi;
     }
-    const auto precision = report::parse_precision(args->precision);
-    if (!precision)
-      throw InputError(
-          fmt::format("--precision: expected float or double, got '{}'", args->precision));
+    const auto precision = io::parse_option("--precision", args->precision,
+                                            {io::Precision::float32, io::Precision::float64});
 
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
     // a bad --cost before the sweep
-    const report::CostSource cost = args->costs.source(*precision);
-    std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
+    const report::CostSource cost = args->costs.source(precision);
+    std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, precision);
     const CostsOption::From source =
-        args->costs.fill(points, *precision, /*repetitions=*/5, /*min_time=*/0.01);
+        args->costs.fill(points, precision, /*repetitions=*/5, /*min_time=*/0.01);
     report::mark_frontier(points);
 
     const validate::Table table =
-        report::pareto_table(points, *precision, lo, hi, cost, source.provenance);
+        report::pareto_table(points, precision, lo, hi, cost, source.provenance);
     const std::filesystem::path dir(args->out);
     using validate::TableFormat;
     validate::write_table(table, dir, "pareto", {TableFormat::csv, TableFormat::markdown});

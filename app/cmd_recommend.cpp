@@ -68,7 +68,7 @@ std::string describe(const report::MethodPoint& p) {
 }
 
 // The κ-range answer (the request, choice, runner-up, most accurate) with every candidate, as JSON.
-void print_recommendation_json(double lo, double hi, double budget, validate::FloatFormat precision,
+void print_recommendation_json(double lo, double hi, double budget, io::Precision precision,
                                const std::vector<report::MethodPoint>& points,
                                const report::Recommendation& r, const report::CostSource& cost,
                                const CostsOption::From& source) {
@@ -76,7 +76,7 @@ void print_recommendation_json(double lo, double hi, double budget, validate::Fl
   doc["kappa_lo"] = lo;
   doc["kappa_hi"] = hi;
   doc["budget"] = budget;
-  doc["precision"] = std::string(validate::to_string(precision));
+  doc["precision"] = std::string(io::to_string(precision));
   doc["choice"] = point_json(r.choice);
   doc["runner_up"] = point_json(r.runner_up);
   doc["most_accurate"] = point_json(r.most_accurate);
@@ -102,12 +102,12 @@ void print_recommendation_json(double lo, double hi, double budget, validate::Fl
 }
 
 // The κ-range answer as text.
-void print_recommendation_text(double lo, double hi, double budget, validate::FloatFormat precision,
+void print_recommendation_text(double lo, double hi, double budget, io::Precision precision,
                                const std::vector<report::MethodPoint>& points,
                                const report::Recommendation& r, const report::CostSource& cost,
                                const CostsOption::From& source) {
-  fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi,
-             validate::to_string(precision), budget);
+  fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi, io::to_string(precision),
+             budget);
   if (r.choice) {
     fmt::print("  choice:    {}\n", describe(*r.choice));
     if (r.runner_up)
@@ -135,15 +135,16 @@ void run_recommend(const RecommendArgs& args) {
   double lo = 0, hi = 0, budget = 0;
   if (args.kappa.empty() == args.scene.empty())
     throw InputError("give exactly one of --kappa LO:HI and --scene FILE");
-  if (!report::parse_number(args.budget, budget))
-    throw InputError(fmt::format("--budget: '{}' is not a finite number", args.budget));
+  if (const auto parsed = io::parse_decimal(args.budget);
+      const auto* why = std::get_if<std::string>(&parsed))
+    throw InputError("--budget: " + *why);
+  else
+    budget = std::get<double>(parsed);
   if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
-  const auto precision = report::parse_precision(args.precision);
-  if (!precision)
-    throw InputError(
-        fmt::format("--precision: expected float or double, got '{}'", args.precision));
+  const auto precision = io::parse_option("--precision", args.precision,
+                                          {io::Precision::float32, io::Precision::float64});
   if (!args.scene.empty()) {
-    recommend_scene({args.scene, budget, *precision, args.normals, args.json, args.costs});
+    recommend_scene({args.scene, budget, precision, args.normals, args.json, args.costs});
     return;
   }
   {
@@ -153,15 +154,15 @@ void run_recommend(const RecommendArgs& args) {
     hi = std::get<io::KappaRange>(parsed).hi;
   }
 
-  const report::CostSource cost = args.costs.source(*precision);  // a bad --cost before the sweep
-  std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, *precision);
+  const report::CostSource cost = args.costs.source(precision);  // a bad --cost before the sweep
+  std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, precision);
   const CostsOption::From source =
-      args.costs.fill(points, *precision, /*repetitions=*/7, /*min_time=*/0.01);
+      args.costs.fill(points, precision, /*repetitions=*/7, /*min_time=*/0.01);
   const report::Recommendation r = report::recommend(points, budget);
   if (args.json)
-    print_recommendation_json(lo, hi, budget, *precision, points, r, cost, source);
+    print_recommendation_json(lo, hi, budget, precision, points, r, cost, source);
   else
-    print_recommendation_text(lo, hi, budget, *precision, points, r, cost, source);
+    print_recommendation_text(lo, hi, budget, precision, points, r, cost, source);
 }
 
 }  // namespace

@@ -28,14 +28,18 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -54,10 +58,36 @@ namespace fs = std::filesystem;
 // A Markdown file longer than this is linked from index.md, not inlined.
 constexpr std::size_t kInlineLines = 120;
 
+// How much of its work a step runs. `sglab run` runs every step in its
+// representative form (the same sections, tables and figures, from a sample of
+// the full work where the full work is long); `sglab run --full`, which
+// scripts/results.sh runs for the committed results, runs the full one;
+// `--quick` the smallest sample (the tests).
+enum class Form { quick, representative, full };
+
+std::string_view form_name(Form f) {
+  switch (f) {
+    case Form::quick:
+      return "quick";
+    case Form::representative:
+      return "representative";
+    case Form::full:
+      return "full";
+  }
+  return "full";
+}
+
 struct Step {
+  Step(std::string name_, std::vector<std::string> arguments_, std::string dir_)
+      : name(std::move(name_)), arguments(std::move(arguments_)), dir(std::move(dir_)) {}
   std::string name;
   std::vector<std::string> arguments;  // after `sglab`
   std::string dir;                     // output directory under OUT
+  // The form these arguments are in, what that form leaves out of the full
+  // work (empty in the full form), and the arguments of the full form.
+  Form form = Form::full;
+  std::string sample;
+  std::vector<std::string> full_arguments;
 };
 
 // For display only (index.md, the terminal): the arguments quoted so that the
@@ -118,6 +148,53 @@ class RedirectOutput {
     std::fflush(stderr);
   }
   int saved_out_ = -1, saved_err_ = -1;
+};
+
+// While a step runs: on a terminal, the line "sglab run [3/11] erf
+// (representative) 12 s" redrawn every half second on `tty` (the terminal
+// stderr was before the step's output went to its log) and cleared at the
+// end; nothing when `tty` is -1 (stderr not a terminal).
+class StepTicker {
+ public:
+  StepTicker(int tty, std::string label) : tty_(tty), label_(std::move(label)) {
+    if (tty_ >= 0) thread_ = std::thread([this] { loop(); });
+  }
+  ~StepTicker() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+    write("\r\033[K");
+  }
+  StepTicker(const StepTicker&) = delete;
+  StepTicker& operator=(const StepTicker&) = delete;
+
+ private:
+  void loop() {
+    std::unique_lock lock(mutex_);
+    do {
+      const double secs =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      write(fmt::format("\r{} {:.0f} s\033[K", label_, secs));
+    } while (!wake_.wait_for(lock, std::chrono::milliseconds(500), [this] { return stop_; }));
+  }
+  void write(std::string_view text) const {
+    while (!text.empty()) {
+      const ssize_t n = ::write(tty_, text.data(), text.size());
+      if (n <= 0) return;
+      text.remove_prefix(static_cast<std::size_t>(n));
+    }
+  }
+  int tty_;
+  std::string label_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
 };
 
 // Runs `sglab ARGUMENTS` in this process with the same exit codes as main():
@@ -249,15 +326,25 @@ std::size_t count_lines(const std::string& s) {
          (!s.empty() && s.back() != '\n');
 }
 
+// The line of index.md saying which form a step ran in and, unless it was the
+// full one, what the full form adds and its command.
+std::string form_line(const Step& step) {
+  if (step.form == Form::full) return "Form: full.\n\n";
+  return fmt::format(
+      "Form: {} ({}). Full form (scripts/results.sh runs it, through `sglab run --full`): "
+      "`{}`\n\n",
+      form_name(step.form), step.sample, display_command(step.full_arguments));
+}
+
 // The section of index.md for one step: its command and status, its Markdown
 // files (inlined or linked), the figures not shown by them, and links to the
 // other files it wrote that those do not link.
 std::string section(const fs::path& out, const Step& step, int status, double seconds, Seen& seen) {
   const std::string log = fmt::format("logs/{}.log", step.name);
-  std::string md =
-      fmt::format("## {}\n\n`{}` — {} in {:.1f} s (log: [{}]({}))\n\n", step.name,
-                  display_command(step.arguments),
-                  status == 0 ? "ok" : fmt::format("FAILED (exit {})", status), seconds, log, log);
+  std::string md = fmt::format("## {}\n\n`{}` — {} in {:.1f} s (log: [{}]({}))\n\n{}", step.name,
+                               display_command(step.arguments),
+                               status == 0 ? "ok" : fmt::format("FAILED (exit {})", status),
+                               seconds, log, log, form_line(step));
   const fs::path dir = out / step.dir;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return md;
@@ -302,11 +389,12 @@ std::string section(const fs::path& out, const Step& step, int status, double se
   return md;
 }
 
-// The steps of the main job writing under `root`. pareto reads the costs the
-// bench and gpucost steps measured, or the committed table when bench is
-// skipped: GPU cost (its default, gpu:navi21) into pareto/, CPU batch ns into
-// pareto-cpu/; the figure shows both side by side.
-std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped) {
+// The steps of the main job writing under `root`, in `form`. pareto reads the
+// costs the bench and gpucost steps measured, or the committed table when
+// bench is skipped: GPU cost (its default, gpu:navi21) into pareto/, CPU batch
+// ns into pareto-cpu/; the figure shows both side by side. A step whose
+// sample differs from its full work says what it leaves out (Step::sample).
+std::vector<Step> run_steps(const fs::path& root, Form form, bool bench_skipped) {
   const auto in = [&root](const char* sub) { return (root / sub).string(); };
   std::vector<std::string> pareto = {"pareto", "--out", in("pareto")};
   std::vector<std::string> pareto_cpu = {"pareto", "--cost", "cpu-batch", "--out",
@@ -321,19 +409,12 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
   if (!bench_skipped)
     for (auto* step : {&pareto, &pareto_cpu, &figures})
       step->insert(step->end(), {"--costs", in("bench/costs.json")});
-  std::vector<std::string> erf = {"erf"};
-  if (!quick) erf.emplace_back("--exhaustive");
-  erf.insert(erf.end(), {"--out", in("erf")});
-  // A representative part of the probe table (every third map at 27 floats); the
-  // full table is scripts/results.sh's.
-  std::vector<std::string> envmap = {"envmap",  "baselines", "--probes",
-                                     "--quick", "--out",     in("envmap")};
-  return {
+  std::vector<Step> steps = {
       {"fit",
        {"fit", "all", "--out", in("constants"), "--header", in("constants/constants.hpp")},
        "constants"},
       {"sweep", {"sweep", "--backend", "auto", "--out", in("sweep")}, "sweep"},
-      {"erf", erf, "erf"},
+      {"erf", {"erf", "--exhaustive", "--out", in("erf")}, "erf"},
       {"stability", {"stability", "--out", in("stability")}, "stability"},
       {"claims", {"claims", "--out", in("claims")}, "claims"},
       {"bench", {"bench", "--out", in("bench")}, "bench"},
@@ -345,9 +426,53 @@ std::vector<Step> run_steps(const fs::path& root, bool quick, bool bench_skipped
       {"pareto", pareto, "pareto"},
       {"pareto-cpu", pareto_cpu, "pareto-cpu"},
       {"figures", figures, "figures"},
-      // Probes (SH, ZH3, SG lobes) on the full maps when blender-data is installed.
-      {"envmap", envmap, "envmap"},
+      // Probes (SH, ZH3, SG lobes, SH + lobes) on the full maps when blender-data is installed.
+      {"envmap", {"envmap", "baselines", "--probes", "--out", in("envmap")}, "envmap"},
   };
+  // The smaller forms: the arguments they drop and add, and what they leave
+  // out of the full work. A sample serves the runs of its form and of the
+  // smaller ones; the first that serves a run is the one taken (so a step's
+  // quick sample comes before its representative one).
+  struct Sample {
+    std::string step;
+    Form form;
+    std::vector<std::string> drop, add;
+    std::string what;
+  };
+  const std::vector<Sample> samples = {
+      {"erf",
+       Form::representative,
+       {"--exhaustive"},
+       {},
+       "the float check on a dense sample of floats instead of every float"},
+      {"bench",
+       Form::representative,
+       {},
+       {"--repetitions", "3", "--min-time", "0.01"},
+       "the median of 3 repetitions of 0.01 s per case instead of 5 of 0.05 s: the same "
+       "cases, noisier timings"},
+      {"envmap",
+       Form::representative,
+       {},
+       {"--quick"},
+       "every third map at 27 floats instead of every map at 15, 27, 48 and 75 floats"},
+  };
+  for (Step& step : steps) {
+    const auto sample = std::find_if(samples.begin(), samples.end(), [&](const Sample& x) {
+      return x.step == step.name && form <= x.form;
+    });
+    if (sample == samples.end()) continue;
+    step.full_arguments = step.arguments;
+    std::vector<std::string> a;
+    for (const std::string& arg : step.arguments)
+      if (std::find(sample->drop.begin(), sample->drop.end(), arg) == sample->drop.end())
+        a.push_back(arg);
+    a.insert(a.end(), sample->add.begin(), sample->add.end());
+    step.arguments = std::move(a);
+    step.form = form;
+    step.sample = sample->what;
+  }
+  return steps;
 }
 
 // Whether the cost table a pareto step reads (its --costs, else the project's)
@@ -380,10 +505,10 @@ int run_logged(const Step& step, const fs::path& log) {
 }
 
 // The arguments of this run (after `sglab`), for its manifest.
-std::vector<std::string> run_arguments(const fs::path& out, bool quick,
+std::vector<std::string> run_arguments(const fs::path& out, Form form,
                                        const std::vector<std::string>& skip) {
   std::vector<std::string> a = {"run", "--out", out.string()};
-  if (quick) a.emplace_back("--quick");
+  if (form != Form::representative) a.push_back("--" + std::string(form_name(form)));
   for (const std::string& s : skip) a.insert(a.end(), {"--skip", s});
   return a;
 }
@@ -397,37 +522,53 @@ void add_run_command(CLI::App& app) {
                          "figures into OUT with OUT/index.md");
   auto out = std::make_shared<std::string>("out");
   auto quick = std::make_shared<bool>(false);
+  auto full = std::make_shared<bool>(false);
   auto skip = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--out", *out, "output directory")
       ->check(non_empty_path())
       ->capture_default_str();
+  auto* full_flag = cmd->add_flag(
+      "--full", *full,
+      "every step's full work (scripts/results.sh): the exhaustive erf check, long benchmark "
+      "repetitions; by default the long steps run a representative sample, each section of "
+      "index.md names its form and the full command");
   cmd->add_flag("--quick", *quick,
-                "sample the erf check instead of every float; envmap fits at 12 lobes only");
+                "the smallest samples: erf on a dense sample of floats, short benchmark "
+                "repetitions, envmap fits at 12 lobes only")
+      ->excludes(full_flag);
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
-  cmd->callback([out, quick, skip] {
+  cmd->callback([out, quick, full, skip] {
+    const Form form = *full ? Form::full : *quick ? Form::quick : Form::representative;
     const fs::path root = *out;
     io::check_replaceable_folder(root, "--out");
     const auto skipped = [&skip](const std::string& name) {
       return std::find(skip->begin(), skip->end(), name) != skip->end();
     };
-    const std::vector<Step> shown = run_steps(root, *quick, skipped("bench"));
+    const std::vector<Step> shown = run_steps(root, form, skipped("bench"));
     for (const auto& s : *skip) {
       if (std::none_of(shown.begin(), shown.end(), [&](const Step& st) { return st.name == s; }))
         throw InputError(fmt::format("--skip: unknown step '{}'", s));
     }
     const fs::path staging = io::make_staging_folder(root);
-    const std::vector<Step> steps = run_steps(staging, *quick, skipped("bench"));
+    const std::vector<Step> steps = run_steps(staging, form, skipped("bench"));
     fs::create_directories(staging / "logs");
-    std::string index =
-        "# sglab results\n\nProduced by `sglab run`; every section names the command that made "
-        "it.\n\n";
+    std::string index = fmt::format(
+        "# sglab results\n\nProduced by `{}`; every section names the command that "
+        "made it and the form it ran in.\n\n",
+        display_command(run_arguments(root, form, *skip)));
     Seen seen;
     int failures = 0;
+    const std::size_t to_run = static_cast<std::size_t>(std::count_if(
+        steps.begin(), steps.end(), [&](const Step& st) { return !skipped(st.name); }));
+    std::size_t ran = 0;
+    // The terminal, kept while each step's output goes to its log.
+    const int tty = io::stderr_is_terminal() ? ::dup(STDERR_FILENO) : -1;
     const auto t0 = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < steps.size(); ++i) {
       const Step& step = steps[i];
       if (skipped(step.name)) continue;
       if (step.name == "pareto" && !has_gpu_costs(step)) {
+        ++ran;
         const std::string why =
             "skipped: the cost table has no GPU costs (no RADV null device for gpucost, or its "
             "step skipped); pareto-cpu has the CPU cost";
@@ -436,9 +577,14 @@ void add_run_command(CLI::App& app) {
                              display_command(shown[i].arguments), why);
         continue;
       }
-      if (io::stderr_is_terminal()) fmt::print(stderr, "sglab run: {} ...\n", step.name);
+      ++ran;
       const auto start = std::chrono::steady_clock::now();
-      const int status = run_logged(step, staging / "logs" / (step.name + ".log"));
+      int status = 1;
+      {
+        StepTicker ticker(tty, fmt::format("sglab run [{}/{}] {} ({})", ran, to_run, step.name,
+                                           form_name(step.form)));
+        status = run_logged(step, staging / "logs" / (step.name + ".log"));
+      }
       const double secs =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print("{:<10} {:>7.1f} s  {}\n", step.name, secs,
@@ -449,11 +595,12 @@ void add_run_command(CLI::App& app) {
       if (status != 0) ++failures;
       index += section(staging, shown[i], status, secs, seen);
     }
+    if (tty >= 0) ::close(tty);
     const double total =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     index += fmt::format("Total: {:.1f} s.\n", total);
     io::write_file_atomic(staging / "index.md", index);
-    io::write_output_manifest(staging, display_command(run_arguments(root, *quick, *skip)));
+    io::write_output_manifest(staging, display_command(run_arguments(root, form, *skip)));
     const std::string kept = io::replace_folder(staging, root, "--out");
     fmt::print("total {:.1f} s; wrote {}\n", total, (root / "index.md").string());
     if (!kept.empty()) fmt::print(stderr, "sglab run: {}", kept);

@@ -74,7 +74,7 @@ std::string stability_json(const validate::StabilityReport& report, const valida
   doc["results"] = validate::to_json_records(full);
   nlohmann::ordered_json own = nlohmann::ordered_json::array();
   for (const validate::StabilityRow* r : validate::own_failures_on_valid_inputs(report))
-    own.push_back(fmt::format("{} ({})", r->function, validate::to_string(r->precision)));
+    own.push_back(fmt::format("{} ({})", r->function, io::to_string(r->precision)));
   doc["sglab_failures_on_valid_inputs"] = std::move(own);
   if (half) doc["half"] = validate::to_json_records(*half);
   return doc.dump(2) + "\n";
@@ -96,7 +96,7 @@ void print_stability_summary(const validate::StabilityReport& report,
     for (const validate::StabilityRow* r : own_failures)
       fmt::print(
           "WARNING: {} ({}, origin {}) fails on valid inputs, e.g. {}\n", r->function,
-          validate::to_string(r->precision), to_string(r->origin), [&] {
+          io::to_string(r->precision), to_string(r->origin), [&] {
             for (std::size_t k = 0; k < validate::kFailureKinds; ++k)
               if (r->failures[k].count && r->is_failure(static_cast<validate::FailureKind>(k)))
                 return r->failures[k].example;

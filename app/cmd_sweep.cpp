@@ -84,8 +84,8 @@ validate::Table device_vs_float_table(const validate::SweepResult& r) {
        {"worst_kappa", 4},
        {"worst_cosine", 4}});
   for (const auto& e : r.entries) {
-    if (!validate::is_device_format(e.precision)) continue;
-    const auto* f = r.find(e.method, e.quantity, validate::FloatFormat::binary32);
+    if (e.precision.backend != io::Backend::vulkan) continue;
+    const auto* f = r.find(e.method, e.quantity, io::kCpuFloat);
     if (!f || f->values.size() != e.values.size()) continue;
     double worst = 0, wk = NAN, wc = NAN;
     for (std::size_t k = 0; k < r.kappas.size(); ++k)
@@ -120,11 +120,9 @@ struct SweepArgs {
 std::vector<shader::Precision> checked_precisions(const std::vector<std::string>& asked) {
   std::vector<shader::Precision> out;
   for (const std::string& p : asked) {
-    const auto parsed = shader::parse_precision(p);
-    if (!parsed)
-      throw InputError(
-          fmt::format("--precision: expected float or half, got '{}'", p.substr(0, 40)));
-    if (std::find(out.begin(), out.end(), *parsed) == out.end()) out.push_back(*parsed);
+    const auto parsed =
+        io::parse_option("--precision", p, {io::Precision::float32, io::Precision::float16});
+    if (std::find(out.begin(), out.end(), parsed) == out.end()) out.push_back(parsed);
   }
   if (out.empty()) out.push_back(shader::Precision::float32);
   return out;
@@ -167,14 +165,15 @@ Backends parse_backends(const std::vector<std::string>& asked) {
   Backends b;
   b.cpu = asked.empty();
   for (const std::string& x : asked) {
-    if (x == "cpu")
-      b.cpu = true;
-    else if (x == "vulkan")
-      b.vulkan = true;
-    else if (x == "auto")
+    if (x == "auto") {
       b.cpu = b.vulkan_if_available = true;
-    else
-      throw InputError(fmt::format("--backend: expected cpu, vulkan or auto, got '{}'", x));
+      continue;
+    }
+    const auto backend = io::parse_enum<io::Backend>(x);
+    if (!backend)
+      throw InputError(
+          fmt::format("--backend: expected cpu, vulkan or auto, got {}", io::quote_escaped(x)));
+    (*backend == io::Backend::cpu ? b.cpu : b.vulkan) = true;
   }
   return b;
 }

@@ -49,14 +49,14 @@ struct CostsOption {
   }
 
   // The chosen source (parsed once); throws InputError (exit 2) naming --cost.
-  report::CostSource source(validate::FloatFormat f) const {
+  report::CostSource source(io::Precision f) const {
     if (!cost_option || cost_option->count() == 0)
       return live_timing ? report::CostSource{report::CostSourceKind::cpu_batch, {}}
                          : report::default_cost_source(f);
     const auto parsed = report::parse_cost_source(cost);
     if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--cost: " + *why);
     const auto& s = std::get<report::CostSource>(parsed);
-    if (s.kind == report::CostSourceKind::gpu && f != validate::FloatFormat::binary32)
+    if (s.kind == report::CostSourceKind::gpu && f != io::Precision::float32)
       throw InputError(
           fmt::format("--cost {}: the GPU cost is that of the float shader export; use --precision "
                       "float, or --cost cpu-batch / cpu-scalar",
@@ -79,7 +79,7 @@ struct CostsOption {
   // there is named on stderr and keeps NaN ("no cost"). Throws InputError
   // (exit 2) for a bad --cost, a missing or malformed table, or a table
   // without the source (no gpu section, family absent).
-  From fill(std::vector<report::MethodPoint>& points, validate::FloatFormat f, int repetitions,
+  From fill(std::vector<report::MethodPoint>& points, io::Precision f, int repetitions,
             double min_time) const {
     const report::CostSource s = source(f);
     if (live_timing) {
@@ -107,7 +107,7 @@ struct CostsOption {
           s.kind == report::CostSourceKind::gpu
               ? (s.figure == report::GpuFigure::single ? "GLSL, float, one call"
                                                        : "GLSL, float, 8-light loop")
-              : validate::to_string(f),
+              : io::to_string(f),
           s.kind == report::CostSourceKind::gpu ? "gpucost" : "bench");
     const std::string provenance =
         s.kind == report::CostSourceKind::gpu

@@ -15,7 +15,7 @@
 
 namespace {
 
-// The exit codes of every subcommand (README.md, "Exit codes").
+// The exit codes of every subcommand (docs/cli.md, "Exit codes").
 constexpr const char* kExitCodes =
     "Exit codes: 0 success; 1 failure (a fit did not converge, a file could not be written, an "
     "internal error); 2 bad input (an unknown subcommand or option, a malformed value or file; the "

@@ -49,7 +49,7 @@ validate::Scene read_scene(const SceneRecommendArgs& args) {
   } catch (const validate::SceneError& e) {
     throw InputError(e.what());
   }
-  // Limits (validate/scene.hpp, README) before anything is allocated for the normals.
+  // Limits (validate/scene.hpp, docs/cli.md) before anything is allocated for the normals.
   try {
     validate::check_scene_limits(scene.lights.size(), args.normals);
   } catch (const validate::SceneError& e) {
@@ -77,7 +77,7 @@ void print_json(const SceneOutput& o) {
   doc["normals"] = o.normals;
   doc["kappa_range"] = {o.scene.kappa_min(), o.scene.kappa_max()};
   doc["budget"] = o.args.budget;
-  doc["precision"] = std::string(validate::to_string(o.args.precision));
+  doc["precision"] = std::string(io::to_string(o.args.precision));
   doc["cost_source"] = o.cost.name();
   doc["cost_unit"] = std::string(o.cost.unit());
   doc["cost_from"] = o.source.text;
@@ -117,8 +117,10 @@ void print_json(const SceneOutput& o) {
                   {"range_max_peak_rel", number(m.max_peak_rel)},
                   {"in_valid_range", m.in_valid_range},
                   {"meets_budget", m.max_peak_rel <= o.args.budget}});
+  // sglab's models' errors over the scene's κ range alone (not its lights), and the cheapest
+  // of them meeting the budget there.
   const auto& sufficient = o.ranking.sufficient;
-  doc["sglab_models_on_range"] = {
+  doc["errors_on_kappa_range"] = {
       {"kappa_lo", o.ranking.kappa_lo},
       {"kappa_hi", o.ranking.kappa_hi},
       {"models", sg},
@@ -130,7 +132,7 @@ void print_text(const SceneOutput& o) {
   const report::Recommendation& r = o.ranking.recommendation;
   fmt::print("scene {}: {} light(s), κ in [{:.4g}, {:.4g}], {} Fibonacci normals, {}, budget {}\n",
              o.args.scene, o.scene.lights.size(), o.scene.kappa_min(), o.scene.kappa_max(),
-             o.normals, validate::to_string(o.args.precision), o.args.budget);
+             o.normals, io::to_string(o.args.precision), o.args.budget);
   fmt::print(
       "error = max over normals and RGB channels of |Ê − E| / the scene's largest exact "
       "irradiance\n\n");

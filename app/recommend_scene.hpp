@@ -12,7 +12,7 @@ namespace sglab::app {
 struct SceneRecommendArgs {
   std::string scene;  // path of the scene JSON
   double budget = 0;
-  validate::FloatFormat precision = validate::FloatFormat::binary32;
+  io::Precision precision = io::Precision::float32;
   std::size_t normals = 4096;
   bool json = false;
   CostsOption costs;  // the cost table (or live timing), as for `recommend --kappa`

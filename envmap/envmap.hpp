@@ -1,6 +1,6 @@
 // envmap/envmap.hpp — HDR environment maps as SG lighting (`sglab envmap`).
 //
-// Direction convention (README "Environment maps"; every envmap command uses it):
+// Direction convention (docs/envmaps.md; every envmap command uses it):
 // a map is an equirectangular (latitude-longitude) image of width W = 2H,
 // +z is up. Pixel (i, j), column i from the left and row j from the top
 // (0-based), covers the polar angles θ ∈ [πj/H, π(j+1)/H] from +z (row 0
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "common/io.hpp"
+#include "common/vocabulary.hpp"
 #include "validate/scene.hpp"
 
 namespace sglab::envmap {
@@ -40,8 +41,8 @@ struct Map {
 
 // Largest map read: 2^27 pixels (16384 × 8192), and the smallest: 8 × 4. The
 // largest holds 1.5 GiB as float RGB, and every envmap command keeps at most
-// one such map (plus O(W + H) and its 128-wide working copy): README,
-// "Environment maps", gives the memory and time measured at that size.
+// one such map (plus O(W + H) and its 128-wide working copy): docs/envmaps.md
+// gives the memory and time measured at that size.
 inline constexpr std::size_t kMaxPixels = std::size_t{1} << 27;
 inline constexpr std::size_t kMinHeight = 4;
 
@@ -140,7 +141,9 @@ struct Lobe {
 };
 
 enum class Objective { radiance, irradiance };
-const char* to_string(Objective o);
+constexpr std::array<io::EnumName<Objective>, 2> names_of(Objective) {
+  return {{{Objective::radiance, "radiance"}, {Objective::irradiance, "irradiance"}}};
+}
 
 // The BakingLab baseline ([BakingLab], SG.cpp GenerateUniformSGs / SolveNNLS):
 // N axes on BakingLab's spherical Fibonacci spiral (z_k = (2k + 1)/N − 1,

@@ -437,8 +437,6 @@ double fit_memory_bytes(const Map& work, std::size_t lobes) {
          static_cast<double>(lobes) * static_cast<double>(kFitBytesPerPixelLobe);
 }
 
-const char* to_string(Objective o) { return o == Objective::radiance ? "radiance" : "irradiance"; }
-
 std::size_t max_lobes(const Map& work) {
   return std::min<std::size_t>(256, work.width * work.height / 32);
 }

@@ -140,8 +140,8 @@ Map read_exr(const std::string& name) {
 void check_size(std::uint64_t width, std::uint64_t height, const std::string& source) {
   if (width > kMaxPixels || height > kMaxPixels || width * height > kMaxPixels)
     throw InputError(fmt::format(
-        "{}: {} x {} pixels, more than the {} (16384 x 8192) a map may have (README, Environment "
-        "maps: the memory and time of the largest map)",
+        "{}: {} x {} pixels, more than the {} (16384 x 8192) a map may have (docs/envmaps.md: the "
+        "memory and time of the largest map)",
         source, width, height, kMaxPixels));
   if (width != 2 * height)
     throw InputError(fmt::format(

@@ -147,42 +147,6 @@ std::string upper(std::string_view s) {
 
 }  // namespace
 
-std::string_view to_string(Harness h) {
-  switch (h) {
-    case Harness::single:
-      return "single";
-    case Harness::loop:
-      return "loop";
-    case Harness::setup:
-      return "setup";
-  }
-  return "?";
-}
-
-std::optional<Harness> parse_harness(std::string_view text) {
-  for (Harness h : {Harness::single, Harness::loop, Harness::setup})
-    if (text == to_string(h)) return h;
-  return std::nullopt;
-}
-
-std::string_view to_string(CompilePath c) {
-  switch (c) {
-    case CompilePath::none:
-      return "none";
-    case CompilePath::legalized:
-      return "legalized";
-    case CompilePath::optimized:
-      return "optimized";
-  }
-  return "?";
-}
-
-std::optional<CompilePath> parse_compile_path(std::string_view text) {
-  for (CompilePath c : {CompilePath::none, CompilePath::legalized, CompilePath::optimized})
-    if (text == to_string(c)) return c;
-  return std::nullopt;
-}
-
 std::vector<std::uint32_t> apply_compile_path(shader::Language lang, CompilePath compile,
                                               std::vector<std::uint32_t> spirv) {
   if (compile == CompilePath::none) return spirv;
@@ -452,7 +416,7 @@ void run_worker(std::string_view family, const fs::path& dir) {
     s.method = entry.at("method").get<std::string>();
     s.spirv = read_spirv(dir / shader_file(i));
     s.split = entry.at("split").get<bool>();
-    s.harness = parse_harness(entry.at("harness").get<std::string>()).value();
+    s.harness = io::parse_enum<Harness>(entry.at("harness").get<std::string>()).value();
     shaders.push_back(std::move(s));
   }
   json out;
@@ -609,7 +573,7 @@ Report report_from_json(const json& j, std::string_view where) {
     Row x;
     x.method = text(row, "method", at);
     x.family = text(row, "family", at);
-    const auto lang = shader::parse_language(text(row, "lang", at));
+    const auto lang = io::parse_enum<io::Language>(text(row, "lang", at));
     if (!lang || *lang == shader::Language::cpp)
       throw std::runtime_error(fmt::format("{}: {}lang must be glsl or hlsl", where, at));
     x.lang = *lang;
@@ -619,12 +583,12 @@ Report report_from_json(const json& j, std::string_view where) {
           "call inside a bounds check (a discount of about a quarter); rerun `sglab gpucost "
           "--out DIR`",
           where, at));
-    const auto compile = parse_compile_path(text(row, "compile", at));
+    const auto compile = io::parse_enum<CompilePath>(text(row, "compile", at));
     if (!compile || (*compile == CompilePath::legalized && x.lang != shader::Language::hlsl))
       throw std::runtime_error(
           fmt::format("{}: {}compile must be none, legalized (HLSL only) or optimized", where, at));
     x.compile = *compile;
-    const auto harness = parse_harness(text(row, "harness", at));
+    const auto harness = io::parse_enum<Harness>(text(row, "harness", at));
     if (!harness)
       throw std::runtime_error(
           fmt::format("{}: {}harness must be single, loop or setup", where, at));

@@ -39,6 +39,7 @@
 // by its manifest file (never whatever else is installed).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -96,13 +97,18 @@ struct Statistics {
 
 // The compute shader around the method (see the top of this file).
 enum class Harness { single, loop, setup };
-std::string_view to_string(Harness h);  // "single", "loop", "setup"
-std::optional<Harness> parse_harness(std::string_view text);
+constexpr std::array<io::EnumName<Harness>, 3> names_of(Harness) {
+  return {{{Harness::single, "single"}, {Harness::loop, "loop"}, {Harness::setup, "setup"}}};
+}
+using io::to_string;
 
 // What the SPIR-V went through after glslang (see the top of this file).
 enum class CompilePath { none, legalized, optimized };
-std::string_view to_string(CompilePath c);  // "none", "legalized", "optimized"
-std::optional<CompilePath> parse_compile_path(std::string_view text);
+constexpr std::array<io::EnumName<CompilePath>, 3> names_of(CompilePath) {
+  return {{{CompilePath::none, "none"},
+           {CompilePath::legalized, "legalized"},
+           {CompilePath::optimized, "optimized"}}};
+}
 
 // The lights of the loop harness: at most 64 are written out, and the default
 // figure (`--cost gpu:FAMILY`) is read from 8 (the cycles per light are those

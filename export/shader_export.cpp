@@ -18,33 +18,6 @@
 
 namespace sglab::shader {
 
-std::string_view to_string(Language lang) {
-  switch (lang) {
-    case Language::glsl:
-      return "glsl";
-    case Language::hlsl:
-      return "hlsl";
-    case Language::cpp:
-      return "cpp";
-  }
-  return "?";
-}
-
-std::optional<Language> parse_language(std::string_view text) {
-  if (text == "glsl") return Language::glsl;
-  if (text == "hlsl") return Language::hlsl;
-  if (text == "cpp") return Language::cpp;
-  return std::nullopt;
-}
-
-std::string_view to_string(Precision p) { return p == Precision::float16 ? "half" : "float"; }
-
-std::optional<Precision> parse_precision(std::string_view text) {
-  if (text == "float") return Precision::float32;
-  if (text == "half") return Precision::float16;
-  return std::nullopt;
-}
-
 std::string entry_point_name(std::string_view method) {
   std::string out = "sglab_irradiance_";
   for (char ch : method) out += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
@@ -54,6 +27,13 @@ std::string entry_point_name(std::string_view method) {
 using namespace detail;
 
 namespace {
+
+// The registry card of an exportable method (every one has a card: test_shader_export).
+const Method& registry_card(std::string_view id) {
+  const Method* m = find_method(irradiance_methods, id);
+  if (!m) throw std::logic_error(fmt::format("exported method {} has no registry card", id));
+  return *m;
+}
 
 // The C++ export's prelude: <cmath>, its namespace (opened here, closed by
 // export_source) and the shading-language functions and types its code calls.
@@ -121,8 +101,8 @@ std::string half_header(const ShaderMethod& m, Language lang) {
                                          : "// Precision: half (binary16, `half` with 16-bit "
                                            "types: DXC -enable-16bit-types, glslang "
                                            "--hlsl-enable-16bit-types);\n";
-  if (const HalfForm* form = find_half_form(m.id))
-    h += fmt::format("//   the method's half form: {}.\n", form->description);
+  if (find_half_form(m.id))
+    h += fmt::format("//   the method's half form: {}.\n", registry_card(m.id).half);
   else
     h += "//   every operation and constant in half.\n";
   if (lang == Language::hlsl)
@@ -189,10 +169,9 @@ ErrorBudget runtime_budget(std::string_view method) {
   const std::vector<validate::SweepMethod> one{{validate::Quantity::irradiance, *m}};
   const validate::SweepResult r = sweep(validate::SweepGrid{}, one, options);
   if (const validate::SweepEntry* e =
-          r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary64))
+          r.find(method, validate::Quantity::irradiance, io::kCpuDouble))
     b.model = e->summary.peak_rel.max;
-  if (const validate::SweepEntry* e =
-          r.find(method, validate::Quantity::irradiance, validate::FloatFormat::binary32))
+  if (const validate::SweepEntry* e = r.find(method, validate::Quantity::irradiance, io::kCpuFloat))
     b.float_cpp = e->summary.peak_rel.max;
   return b;
 }
@@ -260,7 +239,9 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
   h += fmt::format(
       "// Irradiance E(c, kappa) = integral of exp(kappa (w.v - 1)) max(w.n, 0) dw, c = v.n, of a\n"
       "// unit-amplitude SG light of sharpness kappa >= 0.\n");
-  h += fmt::format("// Source: {}.\n", m.citation);
+  const Method& card = registry_card(m.id);
+  h += fmt::format("// {}: {}.\n// Source: {}.\n", m.id, io::comment_text(card.summary),
+                   io::comment_text(card.source));
   h += "// Constants:\n";
   for (const auto& [role, set] : slots) {
     std::string prov = set.provenance;
@@ -298,12 +279,11 @@ std::string header_comment(const ExportRequest& request, const ShaderMethod& m, 
     h += fmt::format("//   measured on Vulkan ({}): {}\n", io::comment_text(b.vulkan_device),
                      fmt_error(b.vulkan));
   // The registry card holds for the compiled-in constants only.
-  if (const Method* card = find_method(irradiance_methods, m.id);
-      card && card->valid.max_peak_rel > 0 && request.overrides.empty())
+  if (card.valid.max_peak_rel > 0 && request.overrides.empty())
     h += fmt::format(
         "// Valid kappa range (registry card of the runtime, `sglab range`): max |E~ - E|/E(1, "
         "kappa) <= {:.2g} for kappa in {}; outside it that bound does not hold.\n",
-        card->valid.max_peak_rel, validate::kappa_range_text(card->valid));
+        card.valid.max_peak_rel, validate::kappa_range_text(card.valid));
   if (request.lang != Language::cpp) h += gpu_cost_line(request);
   if (request.precision == Precision::float16) h += half_header(m, request.lang);
   h += fmt::format("// Produced by: {}\n", io::comment_text(request.command));

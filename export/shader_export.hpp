@@ -24,23 +24,21 @@
 #include <string_view>
 #include <vector>
 
+#include "common/vocabulary.hpp"
+
 namespace sglab::shader {
 
-enum class Language { glsl, hlsl, cpp };
-std::string_view to_string(Language lang);
-// "glsl", "hlsl", "cpp"; nullopt otherwise.
-std::optional<Language> parse_language(std::string_view text);
+// The language of an export (io::Language: glsl, hlsl, cpp).
+using io::Language;
+using io::to_string;
 
 // The arithmetic of the exported code: float (binary32), or half (binary16:
 // GLSL float16_t through GL_EXT_shader_explicit_arithmetic_types_float16, HLSL
 // `half` with glslang's 16-bit types). The half form is the float form with
 // every type, literal and constant in binary16, except where a method has a
 // half form of its own (sglab_fast, sglab_mid: their κ-only part stays float). C++ has no
-// half export.
-enum class Precision { float32, float16 };
-std::string_view to_string(Precision p);  // "float", "half"
-// "float", "half"; nullopt otherwise.
-std::optional<Precision> parse_precision(std::string_view text);
+// half export. An export is float32 or float16 (io::Precision).
+using io::Precision;
 
 // One constant set as a method body sees it: the parameter type of
 // include/sglab/params.hpp it is (e.g. "Steepness2024Params<double>"), its
@@ -59,7 +57,7 @@ struct ConstantSet {
 // stand in for expm1): a tier per accuracy. The exporter takes the cheapest
 // tier whose measured erf/erfc error is at most 1/100 of the model's error.
 struct ElementaryTier {
-  std::string id;           // "fast", "accurate"
+  std::string id;           // "as7125", "listing5" (export/shader_elementary.cpp)
   std::string description;  // for the header comment
 };
 

@@ -451,12 +451,9 @@ std::string helper_sglab_mid_half(const Ctx& c, const Slots& slots) {
 const std::vector<HalfForm>& half_forms() {
   static const std::vector<HalfForm> table = {
       {"sglab_fast",
-       "kappa-only part (E(1, kappa), the rational A, B, C, V) in float, per-pixel shape in half",
        {helper_sglab_fast, helper_sglab_fast_half},
        "  return {P}fast_half(cosine, float(kappa));\n"},
       {"sglab_mid",
-       "kappa-only part (E(1, kappa), the rational A, B, D, S, V) in float, per-pixel shape in "
-       "half",
        {helper_sglab_mid, helper_sglab_mid_half},
        "  return {P}mid_half(cosine, float(kappa));\n"},
   };
@@ -518,7 +515,8 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,
                                               helper_sglab_acc_lerp};
 
 // THE table: one entry per exportable method. To add a method (e.g. one of
-// sglab's own models): append {id, citation, its constant slots as
+// sglab's own models): append {id (its registry card, include/sglab/registry.hpp, says what
+// it is and where it comes from), its constant slots as
 // Slots{{"role", named("NAME", the set NAME of constants.hpp)}}, how it uses erf, the
 // helpers it calls, and the body in the shading-language subset used here
 // (float, exp/exp2/sqrt/abs/min/max/clamp/dot, ?: with cheap arms and if/else
@@ -529,20 +527,18 @@ const std::vector<Helper> kHelpersSglabAcc = {helper_expm1,
 // runtime.
 const std::vector<ShaderMethod>& shader_methods() {
   static const std::vector<ShaderMethod> table = {
-      {"wang2009", "[Wang2009] cosine-lobe SG inner product, as quoted in [Pettineo2016]",
+      {"wang2009",
        [] {
          return Slots{
              {"cosine_lobe", named("cosine_lobe_published", constants::cosine_lobe_published)}};
        },
        ErfUse::none, kHelpersWang2009, kBodyWang2009},
       {"punctual",
-       "[Pettineo2016] punctual approximation, max(c, 0) 2 pi/kappa",
        [] { return Slots{}; },
        ErfUse::none,
        {},
        "  return clamp(cosine, 0.0f, 1.0f) * (6.28318548f / kappa);\n"},
       {"hill",
-       "[Pettineo2016] Hill's fitted curve times 2 pi/kappa",
        [] {
          return Slots{{"hill", named("hill_published", constants::hill_published)}};
        },
@@ -550,7 +546,6 @@ const std::vector<ShaderMethod>& shader_methods() {
        {helper_hill},
        "  return {P}hill_normalized(cosine, kappa) * (6.28318548f / kappa);\n"},
       {"hill_exact",
-       "[Pettineo2016] Hill's fitted curve times the exact SG integral",
        [] {
          return Slots{{"hill", named("hill_published", constants::hill_published)}};
        },
@@ -559,7 +554,6 @@ const std::vector<ShaderMethod>& shader_methods() {
        "  return {P}hill_normalized(cosine, kappa) * (12.566371f * {P}expm1_over_x(-2.0f * "
        "kappa));\n"},
       {"vsgl2015",
-       "[Tokuyoshi2015] diffuse SG lambda_d = 2 with the [Iwasaki2012] product integral",
        [] {
          return Slots{
              {"diffuse_lobe", named("diffuse_lobe_published", constants::diffuse_lobe_published)}};
@@ -568,7 +562,6 @@ const std::vector<ShaderMethod>& shader_methods() {
        {},
        kBodyVsgl2015},
       {"meder2018",
-       "[Meder2018] logistic hemispherical integral with an SG cosine fit",
        [] {
          return Slots{{"meder", named("meder2018_published", constants::meder2018_published)}};
        },
@@ -578,7 +571,7 @@ const std::vector<ShaderMethod>& shader_methods() {
   float upper = exp(prod.y) * {P}hemispherical(prod.z, prod.x);
   return {P}meder_amplitude * upper - {P}meder_offset * {P}hemispherical(cosine, kappa);
 )"},
-      {"tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, Listings 1-4",
+      {"tokuyoshi2022",
        [] {
          return Slots{
              {"clamped_cosine",
@@ -586,13 +579,13 @@ const std::vector<ShaderMethod>& shader_methods() {
              {"steepness", named("steepness2022_published", constants::steepness2022_published)}};
        },
        ErfUse::tiered, helpers2022(), kBodyTokuyoshi2022},
-      {"tokuyoshi2024", "[Tokuyoshi2024] supplementary Listings 6-7",
+      {"tokuyoshi2024",
        [] {
          return Slots{
              {"steepness", named("steepness2024_published", constants::steepness2024_published)}};
        },
        ErfUse::tiered, helpers2024(), kBodyTokuyoshi2024},
-      {"tokuyoshi2022_listing5", "[Tokuyoshi2022] Eq. 3-6, Listings 1-5 (its own Listing 5 erf)",
+      {"tokuyoshi2022_listing5",
        [] {
          return Slots{
              {"clamped_cosine",
@@ -601,21 +594,20 @@ const std::vector<ShaderMethod>& shader_methods() {
              {"erf", named("erf_listing5_published", constants::erf_listing5_published)}};
        },
        ErfUse::own, helpers2022(), kBodyTokuyoshi2022},
-      {"tokuyoshi2022_refit", "[Tokuyoshi2022] Eq. 3-6 with sglab's refitted constants",
+      {"tokuyoshi2022_refit",
        [] {
          return Slots{
              {"clamped_cosine", named("clamped_cosine_float", constants::clamped_cosine_float)},
              {"steepness", named("steepness2022_irradiance", constants::steepness2022_irradiance)}};
        },
        ErfUse::tiered, helpers2022(), kBodyTokuyoshi2022},
-      {"tokuyoshi2024_refit", "[Tokuyoshi2024] Listings 6-7 with sglab's refitted t(kappa)",
+      {"tokuyoshi2024_refit",
        [] {
          return Slots{
              {"steepness", named("steepness2024_irradiance", constants::steepness2024_irradiance)}};
        },
        ErfUse::tiered, helpers2024(), kBodyTokuyoshi2024},
       {"vsgl2015_refit",
-       "[Tokuyoshi2015] with sglab's refitted lambda_d",
        [] {
          return Slots{{"diffuse_lobe", named("lambda_d_diffuse_lobe_irradiance",
                                              constants::lambda_d_diffuse_lobe_irradiance)}};
@@ -623,14 +615,13 @@ const std::vector<ShaderMethod>& shader_methods() {
        ErfUse::none,
        {},
        kBodyVsgl2015},
-      {"wang2009_refit", "[Wang2009] with sglab's refitted cosine lobe (lambda, a)",
+      {"wang2009_refit",
        [] {
          return Slots{{"cosine_lobe", named("lambda_d_cosine_lobe_free_amplitude",
                                             constants::lambda_d_cosine_lobe_free_amplitude)}};
        },
        ErfUse::none, kHelpersWang2009, kBodyWang2009},
       {"sglab_fast",
-       "sglab_fast: E(1, kappa) times a line plus a C2 ramp, rational in kappa (sglab_fast.hpp)",
        [] {
          return Slots{{"model", named("sglab_fast_float", constants::sglab_fast_float)}};
        },
@@ -638,8 +629,6 @@ const std::vector<ShaderMethod>& shader_methods() {
        {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
       {"sglab_mid",
-       "sglab_mid: E(1, kappa) times a line, a smoothed max(c, 0) of varying width and c^2, "
-       "rational in kappa (sglab_mid.hpp)",
        [] {
          return Slots{{"model", named("sglab_mid_float", constants::sglab_mid_float)}};
        },
@@ -647,29 +636,21 @@ const std::vector<ShaderMethod>& shader_methods() {
        {helper_sglab_mid},
        "  return {P}mid(cosine, kappa);\n"},
       {"sglab_acc1",
-       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 1, D "
-       "= 3 (sglab_acc.hpp)",
        [] {
          return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc2",
-       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 2, D "
-       "= 5 (sglab_acc.hpp)",
        [] {
          return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc3",
-       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 3, D "
-       "= 6, steepness of order M = 3 (sglab_acc.hpp)",
        [] {
          return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc4",
-       "sglab: [Tokuyoshi2024] lerp factor + fitted even correction fading at both ends, N = 4, D "
-       "= 6, steepness of order M = 3 (sglab_acc.hpp)",
        [] {
          return Slots{{"model", named("sglab_acc_acc4", constants::sglab_acc_acc4)}};
        },

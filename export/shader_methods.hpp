@@ -19,10 +19,10 @@ using Helper = std::string (*)(const Ctx&, const Slots&);
 
 // A method's own half form, where the translated float code would fail in
 // half: its constants and helpers stay as written (float where they say
-// float), and the body of the half entry point calls them.
+// float), and the body of the half entry point calls them. What stays in float
+// is on the method's registry card (Card::half), which the header comment states.
 struct HalfForm {
   std::string_view id;
-  std::string_view description;  // for the header comment
   std::vector<Helper> helpers;
   std::string_view body;
 };
@@ -32,13 +32,12 @@ struct HalfForm {
 // defined by that erf, e.g. tokuyoshi2022_listing5).
 enum class ErfUse { none, tiered, own };
 
-// One exportable method: the registry id, the paper it comes from, its
+// One exportable method: the registry id (its card says what it is and its source), its
 // compiled-in constant slots (role → set), the helpers it needs in order and
 // the body of the entry point {ENTRY}(float cosine, float kappa).
 // Constants are named {P}<role>_<member> in the body.
 struct ShaderMethod {
   std::string_view id;
-  std::string_view citation;
   Slots (*constants)();
   ErfUse erf;
   std::vector<Helper> helpers;

@@ -604,11 +604,7 @@ std::vector<std::string> add_device_entries(validate::SweepResult& r,
         lang, shader::compute_shader(lang, ex.source, ex.entry_point, precision), precision);
     const std::vector<float> out = device.run(spirv, pairs);
     const std::vector<double> values(out.begin(), out.end());
-    const bool hlsl = lang == shader::Language::hlsl;
-    const validate::FloatFormat format =
-        half ? (hlsl ? validate::FloatFormat::vulkan_hlsl_half : validate::FloatFormat::vulkan_half)
-             : (hlsl ? validate::FloatFormat::vulkan_hlsl : validate::FloatFormat::vulkan);
-    r.entries.push_back(sweep_entry(r, sm, format, values, keep_points));
+    r.entries.push_back(sweep_entry(r, sm, io::on_vulkan(lang, precision), values, keep_points));
   }
   return skipped;
 }
@@ -675,11 +671,8 @@ std::vector<std::string> add_split_device_entries(validate::SweepResult& r,
     const std::vector<float> out =
         run_split(ex, lang, split_lights(sm.method, ex, lang, kappas, device), cosines, device);
     const std::vector<double> values(out.begin(), out.end());
-    r.entries.push_back(sweep_entry(r, sm,
-                                    lang == shader::Language::hlsl
-                                        ? validate::FloatFormat::vulkan_hlsl_split
-                                        : validate::FloatFormat::vulkan_split,
-                                    values, keep_points));
+    r.entries.push_back(sweep_entry(
+        r, sm, io::on_vulkan(lang, io::Precision::float32, io::Form::split), values, keep_points));
   }
   return skipped;
 }

@@ -198,25 +198,25 @@ double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
   return validate::max_peak_rel_error(values, references, peaks);
 }
 
-double measured_cosine_rounding(WorkingPrecision p, double lambda, double alpha) {
+double measured_cosine_rounding(io::Precision p, double lambda, double alpha) {
   switch (p) {
-    case WorkingPrecision::half:
+    case io::Precision::float16:
       return measured_cosine_rounding<Half>(lambda, alpha);
-    case WorkingPrecision::single:
+    case io::Precision::float32:
       return measured_cosine_rounding<float>(lambda, alpha);
-    case WorkingPrecision::dbl:
+    case io::Precision::float64:
       return measured_cosine_rounding<double>(lambda, alpha);
   }
   return 0;
 }
 
-double irradiance_peak_rel(const FitSpec& spec, WorkingPrecision p, double lambda, double alpha) {
+double irradiance_peak_rel(const FitSpec& spec, io::Precision p, double lambda, double alpha) {
   switch (p) {
-    case WorkingPrecision::half:
+    case io::Precision::float16:
       return irradiance_peak_rel<Half>(spec, lambda, alpha);
-    case WorkingPrecision::single:
+    case io::Precision::float32:
       return irradiance_peak_rel<float>(spec, lambda, alpha);
-    case WorkingPrecision::dbl:
+    case io::Precision::float64:
       return irradiance_peak_rel<double>(spec, lambda, alpha);
   }
   return 0;
@@ -233,7 +233,7 @@ ordered_json describe(const FitSpec& spec, double lambda, double alpha) {
   j["rounding_error_measured"] = measured_cosine_rounding(spec.precision, lambda, alpha);
   j["irradiance_max_peak_rel"] = irradiance_peak_rel(spec, spec.precision, lambda, alpha);
   j["irradiance_max_peak_rel_double"] =
-      irradiance_peak_rel(spec, WorkingPrecision::dbl, lambda, alpha);
+      irradiance_peak_rel(spec, io::Precision::float64, lambda, alpha);
   return j;
 }
 
@@ -290,7 +290,7 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec) {
   ordered_json fitted = describe(spec, lambda, alpha);
   ordered_json published = describe(spec, pub.lambda, pub.alpha);
   const std::string variant =
-      precision_name(spec.precision) + (spec.alpha_free ? "-alpha-free" : "");
+      std::string(io::to_string(spec.precision)) + (spec.alpha_free ? "-alpha-free" : "");
   ordered_json achieved = {{"objective", fitted["objective"]},
                            {"approximation_error", fitted["approximation_error"]},
                            {"rounding_error_model", fitted["rounding_error_model"]},
@@ -302,12 +302,12 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec) {
                         ordered_json{{"lambda", lambda}, {"alpha", alpha}},
                         fmt::format("minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, "
                                     "eps = {} machine epsilon ({}); alpha {}",
-                                    precision_name(spec.precision), eps,
+                                    std::string(io::to_string(spec.precision)), eps,
                                     spec.alpha_free ? "free" : "tied by energy conservation"),
                         achieved));
   out.report = {{"target", "clamped-cosine"},
                 {"variant", variant},
-                {"precision", precision_name(spec.precision)},
+                {"precision", std::string(io::to_string(spec.precision))},
                 {"alpha_free", spec.alpha_free},
                 {"converged", result.converged}};
   for (auto& [k, v] : fitted.items()) out.report[k] = v;
@@ -318,10 +318,10 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec) {
       "{:.4e}\n"
       "  irradiance max peak_rel in {} {:.4e} (in double {:.4e})\n"
       "  published lambda = {:.17g}, alpha = {:.17g}: objective {:.4e}, irradiance {:.4e}\n",
-      precision_name(spec.precision), spec.alpha_free ? "free" : "tied", lambda, alpha,
+      std::string(io::to_string(spec.precision)), spec.alpha_free ? "free" : "tied", lambda, alpha,
       fitted["objective"].get<double>(), fitted["approximation_error"].get<double>(),
       fitted["rounding_error_model"].get<double>(), fitted["rounding_error_measured"].get<double>(),
-      precision_name(spec.precision), fitted["irradiance_max_peak_rel"].get<double>(),
+      std::string(io::to_string(spec.precision)), fitted["irradiance_max_peak_rel"].get<double>(),
       fitted["irradiance_max_peak_rel_double"].get<double>(), pub.lambda, pub.alpha,
       published["objective"].get<double>(), published["irradiance_max_peak_rel"].get<double>());
   return out;

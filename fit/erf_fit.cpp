@@ -391,7 +391,7 @@ void add_listing5(const FitSpec& spec, bool round, FitOutcome& out) {
   };
   const auto exact_fit = error_dense(chosen), exact_pub = error_dense(published);
   const auto float_fit = error_float(chosen), float_pub = error_float(published);
-  std::string variant = "listing5-" + precision_name(spec.precision);
+  std::string variant = "listing5-" + std::string(io::to_string(spec.precision));
   if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
   ordered_json coefficients = {{"split", chosen.shape.split},
                                {"cutoff", chosen.shape.cutoff},
@@ -453,7 +453,7 @@ void add_as7125(const FitSpec& spec, bool round, FitOutcome& out) {
   };
   const auto exact_fit = error_dense(chosen.coefficients), exact_pub = error_dense(pub);
   const auto float_fit = error_float(chosen.coefficients), float_pub = error_float(pub);
-  std::string variant = "as7125-" + precision_name(spec.precision);
+  std::string variant = "as7125-" + std::string(io::to_string(spec.precision));
   if (spec.max_error) variant += fmt::format("-e{:g}", *spec.max_error);
   ordered_json coefficients = {
       {"p", chosen.coefficients[0]},
@@ -504,10 +504,10 @@ FitOutcome fit_erf(const FitSpec& spec) {
   if (structure != "both" && structure != "listing5" && structure != "as7125")
     throw std::invalid_argument(
         fmt::format("erf structures are listing5 and as7125; got '{}'", structure));
-  const bool round = spec.precision != WorkingPrecision::dbl;
+  const bool round = spec.precision != io::Precision::float64;
   FitOutcome out;
   out.report = {{"target", "erf"},
-                {"precision", precision_name(spec.precision)},
+                {"precision", std::string(io::to_string(spec.precision))},
                 {"results", ordered_json::array()}};
   if (structure != "as7125") add_listing5(spec, round, out);
   if (structure != "listing5") add_as7125(spec, round, out);

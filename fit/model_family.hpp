@@ -1,5 +1,5 @@
 // fit/model_family.hpp — what the fitters of sglab's own models (sglab-fast,
-// fit/sglab_fast.cpp; sglab-acc, fit/sglab_acc.cpp) share: the two grids a
+// fit/fit_sglab_fast.cpp; sglab-acc, fit/fit_sglab_acc.cpp) share: the two grids a
 // fitted set is measured on and that no fit uses, the measurement itself (max
 // peak_rel in float and double, where it is, and the per-κ rule "never worse
 // than tokuyoshi2024"), its record in a constant set's provenance, the
@@ -28,7 +28,7 @@ namespace sglab::fit {
 // The held-out grid: kHeldOutKappas κ log-spaced over [1.1·lo, 0.97·hi] ×
 // kHeldOutCosines uniform cosines over [−1, 1]. Strictly inside the range, so
 // it shares no κ with a training grid that holds the ends; for the default
-// range it is README's held-out grid (`sglab sweep --kappa 1.1e-3:9.7e3:217
+// range it is the held-out grid of docs/models.md (`sglab sweep --kappa 1.1e-3:9.7e3:217
 // --cosines 401`, data/results/heldout_sweep.json).
 inline constexpr int kHeldOutKappas = 217, kHeldOutCosines = 401;
 inline constexpr double kHeldOutLoFactor = 1.1, kHeldOutHiFactor = 0.97;
@@ -159,7 +159,7 @@ struct RationalLayout {
                                           double lo, double hi) const;
 };
 
-// The certificate (issue 17 §1) of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
+// The certificate of a model Ê = E(1, κ)·max(0, s'(c, κ)) at
 // its fitted nonlinear parameters, where s' is linear in the parameters
 // `linear` (the numerators of the shape values that multiply fixed functions
 // of c; sglab-fast: A, B, C at the fitted Q and V; sglab-mid: A, B, D at the

@@ -9,7 +9,7 @@
 //   irradiance — the coefficients minimax the peak_rel error of the
 //                tokuyoshi2022 / tokuyoshi2024 irradiance over the grid.
 // Every fit (either objective, and --max-error's orders) is certified by the
-// per-κ floor (issue 17 §1, per_kappa_floor and certificate_json below).
+// per-κ floor (per_kappa_floor and certificate_json below).
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -170,7 +170,7 @@ double irradiance_error(bool y2022, const std::vector<double>& v,
   return m;
 }
 
-// The certificate (issue 17 §1). The steepness forms have only nonlinear
+// The certificate. The steepness forms have only nonlinear
 // parameters, so the bound is the per-κ floor: at each κ of a dense training
 // grid (kCertificateKappas log-midpoints of [lo, hi], never a point of a
 // measuring grid, fit/model_family.hpp, × kCertificateCosines uniform cosines)

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/vocabulary.hpp"
 #include "validate/reference.hpp"
 
 namespace sglab::io {
@@ -23,8 +24,6 @@ class Progress;
 namespace sglab::fit {
 
 using ordered_json = nlohmann::ordered_json;
-
-enum class WorkingPrecision { half, single, dbl };
 
 // Float scalar costs of runtime methods (ns per evaluation) from the cost
 // table that `sglab bench` wrote (report/cost_table.hpp), read by the caller:
@@ -41,7 +40,7 @@ struct MethodCosts {
 
 struct FitSpec {
   std::string target;  // a name of fit_targets()
-  WorkingPrecision precision = WorkingPrecision::single;
+  io::Precision precision = io::Precision::float32;
   std::string objective;    // target-specific; empty = the target's default
   bool alpha_free = false;  // clamped-cosine: α free instead of tied by energy conservation
   double kappa_lo = 1e-3, kappa_hi = 1e4;
@@ -61,9 +60,7 @@ struct FitOutcome {
 };
 
 // Machine epsilon (spacing of 1) of the working precision: 2^−10, 2^−23, 2^−52.
-double machine_epsilon(WorkingPrecision p);
-std::string precision_name(WorkingPrecision p);
-std::optional<WorkingPrecision> parse_precision(const std::string& name);
+double machine_epsilon(io::Precision p);
 
 // Log-spaced κ grid of `count` values over [lo, hi] (io::log_spaced; count 1: lo) and
 // cosine grid c_i = −1 + 2i/(count − 1).
@@ -81,15 +78,15 @@ FitOutcome fit_clamped_cosine(const FitSpec& spec);
 FitOutcome fit_steepness(const FitSpec& spec);
 FitOutcome fit_lambda_d(const FitSpec& spec);
 FitOutcome fit_erf(const FitSpec& spec);
-FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/sglab_fast.cpp)
-FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/sglab_mid.cpp)
+FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/fit_sglab_fast.cpp)
+FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/fit_sglab_mid.cpp)
 // sglab_acc<N> ladder, or its model order with max_error
 FitOutcome fit_sglab_acc(const FitSpec& spec);
 
 // The dense training grid of sglab-acc's certificate and LP exchange over [lo, hi]
-// (fit/sglab_acc.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200]) plus
-// the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ),
-// z_k = 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
+// (fit/fit_sglab_acc_grids.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200])
+// plus the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ), z_k =
+// 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
 std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
@@ -97,7 +94,7 @@ std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
 // divided by its weight, from `start` = steep[5], num[terms(degree+1)], scale (> 0).
 struct SglabAccSample {
   double kappa, cosine, irradiance;
-  double weight = 1;  // the residual is peak_rel/weight (fit/sglab_acc.cpp: w(κ))
+  double weight = 1;  // the residual is peak_rel/weight (fit/fit_sglab_acc.cpp: w(κ))
 };
 struct SglabAccFit {
   std::vector<double> values;  // same layout as start
@@ -128,7 +125,8 @@ struct FitTarget {
   FitOutcome (*fit)(const FitSpec&);
   std::string_view help;  // one line for `sglab fit --help`
   // The options the target takes; any other is refused, never ignored.
-  bool precision, objective, kappa, max_error, alpha_free, cold_start, costs;
+  bool precision = false, objective = false, kappa = false, max_error = false, alpha_free = false,
+       cold_start = false, costs = false;
   std::span<const FitAllRun> all;  // the runs of `fit all`, in order
 };
 std::span<const FitTarget> fit_targets();
@@ -147,7 +145,7 @@ FitOutcome run_fit(const FitSpec& spec);
 // the fit that were not finite (nonfinite_residual_evaluations) and the
 // messages its solver logged (solver_messages), both 0 in a sound fit, with a
 // warning line in its text otherwise. `done(i, outcome)` is called for every
-// spec in order, on the calling thread, as soon as fits 0..i have finished;
+// spec in order, one call at a time, as soon as fits 0..i have finished;
 // `finished` advances as each fit finishes. With one job at a time each fit
 // shows its solves on a progress line of its own (FitProgressScope). A fit
 // that throws stops new ones from starting; once the running ones have

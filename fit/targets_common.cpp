@@ -1,15 +1,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <ctime>
 #include <exception>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 #include <fmt/format.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "common/args.hpp"
 #include "common/io.hpp"
@@ -20,35 +20,16 @@
 
 namespace sglab::fit {
 
-double machine_epsilon(WorkingPrecision p) {
+double machine_epsilon(io::Precision p) {
   switch (p) {
-    case WorkingPrecision::half:
+    case io::Precision::float16:
       return std::ldexp(1.0, -10);
-    case WorkingPrecision::single:
+    case io::Precision::float32:
       return std::ldexp(1.0, -23);
-    case WorkingPrecision::dbl:
+    case io::Precision::float64:
       return std::ldexp(1.0, -52);
   }
   return 0;
-}
-
-std::string precision_name(WorkingPrecision p) {
-  switch (p) {
-    case WorkingPrecision::half:
-      return "half";
-    case WorkingPrecision::single:
-      return "float";
-    case WorkingPrecision::dbl:
-      return "double";
-  }
-  return "?";
-}
-
-std::optional<WorkingPrecision> parse_precision(const std::string& name) {
-  if (name == "half") return WorkingPrecision::half;
-  if (name == "float") return WorkingPrecision::single;
-  if (name == "double") return WorkingPrecision::dbl;
-  return std::nullopt;
 }
 
 std::vector<double> kappa_grid(double lo, double hi, int count) {
@@ -82,7 +63,7 @@ ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
   set["coefficients"] = std::move(coefficients);
   ordered_json prov;
   prov["objective"] = std::move(objective);
-  prov["precision"] = precision_name(spec.precision);
+  prov["precision"] = std::string(io::to_string(spec.precision));
   prov["kappa_range"] = {spec.kappa_lo, spec.kappa_hi};
   prov["grid"] = {{"kappa_count", spec.kappa_count}, {"cosine_count", spec.cosine_count}};
   prov["achieved"] = std::move(achieved);
@@ -101,32 +82,63 @@ constexpr FitAllRun kSteepnessAll[] = {{"optimal-t", false, "float"},
                                        {"irradiance", false, "float"}};
 constexpr FitAllRun kDefaultAll[] = {{"", false, "float"}};
 
-// name, fitter, help; precision, objective, kappa, max_error, alpha_free, cold_start, costs; fit
-// all
 constexpr FitTarget kTargets[] = {
-    {"clamped-cosine", fit_clamped_cosine,
-     "λ, α of max(cos θ, 0) ≈ α(e^{λ cos θ} − 1) ([Tokuyoshi2022] Listing 1)", true, true, true,
-     false, true, false, false, kClampedCosineAll},
-    {"steepness2022", fit_steepness,
-     "rational steepness t(κ) of [Tokuyoshi2022] Eq. 5/6 (optimal-t | irradiance)", false, true,
-     true, true, false, false, false, kSteepnessAll},
-    {"steepness2024", fit_steepness,
-     "rational steepness t(κ) of [Tokuyoshi2024] (optimal-t | irradiance)", false, true, true, true,
-     false, false, false, kSteepnessAll},
-    {"erf", fit_erf, "erf approximations (listing5 | as7125)", true, true, false, true, false,
-     false, false, kDefaultAll},
+    {.name = "clamped-cosine",
+     .fit = fit_clamped_cosine,
+     .help = "λ, α of max(cos θ, 0) ≈ α(e^{λ cos θ} − 1) ([Tokuyoshi2022] Listing 1)",
+     .precision = true,
+     .objective = true,
+     .kappa = true,
+     .alpha_free = true,
+     .all = kClampedCosineAll},
+    {.name = "steepness2022",
+     .fit = fit_steepness,
+     .help = "rational steepness t(κ) of [Tokuyoshi2022] Eq. 5/6 (optimal-t | irradiance)",
+     .objective = true,
+     .kappa = true,
+     .max_error = true,
+     .all = kSteepnessAll},
+    {.name = "steepness2024",
+     .fit = fit_steepness,
+     .help = "rational steepness t(κ) of [Tokuyoshi2024] (optimal-t | irradiance)",
+     .objective = true,
+     .kappa = true,
+     .max_error = true,
+     .all = kSteepnessAll},
+    {.name = "erf",
+     .fit = fit_erf,
+     .help = "erf approximations (listing5 | as7125)",
+     .precision = true,
+     .objective = true,
+     .max_error = true,
+     .all = kDefaultAll},
     // --kappa only with --objective irradiance: checked by the CLI
-    {"lambda-d", fit_lambda_d,
-     "diffuse SG sharpness λd (sphere-ls | hemisphere-ls | free-amplitude | irradiance)", false,
-     true, true, false, false, false, false, kDefaultAll},
-    {"sglab-fast", fit_sglab_fast, "sglab_fast's rational coefficients", false, false, true, false,
-     false, true, false, kDefaultAll},
-    {"sglab-mid", fit_sglab_mid, "sglab_mid's rational coefficients", false, false, true, false,
-     false, true, false, kDefaultAll},
+    {.name = "lambda-d",
+     .fit = fit_lambda_d,
+     .help = "diffuse SG sharpness λd (sphere-ls | hemisphere-ls | free-amplitude | irradiance)",
+     .objective = true,
+     .kappa = true,
+     .all = kDefaultAll},
+    {.name = "sglab-fast",
+     .fit = fit_sglab_fast,
+     .help = "sglab_fast's rational coefficients",
+     .kappa = true,
+     .cold_start = true,
+     .all = kDefaultAll},
+    {.name = "sglab-mid",
+     .fit = fit_sglab_mid,
+     .help = "sglab_mid's rational coefficients",
+     .kappa = true,
+     .cold_start = true,
+     .all = kDefaultAll},
     // --kappa with --max-error: the model order for a range
-    {"sglab-acc", fit_sglab_acc,
-     "the sglab_acc ladder, or with --max-error the smallest member meeting it", false, false, true,
-     true, false, false, true, kDefaultAll},
+    {.name = "sglab-acc",
+     .fit = fit_sglab_acc,
+     .help = "the sglab_acc ladder, or with --max-error the smallest member meeting it",
+     .kappa = true,
+     .max_error = true,
+     .costs = true,
+     .all = kDefaultAll},
 };
 
 }  // namespace
@@ -195,85 +207,70 @@ void run_fits(const std::vector<FitSpec>& specs, std::size_t jobs, io::Progress&
     }
     return;
   }
-  // Workers take the specs from the last to the first until none is left or
-  // a fit has thrown (the fit all runs end with the model ladders, the
-  // longest fits: started first they do not finish alone at the end); the
-  // calling thread hands the outcomes to `done` in order.
+  // Up to `jobs` fits at once in an arena of that many threads; each task takes
+  // the last spec not taken yet (the fit all runs end with the model ladders,
+  // the longest fits: started first they do not finish alone at the end), none
+  // once a fit has thrown. Whoever fills a slot hands every finished outcome
+  // in spec order to `done`, under the lock: one call at a time, in order.
   struct Slot {
     std::optional<FitOutcome> outcome;
     std::exception_ptr error;
   };
   std::vector<Slot> slots(specs.size());
-  std::mutex mutex;
-  std::condition_variable filled;
-  std::size_t left = specs.size();  // specs 0..left-1 are not taken yet
-  bool stop = false;
+  std::mutex mutex;                  // guards everything below and the calls of `done`
+  std::size_t left = specs.size();   // specs 0..left-1 are not taken yet
+  std::size_t handed = 0;            // outcomes 0..handed-1 went to `done`
+  bool stop = false;                 // a fit or `done` threw: take no more
+  std::exception_ptr done_error;     // what `done` threw
   std::vector<std::size_t> running;  // the specs being fitted, shown as the progress note
   const auto show_running = [&] {
     std::string names;
     for (std::size_t k : running) names += (names.empty() ? "" : ", ") + specs[k].target;
     finished.note(names.empty() ? "" : "running " + names);
   };
-  const auto work = [&] {
-    for (;;) {
-      std::size_t i;
-      {
-        const std::lock_guard lock(mutex);
-        if (stop || left == 0) return;
-        i = --left;
-        running.push_back(i);
-        show_running();
-      }
-      Slot slot;
+  const auto fit_next = [&] {
+    std::size_t i;
+    {
+      const std::lock_guard lock(mutex);
+      if (stop || left == 0) return;
+      i = --left;
+      running.push_back(i);
+      show_running();
+    }
+    Slot slot;
+    // Isolated: while a fit waits on its own parallel loops (the erf scans),
+    // its thread runs none of the other fits, whose counts and progress are
+    // per thread.
+    tbb::this_task_arena::isolate([&] {
       try {
         slot.outcome = run_fit_counted(specs[i]);
       } catch (...) {
         slot.error = std::current_exception();
       }
-      {
-        const std::lock_guard lock(mutex);
-        stop = stop || slot.error;
-        slots[i] = std::move(slot);
-        running.erase(std::find(running.begin(), running.end(), i));
-        show_running();
-        finished.advance();
-      }
-      filled.notify_all();
-    }
-  };
-  // Joins the workers on every way out, telling them to take no more specs.
-  struct Workers {
-    std::vector<std::thread> threads;
-    std::mutex& mutex;
-    bool& stop;
-    void join() {
-      {
-        const std::lock_guard lock(mutex);
+    });
+    const std::lock_guard lock(mutex);
+    stop = stop || slot.error;
+    slots[i] = std::move(slot);
+    running.erase(std::find(running.begin(), running.end(), i));
+    show_running();
+    finished.advance();
+    for (; !done_error && handed < slots.size() && slots[handed].outcome; ++handed) {
+      try {
+        done(handed, *slots[handed].outcome);
+      } catch (...) {
+        done_error = std::current_exception();
         stop = true;
       }
-      for (auto& t : threads)
-        if (t.joinable()) t.join();
     }
-    ~Workers() { join(); }
-  } workers{{}, mutex, stop};
-  for (std::size_t k = 0; k < std::min(jobs, specs.size()); ++k) workers.threads.emplace_back(work);
-  // A fit that threw stops new ones; every fit after it was taken, and those
-  // before it are waited for in vain: a worker that sees `stop` takes no
-  // more, so the wait ends at the first slot that will never be filled.
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    Slot slot;
-    {
-      std::unique_lock lock(mutex);
-      filled.wait(lock, [&] { return slots[i].outcome || slots[i].error || (stop && i < left); });
-      slot = std::move(slots[i]);
-    }
-    if (slot.error) std::rethrow_exception(slot.error);
-    if (!slot.outcome) break;  // never started: a later fit threw
-    done(i, *slot.outcome);
-  }
-  // A fit threw after the last one handed over: the first such in spec
-  // order, once the fits still running have finished.
-  workers.join();
+  };
+  tbb::task_arena arena(static_cast<int>(std::min(jobs, specs.size())));
+  tbb::task_group group;
+  arena.execute([&] {
+    for (std::size_t k = 0; k < specs.size(); ++k) group.run(fit_next);
+    group.wait();
+  });
+  // The first failure in spec order: `done` was called only before any fit that threw.
+  if (done_error) std::rethrow_exception(done_error);
   for (const Slot& slot : slots)
     if (slot.error) std::rethrow_exception(slot.error);
 }

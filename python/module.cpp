@@ -242,12 +242,10 @@ py::list methods() {
 
 std::string export_method(const std::string& method, const std::string& lang,
                           const std::string& precision, bool split) {
-  const auto l = shader::parse_language(lang);
-  if (!l) throw io::InputError(fmt::format("lang: expected glsl, hlsl or cpp, got '{}'", lang));
-  const auto p = shader::parse_precision(precision);
-  if (!p)
-    throw io::InputError(fmt::format("precision: expected float or half, got '{}'", precision));
-  shader::ExportRequest req = shader::standard_request(*l, method, *p);
+  const auto l = io::parse_option<io::Language>("lang", lang);
+  const auto p =
+      io::parse_option("precision", precision, {io::Precision::float32, io::Precision::float16});
+  shader::ExportRequest req = shader::standard_request(l, method, p);
   req.split = split;
   if (split) req.command += " --split";
   try {
@@ -385,8 +383,7 @@ py::dict fit(const envmap::Map& map, std::size_t lobes, const std::string& objec
 
 void bind_envmap(py::module_& parent) {
   py::module_ m = parent.def_submodule("envmap", "HDR environment maps (sglab envmap)");
-  py::class_<envmap::Map>(m, "Map",
-                          "An equirectangular RGB radiance map (README, Environment maps)")
+  py::class_<envmap::Map>(m, "Map", "An equirectangular RGB radiance map (docs/envmaps.md)")
       .def_property_readonly("width", [](const envmap::Map& map) { return map.width; })
       .def_property_readonly("height", [](const envmap::Map& map) { return map.height; })
       .def_property_readonly("rgb", &map_rgb, "a copy of the radiance, shape (height, width, 3)");

@@ -15,45 +15,6 @@
 
 namespace sglab::report {
 
-std::string_view to_string(CostKind k) {
-  switch (k) {
-    case CostKind::irradiance:
-      return "irradiance";
-    case CostKind::hemispherical:
-      return "hemispherical";
-    case CostKind::erf:
-      return "erf";
-  }
-  return "?";
-}
-
-std::string_view to_string(CostMode m) {
-  switch (m) {
-    case CostMode::scalar:
-      return "scalar";
-    case CostMode::batch:
-      return "batch";
-    case CostMode::light_setup:
-      return "light_setup";
-    case CostMode::light_eval:
-      return "light_eval";
-  }
-  return "?";
-}
-
-std::optional<CostKind> parse_cost_kind(std::string_view s) {
-  for (CostKind k : {CostKind::irradiance, CostKind::hemispherical, CostKind::erf})
-    if (to_string(k) == s) return k;
-  return std::nullopt;
-}
-
-std::optional<CostMode> parse_cost_mode(std::string_view s) {
-  for (CostMode m :
-       {CostMode::scalar, CostMode::batch, CostMode::light_setup, CostMode::light_eval})
-    if (to_string(m) == s) return m;
-  return std::nullopt;
-}
-
 std::string cost_input_description(std::size_t n) {
   return fmt::format(
       "{} inputs: kappa log-uniform in [1e-3, 1e4], cosine uniform in [-1, 1] (erf: x uniform in "
@@ -113,7 +74,7 @@ std::pair<ErfBatch32, ErfBatch64> erf_batch_for(std::string_view id) {
 void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m,
                       const std::shared_ptr<CostWorkload>& w) {
   const std::size_t n = w->cosine32.size();
-  const auto make = [&](validate::FloatFormat f, CostMode mode, std::function<void()> run) {
+  const auto make = [&](io::Precision f, CostMode mode, std::function<void()> run) {
     CostCase c;
     c.kind = kind;
     c.method = std::string(m.id);
@@ -129,25 +90,25 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
   double (*f64)(double, double) = m.f64;
   auto b32 = m.batch32;
   auto b64 = m.batch64;
-  make(validate::FloatFormat::binary32, CostMode::scalar, [w, f32, n] {
+  make(io::Precision::float32, CostMode::scalar, [w, f32, n] {
     const float* c = w->cosine32.data();
     const float* k = w->kappa32.data();
     float* o = w->out32.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f32(c[i], k[i]);
     clobber(o);
   });
-  make(validate::FloatFormat::binary32, CostMode::batch, [w, b32, n] {
+  make(io::Precision::float32, CostMode::batch, [w, b32, n] {
     b32(w->cosine32.data(), w->kappa32.data(), w->out32.data(), n);
     clobber(w->out32.data());
   });
-  make(validate::FloatFormat::binary64, CostMode::scalar, [w, f64, n] {
+  make(io::Precision::float64, CostMode::scalar, [w, f64, n] {
     const double* c = w->cosine64.data();
     const double* k = w->kappa64.data();
     double* o = w->out64.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f64(c[i], k[i]);
     clobber(o);
   });
-  make(validate::FloatFormat::binary64, CostMode::batch, [w, b64, n] {
+  make(io::Precision::float64, CostMode::batch, [w, b64, n] {
     b64(w->cosine64.data(), w->kappa64.data(), w->out64.data(), n);
     clobber(w->out64.data());
   });
@@ -156,7 +117,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     auto eval = m.light_eval32;
     // Setup: once per κ of the inputs, into a small ring of states.
     auto ring = std::make_shared<std::vector<float>>(64 * kLightStateFloats);
-    make(validate::FloatFormat::binary32, CostMode::light_setup, [w, setup, ring, n] {
+    make(io::Precision::float32, CostMode::light_setup, [w, setup, ring, n] {
       const float* k = w->kappa32.data();
       float* s = ring->data();
       for (std::size_t i = 0; i < n; ++i) setup(k[i], s + (i % 64) * kLightStateFloats);
@@ -166,7 +127,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
     auto states = std::make_shared<std::vector<float>>(kCostLights * kLightStateFloats);
     for (std::size_t j = 0; j < kCostLights; ++j)
       setup(w->kappa32[j], states->data() + j * kLightStateFloats);
-    make(validate::FloatFormat::binary32, CostMode::light_eval, [w, eval, states, n] {
+    make(io::Precision::float32, CostMode::light_eval, [w, eval, states, n] {
       const float* c = w->cosine32.data();
       float* o = w->out32.data();
       const std::size_t block = n / kCostLights;
@@ -183,7 +144,7 @@ void add_method_cases(std::vector<CostCase>& out, CostKind kind, const Method& m
 void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v,
                    const std::shared_ptr<CostWorkload>& w) {
   const std::size_t n = w->x32.size();
-  const auto make = [&](validate::FloatFormat f, CostMode mode, std::function<void()> run) {
+  const auto make = [&](io::Precision f, CostMode mode, std::function<void()> run) {
     CostCase c;
     c.kind = CostKind::erf;
     c.method = std::string(v.id);
@@ -196,25 +157,25 @@ void add_erf_cases(std::vector<CostCase>& out, const ErfVariant& v,
   float (*f32)(float) = v.f32;
   double (*f64)(double) = v.f64;
   const auto [b32, b64] = erf_batch_for(v.id);
-  make(validate::FloatFormat::binary32, CostMode::scalar, [w, f32, n] {
+  make(io::Precision::float32, CostMode::scalar, [w, f32, n] {
     const float* x = w->x32.data();
     float* o = w->out32.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f32(x[i]);
     clobber(o);
   });
   if (b32)
-    make(validate::FloatFormat::binary32, CostMode::batch, [w, b32 = b32, n] {
+    make(io::Precision::float32, CostMode::batch, [w, b32 = b32, n] {
       b32(w->x32.data(), w->out32.data(), n);
       clobber(w->out32.data());
     });
-  make(validate::FloatFormat::binary64, CostMode::scalar, [w, f64, n] {
+  make(io::Precision::float64, CostMode::scalar, [w, f64, n] {
     const double* x = w->x64.data();
     double* o = w->out64.data();
     for (std::size_t i = 0; i < n; ++i) o[i] = f64(x[i]);
     clobber(o);
   });
   if (b64)
-    make(validate::FloatFormat::binary64, CostMode::batch, [w, b64 = b64, n] {
+    make(io::Precision::float64, CostMode::batch, [w, b64 = b64, n] {
       b64(w->x64.data(), w->out64.data(), n);
       clobber(w->out64.data());
     });

@@ -34,6 +34,7 @@
 // --live-timing option.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -57,10 +58,18 @@ inline constexpr std::uint64_t kCostSeed = 20261121;
 
 enum class CostKind { irradiance, hemispherical, erf };
 enum class CostMode { scalar, batch, light_setup, light_eval };
-std::string_view to_string(CostKind k);  // "irradiance", "hemispherical", "erf"
-std::string_view to_string(CostMode m);  // "scalar", "batch", "light_setup", "light_eval"
-std::optional<CostKind> parse_cost_kind(std::string_view s);
-std::optional<CostMode> parse_cost_mode(std::string_view s);
+constexpr std::array<io::EnumName<CostKind>, 3> names_of(CostKind) {
+  return {{{CostKind::irradiance, "irradiance"},
+           {CostKind::hemispherical, "hemispherical"},
+           {CostKind::erf, "erf"}}};
+}
+constexpr std::array<io::EnumName<CostMode>, 4> names_of(CostMode) {
+  return {{{CostMode::scalar, "scalar"},
+           {CostMode::batch, "batch"},
+           {CostMode::light_setup, "light_setup"},
+           {CostMode::light_eval, "light_eval"}}};
+}
+using io::to_string;
 
 // The inputs and output buffers shared by every case.
 struct CostWorkload {
@@ -76,7 +85,7 @@ struct CostCase {
   CostKind kind = CostKind::irradiance;
   std::string method;
   bool refit = false;
-  validate::FloatFormat precision = validate::FloatFormat::binary32;
+  io::Precision precision = io::Precision::float32;
   CostMode mode = CostMode::scalar;
   std::size_t evaluations = kCostInputs;
   std::function<void()> run;
@@ -93,7 +102,7 @@ struct Cost {
   CostKind kind = CostKind::irradiance;
   std::string method;
   bool refit = false;
-  validate::FloatFormat precision = validate::FloatFormat::binary32;
+  io::Precision precision = io::Precision::float32;
   CostMode mode = CostMode::scalar;
   double ns_per_eval = 0;  // median over the repetitions
 };
@@ -102,8 +111,7 @@ struct CostOptions {
   int repetitions = 5;
   double min_time = 0.01;  // seconds per repetition (5 × 0.01 s = the ~0.05 s quick mode)
   std::vector<CostKind> kinds{CostKind::irradiance, CostKind::hemispherical, CostKind::erf};
-  std::vector<validate::FloatFormat> precisions{validate::FloatFormat::binary32,
-                                                validate::FloatFormat::binary64};
+  std::vector<io::Precision> precisions{io::Precision::float32, io::Precision::float64};
   std::vector<CostMode> modes{CostMode::scalar, CostMode::batch, CostMode::light_setup,
                               CostMode::light_eval};
   std::string filter;  // ECMAScript regex searched in CostCase::name(); empty = all

@@ -58,8 +58,8 @@ bool is_gpu_family_name(std::string_view name) {
          name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") == std::string_view::npos;
 }
 
-CostSource default_cost_source(validate::FloatFormat precision) {
-  if (precision == validate::FloatFormat::binary32)
+CostSource default_cost_source(io::Precision precision) {
+  if (precision == io::Precision::float32)
     return {CostSourceKind::gpu, std::string(kDefaultGpuFamily)};
   return {CostSourceKind::cpu_batch, {}};
 }

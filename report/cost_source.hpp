@@ -56,7 +56,7 @@ struct CostSource {
 inline constexpr std::string_view kDefaultGpuFamily = "navi21";
 
 // gpu:navi21 for float; cpu-batch for double (the shader exports are float).
-CostSource default_cost_source(validate::FloatFormat precision);
+CostSource default_cost_source(io::Precision precision);
 
 // A chip name as RADV_FORCE_FAMILY takes it: 1 to 32 lower-case letters and
 // digits (`sglab gpucost --families`, `--cost gpu:FAMILY`).

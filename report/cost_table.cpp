@@ -29,7 +29,7 @@ namespace sglab::report {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
-const Cost* CostTable::find(CostKind kind, std::string_view method, validate::FloatFormat precision,
+const Cost* CostTable::find(CostKind kind, std::string_view method, io::Precision precision,
                             CostMode mode) const {
   for (const Cost& c : costs)
     if (c.kind == kind && c.method == method && c.precision == precision && c.mode == mode)
@@ -172,23 +172,20 @@ CostTable cost_table_from_json(const json& doc, const fs::path& path, GpuSection
     const std::string mode = text_field(path, row, "mode", where);
     c.method = text_field(path, row, "method", where);
     if (c.method.empty()) fail(path, where + "\"method\" is empty");
-    const auto k = parse_cost_kind(kind);
+    const auto k = io::parse_enum<CostKind>(kind);
     if (!k)
-      fail(path, fmt::format("{}\"kind\": unknown kind '{}' (irradiance, hemispherical, erf)",
-                             where, kind));
+      fail(path,
+           fmt::format("{}\"kind\": unknown kind '{}' ({})", where, kind, io::one_of<CostKind>()));
     c.kind = *k;
-    if (precision == "float")
-      c.precision = validate::FloatFormat::binary32;
-    else if (precision == "double")
-      c.precision = validate::FloatFormat::binary64;
-    else
+    const auto p = io::parse_enum<io::Precision>(precision);
+    if (!p || *p == io::Precision::float16)
       fail(path,
            fmt::format("{}\"precision\": expected float or double, got '{}'", where, precision));
-    const auto m = parse_cost_mode(mode);
+    c.precision = *p;
+    const auto m = io::parse_enum<CostMode>(mode);
     if (!m)
       fail(path,
-           fmt::format("{}\"mode\": unknown mode '{}' (scalar, batch, light_setup, light_eval)",
-                       where, mode));
+           fmt::format("{}\"mode\": unknown mode '{}' ({})", where, mode, io::one_of<CostMode>()));
     c.mode = *m;
     if (!row.contains("ns_per_eval") || !row.at("ns_per_eval").is_number())
       fail(path, where + "\"ns_per_eval\" must be a number");

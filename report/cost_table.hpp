@@ -58,7 +58,7 @@ struct CostTable {
   std::vector<Cost> costs;
   std::optional<shader::gpu::Report> gpu;
   // The row for (kind, method, precision, mode), or nullptr.
-  const Cost* find(CostKind kind, std::string_view method, validate::FloatFormat precision,
+  const Cost* find(CostKind kind, std::string_view method, io::Precision precision,
                    CostMode mode) const;
 };
 

@@ -33,7 +33,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 std::vector<envmap::Vec3> method_irradiance(const std::vector<envmap::Lobe>& lobes,
                                             const std::vector<envmap::Vec3>& normals,
-                                            const Method& m, validate::FloatFormat precision) {
+                                            const Method& m, io::Precision precision) {
   double largest = 0;
   for (const envmap::Lobe& l : lobes)
     for (double a : l.amplitude) largest = std::max(largest, a);
@@ -57,7 +57,7 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes) {
 
 EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget,
                                      std::size_t max_lobes, std::size_t normals_n,
-                                     validate::FloatFormat precision,
+                                     io::Precision precision,
                                      const std::vector<report::MethodPoint>& costs,
                                      const std::function<void(const std::string&)>& note) {
   EnvmapSelection sel;

@@ -43,7 +43,7 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes);
 // next in that ranking).
 EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget,
                                      std::size_t max_lobes, std::size_t normals,
-                                     validate::FloatFormat precision,
+                                     io::Precision precision,
                                      const std::vector<report::MethodPoint>& costs,
                                      const std::function<void(const std::string&)>& note);
 

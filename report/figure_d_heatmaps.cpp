@@ -38,8 +38,7 @@ Figure figure_d(const FiguresOptions& opt, const std::vector<validate::SweepMeth
   std::vector<const validate::SweepEntry*> entries;
   for (const validate::SweepMethod& m : methods) {
     header.emplace_back(m.method.id);
-    entries.push_back(
-        res.find(m.method.id, validate::Quantity::irradiance, validate::FloatFormat::binary32));
+    entries.push_back(res.find(m.method.id, validate::Quantity::irradiance, io::kCpuFloat));
   }
   std::vector<std::vector<double>> rows;
   for (std::size_t k = 0; k < res.kappas.size(); ++k)

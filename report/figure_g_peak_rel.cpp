@@ -43,10 +43,10 @@ Figure figure_g(const FiguresOptions& opt, const std::vector<validate::SweepMeth
   std::size_t gaps = 0;
   for (std::size_t k = 0; k < res.kappas.size(); ++k) {
     std::vector<double> r = {res.kappas[k]};
-    for (validate::FloatFormat fm :
-         {validate::FloatFormat::binary32, validate::FloatFormat::binary64})
+    for (io::Precision fm : {io::Precision::float32, io::Precision::float64})
       for (const validate::SweepMethod& m : methods) {
-        const validate::SweepEntry* e = res.find(m.method.id, validate::Quantity::irradiance, fm);
+        const validate::SweepEntry* e =
+            res.find(m.method.id, validate::Quantity::irradiance, io::on_cpu(fm));
         double v = std::nan("");
         if (e && k < e->per_kappa.size()) {
           const validate::MetricSummary& s = e->per_kappa[k];

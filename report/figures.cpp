@@ -28,7 +28,7 @@ validate::SweepResult irradiance_sweep(std::vector<validate::SweepMethod>& metho
   for (const validate::SweepMethod& m : validate::registered_sweep_methods())
     if (m.quantity == validate::Quantity::irradiance) methods.push_back(m);
   validate::SweepOptions so;
-  so.precisions = {validate::FloatFormat::binary32, validate::FloatFormat::binary64};
+  so.precisions = {io::Precision::float32, io::Precision::float64};
   so.progress = false;
   so.keep_points = true;
   return sweep(validate::SweepGrid{}, methods, so);

@@ -112,8 +112,7 @@ validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi) {
   return g;
 }
 
-std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
-                                           validate::FloatFormat f) {
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, io::Precision f) {
   const validate::SweepGrid grid = pareto_grid(kappa_lo, kappa_hi);
   grid.validate();
   std::vector<validate::SweepMethod> methods;
@@ -124,7 +123,8 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
   const validate::SweepResult result = sweep(grid, methods, options);
   std::vector<MethodPoint> out;
   for (const Method& m : irradiance_methods) {
-    const validate::SweepEntry* e = result.find(m.id, validate::Quantity::irradiance, f);
+    const validate::SweepEntry* e =
+        result.find(m.id, validate::Quantity::irradiance, io::on_cpu(f));
     MethodPoint p;
     p.method = std::string(m.id);
     p.origin = m.origin;
@@ -140,8 +140,8 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
   return out;
 }
 
-void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode,
-                int repetitions, double min_time) {
+void fill_costs(std::vector<MethodPoint>& points, io::Precision f, CostMode mode, int repetitions,
+                double min_time) {
   CostOptions options;
   options.repetitions = repetitions;
   options.min_time = min_time;
@@ -196,12 +196,12 @@ const shader::gpu::Row* gpu_row(const shader::gpu::Report& report, std::string_v
 
 double gpu_cost(const shader::gpu::Row& row) { return shader::gpu::cycles_per_light(row); }
 
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, io::Precision f,
                                     const CostTable& table, const CostSource& source) {
   std::vector<std::string> missing;
   const double none = std::numeric_limits<double>::quiet_NaN();
   if (source.kind == CostSourceKind::gpu) {
-    if (f != validate::FloatFormat::binary32)
+    if (f != io::Precision::float32)
       throw std::invalid_argument(
           fmt::format("--cost {}: the GPU cost is that of the float shader export; use "
                       "--precision float or a cpu-* cost",
@@ -230,19 +230,19 @@ std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::
 MethodCostMap default_float_costs(const CostTable& table) {
   std::vector<MethodPoint> points;
   for (const Method& m : irradiance_methods) points.push_back({.method = std::string(m.id)});
-  MethodCostMap out{default_cost_source(validate::FloatFormat::binary32), {}};
+  MethodCostMap out{default_cost_source(io::Precision::float32), {}};
   try {
-    fill_costs(points, validate::FloatFormat::binary32, table, out.source);
+    fill_costs(points, io::Precision::float32, table, out.source);
   } catch (const CostTableError&) {  // no GPU rows for it: the CPU timing of `sglab bench`
     out.source = {.kind = CostSourceKind::cpu_batch};
-    fill_costs(points, validate::FloatFormat::binary32, table, out.source);
+    fill_costs(points, io::Precision::float32, table, out.source);
   }
   for (const MethodPoint& p : points)
     if (std::isfinite(p.cost)) out.cost[p.method] = p.cost;
   return out;
 }
 
-validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
+validate::Table pareto_table(const std::vector<MethodPoint>& points, io::Precision f,
                              double kappa_lo, double kappa_hi, const CostSource& source,
                              std::string_view cost_from) {
   const std::string outside = outside_valid_range_text(points);
@@ -278,22 +278,6 @@ validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::F
                validate::Table::integer(p.frontier ? 1 : 0),
                validate::Table::integer(p.in_valid_range ? 1 : 0)});
   return t;
-}
-
-bool parse_number(std::string_view s, double& out) {
-  if (s.empty()) return false;
-  const char* end = s.data() + s.size();
-  double v = 0;
-  auto [ptr, ec] = std::from_chars(s.data(), end, v);
-  if (ec != std::errc() || ptr != end || !std::isfinite(v)) return false;
-  out = v;
-  return true;
-}
-
-std::optional<validate::FloatFormat> parse_precision(std::string_view text) {
-  if (text == "float") return validate::FloatFormat::binary32;
-  if (text == "double") return validate::FloatFormat::binary64;
-  return std::nullopt;
 }
 
 // ---- reading `sglab pareto`'s CSV (figure e reads it back) -------------------------
@@ -362,9 +346,9 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
   std::vector<std::string> header;
   std::map<std::string, std::size_t> col;
   std::vector<ParetoRow> rows;
-  static const char* kRequired[] = {"method",   "origin",       "precision", "kappa_lo",
-                                    "kappa_hi", "max_peak_rel", "frontier"};
-  bool legacy = false;  // ns_per_eval instead of cost, cost_unit, cost_source
+  static const char* kRequired[] = {"method",       "origin",  "precision", "kappa_lo",
+                                    "kappa_hi",     "cost",    "cost_unit", "cost_source",
+                                    "max_peak_rel", "frontier"};
   while (std::getline(in, line)) {
     ++lineno;
     if (line.empty() || line == "\r") continue;
@@ -378,13 +362,6 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
               fmt::format("{}: header lacks column '{}' (expected "
                           "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,"
                           "cost_form,max_peak_rel,frontier,in_valid_range)",
-                          path.string(), r));
-      legacy = !col.count("cost") && col.count("ns_per_eval");
-      for (const char* r : {"cost", "cost_unit", "cost_source"})
-        if (!legacy && !col.count(r))
-          throw std::invalid_argument(
-              fmt::format("{}: header lacks column '{}' (nor has it the ns_per_eval of an "
-                          "older `sglab pareto`)",
                           path.string(), r));
       continue;
     }
@@ -413,10 +390,9 @@ std::vector<ParetoRow> read_pareto_csv(const std::filesystem::path& path) {
           fmt::format("{}:{}: in_valid_range must be true/false", path.string(), lineno));
     r.kappa_lo = parse_number(cells[col["kappa_lo"]], path, lineno, "kappa_lo");
     r.kappa_hi = parse_number(cells[col["kappa_hi"]], path, lineno, "kappa_hi");
-    r.cost = parse_number(cells[col[legacy ? "ns_per_eval" : "cost"]], path, lineno,
-                          legacy ? "ns_per_eval" : "cost");
-    r.cost_unit = legacy ? "ns" : cells[col["cost_unit"]];
-    r.cost_source = legacy ? "cpu-batch" : cells[col["cost_source"]];
+    r.cost = parse_number(cells[col["cost"]], path, lineno, "cost");
+    r.cost_unit = cells[col["cost_unit"]];
+    r.cost_source = cells[col["cost_source"]];
     if (col.count("cost_form")) r.cost_form = cells[col["cost_form"]];
     r.max_peak_rel = parse_number(cells[col["max_peak_rel"]], path, lineno, "max_peak_rel");
     rows.push_back(std::move(r));

@@ -91,13 +91,12 @@ Recommendation recommend(const std::vector<MethodPoint>& points, double budget,
 // registry order; cost left 0.
 // Throws std::invalid_argument on an invalid range.
 validate::SweepGrid pareto_grid(double kappa_lo, double kappa_hi);
-std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi,
-                                           validate::FloatFormat f);
+std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, io::Precision f);
 
 // Fills cost (ns) with the median CPU cost in precision `f` and `mode` (batch
 // or scalar; measure_costs, `repetitions` × `min_time` s per method): live
 // timing, which differs from run to run.
-void fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f, CostMode mode,
+void fill_costs(std::vector<MethodPoint>& points, io::Precision f, CostMode mode,
                 int repetitions = 5, double min_time = 0.01);
 
 // The row of the gpu section a GPU source reads for `method`
@@ -115,7 +114,7 @@ double gpu_cost(const shader::gpu::Row& row);
 // those methods. Throws CostTableError naming the table when the source has no
 // rows at all (no "gpu" section, no row of the figure on FAMILY: the families
 // it has are named), std::invalid_argument for gpu:* with f double.
-std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, validate::FloatFormat f,
+std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, io::Precision f,
                                     const CostTable& table, const CostSource& source);
 
 // Every irradiance method's float cost in `table`, in the default source
@@ -134,22 +133,15 @@ MethodCostMap default_float_costs(const CostTable& table);
 // CostSource::name(), cost_form MethodPoint::cost_form); the title names the
 // source and, when given, where its costs came from (`cost_from`: table,
 // driver or machine), and the methods outside their valid range.
-validate::Table pareto_table(const std::vector<MethodPoint>& points, validate::FloatFormat f,
+validate::Table pareto_table(const std::vector<MethodPoint>& points, io::Precision f,
                              double kappa_lo, double kappa_hi, const CostSource& source,
                              std::string_view cost_from = {});
-
-// Whole-string finite number.
-bool parse_number(std::string_view text, double& out);
-// "float" / "double".
-std::optional<validate::FloatFormat> parse_precision(std::string_view text);
 
 // Parses `sglab pareto`'s CSV (RFC 4180; header
 // method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,cost_form,max_peak_rel,
 // frontier and optionally in_valid_range; origin is published, refit or sglab,
 // frontier and in_valid_range true/false or 1/0, in_valid_range true when
-// absent; cost_form may be absent). The CSV of an older sglab, with
-// ns_per_eval instead of the cost columns, reads as cost_unit "ns",
-// cost_source "cpu-batch".
+// absent; cost_form may be absent).
 struct ParetoRow {
   std::string method, precision;
   Origin origin = Origin::published;

@@ -12,7 +12,7 @@ namespace sglab::report {
 
 std::vector<MethodPoint> scene_points(const validate::Scene& scene,
                                       const std::vector<validate::Vec3>& normals,
-                                      validate::FloatFormat precision) {
+                                      io::Precision precision) {
   const std::vector<double> errors =
       validate::scene_errors(scene, normals, irradiance_methods, precision);
   std::vector<MethodPoint> points;
@@ -28,7 +28,7 @@ std::vector<MethodPoint> scene_points(const validate::Scene& scene,
 }
 
 SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene,
-                        double budget, validate::FloatFormat precision) {
+                        double budget, io::Precision precision) {
   SceneRanking r;
   r.recommendation = recommend(points, budget);
   r.kappa_lo = std::max(scene.kappa_min(), 1e-3);

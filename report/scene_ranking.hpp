@@ -19,7 +19,7 @@ namespace sglab::report {
 // left 0 for the caller's cost source.
 std::vector<MethodPoint> scene_points(const validate::Scene& scene,
                                       const std::vector<validate::Vec3>& normals,
-                                      validate::FloatFormat precision);
+                                      io::Precision precision);
 
 struct SceneRanking {
   Recommendation recommendation;  // recommend(points, budget)
@@ -33,6 +33,6 @@ struct SceneRanking {
 
 // `points` with costs filled. κ = 0 lights: the range starts at 1e-3.
 SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene,
-                        double budget, validate::FloatFormat precision);
+                        double budget, io::Precision precision);
 
 }  // namespace sglab::report

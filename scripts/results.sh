@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # scripts/results.sh: regenerates every committed result, data/results/ and
-# the measured tables of README.md, from the commands that produce them. One
-# command, so that no number in them is ever typed: `sglab run` (sweep, erf,
+# the measured tables of README.md and docs/*.md, from the commands that produce them. One
+# command, so that no number in them is ever typed: `sglab run --full` (every
+# step in its full form: the exhaustive erf check, the long benchmark
+# repetitions; sweep, erf,
 # stability, claims, bench, GPU cost, Pareto, figures, environment maps) into
 # out/results/run, the curated files copied from it, then the runs `sglab run`
 # does not make (GPU cost of the half exports, per light over 1 to 64 lights
@@ -11,10 +13,10 @@
 # and the generated blocks of the Markdown files filled from them: each lies
 # between `<!-- generated: NAME (scripts/results.sh) -->` and
 # `<!-- end: NAME -->` and is replaced whole; the prose around it is not
-# touched. tests/test_readme_numbers.cpp checks the README's numbers against
+# touched. tests/test_readme_numbers.cpp checks their numbers against
 # the same sources. Takes about 15 minutes on 2 cores; the bench timings depend
 # on the machine's load, the instruction counts and GPU statistics do not.
-# Extra arguments go to `sglab run` (e.g. --quick).
+# Extra arguments go to `sglab run`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh jq valgrind blender-data
@@ -28,18 +30,17 @@ work=out/results
 run="$work/run"
 sglab=build/sglab
 
-# 1. The main job, then the files of it that are committed.
-"$sglab" run --out "$run" "$@"
+# 1. The main job in its full form, then the files of it that are committed.
+"$sglab" run --full --out "$run" "$@"
 cp "$run"/bench/{bench.csv,bench.md,bench_summary.csv,bench_summary.md,costs.json,gpu_costs.md} "$results"/
 cp "$run"/claims/claims.md "$run"/erf/erf_summary.md "$results"/
 cp "$run"/stability/{stability.md,findings.md} "$results"/
 cp "$run"/pareto/{pareto.csv,pareto.md} "$results"/
 cp "$run"/figures/[a-g]_*.{png,svg} "$results"/
-
+cp "$run"/envmap/{probes.md,probes.csv,probes.png} "$results"/  # the probe table, full maps
 
 # 2. What `sglab run` does not make.
 "$sglab" envmap baselines --out "$results"  # envmaps.md: lobe fits against the BakingLab baseline
-"$sglab" envmap baselines --probes --out "$results"  # probes.md: the full probe table, full maps
 "$sglab" gpucost --lang both --precision both --out "$results"  # the gpu section of costs.json, gpu_costs.md
 { # cycles per light over 1, 8 and 64 lights (the 8-light loop is the default figure)
   echo "# GPU cost per light against the number of lights"
@@ -62,7 +63,10 @@ PYTHONPATH=build/python /usr/bin/python3 bench/python_irradiance.py --out "$resu
 cp "$work/stability-half/stability_half.md" "$results"/
 "$sglab" range --out "$work/range"  # every method's card from κ = 0 to FLT_MAX
 cp "$work"/range/kappa_range.{csv,md} "$results"/
-models=(vsgl2015 tokuyoshi2024 sglab_fast sglab_mid sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4)
+# sglab's own models (origin sglab on their registry cards) and the published methods their
+# documents compare them with.
+mapfile -t models < <("$sglab" methods --json |
+  jq -r '.irradiance[] | select(.origin == "sglab" or .id == "vsgl2015" or .id == "tokuyoshi2024") | .id')
 scripts/callgrind_costs.sh "$results/callgrind.csv" "${models[@]}"
 "$sglab" fit sglab-acc --dry-run --costs "$results/costs.json" >"$work/fit-sglab-acc.txt"
 "$sglab" fit sglab-fast --dry-run >"$work/fit-sglab-fast.txt"
@@ -73,4 +77,4 @@ done
 
 # 3. The generated blocks.
 scripts/results_tables.sh "$work"
-echo "results.sh: data/results and README.md regenerated (git diff shows what moved)"
+echo "results.sh: data/results, README.md and docs/ regenerated (git diff shows what moved)"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# scripts/results_tables.sh WORK: fills the generated blocks of README.md and
+# scripts/results_tables.sh WORK: fills the generated blocks of README.md, docs/*.md and
 # data/results/*.md from data/results (costs.json, callgrind.csv,
-# heldout_sweep.json, vulkan_sweep.json, kappa_range.csv) and from the fit reports that
-# scripts/results.sh leaves in WORK. Called by scripts/results.sh; on its own
+# heldout_sweep.json, vulkan_sweep.json, kappa_range.csv), from the fit reports that
+# scripts/results.sh leaves in WORK, and from the registry cards (`sglab methods`; $SGLAB, by
+# default build/sglab). Called by scripts/results.sh; on its own
 # it redraws the tables from the committed sources without rerunning anything.
 # A block is the text between `<!-- generated: NAME (scripts/results.sh) -->`
 # and `<!-- end: NAME -->`; a file without the block is an error (exit 2).
@@ -15,6 +16,7 @@ costs=$results/costs.json
 heldout=$results/heldout_sweep.json
 standard=$results/vulkan_sweep.json
 callgrind=$results/callgrind.csv
+sglab=${SGLAB:-build/sglab}
 
 # fill FILE NAME: replaces the block NAME of FILE with standard input.
 fill() {
@@ -61,26 +63,32 @@ batch_ns() { jq -r --arg m "$1" \
   '[.costs[] | select(.method == $m and .kind == "irradiance" and .precision == "float" and .mode == "batch")][0].ns_per_eval // ""' "$costs"; }
 instructions() { awk -F, -v m="$1" -v mode="$2" '$1 == m && $2 == mode { print $3 }' "$callgrind"; }
 
-# README.md: the table of sglab's own models.
+# The registry cards (include/sglab/registry.hpp) as `sglab methods` prints them: every table
+# below takes a method's name, origin and form from its card.
+cards=$(mktemp)
+trap 'rm -f "$cards"' EXIT
+"$sglab" methods --json >"$cards"
+
+# README.md: sglab's own models (origin sglab on their cards) beside the published methods they
+# are measured against, the most accurate held-out error in bold.
 models_table() {
   echo "| method | form | held-out max peak_rel | standard grid | GPU cycles per light per pixel | GPU cycles, one call | batch ns |"
   echo "|---|---|---:|---:|---:|---:|---:|"
-  while IFS='|' read -r method form bold; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$method" "$form" "$bold" "$(peak "$heldout" "$method")" \
-      "$(peak "$standard" "$method")" "$(per_light "$method" navi21)" "$(cycles "$method" navi21)" "$(batch_ns "$method")"
-  done <<'EOF' | awk -F'\t' "$fmt_awk"'
-    { name = $1; if (name !~ /^(vsgl2015|tokuyoshi2024)$/) name = "`" name "`"; else name = name " (published)";
-      h = sig($4); s = sig($5); if ($3 == "bold") { h = "**" h "**"; s = "**" s "**" }
-      printf "| %s | %s | %s | %s | %s | %s | %s |\n", name, $2, h, s, sprintf("%.3g", $6), $7, sprintf("%.3g", $8) }'
-vsgl2015|[Tokuyoshi2015] diffuse SG, one exp|
-tokuyoshi2024|[Tokuyoshi2024] lerp of the exact poles, erfc-based factor|
-sglab_acc1|2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P0(u), u = t/(t + s)|
-sglab_acc2|… + b1(κ)z²|
-sglab_acc3|… + b2(κ)z⁴|
-sglab_acc4|… + b3(κ)z⁶; P_j of degree 3, 5, 6, 6 (acc1 … acc4); acc3's and acc4's t(κ) rational of order 3|bold
-sglab_fast|exact E(1, κ) × A + Bc + Cρ(Vc + ½), rational A, B, C, V|
-sglab_mid|exact E(1, κ) × A + B(c + √(c² + e^{S − Vc²})) + Dc², rational A, B, D, S, V|
-EOF
+  jq -r '.irradiance[] | select(.origin == "sglab" or .id == "vsgl2015" or .id == "tokuyoshi2024") |
+    [.id, .origin, .form] | @tsv' "$cards" |
+    while IFS=$'\t' read -r method origin form; do
+      printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$method" "$origin" "$form" "$(peak "$heldout" "$method")" \
+        "$(peak "$standard" "$method")" "$(per_light "$method" navi21)" "$(cycles "$method" navi21)" "$(batch_ns "$method")"
+    done | awk -F'\t' "$fmt_awk"'
+    { row[NR] = $0; if (best == "" || $4 + 0 < best) { best = $4 + 0; at = NR } }
+    END {
+      for (i = 1; i <= NR; ++i) {
+        split(row[i], f, "\t")
+        name = f[2] == "sglab" ? "`" f[1] "`" : f[1] " (" f[2] ")"
+        h = sig(f[4]); s = sig(f[5]); if (i == at) { h = "**" h "**"; s = "**" s "**" }
+        printf "| %s | %s | %s | %s | %s | %s | %s |\n", name, f[3], h, s, sprintf("%.3g", f[6]), f[7], sprintf("%.3g", f[8])
+      }
+    }'
 }
 models_table | fill README.md sglab-models
 
@@ -102,7 +110,7 @@ range_table() {
         $col["holds"], k($col["holds_from"]), k($col["holds_to"]), any, $col["anywhere_at_kappa"] }' \
     "$kappa_range"
 }
-range_table | fill README.md kappa-range
+range_table | fill docs/cli.md kappa-range
 
 # data/results/sglab_acc.md: the fit report, the held-out errors, the costs.
 fence() { echo '```'; cat; echo '```'; }
@@ -195,7 +203,7 @@ range_table sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" ka
     awk -F'\t' '{ printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", ($i == "" ? "" : sprintf("%.3g", $i)); printf "\n" }'
 } | fill "$results/vulkan_sweep.md" vulkan-table
 
-# README.md: the environment-map baselines (data/results/envmaps.csv, `sglab envmap baselines`):
+# docs/envmaps.md: the environment-map baselines (data/results/envmaps.csv, `sglab envmap baselines`):
 # per lobe count the range over the maps of each fit's max error, and the worst map's (a)/(c).
 envmaps=$results/envmaps.csv
 awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1 }
@@ -215,7 +223,7 @@ awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1 }
       for (m in maps) { q = v[m "," n ",baseline"] / v[m "," n ",irradiance"]; if (worst == "" || q < worst) { worst = q; wm = m } }
       print line sprintf(" %.3g (%s) |", worst, wm)
     }
-  }' "$envmaps" | fill README.md envmap-table
+  }' "$envmaps" | fill docs/envmaps.md envmap-table
 awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1; if (!($2 in seen)) { seen[$2] = 1; lobes[++nl] = $2 + 0 } }
   END {
     split("4 8 12 24", ns, " "); lo = ""; hi = ""; cases = 0; ok = 0
@@ -243,4 +251,7 @@ awk -F, 'NR > 1 { v[$1 "," $2 "," $3] = $4; maps[$1] = 1; if (!($2 in seen)) { s
     printf "(c) has %.2g× to %.3g× lower max error than (a) on every map at every N (%d of %d cases; the target\n", lo, hi, ok, cases
     printf "was 2×). For a 1 %% budget on the lobe fit alone, (c) needs %s;\n", groups
     print "neither (a) nor (b) reaches 1 % within 24 lobes."
-  }' "$envmaps" | fill README.md envmap-summary
+  }' "$envmaps" | fill docs/envmaps.md envmap-summary
+
+# docs/references.md: the methods by source, every registry card as `sglab methods --format md`.
+"$sglab" methods --format md | fill docs/references.md methods

@@ -1,7 +1,7 @@
 // Included by the suites that run fits: the process fails when any fit it ran
 // evaluated a NaN or ±inf residual or derivative (fit/minimax.hpp,
 // nonfinite_residual_evaluations). Such a residual is a defect of the model or
-// of its search space, which Ceres would log and step around (issue 20).
+// of its search space, which Ceres would otherwise log and step around.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -23,7 +23,7 @@
 
 namespace sglab::test {
 
-// The fitters' training grid (fit/sglab_fast.cpp, fit/sglab_mid.cpp): 56
+// The fitters' training grid (fit/fit_sglab_fast.cpp, fit/fit_sglab_mid.cpp): 56
 // log-midpoints of [1e−3, 1e4] × 161 uniform cosines.
 inline std::vector<validate::ReferencePoint> certificate_training_grid() {
   return validate::reference_engine().evaluate(

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/args.hpp"
+#include "common/vocabulary.hpp"
 #include "tests/test_support.hpp"
 #include "validate/sweep.hpp"
 
@@ -210,7 +211,7 @@ TEST(KappaRangeCli, FitAcceptsSubnormalKappaInDouble) {
   EXPECT_NE(r.output.find("rounds to 0 in float"), std::string::npos) << r.output;
 }
 
-// The sweep rounds κ to float, which hides the 1-ulp error of the old nominal
+// The sweep rounds κ to float, which would hide a 1-ulp error of a nominal
 // grid (LogSpaced.SortedAndExactAtTheEnds catches that); this checks the end
 // to end result.
 TEST(KappaRangeCli, SweepEqualBoundsGiveEqualKappas) {
@@ -241,6 +242,61 @@ TEST(KappaRangeCli, SweepEqualBoundsGiveEqualKappas) {
     pos = end;
   }
   EXPECT_EQ(rows, 8u) << csv;  // 4 κ × float and double
+}
+
+// The vocabulary (common/vocabulary.hpp): each name parses back to its value,
+// and an option outside its allowed values is refused naming the option and
+// listing what it takes.
+template <class E>
+void expect_round_trip() {
+  for (const auto& n : names_of(E{})) {
+    EXPECT_EQ(sglab::io::to_string(n.value), n.name);
+    EXPECT_EQ(sglab::io::parse_enum<E>(n.name), n.value) << n.name;
+  }
+  EXPECT_FALSE(sglab::io::parse_enum<E>(""));
+}
+
+TEST(Vocabulary, NamesParseBackToTheirValues) {
+  expect_round_trip<sglab::io::Precision>();
+  expect_round_trip<sglab::io::Backend>();
+  expect_round_trip<sglab::io::Language>();
+  expect_round_trip<sglab::io::Form>();
+  EXPECT_EQ(sglab::io::to_string(sglab::io::Precision::float16), "half");
+  EXPECT_EQ(sglab::io::to_string(sglab::io::Precision::float64), "double");
+  EXPECT_FALSE(sglab::io::parse_enum<sglab::io::Precision>("Float"));
+}
+
+TEST(Vocabulary, AnOptionOutsideItsValuesNamesTheOptionAndTheValues) {
+  using sglab::io::Precision;
+  EXPECT_EQ(
+      sglab::io::parse_option("--precision", "half", {Precision::float32, Precision::float16}),
+      Precision::float16);
+  try {
+    sglab::io::parse_option("--precision", "double", {Precision::float32, Precision::float16});
+    ADD_FAILURE() << "double accepted where only float and half are";
+  } catch (const sglab::io::InputError& e) {
+    EXPECT_STREQ(e.what(), "--precision: expected float or half, got 'double'");
+  }
+  try {
+    sglab::io::parse_option<Precision>("--precision", "quad");
+    ADD_FAILURE() << "quad accepted";
+  } catch (const sglab::io::InputError& e) {
+    EXPECT_STREQ(e.what(), "--precision: expected half, float or double, got 'quad'");
+  }
+}
+
+// The names of the sweep's precision column (data/results/vulkan_sweep.json).
+TEST(Vocabulary, EvaluationsAreNamedAsTheSweepNamesThem) {
+  using namespace sglab::io;
+  EXPECT_EQ(to_string(kCpuFloat), "float");
+  EXPECT_EQ(to_string(kCpuDouble), "double");
+  EXPECT_EQ(to_string(on_vulkan(Language::glsl, Precision::float32)), "vulkan");
+  EXPECT_EQ(to_string(on_vulkan(Language::hlsl, Precision::float32)), "vulkan_hlsl");
+  EXPECT_EQ(to_string(on_vulkan(Language::glsl, Precision::float16)), "vulkan_half");
+  EXPECT_EQ(to_string(on_vulkan(Language::hlsl, Precision::float16)), "vulkan_hlsl_half");
+  EXPECT_EQ(to_string(on_vulkan(Language::glsl, Precision::float32, Form::split)), "vulkan_split");
+  EXPECT_EQ(to_string(on_vulkan(Language::hlsl, Precision::float32, Form::split)),
+            "vulkan_hlsl_split");
 }
 
 }  // namespace

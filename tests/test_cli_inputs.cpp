@@ -148,8 +148,9 @@ TEST(ByteOrderMark, ReferencePointsFileWithAMarkGivesTheSameOutput) {
 TEST(ByteOrderMark, ParetoCsvWithAMarkIsRead) {
   TempDir dir("bom-pareto");
   const std::string body =
-      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-      "punctual,published,float,0.001,10000,0.8,0.9,true\n";
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
+      "frontier\n"
+      "punctual,published,float,0.001,10000,0.8,ns,cpu-batch,0.9,true\n";
   sglab::io::write_file_atomic(dir.path / "p.csv", "\xEF\xBB\xBF" + body);
   const auto rows = sglab::report::read_pareto_csv(dir.path / "p.csv");
   ASSERT_EQ(rows.size(), 1u);

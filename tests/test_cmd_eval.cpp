@@ -81,7 +81,7 @@ TEST(EvalCommand, RejectsBadInputWithExitCode2) {
   r = run_sglab({"eval", "--method", "sglab_acc2", "--points", negative.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find(":3: kappa must be finite and >= 0"), std::string::npos) << r.output;
-  // Streamed: the row before the bad one was printed (README, `sglab eval`).
+  // Streamed: the row before the bad one was printed (docs/cli.md, `sglab eval`).
   EXPECT_EQ(r.output.find("kappa,cosine,value\n1,0,"), 0u) << r.output;
   r = run_sglab({"eval", "--method", "sglab_acc2", "--points", malformed.string()});
   EXPECT_EQ(r.exit_code, 2);

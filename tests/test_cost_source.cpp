@@ -97,12 +97,12 @@ TEST(CostSource, RefusesEverythingElseQuotingIt) {
 }
 
 TEST(CostSource, DefaultIsGpuInverseThroughputOnNavi21ForFloat) {
-  const CostSource f = sglab::report::default_cost_source(sglab::validate::FloatFormat::binary32);
+  const CostSource f = sglab::report::default_cost_source(sglab::io::Precision::float32);
   EXPECT_EQ(f.kind, CostSourceKind::gpu);
   EXPECT_EQ(f.family, "navi21");
   EXPECT_EQ(f.unit(), "cycles");
   // The shader exports are float: double is costed on the CPU.
-  const CostSource d = sglab::report::default_cost_source(sglab::validate::FloatFormat::binary64);
+  const CostSource d = sglab::report::default_cost_source(sglab::io::Precision::float64);
   EXPECT_EQ(d.name(), "cpu-batch");
 }
 
@@ -349,11 +349,11 @@ TEST(CostSourceCli, DefaultIsNavi21FromTheCostTable) {
   }
 }
 
-// README names the driver that measured the committed GPU costs: the one the
+// docs/costs.md names the driver that measured the committed GPU costs: the one the
 // cost table records (it must follow the table when the table is regenerated).
-TEST(CostSourceCli, ReadmeNamesTheDriverOfTheCommittedTable) {
+TEST(CostSourceCli, CostsPageNamesTheDriverOfTheCommittedTable) {
   const fs::path root = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
-  std::ifstream table(root / "data" / "results" / "costs.json"), readme(root / "README.md");
+  std::ifstream table(root / "data" / "results" / "costs.json"), readme(root / "docs" / "costs.md");
   std::stringstream t, r;
   t << table.rdbuf();
   r << readme.rdbuf();

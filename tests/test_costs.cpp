@@ -254,18 +254,19 @@ TEST(CostTable, BenchWritesATableThatReadsBack) {
   const auto t = sglab::report::read_cost_table(dir / "costs.json");
   using sglab::report::CostKind;
   using sglab::report::CostMode;
-  using sglab::validate::FloatFormat;
   for (CostMode mode : {CostMode::scalar, CostMode::batch}) {
-    EXPECT_TRUE(t.find(CostKind::irradiance, "hill", FloatFormat::binary32, mode));
-    EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, mode));
+    EXPECT_TRUE(t.find(CostKind::irradiance, "hill", sglab::io::Precision::float32, mode));
+    EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", sglab::io::Precision::float32, mode));
   }
   // The per-light split is measured for tokuyoshi2024, not for hill (which has none).
-  EXPECT_TRUE(
-      t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, CostMode::light_setup));
-  EXPECT_TRUE(
-      t.find(CostKind::irradiance, "tokuyoshi2024", FloatFormat::binary32, CostMode::light_eval));
-  EXPECT_FALSE(t.find(CostKind::irradiance, "hill", FloatFormat::binary32, CostMode::light_setup));
-  EXPECT_FALSE(t.find(CostKind::irradiance, "hill", FloatFormat::binary64, CostMode::batch));
+  EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", sglab::io::Precision::float32,
+                     CostMode::light_setup));
+  EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", sglab::io::Precision::float32,
+                     CostMode::light_eval));
+  EXPECT_FALSE(
+      t.find(CostKind::irradiance, "hill", sglab::io::Precision::float32, CostMode::light_setup));
+  EXPECT_FALSE(
+      t.find(CostKind::irradiance, "hill", sglab::io::Precision::float64, CostMode::batch));
   EXPECT_NE(t.info.inputs.find("1048576 inputs"), std::string::npos) << t.info.inputs;
   EXPECT_NE(t.info.inputs.find("log-uniform"), std::string::npos) << t.info.inputs;
   EXPECT_NE(t.info.command.find("--filter"), std::string::npos) << t.info.command;

@@ -285,7 +285,7 @@ TEST(EnvmapCli, SelectorChoiceMeetsItsBudget) {
   double largest = 0;
   for (const auto& l : scene.lights)
     for (double a : l.amplitude) largest = std::max(largest, a);
-  auto approx = validate::scene_irradiance(scene, normals, *m, validate::FloatFormat::binary32);
+  auto approx = validate::scene_irradiance(scene, normals, *m, io::Precision::float32);
   for (auto& v : approx)
     for (double& x : v) x *= largest;
   const auto exact = envmap::irradiance(envmap::read_map(map), normals);

@@ -26,11 +26,13 @@ TEST(Figures, ReadParetoCsvReadsOrigin) {
   const sglab::test::TempDir tmp("claims-origin");
   const fs::path& dir = tmp.path;
   const std::string header =
-      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n";
-  sglab::io::write_file_atomic(dir / "ok.csv", header +
-                                                   "a,published,float,1,10,1,0.1,1\n"
-                                                   "b,refit,float,1,10,2,0.01,0\n"
-                                                   "c,sglab,double,1,10,3,0.001,true\n");
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,"
+      "frontier\n";
+  sglab::io::write_file_atomic(dir / "ok.csv",
+                               header +
+                                   "a,published,float,1,10,1,ns,cpu-batch,0.1,1\n"
+                                   "b,refit,float,1,10,2,ns,cpu-batch,0.01,0\n"
+                                   "c,sglab,double,1,10,3,ns,cpu-batch,0.001,true\n");
   const auto rows = read_pareto_csv(dir / "ok.csv");
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0].origin, sglab::Origin::published);
@@ -40,13 +42,26 @@ TEST(Figures, ReadParetoCsvReadsOrigin) {
   EXPECT_FALSE(rows[1].frontier);
   EXPECT_TRUE(rows[2].frontier);
   // The old boolean column is not an origin.
-  sglab::io::write_file_atomic(dir / "old.csv", header + "a,true,float,1,10,1,0.1,1\n");
+  sglab::io::write_file_atomic(dir / "old.csv",
+                               header + "a,true,float,1,10,1,ns,cpu-batch,0.1,1\n");
   EXPECT_THROW(read_pareto_csv(dir / "old.csv"), std::invalid_argument);
   sglab::io::write_file_atomic(
       dir / "oldheader.csv",
       "method,refit,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
       "a,0,float,1,10,1,0.1,1\n");
   EXPECT_THROW(read_pareto_csv(dir / "oldheader.csv"), std::invalid_argument);
+  // A CSV without the cost columns (ns_per_eval alone) names the one it lacks.
+  sglab::io::write_file_atomic(
+      dir / "nocost.csv",
+      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
+      "a,published,float,1,10,1,0.1,1\n");
+  try {
+    read_pareto_csv(dir / "nocost.csv");
+    ADD_FAILURE() << "a CSV without a cost column was read";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("header lacks column 'cost'"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Figures, CommandWritesPngAndSvg) {
@@ -56,15 +71,15 @@ TEST(Figures, CommandWritesPngAndSvg) {
   const fs::path pareto = dir / "pareto.csv";
   sglab::io::write_file_atomic(
       pareto,
-      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-      "punctual,published,float,0.001,10000,0.8,0.9,true\n"
-      "wang2009,published,float,0.001,10000,2.5,0.35,false\n"
-      "hill,published,float,0.001,10000,3.0,3.1e7,false\n"
-      "tokuyoshi2022,published,float,0.001,10000,12.0,0.0045,true\n"
-      "tokuyoshi2024_refit,refit,float,0.001,10000,15.0,0.0014,true\n"
-      "sglab_model,sglab,float,0.001,10000,4.0,0.002,true\n"
-      "tokuyoshi2024,published,double,0.001,10000,20.0,0.0013,true\n"
-      "\"meder2018\",published,double,0.001,10000,9.0,0.02,true\n");
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n"
+      "punctual,published,float,0.001,10000,0.8,ns,cpu-batch,0.9,true\n"
+      "wang2009,published,float,0.001,10000,2.5,ns,cpu-batch,0.35,false\n"
+      "hill,published,float,0.001,10000,3.0,ns,cpu-batch,3.1e7,false\n"
+      "tokuyoshi2022,published,float,0.001,10000,12.0,ns,cpu-batch,0.0045,true\n"
+      "tokuyoshi2024_refit,refit,float,0.001,10000,15.0,ns,cpu-batch,0.0014,true\n"
+      "sglab_model,sglab,float,0.001,10000,4.0,ns,cpu-batch,0.002,true\n"
+      "tokuyoshi2024,published,double,0.001,10000,20.0,ns,cpu-batch,0.0013,true\n"
+      "\"meder2018\",published,double,0.001,10000,9.0,ns,cpu-batch,0.02,true\n");
   const fs::path out = dir / "figs";
   const auto r =
       sglab::test::run_sglab({"figures", "--out", out.string(), "--pareto", pareto.string()});
@@ -93,7 +108,7 @@ TEST(Figures, CommandWritesPngAndSvg) {
 
 // Figure (e) draws one panel per cost source of the Pareto CSVs it is given
 // (`sglab pareto --cost …`), in their order, each with its own points file and
-// axis label; an older CSV (ns_per_eval) is CPU batch ns.
+// axis label.
 TEST(Figures, OnePanelPerCostSource) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   sglab::test::TempDir dir("figures-panels");
@@ -108,9 +123,9 @@ TEST(Figures, OnePanelPerCostSource) {
           "1\n");
   sglab::io::write_file_atomic(
       dir.path / "cpu.csv",
-      "method,origin,precision,kappa_lo,kappa_hi,ns_per_eval,max_peak_rel,frontier\n"
-      "vsgl2015,published,float,0.001,10000,3.7,0.15,1\n"
-      "sglab_acc3,sglab,float,0.001,10000,18.3,3e-5,1\n");
+      "method,origin,precision,kappa_lo,kappa_hi,cost,cost_unit,cost_source,max_peak_rel,frontier\n"
+      "vsgl2015,published,float,0.001,10000,3.7,ns,cpu-batch,0.15,1\n"
+      "sglab_acc3,sglab,float,0.001,10000,18.3,ns,cpu-batch,3e-5,1\n");
   // The cost table's GPU rows: beside the navi21 panel, a table of the other families (here
   // navi10) in the panel's figure, per light per pixel in the 8-light loop, the split form
   // where there is one (vsgl2015's: 36/8 = 4.5 beside its unsplit 5.5), not one call (1000).

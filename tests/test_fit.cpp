@@ -185,9 +185,9 @@ TEST(ClampedCosine, PrecisionSetsTheBalance) {
   spec.target = "clamped-cosine";
   spec.kappa_count = 3;
   spec.cosine_count = 3;
-  spec.precision = WorkingPrecision::half;
+  spec.precision = sglab::io::Precision::float16;
   const double half = run_fit(spec).report["lambda"];
-  spec.precision = WorkingPrecision::dbl;
+  spec.precision = sglab::io::Precision::float64;
   const double dbl = run_fit(spec).report["lambda"];
   EXPECT_NEAR(half, std::sqrt(6 * std::ldexp(1.0, -10)), 0.1 * half);
   EXPECT_NEAR(dbl, std::sqrt(6 * std::ldexp(1.0, -52)), 0.1 * dbl);
@@ -229,7 +229,7 @@ std::vector<FitSpec> quick_specs() {
   std::vector<FitSpec> specs(5);
   for (FitSpec& s : specs) s.kappa_count = 8, s.cosine_count = 9;
   specs[0].target = "clamped-cosine";
-  specs[0].precision = WorkingPrecision::half;
+  specs[0].precision = sglab::io::Precision::float16;
   specs[1].target = "steepness2024";
   specs[1].objective = "irradiance";
   specs[2].target = "lambda-d";
@@ -369,7 +369,7 @@ TEST(ModelOrder, RationalOrderTwoReproducesThe2024Form) {
 
 namespace {
 
-// The steepness certificate (issue 17 §1, fit/steepness.cpp): the per-κ floor.
+// The steepness certificate (fit/steepness.cpp): the per-κ floor.
 // In the report and the set's provenance, positive and at most the achieved
 // max, for both targets and objectives and for a --max-error order.
 TEST(SteepnessCertificate, BoundIsPositiveAndAtMostAchieved) {

@@ -160,7 +160,7 @@ TEST_F(OnRadv, ABoundsCheckHidesAQuarterOfTheCost) {
                  free = static_cast<double>(b.rows[i].stats.inverse_throughput);
     const std::string figures =
         fmt::format("{}: {} cycles in the bounds check, {} without", methods[i], in_branch, free);
-    std::printf("navi21 %s\n", figures.c_str());  // README quotes these
+    std::printf("navi21 %s\n", figures.c_str());  // docs/costs.md quotes these
     SCOPED_TRACE(figures);
     EXPECT_LT(in_branch, 0.85 * free);
     EXPECT_GT(in_branch, 0.6 * free);

@@ -213,10 +213,14 @@ double reference_plus_bump(double c, double kappa, double t0) {
          kBump * peak * std::exp(-(t - t0) * (t - t0) / 0.02);
 }
 sglab::Method bump_method(double (*f64)(double, double), float (*f32)(float, float)) {
-  sglab::Method m{"bump", "test", "", f32, f64, nullptr, nullptr};
-  m.origin = sglab::Origin::sglab;
-  m.valid = {.max_peak_rel = 2e-3};
-  return m;
+  return sglab::Method{{.id = "bump",
+                        .origin = sglab::Origin::sglab,
+                        .source = "test",
+                        .valid = {.max_peak_rel = 2e-3}},
+                       f32,
+                       f64,
+                       nullptr,
+                       nullptr};
 }
 
 // At κ = 1e10 the bump sits at c = 2.5/√κ = 2.5e-5, between the uniform cosines: only the

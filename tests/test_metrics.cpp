@@ -247,24 +247,10 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& s) {
 
 // Markdown pipe-table row: cells split at unescaped '|', "\|" unescaped.
 std::vector<std::string> parse_markdown_row(const std::string& line) {
-  std::vector<std::string> cells;
   EXPECT_FALSE(line.empty());
   EXPECT_EQ(line.front(), '|');
   EXPECT_EQ(line.back(), '|');
-  std::string cell;
-  for (std::size_t i = 1; i < line.size(); ++i) {
-    if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
-      cell += '|';
-      ++i;
-    } else if (line[i] == '|') {
-      const auto b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
-      cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
-      cell.clear();
-    } else {
-      cell += line[i];
-    }
-  }
-  return cells;
+  return sglab::test::markdown_cells(line);
 }
 
 std::vector<std::string> lines(const std::string& s) {

@@ -48,8 +48,7 @@ bool on_frontier(const std::vector<MethodPoint>& v, const std::string& id) {
 // The origin of each point comes from the registry (Method::origin) and the
 // table writes it as text: published, refit or sglab.
 TEST(Pareto, OriginFromRegistryInTable) {
-  const auto points =
-      sglab::report::irradiance_errors(1, 10, sglab::validate::FloatFormat::binary64);
+  const auto points = sglab::report::irradiance_errors(1, 10, sglab::io::Precision::float64);
   ASSERT_EQ(points.size(), std::size(sglab::irradiance_methods));
   bool published = false, refit = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -60,8 +59,8 @@ TEST(Pareto, OriginFromRegistryInTable) {
   }
   EXPECT_TRUE(published && refit);  // both kinds exist in the registry today
   const std::string csv = sglab::validate::to_csv(sglab::report::pareto_table(
-      points, sglab::validate::FloatFormat::binary64, 1, 10,
-      sglab::report::default_cost_source(sglab::validate::FloatFormat::binary64)));
+      points, sglab::io::Precision::float64, 1, 10,
+      sglab::report::default_cost_source(sglab::io::Precision::float64)));
   for (const auto& m : sglab::irradiance_methods) {
     const std::string row = fmt::format("\n{},{},double,", m.id, sglab::to_string(m.origin));
     EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -40,6 +41,27 @@ std::string slurp(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// README.md and the pages of docs/ (the CLI, costs, shaders, environment maps, models, …): the
+// reference text README links moves between them, so a claim is checked in whichever of them
+// states it, its anchor unique across all of them.
+constexpr const char* kDocs = "README.md and docs/*.md";
+std::vector<fs::path> doc_pages() {
+  std::vector<fs::path> pages;
+  for (const auto& e : fs::directory_iterator(kRoot / "docs"))
+    if (e.path().extension() == ".md") pages.push_back(e.path());
+  std::sort(pages.begin(), pages.end());
+  pages.insert(pages.begin(), kRoot / "README.md");
+  return pages;
+}
+const std::string& docs_text() {
+  static const std::string text = [] {
+    std::string t;
+    for (const fs::path& p : doc_pages()) t += slurp(p) + "\n\n";
+    return t;
+  }();
+  return text;
 }
 
 // ---- reading numbers ----------------------------------------------------------
@@ -377,7 +399,7 @@ const Results& results() {
 enum class Says { equals, upper_bound };
 
 struct Claim {
-  const char* file;    // under the project root
+  const char* file;    // under the project root, or kDocs
   const char* anchor;  // text before the number, unique in the file
   std::size_t nth;     // which number after the anchor (0: the first)
   Says says;
@@ -415,69 +437,106 @@ double envmap_cases_with_ratio_at_least(const Results& r, double ratio) {
 }
 
 const Claim kClaims[] = {
-    // README.md
+    // README.md and docs/*.md
     // GPU cost without a GPU: one call (harness single) and per light per pixel (the 8-light loop).
-    {"README.md", "--gtest_filter='*BoundsCheck*'` prints ", 1, Says::equals,
+    {kDocs, "--gtest_filter='*BoundsCheck*'` prints ", 1, Says::equals,
      [](const Results& r) { return r.cycles("tokuyoshi2024"); }, "costs.json gpu single"},
-    {"README.md", "--gtest_filter='*BoundsCheck*'` prints ", 3, Says::equals,
+    {kDocs, "--gtest_filter='*BoundsCheck*'` prints ", 3, Says::equals,
      [](const Results& r) { return r.cycles("sglab_acc3"); }, "costs.json gpu single"},
-    {"README.md", "--gtest_filter='*BoundsCheck*'` prints ", 5, Says::equals,
+    {kDocs, "--gtest_filter='*BoundsCheck*'` prints ", 5, Says::equals,
      [](const Results& r) { return r.cycles("sglab_fast"); }, "costs.json gpu single"},
-    {"README.md", "--gtest_filter='*BoundsCheck*'` prints ", 7, Says::equals,
+    {kDocs, "--gtest_filter='*BoundsCheck*'` prints ", 7, Says::equals,
      [](const Results& r) { return r.cycles("meder2018"); }, "costs.json gpu single"},
-    {"README.md", "exp and division cost ", 0, Says::equals,
+    {kDocs, "exp and division cost ", 0, Says::equals,
      [](const Results& r) { return r.cycles("vsgl2015"); }, "costs.json gpu single"},
-    {"README.md", "exp and division cost ", 1, Says::equals,
+    {kDocs, "exp and division cost ", 1, Says::equals,
      [](const Results& r) { return r.per_light("vsgl2015"); }, "costs.json gpu loop"},
-    {"README.md", "null device): tokuyoshi2024 costs ", 0, Says::equals,
+    {kDocs, "null device): tokuyoshi2024 costs ", 0, Says::equals,
      [](const Results& r) { return r.cycles("tokuyoshi2024"); }, "costs.json gpu single"},
-    {"README.md", "null device): tokuyoshi2024 costs ", 1, Says::equals,
+    {kDocs, "null device): tokuyoshi2024 costs ", 1, Says::equals,
      [](const Results& r) { return r.cycles("sglab_acc3"); }, "costs.json gpu single"},
-    {"README.md", "null device): tokuyoshi2024 costs ", 2, Says::equals,
+    {kDocs, "null device): tokuyoshi2024 costs ", 2, Says::equals,
      [](const Results& r) { return r.per_light("tokuyoshi2024"); }, "costs.json gpu loop"},
-    {"README.md", "null device): tokuyoshi2024 costs ", 3, Says::equals,
+    {kDocs, "null device): tokuyoshi2024 costs ", 3, Says::equals,
      [](const Results& r) { return r.per_light("sglab_acc3"); }, "costs.json gpu loop"},
-    {"README.md", "branch-free float exp, expm1, erfc and sqrt", 0, Says::equals,
+    {kDocs, "branch-free float exp, expm1, erfc and sqrt", 0, Says::equals,
      [](const Results&) {
        return sglab::test::find_tolerance("tokuyoshi2024", sglab::test::batch_vs_double,
                                           sglab::test::f32)
            ->bound;
      },
      "tests/tolerances.hpp, tokuyoshi2024 batch_vs_double"},
-    {"README.md", "peak-relative error ≤ ", 0, Says::upper_bound,
+    {kDocs, "peak-relative error ≤ ", 0, Says::upper_bound,
      [](const Results& r) {
        return std::max(r.standard_err("sglab_acc3", "double"),
                        r.held_out_err("sglab_acc3", "double"));
      },
      "sglab_acc3 double, sweep_summary.md and heldout_sweep.json"},
-    {"README.md", "published tokuyoshi2024 measures ", 0, Says::equals,
+    {kDocs, "published tokuyoshi2024 measures ", 0, Says::equals,
      [](const Results& r) { return vulkan(r, "tokuyoshi2024"); }, "vulkan_sweep.json"},
-    {"README.md", "published tokuyoshi2024 measures ", 1, Says::equals,
+    {kDocs, "published tokuyoshi2024 measures ", 1, Says::equals,
      [](const Results& r) { return r.device_diff("tokuyoshi2024"); },
      "vulkan_sweep.json device_vs_float"},
-    {"README.md", "(c) has ", 0, Says::equals,
+    {kDocs, "(c) has ", 0, Says::equals,
      [](const Results& r) { return envmap_ratio_bound(r, false); },
      "envmaps.csv, smallest (a)/(c)"},
-    {"README.md", "(c) has ", 1, Says::equals,
+    {kDocs, "(c) has ", 1, Says::equals,
      [](const Results& r) { return envmap_ratio_bound(r, true); }, "envmaps.csv, largest (a)/(c)"},
-    {"README.md", "(c) has ", 2, Says::equals,
+    {kDocs, "(c) has ", 2, Says::equals,
      [](const Results& r) { return envmap_cases_with_ratio_at_least(r, 2); },
      "envmaps.csv, cases with (a)/(c) ≥ 2"},
-    {"README.md", "(c) has ", 3, Says::equals,
+    {kDocs, "(c) has ", 3, Says::equals,
      [](const Results& r) { return double(r.maps.size() * std::size(kTableLobes)); },
      "envmaps.csv, cases"},
-    {"README.md", "is often worse than (a) (", 1, Says::equals,
+    {kDocs, "is often worse than (a) (", 1, Says::equals,
      [](const Results& r) { return r.envmap_err("night", 24, "radiance"); },
      "envmaps.csv night 24 radiance"},
-    {"README.md", "is often worse than (a) (", 3, Says::equals,
+    {kDocs, "is often worse than (a) (", 3, Says::equals,
      [](const Results& r) { return r.envmap_err("sunrise", 4, "radiance"); },
      "envmaps.csv sunrise 4 radiance"},
-    {"README.md", "monotone in N (studio: ", 0, Says::equals,
+    {kDocs, "monotone in N (studio: ", 0, Says::equals,
      [](const Results& r) { return r.envmap_err("studio", 6, "irradiance"); },
      "envmaps.csv studio 6 irradiance"},
-    {"README.md", "monotone in N (studio: ", 2, Says::equals,
+    {kDocs, "monotone in N (studio: ", 2, Says::equals,
      [](const Results& r) { return r.envmap_err("studio", 24, "irradiance"); },
      "envmaps.csv studio 24 irradiance"},
+    // docs/models.md
+    {"docs/models.md", "sglab_fast.md, held-out, float): max peak_rel ", 0, Says::equals,
+     [](const Results& r) { return r.held_out_err("sglab_fast"); }, "heldout_sweep.json"},
+    {"docs/models.md", "**Cost** of sglab_fast (", 0, Says::equals,
+     [](const Results& r) { return r.instructions("sglab_fast", "setup"); }, "callgrind.csv"},
+    {"docs/models.md", "**Cost** of sglab_fast (", 1, Says::equals,
+     [](const Results& r) { return r.instructions("sglab_fast", "eval"); }, "callgrind.csv"},
+    {"docs/models.md", "**Cost** of sglab_fast (", 2, Says::equals,
+     [](const Results& r) { return r.per_light("sglab_fast"); }, "costs.json gpu loop"},
+    {"docs/models.md", "sglab_mid.md, held-out, float): max peak_rel ", 0, Says::equals,
+     [](const Results& r) { return r.held_out_err("sglab_mid"); }, "heldout_sweep.json"},
+    {"docs/models.md", "**Cost** of sglab_mid (", 0, Says::equals,
+     [](const Results& r) { return r.instructions("sglab_mid", "setup"); }, "callgrind.csv"},
+    {"docs/models.md", "**Cost** of sglab_mid (", 1, Says::equals,
+     [](const Results& r) { return r.instructions("sglab_mid", "eval"); }, "callgrind.csv"},
+    {"docs/models.md", "**Cost** of sglab_mid (", 2, Says::equals,
+     [](const Results& r) { return r.per_light("sglab_mid"); }, "costs.json gpu loop"},
+    {"docs/models.md", "sglab_acc.md, held-out, float): ", 0, Says::equals,
+     [](const Results& r) { return r.held_out_err("sglab_acc1"); }, "heldout_sweep.json"},
+    {"docs/models.md", "sglab_acc.md, held-out, float): ", 1, Says::equals,
+     [](const Results& r) { return r.held_out_err("sglab_acc2"); }, "heldout_sweep.json"},
+    {"docs/models.md", "sglab_acc.md, held-out, float): ", 2, Says::equals,
+     [](const Results& r) { return r.held_out_err("sglab_acc3"); }, "heldout_sweep.json"},
+    {"docs/models.md", "sglab_acc.md, held-out, float): ", 3, Says::equals,
+     [](const Results& r) { return r.held_out_err("sglab_acc4"); }, "heldout_sweep.json"},
+    {"docs/models.md", "sglab_acc.md, held-out, float): ", 4, Says::equals,
+     [](const Results& r) { return r.held_out_err("tokuyoshi2024"); }, "heldout_sweep.json"},
+    {"docs/models.md", "**Cost** of the ladder (", 0, Says::equals,
+     [](const Results& r) { return r.per_light("sglab_acc1"); }, "costs.json gpu loop"},
+    {"docs/models.md", "**Cost** of the ladder (", 1, Says::equals,
+     [](const Results& r) { return r.per_light("sglab_acc2"); }, "costs.json gpu loop"},
+    {"docs/models.md", "**Cost** of the ladder (", 2, Says::equals,
+     [](const Results& r) { return r.per_light("sglab_acc3"); }, "costs.json gpu loop"},
+    {"docs/models.md", "**Cost** of the ladder (", 3, Says::equals,
+     [](const Results& r) { return r.per_light("sglab_acc4"); }, "costs.json gpu loop"},
+    {"docs/models.md", "**Cost** of the ladder (", 4, Says::equals,
+     [](const Results& r) { return r.per_light("tokuyoshi2024"); }, "costs.json gpu loop"},
     // data/results/envmaps.md
     {"data/results/envmaps.md", "(c) has at least 2× lower max irradiance error than (a) in ", 0,
      Says::equals, [](const Results& r) { return envmap_cases_with_ratio_at_least(r, 2); },
@@ -519,7 +578,8 @@ const Claim kClaims[] = {
 TEST(ReadmeNumbers, ProseMatchesTheResults) {
   std::map<std::string, std::string> text;
   for (const Claim& c : kClaims) {
-    if (!text.count(c.file)) text[c.file] = slurp(kRoot / c.file);
+    if (!text.count(c.file))
+      text[c.file] = c.file == std::string(kDocs) ? docs_text() : slurp(kRoot / c.file);
     const std::string what =
         fmt::format("{}: number {} after '{}' ({})", c.file, c.nth, c.anchor, c.from);
     const Stated s = stated_after(text[c.file], c.anchor, c.nth, c.file);
@@ -531,12 +591,43 @@ TEST(ReadmeNumbers, ProseMatchesTheResults) {
   }
 }
 
+// README's times of its two commands and of the main job are the ones
+// scripts/time_readme_commands.sh measured into data/results/job_times.md.
+TEST(ReadmeNumbers, JobTimesAreTheMeasuredOnes) {
+  const std::string readme = slurp(kRoot / "README.md");
+  const std::string begin = "<!-- generated: job-times (scripts/time_readme_commands.sh) -->\n";
+  const std::size_t at = readme.find(begin);
+  ASSERT_NE(at, std::string::npos) << "README.md has no block job-times";
+  const std::size_t stop = readme.find("<!-- end: job-times -->", at);
+  ASSERT_NE(stop, std::string::npos);
+  const std::string block = readme.substr(at + begin.size(), stop - at - begin.size());
+  if (!fs::exists(kResults / "job_times.md")) {
+    EXPECT_EQ(block, "") << "README states times that data/results/job_times.md does not hold";
+    GTEST_SKIP() << "no data/results/job_times.md yet: scripts/time_readme_commands.sh measures it";
+  }
+  const auto rows = table_after(slurp(kResults / "job_times.md"), {"command", "wall"});
+  const auto wall = [&rows](std::string_view command) {
+    for (const auto& row : rows)
+      if (row[0].starts_with(command)) return row[1];
+    ADD_FAILURE() << "job_times.md has no row " << command;
+    return std::string("(none)");
+  };
+  for (const auto& [readme_says, row] : {std::pair{"`scripts/test.sh` ", "scripts/test.sh "},
+                                         std::pair{"`scripts/run.sh` after it ", "scripts/run.sh "},
+                                         std::pair{"the main job `sglab run` ", "main job "}}) {
+    const std::string stated = std::string(readme_says) + wall(row);
+    EXPECT_NE(block.find(stated), std::string::npos)
+        << "README's job-times block does not say '" << stated << "': " << block;
+  }
+}
+
 // What README says in words rather than numbers.
 TEST(ReadmeNumbers, WordedClaimsHold) {
-  const std::string readme = slurp(kRoot / "README.md");
+  const std::string& readme = docs_text();
   const Results& r = results();
   const std::string fast = "(within a factor of two of its error) for under half its GPU cycles";
-  ASSERT_NE(readme.find(fast), std::string::npos) << "README no longer says '" << fast << "'";
+  ASSERT_NE(readme.find(fast), std::string::npos)
+      << "README.md and docs/ no longer say '" << fast << "'";
   EXPECT_LE(r.held_out_err("sglab_fast"), 2 * r.held_out_err("tokuyoshi2024")) << fast;
   EXPECT_LE(r.standard_err("sglab_fast"), 2 * r.standard_err("tokuyoshi2024")) << fast;
   EXPECT_LT(r.cycles("sglab_fast"), 0.5 * r.cycles("tokuyoshi2024")) << fast;
@@ -544,14 +635,16 @@ TEST(ReadmeNumbers, WordedClaimsHold) {
   const std::string mid =
       "for well under its GPU cycles; per light per pixel,\nsplit, it costs no "
       "more than `sglab_fast`";
-  ASSERT_NE(readme.find(mid), std::string::npos) << "README no longer says '" << mid << "'";
+  ASSERT_NE(readme.find(mid), std::string::npos)
+      << "README.md and docs/ no longer say '" << mid << "'";
   EXPECT_LE(r.standard_err("sglab_mid"), r.standard_err("tokuyoshi2024")) << mid;
   EXPECT_LT(r.cycles("sglab_mid"), 0.75 * r.cycles("tokuyoshi2024")) << mid;
   EXPECT_LT(r.per_light("sglab_mid"), 0.75 * r.per_light("tokuyoshi2024")) << mid;
   EXPECT_LE(r.per_light("sglab_mid"), r.per_light("sglab_fast")) << mid;
   // "the half form saves at most 5 % over the float one on ACO's estimate on navi21 and gfx1100"
   const std::string half = "the half form saves at most 5 % over the float one";
-  ASSERT_NE(readme.find(half), std::string::npos) << "README no longer says '" << half << "'";
+  ASSERT_NE(readme.find(half), std::string::npos)
+      << "README.md and docs/ no longer say '" << half << "'";
   ASSERT_FALSE(r.gpu_half.empty());
   for (const auto& [key, cycles] : r.gpu_half) {
     const auto& [method, family, lang] = key;
@@ -560,10 +653,12 @@ TEST(ReadmeNumbers, WordedClaimsHold) {
   }
   const std::string point =
       "a `sglab_fast` shading point then costs fewer instructions\nthan vsgl2015's";
-  ASSERT_NE(readme.find(point), std::string::npos) << "README no longer says '" << point << "'";
+  ASSERT_NE(readme.find(point), std::string::npos)
+      << "README.md and docs/ no longer say '" << point << "'";
   EXPECT_LT(r.instructions("sglab_fast", "eval"), r.instructions("vsgl2015", "scalar")) << point;
   const std::string neither = "neither (a) nor (b) reaches 1 % within 24 lobes";
-  ASSERT_NE(readme.find(neither), std::string::npos) << "README no longer says '" << neither << "'";
+  ASSERT_NE(readme.find(neither), std::string::npos)
+      << "README.md and docs/ no longer say '" << neither << "'";
   for (const auto& [key, err] : r.envmap) {
     const auto& [map, lobes, fit] = key;
     if (fit != "irradiance" && lobes <= 24) {
@@ -577,10 +672,10 @@ TEST(ReadmeNumbers, WordedClaimsHold) {
 // fewest lobes with the irradiance fit's max error ≤ 1 %; "more than N": no
 // lobe count of the results reaches it, and N is the largest.
 TEST(ReadmeNumbers, LobesForOnePercentMatchTheResults) {
-  const std::string readme = slurp(kRoot / "README.md");
+  const std::string& readme = docs_text();
   const std::string anchor = "For a 1 % budget on the lobe fit alone, (c) needs ";
   const std::size_t at = readme.find(anchor);
-  ASSERT_NE(at, std::string::npos) << "README no longer says '" << anchor << "'";
+  ASSERT_NE(at, std::string::npos) << "README.md and docs/ no longer say '" << anchor << "'";
   const std::string claim =
       readme.substr(at + anchor.size(), readme.find(';', at) - at - anchor.size());
   const Results& r = results();
@@ -629,10 +724,9 @@ std::string method_of(std::string cell) {
 }
 
 TEST(ReadmeNumbers, SglabModelsTableMatchesTheResults) {
-  const auto rows =
-      table_after(slurp(kRoot / "README.md"),
-                  {"method", "form", "held-out max peak_rel", "standard grid",
-                   "GPU cycles per light per pixel", "GPU cycles, one call", "batch ns"});
+  const auto rows = table_after(
+      docs_text(), {"method", "form", "held-out max peak_rel", "standard grid",
+                    "GPU cycles per light per pixel", "GPU cycles, one call", "batch ns"});
   ASSERT_GE(rows.size(), 5u)
       << "README has no table of sglab's own models with the expected header";
   const Results& r = results();
@@ -650,7 +744,7 @@ TEST(ReadmeNumbers, SglabModelsTableMatchesTheResults) {
 // README's environment-map table: per lobe count, the range over the maps of
 // each fit's max error, and the worst (smallest) ratio (a)/(c) with its map.
 TEST(ReadmeNumbers, EnvmapTableMatchesTheResults) {
-  const auto rows = table_after(slurp(kRoot / "README.md"), {"lobes", "(a) BakingLab baseline"});
+  const auto rows = table_after(docs_text(), {"lobes", "(a) BakingLab baseline"});
   ASSERT_EQ(rows.size(), std::size(kTableLobes));
   const Results& r = results();
   ASSERT_EQ(r.maps.size(), 8u);
@@ -1025,18 +1119,19 @@ TEST(ResultsDocs, KappaRangeIsTheRegistryCards) {
     EXPECT_EQ(f[8], "yes") << m.id;
     EXPECT_LE(std::stod(f[5]), m.valid.max_peak_rel) << m.id;
   }
-  const std::pair<fs::path, std::size_t> docs[] = {{kRoot / "README.md", csv.size()},
-                                                   {kResults / "sglab_fast.md", 3},
-                                                   {kResults / "sglab_mid.md", 3},
-                                                   {kResults / "sglab_acc.md", 5}};
-  for (const auto& [doc, count] : docs) {
-    const auto rows = table_after(slurp(doc), {"method", "bound (card)", "valid κ (card)"});
+  const std::tuple<std::string, std::string, std::size_t> docs[] = {
+      {kDocs, docs_text(), csv.size()},
+      {"sglab_fast.md", slurp(kResults / "sglab_fast.md"), 3},
+      {"sglab_mid.md", slurp(kResults / "sglab_mid.md"), 3},
+      {"sglab_acc.md", slurp(kResults / "sglab_acc.md"), 5}};
+  for (const auto& [doc, text, count] : docs) {
+    const auto rows = table_after(text, {"method", "bound (card)", "valid κ (card)"});
     EXPECT_EQ(rows.size(), count) << doc;
     for (const auto& row : rows) {
       ASSERT_EQ(row.size(), 9u) << doc;
       ASSERT_TRUE(csv.count(row[0])) << doc << " " << row[0];
       const auto& f = csv[row[0]];
-      const std::string what = fmt::format("{} {}", doc.filename().string(), row[0]);
+      const std::string what = fmt::format("{} {}", doc, row[0]);
       expect_matches(number(row[1], what), std::stod(f[2]), what + " bound");
       expect_matches(number(row[3], what), std::stod(f[5]), what + " worst on the range");
       EXPECT_EQ(row[5], f[8]) << what;
@@ -1082,6 +1177,40 @@ TEST(ResultsDocs, ParetoMatchesItsSources) {
       expect_matches(number(row[c], row[0]), std::stod(f[c]),
                      fmt::format("pareto.md {} column {}", row[0], c));
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Every relative link of README.md and of docs/*.md reaches a file or folder of the repository:
+// the target of `[text](target)` and `![alt](target)` outside code blocks, without its `#anchor`,
+// taken from the page's folder (web and mail links and in-page anchors are not followed).
+TEST(Docs, RelativeLinksReachExistingFiles) {
+  const std::regex link(R"(\]\(([^)\s]+)\))");
+  std::size_t checked = 0;
+  for (const fs::path& page : doc_pages()) {
+    std::istringstream in(slurp(page));
+    bool code = false;
+    std::size_t lineno = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++lineno;
+      if (line.rfind("```", 0) == 0) code = !code;
+      if (code) continue;
+      for (auto it = std::sregex_iterator(line.begin(), line.end(), link);
+           it != std::sregex_iterator(); ++it) {
+        std::string target = (*it)[1].str();
+        if (target.rfind("http://", 0) == 0 || target.rfind("https://", 0) == 0 ||
+            target.rfind("mailto:", 0) == 0 || target[0] == '#')
+          continue;
+        target = target.substr(0, target.find('#'));
+        ++checked;
+        EXPECT_TRUE(fs::exists(page.parent_path() / target))
+            << page.lexically_relative(kRoot).string() << ":" << lineno << ": dead link " << target;
+      }
+    }
+  }
+  EXPECT_GT(checked, 20u) << "README.md and docs/*.md link to almost nothing: is the reader wrong?";
 }
 
 }  // namespace

@@ -186,6 +186,30 @@ TEST(RunCommand, QuickRunIndexHasNoBrokenLinkAndEachFigureOnce) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
   }
   check_index(dir.out, gnuplot ? 5 : 0);
+  // Each section names its form; a sampled step names its full command.
+  const std::string index = sglab::io::read_file(dir.out / "index.md");
+  const auto section = [&index](std::string_view name) {
+    const std::size_t at = index.find(fmt::format("\n## {}\n", name));
+    if (at == std::string::npos) return std::string();
+    return index.substr(at + 1, index.find("\n## ", at + 1) - at - 1);
+  };
+  EXPECT_NE(section("erf").find("Form: quick ("), std::string::npos) << section("erf");
+  EXPECT_NE(section("erf").find("Full form (scripts/results.sh runs it, through `sglab run "
+                                "--full`): `sglab erf --exhaustive --out "),
+            std::string::npos)
+      << section("erf");
+  EXPECT_TRUE(section("erf").starts_with("## erf\n\n`sglab erf --out "))
+      << "the step itself ran without --exhaustive: " << section("erf");
+  EXPECT_NE(section("stability").find("Form: full.\n"), std::string::npos) << section("stability");
+  EXPECT_NE(index.find("Produced by `sglab run --out "), std::string::npos);
+  EXPECT_NE(index.find(" --quick --skip fit"), std::string::npos) << index.substr(0, 400);
+}
+
+TEST(RunCommand, FullAndQuickAreExclusive) {
+  HostileOut dir;
+  const auto r = sglab::test::run_sglab({"run", "--full", "--quick", "--out", dir.out.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(fs::exists(dir.out));
 }
 
 TEST(RunCommand, UnknownSkipIsBadInput) {

@@ -45,8 +45,8 @@ TEST(Scene, SingleLightEqualsMethodTimesAmplitude) {
   for (const char* id : {"tokuyoshi2024", "sglab_fast", "vsgl2015"}) {
     const auto* m = sglab::find_method(sglab::irradiance_methods, id);
     ASSERT_NE(m, nullptr) << id;
-    const auto v64 = scene_irradiance(scene, normals, *m, FloatFormat::binary64);
-    const auto v32 = scene_irradiance(scene, normals, *m, FloatFormat::binary32);
+    const auto v64 = scene_irradiance(scene, normals, *m, sglab::io::Precision::float64);
+    const auto v32 = scene_irradiance(scene, normals, *m, sglab::io::Precision::float32);
     for (std::size_t i = 0; i < n; ++i) {
       const double z = 1 - (2.0 * double(i) + 1) / double(n);
       const double e64 = m->f64(z, 7.5);
@@ -238,15 +238,15 @@ TEST(Scene, ErrorIsIndependentOfTheAmplitudeUnit) {
                                  "test");
   const auto normals = fibonacci_normals(97);
   const std::span<const sglab::Method> methods = sglab::irradiance_methods;
-  const auto want = scene_errors(base, normals, methods, FloatFormat::binary32);
+  const auto want = scene_errors(base, normals, methods, sglab::io::Precision::float32);
   for (double s : {1e-300, 1e-200, 1e-100, 1e-10, 1e10, 1e100, 1e200, 1e300}) {
     const Scene scene = scaled(base, s);
-    const auto got = scene_errors(scene, normals, methods, FloatFormat::binary32);
+    const auto got = scene_errors(scene, normals, methods, sglab::io::Precision::float32);
     const auto exact = scene_irradiance_reference(scene, normals);
     for (std::size_t m = 0; m < methods.size(); ++m) {
       SCOPED_TRACE(fmt::format("{} at amplitude scale {:g}", methods[m].id, s));
       const double one = scene_relative_error(
-          scene_irradiance(scene, normals, methods[m], FloatFormat::binary32), exact);
+          scene_irradiance(scene, normals, methods[m], sglab::io::Precision::float32), exact);
       if (std::isinf(want[m])) {  // a published method failing at κ = 1e30 (meder2018's t(κ)) fails
                                   // at every scale
         EXPECT_TRUE(std::isinf(got[m]));
@@ -259,7 +259,7 @@ TEST(Scene, ErrorIsIndependentOfTheAmplitudeUnit) {
   }
 }
 
-// The repros of issue 14 §6: one dim sharp light, two 1e308-bright lights,
+// Extreme amplitudes: one dim sharp light, two 1e308-bright lights,
 // and a 1e−323 (subnormal) amplitude, each against the same scene in unit amplitudes.
 TEST(Scene, ErrorOfExtremeAmplitudesEqualsUnitAmplitudes) {
   const auto normals = fibonacci_normals(128);
@@ -267,7 +267,7 @@ TEST(Scene, ErrorOfExtremeAmplitudesEqualsUnitAmplitudes) {
   ASSERT_NE(m, nullptr);
   const auto error = [&](const std::string& text) {
     const Scene s = parse_scene(text, "test");
-    return scene_relative_error(scene_irradiance(s, normals, *m, FloatFormat::binary32),
+    return scene_relative_error(scene_irradiance(s, normals, *m, sglab::io::Precision::float32),
                                 scene_irradiance_reference(s, normals));
   };
   const auto one_light = [](const char* kappa, const char* a) {
@@ -304,16 +304,16 @@ TEST(Scene, ErrorsOfAllMethodsEqualPerMethodSumsAcrossBlocks) {
   const std::size_t n = 100 * kSceneBlockNormals + 7;
   const auto normals = fibonacci_normals(n);
   const std::span<const sglab::Method> methods = sglab::irradiance_methods;
-  const auto errors = scene_errors(scene, normals, methods, FloatFormat::binary32);
-  EXPECT_EQ(errors, scene_errors(merged, normals, methods, FloatFormat::binary32));
+  const auto errors = scene_errors(scene, normals, methods, sglab::io::Precision::float32);
+  EXPECT_EQ(errors, scene_errors(merged, normals, methods, sglab::io::Precision::float32));
   const auto exact = scene_irradiance_reference(scene, normals);
   for (const char* id : {"tokuyoshi2024", "sglab_acc3", "punctual"}) {
     const auto* m = sglab::find_method(sglab::irradiance_methods, id);
     ASSERT_NE(m, nullptr) << id;
     const std::size_t i = static_cast<std::size_t>(m - sglab::irradiance_methods.data());
     EXPECT_DOUBLE_EQ(
-        errors[i],
-        scene_relative_error(scene_irradiance(scene, normals, *m, FloatFormat::binary32), exact))
+        errors[i], scene_relative_error(
+                       scene_irradiance(scene, normals, *m, sglab::io::Precision::float32), exact))
         << id;
   }
 }
@@ -433,9 +433,9 @@ TEST(RecommendScene, FlagsMethodsOutsideTheirValidRange) {
   }
   EXPECT_EQ(outside, (std::vector<std::string>{"punctual", "hill", "hill_exact", "sglab_fast"}));
   EXPECT_EQ(doc["outside_valid_range"], nlohmann::json(outside));
-  for (const auto& m : doc["sglab_models_on_range"]["models"])
+  for (const auto& m : doc["errors_on_kappa_range"]["models"])
     EXPECT_EQ(m["in_valid_range"].get<bool>(), m["method"] != "sglab_fast") << m.dump();
-  EXPECT_NE(doc["sglab_models_on_range"]["sufficient"], "sglab_fast");
+  EXPECT_NE(doc["errors_on_kappa_range"]["sufficient"], "sglab_fast");
   const auto text = sglab::test::run_sglab(
       {"recommend", "--scene", scene.string(), "--budget", "1", "--normals", "64"});
   ASSERT_EQ(text.exit_code, 0) << text.output;
@@ -469,8 +469,8 @@ TEST(RecommendScene, ChoiceMeetsTheBudgetAndMatchesItsRow) {
   for (const auto& row : doc["methods"]) {
     if (row["method"] != "vsgl2015") continue;
     const auto* m = sglab::find_method(sglab::irradiance_methods, "vsgl2015");
-    const double want =
-        scene_relative_error(scene_irradiance(s, normals, *m, FloatFormat::binary32), exact);
+    const double want = scene_relative_error(
+        scene_irradiance(s, normals, *m, sglab::io::Precision::float32), exact);
     EXPECT_NEAR(row["scene_error"].get<double>(), want, 1e-12 * want);
     EXPECT_GT(want, 5e-3);  // vsgl2015 is far off: it must not qualify
     EXPECT_FALSE(row["qualifies"].get<bool>());

@@ -63,12 +63,11 @@ TEST(SglabAcc, LadderImprovesOnTokuyoshi2024) {
   EXPECT_LT(40 * a3, t2024) << "acc3 " << a3 << " vs tokuyoshi2024 " << t2024;
 }
 
-// Never worse than tokuyoshi2024 (issue 17 §3): at every κ of a grid no fit
-// used (90 κ log-spaced over [1e−3, 1e4] at offsets 0.37 of a step, so none
-// is a training, standard or fit-held-out κ) each rung's max float error over
-// 301 cosines is at most the larger of tokuyoshi2024's (published, float) at
-// that κ and 1e−6. The rational b_j(κ) of before failed this at 20 to 30 of
-// these κ (κ < 0.2 and κ > 100, where the 2024 form errs by 1e−7 to 2e−5).
+// Never worse than tokuyoshi2024 (docs/models.md#sglab_acc1--sglab_acc4): at every κ of a grid no
+// fit used (90 κ log-spaced over [1e−3, 1e4] at offsets 0.37 of a step, so none is a training,
+// standard or fit-held-out κ) each rung's max float error over 301 cosines is at most the larger of
+// tokuyoshi2024's (published, float) at that κ and 1e−6; the fade of b_j(κ) is what holds it where
+// the 2024 form errs by only 1e−7 to 2e−5 (κ < 0.2 and κ > 100).
 TEST(SglabAcc, NeverWorseThanTokuyoshi2024AtAnyKappa) {
   const int nk = 90, nc = 301;
   std::vector<sglab::validate::Query> queries;
@@ -250,10 +249,10 @@ TEST(SglabAccFit, CertificateGridIsDenserOverHalfToTwoHundred) {
 
 // Model order: a narrow scene range with a loose budget gets the cheapest
 // member (one term of degree 2), while the full range needs more terms for
-// issue 17 §2's targets: acc1 (one term) measurably misses the two-term
-// target 3.5e-5 and acc2 (two terms) the three-term target 1e-5 on random points.
+// the targets of the two- and three-term rungs: acc1 (one term) measurably misses 3.5e-5
+// and acc2 (two terms) 1e-5 on random points.
 //
-// An unbounded trust-region step once made a residual NaN in this search
+// An unbounded trust-region step can make a residual NaN in this search
 // (fit_guard.hpp fails the process then); the
 // cost column comes from the cost table given (null for forms no shipped
 // method has), never from a timing taken in the fit.
@@ -280,7 +279,7 @@ TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   EXPECT_NE(out.report["cost_source"].get<std::string>().find("a test table"), std::string::npos);
   for (const auto& m : out.report["members"])
     EXPECT_TRUE(m["cost_ratio_vs_tokuyoshi2024"].is_null()) << m;
-  // Every fit is certified (issue 17 §1, fit/lp_minimax.hpp): the LP's bound
+  // Every fit is certified (fit/lp_minimax.hpp): the LP's bound
   // (the best member at the fitted steepness) ≤ the achieved max, the per-κ
   // floor ≤ that bound; in the report and in the set's provenance.
   for (const auto& m : out.report["members"]) {

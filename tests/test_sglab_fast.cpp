@@ -72,7 +72,7 @@ TEST(SglabFast, FiniteAndNonNegativeOutsideTheFittedRange) {
     EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kBound * M_PI) << c;
 }
 
-// The fit's residual (fit/sglab_fast.cpp's ModelResidual): peak_rel of the
+// The fit's residual (fit/fit_sglab_fast.cpp's ModelResidual): peak_rel of the
 // runtime function, parameters a, b, c, v (5 each) and q (4).
 template <class T>
 sglab::SglabFastParams<T> fast_params(const std::vector<T>& v, T kappa_max) {
@@ -97,11 +97,9 @@ struct FastResidual {
   }
 };
 
-// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp)
-// of the committed coefficients: the check of tests/lp_certificate.hpp, and
-// the numbers the committed set's provenance records (its certificate was
-// made at these coefficients, before the certificate moved into
-// fit/model_family.cpp: the move keeps them).
+// The certificate (clamped_lp_certificate in fit/model_family.hpp) of the committed
+// coefficients: the check of tests/lp_certificate.hpp, and the numbers the committed set's
+// provenance records (its certificate was made at these coefficients).
 TEST(SglabFast, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {
   const auto& k = sglab::constants::sglab_fast_float;
   std::vector<double> values;

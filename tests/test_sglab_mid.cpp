@@ -101,7 +101,7 @@ TEST(SglabMid, SoftMaxStaysFiniteAtTheExponentBounds) {
   EXPECT_EQ(sglab_mid_soft_max2(-0.5, -70.0, 0.0), 0.0);
 }
 
-// The fit's residual (fit/sglab_mid.cpp's ModelResidual): peak_rel of the
+// The fit's residual (fit/fit_sglab_mid.cpp's ModelResidual): peak_rel of the
 // runtime function, parameters a, b, d, s, v (5 each) and q (4).
 template <class T>
 sglab::SglabMidParams<T> mid_params(const std::vector<T>& v, T kappa_max) {
@@ -126,7 +126,7 @@ struct MidResidual {
   }
 };
 
-// The certificate (issue 17 §1, clamped_lp_certificate in fit/model_family.hpp)
+// The certificate (clamped_lp_certificate in fit/model_family.hpp)
 // at the committed coefficients: the numerators of A, B and D free, Q, S and V
 // as committed; the check of tests/lp_certificate.hpp.
 TEST(SglabMid, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {

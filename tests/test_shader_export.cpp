@@ -196,8 +196,8 @@ TEST(ShaderExport, HalfLiteralsRoundToHalfAndRefuseOverflow) {
   }
 }
 
-// Every irradiance export states its method's registry card: the bound and the κ range it
-// holds on (sglab_fast's stops at 1.1e4), or nothing where the card does not apply.
+// Every irradiance export states its method's registry card: what it is and its source, the
+// bound and the κ range it holds on (sglab_fast's stops at 1.1e4).
 TEST(ShaderExport, HeaderStatesTheRegistryCard) {
   for (const sglab::Method& m : sglab::irradiance_methods)
     for (sh::Language lang : {sh::Language::glsl, sh::Language::cpp}) {
@@ -207,6 +207,9 @@ TEST(ShaderExport, HeaderStatesTheRegistryCard) {
           "max |E~ - E|/E(1, kappa) <= {:.2g} for kappa in {}; outside it that bound does not hold",
           m.valid.max_peak_rel, sglab::validate::kappa_range_text(m.valid));
       EXPECT_NE(src.find(line), std::string::npos) << m.id << ": " << line;
+      const std::string what =
+          fmt::format("// {}: {}.\n// Source: {}.\n", m.id, m.summary, m.source);
+      EXPECT_NE(src.find(what), std::string::npos) << m.id << ": " << what;
     }
   const std::string fast =
       sh::export_source(sh::standard_request(sh::Language::hlsl, "sglab_fast")).source;
@@ -389,7 +392,7 @@ sglab::test::CommandResult compile_cpp(const std::string& source, const fs::path
 
 }  // namespace
 
-// Issue 14 §1: each provenance text field and the --constants file name carry
+// Each provenance text field and the --constants file name carry
 // a line break followed by code; in every language the export keeps them in
 // its comments (no line outside a comment carries the payload) and compiles.
 TEST(ShaderExport, ConstantsTextCannotLeaveTheComments) {
@@ -479,7 +482,7 @@ TEST(ShaderExport, CoefficientNotFiniteInFloatIsRefused) {
 }
 
 // ---------------------------------------------------------------------------
-// Issue 21: every float literal of every export is exactly the float the
+// Every float literal of every export is exactly the float the
 // runtime uses. The expected values do not come from the exporter: a declared
 // constant `{P}<role>_<member>[i]` of the set named in the comment above it
 // must equal float(coefficients.<member>[i]) of that set's JSON in
@@ -966,9 +969,9 @@ sh::ExportResult split_export(sh::Language lang, const std::string& method) {
 
 }  // namespace
 
-// The methods the issue names, and every other whose kappa-only work is separable, have a split
-// form; a method without one is refused by the library (invalid_argument) and by the CLI (exit 2,
-// naming --split).
+// Every method whose kappa-only work is separable has a split form (the 2022 and 2024 families
+// and sglab's models at least); a method without one is refused by the library (invalid_argument)
+// and by the CLI (exit 2, naming --split).
 TEST(ShaderExport, SplitFormsAndRefusals) {
   // Every registered method but those whose product SG with the normal makes
   // all their work depend on the cosine (wang2009 and its refit, meder2018).
@@ -980,8 +983,7 @@ TEST(ShaderExport, SplitFormsAndRefusals) {
   for (const char* id : {"tokuyoshi2024", "tokuyoshi2024_refit", "tokuyoshi2022",
                          "tokuyoshi2022_listing5", "tokuyoshi2022_refit", "sglab_fast",
                          "sglab_acc1", "sglab_acc2", "sglab_acc3", "sglab_acc4"})
-    EXPECT_NE(std::find(expected.begin(), expected.end(), id), expected.end())
-        << id;  // the issue's list
+    EXPECT_NE(std::find(expected.begin(), expected.end(), id), expected.end()) << id;
   EXPECT_THROW(split_export(sh::Language::glsl, "wang2009"), std::invalid_argument);
   const auto r = run_sglab({"export", "--lang", "glsl", "--method", "wang2009", "--split"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -1189,13 +1191,13 @@ TEST_F(OnVulkan, SplitExportsMatchTheUnsplitOnes) {
   vk::add_device_entries(r, hlsl_methods, sh::Language::hlsl, *device_);
   const std::vector<float> kappas(r.kappas.begin(), r.kappas.end()),
       cosines(r.cosines.begin(), r.cosines.end());
-  using F = sglab::validate::FloatFormat;
   const sglab::validate::Quantity E = sglab::validate::Quantity::irradiance;
   for (sh::Language lang : {sh::Language::glsl, sh::Language::hlsl})
     for (const auto& sm : lang == sh::Language::glsl ? methods : hlsl_methods) {
       const std::string id(sm.method.id);
       SCOPED_TRACE(id + " " + std::string(sh::to_string(lang)));
-      const auto* unsplit = r.find(id, E, lang == sh::Language::hlsl ? F::vulkan_hlsl : F::vulkan);
+      const auto* unsplit =
+          r.find(id, E, sglab::io::on_vulkan(lang, sglab::io::Precision::float32));
       ASSERT_TRUE(unsplit);
       const sh::ExportResult ex = split_export(lang, id);
       const std::vector<float> prepass =

@@ -33,13 +33,14 @@ const sv::StabilityReport& report() {
   return r;
 }
 
-const sv::StabilityRow& row(const std::string& function, sv::FloatFormat f, bool valid) {
+const sv::StabilityRow& row(const std::string& function, sglab::io::Precision f, bool valid) {
   const sv::StabilityRow* r = report().find(function, f, valid);
   if (!r) throw std::runtime_error("no stability row for " + function);
   return *r;
 }
 
-constexpr sv::FloatFormat kFormats[] = {sv::FloatFormat::binary32, sv::FloatFormat::binary64};
+constexpr sglab::io::Precision kFormats[] = {sglab::io::Precision::float32,
+                                             sglab::io::Precision::float64};
 
 }  // namespace
 
@@ -49,16 +50,17 @@ TEST(Stability, EveryFunctionHasFourRows) {
   ASSERT_EQ(rows.size() % 4, 0u);
   for (std::size_t i = 0; i < rows.size(); i += 4) {
     EXPECT_EQ(rows[i].function, rows[i + 3].function);
-    EXPECT_EQ(rows[i].precision, sv::FloatFormat::binary32);
-    EXPECT_EQ(rows[i + 2].precision, sv::FloatFormat::binary64);
+    EXPECT_EQ(rows[i].precision, sglab::io::Precision::float32);
+    EXPECT_EQ(rows[i + 2].precision, sglab::io::Precision::float64);
     EXPECT_TRUE(rows[i].valid_inputs);
     EXPECT_FALSE(rows[i + 1].valid_inputs);
     EXPECT_GT(rows[i].evaluations, 0u) << rows[i].function;
     EXPECT_GT(rows[i + 1].evaluations, 0u) << rows[i].function;
   }
   for (const auto& m : sglab::irradiance_methods)
-    EXPECT_NE(report().find(fmt::format("irradiance/{}", m.id), sv::FloatFormat::binary64, true),
-              nullptr)
+    EXPECT_NE(
+        report().find(fmt::format("irradiance/{}", m.id), sglab::io::Precision::float64, true),
+        nullptr)
         << m.id;
   // Probed inputs include κ = 0, the smallest denormal, FLT_MAX, DBL_MAX (double), +inf, NaN.
   const auto& kd = report().kappas_double;
@@ -76,7 +78,7 @@ TEST(Stability, EveryFunctionHasFourRows) {
 }
 
 TEST(Stability, PunctualIsInfiniteAtKappaZero) {
-  for (sv::FloatFormat f : kFormats) {
+  for (sglab::io::Precision f : kFormats) {
     const auto& r = row("irradiance/punctual", f, true);
     const auto& inf = r[sv::FailureKind::inf];
     EXPECT_GT(inf.count, 0u);
@@ -87,7 +89,7 @@ TEST(Stability, PunctualIsInfiniteAtKappaZero) {
 }
 
 TEST(Stability, HillFailsAtSmallKappa) {
-  for (sv::FloatFormat f : kFormats) {
+  for (sglab::io::Precision f : kFormats) {
     const auto& r = row("irradiance/hill", f, true);
     EXPECT_GT(r.failure_count(), 0u);
     double smallest = std::numeric_limits<double>::infinity();
@@ -98,7 +100,7 @@ TEST(Stability, HillFailsAtSmallKappa) {
 }
 
 TEST(Stability, InvalidInputsAreCountedSeparately) {
-  for (sv::FloatFormat f : kFormats) {
+  for (sglab::io::Precision f : kFormats) {
     // NaN in, NaN out: a finding on invalid inputs only.
     const auto& invalid = row("sg_evaluate(c, κ)", f, false);
     EXPECT_GT(invalid[sv::FailureKind::nan].count, 0u);
@@ -135,7 +137,7 @@ TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
 TEST(Stability, MethodRowsCarryTheRegistryOrigin) {
   const auto check = [](std::string_view kind, std::span<const sglab::Method> methods) {
     for (const sglab::Method& m : methods)
-      for (sv::FloatFormat f : kFormats)
+      for (sglab::io::Precision f : kFormats)
         for (bool valid : {true, false}) {
           const std::string name = fmt::format("{}/{}", kind, m.id);
           EXPECT_EQ(row(name, f, valid).origin, m.origin) << name << " " << sv::to_string(f);
@@ -144,9 +146,9 @@ TEST(Stability, MethodRowsCarryTheRegistryOrigin) {
   check("irradiance", sglab::irradiance_methods);
   check("hemispherical", sglab::hemispherical_methods);
   check("normalized", sglab::normalized_methods);
-  EXPECT_EQ(row("irradiance/sglab_acc3", sv::FloatFormat::binary32, true).origin,
+  EXPECT_EQ(row("irradiance/sglab_acc3", sglab::io::Precision::float32, true).origin,
             sglab::Origin::sglab);
-  EXPECT_EQ(row("irradiance/tokuyoshi2024_refit", sv::FloatFormat::binary64, true).origin,
+  EXPECT_EQ(row("irradiance/tokuyoshi2024_refit", sglab::io::Precision::float64, true).origin,
             sglab::Origin::refit);
 }
 
@@ -210,7 +212,7 @@ TEST(Stability, AccuracyIsRelativeDownToTheSmallestNormal) {
 TEST(Stability, ReferenceEngineIsProbed) {
   for (const char* name :
        {"reference/hemispherical", "reference/irradiance", "reference/normalized"})
-    for (sv::FloatFormat f : kFormats) {
+    for (sglab::io::Precision f : kFormats) {
       const auto& valid = row(name, f, true);
       EXPECT_EQ(valid.origin, sv::Origin::sglab) << name;
       EXPECT_GT(valid.evaluations, 100u) << name;
@@ -225,7 +227,7 @@ TEST(Stability, ReferenceEngineIsProbed) {
 // κ = λ, c = −1 (0/0) and at large κ (cancelling exponent); Hill at c = 0 for
 // large κ (0/0). What remains of Hill is its κ = 0 (1/κ) and small-κ finding.
 TEST(Stability, FixedTranscriptionDefectsStayFixed) {
-  for (sv::FloatFormat f : kFormats) {
+  for (sglab::io::Precision f : kFormats) {
     for (const char* id : {"irradiance/wang2009", "irradiance/wang2009_refit"}) {
       const auto& r = row(id, f, true);
       EXPECT_EQ(r[sv::FailureKind::nan].count, 0u) << id << ": " << r[sv::FailureKind::nan].example;

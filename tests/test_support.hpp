@@ -147,4 +147,24 @@ inline CommandResult run_sglab(std::vector<std::string> args, bool merge_stderr 
 }
 #endif
 
+// The cells of a Markdown pipe-table row "| a | b \| c |" (trimmed, split at unescaped '|',
+// "\|" unescaped): {"a", "b | c"}.
+inline std::vector<std::string> markdown_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
+      cell += '|';
+      ++i;
+    } else if (line[i] == '|') {
+      const auto b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+      cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+      cell.clear();
+    } else {
+      cell += line[i];
+    }
+  }
+  return cells;
+}
+
 }  // namespace sglab::test

@@ -25,8 +25,8 @@ using sglab::test::hex;
 
 namespace {
 
-sv::SweepOptions quiet(std::vector<sv::FloatFormat> precisions = {sv::FloatFormat::binary32,
-                                                                  sv::FloatFormat::binary64}) {
+sv::SweepOptions quiet(std::vector<sglab::io::Precision> precisions = {
+                           sglab::io::Precision::float32, sglab::io::Precision::float64}) {
   sv::SweepOptions o;
   o.precisions = std::move(precisions);
   o.progress = false;
@@ -35,7 +35,7 @@ sv::SweepOptions quiet(std::vector<sv::FloatFormat> precisions = {sv::FloatForma
 
 sglab::Method method(std::string_view id, float (*f32)(float, float),
                      double (*f64)(double, double)) {
-  return sglab::Method{id, "test", "", f32, f64, nullptr, nullptr};
+  return sglab::Method{{.id = id, .source = "test"}, f32, f64, nullptr, nullptr};
 }
 
 // The exact closed forms at c = ±1 (and H at c = 0) "as methods" (docs/quantities.md).
@@ -157,7 +157,7 @@ TEST(Sweep, InputsAreFloatExactAndSharedByBothPrecisions) {
       EXPECT_EQ(r.reference[r.index(k, j)].cosine, r.cosines[j]);
     }
   }
-  const auto* d = r.find("float_exact_check", sv::Quantity::irradiance, sv::FloatFormat::binary64);
+  const auto* d = r.find("float_exact_check", sv::Quantity::irradiance, sglab::io::kCpuDouble);
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->summary.nonfinite, 0u);  // the double path saw float-exact inputs
   EXPECT_LT(d->summary.peak_rel.max, 1e-15);
@@ -182,7 +182,7 @@ TEST(Sweep, ExactClosedFormsGiveNearZeroError) {
       EXPECT_EQ(en.summary.nonfinite, 0u);
       EXPECT_EQ(en.summary.invalid_reference, 0u);
       EXPECT_EQ(en.summary.peak_rel.count, r->kappas.size() * r->cosines.size());
-      const double tol = en.precision == sv::FloatFormat::binary64 ? 1e-13 : 1e-6;
+      const double tol = en.precision == sglab::io::kCpuDouble ? 1e-13 : 1e-6;
       EXPECT_LT(en.summary.peak_rel.max, tol) << "at κ = " << en.summary.peak_rel.worst_kappa
                                               << ", c = " << en.summary.peak_rel.worst_cosine;
       ASSERT_EQ(en.per_kappa.size(), r->kappas.size());
@@ -203,20 +203,22 @@ TEST(Sweep, PerturbedMethodGivesExpectedMaxAndLocation) {
   const double expected = kPerturbation *
                           ref.evaluate(kPerturbedKappa, kPerturbedCosine).irradiance /
                           ref.evaluate(kPerturbedKappa, 1.0).irradiance;
-  for (sv::FloatFormat f : {sv::FloatFormat::binary32, sv::FloatFormat::binary64}) {
+  for (sglab::io::Precision f : {sglab::io::Precision::float32, sglab::io::Precision::float64}) {
     SCOPED_TRACE(std::string(sv::to_string(f)));
-    const auto* p = r.find("perturbed", sv::Quantity::irradiance, f);
+    const auto* p = r.find("perturbed", sv::Quantity::irradiance, sglab::io::on_cpu(f));
     ASSERT_NE(p, nullptr);
-    EXPECT_NEAR(p->summary.peak_rel.max, expected, f == sv::FloatFormat::binary64 ? 1e-12 : 1e-6);
+    EXPECT_NEAR(p->summary.peak_rel.max, expected,
+                f == sglab::io::Precision::float64 ? 1e-12 : 1e-6);
     EXPECT_EQ(p->summary.peak_rel.worst_kappa, kPerturbedKappa);
     EXPECT_EQ(p->summary.peak_rel.worst_cosine, kPerturbedCosine);
-    EXPECT_NEAR(p->summary.rel.max, kPerturbation, f == sv::FloatFormat::binary64 ? 1e-12 : 1e-6);
+    EXPECT_NEAR(p->summary.rel.max, kPerturbation,
+                f == sglab::io::Precision::float64 ? 1e-12 : 1e-6);
     EXPECT_EQ(p->summary.nonfinite, 0u);
     // Per κ: only κ = 1 (index 2) carries the perturbation.
     ASSERT_EQ(p->per_kappa.size(), 5u);
     EXPECT_NEAR(p->per_kappa[2].peak_rel.max, expected, 1e-6);
     EXPECT_EQ(p->per_kappa[2].peak_rel.worst_cosine, kPerturbedCosine);
-    if (f == sv::FloatFormat::binary64) {
+    if (f == sglab::io::Precision::float64) {
       for (std::size_t k : {0u, 1u, 3u, 4u}) EXPECT_EQ(p->per_kappa[k].peak_rel.max, 0.0);
     }
     // Point data.
@@ -224,7 +226,7 @@ TEST(Sweep, PerturbedMethodGivesExpectedMaxAndLocation) {
     EXPECT_EQ(r.cosines[3], kPerturbedCosine);
     EXPECT_NEAR(p->peak_rel[i], expected, 1e-6);
 
-    const auto* n = r.find("nan_at_point", sv::Quantity::irradiance, f);
+    const auto* n = r.find("nan_at_point", sv::Quantity::irradiance, sglab::io::on_cpu(f));
     ASSERT_NE(n, nullptr);
     EXPECT_EQ(n->summary.nonfinite, 1u);
     EXPECT_EQ(n->summary.first_nonfinite_kappa, kPerturbedKappa);
@@ -244,7 +246,7 @@ TEST(Sweep, RegisteredMethodsAndTables) {
                                 std::size(sglab::normalized_methods));
   const auto r = sv::sweep(g, methods, quiet());
   EXPECT_EQ(r.entries.size(), 2 * methods.size());
-  const auto* t24 = r.find("tokuyoshi2024", sv::Quantity::irradiance, sv::FloatFormat::binary64);
+  const auto* t24 = r.find("tokuyoshi2024", sv::Quantity::irradiance, sglab::io::kCpuDouble);
   ASSERT_NE(t24, nullptr);
   EXPECT_EQ(t24->summary.nonfinite, 0u);
   EXPECT_LT(t24->summary.peak_rel.max, 0.05);

@@ -7,8 +7,11 @@
 // slip through; a row naming no registered method fails ToleranceTable.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <string_view>
+
+#include "common/vocabulary.hpp"
 
 namespace sglab::test {
 
@@ -34,26 +37,15 @@ enum class Quantity {
   // whole range). kNone: no claim in half (stability_half.md says where it fails).
   half_vs_float,
 };
-enum class Precision { float16, float32, float64 };
-
-constexpr std::string_view to_string(Quantity q) {
-  switch (q) {
-    case Quantity::float_vs_double:
-      return "float_vs_double";
-    case Quantity::batch_vs_double:
-      return "batch_vs_double";
-    case Quantity::split_vs_plain:
-      return "split_vs_plain";
-    case Quantity::half_peak_rel:
-      return "half_peak_rel";
-    case Quantity::half_vs_float:
-      return "half_vs_float";
-  }
-  return "?";
+constexpr std::array<io::EnumName<Quantity>, 5> names_of(Quantity) {
+  return {{{Quantity::float_vs_double, "float_vs_double"},
+           {Quantity::batch_vs_double, "batch_vs_double"},
+           {Quantity::split_vs_plain, "split_vs_plain"},
+           {Quantity::half_peak_rel, "half_peak_rel"},
+           {Quantity::half_vs_float, "half_vs_float"}}};
 }
-constexpr std::string_view to_string(Precision p) {
-  return p == Precision::float16 ? "half" : p == Precision::float32 ? "float" : "double";
-}
+using io::Precision;
+using io::to_string;
 
 // A bound that is not a number: the property is absent (see Quantity).
 inline constexpr double kNone = -1;
@@ -187,7 +179,7 @@ inline constexpr Tolerance kTolerances[] = {
     {"vsgl2015_refit", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"wang2009_refit", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_fast", half_peak_rel, f16, 5e-3,
-     "issue 16 §4: its own half form (the κ-only part in float: κ⁴ overflows half)"},
+     "its own half form (the κ-only part in float: κ⁴ overflows half)"},
     {"sglab_mid", half_peak_rel, f16, 2.5e-3,
      "its own half form (the κ-only part in float: κ⁴ overflows half); half rounding (~1e-3 of "
      "each "
@@ -196,7 +188,7 @@ inline constexpr Tolerance kTolerances[] = {
     {"sglab_acc2", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc4", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc3", half_peak_rel, f16, 5e-3,
-     "issue 16 §4: half rounding (~1e-3 of each term) dominates the model's 2e-5"},
+     "half rounding (~1e-3 of each term) dominates the model's 2e-5"},
 
     // ---- half_vs_float: the half export against the float export, κ ∈ [1e-2, 1e3]
     {"wang2009", half_vs_float, f16, kNone, kNoHalfClaim},

@@ -204,8 +204,8 @@ std::vector<Lobe> lobes_of(const Scene& scene) {
   return merged;
 }
 
-double method_value(const Method& m, FloatFormat precision, double cosine, double kappa) {
-  return precision == FloatFormat::binary32
+double method_value(const Method& m, io::Precision precision, double cosine, double kappa) {
+  return precision == io::Precision::float32
              ? static_cast<double>(m.f32(static_cast<float>(cosine), static_cast<float>(kappa)))
              : m.f64(cosine, kappa);
 }
@@ -222,7 +222,7 @@ double method_value(const Method& m, FloatFormat precision, double cosine, doubl
 // depend on the blocks.
 template <class Visit>
 void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
-                      std::span<const Method> methods, FloatFormat precision, bool with_exact,
+                      std::span<const Method> methods, io::Precision precision, bool with_exact,
                       Visit&& visit) {
   const std::vector<Lobe> lobes = lobes_of(scene);
   const std::size_t nm = methods.size();
@@ -266,13 +266,13 @@ void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
 std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals) {
   std::vector<Vec3> out(normals.size());
   sum_over_normals(
-      scene, normals, {}, FloatFormat::binary64, true,
+      scene, normals, {}, io::Precision::float64, true,
       [&](std::size_t j, const Vec3& exact, std::span<const Vec3>) { out[j] = exact; });
   return out;
 }
 
 std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals,
-                                   const Method& method, FloatFormat precision) {
+                                   const Method& method, io::Precision precision) {
   std::vector<Vec3> out(normals.size());
   sum_over_normals(
       scene, normals, std::span<const Method>(&method, 1), precision, false,
@@ -281,7 +281,7 @@ std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& 
 }
 
 std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals,
-                                 std::span<const Method> methods, FloatFormat precision) {
+                                 std::span<const Method> methods, io::Precision precision) {
   // Per thread: the largest |Ê − E| of each method, then the largest exact value.
   const std::size_t peak = methods.size();
   tbb::combinable<std::vector<double>> partial(

@@ -66,7 +66,7 @@ struct SceneError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Limits of a scene evaluation (README "Choosing a method for a scene"),
+// Limits of a scene evaluation (docs/cli.md, "Choosing a method for a scene"),
 // refused before any work: lights per scene, normals, and (light, normal)
 // pairs, each pair one evaluation of every method (about 1 µs of one core
 // for the registry in float) and of the irradiance table.
@@ -102,7 +102,7 @@ std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vect
 // The same with a method's f32 (binary32: cosine and κ rounded to float, the
 // per-light value in float, summed in double) or f64.
 std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals,
-                                   const Method& method, FloatFormat precision);
+                                   const Method& method, io::Precision precision);
 
 // max_{n,ch} |approx − exact| / max_{n,ch} exact (+inf on a non-finite value).
 double scene_relative_error(const std::vector<Vec3>& approx, const std::vector<Vec3>& exact);
@@ -111,6 +111,6 @@ double scene_relative_error(const std::vector<Vec3>& approx, const std::vector<V
 // against scene_irradiance_reference), in one streamed pass: memory bounded
 // as stated above, whatever the light and normal counts.
 std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals,
-                                 std::span<const Method> methods, FloatFormat precision);
+                                 std::span<const Method> methods, io::Precision precision);
 
 }  // namespace sglab::validate

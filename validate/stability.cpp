@@ -14,24 +14,6 @@
 
 namespace sglab::validate {
 
-std::string_view to_string(FailureKind k) {
-  switch (k) {
-    case FailureKind::nan:
-      return "nan";
-    case FailureKind::inf:
-      return "inf";
-    case FailureKind::overflow:
-      return "overflow";
-    case FailureKind::negative:
-      return "negative";
-    case FailureKind::out_of_range:
-      return "out_of_range";
-    case FailureKind::inaccurate:
-      return "inaccurate";
-  }
-  return "?";
-}
-
 bool StabilityRow::is_failure(FailureKind k) const {
   switch (k) {
     case FailureKind::overflow:
@@ -50,7 +32,7 @@ std::size_t StabilityRow::failure_count() const {
   return n;
 }
 
-const StabilityRow* StabilityReport::find(std::string_view function, FloatFormat f,
+const StabilityRow* StabilityReport::find(std::string_view function, io::Precision f,
                                           bool valid_inputs) const {
   for (const StabilityRow& r : rows)
     if (r.function == function && r.precision == f && r.valid_inputs == valid_inputs) return &r;

@@ -52,7 +52,14 @@ enum class FailureKind : std::size_t {
   inaccurate = 5
 };
 inline constexpr std::size_t kFailureKinds = 6;
-std::string_view to_string(FailureKind k);
+constexpr std::array<io::EnumName<FailureKind>, kFailureKinds> names_of(FailureKind) {
+  return {{{FailureKind::nan, "nan"},
+           {FailureKind::inf, "inf"},
+           {FailureKind::overflow, "overflow"},
+           {FailureKind::negative, "negative"},
+           {FailureKind::out_of_range, "out_of_range"},
+           {FailureKind::inaccurate, "inaccurate"}}};
+}
 
 // One kind of failure over a set of inputs: how often, and between which κ
 // it happens (κ is the probe's main argument: the light's κ, the first κ of a
@@ -73,7 +80,7 @@ struct FailureStats {
 struct StabilityRow {
   std::string function;
   Origin origin = Origin::sglab;
-  FloatFormat precision = FloatFormat::binary64;
+  io::Precision precision = io::Precision::float64;
   bool valid_inputs = true;  // finite κ ≥ 0, c ∈ [−1, 1], unit axes, finite x
   std::string range;         // the documented output range, e.g. "[0, π]"
   bool sign_checked = true;  // false where negative outputs are in range (erf, log-amplitudes)
@@ -98,7 +105,7 @@ struct StabilityReport {
   // The κ, cosine and x values probed, per precision (for the report header).
   std::vector<double> kappas_float, kappas_double, cosines_float, cosines_double;
 
-  const StabilityRow* find(std::string_view function, FloatFormat f, bool valid_inputs) const;
+  const StabilityRow* find(std::string_view function, io::Precision f, bool valid_inputs) const;
 };
 
 StabilityReport stability();

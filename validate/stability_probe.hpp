@@ -57,8 +57,8 @@ constexpr Range kFourPi{0, 12.566370614359172, "[0, 4π]", 4};
 constexpr Range kUnitLength{1, 1, "|axis| = 1", 8};
 
 template <class T>
-FloatFormat format_of() {
-  return sizeof(T) == sizeof(float) ? FloatFormat::binary32 : FloatFormat::binary64;
+io::Precision format_of() {
+  return sizeof(T) == sizeof(float) ? io::Precision::float32 : io::Precision::float64;
 }
 
 template <class T>

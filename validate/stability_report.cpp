@@ -207,8 +207,9 @@ Table half_ranges_table(const SweepResult& r, double tolerance) {
            {"max_diff_in_range", 3},
            {"max_diff_grid", 3}});
   for (const SweepEntry& h : r.entries) {
-    if (h.precision != FloatFormat::vulkan_half) continue;
-    const SweepEntry* f = r.find(h.method, h.quantity, FloatFormat::vulkan);
+    if (h.precision != io::on_vulkan(io::Language::glsl, io::Precision::float16)) continue;
+    const SweepEntry* f =
+        r.find(h.method, h.quantity, io::on_vulkan(io::Language::glsl, io::Precision::float32));
     if (!f || f->values.size() != h.values.size()) continue;
     std::vector<HalfAtKappa> at;
     for (std::size_t k = 0; k < r.kappas.size(); ++k)

@@ -13,44 +13,6 @@
 
 namespace sglab::validate {
 
-std::string_view to_string(Quantity q) {
-  switch (q) {
-    case Quantity::irradiance:
-      return "irradiance";
-    case Quantity::hemispherical:
-      return "hemispherical";
-    case Quantity::normalized:
-      return "normalized";
-  }
-  return "?";
-}
-
-bool is_device_format(FloatFormat f) {
-  return f != FloatFormat::binary32 && f != FloatFormat::binary64;
-}
-
-std::string_view to_string(FloatFormat f) {
-  switch (f) {
-    case FloatFormat::binary32:
-      return "float";
-    case FloatFormat::binary64:
-      return "double";
-    case FloatFormat::vulkan:
-      return "vulkan";
-    case FloatFormat::vulkan_hlsl:
-      return "vulkan_hlsl";
-    case FloatFormat::vulkan_half:
-      return "vulkan_half";
-    case FloatFormat::vulkan_hlsl_half:
-      return "vulkan_hlsl_half";
-    case FloatFormat::vulkan_split:
-      return "vulkan_split";
-    case FloatFormat::vulkan_hlsl_split:
-      return "vulkan_hlsl_split";
-  }
-  return "?";
-}
-
 void SweepGrid::validate() const {
   constexpr double flt_max = std::numeric_limits<float>::max();
   if (!std::isfinite(kappa_lo) || !std::isfinite(kappa_hi))
@@ -149,7 +111,8 @@ double SweepResult::peak_value(Quantity q, std::size_t k) const {
   return validate::reference_value(peak[k], q);
 }
 
-const SweepEntry* SweepResult::find(std::string_view method, Quantity q, FloatFormat f) const {
+const SweepEntry* SweepResult::find(std::string_view method, Quantity q,
+                                    const io::Evaluation& f) const {
   for (const SweepEntry& e : entries)
     if (e.method == method && e.quantity == q && e.precision == f) return &e;
   return nullptr;
@@ -176,15 +139,15 @@ std::vector<ReferencePoint> evaluate_reference(std::span<const Query> queries, P
   return out;
 }
 
-double evaluate(const Method& m, FloatFormat f, double cosine, double kappa) {
-  if (f == FloatFormat::binary32)
+double evaluate(const Method& m, io::Precision p, double cosine, double kappa) {
+  if (p == io::Precision::float32)
     return static_cast<double>(m.f32(static_cast<float>(cosine), static_cast<float>(kappa)));
   return m.f64(cosine, kappa);
 }
 
 }  // namespace
 
-SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, FloatFormat f,
+SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& sm, const io::Evaluation& f,
                        std::span<const double> values, bool keep_points) {
   const std::size_t nk = r.kappas.size(), nc = r.cosines.size();
   if (values.size() != nk * nc)
@@ -239,13 +202,12 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods,
   r.reference = std::move(ref);
 
   for (const SweepMethod& sm : methods) {
-    for (FloatFormat f : options.precisions) {
-      if (is_device_format(f)) continue;
+    for (io::Precision f : options.precisions) {
       std::vector<double> values(nk * nc);
       for (std::size_t k = 0; k < nk; ++k)
         for (std::size_t j = 0; j < nc; ++j)
           values[r.index(k, j)] = evaluate(sm.method, f, r.cosines[j], r.kappas[k]);
-      r.entries.push_back(sweep_entry(r, sm, f, values, options.keep_points));
+      r.entries.push_back(sweep_entry(r, sm, io::on_cpu(f), values, options.keep_points));
     }
   }
   return r;

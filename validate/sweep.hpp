@@ -9,6 +9,7 @@
 // Used by `sglab sweep`, and by the Pareto/recommend work and the fitters.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -18,6 +19,7 @@
 
 #include <sglab/registry.hpp>
 
+#include "common/vocabulary.hpp"
 #include "validate/metrics.hpp"
 #include "validate/reference.hpp"
 #include "validate/table.hpp"
@@ -27,30 +29,19 @@ namespace sglab::validate {
 // What a method approximates, and therefore which reference it is held to:
 // E(c, κ), H(c, κ) or s(c, κ) (docs/quantities.md).
 enum class Quantity { irradiance, hemispherical, normalized };
-std::string_view to_string(Quantity q);
+constexpr std::array<io::EnumName<Quantity>, 3> names_of(Quantity) {
+  return {{{Quantity::irradiance, "irradiance"},
+           {Quantity::hemispherical, "hemispherical"},
+           {Quantity::normalized, "normalized"}}};
+}
+using io::to_string;
 
-// The arithmetic a method is evaluated in. `vulkan` / `vulkan_hlsl`: the
-// method's GLSL / HLSL export (`sglab export`) run on a Vulkan device (float),
-// values supplied through sweep_entry. `vulkan_half` / `vulkan_hlsl_half`: the
-// half export (`sglab export --precision half`) on the device, float buffers
-// converted to half and back in the wrapper. `vulkan_split` /
-// `vulkan_hlsl_split`: the float per-light split export (`sglab export
-// --split`; split is not combined with half).
-enum class FloatFormat {
-  binary32,
-  binary64,
-  vulkan,
-  vulkan_hlsl,
-  vulkan_half,
-  vulkan_hlsl_half,
-  vulkan_split,
-  vulkan_hlsl_split
-};
-// "float", "double", "vulkan", "vulkan_hlsl", "vulkan_half", "vulkan_hlsl_half", "vulkan_split",
-// "vulkan_hlsl_split"
-std::string_view to_string(FloatFormat f);
-// A format whose values come from a device (sweep_entry), not from the runtime.
-bool is_device_format(FloatFormat f);
+// Where and in what arithmetic an entry was evaluated (io::Evaluation): the
+// runtime on the CPU in float or double, or the method's export on a Vulkan
+// device, values supplied through sweep_entry: the GLSL or HLSL export
+// (`sglab export`) in float, in half (`--precision half`, float buffers
+// converted to half and back in the wrapper) or in the float per-light split
+// form (`sglab export --split`; split is not combined with half).
 
 // κ: kappa_count values log-spaced over [kappa_lo, kappa_hi] inclusive;
 // c: cosine_count values evenly spaced over [−1, 1] inclusive. The default is
@@ -66,7 +57,7 @@ struct SweepGrid {
   // method and precision, the value and its error and a row of points.csv:
   // about kSweepBytesPerPointEntry bytes per point and entry, so the full
   // registry in float and double needs about 2.4 GB of memory at the limit
-  // (and writes a 500 MB points.csv). The limit admits README's held-out grid
+  // (and writes a 500 MB points.csv). The limit admits the held-out grid
   // of 217 κ × 401 cosines (87,017 points).
   static constexpr std::uint64_t kMaxPoints = 100'000;
 
@@ -112,7 +103,7 @@ struct SweepMethod {
 std::vector<SweepMethod> registered_sweep_methods();
 
 struct SweepOptions {
-  std::vector<FloatFormat> precisions{FloatFormat::binary32, FloatFormat::binary64};
+  std::vector<io::Precision> precisions{io::Precision::float32, io::Precision::float64};
   Precision reference = Precision::standard;
   bool keep_points = true;  // keep every value and peak_rel (for plots and fitters)
   bool progress = true;     // terminal progress on stderr (quiet when piped)
@@ -122,7 +113,7 @@ struct SweepOptions {
 struct SweepEntry {
   std::string method;
   Quantity quantity = Quantity::irradiance;
-  FloatFormat precision = FloatFormat::binary64;
+  io::Evaluation precision = io::kCpuDouble;
   MetricSummary summary;                 // over every (κ, c)
   std::vector<MetricSummary> per_kappa;  // over c, one per κ
   // Point data, index k·cosine_count + j (empty unless keep_points).
@@ -142,7 +133,7 @@ struct SweepResult {
   // The reference value of quantity q at grid point (k, j), and its peak at κ_k.
   double reference_value(Quantity q, std::size_t k, std::size_t j) const;
   double peak_value(Quantity q, std::size_t k) const;
-  const SweepEntry* find(std::string_view method, Quantity q, FloatFormat f) const;
+  const SweepEntry* find(std::string_view method, Quantity q, const io::Evaluation& f) const;
 };
 
 // The reference value of quantity q in a reference point.
@@ -150,7 +141,7 @@ double reference_value(const ReferencePoint& point, Quantity q);
 
 // The entry of method `m` in precision `f` from its values at every grid point
 // (index k·cosine_count + j), measured against r's reference.
-SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& m, FloatFormat f,
+SweepEntry sweep_entry(const SweepResult& r, const SweepMethod& m, const io::Evaluation& f,
                        std::span<const double> values, bool keep_points = true);
 
 // Runs the sweep (the `vulkan` precision is skipped here: its values come from

@@ -175,24 +175,12 @@ std::string render(const Table& table, TableFormat format) {
   throw std::logic_error("unknown table format");
 }
 
-std::string_view extension(TableFormat format) {
-  switch (format) {
-    case TableFormat::csv:
-      return "csv";
-    case TableFormat::markdown:
-      return "md";
-    case TableFormat::json:
-      return "json";
-  }
-  throw std::logic_error("unknown table format");
-}
-
 std::vector<std::filesystem::path> write_table(const Table& table, const std::filesystem::path& dir,
                                                std::string_view stem,
                                                std::initializer_list<TableFormat> formats) {
   std::vector<std::filesystem::path> paths;
   for (TableFormat f : formats) {
-    auto path = dir / fmt::format("{}.{}", stem, extension(f));
+    auto path = dir / fmt::format("{}.{}", stem, io::to_string(f));
     io::write_file_atomic(path, render(table, f));
     paths.push_back(std::move(path));
   }

@@ -8,6 +8,7 @@
 // io::write_file_atomic.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
@@ -18,6 +19,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "common/vocabulary.hpp"
 
 namespace sglab::validate {
 
@@ -59,7 +62,11 @@ class Table {
   std::vector<std::vector<Cell>> rows_;
 };
 
+// A table's file format, named by its file extension: "csv", "md", "json".
 enum class TableFormat { csv, markdown, json };
+constexpr std::array<io::EnumName<TableFormat>, 3> names_of(TableFormat) {
+  return {{{TableFormat::csv, "csv"}, {TableFormat::markdown, "md"}, {TableFormat::json, "json"}}};
+}
 
 // CSV: a header line with the column names, then one line per row; no title.
 std::string to_csv(const Table& table);
@@ -75,9 +82,6 @@ nlohmann::ordered_json to_json_records(const Table& table);
 nlohmann::ordered_json to_json(const Table& table);
 
 std::string render(const Table& table, TableFormat format);
-
-// File extension of a format: "csv", "md", "json".
-std::string_view extension(TableFormat format);
 
 // Writes `dir/stem.<ext>` for each format atomically; returns the paths.
 std::vector<std::filesystem::path> write_table(const Table& table, const std::filesystem::path& dir,

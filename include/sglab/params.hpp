@@ -93,7 +93,7 @@ struct Meder2018Params {
   S amplitude, sharpness, offset;
 };
 
-// sglab's cheap irradiance model (include/sglab/sglab_fast.hpp):
+// The coefficients of sglab_fast (include/sglab/sglab_fast.hpp, docs/models.md#sglab_fast):
 // Ê = E(1, κ)·max(0, A + B c + C ρ(V c + ½)) with
 // A = Pa(κ̃)/Q(κ̃), B = Pb/Q, C = Pc/Q, V = Pv/Q, κ̃ = min(κ, kappa_max),
 // numerators of degree 4 and one shared monic quartic Q = κ̃⁴ + q[3]κ̃³ + … + q[0]

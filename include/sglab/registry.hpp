@@ -70,22 +70,34 @@ inline constexpr ValidRange kNoStatedBound{};
 // kLightStateFloats floats; each shading point then pays only `eval`.
 inline constexpr std::size_t kLightStateFloats = 16;
 
-// A scalar quantity f(cosine, κ) in float and in double, scalar and batch.
-struct Method {
+// A method's card: what it is, in the one place every table, export and document reads it
+// (`sglab methods --json` / `--format md`, the shader exports' header comments, the results
+// tables of scripts/results_tables.sh, docs/references.md).
+struct Card {
   std::string_view id;
-  std::string_view source;     // paper / document and equation or listing
-  std::string_view constants;  // constant sets from sglab/constants.hpp it uses
+  Origin origin = Origin::published;
+  // docs/references.md key and the equation or listing; sglab's own models: docs/models.md.
+  std::string_view source = {};
+  std::string_view summary = {};    // what it is, in one line
+  std::string_view form = {};       // its formula, in one line (empty: that of `source`)
+  std::string_view constants = {};  // constant sets from sglab/constants.hpp it uses
+  ValidRange valid = kNoStatedBound;
+  // The half-precision export's own form, what stays in float ("" : the float code in half).
+  std::string_view half = {};
+};
+
+// A scalar quantity f(cosine, κ) in float and in double, scalar and batch, with its card.
+struct Method : Card {
   float (*f32)(float cosine, float kappa);
   double (*f64)(double cosine, double kappa);
   void (*batch32)(const float* cosine, const float* kappa, float* out, std::size_t n);
   void (*batch64)(const double* cosine, const double* kappa, double* out, std::size_t n);
-  Origin origin = Origin::published;
-  ValidRange valid = kNoStatedBound;
   // Optional per-light split in float (both nullptr when the method has none):
   // light_setup32(κ, state) fills state[0 .. kLightStateFloats), and
   // light_eval32(state, c) equals f32(c, κ) up to float rounding.
   void (*light_setup32)(float kappa, float* state) = nullptr;
   float (*light_eval32)(const float* state, float cosine) = nullptr;
+  constexpr bool has_split() const { return light_setup32 != nullptr && light_eval32 != nullptr; }
 };
 
 // A Method together with the type of the generic functor F(cosine, κ) it
@@ -99,13 +111,9 @@ struct MethodOf : Method {
 
 namespace detail {
 template <class F>
-constexpr MethodOf<F> make_method(std::string_view id, std::string_view source,
-                                  std::string_view constants, ValidRange valid, F,
-                                  Origin origin = Origin::published) {
+constexpr MethodOf<F> make_method(const Card& card, F) {
   return {Method{
-      id,
-      source,
-      constants,
+      card,
       [](float c, float k) { return F{}(c, k); },
       [](double c, double k) { return F{}(c, k); },
       [](const float* c, const float* k, float* o, std::size_t n) {
@@ -114,8 +122,6 @@ constexpr MethodOf<F> make_method(std::string_view id, std::string_view source,
       [](const double* c, const double* k, double* o, std::size_t n) {
         evaluate_batch(F{}, c, k, o, n);
       },
-      origin,
-      valid,
   }};
 }
 
@@ -162,11 +168,8 @@ struct SglabAccSplit {
 };
 
 template <const auto& P>
-constexpr auto make_sglab_acc(std::string_view id, std::string_view source,
-                              std::string_view constants, ValidRange valid) {
-  auto m = make_method(
-      id, source, constants, valid, [](auto c, auto k) { return irradiance_sglab_acc(c, k, P); },
-      Origin::sglab);
+constexpr auto make_sglab_acc(const Card& card) {
+  auto m = make_method(card, [](auto c, auto k) { return irradiance_sglab_acc(c, k, P); });
   m.light_setup32 = &SglabAccSplit<P>::setup;
   m.light_eval32 = &SglabAccSplit<P>::eval;
   // Float batch that vectorizes (sglab_acc.hpp irradiance_sglab_acc_batch).
@@ -177,147 +180,220 @@ constexpr auto make_sglab_acc(std::string_view id, std::string_view source,
 }
 }  // namespace detail
 
-// Irradiance approximations Ê(c, κ) (docs/references.md), with published
-// constants: the one list, passed to `visit` as MethodOf<F> arguments in order
-// (irradiance_methods below is visit = collect into an array of Method).
+// Irradiance approximations Ê(c, κ) (docs/references.md, docs/models.md): the one list,
+// passed to `visit` as MethodOf<F> arguments in order (irradiance_methods below is visit =
+// collect into an array of Method).
 template <class Visitor>
 constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
+  using detail::make_method;
+  using detail::with_batch32;
+  using detail::with_light_split;
   return visit(
-      detail::make_method(
-          "wang2009",
-          "[Wang2009] cosine-lobe SG (λ=2.133, a=1.17) inner product, via [Pettineo2016]",
-          "cosine_lobe_published", ValidRange{.max_peak_rel = 0.18},
-          [](auto c, auto k) { return irradiance_wang2009(c, k); }),
-      detail::make_method("punctual", "cosine pulled out, approximate integral 2π/κ [Pettineo2016]",
-                          "", ValidRange{.max_peak_rel = 2.1e3, .kappa_lo = 9.8e-4f},
-                          [](auto c, auto k) { return irradiance_punctual(c, k); }),
-      detail::make_method("hill", "Stephen Hill's fitted curve × 2π/κ [Pettineo2016]",
-                          "hill_published", ValidRange{.max_peak_rel = 3.2e7, .kappa_lo = 1e-3f},
-                          [](auto c, auto k) { return irradiance_hill(c, k); }),
-      detail::make_method("hill_exact", "Hill's fitted curve × exact S(κ) (as Probulator)",
-                          "hill_published", ValidRange{.max_peak_rel = 6.4e4, .kappa_lo = 1e-3f},
-                          [](auto c, auto k) { return irradiance_hill_exact(c, k); }),
-      detail::make_method("vsgl2015",
-                          "[Tokuyoshi2015] diffuse SG λd=2, [Iwasaki2012] product integral",
-                          "diffuse_lobe_published", ValidRange{.max_peak_rel = 0.16},
-                          [](auto c, auto k) { return irradiance_vsgl2015(c, k); }),
-      detail::make_method(
-          "meder2018", "Meder & Brüderlin 2018 logistic hemispherical integral + SG cosine fit",
-          "meder2018_published", ValidRange{.max_peak_rel = 0.013, .kappa_hi = 2e15f},
-          [](auto c, auto k) { return irradiance_meder2018(c, k); }),
-      detail::make_method(
-          "tokuyoshi2022", "[Tokuyoshi2022] Eq. 3-6, supplementary Listings 1-4, std::erf",
-          "clamped_cosine_published, steepness2022_published", ValidRange{.max_peak_rel = 5.1e-3},
-          [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
-      detail::with_light_split<Tokuyoshi2024Light<float>>(
-          detail::with_batch32(
-              detail::make_method("tokuyoshi2024",
-                                  "[Tokuyoshi2024] supplementary Listings 6-7 (author's VSGL code)",
-                                  "steepness2024_published", ValidRange{.max_peak_rel = 1.6e-3},
-                                  [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
+      make_method({.id = "wang2009",
+                   .source = "[Wang2009] via [Pettineo2016]",
+                   .summary = "cosine-lobe SG (λ = 2.133, a = 1.17) inner product",
+                   .form = "a e^{d − κ − λ} 2π(1 − e^{−2d})/d, d = |κv + λn|",
+                   .constants = "cosine_lobe_published",
+                   .valid = {.max_peak_rel = 0.18}},
+                  [](auto c, auto k) { return irradiance_wang2009(c, k); }),
+      make_method({.id = "punctual",
+                   .source = "[Pettineo2016] \"A Cheaper Approximation\"",
+                   .summary = "cosine pulled out of the integral, approximate SG integral 2π/κ",
+                   .form = "max(c, 0) 2π/κ",
+                   .valid = {.max_peak_rel = 2.1e3, .kappa_lo = 9.8e-4f}},
+                  [](auto c, auto k) { return irradiance_punctual(c, k); }),
+      make_method({.id = "hill",
+                   .source = "[Pettineo2016] \"A More Accurate Approximation\"",
+                   .summary = "Stephen Hill's fitted curve × 2π/κ",
+                   .form = "hill(c, κ) 2π/κ",
+                   .constants = "hill_published",
+                   .valid = {.max_peak_rel = 3.2e7, .kappa_lo = 1e-3f}},
+                  [](auto c, auto k) { return irradiance_hill(c, k); }),
+      make_method({.id = "hill_exact",
+                   .source = "[Pettineo2016], as in [Probulator]",
+                   .summary = "Hill's fitted curve × the exact SG integral S(κ)",
+                   .form = "hill(c, κ) S(κ)",
+                   .constants = "hill_published",
+                   .valid = {.max_peak_rel = 6.4e4, .kappa_lo = 1e-3f}},
+                  [](auto c, auto k) { return irradiance_hill_exact(c, k); }),
+      make_method({.id = "vsgl2015",
+                   .source = "[Tokuyoshi2015] supplemental §3.2, after [Iwasaki2012]",
+                   .summary = "diffuse SG λd = 2, approximate product integral, one exp",
+                   .form = "2π e^{λ'(c − 1)}/(κ + λd), λ' = κλd/(κ + λd)",
+                   .constants = "diffuse_lobe_published",
+                   .valid = {.max_peak_rel = 0.16}},
+                  [](auto c, auto k) { return irradiance_vsgl2015(c, k); }),
+      make_method({.id = "meder2018",
+                   .source = "[Meder2018]",
+                   .summary = "logistic hemispherical integral with an SG cosine fit",
+                   .form = "a e^{…} H̃(c₃, κ₃) − o H̃(c, κ), H̃ logistic",
+                   .constants = "meder2018_published",
+                   .valid = {.max_peak_rel = 0.013, .kappa_hi = 2e15f}},
+                  [](auto c, auto k) { return irradiance_meder2018(c, k); }),
+      make_method({.id = "tokuyoshi2022",
+                   .source = "[Tokuyoshi2022] Eq. 3-6, supplementary Listings 1-4",
+                   .summary = "clamped cosine α(e^{λ(c − 1)} − …) and erf-based H̃, std::erf",
+                   .form = "α (H̃(c₃, κ₃) e^{λ + …} − H̃(c, κ)), H̃ = 2π lerp(e^{−κ}, 1, s̃)(1 − "
+                           "e^{−κ})/κ, s̃ erf-based",
+                   .constants = "clamped_cosine_published, steepness2022_published",
+                   .valid = {.max_peak_rel = 5.1e-3}},
+                  [](auto c, auto k) { return irradiance_tokuyoshi2022(c, k); }),
+      with_light_split<Tokuyoshi2024Light<float>>(
+          with_batch32(
+              make_method({.id = "tokuyoshi2024",
+                           .source = "[Tokuyoshi2024] supplementary Listings 6-7 (author's "
+                                     "VSGL code)",
+                           .summary = "lerp of the exact poles by an erfc-based factor",
+                           .form = "2π lerp(Ē(−1, κ), Ē(1, κ), f₂₀₂₄(c, t(κ)))",
+                           .constants = "steepness2024_published",
+                           .valid = {.max_peak_rel = 1.6e-3}},
+                          [](auto c, auto k) { return irradiance_tokuyoshi2024(c, k); }),
               [](const float* c, const float* k, float* o, std::size_t n) {
                 irradiance_tokuyoshi2024_batch(c, k, o, n);
               }),
           [](float k) { return tokuyoshi2024_light(k); },
           [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
-      // The published formulas with sglab's refitted constants (`sglab fit all`)
-      // and the shader path of the 2022 method (Listing 5 erf).
-      detail::make_method(
-          "tokuyoshi2022_listing5",
-          "tokuyoshi2022 with the [Tokuyoshi2022] Listing 5 erf, as a shader runs it",
-          "clamped_cosine_published, steepness2022_published, erf_listing5_published",
-          ValidRange{.max_peak_rel = 5e-3},
+      // The shader path of the 2022 method (its Listing 5 erf), and the published formulas
+      // with sglab's refitted constants (`sglab fit all`).
+      make_method(
+          {.id = "tokuyoshi2022_listing5",
+           .source = "[Tokuyoshi2022] Eq. 3-6, supplementary Listings 1-5",
+           .summary = "tokuyoshi2022 with the Listing 5 erf, as a shader runs it",
+           .form = "that of tokuyoshi2022",
+           .constants = "clamped_cosine_published, steepness2022_published, erf_listing5_published",
+           .valid = {.max_peak_rel = 5e-3}},
           [](auto c, auto k) {
             return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_published,
                                             constants::steepness2022_published, ErfListing5{});
           }),
-      detail::make_method(
-          "tokuyoshi2022_refit", "tokuyoshi2022 refitted: float clamped cosine, t(κ) on irradiance",
-          "clamped_cosine_float, steepness2022_irradiance", ValidRange{.max_peak_rel = 4e-3},
-          [](auto c, auto k) {
-            return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_float,
-                                            constants::steepness2022_irradiance);
-          },
-          Origin::refit),
-      detail::with_light_split<Tokuyoshi2024Light<float>>(
-          detail::with_batch32(
-              detail::make_method(
-                  "tokuyoshi2024_refit", "tokuyoshi2024 refitted: t(κ) on irradiance",
-                  "steepness2024_irradiance", ValidRange{.max_peak_rel = 1.5e-3},
+      make_method({.id = "tokuyoshi2022_refit",
+                   .origin = Origin::refit,
+                   .source = "[Tokuyoshi2022] Eq. 3-6, sglab's constants",
+                   .summary = "tokuyoshi2022 refitted: float clamped cosine, t(κ) on irradiance",
+                   .form = "that of tokuyoshi2022",
+                   .constants = "clamped_cosine_float, steepness2022_irradiance",
+                   .valid = {.max_peak_rel = 4e-3}},
+                  [](auto c, auto k) {
+                    return irradiance_tokuyoshi2022(c, k, constants::clamped_cosine_float,
+                                                    constants::steepness2022_irradiance);
+                  }),
+      with_light_split<Tokuyoshi2024Light<float>>(
+          with_batch32(
+              make_method(
+                  {.id = "tokuyoshi2024_refit",
+                   .origin = Origin::refit,
+                   .source = "[Tokuyoshi2024] supplementary Listings 6-7, sglab's constants",
+                   .summary = "tokuyoshi2024 refitted: t(κ) on irradiance",
+                   .form = "that of tokuyoshi2024",
+                   .constants = "steepness2024_irradiance",
+                   .valid = {.max_peak_rel = 1.5e-3}},
                   [](auto c, auto k) {
                     return irradiance_tokuyoshi2024(c, k, constants::steepness2024_irradiance);
-                  },
-                  Origin::refit),
+                  }),
               [](const float* c, const float* k, float* o, std::size_t n) {
                 irradiance_tokuyoshi2024_batch(c, k, o, n, constants::steepness2024_irradiance);
               }),
           [](float k) { return tokuyoshi2024_light(k, constants::steepness2024_irradiance); },
           [](const Tokuyoshi2024Light<float>& l, float c) { return tokuyoshi2024_eval(l, c); }),
-      detail::make_method(
-          "vsgl2015_refit", "vsgl2015 refitted: λd minimizing the irradiance error",
-          "lambda_d_diffuse_lobe_irradiance", ValidRange{.max_peak_rel = 0.15},
-          [](auto c, auto k) {
-            return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance);
-          },
-          Origin::refit),
-      detail::make_method(
-          "wang2009_refit",
-          "wang2009 refitted: cosine lobe (λ, a) by least squares over the sphere",
-          "lambda_d_cosine_lobe_free_amplitude", ValidRange{.max_peak_rel = 0.18},
+      make_method({.id = "vsgl2015_refit",
+                   .origin = Origin::refit,
+                   .source = "[Tokuyoshi2015], sglab's constants",
+                   .summary = "vsgl2015 refitted: λd minimizing the irradiance error",
+                   .form = "that of vsgl2015",
+                   .constants = "lambda_d_diffuse_lobe_irradiance",
+                   .valid = {.max_peak_rel = 0.15}},
+                  [](auto c, auto k) {
+                    return irradiance_vsgl2015(c, k, constants::lambda_d_diffuse_lobe_irradiance);
+                  }),
+      make_method(
+          {.id = "wang2009_refit",
+           .origin = Origin::refit,
+           .source = "[Wang2009], sglab's constants",
+           .summary = "wang2009 refitted: cosine lobe (λ, a) by least squares over the sphere",
+           .form = "that of wang2009",
+           .constants = "lambda_d_cosine_lobe_free_amplitude",
+           .valid = {.max_peak_rel = 0.18}},
           [](auto c, auto k) {
             return irradiance_wang2009(c, k, constants::lambda_d_cosine_lobe_free_amplitude);
-          },
-          Origin::refit),
-      // sglab's own models (fitted by `sglab fit`), with their per-light split.
-      detail::with_light_split<SglabFastLight<float>>(
-          detail::with_batch32(
-              detail::make_method(
-                  "sglab_fast",
-                  "sglab: exact E(1, κ) × fitted shape A + Bc + Cρ(Vc + ½), rational "
-                  "A, B, C, V in κ (sglab_fast.hpp)",
-                  "sglab_fast_float", ValidRange{.max_peak_rel = 2.6e-3, .kappa_hi = 1.1e4f},
-                  [](auto c, auto k) { return irradiance_sglab_fast(c, k); }, Origin::sglab),
+          }),
+      // sglab's own models (fitted by `sglab fit`, docs/models.md), with their per-light split.
+      with_light_split<SglabFastLight<float>>(
+          with_batch32(
+              make_method(
+                  {.id = "sglab_fast",
+                   .origin = Origin::sglab,
+                   .source = "docs/models.md#sglab_fast",
+                   .summary = "exact E(1, κ) times a line plus a C² ramp, one exp, no erf",
+                   .form = "exact E(1, κ) × A + Bc + Cρ(Vc + ½), rational A, B, C, V",
+                   .constants = "sglab_fast_float",
+                   .valid = {.max_peak_rel = 2.6e-3, .kappa_hi = 1.1e4f},
+                   .half = "kappa-only part (E(1, kappa), the rational A, B, C, V) in float, "
+                           "per-pixel shape in half"},
+                  [](auto c, auto k) { return irradiance_sglab_fast(c, k); }),
               [](const float* c, const float* k, float* o, std::size_t n) {
                 irradiance_sglab_fast_batch(c, k, o, n);
               }),
           [](float k) { return sglab_fast_light(k); },
           [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
-      detail::with_light_split<SglabMidLight<float>>(
-          detail::with_batch32(
-              detail::make_method(
-                  "sglab_mid",
-                  "sglab: exact E(1, κ) × fitted shape A + B(c + √(c² + e^{S − Vc²})) + Dc², "
-                  "rational A, B, D, S, V/κ in κ (sglab_mid.hpp)",
-                  "sglab_mid_float", ValidRange{.max_peak_rel = 4.3e-4},
-                  [](auto c, auto k) { return irradiance_sglab_mid(c, k); }, Origin::sglab),
+      with_light_split<SglabMidLight<float>>(
+          with_batch32(
+              make_method(
+                  {.id = "sglab_mid",
+                   .origin = Origin::sglab,
+                   .source = "docs/models.md#sglab_mid",
+                   .summary = "exact E(1, κ) times a line, a smoothed max(c, 0) of varying width "
+                              "and c²",
+                   .form = "exact E(1, κ) × A + B(c + √(c² + e^{S − Vc²})) + Dc², rational A, "
+                           "B, D, S, V",
+                   .constants = "sglab_mid_float",
+                   .valid = {.max_peak_rel = 4.3e-4},
+                   .half = "kappa-only part (E(1, kappa), the rational A, B, D, S, V) in float, "
+                           "per-pixel shape in half"},
+                  [](auto c, auto k) { return irradiance_sglab_mid(c, k); }),
               [](const float* c, const float* k, float* o, std::size_t n) {
                 irradiance_sglab_mid_batch(c, k, o, n);
               }),
           [](float k) { return sglab_mid_light(k); },
           [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
-      // sglab's own models (sglab_acc.hpp, `sglab fit sglab-acc`): the
-      // tokuyoshi2024 form with a fitted correction of its lerp factor; a ladder
-      // of 1, 2, 3, 4 correction terms.
+      // The sglab_acc ladder (sglab_acc.hpp): the tokuyoshi2024 form with a fitted correction
+      // of its lerp factor of 1, 2, 3, 4 terms.
       detail::make_sglab_acc<constants::sglab_acc_acc1>(
-          "sglab_acc1",
-          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}b0(kappa), b0 = u(1-u)^3 P(u), u = "
-          "t/(t+s), P of degree 3",
-          "sglab_acc_acc1", ValidRange{.max_peak_rel = 2e-4}),
+          {.id = "sglab_acc1",
+           .origin = Origin::sglab,
+           .source = "docs/models.md#sglab_acc1--sglab_acc4",
+           .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
+                      "ends, N = 1, D = 3",
+           .form = "2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P0(u), u = t/(t + "
+                   "s)",
+           .constants = "sglab_acc_acc1",
+           .valid = {.max_peak_rel = 2e-4}}),
       detail::make_sglab_acc<constants::sglab_acc_acc2>(
-          "sglab_acc2",
-          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2), b_j = u(1-u)^3 P_j(u), "
-          "P_j of degree 5",
-          "sglab_acc_acc2", ValidRange{.max_peak_rel = 3e-5}),
+          {.id = "sglab_acc2",
+           .origin = Origin::sglab,
+           .source = "docs/models.md#sglab_acc1--sglab_acc4",
+           .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
+                      "ends, N = 2, D = 5",
+           .form = "sglab_acc1 + b1(κ)z², P_j of degree 5",
+           .constants = "sglab_acc_acc2",
+           .valid = {.max_peak_rel = 3e-5}}),
       detail::make_sglab_acc<constants::sglab_acc_acc3>(
-          "sglab_acc3",
-          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4), b_j = "
-          "u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
-          "sglab_acc_acc3", ValidRange{.max_peak_rel = 7.8e-6}),
+          {.id = "sglab_acc3",
+           .origin = Origin::sglab,
+           .source = "docs/models.md#sglab_acc1--sglab_acc4",
+           .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
+                      "ends, N = 3, D = 6, steepness of order M = 3",
+           .form = "sglab_acc2 + b2(κ)z⁴, P_j of degree 6, t(κ) rational of order 3",
+           .constants = "sglab_acc_acc3",
+           .valid = {.max_peak_rel = 7.8e-6}}),
       detail::make_sglab_acc<constants::sglab_acc_acc4>(
-          "sglab_acc4",
-          "sglab: tokuyoshi2024 lerp factor + (1-c^2)e^{-z^2}(b0 + b1 z^2 + b2 z^4 + b3 z^6), b_j "
-          "= u(1-u)^3 P_j(u), P_j of degree 6, t(kappa) rational of order 3",
-          "sglab_acc_acc4", ValidRange{.max_peak_rel = 4.8e-6}));
+          {.id = "sglab_acc4",
+           .origin = Origin::sglab,
+           .source = "docs/models.md#sglab_acc1--sglab_acc4",
+           .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
+                      "ends, N = 4, D = 6, steepness of order M = 3",
+           .form = "sglab_acc3 + b3(κ)z⁶, P_j of degree 6, t(κ) rational of order 3",
+           .constants = "sglab_acc_acc4",
+           .valid = {.max_peak_rel = 4.8e-6}}));
 }
 
 namespace detail {
@@ -333,32 +409,45 @@ inline constexpr auto irradiance_methods = with_irradiance_methods(detail::Colle
 
 // Approximate hemispherical integrals H̃(c, κ) (`erf2022` [Tokuyoshi2022], `meder2018` [Meder2018]).
 inline constexpr Method hemispherical_methods[] = {
-    detail::make_method("erf2022", "[Tokuyoshi2022] Eq. 5/6, Listing 3, std::erf",
-                        "steepness2022_published", kNoStatedBound,
+    detail::make_method({.id = "erf2022",
+                         .source = "[Tokuyoshi2022] Eq. 5-6, Listing 3",
+                         .summary = "erf-based hemispherical integral, std::erf",
+                         .constants = "steepness2022_published"},
                         [](auto c, auto k) { return hemispherical_erf2022(c, k); }),
-    detail::make_method("erf2022_listing5", "[Tokuyoshi2022] Eq. 5/6 with the Listing 5 erf",
-                        "steepness2022_published, erf_listing5_published", kNoStatedBound,
+    detail::make_method({.id = "erf2022_listing5",
+                         .source = "[Tokuyoshi2022] Eq. 5-6, Listings 3 and 5",
+                         .summary = "erf2022 with the Listing 5 erf",
+                         .constants = "steepness2022_published, erf_listing5_published"},
                         [](auto c, auto k) {
                           return hemispherical_erf2022(c, k, constants::steepness2022_published,
                                                        ErfListing5{});
                         }),
-    detail::make_method("meder2018", "[Meder2018] logistic normalized hemispherical integral",
-                        "meder2018_published", kNoStatedBound,
+    detail::make_method({.id = "meder2018",
+                         .source = "[Meder2018]",
+                         .summary = "logistic normalized hemispherical integral",
+                         .constants = "meder2018_published"},
                         [](auto c, auto k) { return hemispherical_meder2018(c, k); }),
 };
 
 // Normalized hemispherical integrals s̃(c, κ) matching hemispherical_methods.
 inline constexpr Method normalized_methods[] = {
-    detail::make_method("erf2022", "[Tokuyoshi2022] Eq. 5/6, std::erf", "steepness2022_published",
-                        kNoStatedBound, [](auto c, auto k) { return normalized_erf2022(c, k); }),
-    detail::make_method("erf2022_listing5", "[Tokuyoshi2022] Eq. 5/6 with the Listing 5 erf",
-                        "steepness2022_published, erf_listing5_published", kNoStatedBound,
+    detail::make_method({.id = "erf2022",
+                         .source = "[Tokuyoshi2022] Eq. 5-6, Listing 3",
+                         .summary = "erf-based normalized hemispherical integral, std::erf",
+                         .constants = "steepness2022_published"},
+                        [](auto c, auto k) { return normalized_erf2022(c, k); }),
+    detail::make_method({.id = "erf2022_listing5",
+                         .source = "[Tokuyoshi2022] Eq. 5-6, Listings 3 and 5",
+                         .summary = "erf2022 with the Listing 5 erf",
+                         .constants = "steepness2022_published, erf_listing5_published"},
                         [](auto c, auto k) {
                           return normalized_erf2022(c, k, constants::steepness2022_published,
                                                     ErfListing5{});
                         }),
-    detail::make_method("meder2018", "[Meder2018] logistic normalized hemispherical integral",
-                        "meder2018_published", kNoStatedBound,
+    detail::make_method({.id = "meder2018",
+                         .source = "[Meder2018]",
+                         .summary = "logistic normalized hemispherical integral",
+                         .constants = "meder2018_published"},
                         [](auto c, auto k) { return normalized_meder2018(c, k); }),
 };
 

@@ -1,33 +1,8 @@
-// sglab/sglab_mid.hpp — sglab's middle irradiance model `sglab_mid`, between
-// sglab_fast (cheaper, 10× the error) and the tokuyoshi2024 family:
-//
+// sglab/sglab_mid.hpp — sglab's model `sglab_mid`:
 //   Ê(c, κ) = E(1, κ) · max(0, A + B (c + √(c² + e^{S − V c²})) + D c²),
-//
-// the exact upper-pole irradiance E(1, κ) = 2π(κ − 1 + e^{−κ})/κ² (one exp)
-// times a normalized shape. c + √(c² + ε) is a smoothed 2 max(c, 0) whose
-// width √ε = e^{(S − V c²)/2} varies with the cosine; the odd part of the
-// shape is B c, as the odd part of the exact E(c, κ) is linear in c, and
-// A + D c² and B √(…) carry the even part. A, B, D, S, V are rational in κ over
-// one shared monic quartic denominator (SglabMidParams), except that V = κ·Pv/Q
-// (it grows like κ/2 for a sharp light) and S = Ps/Q − ln(1 + κ) (the width
-// e^{S/2} shrinks like 1/√κ), so the whole κ dependence costs one exp, one log,
-// two divisions and six Horner steps of degree 4, all of it once per light
-// (SglabMidLight); a shading point then pays one exp, one square root and a
-// few multiply-adds. Fitted by `sglab fit sglab-mid`
-// (fit/sglab_mid.cpp): minimax of peak_rel over a training grid of κ ∈ [1e−3, 1e4].
-// Its measured errors (standard and held-out grids, float and double, the
-// family's per-κ floor) and costs are in data/results/sglab_mid.md, regenerated
-// by scripts/results.sh.
-//
-// Beyond the fitted range: the rational functions are evaluated at
-// κ̃ = min(κ, kappa_max), but the two factors that carry the scale of a sharp
-// light, κ in V and −ln(1 + κ) in S, take κ itself. As κ → ∞ the exact shape
-// E(c, κ)/E(1, κ) tends to c Φ(c√κ) + φ(c√κ)/√κ (Φ, φ the normal distribution
-// and density; docs/quantities.md), a function of c√κ scaled by 1/√κ, and with
-// V ∝ κ and e^{S/2} ∝ 1/√κ the smoothed max narrows the same way, so the error
-// at kappa_max carries over to every larger κ: `sglab range` measures it to
-// κ = FLT_MAX (data/results/kappa_range.md) and tests/test_kappa_range.cpp
-// holds it to the bound of the registry.
+// the exact E(1, κ) times a smoothed max(c, 0) of varying width; A, B, D rational in κ,
+// S = Ps/Q − ln(1 + κ), V = κ Pv/Q (SglabMidParams). Why κ itself in S and V keeps the
+// error bounded to κ = FLT_MAX, the fit, error and cost: docs/models.md#sglab_mid.
 //
 // Never NaN for finite κ ≥ 0 and c ∈ [−1, 1]: E(1, κ) is formed as in
 // sglab_fast (no κ², a Taylor series below κ = ¼); Q(κ̃) ≥ kappa_max⁴ is

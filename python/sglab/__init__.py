@@ -6,7 +6,7 @@ through the runtime's own templates), the quadrature reference engine, the
 shader export and environment maps (``sglab.envmap``). ``sglab.torch`` wraps
 the methods as a PyTorch autograd function. Bad input raises
 ``sglab.InputError`` (a ``ValueError``) with the message of the ``sglab``
-command. See README.md, "Python".
+command. See docs/python.md.
 """
 
 import numpy as _np

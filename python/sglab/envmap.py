@@ -1,5 +1,5 @@
-"""HDR environment maps as SG lighting, as `sglab envmap` (README,
-"Environment maps"): equirectangular maps, +z up, row 0 at the zenith, column
+"""HDR environment maps as SG lighting, as `sglab envmap`
+(docs/envmaps.md): equirectangular maps, +z up, row 0 at the zenith, column
 i at azimuth 2*pi*(i + 1/2)/W, direction (sin t cos p, -sin t sin p, cos t)."""
 
 import os as _os

@@ -28,7 +28,7 @@ def test_irradiance_equals_the_cli():
 
 def test_constant_map_gives_pi_times_the_radiance():
     # E(n) = L * integral of max(w.n, 0) dw = pi L for a constant map
-    # (README: within 8.4e-7 relative at 128 x 64).
+    # (docs/envmaps.md: within 8.4e-7 relative at 128 x 64).
     rgb = np.broadcast_to(np.array([0.5, 1.0, 2.0], dtype=np.float32), (64, 128, 3))
     normals = np.array([[0, 0, 1], [1, 0, 0], [0.3, -0.4, 0.2], [0, 0, -1]])
     e = sglab.envmap.irradiance(rgb, normals)
