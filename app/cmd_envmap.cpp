@@ -29,8 +29,10 @@
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
 #include "envmap/envmap.hpp"
+#include "envmap/probe.hpp"
 #include "report/envmap_report.hpp"
 #include "report/pareto.hpp"
+#include "report/probes_report.hpp"
 
 namespace sglab::app {
 
@@ -101,7 +103,7 @@ struct RecommendArgs {
 
 struct BaselinesArgs {
   std::string maps, out;
-  bool quick = false;
+  bool quick = false, probes = false;
 };
 
 void run_fit(const FitArgs& a, const std::string& command) {
@@ -114,20 +116,26 @@ void run_fit(const FitArgs& a, const std::string& command) {
   options.lobes = a.lobes;
   options.objective = objective;
   const auto fit_normals = validate::fibonacci_normals(options.fit_normals);
-  const auto eval_normals = validate::fibonacci_normals(a.normals);
   envmap::check_lobe_count(work, a.lobes);
   io::Progress progress(fmt::format("envmap fit {}", a.file), 0);
   progress.note("exact irradiance of the map");
   const auto exact_fit = envmap::irradiance(map, fit_normals);
-  const auto exact_eval = envmap::irradiance(map, eval_normals);
   progress.note("baseline and fit");
   const auto baseline = envmap::fit_baseline(work, a.lobes);
   const envmap::FitReport report = envmap::fit(work, exact_fit, options);
-  progress.note("errors (reference engine)");
-  const auto e_base =
-      envmap::irradiance_error(envmap::lobes_irradiance_exact(baseline, eval_normals), exact_eval);
-  const auto e_fit = envmap::irradiance_error(
-      envmap::lobes_irradiance_exact(report.lobes, eval_normals), exact_eval);
+  progress.note("dense errors on the full map");
+  const envmap::MapIrradiance field(map);
+  const envmap::DenseTruth truth =
+      envmap::dense_truth(field, std::max(a.normals, envmap::kDenseNormals));
+  const auto dense = [&](const std::vector<envmap::Lobe>& lobes) {
+    envmap::Probe p;
+    p.kind = envmap::ProbeKind::lobes;
+    p.lobes = lobes;
+    const envmap::DenseError e = envmap::dense_error(truth, envmap::probe_irradiance(p));
+    return envmap::ErrorStats{e.max_rel, e.rms_rel};
+  };
+  const auto e_base = dense(baseline);
+  const auto e_fit = dense(report.lobes);
   progress.finish();
 
   json prov;
@@ -137,10 +145,11 @@ void run_fit(const FitArgs& a, const std::string& command) {
   prov["lobes"] = a.lobes;
   prov["objective"] = a.objective;
   prov["fit_normals"] = options.fit_normals;
-  prov["error_normals"] = a.normals;
+  prov["error_normals"] = truth.normals.size();
   prov["irradiance_error"] =
-      "max and RMS over Fibonacci normals and RGB of |E_lobes - E_map| / max E_map; E_lobes exact "
-      "(reference engine), E_map every pixel with its solid angle";
+      "max over Fibonacci normals and a local maximization from the 8 worst, RMS over the "
+      "normals, RGB, of |E_lobes - E_map| / max E_map; E_lobes exact (irradiance table), E_map "
+      "every pixel of the full map with its solid angle";
   prov["max_rel"] = e_fit.max_rel;
   prov["rms_rel"] = e_fit.rms_rel;
   prov["baseline_max_rel"] = e_base.max_rel;
@@ -162,8 +171,9 @@ void run_fit(const FitArgs& a, const std::string& command) {
         report.iterations, report.converged ? ", converged" : ", stopped before convergence");
     print_lobes(report.lobes);
     fmt::print(
-        "irradiance error at {} Fibonacci normals (|E_lobes − E_map| / max E_map, lobes exact):\n",
-        a.normals);
+        "irradiance error at {} Fibonacci normals + local search (|E_lobes − E_map| / max E_map, "
+        "full map, lobes exact):\n",
+        truth.normals.size());
     fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", "BakingLab baseline (fixed axes, NNLS)",
                e_base.max_rel, e_base.rms_rel);
     fmt::print("  {:<34} max {:.4g}  RMS {:.4g}\n", fmt::format("sglab fit ({})", a.objective),
@@ -321,7 +331,9 @@ void add_envmap_command(CLI::App& app) {
         ->required()
         ->check(count_in(0, 1 << 20));
     cmd->add_option("--objective", a->objective, "radiance or irradiance")->capture_default_str();
-    cmd->add_option("--normals", a->normals, "Fibonacci normals the error is measured at")
+    cmd->add_option("--normals", a->normals,
+                    "Fibonacci normals the error is measured at (at least 20000, then a local "
+                    "search from the worst)")
         ->check(count_in(1, 100000))
         ->capture_default_str();
     cmd->add_option("--out", a->out, "scene JSON for `sglab recommend --scene`, with provenance")
@@ -360,8 +372,17 @@ void add_envmap_command(CLI::App& app) {
         ->check(non_empty_path());
     cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")
         ->check(non_empty_path());
-    cmd->add_flag("--quick", a->quick, "12 lobes only, no curves or figures");
-    cmd->callback([a] { report::run_envmap_baselines(a->maps, a->out, a->quick); });
+    cmd->add_flag("--quick", a->quick,
+                  "12 lobes only, no curves or figures (--probes: every third map at 27 floats)");
+    cmd->add_flag("--probes", a->probes,
+                  "the probe table instead (probes.md: SH, ZH3, SG lobes, SH + lobes at 15, 27, "
+                  "48, 75 floats on the full maps; default maps: blender-data's when installed)");
+    cmd->callback([a] {
+      if (a->probes)
+        report::run_probe_table(a->maps, a->out, a->quick);
+      else
+        report::run_envmap_baselines(a->maps, a->out, a->quick);
+    });
   }
 }
 

@@ -426,8 +426,8 @@ std::vector<Step> run_steps(const fs::path& root, Form form, bool bench_skipped)
       {"pareto", pareto, "pareto"},
       {"pareto-cpu", pareto_cpu, "pareto-cpu"},
       {"figures", figures, "figures"},
-      // The committed maps (data/envmaps): BakingLab baseline against sglab's fits.
-      {"envmap", {"envmap", "baselines", "--out", in("envmap")}, "envmap"},
+      // Probes (SH, ZH3, SG lobes, SH + lobes) on the full maps when blender-data is installed.
+      {"envmap", {"envmap", "baselines", "--probes", "--out", in("envmap")}, "envmap"},
   };
   // The smaller forms: the arguments they drop and add, and what they leave
   // out of the full work. A sample serves the runs of its form and of the
@@ -451,7 +451,11 @@ std::vector<Step> run_steps(const fs::path& root, Form form, bool bench_skipped)
        {"--repetitions", "3", "--min-time", "0.01"},
        "the median of 3 repetitions of 0.01 s per case instead of 5 of 0.05 s: the same "
        "cases, noisier timings"},
-      {"envmap", Form::quick, {}, {"--quick"}, "12 lobes only, no curves or figures"},
+      {"envmap",
+       Form::representative,
+       {},
+       {"--quick"},
+       "every third map at 27 floats instead of every map at 15, 27, 48 and 75 floats"},
   };
   for (Step& step : steps) {
     const auto sample = std::find_if(samples.begin(), samples.end(), [&](const Sample& x) {

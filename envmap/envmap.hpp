@@ -102,6 +102,36 @@ Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j);
 inline constexpr std::size_t kHorizonSubdivision = 16;
 std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals);
 
+// The same exact irradiance at any normal, one normal at a time (the dense
+// error's local search asks for normals it chooses). Pixels are grouped in
+// kTile × kTile tiles: a tile wholly above n's horizon contributes
+// n · Σ_p L_p m_p (its moments summed once, per channel), one wholly below
+// nothing, and only the tiles the horizon cuts are visited pixel by pixel,
+// as irradiance() above does — the same sum, in another order. Keeps a
+// reference to `map`.
+class MapIrradiance {
+ public:
+  static constexpr std::size_t kTile = 8;
+  explicit MapIrradiance(const Map& map);
+  Vec3 at(const Vec3& normal) const;
+  std::vector<Vec3> at(const std::vector<Vec3>& normals) const;  // in parallel (TBB)
+
+ private:
+  struct Tile {
+    std::size_t i0, j0, i1, j1;  // pixel columns [i0, i1), rows [j0, j1)
+    Vec3 centre;                 // unit
+    double sin_rho;              // every pixel of the tile is within ρ of the centre
+    std::array<Vec3, 3> moment;  // per channel, Σ_p L_p m_p
+  };
+  double pixel_weight(const Vec3& n, std::size_t i, std::size_t j) const;
+  const Map& map_;
+  std::vector<Tile> tiles_;
+  double sin_rho_pixel_ = 0;
+  std::vector<double> sin_t_, cos_t_, s2_, sc_, cos_p_, sin_p_, dsin_, dcos_;  // per row / column
+  std::vector<double> sub_s2_, sub_sc_, sub_dsin_, sub_dcos_;  // per sub-row / column
+  double sub_dphi_ = 0, dphi_ = 0;
+};
+
 // ---- SG fits ------------------------------------------------------------------
 
 struct Lobe {

@@ -2,6 +2,7 @@
 // BakingLab fixed-axis NNLS baseline, the joint radiance fit and the joint
 // irradiance fit (envmap.hpp).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -13,6 +14,7 @@
 #include <sglab/registry.hpp>
 
 #include "envmap/envmap.hpp"
+#include "envmap/probe.hpp"
 
 namespace sglab::envmap {
 
@@ -111,7 +113,9 @@ class RowCost final : public ceres::CostFunction {
 };
 
 // The SG irradiance Ê(c, κ) of a unit-amplitude lobe (sglab_acc3, double) and
-// its partial derivatives by central differences.
+// its partial derivatives: the registry's own template instantiated with a
+// Ceres Jet of two partials (forward-mode automatic differentiation), so the
+// derivatives are those of the code that computes Ê, branches included.
 const Method& accurate_method() {
   static const Method* m = find_method(irradiance_methods, "sglab_acc3");
   if (!m) throw std::logic_error("sglab_acc3 is not registered");
@@ -122,32 +126,62 @@ struct IrrValue {
   double e, de_dc, de_dk;
 };
 
+using Gradient = void (*)(double c, double kappa, double* de_dc, double* de_dk);
+
+template <class F>
+void gradient_of(double c, double kappa, double* de_dc, double* de_dk) {
+  using Jet = ceres::Jet<double, 2>;
+  const Jet e = F{}(Jet(c, 0), Jet(kappa, 1));
+  *de_dc = e.v[0];
+  *de_dk = e.v[1];
+}
+
+struct CollectGradients {
+  template <class... M>
+  constexpr std::array<Gradient, sizeof...(M)> operator()(const M&...) const {
+    return {&gradient_of<typename M::Functor>...};
+  }
+};
+
+Gradient accurate_gradient() {
+  static constexpr auto kGradients = with_irradiance_methods(CollectGradients{});
+  static const Gradient g = [] {
+    for (std::size_t i = 0; i < std::size(irradiance_methods); ++i)
+      if (irradiance_methods[i].id == "sglab_acc3") return kGradients[i];
+    throw std::logic_error("sglab_acc3 is not registered");
+  }();
+  return g;
+}
+
 IrrValue sg_irradiance_d(double c, double kappa) {
-  const Method& m = accurate_method();
   c = std::clamp(c, -1.0, 1.0);
-  const double hc = 1e-5;
-  const double c0 = std::max(-1.0, c - hc), c1 = std::min(1.0, c + hc);
-  const double hk = 1e-5 * kappa + 1e-9;
   IrrValue v;
-  v.e = m.f64(c, kappa);
-  v.de_dc = (m.f64(c1, kappa) - m.f64(c0, kappa)) / (c1 - c0);
-  v.de_dk = (m.f64(c, kappa + hk) - m.f64(c, std::max(0.0, kappa - hk))) /
-            (kappa + hk - std::max(0.0, kappa - hk));
+  v.e = accurate_method().f64(c, kappa);
+  accurate_gradient()(c, kappa, &v.de_dc, &v.de_dk);
   return v;
 }
 
-// Irradiance residuals of a chunk of normals: (Σ_k a_k Ê(a_k·n, κ_k) − E(n)) / π.
+// Irradiance residuals of a chunk of normals:
+// (Σ_k a_k Ê(a_k·n, κ_k) [+ Σ_lm c_lm Y_lm(n)] − E(n)) / π, the SH block (order
+// sh_order ≥ 0, 3 per coefficient) after the lobes' blocks.
 class NormalsCost final : public ceres::CostFunction {
  public:
   NormalsCost(const std::vector<Vec3>& normals, const std::vector<Vec3>& target, std::size_t first,
-              std::size_t count, std::size_t lobes)
-      : normals_(normals), target_(target), first_(first), count_(count), lobes_(lobes) {
+              std::size_t count, std::size_t lobes, int sh_order = -1)
+      : normals_(normals),
+        target_(target),
+        first_(first),
+        count_(count),
+        lobes_(lobes),
+        sh_order_(sh_order) {
     set_num_residuals(static_cast<int>(3 * count));
     for (std::size_t k = 0; k < lobes; ++k) {
       mutable_parameter_block_sizes()->push_back(3);
       mutable_parameter_block_sizes()->push_back(1);
       mutable_parameter_block_sizes()->push_back(3);
     }
+    if (sh_order >= 0)
+      mutable_parameter_block_sizes()->push_back(static_cast<int>(3 * sh_count(sh_order)));
   }
   bool Evaluate(double const* const* p, double* r, double** jac) const override {
     const double inv_pi = 1 / M_PI;
@@ -174,6 +208,22 @@ class NormalsCost final : public ceres::CostFunction {
         }
       }
     }
+    if (sh_order_ >= 0) {
+      const std::size_t K = sh_count(sh_order_);
+      const double* c = p[3 * lobes_];
+      double* J = jac ? jac[3 * lobes_] : nullptr;
+      if (J) std::fill(J, J + 3 * count_ * 3 * K, 0.0);
+      std::array<double, sh_count(kMaxShOrder)> y{};
+      for (std::size_t m = 0; m < count_; ++m) {
+        const Vec3& n = normals_[first_ + m];
+        sh_basis(sh_order_, n[0], n[1], n[2], y.data());
+        for (std::size_t q = 0; q < K; ++q)
+          for (std::size_t ch = 0; ch < 3; ++ch) {
+            r[3 * m + ch] += c[3 * q + ch] * y[q] * inv_pi;
+            if (J) J[(3 * m + ch) * 3 * K + 3 * q + ch] = y[q] * inv_pi;
+          }
+      }
+    }
     return true;
   }
 
@@ -181,6 +231,7 @@ class NormalsCost final : public ceres::CostFunction {
   const std::vector<Vec3>& normals_;
   const std::vector<Vec3>& target_;
   std::size_t first_, count_, lobes_;
+  int sh_order_;
 };
 
 // The sharpest lobe: standard deviation 1/√κ no smaller than one pixel
@@ -287,6 +338,81 @@ std::vector<Lobe> lobes_of(const Params& p, double scale) {
   return out;
 }
 
+// Every parameter of p (and the SH block `sh`, 3 per coefficient of order 2,
+// when given) jointly on the irradiance at the normals.
+SolveOutcome refine_irradiance(Params& p, std::vector<double>* sh, const std::vector<Vec3>& normals,
+                               const std::vector<Vec3>& target, double kmax, int max_iterations) {
+  ceres::Problem problem;
+  std::vector<double*> blocks;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    blocks.push_back(p.axis[k].data());
+    blocks.push_back(&p.kappa[k]);
+    blocks.push_back(p.amp[k].data());
+  }
+  if (sh) blocks.push_back(sh->data());
+  const std::size_t chunk = 64;
+  for (std::size_t m = 0; m < normals.size(); m += chunk)
+    problem.AddResidualBlock(
+        new NormalsCost(normals, target, m, std::min(chunk, normals.size() - m), p.size(),
+                        sh ? 2 : -1),
+        nullptr, blocks);
+  configure(problem, p, kmax, false);
+  return solve(problem, max_iterations);
+}
+
+Params params_of(const std::vector<Lobe>& lobes, double scale) {
+  Params p;
+  for (const Lobe& l : lobes) {
+    p.axis.push_back({l.axis[0], l.axis[1], l.axis[2]});
+    p.kappa.push_back(l.sharpness);
+    p.amp.push_back({l.amplitude[0] / scale, l.amplitude[1] / scale, l.amplitude[2] / scale});
+  }
+  return p;
+}
+
+// The irradiance's scale: its mean over the normals divided by π (the mean radiance).
+double irradiance_scale(const std::vector<Vec3>& exact) {
+  double total = 0;
+  for (const Vec3& e : exact) total += e[0] + e[1] + e[2];
+  const double s = total / (3 * M_PI * static_cast<double>(std::max<std::size_t>(exact.size(), 1)));
+  return s > 0 ? s : 1;
+}
+
+// The best new lobe for a probe whose irradiance at the normals is `current`:
+// at the normal where E_map − E_probe (luminance) is largest, κ = 16, its
+// amplitude the residual there divided by Ê(1, 16).
+Lobe new_lobe(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact,
+              const std::vector<Vec3>& current) {
+  std::size_t arg = 0;
+  double best = -HUGE_VAL;
+  for (std::size_t m = 0; m < normals.size(); ++m) {
+    double r = 0;
+    for (std::size_t ch = 0; ch < 3; ++ch) r += kLuminance[ch] * (exact[m][ch] - current[m][ch]);
+    if (r > best) {
+      best = r;
+      arg = m;
+    }
+  }
+  const double kappa = 16, peak = accurate_method().f64(1.0, kappa);
+  Lobe l;
+  l.axis = normals[arg];
+  l.sharpness = kappa;
+  for (std::size_t ch = 0; ch < 3; ++ch)
+    l.amplitude[ch] = std::max(1e-6, exact[arg][ch] - current[arg][ch]) / peak;
+  return l;
+}
+
+std::vector<Vec3> evaluate(const Probe& probe, const std::vector<Vec3>& normals) {
+  const IrradianceFn f = probe_irradiance(probe);
+  std::vector<Vec3> out;
+  for (const Vec3& n : normals) out.push_back(f(n));
+  return out;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 }  // namespace
 
 void check_lobe_count(const Map& work, std::size_t lobes) {
@@ -325,6 +451,13 @@ std::vector<Lobe> fit_baseline(const Map& work, std::size_t lobes) {
 
 FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
               const FitOptions& options) {
+  return fit_with_normals(work, validate::fibonacci_normals(options.fit_normals),
+                          exact_at_fit_normals, options);
+}
+
+FitReport fit_with_normals(const Map& work, const std::vector<Vec3>& normals,
+                           const std::vector<Vec3>& exact_at_fit_normals,
+                           const FitOptions& options) {
   check_lobe_count(work, options.lobes);
   const Samples s = samples_of(work);
   const double kmax = kappa_max(s);
@@ -348,26 +481,13 @@ FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
   for (auto& a : p.amp)
     for (double& x : a) x *= rs.scale / s.scale;  // the same units as the working copy's
   if (options.objective == Objective::irradiance) {
-    const std::vector<Vec3> normals = validate::fibonacci_normals(options.fit_normals);
     if (exact_at_fit_normals.size() != normals.size())
       throw std::logic_error("envmap::fit: the exact irradiance is not given at the fit normals");
     std::vector<Vec3> target(normals.size());
     for (std::size_t m = 0; m < normals.size(); ++m)
       for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact_at_fit_normals[m][ch] / s.scale;
-    ceres::Problem problem;
-    std::vector<double*> blocks;
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      blocks.push_back(p.axis[k].data());
-      blocks.push_back(&p.kappa[k]);
-      blocks.push_back(p.amp[k].data());
-    }
-    const std::size_t chunk = 64;
-    for (std::size_t m = 0; m < normals.size(); m += chunk)
-      problem.AddResidualBlock(
-          new NormalsCost(normals, target, m, std::min(chunk, normals.size() - m), p.size()),
-          nullptr, blocks);
-    configure(problem, p, kmax, false);
-    const SolveOutcome o = solve(problem, options.max_iterations);
+    const SolveOutcome o =
+        refine_irradiance(p, nullptr, normals, target, kmax, options.max_iterations);
     report.iterations += o.iterations;
     report.converged = o.converged;
   }
@@ -409,6 +529,133 @@ Map reconstruct(const std::vector<Lobe>& lobes, std::size_t width, std::size_t h
       }
     }
   return m;
+}
+
+std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
+                                        const std::vector<Vec3>& exact, std::size_t max_lobes,
+                                        const Judge& judge, int max_iterations) {
+  check_lobe_count(work, max_lobes);
+  const double scale = irradiance_scale(exact);
+  const double kmax = kappa_max(samples_of(work));
+  std::vector<Vec3> target(exact.size());
+  for (std::size_t m = 0; m < exact.size(); ++m)
+    for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact[m][ch] / scale;
+  std::vector<LadderStep> ladder;
+  for (std::size_t n = 1; n <= max_lobes; ++n) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<LadderStep> candidates;
+    // A fresh fit: radiance stage, then the irradiance.
+    FitOptions o;
+    o.lobes = n;
+    o.objective = Objective::irradiance;
+    o.max_iterations = max_iterations;
+    {
+      LadderStep c;
+      c.probe.kind = ProbeKind::lobes;
+      c.probe.fit = "fit";
+      c.probe.lobes = fit_with_normals(work, fit_normals, exact, o).lobes;
+      c.start = "fresh";
+      candidates.push_back(c);
+    }
+    if (!ladder.empty()) {
+      // Warm: the (n − 1)-lobe solution plus the best new lobe, then every parameter.
+      const Probe& prev = ladder.back().probe;
+      std::vector<Lobe> lobes = prev.lobes;
+      lobes.push_back(new_lobe(fit_normals, exact, evaluate(prev, fit_normals)));
+      Params p = params_of(lobes, scale);
+      refine_irradiance(p, nullptr, fit_normals, target, kmax, max_iterations);
+      LadderStep c;
+      c.probe.kind = ProbeKind::lobes;
+      c.probe.fit = "fit";
+      c.probe.lobes = lobes_of(p, scale);
+      c.start = "warm";
+      candidates.push_back(c);
+      // The (n − 1)-lobe solution with a lobe of zero amplitude: never worse than n − 1.
+      LadderStep keep = ladder.back();
+      Lobe zero = keep.probe.lobes.back();
+      zero.amplitude = {0, 0, 0};
+      keep.probe.lobes.push_back(zero);
+      keep.start = "kept n-1";
+      candidates.push_back(keep);
+    }
+    for (auto& c : candidates) c.judged = judge(c.probe);
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < candidates.size(); ++k)
+      if (candidates[k].judged < candidates[best].judged) best = k;
+    ladder.push_back(candidates[best]);
+    ladder.back().seconds = seconds_since(t0);
+  }
+  return ladder;
+}
+
+std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
+                                          const std::vector<Vec3>& exact,
+                                          const std::vector<LadderStep>& lobe_ladder,
+                                          std::size_t max_lobes, const Judge& judge,
+                                          int max_iterations) {
+  const double scale = irradiance_scale(exact);
+  const double kmax = kappa_max(samples_of(work));
+  std::vector<Vec3> target(exact.size());
+  for (std::size_t m = 0; m < exact.size(); ++m)
+    for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact[m][ch] / scale;
+  const Probe sh_fit = fit_sh(fit_normals, exact, 2);
+  // The SH block of lobes plus SH fitted to what the lobes leave, then all jointly.
+  const auto joint = [&](std::vector<Lobe> lobes, const std::string& start) {
+    Probe only;
+    only.kind = ProbeKind::lobes;
+    only.lobes = lobes;
+    const auto e = evaluate(only, fit_normals);
+    std::vector<Vec3> rest(exact.size());
+    for (std::size_t m = 0; m < exact.size(); ++m)
+      for (std::size_t ch = 0; ch < 3; ++ch) rest[m][ch] = exact[m][ch] - e[m][ch];
+    const Probe sh = fit_sh(fit_normals, rest, 2);
+    std::vector<double> block;
+    for (const Vec3& c : sh.sh)
+      for (double x : c) block.push_back(x / scale);
+    Params p = params_of(lobes, scale);
+    refine_irradiance(p, &block, fit_normals, target, kmax, max_iterations);
+    LadderStep c;
+    c.probe.kind = ProbeKind::hybrid;
+    c.probe.order = 2;
+    c.probe.fit = "fit";
+    c.probe.lobes = lobes_of(p, scale);
+    for (std::size_t q = 0; q < sh_count(2); ++q)
+      c.probe.sh.push_back(
+          {block[3 * q] * scale, block[3 * q + 1] * scale, block[3 * q + 2] * scale});
+    c.start = start;
+    return c;
+  };
+  std::vector<LadderStep> ladder;
+  for (std::size_t k = 1; k <= max_lobes; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<LadderStep> candidates;
+    if (k <= lobe_ladder.size())
+      candidates.push_back(joint(lobe_ladder[k - 1].probe.lobes, "lobes"));
+    Probe prev;
+    if (ladder.empty()) {
+      prev = sh_fit;
+      prev.kind = ProbeKind::hybrid;
+    } else {
+      prev = ladder.back().probe;
+    }
+    std::vector<Lobe> lobes = prev.lobes;
+    lobes.push_back(new_lobe(fit_normals, exact, evaluate(prev, fit_normals)));
+    candidates.push_back(joint(lobes, "warm"));
+    LadderStep keep;
+    keep.probe = prev;
+    Lobe zero = new_lobe(fit_normals, exact, evaluate(prev, fit_normals));
+    zero.amplitude = {0, 0, 0};
+    keep.probe.lobes.push_back(zero);
+    keep.start = "kept k-1";
+    candidates.push_back(keep);
+    for (auto& c : candidates) c.judged = judge(c.probe);
+    std::size_t best = 0;
+    for (std::size_t q = 1; q < candidates.size(); ++q)
+      if (candidates[q].judged < candidates[best].judged) best = q;
+    ladder.push_back(candidates[best]);
+    ladder.back().seconds = seconds_since(t0);
+  }
+  return ladder;
 }
 
 }  // namespace sglab::envmap

@@ -372,70 +372,121 @@ Map working_copy(const Map& map, std::size_t max_width) {
   return downsample(map, max_width - max_width % 2);
 }
 
-std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
+MapIrradiance::MapIrradiance(const Map& map) : map_(map) {
   const std::size_t W = map.width, H = map.height, S = kHorizonSubdivision;
   // Per-row and per-column factors of every pixel's centre and moment (memory
   // O(W + H) beside the map, whatever its size).
-  std::vector<RowGeometry> rows(H);
-  std::vector<ColumnGeometry> columns(W);
-  for (std::size_t j = 0; j < H; ++j) rows[j] = row_geometry(map, j);
-  for (std::size_t i = 0; i < W; ++i) columns[i] = column_geometry(map, i);
+  for (std::size_t j = 0; j < H; ++j) {
+    const RowGeometry r = row_geometry(map, j);
+    sin_t_.push_back(r.sin_theta);
+    cos_t_.push_back(r.cos_theta);
+    s2_.push_back(r.s2);
+    sc_.push_back(r.sc);
+  }
+  for (std::size_t i = 0; i < W; ++i) {
+    const ColumnGeometry c = column_geometry(map, i);
+    cos_p_.push_back(c.cos_phi);
+    sin_p_.push_back(c.sin_phi);
+    dsin_.push_back(c.dsin);
+    dcos_.push_back(c.dcos);
+  }
+  dphi_ = 2 * M_PI / static_cast<double>(W);
   // A pixel lies within ρ = Δθ/2 + Δφ/2 of its centre ω_c (along the meridian,
   // then along the parallel, whose arc is at least the great circle's), so
   // n·ω > 0 on all of it when n·ω_c > sin ρ and n·ω < 0 when n·ω_c < −sin ρ.
-  const double sin_rho =
-      std::sin(M_PI / (2 * static_cast<double>(H)) + M_PI / static_cast<double>(W));
-  // The pixels between: S × S sub-pixels, each with its own moment
-  // (the closed form of pixel_moment, from per-sub-row and per-sub-column factors).
-  std::vector<double> s2(H * S), sc(H * S), dsin(W * S), dcos(W * S);
+  sin_rho_pixel_ = std::sin(M_PI / (2 * static_cast<double>(H)) + M_PI / static_cast<double>(W));
+  // The pixels between: S × S sub-pixels, each with its own moment (the
+  // closed form of pixel_moment, from per-sub-row and per-sub-column factors).
   for (std::size_t r = 0; r < H * S; ++r) {
     const double t0 = M_PI * static_cast<double>(r) / static_cast<double>(H * S);
     const double t1 = M_PI * static_cast<double>(r + 1) / static_cast<double>(H * S);
-    s2[r] = (t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4;
-    sc[r] = (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;
+    sub_s2_.push_back((t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4);
+    sub_sc_.push_back((std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2);
   }
   for (std::size_t c = 0; c < W * S; ++c) {
     const double p0 = 2 * M_PI * static_cast<double>(c) / static_cast<double>(W * S);
     const double p1 = 2 * M_PI * static_cast<double>(c + 1) / static_cast<double>(W * S);
-    dsin[c] = std::sin(p1) - std::sin(p0);
-    dcos[c] = std::cos(p1) - std::cos(p0);
+    sub_dsin_.push_back(std::sin(p1) - std::sin(p0));
+    sub_dcos_.push_back(std::cos(p1) - std::cos(p0));
   }
-  const double dphi_sub = 2 * M_PI / static_cast<double>(W * S);
-  std::vector<Vec3> out(normals.size());
-  tbb::parallel_for(std::size_t{0}, normals.size(), [&](std::size_t k) {
-    const Vec3& nv = normals[k];
-    double r = 0, g = 0, b = 0;
-    for (std::size_t j = 0; j < H; ++j)
-      for (std::size_t i = 0; i < W; ++i) {
-        const std::size_t p = j * W + i;
-        const Vec3 c = direction(rows[j], columns[i]);
-        const double nc = nv[0] * c[0] + nv[1] * c[1] + nv[2] * c[2];
-        double w;
-        if (nc >= sin_rho) {
-          const Vec3 m = moment(rows[j], columns[i]);
-          w = nv[0] * m[0] + nv[1] * m[1] + nv[2] * m[2];
-        } else if (nc <= -sin_rho) {
-          continue;
-        } else {
-          w = 0;
-          for (std::size_t a = 0; a < S; ++a) {
-            const std::size_t row = j * S + a;
-            for (std::size_t bb = 0; bb < S; ++bb) {
-              const std::size_t col = i * S + bb;
-              const double x = nv[0] * s2[row] * dsin[col] + nv[1] * s2[row] * dcos[col] +
-                               nv[2] * sc[row] * dphi_sub;
-              if (x > 0) w += x;
-            }
-          }
+  sub_dphi_ = 2 * M_PI / static_cast<double>(W * S);
+  // Tiles: the same bound with the tile's extent (ρ = Δθ_tile/2 + Δφ_tile/2).
+  for (std::size_t j0 = 0; j0 < H; j0 += kTile)
+    for (std::size_t i0 = 0; i0 < W; i0 += kTile) {
+      Tile t{};
+      t.i0 = i0;
+      t.j0 = j0;
+      t.i1 = std::min(W, i0 + kTile);
+      t.j1 = std::min(H, j0 + kTile);
+      const double th0 = M_PI * static_cast<double>(t.j0) / static_cast<double>(H);
+      const double th1 = M_PI * static_cast<double>(t.j1) / static_cast<double>(H);
+      const double ph0 = 2 * M_PI * static_cast<double>(t.i0) / static_cast<double>(W);
+      const double ph1 = 2 * M_PI * static_cast<double>(t.i1) / static_cast<double>(W);
+      const double th = (th0 + th1) / 2, ph = (ph0 + ph1) / 2;
+      t.centre = {std::sin(th) * std::cos(ph), -std::sin(th) * std::sin(ph), std::cos(th)};
+      t.sin_rho = std::sin(std::min(M_PI / 2, (th1 - th0) / 2 + (ph1 - ph0) / 2));
+      for (std::size_t j = t.j0; j < t.j1; ++j)
+        for (std::size_t i = t.i0; i < t.i1; ++i) {
+          const Vec3 m = {s2_[j] * dsin_[i], s2_[j] * dcos_[i], sc_[j] * dphi_};
+          for (std::size_t ch = 0; ch < 3; ++ch)
+            for (std::size_t d = 0; d < 3; ++d) t.moment[ch][d] += map.at(i, j, ch) * m[d];
         }
+      tiles_.push_back(t);
+    }
+}
+
+double MapIrradiance::pixel_weight(const Vec3& nv, std::size_t i, std::size_t j) const {
+  const double nc = sin_t_[j] * (nv[0] * cos_p_[i] - nv[1] * sin_p_[i]) + nv[2] * cos_t_[j];
+  if (nc >= sin_rho_pixel_)
+    return nv[0] * s2_[j] * dsin_[i] + nv[1] * s2_[j] * dcos_[i] + nv[2] * sc_[j] * dphi_;
+  if (nc <= -sin_rho_pixel_) return 0;
+  const std::size_t S = kHorizonSubdivision;
+  double w = 0;
+  for (std::size_t a = 0; a < S; ++a) {
+    const std::size_t row = j * S + a;
+    for (std::size_t bb = 0; bb < S; ++bb) {
+      const std::size_t col = i * S + bb;
+      const double x = nv[0] * sub_s2_[row] * sub_dsin_[col] +
+                       nv[1] * sub_s2_[row] * sub_dcos_[col] + nv[2] * sub_sc_[row] * sub_dphi_;
+      if (x > 0) w += x;
+    }
+  }
+  return w;
+}
+
+Vec3 MapIrradiance::at(const Vec3& nv) const {
+  double r = 0, g = 0, b = 0;
+  for (const Tile& t : tiles_) {
+    const double nc = nv[0] * t.centre[0] + nv[1] * t.centre[1] + nv[2] * t.centre[2];
+    if (nc <= -t.sin_rho) continue;
+    if (nc >= t.sin_rho) {
+      r += nv[0] * t.moment[0][0] + nv[1] * t.moment[0][1] + nv[2] * t.moment[0][2];
+      g += nv[0] * t.moment[1][0] + nv[1] * t.moment[1][1] + nv[2] * t.moment[1][2];
+      b += nv[0] * t.moment[2][0] + nv[1] * t.moment[2][1] + nv[2] * t.moment[2][2];
+      continue;
+    }
+    for (std::size_t j = t.j0; j < t.j1; ++j)
+      for (std::size_t i = t.i0; i < t.i1; ++i) {
+        const double w = pixel_weight(nv, i, j);
         if (w <= 0) continue;
-        r += w * map.rgb[3 * p];
-        g += w * map.rgb[3 * p + 1];
-        b += w * map.rgb[3 * p + 2];
+        const std::size_t p = j * map_.width + i;
+        r += w * map_.rgb[3 * p];
+        g += w * map_.rgb[3 * p + 1];
+        b += w * map_.rgb[3 * p + 2];
       }
-    out[k] = {r, g, b};
-  });
+  }
+  return {r, g, b};
+}
+
+std::vector<Vec3> MapIrradiance::at(const std::vector<Vec3>& normals) const {
+  std::vector<Vec3> out(normals.size());
+  tbb::parallel_for(std::size_t{0}, normals.size(),
+                    [&](std::size_t k) { out[k] = at(normals[k]); });
   return out;
+}
+
+std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals) {
+  return MapIrradiance(map).at(normals);
 }
 
 ErrorStats irradiance_error(const std::vector<Vec3>& approx, const std::vector<Vec3>& exact) {

@@ -19,7 +19,7 @@
 # Extra arguments go to `sglab run`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/deps.sh jq valgrind
+scripts/deps.sh jq valgrind blender-data
 scripts/build.sh
 cmake --build build --target method_cost -j"$(nproc)"
 
@@ -37,9 +37,10 @@ cp "$run"/claims/claims.md "$run"/erf/erf_summary.md "$results"/
 cp "$run"/stability/{stability.md,findings.md} "$results"/
 cp "$run"/pareto/{pareto.csv,pareto.md} "$results"/
 cp "$run"/figures/[a-g]_*.{png,svg} "$results"/
-cp "$run"/envmap/{envmaps.csv,envmaps.md,envmap_city.png,envmap_curves.png} "$results"/
+cp "$run"/envmap/{probes.md,probes.csv,probes.png} "$results"/  # the probe table, full maps
 
 # 2. What `sglab run` does not make.
+"$sglab" envmap baselines --out "$results"  # envmaps.md: lobe fits against the BakingLab baseline
 "$sglab" gpucost --lang both --precision both --out "$results"  # the gpu section of costs.json, gpu_costs.md
 { # cycles per light over 1, 8 and 64 lights (the 8-light loop is the default figure)
   echo "# GPU cost per light against the number of lights"
