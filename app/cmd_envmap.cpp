@@ -24,6 +24,8 @@
 
 #include <sglab/registry.hpp>
 
+#include <sglab/version.hpp>
+
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
 #include "common/atomic_files.hpp"

@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <sglab/version.hpp>
+
 #include "app/commands.hpp"
 #include "fit/solver_log.hpp"
 

@@ -11,6 +11,8 @@
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
+#include <sglab/version.hpp>
+
 #include "common/args.hpp"
 #include "common/io.hpp"
 #include "fit/constants_schema.hpp"

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sglab/version.hpp>
+
 #include "tests/test_support.hpp"
 
 namespace {
