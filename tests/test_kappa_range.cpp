@@ -23,10 +23,6 @@
 #include "validate/kappa_range.hpp"
 #include "validate/reference.hpp"
 
-namespace sglab {
-void PrintTo(const Method& m, std::ostream* os) { *os << m.id; }
-}  // namespace sglab
-
 namespace {
 
 using sglab::test::hex;

@@ -23,11 +23,6 @@
 #include "tests/tolerances.hpp"
 #include "validate/reference.hpp"
 
-namespace sglab {
-// Test names and failure messages show the method's id.
-void PrintTo(const Method& m, std::ostream* os) { *os << m.id; }
-}  // namespace sglab
-
 namespace {
 
 using sglab::test::find_tolerance;

@@ -12,12 +12,20 @@
 #include <cstdio>
 #include <filesystem>
 #include <initializer_list>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
 #include <fmt/format.h>
+
+#include <sglab/registry.hpp>
+
+namespace sglab {
+// Test names and failure messages show a method's id.
+inline void PrintTo(const Method& m, std::ostream* os) { *os << m.id; }
+}  // namespace sglab
 
 namespace sglab::test {
 
