@@ -26,7 +26,9 @@ struct EnumName {
 
 // An enum with a names_of table.
 template <class E>
-concept NamedEnum = std::is_enum_v<E> && requires { names_of(E{}); };
+concept NamedEnum = std::is_enum_v<E> && requires {
+  names_of(E{});
+};
 
 // The name of `e` in its table ("?" for a value the table lacks).
 template <NamedEnum E>
@@ -66,7 +68,8 @@ std::string one_of(std::initializer_list<E> values = {}) {
 // anything else is bad input: InputError "OPTION: expected a, b or c, got 'TEXT'"
 // (TEXT escaped and shortened, io::quote_escaped).
 template <NamedEnum E>
-E parse_option(std::string_view option, std::string_view text, std::initializer_list<E> allowed = {}) {
+E parse_option(std::string_view option, std::string_view text,
+               std::initializer_list<E> allowed = {}) {
   const auto parsed = parse_enum<E>(text);
   bool ok = parsed.has_value() && allowed.size() == 0;
   for (E v : allowed) ok = ok || (parsed && *parsed == v);
