@@ -14,10 +14,10 @@
 
 #include "app/commands.hpp"
 #include "common/io.hpp"
+#include "cost/cost_table.hpp"
 #include "export/gpu_cost.hpp"
 #include "export/shader_export.hpp"
 #include "fit/constants_io.hpp"
-#include "report/cost_table.hpp"
 
 namespace sglab::app {
 
@@ -109,18 +109,18 @@ constexpr const char* kHeaderFamilies[] = {"navi21", "gfx1100"};
 // change it). Other code (--constants, a stale table): not measured.
 void add_gpu_cost(shader::ExportRequest& req, const shader::ExportResult& exported) {
   for (const char* family : kHeaderFamilies) req.gpu_cost.push_back({family, std::nullopt});
-  const auto path = report::default_cost_table_path();
+  const auto path = cost::default_cost_table_path();
   if (!path) return;
-  const auto table = report::read_existing_cost_table(*path);
+  const auto table = cost::read_existing_cost_table(*path);
   if (!table || !table->gpu) return;
   const std::string hash = shader::gpu::spirv_hash(
       shader::gpu::export_shader(req.method, req.lang, exported, req.precision).spirv);
   for (shader::GpuCost& cost : req.gpu_cost)
-    for (const shader::gpu::Row& row : table->gpu->rows)
+    for (const cost::gpu::Row& row : table->gpu->rows)
       if (row.family == cost.family && row.method == req.method && row.lang == req.lang &&
           row.split == req.split && row.precision == shader::to_string(req.precision) &&
-          row.harness == shader::gpu::Harness::single &&
-          row.compile == shader::gpu::CompilePath::none && row.spirv_hash == hash)
+          row.harness == cost::gpu::Harness::single &&
+          row.compile == cost::gpu::CompilePath::none && row.spirv_hash == hash)
         cost.inverse_throughput = row.stats.inverse_throughput;
   req.gpu_cost_source = fmt::format("{}, data/results/costs.json", table->gpu->driver);
 }

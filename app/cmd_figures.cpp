@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "cost/cost_table.hpp"
 #include "fit/targets.hpp"
-#include "report/cost_table.hpp"
 #include "report/figures.hpp"
 
 namespace sglab::app {
@@ -53,9 +53,9 @@ void add_figures_command(CLI::App& app) {
     opt.pareto.assign(args->pareto.begin(), args->pareto.end());
     opt.gnuplot = args->gnuplot;
     if (!args->costs.empty())
-      opt.gpu = report::read_cost_table(args->costs).gpu;
-    else if (const auto found = report::default_cost_table_path())
-      if (const auto table = report::read_existing_cost_table(*found)) opt.gpu = table->gpu;
+      opt.gpu = cost::read_cost_table(args->costs).gpu;
+    else if (const auto found = cost::default_cost_table_path())
+      if (const auto table = cost::read_existing_cost_table(*found)) opt.gpu = table->gpu;
     opt.optimal_steepness = [](const std::vector<double>& kappas) {
       return fit::optimal_steepness("steepness2022", kappas);
     };

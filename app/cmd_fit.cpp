@@ -20,12 +20,12 @@
 #include "common/args.hpp"
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
+#include "cost/cost_source.hpp"
+#include "cost/cost_table.hpp"
 #include "fit/constants_io.hpp"
 #include "fit/minimax.hpp"
 #include "fit/solver_log.hpp"
 #include "fit/targets.hpp"
-#include "report/cost_source.hpp"
-#include "report/cost_table.hpp"
 #include "report/pareto.hpp"
 
 namespace sglab::app {
@@ -120,22 +120,22 @@ fit::FitSpec make_spec(const FitCliOptions& o, const std::string& target,
 // The costs of the cost table (`sglab bench`, `sglab gpucost`): --costs FILE,
 // else the project's data/results/costs.json when there is one, else none (the
 // report then says so). In the default cost source of `pareto` and `recommend`
-// (report/cost_source.hpp: GPU cycles on navi21, a compiler estimate with no
+// (cost/cost_source.hpp: GPU cycles on navi21, a compiler estimate with no
 // run-to-run noise) when the table has a "gpu" section for it, else CPU batch
 // ns/eval (report::default_float_costs). A malformed table is bad input.
 fit::MethodCosts read_method_costs(const std::string& option) {
   std::filesystem::path path = option;
   if (option.empty()) {
-    const auto found = report::default_cost_table_path();
+    const auto found = cost::default_cost_table_path();
     std::error_code ec;
     if (!found || !std::filesystem::exists(*found, ec)) return {};
     path = *found;
   }
-  const report::CostTable table = report::read_cost_table(path);
+  const cost::CostTable table = cost::read_cost_table(path);
   const report::MethodCostMap found = report::default_float_costs(table);
   fit::MethodCosts costs;
   costs.what = found.source.describe();
-  costs.source = found.source.kind == report::CostSourceKind::gpu
+  costs.source = found.source.kind == cost::CostSourceKind::gpu
                      ? fmt::format("{} (sglab gpucost, {})", path.string(), table.gpu->driver)
                      : fmt::format("{} (sglab bench, {}; {}, {} cores)", path.string(),
                                    table.info.date, table.info.cpu, table.info.cores);

@@ -1,7 +1,7 @@
 // `sglab gpucost`: what each exported method costs on AMD GPUs, from the
 // statistics of AMD's shader compiler (ACO) on Mesa's RADV null devices
-// (export/gpu_cost.hpp). Deterministic: the same driver gives the same
-// numbers on every run and machine.
+// (export/gpu_cost.hpp; the rows are cost/gpu_report.hpp's). Deterministic: the same driver gives
+// the same numbers on every run and machine.
 #include <algorithm>
 #include <filesystem>
 #include <memory>
@@ -17,9 +17,9 @@
 #include "common/args.hpp"
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
+#include "cost/cost_source.hpp"
+#include "cost/cost_table.hpp"
 #include "export/gpu_cost.hpp"
-#include "report/cost_source.hpp"
-#include "report/cost_table.hpp"
 
 namespace sglab::app {
 
@@ -45,16 +45,16 @@ struct GpucostArgs {
 };
 
 // The families of --families (each value a comma-separated list; default
-// gpu::kDefaultFamilies), in order, without repeats. An empty item or a family
-// RADV does not know (gpu::kKnownFamilies) is refused before any work, naming
+// cost::gpu::kDefaultFamilies), in order, without repeats. An empty item or a family
+// RADV does not know (cost::gpu::kKnownFamilies) is refused before any work, naming
 // --families and listing the known ones.
 std::vector<std::string> checked_families(const std::vector<std::string>& asked) {
   std::vector<std::string> families;
   if (asked.empty())
-    for (const gpu::Family& f : gpu::kDefaultFamilies) families.emplace_back(f.name);
+    for (const cost::gpu::Family& f : cost::gpu::kDefaultFamilies) families.emplace_back(f.name);
   const auto refuse = [](const std::string& why) {
     return InputError(fmt::format("--families: {}; the families RADV knows: {}", why,
-                                  fmt::join(gpu::kKnownFamilies, ",")));
+                                  fmt::join(cost::gpu::kKnownFamilies, ",")));
   };
   for (const std::string& value : asked) {
     std::size_t start = 0;
@@ -63,8 +63,8 @@ std::vector<std::string> checked_families(const std::vector<std::string>& asked)
       const std::string f =
           value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       if (f.empty()) throw refuse(fmt::format("{} has an empty item", io::quote_escaped(value)));
-      if (std::find(std::begin(gpu::kKnownFamilies), std::end(gpu::kKnownFamilies), f) ==
-          std::end(gpu::kKnownFamilies))
+      if (std::find(std::begin(cost::gpu::kKnownFamilies), std::end(cost::gpu::kKnownFamilies),
+                    f) == std::end(cost::gpu::kKnownFamilies))
         throw refuse(fmt::format("unknown family {}", io::quote_escaped(f)));
       if (std::find(families.begin(), families.end(), f) == families.end()) families.push_back(f);
       if (comma == std::string::npos) break;
@@ -93,11 +93,12 @@ std::vector<std::string> checked_methods(const std::vector<std::string>& asked) 
   return asked;
 }
 
-std::vector<gpu::Harness> checked_harnesses(const std::vector<std::string>& asked) {
-  if (asked.empty()) return {gpu::Harness::single, gpu::Harness::loop, gpu::Harness::setup};
-  std::vector<gpu::Harness> out;
+std::vector<cost::gpu::Harness> checked_harnesses(const std::vector<std::string>& asked) {
+  if (asked.empty())
+    return {cost::gpu::Harness::single, cost::gpu::Harness::loop, cost::gpu::Harness::setup};
+  std::vector<cost::gpu::Harness> out;
   for (const std::string& h : asked) {
-    const auto parsed = io::parse_option<gpu::Harness>("--harness", h);
+    const auto parsed = io::parse_option<cost::gpu::Harness>("--harness", h);
     if (std::find(out.begin(), out.end(), parsed) == out.end()) out.push_back(parsed);
   }
   std::sort(out.begin(), out.end());
@@ -105,10 +106,10 @@ std::vector<gpu::Harness> checked_harnesses(const std::vector<std::string>& aske
 }
 
 std::vector<int> checked_lights(const std::vector<std::string>& asked) {
-  if (asked.empty()) return {gpu::kRendererLights};
+  if (asked.empty()) return {cost::gpu::kRendererLights};
   std::vector<int> out;
   for (const std::string& n : asked) {
-    const auto parsed = io::parse_count(n, 1, gpu::kMaxLights);
+    const auto parsed = io::parse_count(n, 1, cost::gpu::kMaxLights);
     if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--lights: " + *why);
     const int v = static_cast<int>(std::get<long long>(parsed));
     if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
@@ -117,16 +118,16 @@ std::vector<int> checked_lights(const std::vector<std::string>& asked) {
   return out;
 }
 
-std::vector<gpu::CompilePath> checked_compiles(const std::vector<std::string>& asked,
-                                               const std::vector<shader::Language>& languages) {
-  if (asked.empty()) return {gpu::CompilePath::none};
-  std::vector<gpu::CompilePath> out;
+std::vector<cost::gpu::CompilePath> checked_compiles(
+    const std::vector<std::string>& asked, const std::vector<shader::Language>& languages) {
+  if (asked.empty()) return {cost::gpu::CompilePath::none};
+  std::vector<cost::gpu::CompilePath> out;
   for (const std::string& c : asked) {
-    const auto parsed = io::parse_option<gpu::CompilePath>("--compile", c);
+    const auto parsed = io::parse_option<cost::gpu::CompilePath>("--compile", c);
     if (std::find(out.begin(), out.end(), parsed) == out.end()) out.push_back(parsed);
   }
   std::sort(out.begin(), out.end());
-  if (out == std::vector{gpu::CompilePath::legalized} &&
+  if (out == std::vector{cost::gpu::CompilePath::legalized} &&
       std::find(languages.begin(), languages.end(), shader::Language::hlsl) == languages.end())
     throw InputError(
         "--compile legalized: legalization is HLSL's (GLSL needs none); add --lang hlsl or both");
@@ -134,8 +135,8 @@ std::vector<gpu::CompilePath> checked_compiles(const std::vector<std::string>& a
 }
 
 // A shader of `lang` exists on compile path `c`: legalization is HLSL's.
-bool applies(gpu::CompilePath c, shader::Language lang) {
-  return c != gpu::CompilePath::legalized || lang == shader::Language::hlsl;
+bool applies(cost::gpu::CompilePath c, shader::Language lang) {
+  return c != cost::gpu::CompilePath::legalized || lang == shader::Language::hlsl;
 }
 
 std::string command_line(const GpucostArgs& a) {
@@ -160,23 +161,23 @@ void check_outputs(const fs::path& dir) {
   io::check_output_path(dir / "costs.json");
   io::check_output_path(dir / "gpu_costs.md");
   // Its GPU section is replaced whatever it holds (e.g. rows of an older gpucost).
-  report::read_existing_cost_table(dir / "costs.json", report::GpuSection::skip);
+  cost::read_existing_cost_table(dir / "costs.json", cost::GpuSection::skip);
 }
 
 // Writes both outputs as one unit (io::write_files_atomic): both or neither.
-void write_outputs(const gpu::Report& report, const fs::path& dir) {
+void write_outputs(const cost::gpu::Report& report, const fs::path& dir) {
   const fs::path table_path = dir / "costs.json";
-  std::optional<report::CostTable> table =
-      report::read_existing_cost_table(table_path, report::GpuSection::skip);
+  std::optional<cost::CostTable> table =
+      cost::read_existing_cost_table(table_path, cost::GpuSection::skip);
   if (!table) {
     // No CPU measurements yet: a table holding only the GPU section.
     table.emplace();
-    table->info = report::current_cost_table_info();
+    table->info = cost::current_cost_table_info();
     table->info.command = "(no CPU costs: run `sglab bench --out DIR`)";
   }
   table->gpu = report;
   io::write_files_atomic(
-      {{table_path, report::to_json(*table).dump(2) + "\n"},
+      {{table_path, cost::to_json(*table).dump(2) + "\n"},
        {dir / "gpu_costs.md",
         fmt::format(
             "# GPU cost: ACO statistics on RADV null devices\n\n"
@@ -194,7 +195,7 @@ void write_outputs(const gpu::Report& report, const fs::path& dir) {
             "legalization's merge-return leaves the branches ACO keeps); "
             "OnRadv.HlslCostsWhatGlslCosts holds their inverse throughputs within 5% on "
             "navi21 and gfx1100, unoptimized and legalized.\n\n{}",
-            report.driver, report.command, gpu::to_markdown(report))}});
+            report.driver, report.command, cost::gpu::to_markdown(report))}});
 }
 
 // The (method, split) pairs to cost: unsplit rows for every method, then
@@ -215,9 +216,9 @@ struct Plan {
   std::vector<std::string> methods;
   std::vector<shader::Language> languages;
   std::vector<shader::Precision> precisions;
-  std::vector<gpu::Harness> harnesses;
+  std::vector<cost::gpu::Harness> harnesses;
   std::vector<int> lights;
-  std::vector<gpu::CompilePath> compiles;
+  std::vector<cost::gpu::CompilePath> compiles;
 };
 
 // Every shader of the plan, each baseline before its methods, harness-major
@@ -227,11 +228,11 @@ template <class Visit>
 void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
   const auto forms = costed_forms(a, p.methods);
   const auto split_ids = shader::split_methods();
-  for (gpu::Harness harness : p.harnesses)
+  for (cost::gpu::Harness harness : p.harnesses)
     for (shader::Language lang : p.languages)
-      for (gpu::CompilePath compile : p.compiles) {
+      for (cost::gpu::CompilePath compile : p.compiles) {
         if (!applies(compile, lang)) continue;
-        if (harness == gpu::Harness::single) {
+        if (harness == cost::gpu::Harness::single) {
           for (shader::Precision precision : p.precisions) {
             visit([=] { return gpu::baseline_shader(lang, precision, harness, 1, compile); }, "");
             for (const auto& [m, split] : forms) {
@@ -243,12 +244,12 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
                   },
                   fmt::format("{}{} ({}, {}, {})", m, split ? " --split" : "",
                               shader::to_string(lang), shader::to_string(precision),
-                              gpu::to_string(compile)));
+                              cost::gpu::to_string(compile)));
             }
           }
         } else if (std::find(p.precisions.begin(), p.precisions.end(),
                              shader::Precision::float32) != p.precisions.end()) {
-          if (harness == gpu::Harness::loop) {
+          if (harness == cost::gpu::Harness::loop) {
             for (int n : p.lights) {
               visit(
                   [=] {
@@ -260,7 +261,7 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
                 visit([=, m = m,
                        split = split] { return gpu::loop_shader(m, lang, split, n, compile); },
                       fmt::format("{}{} in a {}-light loop ({}, {})", m, split ? " --split" : "", n,
-                                  shader::to_string(lang), gpu::to_string(compile)));
+                                  shader::to_string(lang), cost::gpu::to_string(compile)));
             }
           } else if (a.form != "unsplit") {
             visit(
@@ -273,7 +274,7 @@ void for_each_shader(const GpucostArgs& a, const Plan& p, Visit&& visit) {
               if (std::find(split_ids.begin(), split_ids.end(), m) != split_ids.end())
                 visit([=] { return gpu::setup_shader(m, lang, compile); },
                       fmt::format("{} setup ({}, {})", m, shader::to_string(lang),
-                                  gpu::to_string(compile)));
+                                  cost::gpu::to_string(compile)));
           }
         }
       }
@@ -302,35 +303,35 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   if (a.disasm) {
     const bool split = a.form == "split";
     const shader::Language lang = p.languages[0];
-    const gpu::CompilePath compile = p.compiles[0];
-    const gpu::Harness harness = p.harnesses[0];
+    const cost::gpu::CompilePath compile = p.compiles[0];
+    const cost::gpu::Harness harness = p.harnesses[0];
     gpu::Shader s;
     std::string what;
     switch (harness) {
-      case gpu::Harness::single:
+      case cost::gpu::Harness::single:
         s = split ? gpu::split_method_shader(p.methods[0], lang, compile)
                   : gpu::method_shader(p.methods[0], lang, p.precisions[0], compile);
         what = split ? "one float load, the light struct at the workgroup's index, one float store"
                      : "one float2 load, one float store";
         break;
-      case gpu::Harness::loop:
+      case cost::gpu::Harness::loop:
         s = gpu::loop_shader(p.methods[0], lang, split, p.lights[0], compile);
         what =
             fmt::format("a per-pixel loop over {} lights, one normal per invocation", p.lights[0]);
         break;
-      case gpu::Harness::setup:
+      case cost::gpu::Harness::setup:
         s = gpu::setup_shader(p.methods[0], lang, compile);
         what = "the per-light setup: one kappa in, one light struct out";
         break;
     }
     std::string options;
-    if (split && harness != gpu::Harness::setup) options += " --form split";
+    if (split && harness != cost::gpu::Harness::setup) options += " --form split";
     if (p.precisions[0] == shader::Precision::float16) options += " --precision half";
-    if (harness != gpu::Harness::single)
-      options += fmt::format(" --harness {}", gpu::to_string(harness));
-    if (harness == gpu::Harness::loop) options += fmt::format(" --lights {}", p.lights[0]);
-    if (compile != gpu::CompilePath::none)
-      options += fmt::format(" --compile {}", gpu::to_string(compile));
+    if (harness != cost::gpu::Harness::single)
+      options += fmt::format(" --harness {}", cost::gpu::to_string(harness));
+    if (harness == cost::gpu::Harness::loop) options += fmt::format(" --lights {}", p.lights[0]);
+    if (compile != cost::gpu::CompilePath::none)
+      options += fmt::format(" --compile {}", cost::gpu::to_string(compile));
     fmt::print(
         "; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of "
         "the whole pipeline: the harness ({}) around the export\n{}",
@@ -345,7 +346,7 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
     shaders.push_back(make());
     progress.advance();
   });
-  gpu::Report report =
+  cost::gpu::Report report =
       gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
         progress.note(fmt::format("ACO, {}", family));
         progress.advance();
@@ -354,12 +355,12 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
   report.command = command_line(a);
   if (!a.out.empty()) write_outputs(report, a.out);
   if (a.json)
-    fmt::print("{}\n", gpu::to_json(report).dump(2));
+    fmt::print("{}\n", cost::gpu::to_json(report).dump(2));
   else
     fmt::print(
         "GPU cost from {} (ACO statistics; inverse throughput in cycles per wave, a compiler "
         "estimate). Command: `{}`\n\n{}",
-        report.driver, report.command, gpu::to_markdown(report));
+        report.driver, report.command, cost::gpu::to_markdown(report));
 }
 
 }  // namespace
@@ -432,11 +433,11 @@ void add_gpucost_command(CLI::App& app) {
     const auto precisions = checked_precisions(args->precision);
     // --disasm prints one shader: by default the single harness's.
     auto harnesses = checked_harnesses(args->harnesses);
-    if (args->disasm && args->harnesses.empty()) harnesses = {gpu::Harness::single};
+    if (args->disasm && args->harnesses.empty()) harnesses = {cost::gpu::Harness::single};
     const auto lights = checked_lights(args->lights);
     const auto compiles = checked_compiles(args->compiles, languages);
     if (!args->lights.empty() &&
-        std::find(harnesses.begin(), harnesses.end(), gpu::Harness::loop) == harnesses.end())
+        std::find(harnesses.begin(), harnesses.end(), cost::gpu::Harness::loop) == harnesses.end())
       throw InputError("--lights: applies to the loop harness only (--harness loop)");
     if (args->form == "split" && args->precision == "half")
       throw InputError(
@@ -445,7 +446,7 @@ void add_gpucost_command(CLI::App& app) {
     if (args->disasm &&
         (args->methods.size() != 1 || args->families.empty() || families.size() != 1 ||
          languages.size() != 1 || precisions.size() != 1 || harnesses.size() != 1 ||
-         compiles.size() != 1 || (harnesses[0] == gpu::Harness::loop && lights.size() != 1) ||
+         compiles.size() != 1 || (harnesses[0] == cost::gpu::Harness::loop && lights.size() != 1) ||
          args->json || !args->out.empty()))
       throw InputError(
           "--disasm: takes one --method, one --family, one --lang (glsl or hlsl), one "

@@ -64,7 +64,7 @@ void add_pareto_command(CLI::App& app) {
     // The (multi-threaded) reference sweep runs first; the single-threaded
     // timing afterwards, when its worker threads are idle.
     // a bad --cost before the sweep
-    const report::CostSource cost = args->costs.source(precision);
+    const cost::CostSource cost = args->costs.source(precision);
     std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, precision);
     const CostsOption::From source =
         args->costs.fill(points, precision, /*repetitions=*/5, /*min_time=*/0.01);

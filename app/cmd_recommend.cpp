@@ -70,7 +70,7 @@ std::string describe(const report::MethodPoint& p) {
 // The κ-range answer (the request, choice, runner-up, most accurate) with every candidate, as JSON.
 void print_recommendation_json(double lo, double hi, double budget, io::Precision precision,
                                const std::vector<report::MethodPoint>& points,
-                               const report::Recommendation& r, const report::CostSource& cost,
+                               const report::Recommendation& r, const cost::CostSource& cost,
                                const CostsOption::From& source) {
   nlohmann::ordered_json doc;
   doc["kappa_lo"] = lo;
@@ -104,7 +104,7 @@ void print_recommendation_json(double lo, double hi, double budget, io::Precisio
 // The κ-range answer as text.
 void print_recommendation_text(double lo, double hi, double budget, io::Precision precision,
                                const std::vector<report::MethodPoint>& points,
-                               const report::Recommendation& r, const report::CostSource& cost,
+                               const report::Recommendation& r, const cost::CostSource& cost,
                                const CostsOption::From& source) {
   fmt::print("κ in [{}, {}], {}, budget max peak_rel ≤ {}:\n", lo, hi, io::to_string(precision),
              budget);
@@ -154,7 +154,7 @@ void run_recommend(const RecommendArgs& args) {
     hi = std::get<io::KappaRange>(parsed).hi;
   }
 
-  const report::CostSource cost = args.costs.source(precision);  // a bad --cost before the sweep
+  const cost::CostSource cost = args.costs.source(precision);  // a bad --cost before the sweep
   std::vector<report::MethodPoint> points = report::irradiance_errors(lo, hi, precision);
   const CostsOption::From source =
       args.costs.fill(points, precision, /*repetitions=*/7, /*min_time=*/0.01);

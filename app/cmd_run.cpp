@@ -47,7 +47,7 @@
 #include "app/commands.hpp"
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
-#include "report/cost_table.hpp"
+#include "cost/cost_table.hpp"
 
 namespace sglab::app {
 
@@ -481,10 +481,10 @@ std::vector<Step> run_steps(const fs::path& root, Form form, bool bench_skipped)
 // so that the step itself reports it.
 bool has_gpu_costs(const Step& step) {
   const auto it = std::find(step.arguments.begin(), step.arguments.end(), "--costs");
-  std::optional<fs::path> path = report::default_cost_table_path();
+  std::optional<fs::path> path = cost::default_cost_table_path();
   if (it != step.arguments.end() && it + 1 != step.arguments.end()) path = *(it + 1);
   try {
-    const auto table = path ? report::read_existing_cost_table(*path) : std::nullopt;
+    const auto table = path ? cost::read_existing_cost_table(*path) : std::nullopt;
     return !table || table->gpu.has_value();
   } catch (const std::exception&) {
     return true;

@@ -1,6 +1,6 @@
 // app/costs_option.hpp — where `sglab pareto` and `sglab recommend` take
 // their costs from: a cost source (--cost gpu:FAMILY | cpu-batch | cpu-scalar,
-// report/cost_source.hpp; default gpu:navi21, cpu-batch under --precision
+// cost/cost_source.hpp; default gpu:navi21, cpu-batch under --precision
 // double) of the cost table that `sglab bench` and `sglab gpucost` wrote
 // (--costs FILE, by default data/results/costs.json of the project holding the
 // working directory), or, only when asked with --live-timing, CPU ns measured
@@ -16,15 +16,15 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
-#include "report/cost_source.hpp"
-#include "report/cost_table.hpp"
+#include "cost/cost_source.hpp"
+#include "cost/cost_table.hpp"
 #include "report/pareto.hpp"
 
 namespace sglab::app {
 
 struct CostsOption {
   std::string costs;  // empty: the project's data/results/costs.json
-  // when --cost is not given: report::default_cost_source (cpu-batch with --live-timing)
+  // when --cost is not given: cost::default_cost_source (cpu-batch with --live-timing)
   std::string cost;
   bool live_timing = false;
   // whether --cost was given (an empty value is refused, not the default)
@@ -49,19 +49,19 @@ struct CostsOption {
   }
 
   // The chosen source (parsed once); throws InputError (exit 2) naming --cost.
-  report::CostSource source(io::Precision f) const {
+  cost::CostSource source(io::Precision f) const {
     if (!cost_option || cost_option->count() == 0)
-      return live_timing ? report::CostSource{report::CostSourceKind::cpu_batch, {}}
-                         : report::default_cost_source(f);
-    const auto parsed = report::parse_cost_source(cost);
+      return live_timing ? cost::CostSource{cost::CostSourceKind::cpu_batch, {}}
+                         : cost::default_cost_source(f);
+    const auto parsed = cost::parse_cost_source(cost);
     if (const auto* why = std::get_if<std::string>(&parsed)) throw InputError("--cost: " + *why);
-    const auto& s = std::get<report::CostSource>(parsed);
-    if (s.kind == report::CostSourceKind::gpu && f != io::Precision::float32)
+    const auto& s = std::get<cost::CostSource>(parsed);
+    if (s.kind == cost::CostSourceKind::gpu && f != io::Precision::float32)
       throw InputError(
           fmt::format("--cost {}: the GPU cost is that of the float shader export; use --precision "
                       "float, or --cost cpu-batch / cpu-scalar",
                       s.name()));
-    if (s.kind == report::CostSourceKind::gpu && live_timing)
+    if (s.kind == cost::CostSourceKind::gpu && live_timing)
       throw InputError(fmt::format(
           "--cost {} and --live-timing exclude each other (live timing is CPU ns)", s.name()));
     return s;
@@ -81,7 +81,7 @@ struct CostsOption {
   // without the source (no gpu section, family absent).
   From fill(std::vector<report::MethodPoint>& points, io::Precision f, int repetitions,
             double min_time) const {
-    const report::CostSource s = source(f);
+    const cost::CostSource s = source(f);
     if (live_timing) {
       if (!costs.empty()) throw InputError("--costs and --live-timing exclude each other");
       report::fill_costs(points, f, s.cpu_mode(), repetitions, min_time);
@@ -89,13 +89,13 @@ struct CostsOption {
           "live timing now: median of {} repetitions (varies from run to run)", repetitions);
       return {fmt::format("{}, {}", s.describe(), provenance), provenance};
     }
-    report::CostTable table;
+    cost::CostTable table;
     if (!costs.empty())
-      table = report::read_cost_table(costs);
-    else if (const auto found = report::default_cost_table_path())
-      table = report::read_cost_table(*found);
+      table = cost::read_cost_table(costs);
+    else if (const auto found = cost::default_cost_table_path())
+      table = cost::read_cost_table(*found);
     else
-      table = report::builtin_cost_table();  // outside a checkout
+      table = cost::builtin_cost_table();  // outside a checkout
     const std::filesystem::path& path = table.path;
     const std::vector<std::string> missing = report::fill_costs(points, f, table, s);
     for (const std::string& m : missing)
@@ -104,13 +104,13 @@ struct CostsOption {
           "sglab: warning: cost table {} has no {} cost for method '{}' ({}); it is listed as \"no "
           "cost\" and left out of the ranking (run `sglab {}` to measure it)\n",
           path.string(), s.name(), m,
-          s.kind == report::CostSourceKind::gpu
-              ? (s.figure == report::GpuFigure::single ? "GLSL, float, one call"
-                                                       : "GLSL, float, 8-light loop")
+          s.kind == cost::CostSourceKind::gpu
+              ? (s.figure == cost::GpuFigure::single ? "GLSL, float, one call"
+                                                     : "GLSL, float, 8-light loop")
               : io::to_string(f),
-          s.kind == report::CostSourceKind::gpu ? "gpucost" : "bench");
+          s.kind == cost::CostSourceKind::gpu ? "gpucost" : "bench");
     const std::string provenance =
-        s.kind == report::CostSourceKind::gpu
+        s.kind == cost::CostSourceKind::gpu
             ? fmt::format("sglab gpucost, {}; a compiler estimate, not a timing", table.gpu->driver)
             : fmt::format("sglab bench, {}; {}, {} cores; {} {} {}", table.info.date,
                           table.info.cpu, table.info.cores, table.info.compiler_id,

@@ -63,7 +63,7 @@ struct SceneOutput {
   const SceneRecommendArgs& args;
   const validate::Scene& scene;
   std::size_t normals;
-  const report::CostSource& cost;
+  const cost::CostSource& cost;
   const CostsOption::From& source;
   const std::vector<report::MethodPoint>& points;
   const report::SceneRanking& ranking;
@@ -188,7 +188,7 @@ void print_text(const SceneOutput& o) {
 
 void recommend_scene(const SceneRecommendArgs& args) {
   // a bad --cost before any work
-  const report::CostSource cost = args.costs.source(args.precision);
+  const cost::CostSource cost = args.costs.source(args.precision);
   const validate::Scene scene = read_scene(args);
   const auto normals = validate::fibonacci_normals(args.normals);
   std::vector<report::MethodPoint> points = report::scene_points(scene, normals, args.precision);

@@ -4,7 +4,7 @@
 // (instruction counts). Built as build/bench/method_cost (it needs only the
 // header-only runtime):
 //   build/bench/method_cost METHOD PASSES [batch|scalar|eval|setup]
-// Workload: the distribution of report/cost.hpp (κ log-uniform over
+// Workload: the distribution of cost/cpu_timing.hpp (κ log-uniform over
 // [1e−3, 1e4], c uniform over [−1, 1], mt19937_64 seed 20261121) but 4096
 // inputs, not 2^20, so that a callgrind run stays short. Modes: batch (the
 // registry's batch32), scalar (f32 per element), eval (one light_setup32 per

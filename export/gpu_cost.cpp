@@ -22,30 +22,21 @@ namespace sglab::shader::gpu {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
+// The rows, statistics and harness names of the report (cost/gpu_report.hpp).
+using cost::gpu::CompilePath;
+using cost::gpu::Harness;
+using cost::gpu::kMaxLights;
+using cost::gpu::kStatisticFields;
+using cost::gpu::Report;
+using cost::gpu::Row;
+using cost::gpu::StatisticField;
+using cost::gpu::Statistics;
+using cost::gpu::statistics_from_json;
 
 namespace {
 
 constexpr std::string_view kBaselineEntry = "sglab_gpucost_baseline";
 constexpr std::string_view kBaselineLight = "SglabGpucostBaseline";
-
-// ACO's names for the statistics sglab keeps (radv_pipeline.c, Mesa 22.3).
-struct StatisticName {
-  const char* aco;
-  std::int64_t Statistics::*member;
-  bool additive;  // subtract the baseline's (registers are a peak: not subtracted)
-};
-constexpr StatisticName kStatistics[] = {
-    {"Instructions", &Statistics::instructions, true},
-    {"Inverse Throughput", &Statistics::inverse_throughput, true},
-    {"Latency", &Statistics::latency, true},
-    {"VGPRs", &Statistics::vgprs, false},
-    {"SGPRs", &Statistics::sgprs, false},
-    {"Code size", &Statistics::code_size, true},
-    {"Branches", &Statistics::branches, true},
-};
-constexpr const char* kJsonKeys[] = {"instructions", "inverse_throughput", "latency", "vgprs",
-                                     "sgprs",        "code_size",          "branches"};
-static_assert(std::size(kJsonKeys) == std::size(kStatistics));
 
 // A private folder under the system's temporary directory, removed with
 // everything in it when this goes out of scope.
@@ -104,38 +95,14 @@ std::string log_tail(const fs::path& log) {
 
 Statistics from_driver(const std::vector<vulkan::PipelineStatistic>& raw) {
   Statistics s;
-  for (const StatisticName& n : kStatistics) {
+  for (const StatisticField& f : kStatisticFields) {
     const auto it =
-        std::find_if(raw.begin(), raw.end(), [&](const auto& r) { return r.name == n.aco; });
+        std::find_if(raw.begin(), raw.end(), [&](const auto& r) { return r.name == f.aco; });
     if (it == raw.end())
       throw Unavailable(
-          fmt::format("the driver reports no \"{}\" statistic: not RADV's ACO compiler?", n.aco));
-    s.*n.member = static_cast<std::int64_t>(it->value);
+          fmt::format("the driver reports no \"{}\" statistic: not RADV's ACO compiler?", f.aco));
+    s.*f.member = static_cast<std::int64_t>(it->value);
   }
-  return s;
-}
-
-json stats_json(const Statistics& s) {
-  json j;
-  for (std::size_t i = 0; i < std::size(kStatistics); ++i)
-    j[kJsonKeys[i]] = s.*kStatistics[i].member;
-  return j;
-}
-
-Statistics stats_from_json(const json& j, const std::string& where) {
-  Statistics s;
-  for (std::size_t i = 0; i < std::size(kStatistics); ++i) {
-    if (!j.is_object() || !j.contains(kJsonKeys[i]) || !j.at(kJsonKeys[i]).is_number_integer())
-      throw std::runtime_error(fmt::format("{}.{}: must be an integer", where, kJsonKeys[i]));
-    s.*kStatistics[i].member = j.at(kJsonKeys[i]).get<std::int64_t>();
-  }
-  return s;
-}
-
-Statistics subtract(const Statistics& measured, const Statistics& baseline) {
-  Statistics s = measured;
-  for (const StatisticName& n : kStatistics)
-    if (n.additive) s.*n.member -= baseline.*n.member;
   return s;
 }
 
@@ -304,38 +271,6 @@ Shader export_shader(std::string_view method, shader::Language lang,
   return compiled(method, lang, source, precision, split, Harness::single, 1, CompilePath::none);
 }
 
-double cycles_per_light(const Row& r) {
-  return static_cast<double>(r.stats.inverse_throughput) / r.lights;
-}
-
-namespace {
-
-const Row* find_row(const Report& report, std::string_view method, std::string_view family,
-                    Harness harness, int lights, bool split) {
-  for (const Row& r : report.rows)
-    if (r.method == method && r.family == family && r.lang == shader::Language::glsl &&
-        r.compile == CompilePath::none && r.precision == "float" && r.harness == harness &&
-        r.lights == lights && r.split == split)
-      return &r;
-  return nullptr;
-}
-
-}  // namespace
-
-const Row* renderer_row(const Report& report, std::string_view method, std::string_view family) {
-  if (const Row* split = find_row(report, method, family, Harness::loop, kRendererLights, true))
-    return split;
-  return find_row(report, method, family, Harness::loop, kRendererLights, false);
-}
-
-const Row* single_row(const Report& report, std::string_view method, std::string_view family) {
-  return find_row(report, method, family, Harness::single, 1, false);
-}
-
-std::string renderer_form(const Row& r) {
-  return fmt::format("{}-light loop ({})", r.lights, r.split ? "split" : "kappa per light");
-}
-
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {
   std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits
   for (std::uint32_t w : spirv)
@@ -424,7 +359,7 @@ void run_worker(std::string_view family, const fs::path& dir) {
     const Measured m = measure_here(family, shaders);
     out["driver"] = m.driver;
     out["stats"] = json::array();
-    for (const Statistics& s : m.stats) out["stats"].push_back(stats_json(s));
+    for (const Statistics& s : m.stats) out["stats"].push_back(to_json(s));
     if (disassemble) {
       vulkan::Device device;  // the one measure_here checked is RADV's for this family
       out["assembly"] = json::array();
@@ -493,7 +428,7 @@ Report measure(const fs::path& self, const fs::path& manifest,
     for (std::size_t i = 0; i < shaders.size(); ++i) {
       const Shader& sh = shaders[i];
       const Statistics s =
-          stats_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
+          statistics_from_json(r.at("stats")[i], fmt::format("{}: stats[{}]", where, i));
       const auto key = std::make_tuple(sh.lang, sh.precision, sh.harness, sh.lights, sh.compile);
       if (sh.method == kBaseline) {
         baseline[key] = s;
@@ -518,148 +453,6 @@ std::string disassemble(const fs::path& self, const fs::path& manifest, std::str
   const std::string text = r.at("assembly")[0].get<std::string>();
   if (text.empty()) throw Unavailable("the driver returned no \"Assembly\" representation");
   return text;
-}
-
-json to_json(const Report& report) {
-  json j;
-  j["driver"] = report.driver;
-  j["command"] = report.command;
-  j["harnesses"] =
-      "each row: the method in its harness minus the same harness around a trivial body (vgprs "
-      "and sgprs: the whole pipeline's); every harness is dispatched in whole workgroups of 64, "
-      "so no bounds check puts the call in a branch. single: one call per invocation ((cosine, "
-      "kappa) loaded, the value stored; split: one float load, the light struct at the "
-      "workgroup's index, one store), minus the same wrapper around `return cosine + kappa;`: "
-      "the struct's loads count as the function's. loop: a renderer's per-pixel loop, one normal "
-      "per invocation, `lights` lights written out (axis and amplitude, and kappa or the split "
-      "struct, at wave-uniform indices), the irradiance summed, minus the same loop around "
-      "`return cosine + kappa;` with kappa per light: the figures are those of all the lights "
-      "(cycles per light per pixel = inverse_throughput / lights). setup: the split form's "
-      "per-light setup, one kappa in and one struct out per invocation, minus the same kernel "
-      "filling a struct of kappa alone. compile: none (glslang's SPIR-V), legalized (HLSL, "
-      "SPIRV-Tools' legalization passes), optimized (SPIRV-Tools' performance passes, after "
-      "legalization for HLSL)";
-  j["rows"] = json::array();
-  for (const Row& r : report.rows) {
-    json row = {{"method", r.method},
-                {"family", r.family},
-                {"lang", std::string(shader::to_string(r.lang))},
-                {"compile", std::string(to_string(r.compile))},
-                {"harness", std::string(to_string(r.harness))},
-                {"lights", r.lights},
-                {"split", r.split},
-                {"precision", r.precision}};
-    row.update(stats_json(r.stats));
-    row["spirv_hash"] = r.spirv_hash;
-    j["rows"].push_back(std::move(row));
-  }
-  return j;
-}
-
-Report report_from_json(const json& j, std::string_view where) {
-  const auto text = [&](const json& obj, const char* key, const std::string& at) {
-    if (!obj.is_object() || !obj.contains(key) || !obj.at(key).is_string())
-      throw std::runtime_error(fmt::format("{}: {}{} must be a string", where, at, key));
-    return obj.at(key).get<std::string>();
-  };
-  Report r;
-  r.driver = text(j, "driver", "");
-  r.command = text(j, "command", "");
-  if (!j.contains("rows") || !j.at("rows").is_array())
-    throw std::runtime_error(fmt::format("{}: rows must be an array", where));
-  std::size_t i = 0;
-  for (const json& row : j.at("rows")) {
-    const std::string at = fmt::format("rows[{}].", i++);
-    Row x;
-    x.method = text(row, "method", at);
-    x.family = text(row, "family", at);
-    const auto lang = io::parse_enum<io::Language>(text(row, "lang", at));
-    if (!lang || *lang == shader::Language::cpp)
-      throw std::runtime_error(fmt::format("{}: {}lang must be glsl or hlsl", where, at));
-    x.lang = *lang;
-    if (!row.contains("harness"))
-      throw std::runtime_error(fmt::format(
-          "{}: {}harness is missing: a row of an older `sglab gpucost`, whose harness put the "
-          "call inside a bounds check (a discount of about a quarter); rerun `sglab gpucost "
-          "--out DIR`",
-          where, at));
-    const auto compile = io::parse_enum<CompilePath>(text(row, "compile", at));
-    if (!compile || (*compile == CompilePath::legalized && x.lang != shader::Language::hlsl))
-      throw std::runtime_error(
-          fmt::format("{}: {}compile must be none, legalized (HLSL only) or optimized", where, at));
-    x.compile = *compile;
-    const auto harness = io::parse_enum<Harness>(text(row, "harness", at));
-    if (!harness)
-      throw std::runtime_error(
-          fmt::format("{}: {}harness must be single, loop or setup", where, at));
-    x.harness = *harness;
-    if (!row.contains("lights") || !row.at("lights").is_number_integer() ||
-        row.at("lights").get<std::int64_t>() < 1 ||
-        row.at("lights").get<std::int64_t>() > kMaxLights ||
-        (x.harness != Harness::loop && row.at("lights").get<std::int64_t>() != 1))
-      throw std::runtime_error(
-          fmt::format("{}: {}lights must be an integer from 1 to {} (1 outside the loop harness)",
-                      where, at, kMaxLights));
-    x.lights = row.at("lights").get<int>();
-    if (!row.contains("split") || !row.at("split").is_boolean())
-      throw std::runtime_error(fmt::format("{}: {}split must be true or false", where, at));
-    x.split = row.at("split").get<bool>();
-    x.precision = text(row, "precision", at);
-    if (x.precision != "float" && x.precision != "half")
-      throw std::runtime_error(fmt::format("{}: {}precision must be float or half", where, at));
-    x.stats = stats_from_json(row, fmt::format("{}: {}", where, at.substr(0, at.size() - 1)));
-    x.spirv_hash = text(row, "spirv_hash", at);
-    r.rows.push_back(std::move(x));
-  }
-  return r;
-}
-
-std::string to_markdown(const Report& report) {
-  std::string out;
-  std::string family;
-  int section = -1;
-  for (const Row& r : report.rows) {
-    if (r.family != family) {
-      family = r.family;
-      section = -1;
-      std::string generation;
-      for (const Family& f : kDefaultFamilies)
-        if (family == f.name) generation = fmt::format(" ({})", f.generation);
-      out += fmt::format("{}## {}{}\n", out.empty() ? "" : "\n", family, generation);
-    }
-    if (static_cast<int>(r.harness) != section) {
-      section = static_cast<int>(r.harness);
-      switch (r.harness) {
-        case Harness::single:
-          out += "\nOne call per invocation (harness `single`):\n\n";
-          break;
-        case Harness::loop:
-          out +=
-              "\nA renderer's per-pixel loop over N lights (harness `loop`; the statistics are "
-              "those of all N lights, cycles per light = inverse throughput / N):\n\n";
-          break;
-        case Harness::setup:
-          out += "\nThe per-light setup of the split form as its own kernel (harness `setup`):\n\n";
-          break;
-      }
-      out += fmt::format(
-          "| method | lang | compile |{} instructions | inverse throughput |{} latency | VGPRs | "
-          "SGPRs | code size | branches |\n|---|---|---|{}---:|---:|{}---:|---:|---:|---:|---:|\n",
-          r.harness == Harness::loop ? " N |" : "",
-          r.harness == Harness::loop ? " cycles per light |" : "",
-          r.harness == Harness::loop ? "---:|" : "", r.harness == Harness::loop ? "---:|" : "");
-    }
-    const std::string method =
-        r.method + (r.harness != Harness::setup && r.split ? " (split)" : "");
-    out += fmt::format(
-        "| {} | {}{} | {} |{} {} | {} |{} {} | {} | {} | {} | {} |\n", method,
-        shader::to_string(r.lang), r.precision == "half" ? " half" : "", to_string(r.compile),
-        r.harness == Harness::loop ? fmt::format(" {} |", r.lights) : "", r.stats.instructions,
-        r.stats.inverse_throughput,
-        r.harness == Harness::loop ? fmt::format(" {:.1f} |", cycles_per_light(r)) : "",
-        r.stats.latency, r.stats.vgprs, r.stats.sgprs, r.stats.code_size, r.stats.branches);
-  }
-  return out;
 }
 
 }  // namespace sglab::shader::gpu

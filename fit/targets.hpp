@@ -26,11 +26,11 @@ namespace sglab::fit {
 using ordered_json = nlohmann::ordered_json;
 
 // Float scalar costs of runtime methods (ns per evaluation) from the cost
-// table that `sglab bench` wrote (report/cost_table.hpp), read by the caller:
+// table that `sglab bench` wrote (cost/cost_table.hpp), read by the caller:
 // a fit that compares costs takes them from here and never times anything,
 // so that its report is the same for the same inputs.
-// The costs of the runtime methods from a cost table (report/cost_table.hpp),
-// in one source (report/cost_source.hpp): by default ACO's inverse throughput
+// The costs of the runtime methods from a cost table (cost/cost_table.hpp),
+// in one source (cost/cost_source.hpp): by default ACO's inverse throughput
 // of the float GLSL export on navi21 (cycles), else CPU batch ns/eval.
 struct MethodCosts {
   std::string what;    // which cost, e.g. "GPU inverse throughput on navi21 (cycles per wave)"

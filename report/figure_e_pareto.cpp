@@ -17,8 +17,8 @@
 #include <sglab/hemispherical.hpp>
 #include <sglab/registry.hpp>
 
-#include "export/gpu_cost.hpp"
-#include "report/cost_source.hpp"
+#include "cost/cost_source.hpp"
+#include "cost/gpu_report.hpp"
 #include "report/figure_style.hpp"
 #include "report/gnuplot.hpp"
 #include "report/pareto.hpp"
@@ -54,8 +54,8 @@ struct PanelFrame {
 
 // The x-axis label of a cost source ("gpu:navi21" → GPU cycles per light per pixel …).
 std::string cost_axis_label(const ParetoPanel& p) {
-  const auto parsed = parse_cost_source(p.source);
-  if (const auto* s = std::get_if<CostSource>(&parsed)) return s->label();
+  const auto parsed = cost::parse_cost_source(p.source);
+  if (const auto* s = std::get_if<cost::CostSource>(&parsed)) return s->label();
   return fmt::format("cost ({})", p.unit);
 }
 
@@ -225,27 +225,27 @@ std::string pareto_plot(const FiguresOptions& opt, const std::string& stem,
 std::string gpu_family_table(const FiguresOptions& opt, const ParetoPanel& p,
                              const std::string& stem, double x, double y, double line,
                              std::vector<fs::path>& files) {
-  const auto parsed = parse_cost_source(p.source);
-  const auto* source = std::get_if<CostSource>(&parsed);
-  if (!opt.gpu || !source || source->kind != CostSourceKind::gpu) return "";
+  const auto parsed = cost::parse_cost_source(p.source);
+  const auto* source = std::get_if<cost::CostSource>(&parsed);
+  if (!opt.gpu || !source || source->kind != cost::CostSourceKind::gpu) return "";
   std::vector<std::string> others;
-  for (const shader::gpu::Row& r : opt.gpu->rows)
+  for (const cost::gpu::Row& r : opt.gpu->rows)
     if (r.family != source->family &&
         std::find(others.begin(), others.end(), r.family) == others.end())
       others.push_back(r.family);
   std::map<std::pair<std::string, std::string>, double> cycles;  // (method, family)
   for (const std::string& family : others)
     for (const ParetoRow& r : p.rows) {
-      CostSource other = *source;
+      cost::CostSource other = *source;
       other.family = family;
-      if (const shader::gpu::Row* row = gpu_row(*opt.gpu, r.method, other))
+      if (const cost::gpu::Row* row = gpu_row(*opt.gpu, r.method, other))
         cycles[{r.method, family}] = gpu_cost(*row);
     }
   if (others.empty()) return "";
   std::string csv = "method," + fmt::format("{}", fmt::join(others, ",")) + "\n";
   std::vector<std::string> lines = {
-      source->figure == GpuFigure::single ? "GPU cycles of one call (ACO estimate)"
-                                          : "GPU cycles per light per pixel (ACO estimate)",
+      source->figure == cost::GpuFigure::single ? "GPU cycles of one call (ACO estimate)"
+                                                : "GPU cycles per light per pixel (ACO estimate)",
       fmt::format("on the other families, {}:", opt.gpu->driver), fmt::format("{:<22}", "method")};
   for (const std::string& family : others) lines.back() += fmt::format("{:>10}", family);
   for (const ParetoRow& r : p.rows) {

@@ -16,7 +16,7 @@
 
 #include <sglab/registry.hpp>
 
-#include "export/gpu_cost.hpp"
+#include "cost/gpu_report.hpp"
 #include "report/pareto.hpp"  // ParetoRow, read_pareto_csv (figure e reads the CSV)
 
 namespace sglab::report {
@@ -31,9 +31,9 @@ struct FiguresOptions {
   // Figure (e): `sglab pareto` CSVs, one panel per cost source in them (absent files are skipped;
   // the figure is skipped when none exists).
   std::vector<std::filesystem::path> pareto = {"out/pareto/pareto.csv"};
-  // The "gpu" section of the cost table (export/gpu_cost.hpp): figure (e)
+  // The "gpu" section of the cost table (cost/gpu_report.hpp): figure (e)
   // tables the other families' inverse throughput beside a GPU panel.
-  std::optional<shader::gpu::Report> gpu;
+  std::optional<cost::gpu::Report> gpu;
   std::string gnuplot = "gnuplot";
   // t*(κ) of the 2022 normalized hemispherical integral (fit::optimal_steepness).
   std::function<std::vector<double>(const std::vector<double>&)> optimal_steepness;

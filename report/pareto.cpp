@@ -140,19 +140,19 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, io:
   return out;
 }
 
-void fill_costs(std::vector<MethodPoint>& points, io::Precision f, CostMode mode, int repetitions,
-                double min_time) {
-  CostOptions options;
+void fill_costs(std::vector<MethodPoint>& points, io::Precision f, cost::CostMode mode,
+                int repetitions, double min_time) {
+  cost::CostOptions options;
   options.repetitions = repetitions;
   options.min_time = min_time;
-  options.kinds = {CostKind::irradiance};
+  options.kinds = {cost::CostKind::irradiance};
   options.precisions = {f};
   options.modes = {mode};
-  const std::vector<Cost> costs = measure_costs(options);
+  const std::vector<cost::Cost> costs = cost::measure_costs(options);
   for (MethodPoint& p : points) {
     p.cost = std::numeric_limits<double>::quiet_NaN();
     p.cost_unit = "ns";
-    for (const Cost& c : costs)
+    for (const cost::Cost& c : costs)
       if (c.method == p.method) p.cost = c.ns_per_eval;
   }
 }
@@ -161,65 +161,66 @@ namespace {
 
 // The gpu section of the table, refused (CostTableError) when it has no GLSL
 // float row of `source`'s figure on its family (the families it has are named).
-const shader::gpu::Report& gpu_report(const CostTable& table, const CostSource& source) {
+const cost::gpu::Report& gpu_report(const cost::CostTable& table, const cost::CostSource& source) {
   const std::string where =
       table.path.empty() ? std::string("the cost table") : table.path.string();
   if (!table.gpu)
-    throw CostTableError(
+    throw cost::CostTableError(
         fmt::format("--cost {}: {} has no \"gpu\" section (write it with `sglab gpucost --out "
                     "DIR`, or choose --cost cpu-batch)",
                     source.name(), where));
   std::vector<std::string> families;
   bool found = false;
-  for (const shader::gpu::Row& r : table.gpu->rows) {
+  for (const cost::gpu::Row& r : table.gpu->rows) {
     if (std::find(families.begin(), families.end(), r.family) == families.end())
       families.push_back(r.family);
     found = found || (r.family == source.family && gpu_row(*table.gpu, r.method, source) == &r);
   }
   if (!found)
-    throw CostTableError(fmt::format(
+    throw cost::CostTableError(fmt::format(
         "--cost {}: {} has no GLSL rows {} for family '{}' (it has: {})", source.name(), where,
-        source.figure == GpuFigure::single ? "of one call (harness single)"
-                                           : "of the renderer's loop (harness loop)",
+        source.figure == cost::GpuFigure::single ? "of one call (harness single)"
+                                                 : "of the renderer's loop (harness loop)",
         source.family, families.empty() ? "none" : fmt::format("{}", fmt::join(families, ", "))));
   return *table.gpu;
 }
 
 }  // namespace
 
-const shader::gpu::Row* gpu_row(const shader::gpu::Report& report, std::string_view method,
-                                const CostSource& source) {
-  return source.figure == GpuFigure::single
-             ? shader::gpu::single_row(report, method, source.family)
-             : shader::gpu::renderer_row(report, method, source.family);
+const cost::gpu::Row* gpu_row(const cost::gpu::Report& report, std::string_view method,
+                              const cost::CostSource& source) {
+  return source.figure == cost::GpuFigure::single
+             ? cost::gpu::single_row(report, method, source.family)
+             : cost::gpu::renderer_row(report, method, source.family);
 }
 
-double gpu_cost(const shader::gpu::Row& row) { return shader::gpu::cycles_per_light(row); }
+double gpu_cost(const cost::gpu::Row& row) { return cost::gpu::cycles_per_light(row); }
 
 std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, io::Precision f,
-                                    const CostTable& table, const CostSource& source) {
+                                    const cost::CostTable& table, const cost::CostSource& source) {
   std::vector<std::string> missing;
   const double none = std::numeric_limits<double>::quiet_NaN();
-  if (source.kind == CostSourceKind::gpu) {
+  if (source.kind == cost::CostSourceKind::gpu) {
     if (f != io::Precision::float32)
       throw std::invalid_argument(
           fmt::format("--cost {}: the GPU cost is that of the float shader export; use "
                       "--precision float or a cpu-* cost",
                       source.name()));
-    const shader::gpu::Report& report = gpu_report(table, source);
+    const cost::gpu::Report& report = gpu_report(table, source);
     for (MethodPoint& p : points) {
-      const shader::gpu::Row* row = gpu_row(report, p.method, source);
+      const cost::gpu::Row* row = gpu_row(report, p.method, source);
       p.cost = row ? gpu_cost(*row) : none;
       p.cost_unit = std::string(source.unit());
-      p.cost_form = row ? (source.figure == GpuFigure::single ? std::string("single call")
-                                                              : shader::gpu::renderer_form(*row))
-                        : std::string();
+      p.cost_form =
+          row ? (source.figure == cost::GpuFigure::single ? std::string("single call")
+                                                          : cost::gpu::renderer_form(*row))
+              : std::string();
       if (!row) missing.push_back(p.method);
     }
     return missing;
   }
   for (MethodPoint& p : points) {
-    const Cost* c = table.find(CostKind::irradiance, p.method, f, source.cpu_mode());
+    const cost::Cost* c = table.find(cost::CostKind::irradiance, p.method, f, source.cpu_mode());
     p.cost = c ? c->ns_per_eval : none;
     p.cost_unit = std::string(source.unit());
     if (!c) missing.push_back(p.method);
@@ -227,14 +228,14 @@ std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, io::Precis
   return missing;
 }
 
-MethodCostMap default_float_costs(const CostTable& table) {
+MethodCostMap default_float_costs(const cost::CostTable& table) {
   std::vector<MethodPoint> points;
   for (const Method& m : irradiance_methods) points.push_back({.method = std::string(m.id)});
-  MethodCostMap out{default_cost_source(io::Precision::float32), {}};
+  MethodCostMap out{cost::default_cost_source(io::Precision::float32), {}};
   try {
     fill_costs(points, io::Precision::float32, table, out.source);
-  } catch (const CostTableError&) {  // no GPU rows for it: the CPU timing of `sglab bench`
-    out.source = {.kind = CostSourceKind::cpu_batch};
+  } catch (const cost::CostTableError&) {  // no GPU rows for it: the CPU timing of `sglab bench`
+    out.source = {.kind = cost::CostSourceKind::cpu_batch};
     fill_costs(points, io::Precision::float32, table, out.source);
   }
   for (const MethodPoint& p : points)
@@ -243,7 +244,7 @@ MethodCostMap default_float_costs(const CostTable& table) {
 }
 
 validate::Table pareto_table(const std::vector<MethodPoint>& points, io::Precision f,
-                             double kappa_lo, double kappa_hi, const CostSource& source,
+                             double kappa_lo, double kappa_hi, const cost::CostSource& source,
                              std::string_view cost_from) {
   const std::string outside = outside_valid_range_text(points);
   validate::Table t(

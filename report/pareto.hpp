@@ -7,10 +7,10 @@
 // `sglab sweep --kappa LO:HI:29 --cosines 41 --method ID` reports as
 // max_peak_rel — except that a method with any non-finite output on the grid
 // gets error +inf (it cannot meet any budget and is never on the frontier).
-// Cost: from a cost source (cost_source.hpp: gpu:FAMILY inverse throughput in
+// Cost: from a cost source (cost/cost_source.hpp: gpu:FAMILY inverse throughput in
 // cycles, cpu-batch or cpu-scalar ns per evaluation) of the cost table that
-// `sglab bench` and `sglab gpucost` wrote (cost_table.hpp), or CPU ns measured
-// live (measure_costs, cost.hpp).
+// `sglab bench` and `sglab gpucost` wrote (cost/cost_table.hpp), or CPU ns measured
+// live (cost::measure_costs, cost/cpu_timing.hpp).
 #pragma once
 
 #include <cstddef>
@@ -21,9 +21,9 @@
 #include <string_view>
 #include <vector>
 
-#include "report/cost.hpp"
-#include "report/cost_source.hpp"
-#include "report/cost_table.hpp"
+#include "cost/cost_source.hpp"
+#include "cost/cost_table.hpp"
+#include "cost/cpu_timing.hpp"
 #include "validate/sweep.hpp"
 #include "validate/table.hpp"
 
@@ -96,17 +96,17 @@ std::vector<MethodPoint> irradiance_errors(double kappa_lo, double kappa_hi, io:
 // Fills cost (ns) with the median CPU cost in precision `f` and `mode` (batch
 // or scalar; measure_costs, `repetitions` × `min_time` s per method): live
 // timing, which differs from run to run.
-void fill_costs(std::vector<MethodPoint>& points, io::Precision f, CostMode mode,
+void fill_costs(std::vector<MethodPoint>& points, io::Precision f, cost::CostMode mode,
                 int repetitions = 5, double min_time = 0.01);
 
 // The row of the gpu section a GPU source reads for `method`
 // (gpu::renderer_row for gpu:FAMILY, gpu::single_row for gpu-single:FAMILY),
 // or nullptr; and its cost in cycles (per light: gpu::cycles_per_light).
-const shader::gpu::Row* gpu_row(const shader::gpu::Report& report, std::string_view method,
-                                const CostSource& source);
-double gpu_cost(const shader::gpu::Row& row);
+const cost::gpu::Row* gpu_row(const cost::gpu::Report& report, std::string_view method,
+                              const cost::CostSource& source);
+double gpu_cost(const cost::gpu::Row& row);
 
-// Fills cost, cost_unit and cost_form from a cost table (cost_table.hpp) in
+// Fills cost, cost_unit and cost_form from a cost table (cost/cost_table.hpp) in
 // `source`: cpu-*: the irradiance batch/scalar ns of precision `f`;
 // gpu:FAMILY, gpu-single:FAMILY: gpu_cost of gpu_row (the shaders are float:
 // f must be float). A method without its row gets NaN ("no cost": it is
@@ -115,17 +115,17 @@ double gpu_cost(const shader::gpu::Row& row);
 // rows at all (no "gpu" section, no row of the figure on FAMILY: the families
 // it has are named), std::invalid_argument for gpu:* with f double.
 std::vector<std::string> fill_costs(std::vector<MethodPoint>& points, io::Precision f,
-                                    const CostTable& table, const CostSource& source);
+                                    const cost::CostTable& table, const cost::CostSource& source);
 
 // Every irradiance method's float cost in `table`, in the default source
 // (gpu:navi21, default_cost_source) when the table has GPU rows for it, else
 // in cpu-batch: the source used, and method id → cost (a method without a row
 // is left out). What `sglab fit sglab-acc` puts in its cost column.
 struct MethodCostMap {
-  CostSource source;
+  cost::CostSource source;
   std::map<std::string, double> cost;
 };
-MethodCostMap default_float_costs(const CostTable& table);
+MethodCostMap default_float_costs(const cost::CostTable& table);
 
 // method, origin, precision, kappa_lo, kappa_hi, cost, cost_unit, cost_source,
 // cost_form, max_peak_rel, frontier, in_valid_range (origin
@@ -134,7 +134,7 @@ MethodCostMap default_float_costs(const CostTable& table);
 // source and, when given, where its costs came from (`cost_from`: table,
 // driver or machine), and the methods outside their valid range.
 validate::Table pareto_table(const std::vector<MethodPoint>& points, io::Precision f,
-                             double kappa_lo, double kappa_hi, const CostSource& source,
+                             double kappa_lo, double kappa_hi, const cost::CostSource& source,
                              std::string_view cost_from = {});
 
 // Parses `sglab pareto`'s CSV (RFC 4180; header

@@ -1,5 +1,5 @@
 // The cost source of `sglab pareto` and `sglab recommend` (--cost gpu:FAMILY |
-// cpu-batch | cpu-scalar, report/cost_source.hpp): the parser, the default
+// cpu-batch | cpu-scalar, cost/cost_source.hpp): the parser, the default
 // (GPU inverse throughput on navi21), a cost table without GPU costs, and the
 // recommendation under GPU cost checked against the table itself. No timing.
 #include <cmath>
@@ -17,17 +17,17 @@
 
 #include <sglab/registry.hpp>
 
-#include "report/cost_source.hpp"
-#include "report/cost_table.hpp"
+#include "cost/cost_source.hpp"
+#include "cost/cost_table.hpp"
 #include "report/pareto.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using sglab::report::CostSource;
-using sglab::report::CostSourceKind;
-using sglab::report::parse_cost_source;
+using sglab::cost::CostSource;
+using sglab::cost::CostSourceKind;
+using sglab::cost::parse_cost_source;
 using sglab::test::run_sglab;
 using sglab::test::TempDir;
 
@@ -53,7 +53,7 @@ TEST(CostSource, ParsesTheThreeForms) {
     EXPECT_EQ(s.kind, c.kind) << c.text;
     if (s.kind == CostSourceKind::gpu) {
       EXPECT_EQ(s.family, c.family) << c.text;
-      EXPECT_EQ(s.figure == sglab::report::GpuFigure::single,
+      EXPECT_EQ(s.figure == sglab::cost::GpuFigure::single,
                 std::string(c.text).starts_with("gpu-single:"))
           << c.text;
     }
@@ -61,9 +61,9 @@ TEST(CostSource, ParsesTheThreeForms) {
     EXPECT_EQ(s.name(), c.text);  // the name is what --cost takes back
   }
   EXPECT_EQ(std::get<CostSource>(parse_cost_source("cpu-batch")).cpu_mode(),
-            sglab::report::CostMode::batch);
+            sglab::cost::CostMode::batch);
   EXPECT_EQ(std::get<CostSource>(parse_cost_source("cpu-scalar")).cpu_mode(),
-            sglab::report::CostMode::scalar);
+            sglab::cost::CostMode::scalar);
 }
 
 TEST(CostSource, RefusesEverythingElseQuotingIt) {
@@ -97,12 +97,12 @@ TEST(CostSource, RefusesEverythingElseQuotingIt) {
 }
 
 TEST(CostSource, DefaultIsGpuInverseThroughputOnNavi21ForFloat) {
-  const CostSource f = sglab::report::default_cost_source(sglab::io::Precision::float32);
+  const CostSource f = sglab::cost::default_cost_source(sglab::io::Precision::float32);
   EXPECT_EQ(f.kind, CostSourceKind::gpu);
   EXPECT_EQ(f.family, "navi21");
   EXPECT_EQ(f.unit(), "cycles");
   // The shader exports are float: double is costed on the CPU.
-  const CostSource d = sglab::report::default_cost_source(sglab::io::Precision::float64);
+  const CostSource d = sglab::cost::default_cost_source(sglab::io::Precision::float64);
   EXPECT_EQ(d.name(), "cpu-batch");
 }
 
@@ -232,7 +232,7 @@ TEST(CostSource, FitCostColumnIsNavi21CyclesElseCpuBatch) {
   std::map<std::string, long> gpu = gpu_costs(100);
   gpu.erase("sglab_acc2");
   const auto navi21 =
-      sglab::report::read_cost_table(write_table(dir, "navi21.json", table_json(5, gpu)));
+      sglab::cost::read_cost_table(write_table(dir, "navi21.json", table_json(5, gpu)));
   const auto with_gpu = sglab::report::default_float_costs(navi21);
   EXPECT_EQ(with_gpu.source.name(), "gpu:navi21");
   EXPECT_EQ(with_gpu.cost.size(), gpu.size());
@@ -241,7 +241,7 @@ TEST(CostSource, FitCostColumnIsNavi21CyclesElseCpuBatch) {
   EXPECT_EQ(with_gpu.cost.count("sglab_acc2"), 0u);
   for (const auto& table : {table_json(5, gpu_costs(100), "navi10"), table_json(5, {})}) {
     const auto cpu = sglab::report::default_float_costs(
-        sglab::report::read_cost_table(write_table(dir, "other.json", table)));
+        sglab::cost::read_cost_table(write_table(dir, "other.json", table)));
     EXPECT_EQ(cpu.source.name(), "cpu-batch");
     EXPECT_EQ(cpu.cost.size(), std::size(sglab::irradiance_methods));
     for (const auto& [method, ns] : cpu.cost) EXPECT_EQ(ns, 5.0) << method;

@@ -19,7 +19,7 @@
 
 #include <sglab/registry.hpp>
 
-#include "report/cost_table.hpp"
+#include "cost/cost_table.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -203,9 +203,9 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
   EXPECT_EQ(both.exit_code, 2) << both.output;
   // read_cost_table names the key.
   try {
-    sglab::report::read_cost_table(dir / "negative.json");
+    sglab::cost::read_cost_table(dir / "negative.json");
     ADD_FAILURE() << "no error";
-  } catch (const sglab::report::CostTableError& e) {
+  } catch (const sglab::cost::CostTableError& e) {
     EXPECT_NE(std::string(e.what()).find("costs[0].\"ns_per_eval\""), std::string::npos)
         << e.what();
   }
@@ -215,10 +215,10 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
 // a build after the file changed compiles in the new one.
 TEST(CostTable, TheCompiledInTableIsTheCommittedOne) {
   const fs::path committed = sglab::test::checkout_dir() / "data" / "results" / "costs.json";
-  const auto builtin = sglab::report::builtin_cost_table();
-  EXPECT_EQ(builtin.path.string(), sglab::report::kBuiltinCostTableName);
-  EXPECT_EQ(sglab::report::to_json(builtin).dump(),
-            sglab::report::to_json(sglab::report::read_cost_table(committed)).dump());
+  const auto builtin = sglab::cost::builtin_cost_table();
+  EXPECT_EQ(builtin.path.string(), sglab::cost::kBuiltinCostTableName);
+  EXPECT_EQ(sglab::cost::to_json(builtin).dump(),
+            sglab::cost::to_json(sglab::cost::read_cost_table(committed)).dump());
 }
 
 // Outside a checkout (no --costs, no project above the working folder),
@@ -238,7 +238,7 @@ TEST(CostTable, OutsideACheckoutTheCompiledInTableIsUsedAndNamed) {
     const auto r = run_sglab(args);
     EXPECT_EQ(r.exit_code, 0) << args[0] << ": " << r.output;
     EXPECT_NE(r.output.find(std::string("from cost table ") +
-                            std::string(sglab::report::kBuiltinCostTableName)),
+                            std::string(sglab::cost::kBuiltinCostTableName)),
               std::string::npos)
         << args[0] << ": " << r.output;
   }
@@ -251,9 +251,9 @@ TEST(CostTable, BenchWritesATableThatReadsBack) {
   const auto r = run_sglab({"bench", "--filter", "^irradiance/(hill|tokuyoshi2024)/float/",
                             "--repetitions", "1", "--min-time", "0.01", "--out", dir.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto t = sglab::report::read_cost_table(dir / "costs.json");
-  using sglab::report::CostKind;
-  using sglab::report::CostMode;
+  const auto t = sglab::cost::read_cost_table(dir / "costs.json");
+  using sglab::cost::CostKind;
+  using sglab::cost::CostMode;
   for (CostMode mode : {CostMode::scalar, CostMode::batch}) {
     EXPECT_TRUE(t.find(CostKind::irradiance, "hill", sglab::io::Precision::float32, mode));
     EXPECT_TRUE(t.find(CostKind::irradiance, "tokuyoshi2024", sglab::io::Precision::float32, mode));

@@ -14,15 +14,16 @@
 #include <nlohmann/json.hpp>
 
 #include "common/io.hpp"
+#include "cost/cost_table.hpp"
 #include "export/gpu_cost.hpp"
 #include "export/vulkan_runner.hpp"
-#include "report/cost_table.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 namespace gpu = sglab::shader::gpu;
+namespace cost = sglab::cost;
 namespace shader = sglab::shader;
 using sglab::test::run_sglab;
 using sglab::test::TempDir;
@@ -44,7 +45,7 @@ gpu::Shader synthetic_loop(const std::string& name, const std::string& body, int
                 sglab::shader::vulkan::compile_compute(
                     shader::Language::glsl,
                     shader::loop_compute_shader(shader::Language::glsl, src, name, {}, lights))};
-  s.harness = gpu::Harness::loop;
+  s.harness = cost::gpu::Harness::loop;
   s.lights = lights;
   return s;
 }
@@ -67,8 +68,8 @@ class OnRadv : public ::testing::Test {
   void SetUp() override {
     if (!skip_reason_.empty()) GTEST_SKIP() << "no RADV null device: " << skip_reason_;
   }
-  static gpu::Report measure(const std::vector<std::string>& families,
-                             const std::vector<gpu::Shader>& shaders) {
+  static cost::gpu::Report measure(const std::vector<std::string>& families,
+                                   const std::vector<gpu::Shader>& shaders) {
     return gpu::measure(SGLAB_BINARY, *manifest_, families, shaders);
   }
   static std::optional<fs::path> manifest_;
@@ -83,9 +84,9 @@ TEST_F(OnRadv, TheWrapperAloneCostsNothing) {
   const gpu::Shader baseline = gpu::baseline_shader(shader::Language::glsl);
   gpu::Shader same = baseline;
   same.method = "same";
-  const gpu::Report r = measure({"navi21", "gfx1100"}, {baseline, same});
+  const cost::gpu::Report r = measure({"navi21", "gfx1100"}, {baseline, same});
   ASSERT_EQ(r.rows.size(), 2u);
-  for (const gpu::Row& row : r.rows) {
+  for (const cost::gpu::Row& row : r.rows) {
     SCOPED_TRACE(row.family);
     EXPECT_EQ(row.stats.instructions, 0);
     EXPECT_EQ(row.stats.inverse_throughput, 0);
@@ -100,7 +101,7 @@ TEST_F(OnRadv, TheWrapperAloneCostsNothing) {
 // dependent exps and divisions, then a loop; instructions grow with the work,
 // the estimated inverse throughput with the chain, branches with the loop.
 TEST_F(OnRadv, MoreWorkCostsMore) {
-  const gpu::Report r = measure(
+  const cost::gpu::Report r = measure(
       {"navi21"},
       {gpu::baseline_shader(shader::Language::glsl),
        synthetic("one_exp", "return exp(-kappa) * cosine;"),
@@ -112,8 +113,8 @@ TEST_F(OnRadv, MoreWorkCostsMore) {
            "loop",
            "float s = 0.0; for (int i = 0; i < int(kappa); ++i) s += exp(s * cosine); return s;")});
   ASSERT_EQ(r.rows.size(), 4u);
-  const gpu::Statistics &one = r.rows[0].stats, &two = r.rows[1].stats, &chain = r.rows[2].stats,
-                        &loop = r.rows[3].stats;
+  const cost::gpu::Statistics &one = r.rows[0].stats, &two = r.rows[1].stats,
+                              &chain = r.rows[2].stats, &loop = r.rows[3].stats;
   EXPECT_GT(one.instructions, 0);
   EXPECT_GT(two.instructions, one.instructions);
   EXPECT_GT(chain.instructions, two.instructions);
@@ -152,7 +153,7 @@ TEST_F(OnRadv, ABoundsCheckHidesAQuarterOfTheCost) {
     checked.push_back(in_sweep_wrapper(m, ex.entry_point, ex.source));
     whole.push_back(gpu::method_shader(m, shader::Language::glsl));
   }
-  const gpu::Report a = measure({"navi21"}, checked), b = measure({"navi21"}, whole);
+  const cost::gpu::Report a = measure({"navi21"}, checked), b = measure({"navi21"}, whole);
   ASSERT_EQ(a.rows.size(), methods.size());
   ASSERT_EQ(b.rows.size(), methods.size());
   for (std::size_t i = 0; i < methods.size(); ++i) {
@@ -191,7 +192,7 @@ TEST_F(OnRadv, SingleHarnessAgreesWithAnIndependentBranchFreeWrapper) {
     const auto ex = shader::export_source(shader::standard_request(shader::Language::glsl, m));
     shaders.push_back(wrap(m, ex.source, ex.entry_point));
   }
-  const gpu::Report mine = measure({"navi21"}, shaders);
+  const cost::gpu::Report mine = measure({"navi21"}, shaders);
   const auto r =
       run_sglab({"gpucost", "--families", "navi21", "--method", "tokuyoshi2024", "--method",
                  "sglab_acc3", "--harness", "single", "--form", "unsplit", "--json"},
@@ -221,12 +222,13 @@ TEST_F(OnRadv, LoopHarnessCountsEveryLight) {
   std::vector<gpu::Shader> shaders;
   for (int n : {8, 64}) {
     shaders.push_back(gpu::baseline_shader(shader::Language::glsl, shader::Precision::float32,
-                                           gpu::Harness::loop, n));
+                                           cost::gpu::Harness::loop, n));
     shaders.push_back(synthetic_loop("chain", body, n));
   }
-  const gpu::Report r = measure({"navi21"}, shaders);
+  const cost::gpu::Report r = measure({"navi21"}, shaders);
   ASSERT_EQ(r.rows.size(), 2u);
-  const double per8 = gpu::cycles_per_light(r.rows[0]), per64 = gpu::cycles_per_light(r.rows[1]);
+  const double per8 = cost::gpu::cycles_per_light(r.rows[0]),
+               per64 = cost::gpu::cycles_per_light(r.rows[1]);
   EXPECT_GT(per8, 0);
   EXPECT_NEAR(per64, per8, 0.05 * per8);
   EXPECT_NEAR(static_cast<double>(r.rows[1].stats.instructions),
@@ -247,10 +249,10 @@ TEST_F(OnRadv, LoopHarnessCountsEveryLight) {
         fn);
     gpu::Shader s{method, shader::Language::glsl,
                   sglab::shader::vulkan::compile_compute(shader::Language::glsl, text)};
-    s.harness = gpu::Harness::loop;
+    s.harness = cost::gpu::Harness::loop;
     return s;
   };
-  const gpu::Report runtime =
+  const cost::gpu::Report runtime =
       measure({"navi21"}, {runtime_loop(std::string(gpu::kBaseline), "return cosine + kappa;"),
                            runtime_loop("chain", body)});
   ASSERT_EQ(runtime.rows.size(), 1u);
@@ -298,16 +300,15 @@ TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
   auto old_doc = nlohmann::ordered_json::parse(sglab::io::read_file(committed));
   for (auto& row : old_doc.at("gpu").at("rows")) row.erase("harness");
   sglab::io::write_file_atomic(dir.path / "costs.json", old_doc.dump(2));
-  EXPECT_THROW(sglab::report::read_cost_table(dir.path / "costs.json"),
-               sglab::report::CostTableError);
+  EXPECT_THROW(sglab::cost::read_cost_table(dir.path / "costs.json"), sglab::cost::CostTableError);
   const auto before =
-      sglab::report::read_cost_table(dir.path / "costs.json", sglab::report::GpuSection::skip);
+      sglab::cost::read_cost_table(dir.path / "costs.json", sglab::cost::GpuSection::skip);
   const std::vector<std::string> args = {"gpucost",  "--families", "navi21",
                                          "--method", "hill",       "--harness",
                                          "single",   "--out",      dir.path.string()};
   const auto run = run_sglab(args);
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto after = sglab::report::read_cost_table(dir.path / "costs.json");
+  const auto after = sglab::cost::read_cost_table(dir.path / "costs.json");
   ASSERT_EQ(after.costs.size(), before.costs.size());
   for (std::size_t i = 0; i < before.costs.size(); ++i)
     EXPECT_EQ(after.costs[i].ns_per_eval, before.costs[i].ns_per_eval);
@@ -315,7 +316,7 @@ TEST_F(OnRadv, OutKeepsTheCpuCostsAndIsReproducible) {
   ASSERT_EQ(after.gpu->rows.size(), 2u);  // unsplit and split
   EXPECT_EQ(after.gpu->rows[0].method, "hill");
   EXPECT_EQ(after.gpu->rows[0].family, "navi21");
-  EXPECT_EQ(after.gpu->rows[0].harness, gpu::Harness::single);
+  EXPECT_EQ(after.gpu->rows[0].harness, cost::gpu::Harness::single);
   EXPECT_FALSE(after.gpu->rows[0].split);
   EXPECT_TRUE(after.gpu->rows[1].split);
   EXPECT_TRUE(fs::is_regular_file(dir.path / "gpu_costs.md"));
@@ -354,38 +355,40 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
   const std::vector<std::string> split = shader::split_methods();
   std::vector<gpu::Shader> shaders;
   for (shader::Language lang : {shader::Language::glsl, shader::Language::hlsl})
-    for (gpu::CompilePath c :
-         {gpu::CompilePath::none, gpu::CompilePath::legalized, gpu::CompilePath::optimized}) {
-      if (c == gpu::CompilePath::legalized && lang == shader::Language::glsl) continue;
+    for (cost::gpu::CompilePath c :
+         {cost::gpu::CompilePath::none, cost::gpu::CompilePath::legalized,
+          cost::gpu::CompilePath::optimized}) {
+      if (c == cost::gpu::CompilePath::legalized && lang == shader::Language::glsl) continue;
       shaders.push_back(
-          gpu::baseline_shader(lang, shader::Precision::float32, gpu::Harness::single, 1, c));
+          gpu::baseline_shader(lang, shader::Precision::float32, cost::gpu::Harness::single, 1, c));
       for (const std::string& m : methods)
         shaders.push_back(gpu::method_shader(m, lang, shader::Precision::float32, c));
       for (const std::string& m : split) shaders.push_back(gpu::split_method_shader(m, lang, c));
     }
-  const gpu::Report r = measure({"navi21", "gfx1100"}, shaders);
+  const cost::gpu::Report r = measure({"navi21", "gfx1100"}, shaders);
   ASSERT_EQ(r.rows.size(), 2 * 5 * (methods.size() + split.size()));
   // (family, method, split, compile) → GLSL cycles
-  std::map<std::tuple<std::string, std::string, bool, gpu::CompilePath>, std::int64_t> glsl;
-  for (const gpu::Row& row : r.rows)
+  std::map<std::tuple<std::string, std::string, bool, cost::gpu::CompilePath>, std::int64_t> glsl;
+  for (const cost::gpu::Row& row : r.rows)
     if (row.lang == shader::Language::glsl)
       glsl[{row.family, row.method, row.split, row.compile}] = row.stats.inverse_throughput;
   std::size_t compared = 0;
-  for (const gpu::Row& row : r.rows) {
+  for (const cost::gpu::Row& row : r.rows) {
     if (row.lang != shader::Language::hlsl) continue;
     // HLSL none and legalized against the GLSL as glslang writes it; optimized against optimized.
-    const gpu::CompilePath against = row.compile == gpu::CompilePath::optimized
-                                         ? gpu::CompilePath::optimized
-                                         : gpu::CompilePath::none;
+    const cost::gpu::CompilePath against = row.compile == cost::gpu::CompilePath::optimized
+                                               ? cost::gpu::CompilePath::optimized
+                                               : cost::gpu::CompilePath::none;
     const std::int64_t g = glsl.at({row.family, row.method, row.split, against}),
                        h = row.stats.inverse_throughput;
     const std::string what =
         fmt::format("{} {}{} HLSL {}: GLSL {}, HLSL {} cycles", row.family, row.method,
-                    row.split ? " (split)" : "", gpu::to_string(row.compile), g, h);
+                    row.split ? " (split)" : "", cost::gpu::to_string(row.compile), g, h);
     EXPECT_GE(g, 0) << what;
     // The same code through both front ends costs the same; after spirv-opt HLSL may be cheaper.
-    EXPECT_LE(static_cast<double>(row.compile == gpu::CompilePath::none ? std::abs(h - g) : h - g),
-              0.05 * static_cast<double>(g))
+    EXPECT_LE(
+        static_cast<double>(row.compile == cost::gpu::CompilePath::none ? std::abs(h - g) : h - g),
+        0.05 * static_cast<double>(g))
         << what;
     ++compared;
   }
@@ -397,20 +400,21 @@ TEST_F(OnRadv, HlslCostsWhatGlslCosts) {
 // on navi21 (spirv-opt must not undo what the exports leave ACO to fold).
 TEST_F(OnRadv, HlslCostsWhatGlslCostsInTheLoop) {
   std::vector<gpu::Shader> shaders;
-  for (const auto& [lang, c] : {std::pair{shader::Language::glsl, gpu::CompilePath::none},
-                                std::pair{shader::Language::hlsl, gpu::CompilePath::legalized}}) {
+  for (const auto& [lang, c] :
+       {std::pair{shader::Language::glsl, cost::gpu::CompilePath::none},
+        std::pair{shader::Language::hlsl, cost::gpu::CompilePath::legalized}}) {
     shaders.push_back(
-        gpu::baseline_shader(lang, shader::Precision::float32, gpu::Harness::loop, 8, c));
+        gpu::baseline_shader(lang, shader::Precision::float32, cost::gpu::Harness::loop, 8, c));
     for (const std::string& m : shader::split_methods())
       shaders.push_back(gpu::loop_shader(m, lang, /*split=*/true, 8, c));
   }
-  const gpu::Report r = measure({"navi21"}, shaders);
+  const cost::gpu::Report r = measure({"navi21"}, shaders);
   ASSERT_EQ(r.rows.size(), 2 * shader::split_methods().size());
   std::map<std::string, std::int64_t> glsl;
-  for (const gpu::Row& row : r.rows)
+  for (const cost::gpu::Row& row : r.rows)
     if (row.lang == shader::Language::glsl) glsl[row.method] = row.stats.inverse_throughput;
   std::size_t compared = 0;
-  for (const gpu::Row& row : r.rows) {
+  for (const cost::gpu::Row& row : r.rows) {
     if (row.lang != shader::Language::hlsl) continue;
     const std::int64_t g = glsl.at(row.method), h = row.stats.inverse_throughput;
     EXPECT_GT(g, 0) << row.method;
@@ -480,15 +484,15 @@ TEST_F(OnRadv, EveryKnownFamilyHasANullDevice) {
   const gpu::Shader baseline = gpu::baseline_shader(shader::Language::glsl);
   gpu::Shader same = baseline;
   same.method = "same";
-  const std::vector<std::string> known(std::begin(gpu::kKnownFamilies),
-                                       std::end(gpu::kKnownFamilies));
-  const gpu::Report r = measure(known, {baseline, same});
+  const std::vector<std::string> known(std::begin(cost::gpu::kKnownFamilies),
+                                       std::end(cost::gpu::kKnownFamilies));
+  const cost::gpu::Report r = measure(known, {baseline, same});
   ASSERT_EQ(r.rows.size(), known.size());
   for (std::size_t i = 0; i < known.size(); ++i) {
     EXPECT_EQ(r.rows[i].family, known[i]);
     EXPECT_GT(r.rows[i].stats.vgprs, 0) << known[i];
   }
-  for (const gpu::Family& f : gpu::kDefaultFamilies)
+  for (const cost::gpu::Family& f : cost::gpu::kDefaultFamilies)
     EXPECT_NE(std::find(known.begin(), known.end(), f.name), known.end()) << f.name;
 }
 
@@ -605,20 +609,24 @@ TEST(GpuCost, CompilePathsRunSpirvToolsPasses) {
       shader::compute_shader(shader::Language::hlsl, ex.source, ex.entry_point,
                              shader::Precision::float32, shader::Dispatch::whole_groups));
   EXPECT_GT(calls(spirv), 0u);
-  EXPECT_EQ(gpu::apply_compile_path(shader::Language::hlsl, gpu::CompilePath::none, spirv), spirv);
-  for (gpu::CompilePath c : {gpu::CompilePath::legalized, gpu::CompilePath::optimized}) {
+  EXPECT_EQ(gpu::apply_compile_path(shader::Language::hlsl, cost::gpu::CompilePath::none, spirv),
+            spirv);
+  for (cost::gpu::CompilePath c :
+       {cost::gpu::CompilePath::legalized, cost::gpu::CompilePath::optimized}) {
     const auto out = gpu::apply_compile_path(shader::Language::hlsl, c, spirv);
-    EXPECT_EQ(calls(out), 0u) << gpu::to_string(c);
-    EXPECT_NE(gpu::spirv_hash(out), gpu::spirv_hash(spirv)) << gpu::to_string(c);
+    EXPECT_EQ(calls(out), 0u) << cost::gpu::to_string(c);
+    EXPECT_NE(gpu::spirv_hash(out), gpu::spirv_hash(spirv)) << cost::gpu::to_string(c);
   }
-  EXPECT_EQ(gpu::method_shader("tokuyoshi2024", shader::Language::hlsl, shader::Precision::float32,
-                               gpu::CompilePath::legalized)
-                .spirv,
-            gpu::apply_compile_path(shader::Language::hlsl, gpu::CompilePath::legalized, spirv));
-  EXPECT_THROW(gpu::apply_compile_path(shader::Language::glsl, gpu::CompilePath::legalized, spirv),
-               std::invalid_argument);
+  EXPECT_EQ(
+      gpu::method_shader("tokuyoshi2024", shader::Language::hlsl, shader::Precision::float32,
+                         cost::gpu::CompilePath::legalized)
+          .spirv,
+      gpu::apply_compile_path(shader::Language::hlsl, cost::gpu::CompilePath::legalized, spirv));
   EXPECT_THROW(
-      gpu::apply_compile_path(shader::Language::hlsl, gpu::CompilePath::optimized,
+      gpu::apply_compile_path(shader::Language::glsl, cost::gpu::CompilePath::legalized, spirv),
+      std::invalid_argument);
+  EXPECT_THROW(
+      gpu::apply_compile_path(shader::Language::hlsl, cost::gpu::CompilePath::optimized,
                               std::vector<std::uint32_t>(spirv.begin(), spirv.begin() + 9)),
       std::runtime_error);
 }
@@ -634,9 +642,9 @@ TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
                 {"rows", {{{"method", "hill"}, {"family", "navi21"}}}}};
   sglab::io::write_file_atomic(dir.path / "costs.json", doc.dump());
   try {
-    sglab::report::read_cost_table(dir.path / "costs.json");
+    sglab::cost::read_cost_table(dir.path / "costs.json");
     FAIL() << "accepted a row without lang";
-  } catch (const sglab::report::CostTableError& e) {
+  } catch (const sglab::cost::CostTableError& e) {
     EXPECT_NE(std::string(e.what()).find("rows[0].lang"), std::string::npos) << e.what();
   }
   // A row of the committed table, then spoilt one key at a time.
@@ -659,16 +667,16 @@ TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
     doc["gpu"] = {{"driver", "radv Mesa"}, {"command", "x"}, {"rows", {row}}};
     sglab::io::write_file_atomic(dir.path / "costs.json", doc.dump());
     try {
-      sglab::report::read_cost_table(dir.path / "costs.json");
+      sglab::cost::read_cost_table(dir.path / "costs.json");
       ADD_FAILURE() << "accepted " << row.dump();
-    } catch (const sglab::report::CostTableError& e) {
+    } catch (const sglab::cost::CostTableError& e) {
       EXPECT_NE(std::string(e.what()).find(spoil.names), std::string::npos) << e.what();
     }
   }
   // The good row is read back.
   doc["gpu"] = {{"driver", "radv Mesa"}, {"command", "x"}, {"rows", {good}}};
   sglab::io::write_file_atomic(dir.path / "costs.json", doc.dump());
-  EXPECT_EQ(sglab::report::read_cost_table(dir.path / "costs.json").gpu->rows.size(), 1u);
+  EXPECT_EQ(sglab::cost::read_cost_table(dir.path / "costs.json").gpu->rows.size(), 1u);
 }
 
 // Runs in `dir` for the lifetime of the object (run_sglab spawns with our cwd).
@@ -691,12 +699,12 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
                 dir.path / "data" / "results" / "vulkan_sweep.json");
   auto doc = nlohmann::ordered_json::parse(
       sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
-  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  cost::gpu::Report report{"radv Mesa (test rows)", "test", {}};
   const auto row = [](const std::string& family, shader::Language lang, std::int64_t cycles,
                       std::string hash) {
-    gpu::Statistics s;
+    cost::gpu::Statistics s;
     s.instructions = s.inverse_throughput = s.latency = cycles;
-    return gpu::Row{"hill", family, lang, false, "float", s, std::move(hash)};
+    return cost::gpu::Row{"hill", family, lang, false, "float", s, std::move(hash)};
   };
   const std::string glsl_hash =
       gpu::spirv_hash(gpu::method_shader("hill", shader::Language::glsl).spirv);
@@ -707,7 +715,7 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
                  // another code's hash
                  row("gfx1100", shader::Language::glsl, 2345, glsl_hash),
                  row("navi21", shader::Language::hlsl, 3456, glsl_hash)};
-  doc["gpu"] = gpu::to_json(report);
+  doc["gpu"] = cost::gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
 
   WorkingDirectory cwd(dir.path);
@@ -727,7 +735,7 @@ TEST(GpuCostInExport, HeaderStatesTheCostOfThisVeryCode) {
       << hlsl.output;
   // The right hash for HLSL: its row is read.
   report.rows[2].spirv_hash = hlsl_hash;
-  doc["gpu"] = gpu::to_json(report);
+  doc["gpu"] = cost::gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   const auto hlsl2 = run_sglab({"export", "--lang", "hlsl", "--method", "hill"}, false);
   EXPECT_NE(hlsl2.output.find("costs.json): navi21 3456, gfx1100 not measured\n"),
@@ -747,7 +755,7 @@ TEST(GpuCostInExport, SplitHeaderReadsTheSplitRow) {
   sglab::test::make_scratch_project(dir.path);
   auto doc = nlohmann::ordered_json::parse(
       sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
-  gpu::Statistics unsplit_stats, split_stats;
+  cost::gpu::Statistics unsplit_stats, split_stats;
   unsplit_stats.inverse_throughput = 4321;
   split_stats.inverse_throughput = 1234;
   const std::string unsplit_hash =
@@ -755,11 +763,11 @@ TEST(GpuCostInExport, SplitHeaderReadsTheSplitRow) {
   const std::string split_hash =
       gpu::spirv_hash(gpu::split_method_shader("sglab_fast", shader::Language::glsl).spirv);
   ASSERT_NE(unsplit_hash, split_hash);
-  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  cost::gpu::Report report{"radv Mesa (test rows)", "test", {}};
   report.rows = {
       {"sglab_fast", "navi21", shader::Language::glsl, false, "float", unsplit_stats, unsplit_hash},
       {"sglab_fast", "navi21", shader::Language::glsl, true, "float", split_stats, split_hash}};
-  doc["gpu"] = gpu::to_json(report);
+  doc["gpu"] = cost::gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   WorkingDirectory cwd(dir.path);
   const auto split =

@@ -33,6 +33,7 @@ namespace {
 namespace sh = sglab::shader;
 namespace vk = sglab::shader::vulkan;
 namespace gpu = sglab::shader::gpu;
+namespace cost = sglab::cost;
 using sglab::test::run_sglab;
 using sglab::test::TempDir;
 namespace tol = sglab::test;
@@ -261,13 +262,13 @@ TEST(HalfGpuCost, ExportHeaderReadsTheHalfRow) {
       sglab::io::read_file(checkout / "data" / "results" / "costs.json"));
   const std::string half_hash =
       gpu::spirv_hash(gpu::method_shader("hill", sh::Language::glsl, sh::Precision::float16).spirv);
-  gpu::Statistics s;
+  cost::gpu::Statistics s;
   s.instructions = s.inverse_throughput = s.latency = 777;
-  gpu::Report report{"radv Mesa (test rows)", "test", {}};
+  cost::gpu::Report report{"radv Mesa (test rows)", "test", {}};
   report.rows = {// not a half row
                  {"hill", "navi21", sh::Language::glsl, false, "half", s, half_hash},
                  {"hill", "gfx1100", sh::Language::glsl, false, "float", s, half_hash}};
-  doc["gpu"] = gpu::to_json(report);
+  doc["gpu"] = cost::gpu::to_json(report);
   sglab::io::write_file_atomic(dir.path / "data" / "results" / "costs.json", doc.dump());
   const fs::path old = fs::current_path();
   fs::current_path(dir.path);
@@ -298,7 +299,8 @@ TEST(OnRadvHalf, HalfRowsCostTheHalfExports) {
   const gpu::Shader baseline = gpu::baseline_shader(sh::Language::glsl, sh::Precision::float16);
   gpu::Shader same = baseline;
   same.method = "same";
-  const gpu::Report alone = gpu::measure(SGLAB_BINARY, *manifest, {"navi21"}, {baseline, same});
+  const cost::gpu::Report alone =
+      gpu::measure(SGLAB_BINARY, *manifest, {"navi21"}, {baseline, same});
   ASSERT_EQ(alone.rows.size(), 1u);
   EXPECT_EQ(alone.rows[0].precision, "half");
   EXPECT_EQ(alone.rows[0].stats.inverse_throughput, 0);

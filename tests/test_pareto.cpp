@@ -58,9 +58,9 @@ TEST(Pareto, OriginFromRegistryInTable) {
     refit |= points[i].origin == sglab::Origin::refit;
   }
   EXPECT_TRUE(published && refit);  // both kinds exist in the registry today
-  const std::string csv = sglab::validate::to_csv(sglab::report::pareto_table(
-      points, sglab::io::Precision::float64, 1, 10,
-      sglab::report::default_cost_source(sglab::io::Precision::float64)));
+  const std::string csv = sglab::validate::to_csv(
+      sglab::report::pareto_table(points, sglab::io::Precision::float64, 1, 10,
+                                  sglab::cost::default_cost_source(sglab::io::Precision::float64)));
   for (const auto& m : sglab::irradiance_methods) {
     const std::string row = fmt::format("\n{},{},double,", m.id, sglab::to_string(m.origin));
     EXPECT_NE(csv.find(row), std::string::npos) << row << "\n" << csv;

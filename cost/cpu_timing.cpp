@@ -1,5 +1,5 @@
-// report/cost.cpp — see cost.hpp.
-#include "report/cost.hpp"
+// cost/cpu_timing.cpp — see cost.hpp.
+#include "cost/cpu_timing.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 #include <sglab/erf.hpp>
 #include <sglab/registry.hpp>
 
-namespace sglab::report {
+namespace sglab::cost {
 
 std::string cost_input_description(std::size_t n) {
   return fmt::format(
@@ -250,14 +250,4 @@ std::vector<Cost> measure_costs(const CostOptions& options) {
   return out;
 }
 
-validate::Table cost_table(const std::vector<Cost>& costs, std::string title) {
-  validate::Table t(std::move(title),
-                    {{"kind"}, {"method"}, {"precision"}, {"mode"}, {"ns_per_eval", 3}});
-  for (const Cost& c : costs)
-    t.add_row({validate::Table::text(to_string(c.kind)), validate::Table::text(c.method),
-               validate::Table::text(to_string(c.precision)),
-               validate::Table::text(to_string(c.mode)), validate::Table::real(c.ns_per_eval)});
-  return t;
-}
-
-}  // namespace sglab::report
+}  // namespace sglab::cost

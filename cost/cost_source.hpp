@@ -1,4 +1,4 @@
-// report/cost_source.hpp — which cost `sglab pareto`, `sglab recommend` and
+// cost/cost_source.hpp — which cost `sglab pareto`, `sglab recommend` and
 // the Pareto figure put on their speed axis: one option, `--cost SOURCE`,
 // parsed by one function (parse_cost_source), as κ ranges are by
 // common/args.hpp.
@@ -10,7 +10,7 @@
 //               by 8, in the split form where the method has one (the per-light
 //               setup is paid once per light, not per pixel), from the "gpu"
 //               section of the cost table (`sglab gpucost --out DIR`,
-//               export/gpu_cost.hpp, gpu::renderer_row). Unit "cycles". A
+//               cost/gpu_report.hpp, gpu::renderer_row). Unit "cycles". A
 //               compiler estimate, not a timing.
 //   gpu-single:FAMILY  the same estimate for one unsplit call per invocation
 //               (gpu::single_row).
@@ -25,9 +25,9 @@
 #include <string_view>
 #include <variant>
 
-#include "report/cost.hpp"
+#include "cost/cpu_timing.hpp"
 
-namespace sglab::report {
+namespace sglab::cost {
 
 enum class CostSourceKind { gpu, cpu_batch, cpu_scalar };
 
@@ -68,4 +68,4 @@ bool is_gpu_family_name(std::string_view name);
 // On failure, why (quoting the text escaped; the caller prefixes the option).
 std::variant<CostSource, std::string> parse_cost_source(std::string_view text);
 
-}  // namespace sglab::report
+}  // namespace sglab::cost

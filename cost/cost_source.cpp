@@ -1,12 +1,12 @@
-// report/cost_source.cpp — see cost_source.hpp.
-#include "report/cost_source.hpp"
+// cost/cost_source.cpp — see cost_source.hpp.
+#include "cost/cost_source.hpp"
 
 #include <fmt/format.h>
 
 #include "common/args.hpp"
-#include "export/gpu_cost.hpp"
+#include "cost/gpu_report.hpp"
 
-namespace sglab::report {
+namespace sglab::cost {
 
 std::string CostSource::name() const {
   switch (kind) {
@@ -34,7 +34,7 @@ std::string CostSource::describe() const {
                        "GPU cycles per light per pixel on {0} (ACO's inverse throughput per wave "
                        "of a per-pixel loop over {1} lights, divided by {1}; the split form where "
                        "the method has one; a compiler estimate)",
-                       family, shader::gpu::kRendererLights);
+                       family, gpu::kRendererLights);
     case CostSourceKind::cpu_batch:
       return "CPU batch ns/eval";
     case CostSourceKind::cpu_scalar:
@@ -84,4 +84,4 @@ std::variant<CostSource, std::string> parse_cost_source(std::string_view text) {
       io::quote_escaped(text));
 }
 
-}  // namespace sglab::report
+}  // namespace sglab::cost

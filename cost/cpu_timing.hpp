@@ -1,4 +1,4 @@
-// report/cost.hpp — how long each registered method takes per evaluation
+// cost/cpu_timing.hpp — how long each registered method takes per evaluation
 // (the "speed" half of speed against accuracy).
 //
 // Workload (fixed, reproducible): kCostInputs = 2^20 (1,048,576) inputs,
@@ -27,7 +27,8 @@
 // One thread. ns_per_eval = wall time of a pass / evaluations per pass, the
 // median over the repetitions.
 //
-// `sglab bench` times these same cases with Google Benchmark (app/cmd_bench.cpp)
+// `sglab bench` times these same cases with Google Benchmark
+// (cost/benchmark_runner.hpp)
 // and writes the cost table (cost_table.hpp) that `sglab pareto` and
 // `sglab recommend` read; `measure_costs` times them with
 // std::chrono::steady_clock (no Google Benchmark dependency) for their
@@ -44,10 +45,9 @@
 #include <string_view>
 #include <vector>
 
-#include "validate/sweep.hpp"
-#include "validate/table.hpp"
+#include "common/vocabulary.hpp"
 
-namespace sglab::report {
+namespace sglab::cost {
 
 inline constexpr std::size_t kCostInputs = std::size_t{1} << 20;
 inline constexpr std::size_t kCostLights = 256;
@@ -126,8 +126,4 @@ double time_case(const CostCase& c, int repetitions, double min_time);
 // Throws std::invalid_argument on repetitions < 1 or a bad filter regex.
 std::vector<Cost> measure_costs(const CostOptions& options = {});
 
-// kind, method, precision, mode, ns_per_eval.
-validate::Table cost_table(const std::vector<Cost>& costs,
-                           std::string title = "Cost per evaluation (median of repetitions)");
-
-}  // namespace sglab::report
+}  // namespace sglab::cost

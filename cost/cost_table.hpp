@@ -1,4 +1,4 @@
-// report/cost_table.hpp — the cost table: what `sglab bench` measured, with
+// cost/cost_table.hpp — the cost table: what `sglab bench` measured, with
 // where and how, so that `sglab pareto` and `sglab recommend` answer the same
 // for the same inputs (they read it instead of timing on each call).
 //
@@ -15,7 +15,7 @@
 // kind ∈ {irradiance, hemispherical, erf}, precision ∈ {float, double},
 // mode ∈ {scalar, batch, light_setup, light_eval}; ns_per_eval finite and > 0.
 // Optionally "gpu": what `sglab gpucost --out DIR` measured with AMD's shader
-// compiler (export/gpu_cost.hpp, shader::gpu::to_json): driver, command and a row
+// compiler (cost/gpu_report.hpp, gpu::to_json): driver, command and a row
 // per (method, family, lang). `sglab bench` keeps it, `sglab gpucost` keeps the
 // rest. The committed table is data/results/costs.json.
 #pragma once
@@ -30,10 +30,10 @@
 #include <nlohmann/json.hpp>
 
 #include "common/io.hpp"
-#include "export/gpu_cost.hpp"
-#include "report/cost.hpp"
+#include "cost/cpu_timing.hpp"
+#include "cost/gpu_report.hpp"
 
-namespace sglab::report {
+namespace sglab::cost {
 
 // A missing, unreadable or malformed cost table; the message names the file
 // (and the key or entry that is wrong). Bad input: `sglab` exits with 2.
@@ -56,7 +56,7 @@ struct CostTable {
   std::filesystem::path path;  // where it was read from (empty when built in memory)
   CostTableInfo info;
   std::vector<Cost> costs;
-  std::optional<shader::gpu::Report> gpu;
+  std::optional<gpu::Report> gpu;
   // The row for (kind, method, precision, mode), or nullptr.
   const Cost* find(CostKind kind, std::string_view method, io::Precision precision,
                    CostMode mode) const;
@@ -95,4 +95,4 @@ CostTable builtin_cost_table();
 inline constexpr std::string_view kBuiltinCostTableName =
     "compiled into sglab (the data/results/costs.json it was built with)";
 
-}  // namespace sglab::report
+}  // namespace sglab::cost

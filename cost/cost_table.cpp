@@ -1,5 +1,5 @@
-// report/cost_table.cpp — see cost_table.hpp.
-#include "report/cost_table.hpp"
+// cost/cost_table.cpp — see cost_table.hpp.
+#include "cost/cost_table.hpp"
 
 #include <cerrno>
 #include <chrono>
@@ -21,10 +21,10 @@
 #endif
 
 namespace sglab::embedded {
-std::string_view cost_table_json();  // builtin_cost_table.cpp, generated (report/CMakeLists.txt)
+std::string_view cost_table_json();  // builtin_cost_table.cpp, generated (cost/CMakeLists.txt)
 }  // namespace sglab::embedded
 
-namespace sglab::report {
+namespace sglab::cost {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
@@ -101,7 +101,7 @@ json to_json(const CostTable& t) {
                     {"mode", std::string(to_string(c.mode))},
                     {"ns_per_eval", c.ns_per_eval}});
   doc["costs"] = std::move(rows);
-  if (t.gpu) doc["gpu"] = shader::gpu::to_json(*t.gpu);
+  if (t.gpu) doc["gpu"] = gpu::to_json(*t.gpu);
   return doc;
 }
 
@@ -200,7 +200,7 @@ CostTable cost_table_from_json(const json& doc, const fs::path& path, GpuSection
   }
   if (gpu == GpuSection::read && doc.contains("gpu")) {
     try {
-      t.gpu = shader::gpu::report_from_json(doc.at("gpu"), "gpu");
+      t.gpu = gpu::report_from_json(doc.at("gpu"), "gpu");
     } catch (const std::runtime_error& e) {
       fail(path, e.what());
     }
@@ -249,4 +249,4 @@ std::optional<fs::path> default_cost_table_path() {
   return *root / "data" / "results" / "costs.json";
 }
 
-}  // namespace sglab::report
+}  // namespace sglab::cost
