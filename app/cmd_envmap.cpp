@@ -375,7 +375,7 @@ void add_envmap_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")
         ->check(non_empty_path());
     cmd->add_flag("--quick", a->quick,
-                  "12 lobes only, no curves or figures (--probes: every third map at 27 floats)");
+                  "12 lobes only, no curves or figures (--probes: every fourth map at 27 floats)");
     cmd->add_flag("--probes", a->probes,
                   "the probe table instead (probes.md: SH, ZH3, SG lobes, SH + lobes at 15, 27, "
                   "48, 75 floats on the full maps; default maps: blender-data's when installed)");

@@ -455,7 +455,7 @@ std::vector<Step> run_steps(const fs::path& root, Form form, bool bench_skipped)
        Form::representative,
        {},
        {"--quick"},
-       "every third map at 27 floats instead of every map at 15, 27, 48 and 75 floats"},
+       "every fourth map at 27 floats instead of every map at 15, 27, 48 and 75 floats"},
   };
   for (Step& step : steps) {
     const auto sample = std::find_if(samples.begin(), samples.end(), [&](const Sample& x) {
