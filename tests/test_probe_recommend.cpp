@@ -10,6 +10,7 @@
 #include "envmap/envmap.hpp"
 #include "envmap/probe.hpp"
 #include "report/probe_recommend.hpp"
+#include "tests/map_of.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -18,20 +19,7 @@ using namespace sglab;
 using envmap::Map;
 using envmap::Vec3;
 
-template <class F>
-Map map_of(std::size_t width, F f) {
-  Map m;
-  m.width = width;
-  m.height = width / 2;
-  m.rgb.resize(m.width * m.height * 3);
-  for (std::size_t j = 0; j < m.height; ++j)
-    for (std::size_t i = 0; i < m.width; ++i) {
-      const Vec3 v = f(envmap::pixel_direction(m, i, j));
-      for (std::size_t ch = 0; ch < 3; ++ch)
-        m.rgb[(j * m.width + i) * 3 + ch] = static_cast<float>(v[ch]);
-    }
-  return m;
-}
+using sglab::test::map_of;
 
 const envmap::Lobe kLight{{0.36, 0.48, 0.8}, 20.0, {3.0, 2.0, 1.0}};
 
