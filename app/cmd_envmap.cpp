@@ -3,6 +3,7 @@
 //   irradiance FILE [--normals N] the map's exact diffuse irradiance, CSV
 //   fit FILE --lobes N            SG lobes fitted with Ceres, --out scene.json
 //   recommend FILE --budget E     fewest lobes × cheapest method meeting E
+//     … --by storage              the probe of fewest floats meeting E
 //   baselines [--maps DIR]        the BakingLab baseline against sglab's fits, all maps
 // Every error is against the map's exact irradiance (envmap::irradiance) at
 // --normals Fibonacci normals, relative to its largest value (max over
@@ -34,6 +35,7 @@
 #include "envmap/probe.hpp"
 #include "report/envmap_report.hpp"
 #include "report/pareto.hpp"
+#include "report/probe_recommend.hpp"
 #include "report/probes_report.hpp"
 
 namespace sglab::app {
@@ -97,7 +99,7 @@ struct FitArgs {
 };
 
 struct RecommendArgs {
-  std::string file, budget, precision = "float";
+  std::string file, budget, precision = "float", by, write_probe;
   std::size_t max_lobes = 32, normals = envmap::kEvalNormals;
   bool json = false;
   CostsOption costs;
@@ -186,14 +188,103 @@ void run_fit(const FitArgs& a, const std::string& command) {
   if (terminal()) fmt::print(stderr, "envmap fit: {:.2f} s\n", seconds_since(t0));
 }
 
-void run_recommend(const RecommendArgs& a) {
+double parse_budget(const std::string& text) {
   double budget = 0;
-  if (const auto parsed = io::parse_decimal(a.budget);
+  if (const auto parsed = io::parse_decimal(text);
       const auto* why = std::get_if<std::string>(&parsed))
     throw InputError("--budget: " + *why);
   else
     budget = std::get<double>(parsed);
   if (!(budget > 0)) throw InputError(fmt::format("--budget: must be > 0, got {}", budget));
+  return budget;
+}
+
+json probe_candidate_json(const report::ProbeCandidate& c) {
+  return {{"label", c.probe.label()},     {"family", c.family},
+          {"floats", c.probe.floats()},   {"bytes", c.probe.bytes()},
+          {"max_rel", c.error.max_rel},   {"rms_rel", c.error.rms_rel},
+          {"worst_normal", c.error.worst}};
+}
+
+// `envmap recommend MAP --budget E --by storage`: the probe of fewest floats
+// meeting E (report/probe_recommend.hpp).
+void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
+  const double budget = parse_budget(a.budget);
+  if (a.by != "storage")
+    throw InputError(fmt::format(
+        "--by: 'storage' (fewest floats) is the only measure of a probe; got '{}'", a.by));
+  if (!a.write_probe.empty()) io::check_output_path(a.write_probe);
+  const auto t0 = std::chrono::steady_clock::now();
+  const envmap::Map map = envmap::read_map(a.file);
+  io::Progress progress(fmt::format("envmap recommend {}", a.file), 0);
+  const report::ProbeRecommendation rec = report::recommend_probe_by_storage(
+      map, budget, a.max_lobes, [&](const std::string& s) { progress.note(s); });
+  progress.finish();
+  const auto& tried = rec.tried;
+  if (rec.choice && !a.write_probe.empty()) {
+    auto j = tried[*rec.choice].probe.to_json();
+    j["map"] = a.file;
+    j["max_rel"] = tried[*rec.choice].error.max_rel;
+    j["rms_rel"] = tried[*rec.choice].error.rms_rel;
+    j["command"] = command;
+    io::write_file_atomic(a.write_probe, j.dump(1) + "\n");
+  }
+  const std::string definition =
+      "max over 20000 Fibonacci normals and a local maximization from the 8 worst (RMS: the "
+      "normals) of |E_probe - E_map| over RGB / max E_map; E_map every pixel of the full map, "
+      "lobes through the probe's method";
+  if (a.json) {
+    json doc;
+    doc["map"] = a.file;
+    doc["map_size"] = {map.width, map.height};
+    doc["budget"] = budget;
+    doc["by"] = "storage: floats (4 bytes each, IEEE binary32)";
+    doc["error"] = definition;
+    doc["choice"] = rec.choice ? probe_candidate_json(tried[*rec.choice]) : json(nullptr);
+    doc["runner_up"] = rec.runner_up ? probe_candidate_json(tried[*rec.runner_up]) : json(nullptr);
+    doc["lobe_ladder_up_to"] = rec.lobe_cap;
+    doc["hybrid_ladder_up_to"] = rec.hybrid_cap;
+    json all = json::array();
+    for (const auto& c : tried) all.push_back(probe_candidate_json(c));
+    doc["tried"] = std::move(all);
+    if (!a.write_probe.empty() && rec.choice) doc["wrote"] = a.write_probe;
+    fmt::print("{}\n", doc.dump(2));
+  } else {
+    fmt::print("map {} ({} x {}): budget {} on the probe's max irradiance error, by storage\n",
+               a.file, map.width, map.height, budget);
+    fmt::print("error = {}\n\n", definition);
+    fmt::print("  {:<22} {:<20} {:>6} {:>10} {:>10}  {}\n", "probe", "family", "floats", "max",
+               "RMS", "meets");
+    for (const auto& c : tried)
+      fmt::print("  {:<22} {:<20} {:>6} {:>10.4g} {:>10.4g}  {}\n", c.probe.label(), c.family,
+                 c.probe.floats(), c.error.max_rel, c.error.rms_rel,
+                 c.error.max_rel <= budget ? "yes" : "no");
+    const auto describe = [](const report::ProbeCandidate& c) {
+      return fmt::format("{} ({}): {} floats, {} bytes; max error {:.4g}, RMS {:.4g}",
+                         c.probe.label(), c.family, c.probe.floats(), c.probe.bytes(),
+                         c.error.max_rel, c.error.rms_rel);
+    };
+    fmt::print("\n");
+    if (rec.choice) {
+      fmt::print("  choice:    {}\n", describe(tried[*rec.choice]));
+      fmt::print("  runner-up: {}\n",
+                 rec.runner_up ? describe(tried[*rec.runner_up]) : std::string("none"));
+      if (!a.write_probe.empty())
+        fmt::print("wrote {} (sglab export --probe {} --lang glsl)\n", a.write_probe,
+                   a.write_probe);
+    } else {
+      fmt::print("  no probe up to SH L4, ZH3, {} lobes and SH L2 + {} lobes meets the budget.\n",
+                 rec.lobe_cap, rec.hybrid_cap);
+    }
+  }
+  if (terminal()) fmt::print(stderr, "envmap recommend: {:.2f} s\n", seconds_since(t0));
+}
+
+void run_recommend(const RecommendArgs& a) {
+  if (!a.write_probe.empty())
+    throw InputError(
+        "--write-probe: needs --by storage (the lobes-and-method choice has no probe)");
+  const double budget = parse_budget(a.budget);
   const auto precision = io::parse_option("--precision", a.precision,
                                           {io::Precision::float32, io::Precision::float64});
   const auto t0 = std::chrono::steady_clock::now();
@@ -362,8 +453,20 @@ void add_envmap_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--precision", a->precision, "float or double")->capture_default_str();
     cmd->add_flag("--json", a->json, "print the answer as JSON");
+    cmd->add_option("--by", a->by,
+                    "storage: the probe (SH L0-L4, ZH3, N lobes, SH L2 + K lobes) of fewest floats "
+                    "meeting the budget, dense error on the full map; without --by: lobes x "
+                    "cheapest irradiance method");
+    cmd->add_option("--write-probe", a->write_probe,
+                    "with --by storage: the chosen probe as JSON for `sglab export --probe`")
+        ->check(non_empty_path());
     a->costs.add_to(cmd);
-    cmd->callback([a] { run_recommend(*a); });
+    cmd->callback([a, cmd] {
+      if (!a->by.empty())
+        run_recommend_probe(*a, command_line("sglab envmap recommend " + a->file, cmd));
+      else
+        run_recommend(*a);
+    });
   }
   {
     auto a = std::make_shared<BaselinesArgs>();

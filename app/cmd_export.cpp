@@ -2,7 +2,8 @@
 // source with its constants baked in (compiled-in, or from a constants JSON),
 // its own erf/erfc/expm1 approximations, and a header comment carrying the
 // source paper, the constants' provenance, the error budget, the GPU cost
-// (GLSL and HLSL, from the cost table) and the command.
+// (GLSL and HLSL, from the cost table) and the command. With --probe: a
+// fitted probe as probe_irradiance(n) (export/probe_export.hpp).
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/probe_source.hpp"
 #include "common/io.hpp"
 #include "cost/cost_table.hpp"
 #include "export/gpu_cost.hpp"
@@ -131,7 +133,24 @@ struct ExportArgs {
   std::string constants;
   bool split = false;
   std::string precision = "float";
+  std::string probe;
 };
+
+// `sglab export --probe FILE --lang L`: the probe's probe_irradiance(n).
+void export_probe(const ExportArgs& args, io::Language lang) {
+  if (!args.method.empty() || !args.constants.empty() || args.split || args.precision != "float")
+    throw InputError(
+        "--probe: exports a fitted probe with the method it names; --method, --constants, --split "
+        "and --precision do not apply");
+  const envmap::Probe probe = read_probe_file(args.probe);
+  const std::string command =
+      fmt::format("sglab export --probe {} --lang {}", args.probe, io::to_string(lang));
+  try {
+    fmt::print("{}", shader::export_probe(lang, probe_terms(probe, command)).source);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(fmt::format("{}: {}", args.probe, e.what()));
+  }
+}
 
 // --split: the per-light form of req's method (refused for a method without
 // one, and with --precision half: the split export is float only).
@@ -154,11 +173,15 @@ void set_split(shader::ExportRequest& req) {
 void add_export_command(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
   auto* cmd = app.add_subcommand("export",
-                                 "One irradiance method as self-contained GLSL 4.50, HLSL (SM6) or "
-                                 "C++ source, constants baked in");
+                                 "One irradiance method (or a fitted probe) as self-contained GLSL "
+                                 "4.50, HLSL (SM6) or C++ source, constants baked in");
   cmd->add_option("--lang", args->lang, "glsl, hlsl or cpp")->required();
-  cmd->add_option("--method", args->method, "irradiance method id (see `sglab methods`)")
-      ->required();
+  cmd->add_option("--method", args->method,
+                  "irradiance method id (see `sglab methods`); this or --probe");
+  cmd->add_option("--probe", args->probe,
+                  "a fitted probe (JSON object as `sglab envmap recommend --write-probe` writes): "
+                  "exports probe_irradiance(n), its lobes with the method it names")
+      ->check(non_empty_path());
   cmd->add_option("--constants", args->constants,
                   "constant-set JSON replacing the compiled-in set of the same type (e.g. one "
                   "`sglab fit ... --out DIR` wrote)")
@@ -172,6 +195,8 @@ void add_export_command(CLI::App& app) {
       ->capture_default_str();
   cmd->callback([args] {
     const auto lang = io::parse_option<io::Language>("--lang", args->lang);
+    if (!args->probe.empty()) return export_probe(*args, lang);
+    if (args->method.empty()) throw InputError("--method or --probe is required");
     const auto precision = io::parse_option("--precision", args->precision,
                                             {io::Precision::float32, io::Precision::float16});
     if (precision == io::Precision::float16 && lang == io::Language::cpp)

@@ -10,6 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <Eigen/Dense>
 
+#include <sglab/registry.hpp>
+
 #include "common/io.hpp"
 #include "validate/irradiance_table.hpp"
 
@@ -282,6 +284,7 @@ nlohmann::ordered_json Probe::to_json() const {
                    {"sharpness", l.sharpness},
                    {"amplitude", {l.amplitude[0], l.amplitude[1], l.amplitude[2]}}});
     j["lobes"] = a;
+    j["method"] = method;
   }
   return j;
 }
@@ -351,6 +354,14 @@ Probe Probe::from_json(const nlohmann::ordered_json& j) {
       p.lobes.push_back(lobe);
     }
     if (p.kind == ProbeKind::lobes && p.lobes.empty()) throw InputError("probe: 'lobes' is empty");
+    if (j.contains("method")) {
+      if (!j["method"].is_string()) throw InputError("probe: 'method' must be a string");
+      p.method = j["method"].get<std::string>();
+      if (!find_method(irradiance_methods, p.method))
+        throw InputError(fmt::format(
+            "probe: 'method' must be a registered irradiance method (`sglab methods`), got '{}'",
+            p.method));
+    }
   }
   return p;
 }
@@ -376,6 +387,24 @@ IrradianceFn probe_irradiance(const Probe& probe) {
       const double c = std::clamp(dot(probe.lobes[k].axis, n), -1.0, 1.0);
       const double s = slices[k](c);
       for (std::size_t ch = 0; ch < 3; ++ch) e[ch] += probe.lobes[k].amplitude[ch] * s;
+    }
+    return e;
+  };
+}
+
+IrradianceFn probe_irradiance_method(const Probe& probe) {
+  const Method* method = find_method(irradiance_methods, probe.method);
+  if (!method)
+    throw std::logic_error(fmt::format("probe: unknown irradiance method '{}'", probe.method));
+  Probe rest = probe;  // the SH and zonal terms, as probe_irradiance evaluates them
+  rest.lobes.clear();
+  const bool has_rest = probe.kind != ProbeKind::lobes;
+  const IrradianceFn base = probe_irradiance(rest);
+  return [probe, method, base, has_rest](const Vec3& n) {
+    Vec3 e = has_rest ? base(n) : Vec3{0, 0, 0};
+    for (const Lobe& l : probe.lobes) {
+      const double s = method->f64(std::clamp(dot(l.axis, n), -1.0, 1.0), l.sharpness);
+      for (std::size_t ch = 0; ch < 3; ++ch) e[ch] += l.amplitude[ch] * s;
     }
     return e;
   };

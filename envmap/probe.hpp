@@ -122,6 +122,9 @@ struct Probe {
   std::vector<Vec3> sh;     // irradiance SH coefficients E_lm, sh_count(order) × RGB
   Vec3 zonal{0, 0, 0};      // zh3: E's zonal l = 2 coefficient per channel
   std::vector<Lobe> lobes;  // lobes, hybrid
+  // The runtime irradiance method the lobes were fitted with (the ladders'
+  // Ê, envmap/fit.cpp) and are exported with (`sglab export --probe`).
+  std::string method = "sglab_acc3";
 
   // The ZH3 axis: the L1 luminance direction of `sh` (not stored: derived).
   Vec3 zonal_axis() const;
@@ -131,11 +134,18 @@ struct Probe {
   std::size_t bytes() const { return 4 * floats(); }
   std::string label() const;  // "SH L2", "ZH3", "4 SG", "SH L2 + 3 SG", ...
   nlohmann::ordered_json to_json() const;
-  static Probe from_json(const nlohmann::ordered_json& j);  // throws io::InputError
+  // Throws io::InputError naming the key (the caller names the file): a
+  // missing or mistyped key, a coefficient count that does not match the
+  // order, a non-finite number, a zero axis, a negative sharpness, a method
+  // that is not a registered irradiance method.
+  static Probe from_json(const nlohmann::ordered_json& j);
 };
 
 // The probe's irradiance (lobes through the exact SG irradiance table).
 IrradianceFn probe_irradiance(const Probe& probe);
+// The same with the lobes through the runtime's `method` in double, as the
+// exported probe evaluates them.
+IrradianceFn probe_irradiance_method(const Probe& probe);
 
 // Projections: E_lm = Â_l L_lm of the map (the L2-best irradiance of that
 // order over the sphere); the non-negative L1; ZH3 as [Roughton2024]: L1

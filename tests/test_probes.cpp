@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "envmap/probe.hpp"
+#include "tests/map_of.hpp"
 #include "validate/scene.hpp"
 
 namespace {
@@ -15,21 +16,7 @@ using envmap::Map;
 using envmap::Probe;
 using envmap::Vec3;
 
-// A map whose pixels hold f(pixel centre direction).
-template <class F>
-Map map_of(std::size_t width, F f) {
-  Map m;
-  m.width = width;
-  m.height = width / 2;
-  m.rgb.resize(m.width * m.height * 3);
-  for (std::size_t j = 0; j < m.height; ++j)
-    for (std::size_t i = 0; i < m.width; ++i) {
-      const Vec3 v = f(envmap::pixel_direction(m, i, j));
-      for (std::size_t ch = 0; ch < 3; ++ch)
-        m.rgb[(j * m.width + i) * 3 + ch] = static_cast<float>(v[ch]);
-    }
-  return m;
-}
+using sglab::test::map_of;
 
 std::vector<Vec3> random_normals(std::size_t n, unsigned seed) {
   std::mt19937_64 rng(seed);
