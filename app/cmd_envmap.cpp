@@ -119,7 +119,7 @@ void run_fit(const FitArgs& a, const std::string& command) {
   envmap::FitOptions options;
   options.lobes = a.lobes;
   options.objective = objective;
-  const auto fit_normals = validate::fibonacci_normals(options.fit_normals);
+  const auto fit_normals = reference::fibonacci_normals(options.fit_normals);
   envmap::check_lobe_count(work, a.lobes);
   io::Progress progress(fmt::format("envmap fit {}", a.file), 0);
   progress.note("exact irradiance of the map");
@@ -404,7 +404,7 @@ void add_envmap_command(CLI::App& app) {
         ->capture_default_str();
     cmd->callback([a] {
       const envmap::Map map = envmap::read_map(a->file);
-      const auto normals = validate::fibonacci_normals(a->normals);
+      const auto normals = reference::fibonacci_normals(a->normals);
       const auto e = envmap::irradiance(map, normals);
       std::string out = "nx,ny,nz,r,g,b\n";
       for (std::size_t k = 0; k < normals.size(); ++k)

@@ -63,10 +63,10 @@ void run_erf(const ErfArgs& args) {
   if (args.double_points < 1024)
     throw InputError(fmt::format("--double-points must be >= 1024, got {}", args.double_points));
 
-  validate::ErfDoubleOptions dopt;
+  reference::ErfDoubleOptions dopt;
   dopt.grid_points = args.double_points;
   dopt.bins = args.bins;
-  const validate::ErfDoubleSample sample = validate::make_erf_double_sample(dopt);
+  const reference::ErfDoubleSample sample = reference::make_erf_double_sample(dopt);
 
   std::vector<validate::ErfReport> reports;
   for (const ErfVariant* v : selected) {

@@ -63,7 +63,7 @@ void add_eval_command(CLI::App& app) {
       out.clear();
     };
     std::size_t rows = 0;
-    const auto row = [&](const validate::Query& q) {
+    const auto row = [&](const reference::Query& q) {
       ++rows;
       if (in_float)
         out += fmt::format("{:.17g},{:.17g},{:.9g}\n", q.kappa, q.cosine,

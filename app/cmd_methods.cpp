@@ -13,8 +13,8 @@
 #include <sglab/registry.hpp>
 
 #include "app/commands.hpp"
+#include "reference/reference.hpp"
 #include "validate/kappa_range.hpp"
-#include "validate/reference.hpp"
 
 namespace sglab::app {
 
@@ -152,9 +152,9 @@ void add_table_command(CLI::App& app) {
   cmd->callback([kappa, count] {
     if (!(std::isfinite(*kappa) && *kappa >= 0))
       throw InputError(fmt::format("--kappa must be finite and >= 0, got {}", *kappa));
-    std::vector<validate::Query> queries;
+    std::vector<reference::Query> queries;
     for (int i = 0; i < *count; ++i) queries.push_back({*kappa, -1.0 + 2.0 * i / (*count - 1)});
-    const auto ref = validate::reference_engine().evaluate(queries);
+    const auto ref = reference::reference_engine().evaluate(queries);
     fmt::print(
         "Irradiance E(c, κ) of a unit-amplitude SG light, κ = {} (double precision); last column: "
         "max |Ê − E|/E(1, κ)\n\n",

@@ -12,7 +12,7 @@
 // sglab::ValidRange) does not hold [LO, HI] is not considered and is named as
 // such. --json adds every candidate.
 // `sglab recommend --scene FILE --budget E` ranks the methods by their error on
-// a scene of SG lights instead (app/recommend_scene.cpp, validate/scene.hpp).
+// a scene of SG lights instead (app/recommend_scene.cpp, validate/scene_errors.hpp).
 #include <cmath>
 #include <memory>
 #include <string>

@@ -1,7 +1,7 @@
 // `sglab reference --points FILE [--precision standard|high]`: the reference
-// engine (validate/reference.hpp) on the points of a CSV file.
+// engine (reference/reference.hpp) on the points of a CSV file.
 // `sglab reference --check-table [--oversample K]`: the irradiance table
-// (validate/irradiance_table.hpp) against the quadrature on the grid K times
+// (reference/irradiance_table.hpp) against the quadrature on the grid K times
 // finer than its nodes (check_irradiance_table), per piece; exit 1 when any
 // point is beyond its bound.
 //
@@ -34,8 +34,8 @@
 #include "app/points.hpp"
 #include "common/args.hpp"
 #include "common/io.hpp"
-#include "validate/irradiance_table.hpp"
-#include "validate/reference.hpp"
+#include "reference/irradiance_table.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::app {
 namespace {
@@ -64,7 +64,7 @@ std::vector<std::string_view> split(std::string_view line) {
 // The dense check of the irradiance table, one line per piece, then the whole.
 void check_table(int oversample) {
   const auto t0 = std::chrono::steady_clock::now();
-  const validate::IrradianceTable& table = validate::irradiance_table();
+  const reference::IrradianceTable& table = reference::irradiance_table();
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::size_t nodes = 0;
   for (const auto& p : table.pieces()) nodes += p.coefficients.size();
@@ -75,16 +75,16 @@ void check_table(int oversample) {
       table.pieces().size(), nodes, build, oversample);
   fmt::print("  {:<22} {:>7} {:>9} {:>13}  {}\n", "piece (κ)", "nodes", "points", "max error",
              "worst (κ, c)");
-  const auto points = validate::irradiance_table_check_points(oversample);
-  validate::IrradianceTableCheck all;
+  const auto points = reference::irradiance_table_check_points(oversample);
+  reference::IrradianceTableCheck all;
   for (const auto& p : table.pieces()) {
-    std::vector<validate::Query> mine;
+    std::vector<reference::Query> mine;
     for (const auto& q : points)
       if (&table.piece_of(q.kappa) == &p) mine.push_back(q);
-    const auto r = validate::check_irradiance_table(mine, true);
-    const char* axis = p.axis == validate::IrradianceTable::Axis::linear
+    const auto r = reference::check_irradiance_table(mine, true);
+    const char* axis = p.axis == reference::IrradianceTable::Axis::linear
                            ? "κ"
-                           : (p.axis == validate::IrradianceTable::Axis::log ? "ln κ" : "1/κ");
+                           : (p.axis == reference::IrradianceTable::Axis::log ? "ln κ" : "1/κ");
     fmt::print("  {:<22} {:>7} {:>9} {:>13.3g}  ({:.6g}, {:.6g})\n",
                fmt::format("[{:g}, {:g}] in {}", p.kappa_lo, p.kappa_hi, axis),
                fmt::format("{}x{}", p.kappa_nodes, p.cosine_nodes), r.points, r.max_error,
@@ -97,17 +97,17 @@ void check_table(int oversample) {
       "\n  all: {} points, max |E_table − E| / E(1, κ) = {:.3g} at κ = {:.17g}, c = {:.17g} "
       "(bound {:g})\n",
       all.points, all.max_error, all.worst_kappa, all.worst_cosine,
-      validate::kIrradianceTableBound);
+      reference::kIrradianceTableBound);
   std::fflush(stdout);
-  if (!(all.max_error <= validate::kIrradianceTableBound))
+  if (!(all.max_error <= reference::kIrradianceTableBound))
     throw std::runtime_error(fmt::format("the irradiance table exceeds its bound {:g}: {:.3g}",
-                                         validate::kIrradianceTableBound, all.max_error));
+                                         reference::kIrradianceTableBound, all.max_error));
 }
 
 }  // namespace
 
 std::size_t for_each_point(const std::string& path,
-                           const std::function<void(const validate::Query&)>& on_point,
+                           const std::function<void(const reference::Query&)>& on_point,
                            std::optional<io::NumberFormat> kappa_format) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -161,7 +161,7 @@ std::size_t for_each_point(const std::string& path,
             io::point_error(kappa, cosine, kappa_format ? &*kappa_format : nullptr);
         !why.empty())
       throw fail(why);
-    on_point(validate::Query{kappa, cosine});
+    on_point(reference::Query{kappa, cosine});
     ++count;
   }
   if (!header_seen)
@@ -205,15 +205,15 @@ void add_reference_command(CLI::App& app) {
     // does not grow with the file; a bad row stops the command after the
     // rows before it are printed.
     const auto mode =
-        *precision == "high" ? validate::Precision::high : validate::Precision::standard;
+        *precision == "high" ? reference::Quadrature::high : reference::Quadrature::standard;
     io::Progress progress("reference", 0);
     constexpr std::size_t kChunk = 4096;  // rows per engine call (each call runs in parallel)
-    std::vector<validate::Query> chunk;
+    std::vector<reference::Query> chunk;
     chunk.reserve(kChunk);
     // printed with the first rows
     std::string out = "kappa,cosine,hemispherical,irradiance,normalized\n";
     const auto flush = [&] {
-      const auto results = validate::reference_engine().evaluate(chunk, mode);
+      const auto results = reference::reference_engine().evaluate(chunk, mode);
       for (const auto& r : results)
         out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", r.kappa, r.cosine,
                            r.hemispherical, r.irradiance, r.normalized);
@@ -223,11 +223,11 @@ void add_reference_command(CLI::App& app) {
       chunk.clear();
       // The engine caches every point it evaluates; a points file is read
       // once, so keep the cache from growing with the file.
-      if (validate::reference_engine().cache_size() > 8 * kChunk)
-        validate::reference_engine().clear_cache();
+      if (reference::reference_engine().cache_size() > 8 * kChunk)
+        reference::reference_engine().clear_cache();
     };
     try {
-      for_each_point(*points, [&](const validate::Query& q) {
+      for_each_point(*points, [&](const reference::Query& q) {
         chunk.push_back(q);
         if (chunk.size() == kChunk) flush();
       });

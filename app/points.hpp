@@ -8,7 +8,7 @@
 #include <string>
 
 #include "common/args.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::app {
 
@@ -28,7 +28,7 @@ inline constexpr std::size_t kMaxPointsLineBytes = 1024;
 // refuses one (common/args.hpp): above its largest finite value, or nonzero
 // and rounding to 0.
 std::size_t for_each_point(const std::string& path,
-                           const std::function<void(const validate::Query&)>& on_point,
+                           const std::function<void(const reference::Query&)>& on_point,
                            std::optional<io::NumberFormat> kappa_format = std::nullopt);
 
 }  // namespace sglab::app

@@ -1,5 +1,5 @@
 // `sglab recommend --scene FILE --budget E`: the cheapest irradiance method
-// whose error on a scene of SG lights (validate/scene.hpp) is ≤ E. The scene's
+// whose error on a scene of SG lights (validate/scene_errors.hpp) is ≤ E. The scene's
 // total RGB irradiance is evaluated at --normals Fibonacci normals exactly
 // (reference engine) and with every registered irradiance method; error =
 // max over normals and channels of |Ê − E| / the scene's largest exact
@@ -25,7 +25,7 @@
 #include "common/io.hpp"
 #include "report/pareto.hpp"
 #include "report/scene_ranking.hpp"
-#include "validate/scene.hpp"
+#include "validate/scene_errors.hpp"
 
 namespace sglab::app {
 
@@ -36,23 +36,23 @@ nlohmann::ordered_json number(double x) {
   return x;
 }
 
-validate::Scene read_scene(const SceneRecommendArgs& args) {
+reference::Scene read_scene(const SceneRecommendArgs& args) {
   std::string text;
   try {
-    text = io::read_input_file(args.scene, validate::kMaxSceneFileBytes, "a scene file");
+    text = io::read_input_file(args.scene, reference::kMaxSceneFileBytes, "a scene file");
   } catch (const InputError& e) {
     throw InputError(fmt::format("--scene: {}", e.what()));
   }
-  validate::Scene scene;
+  reference::Scene scene;
   try {
-    scene = validate::parse_scene(text, args.scene);
-  } catch (const validate::SceneError& e) {
+    scene = reference::parse_scene(text, args.scene);
+  } catch (const reference::SceneError& e) {
     throw InputError(e.what());
   }
-  // Limits (validate/scene.hpp, docs/cli.md) before anything is allocated for the normals.
+  // Limits (reference/scene.hpp, docs/cli.md) before anything is allocated for the normals.
   try {
-    validate::check_scene_limits(scene.lights.size(), args.normals);
-  } catch (const validate::SceneError& e) {
+    reference::check_scene_limits(scene.lights.size(), args.normals);
+  } catch (const reference::SceneError& e) {
     throw InputError(fmt::format("--scene {}: {}", args.scene, e.what()));
   }
   return scene;
@@ -61,7 +61,7 @@ validate::Scene read_scene(const SceneRecommendArgs& args) {
 // What both outputs show.
 struct SceneOutput {
   const SceneRecommendArgs& args;
-  const validate::Scene& scene;
+  const reference::Scene& scene;
   std::size_t normals;
   const cost::CostSource& cost;
   const CostsOption::From& source;
@@ -189,8 +189,8 @@ void print_text(const SceneOutput& o) {
 void recommend_scene(const SceneRecommendArgs& args) {
   // a bad --cost before any work
   const cost::CostSource cost = args.costs.source(args.precision);
-  const validate::Scene scene = read_scene(args);
-  const auto normals = validate::fibonacci_normals(args.normals);
+  const reference::Scene scene = read_scene(args);
+  const auto normals = reference::fibonacci_normals(args.normals);
   std::vector<report::MethodPoint> points = report::scene_points(scene, normals, args.precision);
   const CostsOption::From source =
       args.costs.fill(points, args.precision, /*repetitions=*/7, /*min_time=*/0.01);

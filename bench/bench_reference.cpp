@@ -3,7 +3,7 @@
 // uniform in [−1, 1]) so that nothing is served from the cache. Read
 // `items_per_second`. The batch benchmark uses every core (TBB) and is timed
 // in wall-clock time; the single benchmark is one thread.
-// Then the irradiance table (validate/irradiance_table.hpp), E alone to 1e−10
+// Then the irradiance table (reference/irradiance_table.hpp), E alone to 1e−10
 // of the peak, on the same kind of points, one thread: a point at a time
 // (a slice per point), many cosines per κ (the slice of a scene's lobe), and
 // the build at first use.
@@ -16,16 +16,16 @@
 
 #include <benchmark/benchmark.h>
 
-#include "validate/irradiance_table.hpp"
-#include "validate/reference.hpp"
+#include "reference/irradiance_table.hpp"
+#include "reference/reference.hpp"
 
 namespace {
 
-using sglab::validate::irradiance_table;
-using sglab::validate::IrradianceTable;
-using sglab::validate::Precision;
-using sglab::validate::Query;
-using sglab::validate::ReferenceEngine;
+using sglab::reference::irradiance_table;
+using sglab::reference::IrradianceTable;
+using sglab::reference::Quadrature;
+using sglab::reference::Query;
+using sglab::reference::ReferenceEngine;
 
 std::vector<Query> random_points(std::mt19937_64& rng, std::size_t n) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -91,7 +91,7 @@ void BM_ReferenceHighBatch(benchmark::State& state) {
     const auto points = random_points(rng, 32);
     engine.clear_cache();
     state.ResumeTiming();
-    benchmark::DoNotOptimize(engine.evaluate(points, Precision::high));
+    benchmark::DoNotOptimize(engine.evaluate(points, Quadrature::high));
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * 32));
 }

@@ -1,7 +1,7 @@
 # What each target may include, and its warnings.
 #
 # Sources include each other by library folder ("fit/targets.hpp",
-# "validate/reference.hpp"). A target sees only its own folder and those of the
+# "reference/reference.hpp"). A target sees only its own folder and those of the
 # libraries it links: sglab_own_headers gives it an include root that holds one
 # entry, a link to its folder, and linking a library brings that library's root
 # along (PUBLIC). So an include that runs against the layering (validate/

@@ -24,11 +24,11 @@
 
 #include "common/io.hpp"
 #include "common/vocabulary.hpp"
-#include "validate/scene.hpp"
+#include "reference/scene.hpp"
 
 namespace sglab::envmap {
 
-using Vec3 = validate::Vec3;
+using Vec3 = reference::Vec3;
 
 // An equirectangular RGB radiance map, rows from the top, RGB interleaved.
 struct Map {
@@ -209,9 +209,9 @@ inline constexpr std::size_t kEvalNormals = 2000;
 FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
               const FitOptions& options);
 
-// The lobes as a scene (validate/scene.hpp) and their exact irradiance at the
+// The lobes as a scene (reference/scene.hpp) and their exact irradiance at the
 // normals (reference engine), RGB in the map's units.
-validate::Scene to_scene(const std::vector<Lobe>& lobes);
+reference::Scene to_scene(const std::vector<Lobe>& lobes);
 std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes,
                                          const std::vector<Vec3>& normals);
 

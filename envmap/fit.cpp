@@ -451,7 +451,7 @@ std::vector<Lobe> fit_baseline(const Map& work, std::size_t lobes) {
 
 FitReport fit(const Map& work, const std::vector<Vec3>& exact_at_fit_normals,
               const FitOptions& options) {
-  return fit_with_normals(work, validate::fibonacci_normals(options.fit_normals),
+  return fit_with_normals(work, reference::fibonacci_normals(options.fit_normals),
                           exact_at_fit_normals, options);
 }
 
@@ -495,8 +495,8 @@ FitReport fit_with_normals(const Map& work, const std::vector<Vec3>& normals,
   return report;
 }
 
-validate::Scene to_scene(const std::vector<Lobe>& lobes) {
-  validate::Scene scene;
+reference::Scene to_scene(const std::vector<Lobe>& lobes) {
+  reference::Scene scene;
   for (const Lobe& l : lobes) scene.lights.push_back({l.axis, l.sharpness, l.amplitude});
   return scene;
 }
@@ -507,7 +507,7 @@ std::vector<Vec3> lobes_irradiance_exact(const std::vector<Lobe>& lobes,
   for (const Lobe& l : lobes)
     for (double a : l.amplitude) largest = std::max(largest, a);
   if (!(largest > 0)) return std::vector<Vec3>(normals.size(), Vec3{0, 0, 0});
-  std::vector<Vec3> e = validate::scene_irradiance_reference(to_scene(lobes), normals);
+  std::vector<Vec3> e = reference::scene_irradiance_reference(to_scene(lobes), normals);
   for (auto& v : e)
     for (double& x : v) x *= largest;
   return e;

@@ -13,7 +13,7 @@
 #include <sglab/registry.hpp>
 
 #include "common/io.hpp"
-#include "validate/irradiance_table.hpp"
+#include "reference/irradiance_table.hpp"
 
 namespace sglab::envmap {
 
@@ -78,7 +78,7 @@ double y20(double t) { return std::sqrt(5 / (16 * M_PI)) * (3 * t * t - 1); }
 DenseTruth dense_truth(const MapIrradiance& field, std::size_t n) {
   DenseTruth t;
   t.field = &field;
-  t.normals = validate::fibonacci_normals(n);
+  t.normals = reference::fibonacci_normals(n);
   t.exact = field.at(t.normals);
   t.spacing = std::sqrt(4 * M_PI / static_cast<double>(n));
   for (std::size_t ch = 0; ch < 3; ++ch) {
@@ -367,8 +367,8 @@ Probe Probe::from_json(const nlohmann::ordered_json& j) {
 }
 
 IrradianceFn probe_irradiance(const Probe& probe) {
-  std::vector<validate::IrradianceTable::Slice> slices;
-  const auto& table = validate::irradiance_table();
+  std::vector<reference::IrradianceTable::Slice> slices;
+  const auto& table = reference::irradiance_table();
   for (const Lobe& l : probe.lobes) slices.push_back(table.slice(l.sharpness));
   const Vec3 axis = probe.zonal_axis();
   return [probe, slices, axis](const Vec3& n) {

@@ -25,8 +25,8 @@
 #include "fit/half.hpp"
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
-#include "validate/metrics.hpp"
-#include "validate/reference.hpp"
+#include "reference/error_measures.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -183,11 +183,11 @@ double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
   const ClampedCosineParams<double> cc{lambda, alpha};
   const auto kappas = kappa_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count);
   const auto cosines = cosine_grid(spec.cosine_count);
-  std::vector<validate::Query> queries;
+  std::vector<reference::Query> queries;
   for (double k : kappas)
     for (double c : cosines)
       queries.push_back({static_cast<double>(P(k)), static_cast<double>(P(c))});
-  const auto ref = validate::reference_engine().evaluate(queries);
+  const auto ref = reference::reference_engine().evaluate(queries);
   std::vector<double> values, references, peaks;
   for (const auto& r : ref) {
     values.push_back(static_cast<double>(
@@ -195,7 +195,7 @@ double irradiance_peak_rel(const FitSpec& spec, double lambda, double alpha) {
     references.push_back(r.irradiance);
     peaks.push_back(sglab::irradiance_upper(r.kappa));
   }
-  return validate::max_peak_rel_error(values, references, peaks);
+  return reference::max_peak_rel_error(values, references, peaks);
 }
 
 double measured_cosine_rounding(io::Precision p, double lambda, double alpha) {

@@ -25,7 +25,7 @@
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit::acc {
 
@@ -210,7 +210,7 @@ struct Grids {
 std::vector<double> training_kappas(double lo, double hi, int count);
 // The training grid of the Ceres fits: κ as training_kappas (40), per κ c = 0,
 // 24 cosines at half-step offsets and c = ±z_k/t(κ), z_k = 0.1 … 3.1.
-std::vector<validate::Query> training_grid(double lo, double hi);
+std::vector<reference::Query> training_grid(double lo, double hi);
 // The training samples weighted for target T: w(κ) = min(T, max(e₂₀₂₄(κ), 8e−7)),
 // e₂₀₂₄(κ) the float error of tokuyoshi2024 at κ, max over the κ's samples
 // (the samples come grouped by κ, as training_grid makes them).
@@ -241,7 +241,7 @@ std::optional<std::pair<std::vector<double>, bool>> committed(const std::string&
 MemberFit fit_any(Member m, const std::vector<double>& start,
                   const std::vector<SglabAccSample>& train,
                   const std::vector<SglabAccSample>& dense,
-                  const std::vector<validate::ReferencePoint>& standard,
-                  const std::vector<validate::ReferencePoint>& held_out, bool polish_only = false);
+                  const std::vector<reference::ReferencePoint>& standard,
+                  const std::vector<reference::ReferencePoint>& held_out, bool polish_only = false);
 
 }  // namespace sglab::fit::acc

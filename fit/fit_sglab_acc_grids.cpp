@@ -17,7 +17,7 @@
 #include "fit/fit_sglab_acc_family.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -38,8 +38,8 @@ std::vector<double> training_kappas(double lo, double hi, int count) {
   return k;
 }
 
-std::vector<validate::Query> training_grid(double lo, double hi) {
-  std::vector<validate::Query> q;
+std::vector<reference::Query> training_grid(double lo, double hi) {
+  std::vector<reference::Query> q;
   const int uniform = 24, zcount = 16;
   for (double k : training_kappas(lo, hi, 40)) {
     const double t = steepness2024(k, constants::steepness2024_irradiance);
@@ -77,7 +77,7 @@ std::vector<SglabAccSample> weighted(std::vector<SglabAccSample> samples, double
 
 Grids grids_for(const FitSpec& spec) {
   Grids g;
-  auto& engine = validate::reference_engine();
+  auto& engine = reference::reference_engine();
   for (const auto& r : engine.evaluate(training_grid(spec.kappa_lo, spec.kappa_hi)))
     g.train.push_back({r.kappa, r.cosine, r.irradiance});
   for (const auto& r : engine.evaluate(sglab_acc_dense_grid(spec.kappa_lo, spec.kappa_hi)))
@@ -88,8 +88,8 @@ Grids grids_for(const FitSpec& spec) {
 
 }  // namespace acc
 
-std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi) {
-  std::vector<validate::Query> q;
+std::vector<reference::Query> sglab_acc_dense_grid(double lo, double hi) {
+  std::vector<reference::Query> q;
   const int uniform = acc::kDenseUniform, zcount = 32;
   for (double k : acc::training_kappas(lo, hi, acc::kDenseKappas)) {
     const double t = steepness2024(k, constants::steepness2024_irradiance);

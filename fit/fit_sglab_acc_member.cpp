@@ -21,7 +21,7 @@
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -43,7 +43,7 @@ namespace {
 // The errors of member (N, D) with coefficients p on `ref` (model_family.hpp).
 template <std::size_t N, std::size_t D, std::size_t M>
 Measured measure(const SglabAccParams<double, N, D, M>& p,
-                 const std::vector<validate::ReferencePoint>& ref) {
+                 const std::vector<reference::ReferencePoint>& ref) {
   return fit::measure([&](auto c, auto k) { return irradiance_sglab_acc(c, k, p); }, ref);
 }
 
@@ -166,8 +166,8 @@ SglabAccFit fit_coefficients_any(Member m, const std::vector<double>& start,
 
 template <std::size_t N, std::size_t D, std::size_t M>
 MemberFit measure_member(const SglabAccFit& f,
-                         const std::vector<validate::ReferencePoint>& standard,
-                         const std::vector<validate::ReferencePoint>& held_out) {
+                         const std::vector<reference::ReferencePoint>& standard,
+                         const std::vector<reference::ReferencePoint>& held_out) {
   MemberFit out;
   out.member = {N, D, M};
   out.values = f.values;
@@ -185,8 +185,8 @@ MemberFit measure_member(const SglabAccFit& f,
 template <std::size_t N, std::size_t D, std::size_t M>
 MemberFit certified_fit(const std::vector<double>& start, const std::vector<SglabAccSample>& train,
                         const std::vector<SglabAccSample>& dense,
-                        const std::vector<validate::ReferencePoint>& standard,
-                        const std::vector<validate::ReferencePoint>& held_out, bool polish_only) {
+                        const std::vector<reference::ReferencePoint>& standard,
+                        const std::vector<reference::ReferencePoint>& held_out, bool polish_only) {
   // Round 0: the LP at the start's t(κ) and s (a refit from a committed set
   // is never worse than it); then Ceres and the LP in turn while they gain.
   constexpr std::size_t K = steep_count(M);
@@ -216,8 +216,8 @@ MemberFit certified_fit(const std::vector<double>& start, const std::vector<Sgla
 MemberFit fit_any(Member m, const std::vector<double>& start,
                   const std::vector<SglabAccSample>& train,
                   const std::vector<SglabAccSample>& dense,
-                  const std::vector<validate::ReferencePoint>& standard,
-                  const std::vector<validate::ReferencePoint>& held_out, bool polish_only) {
+                  const std::vector<reference::ReferencePoint>& standard,
+                  const std::vector<reference::ReferencePoint>& held_out, bool polish_only) {
   return with_member(m, [&](auto N, auto D, auto M) {
     return certified_fit<N(), D(), M()>(start, train, dense, standard, held_out, polish_only);
   });

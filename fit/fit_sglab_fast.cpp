@@ -82,7 +82,7 @@ struct FastShape {
   // Step 1 at one κ: a minimax of the four values from the previous κ's
   // optimum (the first, the largest κ: a ramp of width 1/V around c = 0).
   static PerKappaShape per_kappa_at(double k, const std::vector<double>& cosines,
-                                    const std::vector<validate::ReferencePoint>& ref,
+                                    const std::vector<reference::ReferencePoint>& ref,
                                     const std::optional<PerKappaShape>& previous) {
     const double e1 = irradiance_upper(k);
     std::vector<double> start;

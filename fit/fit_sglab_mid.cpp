@@ -77,7 +77,7 @@ constexpr int kStarts = 4;
 // free S wanders from κ to κ; held, it stays smooth for stage 2.
 constexpr double kMaxS = 4;
 PerKappaShape mid_per_kappa_at(double k, const std::vector<double>& cosines,
-                               const std::vector<validate::ReferencePoint>& ref,
+                               const std::vector<reference::ReferencePoint>& ref,
                                const std::optional<PerKappaShape>& previous) {
   const double e1 = irradiance_upper(k), v_scale = std::max(k, 1.0);
   const auto n = static_cast<Eigen::Index>(cosines.size());
@@ -153,7 +153,7 @@ struct MidShape {
   static constexpr bool floor_from_committed = true;
 
   static PerKappaShape per_kappa_at(double k, const std::vector<double>& cosines,
-                                    const std::vector<validate::ReferencePoint>& ref,
+                                    const std::vector<reference::ReferencePoint>& ref,
                                     const std::optional<PerKappaShape>& previous) {
     return mid_per_kappa_at(k, cosines, ref, previous);
   }

@@ -17,7 +17,7 @@
 
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -130,10 +130,10 @@ Problem problem_for(const std::string& objective, const FitSpec& spec) {
     p.form = "max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere";
     p.metric = "integral_squared_error";
   } else {
-    std::vector<validate::Query> q;
+    std::vector<reference::Query> q;
     for (double k : kappa_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count))
       for (double c : cosine_grid(spec.cosine_count)) q.push_back({k, c});
-    for (const auto& r : validate::reference_engine().evaluate(q))
+    for (const auto& r : reference::reference_engine().evaluate(q))
       p.residuals.push_back(make_residual(
           VsglResidual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa)}, 1));
     p.params = {{"lambda_d"}, {lambda_d_pub}, {}};

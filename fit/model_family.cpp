@@ -13,9 +13,9 @@
 
 namespace sglab::fit {
 
-std::vector<validate::Query> product_grid(const std::vector<double>& kappas,
-                                          const std::vector<double>& cosines) {
-  std::vector<validate::Query> q;
+std::vector<reference::Query> product_grid(const std::vector<double>& kappas,
+                                           const std::vector<double>& cosines) {
+  std::vector<reference::Query> q;
   q.reserve(kappas.size() * cosines.size());
   for (double k : kappas)
     for (double c : cosines) q.push_back({k, c});
@@ -25,7 +25,7 @@ std::vector<validate::Query> product_grid(const std::vector<double>& kappas,
 MeasuringGrids measuring_grids(const FitSpec& spec) {
   const double lo = spec.kappa_lo, hi = spec.kappa_hi;
   const double held_lo = kHeldOutLoFactor * lo, held_hi = kHeldOutHiFactor * hi;
-  auto& engine = validate::reference_engine();
+  auto& engine = reference::reference_engine();
   MeasuringGrids g;
   g.standard = engine.evaluate(
       product_grid(kappa_grid(lo, hi, spec.kappa_count), cosine_grid(spec.cosine_count)));
@@ -128,9 +128,9 @@ FitOptions polish_options(bool polish) {
 }
 
 ordered_json clamped_lp_certificate(
-    const std::vector<validate::ReferencePoint>& train, const std::vector<double>& values,
+    const std::vector<reference::ReferencePoint>& train, const std::vector<double>& values,
     const std::vector<std::size_t>& linear,
-    const std::function<std::unique_ptr<ceres::CostFunction>(const validate::ReferencePoint&)>&
+    const std::function<std::unique_ptr<ceres::CostFunction>(const reference::ReferencePoint&)>&
         residual,
     const std::string& kind) {
   Residuals residuals;

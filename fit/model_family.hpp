@@ -21,7 +21,7 @@
 
 #include "fit/minimax.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -34,13 +34,13 @@ inline constexpr int kHeldOutKappas = 217, kHeldOutCosines = 401;
 inline constexpr double kHeldOutLoFactor = 1.1, kHeldOutHiFactor = 0.97;
 
 // Every (κ, c) of kappas × cosines, κ-major (the order `measure` expects).
-std::vector<validate::Query> product_grid(const std::vector<double>& kappas,
-                                          const std::vector<double>& cosines);
+std::vector<reference::Query> product_grid(const std::vector<double>& kappas,
+                                           const std::vector<double>& cosines);
 
 // The two measuring grids of a fit over [spec.kappa_lo, spec.kappa_hi], with
 // the reference engine's values, and how provenance names them.
 struct MeasuringGrids {
-  std::vector<validate::ReferencePoint> standard, held_out;
+  std::vector<reference::ReferencePoint> standard, held_out;
   std::string standard_name, held_out_name;
 };
 // standard: spec.kappa_count log-spaced κ × spec.cosine_count cosines over
@@ -69,7 +69,7 @@ double error_tokuyoshi2024_float(double kappa, double cosine, double reference);
 // lambda over the runtime function); `ref` comes κ-major (product_grid). A
 // non-finite output counts as an infinite error.
 template <class Model>
-Measured measure(const Model& model, const std::vector<validate::ReferencePoint>& ref) {
+Measured measure(const Model& model, const std::vector<reference::ReferencePoint>& ref) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Measured m;
   double at_kappa = 0, base_at_kappa = 0;  // max over c at the current κ: model, tokuyoshi2024
@@ -135,7 +135,7 @@ struct RationalLayout {
   // fitted. `Residual` is the fit's residual, made as Residual{κ, c, E,
   // E(1, κ), kappa_max}.
   template <class Residual>
-  ordered_json lp_certificate(const std::vector<validate::ReferencePoint>& train,
+  ordered_json lp_certificate(const std::vector<reference::ReferencePoint>& train,
                               const std::vector<double>& values, std::size_t free_numerators,
                               double kappa_max, const std::string& kind) const;
   // The joint minimax of every parameter on the training points from
@@ -146,7 +146,7 @@ struct RationalLayout {
     double start_error = 0;
   };
   template <class Residual>
-  JointFit joint_minimax(const std::vector<validate::ReferencePoint>& train,
+  JointFit joint_minimax(const std::vector<reference::ReferencePoint>& train,
                          const Parameters& params, double kappa_max, bool polish) const;
   // The start of a fit from scratch (in fit order): the monic denominator
   // Q = Π(κ + r_i) with the r_i log-spaced over [lo, hi] (at the midpoints of
@@ -176,14 +176,14 @@ struct RationalLayout {
 // lower_bound, within_percent_of_best_member and the LP's statistics.
 inline constexpr double kCertificateLevel = 0.05;
 ordered_json clamped_lp_certificate(
-    const std::vector<validate::ReferencePoint>& train, const std::vector<double>& values,
+    const std::vector<reference::ReferencePoint>& train, const std::vector<double>& values,
     const std::vector<std::size_t>& linear,
-    const std::function<std::unique_ptr<ceres::CostFunction>(const validate::ReferencePoint&)>&
+    const std::function<std::unique_ptr<ceres::CostFunction>(const reference::ReferencePoint&)>&
         residual,
     const std::string& kind);
 
 template <class Residual>
-ordered_json RationalLayout::lp_certificate(const std::vector<validate::ReferencePoint>& train,
+ordered_json RationalLayout::lp_certificate(const std::vector<reference::ReferencePoint>& train,
                                             const std::vector<double>& values,
                                             std::size_t free_numerators, double kappa_max,
                                             const std::string& kind) const {
@@ -191,7 +191,7 @@ ordered_json RationalLayout::lp_certificate(const std::vector<validate::Referenc
   std::iota(linear.begin(), linear.end(), std::size_t(0));
   return clamped_lp_certificate(
       train, values, linear,
-      [&](const validate::ReferencePoint& r) {
+      [&](const reference::ReferencePoint& r) {
         return make_residual(
             Residual{r.kappa, r.cosine, r.irradiance, irradiance_upper(r.kappa), kappa_max},
             values.size());
@@ -206,7 +206,7 @@ FitOptions polish_options(bool polish);
 
 template <class Residual>
 RationalLayout::JointFit RationalLayout::joint_minimax(
-    const std::vector<validate::ReferencePoint>& train, const Parameters& params, double kappa_max,
+    const std::vector<reference::ReferencePoint>& train, const Parameters& params, double kappa_max,
     bool polish) const {
   Residuals residuals;
   for (const auto& r : train)
@@ -225,7 +225,7 @@ struct Measurements {
   Measured train, standard, held_out;
 };
 template <class Model>
-Measurements measure_all(const Model& model, const std::vector<validate::ReferencePoint>& train,
+Measurements measure_all(const Model& model, const std::vector<reference::ReferencePoint>& train,
                          const MeasuringGrids& grids) {
   return {measure(model, train), measure(model, grids.standard), measure(model, grids.held_out)};
 }

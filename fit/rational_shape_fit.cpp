@@ -4,9 +4,9 @@
 
 namespace sglab::fit {
 
-std::vector<validate::ReferencePoint> rational_reference_grid(const std::vector<double>& kappas,
-                                                              const std::vector<double>& cosines) {
-  return validate::reference_engine().evaluate(product_grid(kappas, cosines));
+std::vector<reference::ReferencePoint> rational_reference_grid(const std::vector<double>& kappas,
+                                                               const std::vector<double>& cosines) {
+  return reference::reference_engine().evaluate(product_grid(kappas, cosines));
 }
 
 std::optional<double> committed_floor(const std::string& target, const std::string& variant,

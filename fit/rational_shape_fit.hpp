@@ -51,7 +51,7 @@
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -66,8 +66,8 @@ struct PerKappaShape {
 };
 
 // The reference engine's irradiance on kappas × cosines, κ-major.
-std::vector<validate::ReferencePoint> rational_reference_grid(const std::vector<double>& kappas,
-                                                              const std::vector<double>& cosines);
+std::vector<reference::ReferencePoint> rational_reference_grid(const std::vector<double>& kappas,
+                                                               const std::vector<double>& cosines);
 
 // The per-κ floor recorded in the committed set of `target`/`variant` over [lo, hi], if any.
 std::optional<double> committed_floor(const std::string& target, const std::string& variant,
@@ -81,11 +81,11 @@ ordered_json per_kappa_json(const std::vector<PerKappaShape>& per);
 template <class Shape>
 std::vector<PerKappaShape> per_kappa_optimum(const std::vector<double>& kappas,
                                              const std::vector<double>& cosines,
-                                             const std::vector<validate::ReferencePoint>& ref) {
+                                             const std::vector<reference::ReferencePoint>& ref) {
   std::vector<PerKappaShape> out(kappas.size());
   std::optional<PerKappaShape> previous;
   for (std::size_t i = kappas.size(); i-- > 0;) {
-    const std::vector<validate::ReferencePoint> at(
+    const std::vector<reference::ReferencePoint> at(
         ref.begin() + static_cast<std::ptrdiff_t>(i * cosines.size()),
         ref.begin() + static_cast<std::ptrdiff_t>((i + 1) * cosines.size()));
     out[i] = Shape::per_kappa_at(kappas[i], cosines, at, previous);

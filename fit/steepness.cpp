@@ -23,7 +23,7 @@
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::fit {
 
@@ -45,7 +45,7 @@ double model_at_steepness(bool y2022, double cosine, double t) {
 }
 
 // The exact counterpart: s(c, κ), or (E(c) − E(−1))/(E(1) − E(−1)).
-double exact_normalized(bool y2022, const validate::ReferencePoint& r) {
+double exact_normalized(bool y2022, const reference::ReferencePoint& r) {
   if (y2022) return r.normalized;
   const double lo = irradiance_lower(r.kappa), hi = irradiance_upper(r.kappa);
   return (r.irradiance - lo) / (hi - lo);
@@ -100,7 +100,7 @@ std::pair<double, double> refine_minimum(const F& column_error, std::pair<double
 }
 
 // t*(κ): minimax over the cosines of model(c, t) − exact.
-double optimal_steepness(bool y2022, const std::vector<validate::ReferencePoint>& column,
+double optimal_steepness(bool y2022, const std::vector<reference::ReferencePoint>& column,
                          double t_guess) {
   std::vector<double> exact;
   for (const auto& r : column) exact.push_back(exact_normalized(y2022, r));
@@ -156,7 +156,7 @@ std::vector<double> published(bool y2022) {
 
 // Irradiance max peak_rel (double) of the method with coefficients `v` over the references.
 double irradiance_error(bool y2022, const std::vector<double>& v,
-                        const std::vector<validate::ReferencePoint>& ref) {
+                        const std::vector<reference::ReferencePoint>& ref) {
   double m = 0;
   for (const auto& r : ref) {
     const double e =
@@ -198,7 +198,7 @@ std::vector<KappaFloor> per_kappa_floor(bool y2022, const std::function<double(d
                                         double lo, double hi) {
   const auto kappas = log_midpoints(lo, hi, kCertificateKappas);
   const auto cosines = cosine_grid(kCertificateCosines);
-  const auto ref = validate::reference_engine().evaluate(product_grid(kappas, cosines));
+  const auto ref = reference::reference_engine().evaluate(product_grid(kappas, cosines));
   std::vector<KappaFloor> out;
   for (std::size_t i = 0; i < kappas.size(); ++i) {
     const double k = kappas[i];
@@ -330,7 +330,7 @@ std::pair<std::vector<double>, std::vector<double>> order_start(std::size_t m,
 }
 
 template <std::size_t M>
-OrderFit fit_order(bool y2022, const std::vector<validate::ReferencePoint>& ref,
+OrderFit fit_order(bool y2022, const std::vector<reference::ReferencePoint>& ref,
                    const OrderFit* lower) {
   auto [p0, q0] = order_start(M, lower);
   Parameters params;
@@ -371,7 +371,7 @@ double rational_steepness(const OrderFit& f, double kappa) {
 }
 
 FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022,
-                               const std::vector<validate::ReferencePoint>& ref) {
+                               const std::vector<reference::ReferencePoint>& ref) {
   const double budget = *spec.max_error;
   std::vector<OrderFit> fits;
   const OrderFit* chosen = nullptr;
@@ -458,16 +458,16 @@ FitOutcome fit_steepness_order(const FitSpec& spec, bool y2022,
 // on the reference points.
 Residuals steepness_residuals(const std::string& objective, bool y2022,
                               const std::vector<double>& kappas,
-                              const std::vector<validate::ReferencePoint>& ref,
+                              const std::vector<reference::ReferencePoint>& ref,
                               std::size_t parameters, std::vector<double>& t_opt) {
   Residuals residuals;
   if (objective == "optimal-t") {
     // A denser cosine column for t*: 201 cosines.
     const auto dense = cosine_grid(201);
     for (double k : kappas) {
-      std::vector<validate::Query> column_q;
+      std::vector<reference::Query> column_q;
       for (double c : dense) column_q.push_back({k, c});
-      const auto column = validate::reference_engine().evaluate(column_q);
+      const auto column = reference::reference_engine().evaluate(column_q);
       const double guess = y2022 ? steepness2022(k) : steepness2024(k);
       t_opt.push_back(optimal_steepness(y2022, column, guess));
       residuals.push_back(
@@ -505,9 +505,9 @@ std::vector<double> optimal_steepness(const std::string& target,
   std::vector<double> out;
   const auto dense = cosine_grid(201);
   for (double k : kappas) {
-    std::vector<validate::Query> q;
+    std::vector<reference::Query> q;
     for (double c : dense) q.push_back({k, c});
-    const auto column = validate::reference_engine().evaluate(q);
+    const auto column = reference::reference_engine().evaluate(q);
     out.push_back(optimal_steepness(y2022, column, y2022 ? steepness2022(k) : steepness2024(k)));
   }
   return out;
@@ -523,10 +523,10 @@ FitOutcome fit_steepness(const FitSpec& spec) {
                                                : std::vector<std::string>{"A", "B", "C", "D", "E"};
   const auto kappas = kappa_grid(spec.kappa_lo, spec.kappa_hi, spec.kappa_count);
   const auto cosines = cosine_grid(spec.cosine_count);
-  std::vector<validate::Query> queries;
+  std::vector<reference::Query> queries;
   for (double k : kappas)
     for (double c : cosines) queries.push_back({k, c});
-  const auto ref = validate::reference_engine().evaluate(queries);
+  const auto ref = reference::reference_engine().evaluate(queries);
 
   if (spec.max_error) return fit_steepness_order(spec, y2022, ref);
 

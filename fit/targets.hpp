@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/vocabulary.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::io {
 class Progress;
@@ -87,7 +87,7 @@ FitOutcome fit_sglab_acc(const FitSpec& spec);
 // (fit/fit_sglab_acc_grids.cpp): κ log-spaced at half-step offsets (twice as dense in [0.5, 200])
 // plus the ends; per κ, c = 0, 64 uniform cosines at half-step offsets and c = ±z_k/t(κ), z_k =
 // 0.05 … 3.15 where |c| < 1, sorted by c: symmetric about 0 and distinct.
-std::vector<validate::Query> sglab_acc_dense_grid(double lo, double hi);
+std::vector<reference::Query> sglab_acc_dense_grid(double lo, double hi);
 
 // The core of the sglab-acc fit, exposed for tests: minimax of the
 // peak_rel error of SglabAccParams<double, terms, degree> on `samples`, each

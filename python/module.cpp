@@ -28,8 +28,8 @@
 #include "envmap/envmap.hpp"
 #include "export/shader_export.hpp"
 #include "python/gradient.hpp"
-#include "validate/reference.hpp"
-#include "validate/scene.hpp"
+#include "reference/reference.hpp"
+#include "reference/scene.hpp"
 
 namespace py = pybind11;
 
@@ -182,13 +182,13 @@ py::tuple irradiance_grad(const std::string& method, const py::array& kappa,
 py::array_t<double> reference(const py::array& kappa, const py::array& cosine,
                               const std::string& quantity) {
   check_pair(kappa, cosine);
-  double validate::ReferencePoint::*field = nullptr;
+  double reference::ReferencePoint::*field = nullptr;
   if (quantity == "irradiance")
-    field = &validate::ReferencePoint::irradiance;
+    field = &reference::ReferencePoint::irradiance;
   else if (quantity == "hemispherical")
-    field = &validate::ReferencePoint::hemispherical;
+    field = &reference::ReferencePoint::hemispherical;
   else if (quantity == "normalized")
-    field = &validate::ReferencePoint::normalized;
+    field = &reference::ReferencePoint::normalized;
   else
     throw io::InputError(fmt::format(
         "quantity must be irradiance, hemispherical or normalized; got '{}'", quantity));
@@ -201,8 +201,8 @@ py::array_t<double> reference(const py::array& kappa, const py::array& cosine,
     py::gil_scoped_release release;
     bad = first_bad_point(kc, cc, nullptr);
     if (!bad) {
-      validate::ReferenceEngine engine;
-      std::vector<validate::Query> queries;
+      reference::ReferenceEngine engine;
+      std::vector<reference::Query> queries;
       for (std::size_t start = 0; start < n; start += kReferenceChunk) {
         const std::size_t end = std::min(n, start + kReferenceChunk);
         queries.clear();
@@ -272,18 +272,18 @@ envmap::Map map_from_array(const py::array_t<float, py::array::c_style>& rgb) {
   return map;
 }
 
-std::vector<validate::Vec3> vectors_from(const py::array_t<double, py::array::c_style>& a,
-                                         const char* name) {
+std::vector<reference::Vec3> vectors_from(const py::array_t<double, py::array::c_style>& a,
+                                          const char* name) {
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw io::InputError(fmt::format("{}: expected shape (n, 3)", name));
-  std::vector<validate::Vec3> out(static_cast<std::size_t>(a.shape(0)));
-  std::memcpy(out.data(), a.data(), out.size() * sizeof(validate::Vec3));
+  std::vector<reference::Vec3> out(static_cast<std::size_t>(a.shape(0)));
+  std::memcpy(out.data(), a.data(), out.size() * sizeof(reference::Vec3));
   return out;
 }
 
 // Unit normals: each row divided by its length; a zero or non-finite row is refused.
-std::vector<validate::Vec3> normals_from(const py::array_t<double, py::array::c_style>& a,
-                                         const char* name = "normals") {
+std::vector<reference::Vec3> normals_from(const py::array_t<double, py::array::c_style>& a,
+                                          const char* name = "normals") {
   auto normals = vectors_from(a, name);
   for (std::size_t i = 0; i < normals.size(); ++i) {
     auto& n = normals[i];
@@ -299,9 +299,9 @@ std::vector<validate::Vec3> normals_from(const py::array_t<double, py::array::c_
   return normals;
 }
 
-py::array_t<double> vectors_to(const std::vector<validate::Vec3>& v) {
+py::array_t<double> vectors_to(const std::vector<reference::Vec3>& v) {
   py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-  std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(validate::Vec3));
+  std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(reference::Vec3));
   return out;
 }
 
@@ -313,7 +313,7 @@ py::array_t<float> map_rgb(const envmap::Map& map) {
 }
 
 py::dict lobes_dict(const std::vector<envmap::Lobe>& lobes) {
-  std::vector<validate::Vec3> axis, amplitude;
+  std::vector<reference::Vec3> axis, amplitude;
   py::array_t<double> sharpness(static_cast<py::ssize_t>(lobes.size()));
   for (std::size_t k = 0; k < lobes.size(); ++k) {
     axis.push_back(lobes[k].axis);
@@ -372,7 +372,7 @@ py::dict fit(const envmap::Map& map, std::size_t lobes, const std::string& objec
     // full map at the fit's Fibonacci normals, then the fit.
     const envmap::Map work = envmap::working_copy(map);
     envmap::check_lobe_count(work, lobes);
-    const auto exact = envmap::irradiance(map, validate::fibonacci_normals(options.fit_normals));
+    const auto exact = envmap::irradiance(map, reference::fibonacci_normals(options.fit_normals));
     report = envmap::fit(work, exact, options);
   }
   py::dict d = lobes_dict(report.lobes);
@@ -395,7 +395,7 @@ void bind_envmap(py::module_& parent) {
       "irradiance",
       [](const envmap::Map& map, const py::array_t<double, py::array::c_style>& normals) {
         const auto n = normals_from(normals);
-        std::vector<validate::Vec3> e;
+        std::vector<reference::Vec3> e;
         {
           py::gil_scoped_release release;
           e = envmap::irradiance(map, n);
@@ -414,11 +414,11 @@ void bind_envmap(py::module_& parent) {
         const auto lobes = lobes_from(axis, sharpness, amplitude);
         const auto n = normals_from(normals);
         try {
-          validate::check_scene_limits(lobes.size(), n.size());
-        } catch (const validate::SceneError& e) {
+          reference::check_scene_limits(lobes.size(), n.size());
+        } catch (const reference::SceneError& e) {
           throw io::InputError(e.what());
         }
-        std::vector<validate::Vec3> e;
+        std::vector<reference::Vec3> e;
         {
           py::gil_scoped_release release;
           e = envmap::lobes_irradiance_exact(lobes, n);
@@ -427,8 +427,8 @@ void bind_envmap(py::module_& parent) {
       },
       py::arg("axis"), py::arg("sharpness"), py::arg("amplitude"), py::arg("normals"));
   m.def(
-      "fibonacci_normals", [](std::size_t n) { return vectors_to(validate::fibonacci_normals(n)); },
-      py::arg("n"));
+      "fibonacci_normals",
+      [](std::size_t n) { return vectors_to(reference::fibonacci_normals(n)); }, py::arg("n"));
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
 #include "report/figures.hpp"
+#include "validate/scene_errors.hpp"
 
 namespace sglab::report {
 
@@ -63,8 +64,8 @@ EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& 
   EnvmapSelection sel;
   envmap::FitOptions options;
   options.objective = envmap::Objective::irradiance;
-  const auto fit_normals = validate::fibonacci_normals(options.fit_normals);
-  const auto normals = validate::fibonacci_normals(normals_n);
+  const auto fit_normals = reference::fibonacci_normals(options.fit_normals);
+  const auto normals = reference::fibonacci_normals(normals_n);
   note("exact irradiance of the map");
   const auto exact_fit = irradiance(map, fit_normals);
   const auto exact = irradiance(map, normals);
@@ -447,8 +448,8 @@ void run_envmap_baselines(const std::string& maps_arg, const std::string& out_ar
       quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16, 24};
   run.table_counts = quick ? std::vector<std::size_t>{12} : std::vector<std::size_t>{4, 8, 12, 24};
   const envmap::FitOptions base_options;
-  const auto fit_normals = validate::fibonacci_normals(base_options.fit_normals);
-  const auto eval_normals = validate::fibonacci_normals(envmap::kEvalNormals);
+  const auto fit_normals = reference::fibonacci_normals(base_options.fit_normals);
+  const auto eval_normals = reference::fibonacci_normals(envmap::kEvalNormals);
   run.maps = load_maps(files, fit_normals, eval_normals);
   run_fits(run, base_options, eval_normals);
 

@@ -17,7 +17,7 @@
 #include <sglab/hemispherical.hpp>
 #include <sglab/registry.hpp>
 
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 #include "report/figure_style.hpp"
 #include "report/gnuplot.hpp"
@@ -42,10 +42,10 @@ Figure figure_c(const FiguresOptions& opt) {
            ""};
   const double kappa = 4;
   const int n = 181;
-  std::vector<validate::Query> q;
+  std::vector<reference::Query> q;
   for (int i = 0; i < n; ++i)
     q.push_back({kappa, std::clamp(std::cos(kPi * i / (n - 1)), -1.0, 1.0)});
-  const auto ref = validate::reference_engine().evaluate(q);
+  const auto ref = reference::reference_engine().evaluate(q);
   const double peak = ref[0].irradiance;  // θ = 0: E(1, κ)
   std::vector<std::string> header = {"theta_deg", "reference"}, eheader = {"theta_deg"};
   for (const Method& m : irradiance_methods) {

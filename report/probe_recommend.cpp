@@ -54,7 +54,7 @@ ProbeRecommendation recommend_probe_by_storage(
   note("exact irradiance of the full map at the dense normals");
   const envmap::MapIrradiance field(map);
   const envmap::DenseTruth truth = envmap::dense_truth(field);
-  const auto normals = validate::fibonacci_normals(kFitNormals);
+  const auto normals = reference::fibonacci_normals(kFitNormals);
   const auto exact = field.at(normals);
   const auto error = [&](const envmap::Probe& p) {
     return envmap::dense_error(truth, envmap::probe_irradiance_method(p));

@@ -64,7 +64,7 @@ MapResult run_map(const std::filesystem::path& file, const std::vector<std::size
   const envmap::Map work = envmap::working_copy(map);
   const envmap::MapIrradiance field(map);
   const envmap::DenseTruth truth = envmap::dense_truth(field);
-  const auto normals = validate::fibonacci_normals(kFitNormals);
+  const auto normals = reference::fibonacci_normals(kFitNormals);
   const auto exact = field.at(normals);
   const auto radiance = envmap::radiance_sh(map, envmap::kMaxShOrder);
   const auto judge = [&](const Probe& p) {

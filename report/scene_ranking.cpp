@@ -10,8 +10,8 @@
 
 namespace sglab::report {
 
-std::vector<MethodPoint> scene_points(const validate::Scene& scene,
-                                      const std::vector<validate::Vec3>& normals,
+std::vector<MethodPoint> scene_points(const reference::Scene& scene,
+                                      const std::vector<reference::Vec3>& normals,
                                       io::Precision precision) {
   const std::vector<double> errors =
       validate::scene_errors(scene, normals, irradiance_methods, precision);
@@ -27,7 +27,7 @@ std::vector<MethodPoint> scene_points(const validate::Scene& scene,
   return points;
 }
 
-SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene,
+SceneRanking rank_scene(const std::vector<MethodPoint>& points, const reference::Scene& scene,
                         double budget, io::Precision precision) {
   SceneRanking r;
   r.recommendation = recommend(points, budget);

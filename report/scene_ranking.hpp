@@ -1,5 +1,5 @@
 // report/scene_ranking.hpp — `sglab recommend --scene`: every irradiance
-// method judged on a scene's lights (validate/scene.hpp) and ranked as
+// method judged on a scene's lights (validate/scene_errors.hpp) and ranked as
 // `recommend --kappa` ranks them on a κ range (pareto.hpp), plus sglab's own
 // models over the scene's κ range.
 #pragma once
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "report/pareto.hpp"
-#include "validate/scene.hpp"
+#include "validate/scene_errors.hpp"
 #include "validate/sweep.hpp"
 
 namespace sglab::report {
@@ -17,8 +17,8 @@ namespace sglab::report {
 // max_peak_rel (validate::scene_errors at `normals`) and in_valid_range set
 // when every light's κ lies in the method's valid range (registry card); cost
 // left 0 for the caller's cost source.
-std::vector<MethodPoint> scene_points(const validate::Scene& scene,
-                                      const std::vector<validate::Vec3>& normals,
+std::vector<MethodPoint> scene_points(const reference::Scene& scene,
+                                      const std::vector<reference::Vec3>& normals,
                                       io::Precision precision);
 
 struct SceneRanking {
@@ -32,7 +32,7 @@ struct SceneRanking {
 };
 
 // `points` with costs filled. κ = 0 lights: the range starts at 1e-3.
-SceneRanking rank_scene(const std::vector<MethodPoint>& points, const validate::Scene& scene,
+SceneRanking rank_scene(const std::vector<MethodPoint>& points, const reference::Scene& scene,
                         double budget, io::Precision precision);
 
 }  // namespace sglab::report

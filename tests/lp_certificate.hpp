@@ -19,14 +19,14 @@
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::test {
 
 // The fitters' training grid (fit/fit_sglab_fast.cpp, fit/fit_sglab_mid.cpp): 56
 // log-midpoints of [1e−3, 1e4] × 161 uniform cosines.
-inline std::vector<validate::ReferencePoint> certificate_training_grid() {
-  return validate::reference_engine().evaluate(
+inline std::vector<reference::ReferencePoint> certificate_training_grid() {
+  return reference::reference_engine().evaluate(
       fit::product_grid(fit::log_midpoints(1e-3, 1e4, 56), fit::cosine_grid(161)));
 }
 
@@ -42,9 +42,9 @@ inline std::vector<validate::ReferencePoint> certificate_training_grid() {
 // no better than the bound. Returns the certificate.
 inline fit::ordered_json check_clamped_lp_certificate(
     const std::vector<double>& values, std::size_t linear_count,
-    const std::function<std::unique_ptr<ceres::CostFunction>(const validate::ReferencePoint&)>&
+    const std::function<std::unique_ptr<ceres::CostFunction>(const reference::ReferencePoint&)>&
         residual,
-    const std::function<double(const std::vector<double>&, const validate::ReferencePoint&)>&
+    const std::function<double(const std::vector<double>&, const reference::ReferencePoint&)>&
         error) {
   const auto train = certificate_training_grid();
   std::vector<std::size_t> linear(linear_count);
@@ -55,7 +55,7 @@ inline fit::ordered_json check_clamped_lp_certificate(
   EXPECT_LE(bound, achieved) << c;
   EXPECT_TRUE(c["lp"]["converged"].get<bool>()) << c;
 
-  std::vector<validate::ReferencePoint> rows;
+  std::vector<reference::ReferencePoint> rows;
   for (const auto& r : train)
     if (r.irradiance >= fit::kCertificateLevel * irradiance_upper(r.kappa)) rows.push_back(r);
   const auto max_error = [&](const std::vector<double>& v) {

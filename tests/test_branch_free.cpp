@@ -16,8 +16,8 @@
 
 #include <sglab/sglab.hpp>
 
+#include "reference/reference.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -157,8 +157,8 @@ TEST(PoleSeries, FloatAndDoubleMatchAcrossKappaOne) {
 // The method's own error against the reference engine over the standard grid
 // is unchanged by the batch kernel: max peak_rel ≈ 1.55e−3 (scalar float).
 TEST(Tokuyoshi2024Batch, PeakRelAgainstReferenceUnchanged) {
-  const auto& engine = sglab::validate::reference_engine();
-  std::vector<sglab::validate::Query> q;
+  const auto& engine = sglab::reference::reference_engine();
+  std::vector<sglab::reference::Query> q;
   for (double kappa : sglab::test::standard_kappas())
     for (double cosine : sglab::test::standard_cosines())
       q.push_back({static_cast<double>(static_cast<float>(kappa)),

@@ -18,8 +18,8 @@
 
 #include <sglab/sglab.hpp>
 
+#include "reference/reference.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -303,7 +303,7 @@ TYPED_TEST(RuntimeEdge, EveryMethodAtSubnormalKappaMeetsTheReferenceLimit) {
   // The reference limit: E(c, κ) at these κ, exactly π up to double rounding.
   for (T k : {kappas.front(), kappas.back()})
     for (T c : cosines)
-      EXPECT_NEAR(sglab::validate::reference_engine().evaluate(double(k), double(c)).irradiance,
+      EXPECT_NEAR(sglab::reference::reference_engine().evaluate(double(k), double(c)).irradiance,
                   double(kPiL), 1e-15 * double(kPiL))
           << "c = " << hex(c) << ", κ = " << hex(k);
   for (const sglab::Method& m : sglab::irradiance_methods) {
@@ -335,17 +335,17 @@ TYPED_TEST(RuntimeEdge, EveryMethodAtSubnormalKappaMeetsTheReferenceLimit) {
 
 // ---------------------------------------------------------------------------
 // Reference engine.
-namespace sv = sglab::validate;
+namespace sr = sglab::reference;
 
 double rel(double got, double want) { return std::abs(got / want - 1); }
 
 TEST(ReferenceEdge, AccurateUpToLargestFiniteKappa) {
-  const auto& engine = sv::reference_engine();
+  const auto& engine = sr::reference_engine();
   for (double k : {1e300, 3e307, 1e308, std::numeric_limits<double>::max()}) {
     SCOPED_TRACE(fmt::format("κ = {}", hex(k)));
     const L K = k;
-    const sv::ReferencePoint up = engine.evaluate(k, 1.0), mid = engine.evaluate(k, 0.0);
-    const sv::ReferencePoint half = engine.evaluate(k, 0.5);
+    const sr::ReferencePoint up = engine.evaluate(k, 1.0), mid = engine.evaluate(k, 0.0);
+    const sr::ReferencePoint half = engine.evaluate(k, 0.5);
     // H(1) = 2π(1 − e^{−κ})/κ, E(1) = 2π(κ − 1 + e^{−κ})/κ², H(0) = S/2, and
     // at c = 0.5 the whole lobe is inside the hemisphere: H = S, E ≈ cH.
     EXPECT_LE(rel(up.hemispherical, static_cast<double>(2 * kPiL / K)), 1e-13)
@@ -381,21 +381,21 @@ double s_first_order(double kappa, double delta) {
 }
 
 TEST(ReferenceEdge, NormalizedRelativelyAccurateNearMinusOne) {
-  const auto& engine = sv::reference_engine();
+  const auto& engine = sr::reference_engine();
   // δ = 2^−50 (c = −1 + δ is a double): the O(δ²) term is ~δκ² relative.
   const double delta = std::ldexp(1.0, -50);
   for (double k : {1e-3, 0.5, 2.0, 10.0}) {
-    const sv::ReferencePoint p = engine.evaluate(k, -1 + delta);
+    const sr::ReferencePoint p = engine.evaluate(k, -1 + delta);
     EXPECT_LE(rel(p.normalized, s_first_order(k, delta)), 1e-12)
         << "κ = " << hex(k) << ": s = " << hex(p.normalized) << ", first order "
         << hex(s_first_order(k, delta));
   }
-  // Against the engine's 50-digit mode (Precision::high) at a few δ.
+  // Against the engine's 50-digit mode (Quadrature::high) at a few δ.
   for (double k : {1e-3, 0.5, 1.0, 1.5, 2.0, 10.0, 100.0, 600.0})
     for (double d : {1e-10, 1e-6, 1e-3, 0.1}) {
       const double c = -1 + d;
-      const sv::ReferencePoint a = engine.evaluate(k, c),
-                               b = engine.evaluate(k, c, sv::Precision::high);
+      const sr::ReferencePoint a = engine.evaluate(k, c),
+                               b = engine.evaluate(k, c, sr::Quadrature::high);
       if (b.normalized < 1e-290) continue;
       EXPECT_LE(rel(a.normalized, b.normalized), 1e-13)
           << "κ = " << hex(k) << ", c = " << hex(c) << ": " << hex(a.normalized) << " vs high "

@@ -14,7 +14,7 @@
 
 #include "envmap/envmap.hpp"
 #include "tests/test_support.hpp"
-#include "validate/scene.hpp"
+#include "validate/scene_errors.hpp"
 
 namespace {
 
@@ -64,7 +64,7 @@ TEST(Envmap, ConstantMapIrradianceIsPiTimesRadiance) {
   const Vec3 radiance{1.0, 2.0, 0.5};
   for (std::size_t w : {32, 128}) {
     const Map m = constant_map(w, radiance);
-    const auto normals = validate::fibonacci_normals(200);
+    const auto normals = reference::fibonacci_normals(200);
     const auto e = envmap::irradiance(m, normals);
     // Exact but for the sub-pixels n's horizon cuts: an error that shrinks
     // with the pixel size.
@@ -130,7 +130,7 @@ TEST(Envmap, FitRecoversKnownLobes) {
       EXPECT_NEAR(best->amplitude[ch] / truth.amplitude[ch], 1.0, 0.01);
   }
   // The irradiance of the fitted lobes matches the map's exact irradiance.
-  const auto normals = validate::fibonacci_normals(300);
+  const auto normals = reference::fibonacci_normals(300);
   const auto err = envmap::irradiance_error(envmap::lobes_irradiance_exact(r.lobes, normals),
                                             envmap::irradiance(m, normals));
   EXPECT_LT(err.max_rel, 2e-3);
@@ -141,7 +141,7 @@ TEST(Envmap, FitIsDeterministic) {
   envmap::FitOptions o;
   o.lobes = 4;
   o.fit_normals = 256;
-  const auto normals = validate::fibonacci_normals(o.fit_normals);
+  const auto normals = reference::fibonacci_normals(o.fit_normals);
   const auto exact = envmap::irradiance(m, normals);
   const auto a = envmap::fit(m, exact, o), b = envmap::fit(m, exact, o);
   ASSERT_EQ(a.lobes.size(), b.lobes.size());
@@ -277,9 +277,9 @@ TEST(EnvmapCli, SelectorChoiceMeetsItsBudget) {
   ASSERT_EQ(f.exit_code, 0) << f.output;
   std::ifstream in(scene_file);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const validate::Scene scene = validate::parse_scene(text, scene_file);
+  const reference::Scene scene = reference::parse_scene(text, scene_file);
   ASSERT_EQ(scene.lights.size(), lobes);
-  const auto normals = validate::fibonacci_normals(500);
+  const auto normals = reference::fibonacci_normals(500);
   const Method* m = find_method(irradiance_methods, method);
   ASSERT_NE(m, nullptr);
   double largest = 0;
@@ -303,15 +303,15 @@ namespace {
 TEST(EnvmapScene, ProvenanceIsAnOptionalObject) {
   const std::string light = R"({"axis": [0, 0, 1], "sharpness": 2, "amplitude": [1, 1, 1]})";
   EXPECT_EQ(
-      validate::parse_scene(
+      reference::parse_scene(
           R"({"lights": [)" + light + R"(], "provenance": {"map": "x.exr", "lobes": 1}})", "s")
           .lights.size(),
       1u);
   EXPECT_THROW(
-      validate::parse_scene(R"({"lights": [)" + light + R"(], "provenance": "text"})", "s"),
-      validate::SceneError);
-  EXPECT_THROW(validate::parse_scene(R"({"lights": [)" + light + R"(], "other": {}})", "s"),
-               validate::SceneError);
+      reference::parse_scene(R"({"lights": [)" + light + R"(], "provenance": "text"})", "s"),
+      reference::SceneError);
+  EXPECT_THROW(reference::parse_scene(R"({"lights": [)" + light + R"(], "other": {}})", "s"),
+               reference::SceneError);
 }
 
 }  // namespace

@@ -217,7 +217,7 @@ TEST(EnvmapInput, RadianceDecodingKeepsTheIrradiance) {
     px[p] = rgbe_of(truth.rgb[3 * p], truth.rgb[3 * p + 1], truth.rgb[3 * p + 2]);
   write_bytes(dir.path / "m.hdr", hdr_file(truth.width, truth.height, px, Encoding::rle));
   const Map read = envmap::read_map(dir.path / "m.hdr");
-  const auto normals = validate::fibonacci_normals(400);
+  const auto normals = reference::fibonacci_normals(400);
   const auto err = envmap::irradiance_error(envmap::irradiance(read, normals),
                                             envmap::irradiance(truth, normals));
   std::printf("RGBE round trip: max irradiance error %.3g\n", err.max_rel);

@@ -60,8 +60,8 @@ std::string hexf(double x) {
 }  // namespace
 
 TEST(ErfCheck, UlpDefinitions) {
-  using sglab::validate::ulp_double;
-  using sglab::validate::ulp_float;
+  using sglab::reference::ulp_double;
+  using sglab::reference::ulp_float;
   EXPECT_EQ(ulp_float(1.0), 0x1p-23);
   EXPECT_EQ(ulp_float(0.75), 0x1p-24);
   EXPECT_EQ(ulp_float(std::nextafter(1.0, 0.0)), 0x1p-24);
@@ -98,23 +98,23 @@ TEST(ErfCheck, ReferenceIsCorrectlyRounded) {
   std::uniform_int_distribution<std::uint32_t> bits(0, 0x40900000u);
   for (int i = 0; i < 3000; ++i) {
     const float x = std::bit_cast<float>(bits(rng));
-    const float got = sglab::validate::erf_reference_float(x).rounded;
+    const float got = sglab::reference::erf_reference_float(x).rounded;
     ASSERT_EQ(std::bit_cast<std::uint32_t>(got), std::bit_cast<std::uint32_t>(cr_erf_50(x)))
         << "x = " << hexf(x);
   }
   for (float x : {0x1p-149f, 0x1p-126f, 0.5f, 1.0f, 3.9f, 3.92f, 3.95f, 4.0f, 1e30f}) {
-    ASSERT_EQ(sglab::validate::erf_reference_float(x).rounded, cr_erf_50(x)) << "x = " << hexf(x);
-    ASSERT_EQ(sglab::validate::erf_reference_float(-x).rounded, -cr_erf_50(x))
+    ASSERT_EQ(sglab::reference::erf_reference_float(x).rounded, cr_erf_50(x)) << "x = " << hexf(x);
+    ASSERT_EQ(sglab::reference::erf_reference_float(-x).rounded, -cr_erf_50(x))
         << "x = " << hexf(-x);
   }
-  EXPECT_TRUE(std::signbit(sglab::validate::erf_reference_float(-0.0f).rounded));
+  EXPECT_TRUE(std::signbit(sglab::reference::erf_reference_float(-0.0f).rounded));
 }
 
 // The Taylor runs of the float check agree with a direct 50-digit
 // evaluation; the checker of the correctly rounded function itself reports
 // only correctly rounded points.
 TEST(ErfCheck, CorrectlyRoundedFunctionScoresPerfectly) {
-  auto cr = [](float x) { return sglab::validate::erf_reference_float(x).rounded; };
+  auto cr = [](float x) { return sglab::reference::erf_reference_float(x).rounded; };
   ErfFloatOptions o = small_options();
   const ErfReport r = sglab::validate::check_erf_float(cr, o, "cr");
   EXPECT_EQ(r.stats.correctly_rounded, r.stats.count);
@@ -128,15 +128,15 @@ TEST(ErfCheck, TaylorReferenceMatches50Digits) {
   // A run of consecutive floats in [2, 4), as in the exhaustive loop.
   const float x0 = 3.1f;
   const std::uint32_t b0 = std::bit_cast<std::uint32_t>(x0);
-  const auto t = sglab::validate::detail::erf_taylor_float(std::bit_cast<float>(b0 - 512), x0,
-                                                           std::bit_cast<float>(b0 + 511));
+  const auto t = sglab::reference::detail::erf_taylor_float(std::bit_cast<float>(b0 - 512), x0,
+                                                            std::bit_cast<float>(b0 + 511));
   static_assert(std::is_same_v<decltype(t(1.0)), double>);
   ASSERT_TRUE(t.ok);
   for (std::uint32_t d : {0u, 1u, 100u, 511u}) {
     for (std::uint32_t b : {b0 + d, b0 - d - 1}) {
       const float x = std::bit_cast<float>(b);
-      const long double exact = sglab::validate::erf_reference_50(x);
-      EXPECT_LE(std::abs(t(x) - exact) / sglab::validate::ulp_double(exact), 2.0L)
+      const long double exact = sglab::reference::erf_reference_50(x);
+      EXPECT_LE(std::abs(t(x) - exact) / sglab::reference::ulp_double(exact), 2.0L)
           << "x = " << hexf(x);
     }
   }
@@ -196,13 +196,13 @@ TEST(ErfCheck, AS7125PublishedBoundHoldsAndIsTight) {
   EXPECT_GE(rf.stats.max_abs, 1e-6);
   EXPECT_LE(rf.stats.worst_abs_x, 4.0);
 
-  sglab::validate::ErfDoubleOptions o;
+  sglab::reference::ErfDoubleOptions o;
   o.grid_points = 100'000;
   o.log_points = 256;
   o.tail_points = 64;
   o.odd_points = 256;
   o.bins = 50;
-  const auto sample = sglab::validate::make_erf_double_sample(o);
+  const auto sample = sglab::reference::make_erf_double_sample(o);
   EXPECT_LT(sample.selfcheck_ulps, 0.01);
   const ErfReport rd = sglab::validate::check_erf_double(sglab::ErfAS7125{}, sample, "as7125");
   EXPECT_LE(rd.stats.max_abs, 2.5e-5);
@@ -259,13 +259,13 @@ TEST(ErfCheck, ExhaustiveCoversEveryFloat) {
 }
 
 TEST(ErfCheck, DoubleCheckOfStdIsAccurate) {
-  sglab::validate::ErfDoubleOptions o;
+  sglab::reference::ErfDoubleOptions o;
   o.grid_points = 50'000;
   o.log_points = 512;
   o.tail_points = 64;
   o.odd_points = 512;
   o.bins = 20;
-  const auto sample = sglab::validate::make_erf_double_sample(o);
+  const auto sample = sglab::reference::make_erf_double_sample(o);
   const ErfReport r =
       sglab::validate::check_erf_double([](double x) { return std::erf(x); }, sample, "std");
   EXPECT_LT(r.stats.max_ulp, 2.0);  // glibc erf: ≤ ~1.3 ulp

@@ -23,9 +23,9 @@
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
 #include "fit/targets.hpp"
+#include "reference/reference.hpp"
 #include "tests/fit_guard.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 
 // A steepness form that is one t at every sharpness (found by argument-dependent lookup).
 namespace probe {
@@ -453,9 +453,9 @@ TEST(SteepnessCertificate, FloorIsAtMostTheErrorOfAnySteepness) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const double k = kappas[i], t_best = rows[i][1].get<double>();
       const double floor = rows[i][2].get<double>(), achieved = rows[i][3].get<double>();
-      std::vector<sglab::validate::Query> q;
+      std::vector<sglab::reference::Query> q;
       for (double c : cosines) q.push_back({k, c});
-      const auto ref = sglab::validate::reference_engine().evaluate(q);
+      const auto ref = sglab::reference::reference_engine().evaluate(q);
       const auto poles = sglab::irradiance_poles_over_two_pi(k);
       const auto error = [&](double t) {
         double m = 0;
@@ -497,9 +497,9 @@ TEST(SteepnessCertificate, OneTPerKappaDoesNotBoundThe2022Irradiance) {
   const sglab::Steepness2022Params<double> fitted{r["A"].get<double>(), r["B"].get<double>(),
                                                   r["C"].get<double>()};
   const double k = 5.23;
-  std::vector<sglab::validate::Query> q;
+  std::vector<sglab::reference::Query> q;
   for (double c : cosine_grid(201)) q.push_back({k, c});
-  const auto ref = sglab::validate::reference_engine().evaluate(q);
+  const auto ref = sglab::reference::reference_engine().evaluate(q);
   const auto error = [&](const auto& st) {
     double m = 0;
     for (const auto& p : ref)
@@ -520,11 +520,11 @@ TEST(SteepnessCertificate, OneTPerKappaDoesNotBoundThe2022Irradiance) {
 // model's max float error over c at each κ to tokuyoshi2024's there (or 1e−6). A model that is
 // tokuyoshi2024 with its error doubled, halved or as is gives 2, 1/2 and 1: the rule can fail.
 TEST(ModelFamily, NeverWorseRatioIsTheErrorOverTokuyoshi2024s) {
-  std::vector<sglab::validate::Query> q;
+  std::vector<sglab::reference::Query> q;
   for (int i = 0; i <= 20; ++i)
     for (int j = 0; j <= 40; ++j)
       q.push_back({double(float(std::pow(10.0, -3 + 7.0 * i / 20))), double(float(-1 + j / 20.0))});
-  const auto& engine = sglab::validate::reference_engine();
+  const auto& engine = sglab::reference::reference_engine();
   const auto ref = engine.evaluate(q);
   // E + f·(tokuyoshi2024 − E): its error is f times tokuyoshi2024's, in float and in double.
   const auto scaled = [&](double f) {

@@ -1,4 +1,4 @@
-// The irradiance table (validate/irradiance_table.hpp) against its truth, the
+// The irradiance table (reference/irradiance_table.hpp) against its truth, the
 // reference quadrature, at points no interpolant used: the grid between the
 // nodes of every piece with its edges, random points over κ ∈ [1e−8, 1e14],
 // the narrow horizon at large κ, the piece boundaries, κ → 0 and the largest
@@ -21,24 +21,24 @@
 #include <boost/math/special_functions/bessel.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
+#include "reference/irradiance_table.hpp"
+#include "reference/reference.hpp"
 #include "sglab/closed_forms.hpp"
 #include "tests/test_support.hpp"
-#include "validate/irradiance_table.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
+using sglab::reference::check_irradiance_table;
+using sglab::reference::irradiance_odd_slope;
+using sglab::reference::irradiance_table;
+using sglab::reference::irradiance_table_check_points;
+using sglab::reference::irradiance_table_cosine_range;
+using sglab::reference::IrradianceTable;
+using sglab::reference::IrradianceTableCheck;
+using sglab::reference::kIrradianceTableBound;
+using sglab::reference::Query;
+using sglab::reference::ReferenceEngine;
 using sglab::test::hex;
-using sglab::validate::check_irradiance_table;
-using sglab::validate::irradiance_odd_slope;
-using sglab::validate::irradiance_table;
-using sglab::validate::irradiance_table_check_points;
-using sglab::validate::irradiance_table_cosine_range;
-using sglab::validate::IrradianceTable;
-using sglab::validate::IrradianceTableCheck;
-using sglab::validate::kIrradianceTableBound;
-using sglab::validate::Query;
-using sglab::validate::ReferenceEngine;
 using mp = boost::multiprecision::cpp_bin_float_50;
 
 // What the layout achieves (the dense check, `sglab reference --check-table`,

@@ -19,9 +19,9 @@
 
 #include <sglab/sglab.hpp>
 
+#include "reference/reference.hpp"
 #include "tests/test_support.hpp"
 #include "validate/kappa_range.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -52,16 +52,16 @@ struct Worst {
   bool in_float = false;
 };
 std::vector<std::vector<Worst>> worst_of_every_method(const std::vector<double>& kappas) {
-  std::vector<sglab::validate::Query> q;
+  std::vector<sglab::reference::Query> q;
   for (double k : kappas)
     for (double c : cosines_at(k)) q.push_back({k, c});
-  const auto ref = sglab::validate::reference_engine().evaluate(q);
+  const auto ref = sglab::reference::reference_engine().evaluate(q);
   std::vector<std::vector<Worst>> out(std::size(sglab::irradiance_methods),
                                       std::vector<Worst>(kappas.size()));
   std::size_t at = 0;
   for (std::size_t i = 0; i < kappas.size(); ++i) {
     const double k = kappas[i],
-                 peak = sglab::validate::reference_engine().evaluate(k, 1.0).irradiance;
+                 peak = sglab::reference::reference_engine().evaluate(k, 1.0).irradiance;
     const std::size_t n = cosines_at(k).size();
     for (std::size_t m = 0; m < std::size(sglab::irradiance_methods); ++m) {
       const sglab::Method& method = sglab::irradiance_methods[m];
@@ -201,7 +201,7 @@ TEST(KappaScan, KappasSpanEveryFloatWithTheFittedEnds) {
 // worst is known, so the scan's search is checked by what it finds.
 constexpr double kBump = 1e-3;
 double reference_plus_bump(double c, double kappa, double t0) {
-  const auto& engine = sglab::validate::reference_engine();
+  const auto& engine = sglab::reference::reference_engine();
   const double peak = engine.evaluate(kappa, 1.0).irradiance;
   // bump at c = t0/√κ for κ ≥ 1, at c = t0/8 below; width 0.1 in t (or in c/8)
   const double t = kappa >= 1 ? c * std::sqrt(kappa) : 8 * c;

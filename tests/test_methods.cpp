@@ -18,10 +18,10 @@
 
 #include <sglab/sglab.hpp>
 
+#include "reference/reference.hpp"
 #include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -143,7 +143,7 @@ TEST_P(LightSplit, EqualsThePlainFloatFunction) {
   }
   ASSERT_NE(m.light_setup32, nullptr) << "the table bounds a split the registry does not have";
   ASSERT_NE(m.light_eval32, nullptr) << "setup and eval come together";
-  std::vector<sglab::validate::Query> points = random_points(4000, 5);
+  std::vector<sglab::reference::Query> points = random_points(4000, 5);
   for (double kappa : sglab::test::standard_kappas())
     for (double cosine : sglab::test::standard_cosines()) points.push_back({kappa, cosine});
   for (const auto& q : points) {
@@ -168,7 +168,7 @@ TEST_P(PeakRel, AgainstTheReferenceOnPointsNoFitSaw) {
   const double bound = m.valid.max_peak_rel;
   ASSERT_GT(bound, 0) << m.id << " states no bound";
   ASSERT_TRUE(m.valid.covers(1e-3, 1e4)) << m.id;
-  const auto ref = sglab::validate::reference_engine().evaluate(random_points(6000, 20261201));
+  const auto ref = sglab::reference::reference_engine().evaluate(random_points(6000, 20261201));
   double worst_f = 0, worst_d = 0;
   std::size_t at_f = 0, at_d = 0;
   for (std::size_t i = 0; i < ref.size(); ++i) {

@@ -16,10 +16,12 @@
 #include <nlohmann/json.hpp>
 
 #include "common/io.hpp"
+#include "reference/error_measures.hpp"
 #include "tests/test_support.hpp"
 #include "validate/metrics.hpp"
 #include "validate/table.hpp"
 
+namespace sr = sglab::reference;
 namespace sv = sglab::validate;
 
 namespace {
@@ -28,74 +30,74 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
 TEST(Metrics, AbsPeakRelRelOnOrdinaryValues) {
-  EXPECT_EQ(sv::abs_error(1.25, 1.0), 0.25);
-  EXPECT_EQ(sv::abs_error(0.75, 1.0), 0.25);
-  EXPECT_EQ(sv::peak_rel_error(1.25, 1.0, 2.0), 0.125);
-  EXPECT_EQ(sv::peak_rel_error(1.25, 1.0, -2.0), 0.125);  // |peak|
-  EXPECT_EQ(sv::rel_error(1.25, 1.0), 0.25);
-  EXPECT_EQ(sv::rel_error(0.5, 2.0), 0.75);
-  EXPECT_EQ(sv::rel_error(3.0, 3.0), 0.0);
+  EXPECT_EQ(sr::abs_error(1.25, 1.0), 0.25);
+  EXPECT_EQ(sr::abs_error(0.75, 1.0), 0.25);
+  EXPECT_EQ(sr::peak_rel_error(1.25, 1.0, 2.0), 0.125);
+  EXPECT_EQ(sr::peak_rel_error(1.25, 1.0, -2.0), 0.125);  // |peak|
+  EXPECT_EQ(sr::rel_error(1.25, 1.0), 0.25);
+  EXPECT_EQ(sr::rel_error(0.5, 2.0), 0.75);
+  EXPECT_EQ(sr::rel_error(3.0, 3.0), 0.0);
 }
 
 TEST(Metrics, SignificanceThresholdIsOnePercentOfPeak) {
-  EXPECT_TRUE(sv::significant(0.01, 1.0));
-  EXPECT_TRUE(sv::significant(0.5, 1.0));
-  EXPECT_FALSE(sv::significant(0.0099, 1.0));
-  EXPECT_FALSE(sv::significant(0.0, 1.0));
-  EXPECT_TRUE(sv::significant(0.0, 0.0));  // 0 ≥ 1e−2·0
-  EXPECT_FALSE(sv::significant(kNaN, 1.0));
-  EXPECT_FALSE(sv::significant(1.0, kNaN));
+  EXPECT_TRUE(sr::significant(0.01, 1.0));
+  EXPECT_TRUE(sr::significant(0.5, 1.0));
+  EXPECT_FALSE(sr::significant(0.0099, 1.0));
+  EXPECT_FALSE(sr::significant(0.0, 1.0));
+  EXPECT_TRUE(sr::significant(0.0, 0.0));  // 0 ≥ 1e−2·0
+  EXPECT_FALSE(sr::significant(kNaN, 1.0));
+  EXPECT_FALSE(sr::significant(1.0, kNaN));
 }
 
 TEST(Metrics, ZeroReferenceAndZeroPeak) {
-  EXPECT_EQ(sv::abs_error(0.5, 0.0), 0.5);
-  EXPECT_EQ(sv::peak_rel_error(0.5, 0.0, 2.0), 0.25);
-  EXPECT_EQ(sv::rel_error(0.0, 0.0), 0.0);
-  EXPECT_EQ(sv::rel_error(1e-300, 0.0), kInf);
-  EXPECT_EQ(sv::rel_error(-0.0, 0.0), 0.0);
-  EXPECT_EQ(sv::peak_rel_error(0.0, 0.0, 0.0), 0.0);
-  EXPECT_EQ(sv::peak_rel_error(1.0, 0.0, 0.0), kInf);
-  EXPECT_EQ(sv::peak_rel_error(2.0, 2.0, 0.0), 0.0);
+  EXPECT_EQ(sr::abs_error(0.5, 0.0), 0.5);
+  EXPECT_EQ(sr::peak_rel_error(0.5, 0.0, 2.0), 0.25);
+  EXPECT_EQ(sr::rel_error(0.0, 0.0), 0.0);
+  EXPECT_EQ(sr::rel_error(1e-300, 0.0), kInf);
+  EXPECT_EQ(sr::rel_error(-0.0, 0.0), 0.0);
+  EXPECT_EQ(sr::peak_rel_error(0.0, 0.0, 0.0), 0.0);
+  EXPECT_EQ(sr::peak_rel_error(1.0, 0.0, 0.0), kInf);
+  EXPECT_EQ(sr::peak_rel_error(2.0, 2.0, 0.0), 0.0);
 }
 
 TEST(Metrics, InfiniteReference) {
-  EXPECT_EQ(sv::abs_error(kInf, kInf), 0.0);
-  EXPECT_EQ(sv::abs_error(-kInf, -kInf), 0.0);
-  EXPECT_EQ(sv::abs_error(1.0, kInf), kInf);
-  EXPECT_EQ(sv::abs_error(-kInf, kInf), kInf);
-  EXPECT_EQ(sv::rel_error(kInf, kInf), 0.0);
-  EXPECT_EQ(sv::rel_error(1.0, kInf), 1.0);
-  EXPECT_EQ(sv::rel_error(-kInf, kInf), kInf);
-  EXPECT_EQ(sv::peak_rel_error(1.0, 0.5, kInf), 0.0);
-  EXPECT_TRUE(std::isnan(sv::peak_rel_error(1.0, kInf, kInf)));  // inf/inf
+  EXPECT_EQ(sr::abs_error(kInf, kInf), 0.0);
+  EXPECT_EQ(sr::abs_error(-kInf, -kInf), 0.0);
+  EXPECT_EQ(sr::abs_error(1.0, kInf), kInf);
+  EXPECT_EQ(sr::abs_error(-kInf, kInf), kInf);
+  EXPECT_EQ(sr::rel_error(kInf, kInf), 0.0);
+  EXPECT_EQ(sr::rel_error(1.0, kInf), 1.0);
+  EXPECT_EQ(sr::rel_error(-kInf, kInf), kInf);
+  EXPECT_EQ(sr::peak_rel_error(1.0, 0.5, kInf), 0.0);
+  EXPECT_TRUE(std::isnan(sr::peak_rel_error(1.0, kInf, kInf)));  // inf/inf
 }
 
 TEST(Metrics, NaNAnywhereGivesNaN) {
-  EXPECT_TRUE(std::isnan(sv::abs_error(kNaN, 1.0)));
-  EXPECT_TRUE(std::isnan(sv::abs_error(1.0, kNaN)));
-  EXPECT_TRUE(std::isnan(sv::abs_error(kNaN, kNaN)));
-  EXPECT_TRUE(std::isnan(sv::peak_rel_error(1.0, 1.0, kNaN)));
-  EXPECT_TRUE(std::isnan(sv::rel_error(kNaN, 0.0)));
-  EXPECT_TRUE(std::isnan(sv::ulp_error<float>(kNaN, 1.0)));
+  EXPECT_TRUE(std::isnan(sr::abs_error(kNaN, 1.0)));
+  EXPECT_TRUE(std::isnan(sr::abs_error(1.0, kNaN)));
+  EXPECT_TRUE(std::isnan(sr::abs_error(kNaN, kNaN)));
+  EXPECT_TRUE(std::isnan(sr::peak_rel_error(1.0, 1.0, kNaN)));
+  EXPECT_TRUE(std::isnan(sr::rel_error(kNaN, 0.0)));
+  EXPECT_TRUE(std::isnan(sr::ulp_error<float>(kNaN, 1.0)));
 }
 
 TEST(Metrics, UlpInTheEvaluatedPrecision) {
-  EXPECT_EQ(sv::ulp_of<float>(1.0), 0x1p-23);
-  EXPECT_EQ(sv::ulp_of<double>(1.0), 0x1p-52);
-  EXPECT_EQ(sv::ulp_of<float>(-1.0), 0x1p-23);
-  EXPECT_EQ(sv::ulp_of<float>(1.5), 0x1p-23);
-  EXPECT_EQ(sv::ulp_of<float>(0.0), static_cast<double>(std::numeric_limits<float>::denorm_min()));
-  EXPECT_EQ(sv::ulp_of<double>(0.0), std::numeric_limits<double>::denorm_min());
-  EXPECT_EQ(sv::ulp_of<float>(1e-40),
+  EXPECT_EQ(sr::ulp_of<float>(1.0), 0x1p-23);
+  EXPECT_EQ(sr::ulp_of<double>(1.0), 0x1p-52);
+  EXPECT_EQ(sr::ulp_of<float>(-1.0), 0x1p-23);
+  EXPECT_EQ(sr::ulp_of<float>(1.5), 0x1p-23);
+  EXPECT_EQ(sr::ulp_of<float>(0.0), static_cast<double>(std::numeric_limits<float>::denorm_min()));
+  EXPECT_EQ(sr::ulp_of<double>(0.0), std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(sr::ulp_of<float>(1e-40),
             static_cast<double>(std::numeric_limits<float>::denorm_min()));
-  EXPECT_EQ(sv::ulp_of<float>(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
-  EXPECT_EQ(sv::ulp_of<float>(1e39), 0x1p104);  // rounds to inf in float: spacing below FLT_MAX
-  EXPECT_TRUE(std::isnan(sv::ulp_of<float>(kInf)));
-  EXPECT_EQ(sv::ulp_error<float>(1.0 + 0x1p-23, 1.0), 1.0);
-  EXPECT_EQ(sv::ulp_error<float>(1.0 + 0x1p-24, 1.0), 0.5);
-  EXPECT_EQ(sv::ulp_error<double>(1.0 + 0x1p-51, 1.0), 2.0);
-  EXPECT_EQ(sv::ulp_error<double>(0.75, 0.75), 0.0);
-  EXPECT_EQ(sv::ulp_error<float>(1.0, kInf), kInf);
+  EXPECT_EQ(sr::ulp_of<float>(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
+  EXPECT_EQ(sr::ulp_of<float>(1e39), 0x1p104);  // rounds to inf in float: spacing below FLT_MAX
+  EXPECT_TRUE(std::isnan(sr::ulp_of<float>(kInf)));
+  EXPECT_EQ(sr::ulp_error<float>(1.0 + 0x1p-23, 1.0), 1.0);
+  EXPECT_EQ(sr::ulp_error<float>(1.0 + 0x1p-24, 1.0), 0.5);
+  EXPECT_EQ(sr::ulp_error<double>(1.0 + 0x1p-51, 1.0), 2.0);
+  EXPECT_EQ(sr::ulp_error<double>(0.75, 0.75), 0.0);
+  EXPECT_EQ(sr::ulp_error<float>(1.0, kInf), kInf);
 }
 
 TEST(Metrics, CompareClassifiesBeforeMeasuring) {
@@ -370,88 +372,88 @@ TEST(Metrics, UlpFloatAtPowersOfTwoAndBetween) {
   // 2^e has ulp 2^(e−23); every value in [2^e, 2^(e+1)) shares it.
   for (int e = -126; e <= 127; ++e) {
     const double p = std::ldexp(1.0, e);
-    ASSERT_EQ(sv::ulp_float(p), std::ldexp(1.0, e - 23)) << "2^" << e;
-    ASSERT_EQ(sv::ulp_float(-p), std::ldexp(1.0, e - 23)) << "-2^" << e;
-    ASSERT_EQ(sv::ulp_float(1.5 * p), std::ldexp(1.0, e - 23)) << "1.5*2^" << e;
+    ASSERT_EQ(sr::ulp_float(p), std::ldexp(1.0, e - 23)) << "2^" << e;
+    ASSERT_EQ(sr::ulp_float(-p), std::ldexp(1.0, e - 23)) << "-2^" << e;
+    ASSERT_EQ(sr::ulp_float(1.5 * p), std::ldexp(1.0, e - 23)) << "1.5*2^" << e;
     // Just below a power of two (the exact value's binade, not its rounding's);
     // below FLT_MIN = 2^−126 the subnormal spacing 2^−149.
-    ASSERT_EQ(sv::ulp_float(std::nextafter(p, 0.0)), e > -126 ? std::ldexp(1.0, e - 24) : 0x1p-149)
+    ASSERT_EQ(sr::ulp_float(std::nextafter(p, 0.0)), e > -126 ? std::ldexp(1.0, e - 24) : 0x1p-149)
         << "below 2^" << e;
   }
-  EXPECT_EQ(sv::ulp_float(1.0), 0x1p-23);
-  EXPECT_EQ(sv::ulp_float(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
-  EXPECT_EQ(sv::ulp_float(0x1p200), 0x1p177);  // beyond the float range: the same formula
+  EXPECT_EQ(sr::ulp_float(1.0), 0x1p-23);
+  EXPECT_EQ(sr::ulp_float(static_cast<double>(std::numeric_limits<float>::max())), 0x1p104);
+  EXPECT_EQ(sr::ulp_float(0x1p200), 0x1p177);  // beyond the float range: the same formula
 }
 
 TEST(Metrics, UlpFloatDenormalsZeroInfNaN) {
   const double denorm_min = static_cast<double>(std::numeric_limits<float>::denorm_min());
   EXPECT_EQ(denorm_min, 0x1p-149);
-  EXPECT_EQ(sv::ulp_float(0.0), 0x1p-149);
-  EXPECT_EQ(sv::ulp_float(-0.0), 0x1p-149);
-  EXPECT_EQ(sv::ulp_float(denorm_min), 0x1p-149);
-  EXPECT_EQ(sv::ulp_float(0x1p-130), 0x1p-149);
-  EXPECT_EQ(sv::ulp_float(std::nextafter(0x1p-126, 0.0)), 0x1p-149);  // largest value below FLT_MIN
-  EXPECT_EQ(sv::ulp_float(0x1p-126), 0x1p-149);  // FLT_MIN: normal, same spacing
-  EXPECT_EQ(sv::ulp_float(0x1p-125), 0x1p-148);
-  EXPECT_EQ(sv::ulp_float(1e-300), 0x1p-149);
-  EXPECT_EQ(sv::ulp_float(kInf), kInf);
-  EXPECT_EQ(sv::ulp_float(-kInf), kInf);
-  EXPECT_TRUE(std::isnan(sv::ulp_float(kNaN)));
+  EXPECT_EQ(sr::ulp_float(0.0), 0x1p-149);
+  EXPECT_EQ(sr::ulp_float(-0.0), 0x1p-149);
+  EXPECT_EQ(sr::ulp_float(denorm_min), 0x1p-149);
+  EXPECT_EQ(sr::ulp_float(0x1p-130), 0x1p-149);
+  EXPECT_EQ(sr::ulp_float(std::nextafter(0x1p-126, 0.0)), 0x1p-149);  // largest value below FLT_MIN
+  EXPECT_EQ(sr::ulp_float(0x1p-126), 0x1p-149);  // FLT_MIN: normal, same spacing
+  EXPECT_EQ(sr::ulp_float(0x1p-125), 0x1p-148);
+  EXPECT_EQ(sr::ulp_float(1e-300), 0x1p-149);
+  EXPECT_EQ(sr::ulp_float(kInf), kInf);
+  EXPECT_EQ(sr::ulp_float(-kInf), kInf);
+  EXPECT_TRUE(std::isnan(sr::ulp_float(kNaN)));
 }
 
 TEST(Metrics, UlpDoubleAtPowersOfTwoDenormalsZeroInfNaN) {
   for (int e = -1022; e <= 1023; ++e) {
     const long double p = std::ldexp(1.0L, e);
-    ASSERT_EQ(sv::ulp_double(p), std::ldexp(1.0L, e - 52)) << "2^" << e;
-    ASSERT_EQ(sv::ulp_double(-p), std::ldexp(1.0L, e - 52)) << "-2^" << e;
-    ASSERT_EQ(sv::ulp_double(std::nextafter(p, 0.0L)),
+    ASSERT_EQ(sr::ulp_double(p), std::ldexp(1.0L, e - 52)) << "2^" << e;
+    ASSERT_EQ(sr::ulp_double(-p), std::ldexp(1.0L, e - 52)) << "-2^" << e;
+    ASSERT_EQ(sr::ulp_double(std::nextafter(p, 0.0L)),
               e > -1022 ? std::ldexp(1.0L, e - 53) : 0x1p-1074L)
         << "below 2^" << e;
   }
-  EXPECT_EQ(sv::ulp_double(1.0L), 0x1p-52L);
-  EXPECT_EQ(sv::ulp_double(0.0L), 0x1p-1074L);
-  EXPECT_EQ(sv::ulp_double(-0.0L), 0x1p-1074L);
-  EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::denorm_min())),
+  EXPECT_EQ(sr::ulp_double(1.0L), 0x1p-52L);
+  EXPECT_EQ(sr::ulp_double(0.0L), 0x1p-1074L);
+  EXPECT_EQ(sr::ulp_double(-0.0L), 0x1p-1074L);
+  EXPECT_EQ(sr::ulp_double(static_cast<long double>(std::numeric_limits<double>::denorm_min())),
             0x1p-1074L);
-  EXPECT_EQ(sv::ulp_double(0x1p-1050L), 0x1p-1074L);
-  EXPECT_EQ(sv::ulp_double(static_cast<long double>(std::numeric_limits<double>::max())), 0x1p971L);
-  EXPECT_EQ(sv::ulp_double(static_cast<long double>(kInf)), static_cast<long double>(kInf));
-  EXPECT_EQ(sv::ulp_double(-static_cast<long double>(kInf)), static_cast<long double>(kInf));
-  EXPECT_TRUE(std::isnan(sv::ulp_double(static_cast<long double>(kNaN))));
+  EXPECT_EQ(sr::ulp_double(0x1p-1050L), 0x1p-1074L);
+  EXPECT_EQ(sr::ulp_double(static_cast<long double>(std::numeric_limits<double>::max())), 0x1p971L);
+  EXPECT_EQ(sr::ulp_double(static_cast<long double>(kInf)), static_cast<long double>(kInf));
+  EXPECT_EQ(sr::ulp_double(-static_cast<long double>(kInf)), static_cast<long double>(kInf));
+  EXPECT_TRUE(std::isnan(sr::ulp_double(static_cast<long double>(kNaN))));
 }
 
 TEST(Metrics, ExactUlpErrorSpecialValues) {
   // Ordinary: one float ulp at 1 is 2^−23; just below 1 it is 2^−24.
-  EXPECT_EQ(sv::exact_ulp_error_float(1.0 + 0x1p-23, 1.0), 1.0);
-  EXPECT_EQ(sv::exact_ulp_error_float(1.0, 1.0 - 0x1p-30), 0x1p-30 / 0x1p-24);
-  EXPECT_EQ(sv::exact_ulp_error_float(-1.0 - 0x1p-24, -1.0), 0.5);
-  EXPECT_EQ(sv::exact_ulp_error_float(0x1p-149, 0.0), 1.0);  // denormals: spacing 2^−149
-  EXPECT_EQ(sv::exact_ulp_error_float(0.0, -0.0), 0.0);      // ±0 are equal
-  EXPECT_EQ(sv::exact_ulp_error_float(kInf, kInf), 0.0);
-  EXPECT_EQ(sv::exact_ulp_error_float(1.0, kInf), kInf);
-  EXPECT_EQ(sv::exact_ulp_error_float(kInf, 1.0), kInf);
-  EXPECT_EQ(sv::exact_ulp_error_float(-kInf, kInf), kInf);
-  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_float(kNaN, 1.0)));
-  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_float(1.0, kNaN)));
+  EXPECT_EQ(sr::exact_ulp_error_float(1.0 + 0x1p-23, 1.0), 1.0);
+  EXPECT_EQ(sr::exact_ulp_error_float(1.0, 1.0 - 0x1p-30), 0x1p-30 / 0x1p-24);
+  EXPECT_EQ(sr::exact_ulp_error_float(-1.0 - 0x1p-24, -1.0), 0.5);
+  EXPECT_EQ(sr::exact_ulp_error_float(0x1p-149, 0.0), 1.0);  // denormals: spacing 2^−149
+  EXPECT_EQ(sr::exact_ulp_error_float(0.0, -0.0), 0.0);      // ±0 are equal
+  EXPECT_EQ(sr::exact_ulp_error_float(kInf, kInf), 0.0);
+  EXPECT_EQ(sr::exact_ulp_error_float(1.0, kInf), kInf);
+  EXPECT_EQ(sr::exact_ulp_error_float(kInf, 1.0), kInf);
+  EXPECT_EQ(sr::exact_ulp_error_float(-kInf, kInf), kInf);
+  EXPECT_TRUE(std::isnan(sr::exact_ulp_error_float(kNaN, 1.0)));
+  EXPECT_TRUE(std::isnan(sr::exact_ulp_error_float(1.0, kNaN)));
 
-  EXPECT_EQ(sv::exact_ulp_error_double(1.0 + 0x1p-52, 1.0L), 1.0);
+  EXPECT_EQ(sr::exact_ulp_error_double(1.0 + 0x1p-52, 1.0L), 1.0);
   // long double exact value
-  EXPECT_EQ(sv::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L), 0x1p-60 / 0x1p-53);
-  EXPECT_EQ(sv::exact_ulp_error_double(0x1p-1074, 0.0L), 1.0);
-  EXPECT_EQ(sv::exact_ulp_error_double(-0.0, 0.0L), 0.0);
-  EXPECT_EQ(sv::exact_ulp_error_double(kInf, static_cast<long double>(kInf)), 0.0);
-  EXPECT_EQ(sv::exact_ulp_error_double(1.0, static_cast<long double>(kInf)), kInf);
-  EXPECT_EQ(sv::exact_ulp_error_double(kInf, 1.0L), kInf);
-  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_double(kNaN, 1.0L)));
-  EXPECT_TRUE(std::isnan(sv::exact_ulp_error_double(1.0, static_cast<long double>(kNaN))));
+  EXPECT_EQ(sr::exact_ulp_error_double(1.0, 1.0L - 0x1p-60L), 0x1p-60 / 0x1p-53);
+  EXPECT_EQ(sr::exact_ulp_error_double(0x1p-1074, 0.0L), 1.0);
+  EXPECT_EQ(sr::exact_ulp_error_double(-0.0, 0.0L), 0.0);
+  EXPECT_EQ(sr::exact_ulp_error_double(kInf, static_cast<long double>(kInf)), 0.0);
+  EXPECT_EQ(sr::exact_ulp_error_double(1.0, static_cast<long double>(kInf)), kInf);
+  EXPECT_EQ(sr::exact_ulp_error_double(kInf, 1.0L), kInf);
+  EXPECT_TRUE(std::isnan(sr::exact_ulp_error_double(kNaN, 1.0L)));
+  EXPECT_TRUE(std::isnan(sr::exact_ulp_error_double(1.0, static_cast<long double>(kNaN))));
 }
 
 TEST(Metrics, ExactUlpDiffersFromRoundedUlpJustBelowAPowerOfTwo) {
   // ulp_of<float> takes the spacing at the value rounded to float (1.0f: 2^−23),
   // ulp_float the binade of the exact value (below 1: 2^−24).
   const double y = 1.0 - 0x1p-30;
-  EXPECT_EQ(sv::ulp_of<float>(y), 0x1p-23);
-  EXPECT_EQ(sv::ulp_float(y), 0x1p-24);
+  EXPECT_EQ(sr::ulp_of<float>(y), 0x1p-23);
+  EXPECT_EQ(sr::ulp_float(y), 0x1p-24);
 }
 
 // ---- worst peak_rel as a fit reports it --------------------------------------
@@ -459,22 +461,22 @@ TEST(Metrics, ExactUlpDiffersFromRoundedUlpJustBelowAPowerOfTwo) {
 TEST(Metrics, MaxPeakRelErrorIsTheMaxOrInfinity) {
   const std::vector<double> ref = {1.0, 2.0, 0.5};
   const std::vector<double> peak = {4.0, 4.0, 2.0};
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, 2.0, 0.5}, ref, peak), 0.0);
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.0, 2.0, 0.5}, ref, peak), 0.0);
   // |1.5 − 1|/4 = 0.125, |2 − 2|/4 = 0, |0.25 − 0.5|/2 = 0.125 → 0.125; with 3 at the second point
   // |3 − 2|/4 = 0.25.
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5, 2.0, 0.25}, ref, peak), 0.125);
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5, 3.0, 0.25}, ref, peak), 0.25);
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.5, 2.0, 0.25}, ref, peak), 0.125);
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.5, 3.0, 0.25}, ref, peak), 0.25);
   // One non-finite output anywhere makes the worst case infinite, whatever comes after.
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{kNaN, 2.0, 0.5}, ref, peak), kInf);
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, kInf, 0.5}, ref, peak), kInf);
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0, 2.0, -kInf}, ref, peak), kInf);
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{kNaN, 2.0, 0.5}, ref, peak), kInf);
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.0, kInf, 0.5}, ref, peak), kInf);
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.0, 2.0, -kInf}, ref, peak), kInf);
   // A zero peak with a non-zero difference is infinite too; with no difference it is 0.
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.0}, std::vector<double>{1.0},
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.0}, std::vector<double>{1.0},
                                    std::vector<double>{0.0}),
             0.0);
-  EXPECT_EQ(sv::max_peak_rel_error(std::vector<double>{1.5}, std::vector<double>{1.0},
+  EXPECT_EQ(sr::max_peak_rel_error(std::vector<double>{1.5}, std::vector<double>{1.0},
                                    std::vector<double>{0.0}),
             kInf);
-  EXPECT_EQ(sv::max_peak_rel_error({}, {}, {}), 0.0);  // no points
-  EXPECT_THROW(sv::max_peak_rel_error(std::vector<double>{1.0}, ref, peak), std::invalid_argument);
+  EXPECT_EQ(sr::max_peak_rel_error({}, {}, {}), 0.0);  // no points
+  EXPECT_THROW(sr::max_peak_rel_error(std::vector<double>{1.0}, ref, peak), std::invalid_argument);
 }

@@ -14,9 +14,9 @@
 #include "envmap/probe.hpp"
 #include "export/probe_export.hpp"
 #include "export/vulkan_runner.hpp"
+#include "reference/scene.hpp"
 #include "tests/test_support.hpp"
 #include "tests/vulkan_fixture.hpp"
-#include "validate/scene.hpp"
 
 namespace {
 
@@ -78,7 +78,7 @@ std::string write_probe(const std::filesystem::path& path, const std::string& te
 TEST_F(OnVulkan, ExportedProbeMatchesTheProbe) {
   namespace vk = shader::vulkan;
   const sglab::test::TempDir dir("probe_export");
-  auto normals = validate::fibonacci_normals(4096);
+  auto normals = reference::fibonacci_normals(4096);
   for (const Vec3& v :
        std::vector<Vec3>{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}})
     normals.push_back(v);

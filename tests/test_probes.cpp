@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "envmap/probe.hpp"
+#include "reference/scene.hpp"
 #include "tests/map_of.hpp"
-#include "validate/scene.hpp"
 
 namespace {
 
@@ -274,7 +274,7 @@ TEST(Probes, LobeLadderIsMonotoneAndRecoversKnownLobes) {
   });
   const envmap::MapIrradiance field(m);
   const auto truth = envmap::dense_truth(field, 1000);
-  const auto normals = sglab::validate::fibonacci_normals(256);
+  const auto normals = sglab::reference::fibonacci_normals(256);
   const auto exact = field.at(normals);
   const auto judge = [&](const Probe& p) {
     return envmap::dense_error(truth, envmap::probe_irradiance(p), 2).max_rel;

@@ -1,4 +1,4 @@
-// Reference engine (validate/reference.hpp): H, E, s of docs/quantities.md against
+// Reference engine (reference/reference.hpp): H, E, s of docs/quantities.md against
 // independent truth — the closed forms evaluated here in 50-digit arithmetic,
 // the κ → 0 limits, the engine's own 50-digit mode on random points, and a
 // brute-force 2-D quadrature over the sphere that does not use the 1-D
@@ -29,18 +29,18 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "common/io.hpp"
+#include "reference/reference.hpp"
+#include "reference/reference_detail.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
-#include "validate/reference_detail.hpp"
 
 namespace {
 
+using sglab::reference::Quadrature;
+using sglab::reference::Query;
+using sglab::reference::reference_engine;
+using sglab::reference::ReferenceEngine;
+using sglab::reference::ReferencePoint;
 using sglab::test::hex;
-using sglab::validate::Precision;
-using sglab::validate::Query;
-using sglab::validate::reference_engine;
-using sglab::validate::ReferenceEngine;
-using sglab::validate::ReferencePoint;
 using mp = boost::multiprecision::cpp_bin_float_50;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -141,7 +141,7 @@ TEST(ReferenceClosedForms, ErrorEstimateBoundsActualError) {
 TEST(ReferenceLimits, KappaToZero) {
   ReferenceEngine engine;
   for (double c : {-1.0, -0.75, -1e-9, 0.0, 0.3, 0.999, 1.0}) {
-    for (Precision mode : {Precision::standard, Precision::high}) {
+    for (Quadrature mode : {Quadrature::standard, Quadrature::high}) {
       const ReferencePoint zero = engine.evaluate(0.0, c, mode);
       EXPECT_NEAR(zero.hemispherical, 2 * kPi, 1e-15) << "c=" << c;
       EXPECT_NEAR(zero.irradiance, kPi, 1e-15) << "c=" << c;
@@ -239,8 +239,8 @@ TEST(ReferenceHighPrecision, AgreesWithStandardOnRandomPoints) {
     queries.push_back({std::pow(10.0, -6 + 12 * unit(rng)), -1 + 2 * unit(rng)});
 
   ReferenceEngine engine;
-  const auto standard = engine.evaluate(queries, Precision::standard);
-  const auto high = engine.evaluate(queries, Precision::high);
+  const auto standard = engine.evaluate(queries, Quadrature::standard);
+  const auto high = engine.evaluate(queries, Quadrature::high);
   double max_h = 0, max_e = 0, max_s = 0;
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const double k = queries[i].kappa, c = queries[i].cosine;
@@ -276,7 +276,7 @@ TEST(ReferenceHighPrecision, AgreesWithStandardOnRandomPoints) {
 
 TEST(ReferenceHighPrecision, NeverNaNAtTheExtremes) {
   ReferenceEngine engine;
-  for (Precision mode : {Precision::standard, Precision::high}) {
+  for (Quadrature mode : {Quadrature::standard, Quadrature::high}) {
     for (double kappa : {0.0, 5e-324, 1e-300, 1e-6, 1e6})
       for (double c : {-1.0, -0.5, -0.0, 0.0, 1.0}) {
         const ReferencePoint p = engine.evaluate(kappa, c, mode);
@@ -293,7 +293,7 @@ TEST(ReferenceHighPrecision, NeverNaNAtTheExtremes) {
 }
 
 // ---------------------------------------------------------------------------
-// The engine's contract (validate/reference_detail.hpp, Settings::tolerance):
+// The engine's contract (reference/reference_detail.hpp, Settings::tolerance):
 // the error bound it reports for H and for E is at most 1e−14 of the value,
 // and the value agrees with the 50-digit mode within that bound, on the
 // points where the quadrature is hardest: c at and next to ±1 (the peak
@@ -341,8 +341,8 @@ TEST(ReferenceContract, ReportedBoundWithin1e14AndHighPrecisionAgrees) {
   const double slack = 4 * std::numeric_limits<double>::epsilon();
   const std::vector<Query> queries = contract_points();
   ReferenceEngine engine;
-  const auto standard = engine.evaluate(queries, Precision::standard);
-  const auto high = engine.evaluate(queries, Precision::high);
+  const auto standard = engine.evaluate(queries, Quadrature::standard);
+  const auto high = engine.evaluate(queries, Quadrature::high);
   double worst_bound = 0, worst_agreement = 0;
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const double k = queries[i].kappa, c = queries[i].cosine;
@@ -386,8 +386,8 @@ TEST(ReferenceContract, ReportedBoundWithin1e14AndHighPrecisionAgrees) {
 // that needs it: a Gaussian of width σ = 1e−3 at 0.3 on one segment [0, 1],
 // exactly σ√(2π)·½(erf(0.7/(σ√2)) + erf(0.3/(σ√2))).
 TEST(ReferenceContract, AdaptiveQuadratureMeetsTheToleranceWhereBisectionIsNeeded) {
-  using sglab::validate::detail::AdaptiveQuadrature;
-  using Settings = sglab::validate::detail::Settings<double>;
+  using sglab::reference::detail::AdaptiveQuadrature;
+  using Settings = sglab::reference::detail::Settings<double>;
   const double sigma = 1e-3, mu = 0.3;
   auto f = [&](int, double x) {
     const double z = (x - mu) / sigma;
@@ -478,7 +478,7 @@ TEST(ReferenceEngineApi, CacheKeyedByBitsAndPrecision) {
   engine.evaluate(3.0, 0.0);
   engine.evaluate(3.0, -0.0);  // a different bit pattern, a different entry
   EXPECT_EQ(engine.cache_size(), 3u);
-  engine.evaluate(3.0, 0.25, Precision::high);
+  engine.evaluate(3.0, 0.25, Quadrature::high);
   EXPECT_EQ(engine.cache_size(), 4u);
   engine.clear_cache();
   EXPECT_EQ(engine.cache_size(), 0u);

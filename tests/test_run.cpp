@@ -26,8 +26,8 @@
 #include <sglab/registry.hpp>
 
 #include "common/io.hpp"
+#include "reference/reference.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -518,7 +518,7 @@ TEST(TableCommand, KeepsFourSignificantDigitsAtEveryKappa) {
         const double c = -1.0 + 2.0 * static_cast<double>(i) / 8.0;
         const double truth =
             method ? method->f64(c, kappa)
-                   : sglab::validate::reference_engine().evaluate(kappa, c).irradiance;
+                   : sglab::reference::reference_engine().evaluate(kappa, c).irradiance;
         const double printed = number(row[i + 1]);
         if (truth == 0) {
           EXPECT_EQ(printed, 0) << row[0] << " c = " << c;

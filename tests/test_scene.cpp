@@ -1,5 +1,5 @@
-// Scenes of SG lights (validate/scene.hpp) and `sglab recommend --scene`:
-// the scene sums against independent computations, and bad scene files.
+// Scenes of SG lights (reference/scene.hpp, validate/scene_errors.hpp) and `sglab recommend
+// --scene`: the scene sums against independent computations, and bad scene files.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,11 +17,12 @@
 #include <sglab/sglab.hpp>
 
 #include "tests/test_support.hpp"
-#include "validate/scene.hpp"
+#include "validate/scene_errors.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using namespace sglab::reference;
 using namespace sglab::validate;
 
 TEST(Scene, FibonacciNormalsAreUnitAndBalanced) {

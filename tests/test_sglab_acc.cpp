@@ -21,10 +21,10 @@
 #include <sglab/sglab.hpp>
 
 #include "fit/targets.hpp"
+#include "reference/reference.hpp"
 #include "tests/fit_guard.hpp"
 #include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -46,7 +46,7 @@ const sglab::Method& method(std::string_view id) {
 // beats tokuyoshi2024 (published) by at least 40x on the same points.
 TEST(SglabAcc, LadderImprovesOnTokuyoshi2024) {
   const auto queries = random_points(3000, 77);
-  const auto ref = sglab::validate::reference_engine().evaluate(queries);
+  const auto ref = sglab::reference::reference_engine().evaluate(queries);
   auto worst = [&](const sglab::Method& m) {
     double w = 0;
     for (const auto& r : ref)
@@ -70,12 +70,12 @@ TEST(SglabAcc, LadderImprovesOnTokuyoshi2024) {
 // the 2024 form errs by only 1e−7 to 2e−5 (κ < 0.2 and κ > 100).
 TEST(SglabAcc, NeverWorseThanTokuyoshi2024AtAnyKappa) {
   const int nk = 90, nc = 301;
-  std::vector<sglab::validate::Query> queries;
+  std::vector<sglab::reference::Query> queries;
   for (int i = 0; i < nk; ++i) {
     const double k = double(float(std::pow(10.0, -3.0 + 7.0 * (i + 0.37) / nk)));
     for (int j = 0; j < nc; ++j) queries.push_back({k, double(float(-1.0 + 2.0 * j / (nc - 1)))});
   }
-  const auto ref = sglab::validate::reference_engine().evaluate(queries);
+  const auto ref = sglab::reference::reference_engine().evaluate(queries);
   const sglab::Method& base = method("tokuyoshi2024");
   const auto max_error_at = [&](const sglab::Method& m, int i) {
     double w = 0;
@@ -293,7 +293,7 @@ TEST(SglabAccFit, NarrowRangeWithLooseBudgetNeedsASmallerOrder) {
   }
   EXPECT_EQ(out.constant_sets[0]["provenance"]["certificate"]["kind"], "lp_at_fitted_steepness");
 
-  const auto ref = sglab::validate::reference_engine().evaluate(random_points(3000, 99));
+  const auto ref = sglab::reference::reference_engine().evaluate(random_points(3000, 99));
   for (const auto& [id, target] :
        {std::pair{"sglab_acc1", 3.5e-5}, std::pair{"sglab_acc2", 1e-5}}) {
     const sglab::Method& m = method(id);

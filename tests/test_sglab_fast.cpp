@@ -107,13 +107,13 @@ TEST(SglabFast, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {
   values.insert(values.end(), k.q, k.q + 4);
   const auto c = sglab::test::check_clamped_lp_certificate(
       values, 15,
-      [&](const sglab::validate::ReferencePoint& r) {
+      [&](const sglab::reference::ReferencePoint& r) {
         return sglab::fit::make_residual(
             FastResidual{r.kappa, r.cosine, r.irradiance, sglab::irradiance_upper(r.kappa),
                          k.kappa_max},
             24);
       },
-      [&](const std::vector<double>& v, const sglab::validate::ReferencePoint& r) {
+      [&](const std::vector<double>& v, const sglab::reference::ReferencePoint& r) {
         return std::abs(
                    sglab::irradiance_sglab_fast(r.cosine, r.kappa, fast_params(v, k.kappa_max)) -
                    r.irradiance) /

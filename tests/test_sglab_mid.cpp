@@ -10,10 +10,10 @@
 
 #include <sglab/sglab.hpp>
 
+#include "reference/reference.hpp"
 #include "tests/lp_certificate.hpp"
 #include "tests/random_points.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 
 namespace {
 
@@ -29,7 +29,7 @@ TEST(SglabMid, WithinBoundOnPointsNoFitUsed) {
   auto q = sglab::test::random_points(4000, 17004);
   for (double k : {1e-3, 0.25, 1.0, 30.0, 1e4})
     for (double c : {-1.0, 0.0, 1.0}) q.push_back({k, c});
-  const auto ref = sglab::validate::reference_engine().evaluate(q);
+  const auto ref = sglab::reference::reference_engine().evaluate(q);
   double worst_f = 0, worst_d = 0;
   for (const auto& r : ref) {
     const double peak = sglab::irradiance_upper(r.kappa);
@@ -136,12 +136,12 @@ TEST(SglabMid, CertificateBoundsTheBestNumeratorsAtTheCommittedNonlinearPart) {
   values.insert(values.end(), k.q, k.q + 4);
   const auto c = sglab::test::check_clamped_lp_certificate(
       values, 15,
-      [&](const sglab::validate::ReferencePoint& r) {
+      [&](const sglab::reference::ReferencePoint& r) {
         return sglab::fit::make_residual(MidResidual{r.kappa, r.cosine, r.irradiance,
                                                      sglab::irradiance_upper(r.kappa), k.kappa_max},
                                          29);
       },
-      [&](const std::vector<double>& v, const sglab::validate::ReferencePoint& r) {
+      [&](const std::vector<double>& v, const sglab::reference::ReferencePoint& r) {
         return std::abs(sglab::irradiance_sglab_mid(r.cosine, r.kappa, mid_params(v, k.kappa_max)) -
                         r.irradiance) /
                sglab::irradiance_upper(r.kappa);

@@ -16,10 +16,11 @@
 #include <sglab/closed_forms.hpp>
 #include <sglab/registry.hpp>
 
+#include "reference/reference.hpp"
 #include "tests/test_support.hpp"
-#include "validate/reference.hpp"
 #include "validate/sweep.hpp"
 
+namespace sr = sglab::reference;
 namespace sv = sglab::validate;
 using sglab::test::hex;
 
@@ -60,7 +61,7 @@ constexpr float kPerturbedKappa = 1.0f;
 constexpr float kPerturbedCosine = 0.5f;
 constexpr double kPerturbation = 1e-3;
 double perturbed64(double c, double k) {
-  const double e = sv::reference_engine().evaluate(k, c).irradiance;
+  const double e = sr::reference_engine().evaluate(k, c).irradiance;
   return (k == kPerturbedKappa && c == kPerturbedCosine) ? e * (1 + kPerturbation) : e;
 }
 float perturbed32(float c, float k) { return static_cast<float>(perturbed64(c, k)); }
@@ -69,14 +70,14 @@ float perturbed32(float c, float k) { return static_cast<float>(perturbed64(c, k
 double nan_at_point64(double c, double k) {
   if (k == kPerturbedKappa && c == kPerturbedCosine)
     return std::numeric_limits<double>::quiet_NaN();
-  return sv::reference_engine().evaluate(k, c).irradiance;
+  return sr::reference_engine().evaluate(k, c).irradiance;
 }
 float nan_at_point32(float c, float k) { return static_cast<float>(nan_at_point64(c, k)); }
 double float_exact_or_nan64(double c, double k) {
   if (static_cast<double>(static_cast<float>(c)) != c ||
       static_cast<double>(static_cast<float>(k)) != k)
     return std::numeric_limits<double>::quiet_NaN();
-  return sv::reference_engine().evaluate(k, c).irradiance;
+  return sr::reference_engine().evaluate(k, c).irradiance;
 }
 float float_exact_or_nan32(float c, float k) {
   return static_cast<float>(float_exact_or_nan64(c, k));
@@ -199,7 +200,7 @@ TEST(Sweep, PerturbedMethodGivesExpectedMaxAndLocation) {
   };
   const auto r = sv::sweep(g, methods, quiet());
   ASSERT_EQ(r.entries.size(), 4u);
-  const auto& ref = sv::reference_engine();
+  const auto& ref = sr::reference_engine();
   const double expected = kPerturbation *
                           ref.evaluate(kPerturbedKappa, kPerturbedCosine).irradiance /
                           ref.evaluate(kPerturbedKappa, 1.0).irradiance;

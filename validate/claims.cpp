@@ -20,7 +20,7 @@
 #include <sglab/registry.hpp>
 #include <sglab/sg.hpp>
 
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::validate {
 
@@ -200,9 +200,9 @@ Claim claim_wang_lobe_energy() {
 struct Kappa4Chart {
   double kappa = 4;
   int n = 361;
-  std::vector<Query> q;
+  std::vector<reference::Query> q;
   std::vector<double> theta;
-  std::vector<ReferencePoint> ref;
+  std::vector<reference::ReferencePoint> ref;
   double peak = 0;
 };
 Kappa4Chart kappa4_chart() {
@@ -211,8 +211,8 @@ Kappa4Chart kappa4_chart() {
     c.theta.push_back(kPi * i / (c.n - 1));
     c.q.push_back({c.kappa, std::clamp(std::cos(c.theta.back()), -1.0, 1.0)});
   }
-  c.ref = reference_engine().evaluate(c.q);
-  c.peak = reference_engine().evaluate(c.kappa, 1.0).irradiance;
+  c.ref = reference::reference_engine().evaluate(c.q);
+  c.peak = reference::reference_engine().evaluate(c.kappa, 1.0).irradiance;
   return c;
 }
 

@@ -118,14 +118,15 @@ void ErfFloatAccum::main_slow(double x, float y, double ref) {
   double exact = ref;
   std::uint32_t cr = round_to_float_bits(ref);
   double err_abs = std::abs(to_double(yb) - exact);
-  if (near_float_midpoint(ref)) {  // decide RN and the error in 50 digits
-    const ErfFloatReference r = erf_resolve_float(static_cast<float>(x));
+  if (reference::detail::near_float_midpoint(ref)) {  // decide RN and the error in 50 digits
+    const reference::ErfFloatReference r =
+        reference::detail::erf_resolve_float(static_cast<float>(x));
     exact = r.exact;
     cr = std::bit_cast<std::uint32_t>(r.rounded);
-    err_abs = erf_abs_error_50(static_cast<float>(x), y);
+    err_abs = reference::detail::erf_abs_error_50(static_cast<float>(x), y);
     ++ambiguous;
   }
-  const double err_ulp = err_abs / ulp_float(exact);
+  const double err_ulp = err_abs / reference::ulp_float(exact);
   stats.add(x, err_ulp, err_abs, same_float(yb, cr));
   if (!bins.empty())
     bins[std::min(bins.size() - 1, static_cast<std::size_t>(x * bin_scale))].add(x, err_ulp,
@@ -136,19 +137,20 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   if (n == 0) return;
   // Straight passes over arrays (the arithmetic ones vectorize); the
   // non-finite and midpoint points take main_slow and are skipped after.
-  alignas(64) double xd[kRun];
-  alignas(64) double ref[kRun];
-  alignas(64) double err_abs[kRun];
-  alignas(64) double err_ulp[kRun];
-  alignas(64) std::uint8_t bucket[kRun];
+  alignas(64) double xd[reference::detail::kRun];
+  alignas(64) double ref[reference::detail::kRun];
+  alignas(64) double err_abs[reference::detail::kRun];
+  alignas(64) double err_ulp[reference::detail::kRun];
+  alignas(64) std::uint8_t bucket[reference::detail::kRun];
   constexpr std::uint8_t kSkip = 255;
   for (std::size_t k = 0; k < n; ++k) xd[k] = to_double(std::bit_cast<std::uint32_t>(x[k]));
-  const ErfTaylorFloat t = erf_taylor_float(xd[0], xd[(n - 1) / 2], xd[n - 1]);
+  const reference::detail::ErfTaylorFloat t =
+      reference::detail::erf_taylor_float(xd[0], xd[(n - 1) / 2], xd[n - 1]);
   if (t.ok) {
     for (std::size_t k = 0; k < n; ++k) ref[k] = t(xd[k]);
     const double direct = std::erf(xd[n - 1]);
-    selfcheck = std::max(selfcheck,
-                         std::abs(ref[n - 1] - direct) / static_cast<double>(ulp_double(direct)));
+    selfcheck = std::max(selfcheck, std::abs(ref[n - 1] - direct) /
+                                        static_cast<double>(reference::ulp_double(direct)));
   } else {
     for (std::size_t k = 0; k < n; ++k) ref[k] = std::erf(xd[k]);
   }
@@ -164,8 +166,8 @@ void ErfFloatAccum::main_run(const float* x, const float* y, std::size_t n) {
   }
   for (std::size_t k = 0; k < n; ++k) {
     const auto yb = std::bit_cast<std::uint32_t>(y[k]);
-    if ((yb & kFloatExponentMask) == kFloatExponentMask || near_float_midpoint(ref[k]))
-        [[unlikely]] {  // ±inf, NaN
+    if ((yb & kFloatExponentMask) == kFloatExponentMask ||
+        reference::detail::near_float_midpoint(ref[k])) [[unlikely]] {  // ±inf, NaN
       bucket[k] = kSkip;
       main_slow(xd[k], y[k], ref[k]);
       continue;
@@ -314,7 +316,7 @@ void finish_float_report(ErfReport& report,
       "a float midpoint decided with Boost.Math erf in cpp_bin_float_50 ({} here); Taylor vs "
       "std::erf at run ends: max {:.3g} double ulps; x >= 4: RN(erf) = 1 (erfc(4) < 2^-25), erf = "
       "1 - erfc(x) with erfc in double",
-      kRun, report.ambiguous_resolved, report.reference_selfcheck_ulps);
+      reference::detail::kRun, report.ambiguous_resolved, report.reference_selfcheck_ulps);
 }
 
 std::string float_coverage(const ErfFloatOptions& o, std::uint64_t odd_checked) {
@@ -392,7 +394,7 @@ bool same_result(double expected, double got) {
   return std::bit_cast<std::uint64_t>(expected) == std::bit_cast<std::uint64_t>(got);
 }
 
-std::string double_coverage(const ErfDoubleSample& s, std::uint64_t odd_checked) {
+std::string double_coverage(const reference::ErfDoubleSample& s, std::uint64_t odd_checked) {
   return fmt::format(
       "sample: uniform grid i*{}/{} in [0, {}) ({} points), {} evenly spaced bit patterns in (0, "
       "{}) (every binade), {} evenly spaced bit patterns in [{}, DBL_MAX]; negatives by oddness on "

@@ -10,16 +10,16 @@
 // Definitions (every number the checker reports uses these):
 //
 //   ulp_float(y), ulp_double(y): the spacing of binary32 / binary64 numbers
-//                   in the binade of y (validate/metrics.hpp).
+//                   in the binade of y (reference/error_measures.hpp).
 //   err_ulp(x)    = |f(x) − erf(x)| / ulp(erf(x)), with erf(x) the exact
 //                   value (a reference far more precise than the format),
 //                   not its rounding: a correctly rounded result has
 //                   err_ulp ≤ 0.5, a faithful one < 1.
 //   err_abs(x)    = |f(x) − erf(x)|.
 //
-// The correctly rounded reference is validate/erf_reference.hpp; the ulp
-// definitions are in validate/metrics.hpp; the writers of the results (JSON,
-// Markdown, CSV) are validate/erf_report.hpp. This file walks the inputs and
+// The correctly rounded reference is reference/erf_reference.hpp; the ulp
+// definitions are in reference/error_measures.hpp; the writers of the results (JSON,
+// Markdown, CSV) are report/erf_report.hpp. This file walks the inputs and
 // accumulates the statistics.
 #pragma once
 
@@ -40,7 +40,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/io.hpp"
-#include "validate/erf_reference.hpp"
+#include "reference/erf_reference.hpp"
 
 namespace sglab::validate {
 
@@ -246,15 +246,16 @@ template <class F, class X>
 void float_segment_loop(F& f, const FloatSegment& seg, X xs,
                         tbb::enumerable_thread_specific<std::shared_ptr<ErfFloatAccum>>& ets,
                         io::Progress* progress) {
-  const std::uint64_t runs = (seg.n + kRun - 1) / kRun;
+  const std::uint64_t runs = (seg.n + reference::detail::kRun - 1) / reference::detail::kRun;
   tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, runs, 4),
                     [&](const tbb::blocked_range<std::uint64_t>& r) {
                       ErfFloatAccum& acc = *ets.local();
-                      alignas(64) float xb[kRun];
-                      alignas(64) float yb[kRun];
+                      alignas(64) float xb[reference::detail::kRun];
+                      alignas(64) float yb[reference::detail::kRun];
                       for (std::uint64_t run = r.begin(); run != r.end(); ++run) {
-                        const std::uint64_t i0 = run * kRun;
-                        const auto n = static_cast<std::size_t>(std::min(seg.n, i0 + kRun) - i0);
+                        const std::uint64_t i0 = run * reference::detail::kRun;
+                        const auto n = static_cast<std::size_t>(
+                            std::min(seg.n, i0 + reference::detail::kRun) - i0);
                         for (std::size_t k = 0; k < n; ++k) xb[k] = xs(i0 + k);
                         for (std::size_t k = 0; k < n; ++k)
                           yb[k] = f(xb[k]);  // the only per-variant code
@@ -333,7 +334,7 @@ ErfReport check_erf_float(F f, const ErfFloatOptions& options = {}, std::string_
   }
 
   for (float x : float_specials()) {
-    const float expected = erf_reference_float(x).rounded;
+    const float expected = reference::erf_reference_float(x).rounded;
     const float got = f(x);
     report.specials.push_back({x, expected, got, same_result(expected, got)});
   }
@@ -350,11 +351,12 @@ ErfReport check_erf_float(F f, const ErfFloatOptions& options = {}, std::string_
 
 namespace detail {
 std::vector<double> double_specials();
-std::string double_coverage(const ErfDoubleSample& s, std::uint64_t odd_checked);
+std::string double_coverage(const reference::ErfDoubleSample& s, std::uint64_t odd_checked);
 }  // namespace detail
 
 template <class F>
-ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view variant = "") {
+ErfReport check_erf_double(F f, const reference::ErfDoubleSample& s,
+                           std::string_view variant = "") {
   using namespace detail;
   const auto start = std::chrono::steady_clock::now();
   ErfReport report;
@@ -394,7 +396,7 @@ ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view varia
           } else {
             const long double exact = s.ref[i];
             const long double err_abs = std::abs(static_cast<long double>(y) - exact);
-            const double err_ulp = exact_ulp_error_double(y, exact);
+            const double err_ulp = reference::exact_ulp_error_double(y, exact);
             acc.stats.add(x, err_ulp, static_cast<double>(err_abs),
                           y == static_cast<double>(exact));
             if (!acc.bins.empty())
@@ -430,7 +432,7 @@ ErfReport check_erf_double(F f, const ErfDoubleSample& s, std::string_view varia
     }
   }
   for (double x : double_specials()) {
-    const auto expected = static_cast<double>(erf_special_expected_double(x));
+    const auto expected = static_cast<double>(reference::detail::erf_special_expected_double(x));
     const double got = f(x);
     report.specials.push_back({x, expected, got, same_result(expected, got)});
   }

@@ -12,7 +12,7 @@
 #include <boost/math/tools/minima.hpp>
 
 #include "common/io.hpp"
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 namespace sglab::validate {
 
@@ -46,8 +46,8 @@ std::vector<double> scan_cosines(double kappa, const KappaScanOptions& o) {
 // The worst of one precision over the cosines at one κ, refined by Brent's method.
 template <class Eval>
 KappaWorst worst_at(double kappa, const std::vector<double>& cosines,
-                    const std::vector<ReferencePoint>& ref, double peak, const Eval& eval,
-                    const ReferenceEngine& engine, bool refine) {
+                    const std::vector<reference::ReferencePoint>& ref, double peak,
+                    const Eval& eval, const reference::ReferenceEngine& engine, bool refine) {
   KappaWorst w;
   std::size_t at = 0;
   for (std::size_t j = 0; j < cosines.size(); ++j) {
@@ -108,15 +108,15 @@ KappaScan scan_kappa_range(std::span<const Method> methods, const KappaScanOptio
     scan.methods.push_back({std::string(m.id), std::vector<KappaWorst>(scan.kappas.size()),
                             std::vector<KappaWorst>(scan.kappas.size())});
   // A private engine: its cache is emptied after every κ, so memory stays at one κ's points.
-  const ReferenceEngine engine;
+  const reference::ReferenceEngine engine;
   std::optional<io::Progress> progress;
   if (o.progress) progress.emplace("range", scan.kappas.size());
   for (std::size_t i = 0; i < scan.kappas.size(); ++i) {
     const double kappa = scan.kappas[i];
     const std::vector<double> cosines = scan_cosines(kappa, o);
-    std::vector<Query> q;
+    std::vector<reference::Query> q;
     for (double c : cosines) q.push_back({kappa, c});
-    const std::vector<ReferencePoint> ref = engine.evaluate(q);
+    const std::vector<reference::ReferencePoint> ref = engine.evaluate(q);
     const double peak = engine.evaluate(kappa, 1.0).irradiance;
     tbb::parallel_for(std::size_t{0}, methods.size(), [&](std::size_t m) {
       const Method& method = methods[m];

@@ -114,7 +114,8 @@ template <class T>
 void probe_reference(Runner<T>& r) {
   const auto nan_l = std::numeric_limits<L>::quiet_NaN();
   r.reference(
-      "reference/hemispherical", kTwoPi, [](const ReferencePoint& q) { return q.hemispherical; },
+      "reference/hemispherical", kTwoPi,
+      [](const reference::ReferencePoint& q) { return q.hemispherical; },
       [nan_l](T c, T k) {
         if (c == T(1)) return 2 * kPiL * exact_expm1_over_minus(k);
         if (c == T(-1)) return std::exp(-L(k)) * 2 * kPiL * exact_expm1_over_minus(k);
@@ -122,14 +123,15 @@ void probe_reference(Runner<T>& r) {
         return nan_l;
       });
   r.reference(
-      "reference/irradiance", kPi, [](const ReferencePoint& q) { return q.irradiance; },
+      "reference/irradiance", kPi, [](const reference::ReferencePoint& q) { return q.irradiance; },
       [nan_l](T c, T k) {
         if (c == T(1)) return 2 * kPiL * exact_upper_over_two_pi(k);
         if (c == T(-1)) return 2 * kPiL * exact_lower_over_two_pi(k);
         return nan_l;
       });
   r.reference(
-      "reference/normalized", kUnit, [](const ReferencePoint& q) { return q.normalized; },
+      "reference/normalized", kUnit,
+      [](const reference::ReferencePoint& q) { return q.normalized; },
       [nan_l](T c, T k) {
         if (c == T(1)) return L(1);
         if (c == T(-1)) return L(0);

@@ -18,7 +18,7 @@
 
 #include <sglab/math.hpp>
 
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 #include "validate/stability.hpp"
 
 namespace sglab::validate::stability_detail {
@@ -306,7 +306,7 @@ class Runner {
     std::move(p).append_to(rows);
   }
 
-  // A quantity of the reference engine (validate/reference.hpp) over (c, κ):
+  // A quantity of the reference engine (reference/reference.hpp) over (c, κ):
   // the engine runs in double at the probe's values (float probes converted
   // exactly) and its result is rounded to T. Invalid inputs must be refused.
   template <class Get, class Exact>
@@ -316,9 +316,10 @@ class Runner {
       for (T c : cosines_) {
         const bool valid = valid_kappa(k) && valid_cosine(c);
         const auto describe = [&] { return fmt::format("c = {}, κ = {}", show(c), show(k)); };
-        ReferencePoint point;
+        reference::ReferencePoint point;
         try {
-          point = reference_engine().evaluate(static_cast<double>(k), static_cast<double>(c));
+          point = reference::reference_engine().evaluate(static_cast<double>(k),
+                                                         static_cast<double>(c));
         } catch (const std::invalid_argument& e) {
           p.refused(valid, static_cast<double>(k), describe, e.what());
           continue;

@@ -56,8 +56,8 @@ std::uint64_t SweepGrid::point_count() const {
 
 std::uint64_t sweep_memory_estimate(const SweepGrid& grid, std::size_t entries) {
   const std::uint64_t points = grid.point_count();
-  const std::uint64_t per_point =
-      sizeof(Query) + sizeof(ReferencePoint) + entries * kSweepBytesPerPointEntry;
+  const std::uint64_t per_point = sizeof(reference::Query) + sizeof(reference::ReferencePoint) +
+                                  entries * kSweepBytesPerPointEntry;
   return points * per_point;
 }
 
@@ -91,7 +91,7 @@ std::vector<SweepMethod> registered_sweep_methods() {
   return out;
 }
 
-double reference_value(const ReferencePoint& point, Quantity q) {
+double reference_value(const reference::ReferencePoint& point, Quantity q) {
   switch (q) {
     case Quantity::irradiance:
       return point.irradiance;
@@ -120,18 +120,19 @@ const SweepEntry* SweepResult::find(std::string_view method, Quantity q,
 
 namespace {
 
-std::vector<ReferencePoint> evaluate_reference(std::span<const Query> queries, Precision precision,
-                                               bool progress) {
+std::vector<reference::ReferencePoint> evaluate_reference(std::span<const reference::Query> queries,
+                                                          reference::Quadrature quadrature,
+                                                          bool progress) {
   // In chunks, so that the terminal shows progress; each chunk still runs in
   // parallel inside the engine.
   constexpr std::size_t chunk = 256;
-  std::vector<ReferencePoint> out;
+  std::vector<reference::ReferencePoint> out;
   out.reserve(queries.size());
   std::optional<io::Progress> bar;
   if (progress) bar.emplace("sweep: reference", queries.size());
   for (std::size_t begin = 0; begin < queries.size(); begin += chunk) {
     const std::size_t n = std::min(chunk, queries.size() - begin);
-    auto part = reference_engine().evaluate(queries.subspan(begin, n), precision);
+    auto part = reference::reference_engine().evaluate(queries.subspan(begin, n), quadrature);
     out.insert(out.end(), part.begin(), part.end());
     if (bar) bar->advance(n);
   }
@@ -191,7 +192,7 @@ SweepResult sweep(const SweepGrid& grid, std::span<const SweepMethod> methods,
   r.cosines = float_exact(grid.cosines());
   const std::size_t nk = r.kappas.size(), nc = r.cosines.size();
 
-  std::vector<Query> queries;
+  std::vector<reference::Query> queries;
   queries.reserve(nk * nc + nk);
   for (std::size_t k = 0; k < nk; ++k)
     for (std::size_t j = 0; j < nc; ++j) queries.push_back({r.kappas[k], r.cosines[j]});

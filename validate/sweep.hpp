@@ -20,8 +20,8 @@
 #include <sglab/registry.hpp>
 
 #include "common/vocabulary.hpp"
+#include "reference/reference.hpp"
 #include "validate/metrics.hpp"
-#include "validate/reference.hpp"
 #include "validate/table.hpp"
 
 namespace sglab::validate {
@@ -104,7 +104,7 @@ std::vector<SweepMethod> registered_sweep_methods();
 
 struct SweepOptions {
   std::vector<io::Precision> precisions{io::Precision::float32, io::Precision::float64};
-  Precision reference = Precision::standard;
+  reference::Quadrature reference = reference::Quadrature::standard;
   bool keep_points = true;  // keep every value and peak_rel (for plots and fitters)
   bool progress = true;     // terminal progress on stderr (quiet when piped)
 };
@@ -123,11 +123,11 @@ struct SweepEntry {
 
 struct SweepResult {
   SweepGrid grid;
-  std::vector<double> kappas;             // evaluated, float-exact
-  std::vector<double> cosines;            // evaluated, float-exact
-  std::vector<ReferencePoint> reference;  // index k·cosine_count + j
-  std::vector<ReferencePoint> peak;       // per κ, at c = 1: the peak values x(1, κ)
-  std::vector<SweepEntry> entries;        // method-major, then precision
+  std::vector<double> kappas;                        // evaluated, float-exact
+  std::vector<double> cosines;                       // evaluated, float-exact
+  std::vector<reference::ReferencePoint> reference;  // index k·cosine_count + j
+  std::vector<reference::ReferencePoint> peak;       // per κ, at c = 1: the peak values x(1, κ)
+  std::vector<SweepEntry> entries;                   // method-major, then precision
 
   std::size_t index(std::size_t k, std::size_t j) const { return k * cosines.size() + j; }
   // The reference value of quantity q at grid point (k, j), and its peak at κ_k.
@@ -137,7 +137,7 @@ struct SweepResult {
 };
 
 // The reference value of quantity q in a reference point.
-double reference_value(const ReferencePoint& point, Quantity q);
+double reference_value(const reference::ReferencePoint& point, Quantity q);
 
 // The entry of method `m` in precision `f` from its values at every grid point
 // (index k·cosine_count + j), measured against r's reference.

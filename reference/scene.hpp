@@ -1,5 +1,4 @@
-// validate/scene.hpp — a scene of SG lights and the error each irradiance
-// method makes on it (`sglab recommend --scene FILE`).
+// reference/scene.hpp — a scene of SG lights and its exact irradiance.
 //
 // Scene file (JSON):
 //   {"lights": [{"axis": [x, y, z], "sharpness": κ, "amplitude": [r, g, b]}, …]}
@@ -12,39 +11,29 @@
 //
 // The scene's irradiance at a normal n, per channel ch:
 //   E_ch(n) = Σ_lights amplitude_ch · E(axis·n, κ),
-// exactly (the reference engine's E through the irradiance table,
-// validate/irradiance_table.hpp: within 1e−10 of each light's peak E(1, κ))
-// or with a method's Ê in float or double.
-// Error of a method: max over the normals and the three channels of
-// |Ê_ch(n) − E_ch(n)| divided by the scene's largest exact irradiance
-// max_{n, ch} E_ch(n) — per channel, relative to one scene-wide scale, so a
-// dim channel is not judged by its own tiny peak. The error is a ratio, so it
-// does not depend on the amplitudes' unit: every sum is formed in units of the
-// scene's largest amplitude (amplitude / max amplitude ∈ [0, 1]), which
-// neither overflows (1e308-bright lights) nor underflows (1e−300-dim ones).
+// exactly: the reference engine's E through the irradiance table
+// (reference/irradiance_table.hpp: within 1e−10 of each light's peak E(1, κ)).
+// Every sum is formed in units of the scene's largest amplitude
+// (amplitude / max amplitude ∈ [0, 1]), which neither overflows (1e308-bright
+// lights) nor underflows (1e−300-dim ones). Lights with the same sharpness and
+// axis are one lobe (their amplitudes summed: E depends on κ and c only).
 //
-// Work and memory: one table evaluation and one evaluation of each method
-// per (distinct light, normal).
-// Lights with the same sharpness and axis are one lobe (their amplitudes
-// summed: the exact and the approximate per-light values depend on κ and c
-// only). The normals are summed in parallel (TBB) in blocks of at most
-// kSceneBlockNormals, each holding its sums alone, so memory does not grow
-// with the (light, normal) pairs beyond the scene and normals themselves.
+// The error each method makes on a scene is validate/scene_errors.hpp; the
+// limits below bound that evaluation, one evaluation of the table and of each
+// method per (distinct light, normal). The normals are summed in parallel
+// (TBB) in blocks of at most kSceneBlockNormals, each holding its sums alone,
+// so memory does not grow with the (light, normal) pairs beyond the scene and
+// normals themselves.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
-#include <span>
 #include <stdexcept>
-#include <string>
 #include <string_view>
 #include <vector>
 
-#include <sglab/registry.hpp>
-
-#include "validate/sweep.hpp"
-
-namespace sglab::validate {
+namespace sglab::reference {
 
 using Vec3 = std::array<double, 3>;
 
@@ -96,21 +85,25 @@ void check_scene_limits(std::size_t lights, std::size_t normals);
 // z_i = 1 − (2i + 1)/n, azimuth i·π(3 − √5)).
 std::vector<Vec3> fibonacci_normals(std::size_t n);
 
+// A light in units of the scene's largest amplitude; lights with the same
+// sharpness and axis merged into one lobe (their amplitudes summed).
+struct SceneLobe {
+  double kappa;
+  Vec3 axis;
+  Vec3 amplitude;
+};
+
+// The scene's lobes, sorted by (κ, axis): every sum over them adds them in
+// this order.
+std::vector<SceneLobe> scene_lobes(const Scene& scene);
+
+// The cosine between a unit axis and a unit normal, kept in [−1, 1] against rounding.
+inline double scene_cosine(const Vec3& axis, const Vec3& normal) {
+  return std::clamp(axis[0] * normal[0] + axis[1] * normal[1] + axis[2] * normal[2], -1.0, 1.0);
+}
+
 // Per-normal RGB irradiance of the scene in units of its largest amplitude,
 // exact (the reference E through the irradiance table, in parallel).
 std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals);
-// The same with a method's f32 (binary32: cosine and κ rounded to float, the
-// per-light value in float, summed in double) or f64.
-std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals,
-                                   const Method& method, io::Precision precision);
 
-// max_{n,ch} |approx − exact| / max_{n,ch} exact (+inf on a non-finite value).
-double scene_relative_error(const std::vector<Vec3>& approx, const std::vector<Vec3>& exact);
-
-// The scene error of each method (as scene_relative_error of scene_irradiance
-// against scene_irradiance_reference), in one streamed pass: memory bounded
-// as stated above, whatever the light and normal counts.
-std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals,
-                                 std::span<const Method> methods, io::Precision precision);
-
-}  // namespace sglab::validate
+}  // namespace sglab::reference

@@ -1,6 +1,6 @@
-// validate/erf_reference.cpp — the correctly rounded erf references (see
-// validate/erf_reference.hpp).
-#include "validate/erf_reference.hpp"
+// reference/erf_reference.cpp — the correctly rounded erf references (see
+// reference/erf_reference.hpp).
+#include "reference/erf_reference.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 namespace {
 
@@ -236,4 +236,4 @@ ErfDoubleSample make_erf_double_sample(const ErfDoubleOptions& options) {
   return s;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::reference

@@ -1,25 +1,22 @@
-#include "validate/scene.hpp"
+#include "reference/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <span>
 #include <stdexcept>
 #include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
-#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
 #include "common/args.hpp"
 #include "common/io.hpp"
 #include "common/json_input.hpp"
-#include "validate/irradiance_table.hpp"
-#include "validate/reference.hpp"
+#include "reference/irradiance_table.hpp"
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 namespace {
 
@@ -46,13 +43,6 @@ Vec3 vector3(std::string_view source, const std::string& key, const json& v) {
   for (std::size_t i = 0; i < 3; ++i)
     out[i] = finite_number(source, fmt::format("{}[{}]", key, i), v[i]);
   return out;
-}
-
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// The cosine between a unit axis and a unit normal, kept in [−1, 1] against rounding.
-double cosine(const Vec3& axis, const Vec3& normal) {
-  return std::clamp(dot(axis, normal), -1.0, 1.0);
 }
 
 }  // namespace
@@ -168,33 +158,25 @@ void check_scene_limits(std::size_t lights, std::size_t normals) {
         mb));
 }
 
-namespace {
-
-// A light in units of the scene's largest amplitude; lights with the same
-// sharpness and axis merged into one lobe (their amplitudes summed).
-struct Lobe {
-  double kappa;
-  Vec3 axis;
-  Vec3 amplitude;
-};
-
-std::vector<Lobe> lobes_of(const Scene& scene) {
+std::vector<SceneLobe> scene_lobes(const Scene& scene) {
   double largest = 0;
   for (const auto& l : scene.lights)
     for (double a : l.amplitude) largest = std::max(largest, a);
   if (!(largest > 0)) largest = 1;  // a dark scene (refused by parse_scene)
-  std::vector<Lobe> lobes;
+  std::vector<SceneLobe> lobes;
   lobes.reserve(scene.lights.size());
   for (const auto& l : scene.lights)
     lobes.push_back(
         {l.sharpness,
          l.axis,
          {l.amplitude[0] / largest, l.amplitude[1] / largest, l.amplitude[2] / largest}});
-  const auto key = [](const Lobe& x) { return std::tie(x.kappa, x.axis[0], x.axis[1], x.axis[2]); };
+  const auto key = [](const SceneLobe& x) {
+    return std::tie(x.kappa, x.axis[0], x.axis[1], x.axis[2]);
+  };
   std::sort(lobes.begin(), lobes.end(),
-            [&](const Lobe& a, const Lobe& b) { return key(a) < key(b); });
-  std::vector<Lobe> merged;
-  for (const Lobe& l : lobes) {
+            [&](const SceneLobe& a, const SceneLobe& b) { return key(a) < key(b); });
+  std::vector<SceneLobe> merged;
+  for (const SceneLobe& l : lobes) {
     if (!merged.empty() && key(merged.back()) == key(l)) {
       for (std::size_t ch = 0; ch < 3; ++ch) merged.back().amplitude[ch] += l.amplitude[ch];
       continue;
@@ -204,120 +186,30 @@ std::vector<Lobe> lobes_of(const Scene& scene) {
   return merged;
 }
 
-double method_value(const Method& m, io::Precision precision, double cosine, double kappa) {
-  return precision == io::Precision::float32
-             ? static_cast<double>(m.f32(static_cast<float>(cosine), static_cast<float>(kappa)))
-             : m.f64(cosine, kappa);
-}
-
-// The scene's RGB sums at every normal, exact (when `with_exact`) and with
-// each method, in units of the largest amplitude: visit(j, exact, approx) is
-// called once per normal j, from parallel tasks, approx[m] the sum of method m.
-// The exact value is the irradiance table's (validate/irradiance_table.hpp:
-// the reference quadrature to 1e−10 of each lobe's peak), one slice E(·, κ)
-// per lobe. The normals are split into blocks of at most kSceneBlockNormals,
-// summed in parallel; within a block one lobe and one method at a time over
-// its normals (one function over many cosines), the cosines formed as they
-// are used. Every sum adds the lobes in their order, so the result does not
+// Blocks of at most kSceneBlockNormals normals, summed in parallel; within a
+// block one lobe at a time over its normals (one slice E(·, κ) over many
+// cosines). Every sum adds the lobes in their order, so the result does not
 // depend on the blocks.
-template <class Visit>
-void sum_over_normals(const Scene& scene, const std::vector<Vec3>& normals,
-                      std::span<const Method> methods, io::Precision precision, bool with_exact,
-                      Visit&& visit) {
-  const std::vector<Lobe> lobes = lobes_of(scene);
-  const std::size_t nm = methods.size();
+std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals) {
+  const std::vector<SceneLobe> lobes = scene_lobes(scene);
   // E(·, κ) of each lobe (the irradiance table: the quadrature to 1e−10 of the peak).
   std::vector<IrradianceTable::Slice> exact_of;
-  if (with_exact) {
-    exact_of.reserve(lobes.size());
-    for (const Lobe& l : lobes) exact_of.push_back(irradiance_table().slice(l.kappa));
-  }
+  exact_of.reserve(lobes.size());
+  for (const SceneLobe& l : lobes) exact_of.push_back(irradiance_table().slice(l.kappa));
+  std::vector<Vec3> out(normals.size(), Vec3{0, 0, 0});
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, normals.size(), kSceneBlockNormals),
       [&](const tbb::blocked_range<std::size_t>& r) {
-        const std::size_t j0 = r.begin(), nb = r.size();
-        if (nb > kSceneBlockNormals)  // the simple partitioner keeps blocks within the grain
-          throw std::logic_error("sum_over_normals: a block larger than kSceneBlockNormals");
-        std::array<double, kSceneBlockNormals> c{};
-        std::array<Vec3, kSceneBlockNormals> exact{};
-        std::vector<Vec3> approx(nb * nm, Vec3{0, 0, 0});
         for (std::size_t i = 0; i < lobes.size(); ++i) {
-          const Lobe& l = lobes[i];
-          for (std::size_t b = 0; b < nb; ++b) c[b] = cosine(l.axis, normals[j0 + b]);
-          if (with_exact)
-            for (std::size_t b = 0; b < nb; ++b) {
-              const double e = exact_of[i](c[b]);
-              for (std::size_t ch = 0; ch < 3; ++ch) exact[b][ch] += l.amplitude[ch] * e;
-            }
-          for (std::size_t m = 0; m < nm; ++m)
-            for (std::size_t b = 0; b < nb; ++b) {
-              const double v = method_value(methods[m], precision, c[b], l.kappa);
-              for (std::size_t ch = 0; ch < 3; ++ch) approx[b * nm + m][ch] += l.amplitude[ch] * v;
-            }
+          const SceneLobe& l = lobes[i];
+          for (std::size_t j = r.begin(); j < r.end(); ++j) {
+            const double e = exact_of[i](scene_cosine(l.axis, normals[j]));
+            for (std::size_t ch = 0; ch < 3; ++ch) out[j][ch] += l.amplitude[ch] * e;
+          }
         }
-        for (std::size_t b = 0; b < nb; ++b)
-          visit(j0 + b, exact[b], std::span<const Vec3>(approx.data() + b * nm, nm));
       },
       tbb::simple_partitioner());
-}
-
-}  // namespace
-
-std::vector<Vec3> scene_irradiance_reference(const Scene& scene, const std::vector<Vec3>& normals) {
-  std::vector<Vec3> out(normals.size());
-  sum_over_normals(
-      scene, normals, {}, io::Precision::float64, true,
-      [&](std::size_t j, const Vec3& exact, std::span<const Vec3>) { out[j] = exact; });
   return out;
 }
 
-std::vector<Vec3> scene_irradiance(const Scene& scene, const std::vector<Vec3>& normals,
-                                   const Method& method, io::Precision precision) {
-  std::vector<Vec3> out(normals.size());
-  sum_over_normals(
-      scene, normals, std::span<const Method>(&method, 1), precision, false,
-      [&](std::size_t j, const Vec3&, std::span<const Vec3> approx) { out[j] = approx[0]; });
-  return out;
-}
-
-std::vector<double> scene_errors(const Scene& scene, const std::vector<Vec3>& normals,
-                                 std::span<const Method> methods, io::Precision precision) {
-  // Per thread: the largest |Ê − E| of each method, then the largest exact value.
-  const std::size_t peak = methods.size();
-  tbb::combinable<std::vector<double>> partial(
-      [&] { return std::vector<double>(methods.size() + 1, 0.0); });
-  sum_over_normals(scene, normals, methods, precision, true,
-                   [&](std::size_t, const Vec3& exact, std::span<const Vec3> approx) {
-                     std::vector<double>& w = partial.local();
-                     for (std::size_t ch = 0; ch < 3; ++ch) {
-                       w[peak] = std::max(w[peak], exact[ch]);
-                       for (std::size_t m = 0; m < methods.size(); ++m) {
-                         const double d = std::abs(approx[m][ch] - exact[ch]);
-                         w[m] = std::isfinite(d) ? std::max(w[m], d)
-                                                 : std::numeric_limits<double>::infinity();
-                       }
-                     }
-                   });
-  std::vector<double> worst(methods.size() + 1, 0.0);
-  partial.combine_each([&](const std::vector<double>& w) {
-    for (std::size_t i = 0; i < worst.size(); ++i) worst[i] = std::max(worst[i], w[i]);
-  });
-  std::vector<double> out(methods.size());
-  for (std::size_t m = 0; m < methods.size(); ++m) out[m] = worst[m] / worst[peak];
-  return out;
-}
-
-double scene_relative_error(const std::vector<Vec3>& approx, const std::vector<Vec3>& exact) {
-  double peak = 0, worst = 0;
-  for (const auto& e : exact)
-    for (double x : e) peak = std::max(peak, x);
-  for (std::size_t i = 0; i < exact.size() && i < approx.size(); ++i)
-    for (std::size_t ch = 0; ch < 3; ++ch) {
-      const double d = std::abs(approx[i][ch] - exact[i][ch]);
-      if (!std::isfinite(d)) return std::numeric_limits<double>::infinity();
-      worst = std::max(worst, d);
-    }
-  return worst / peak;
-}
-
-}  // namespace sglab::validate
+}  // namespace sglab::reference

@@ -1,11 +1,11 @@
-// validate/irradiance_table.cpp — the irradiance table (irradiance_table.hpp):
+// reference/irradiance_table.cpp — the irradiance table (irradiance_table.hpp):
 // closed forms, the layout of the pieces, the build from the quadrature, the
 // evaluation, and the check against the quadrature.
 //
 // Chebyshev interpolation in first-kind points with its coefficients by the
 // discrete cosine transform ([Trefethen2019] ch. 3–4), summed by Clenshaw's
 // recurrence [Clenshaw1955] (docs/references.md).
-#include "validate/irradiance_table.hpp"
+#include "reference/irradiance_table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,7 @@
 #include "common/io.hpp"
 #include "sglab/closed_forms.hpp"
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 namespace {
 
@@ -293,4 +293,4 @@ IrradianceTableCheck check_irradiance_table(std::span<const Query> points, bool 
   return out;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::reference

@@ -1,5 +1,5 @@
-// validate/reference.hpp — the reference engine: H(c, κ), E(c, κ) and s(c, κ)
-// of docs/quantities.md by Boost.Math quadrature. Shared by validate/ and fit/: there is
+// reference/reference.hpp — the reference engine: H(c, κ), E(c, κ) and s(c, κ)
+// of docs/quantities.md by Boost.Math quadrature. Shared by fit/, envmap/ and validate/: there is
 // exactly one reference engine in sglab.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 // One reference point. Values are in double; the error estimates and L1
 // norms are those the quadrature returned (condition number = l1/|value|).
@@ -23,7 +23,8 @@ struct ReferencePoint {
   double irradiance_l1 = 0;
 };
 
-enum class Precision { standard, high };  // double quadrature, or the multiprecision mode
+// The quadrature's arithmetic: double, or 50-digit cpp_bin_float (reference_high.cpp).
+enum class Quadrature { standard, high };
 
 struct Query {
   double kappa;
@@ -41,13 +42,13 @@ class ReferenceEngine {
 
   // Requires finite κ ≥ 0 and c ∈ [−1, 1]; throws std::invalid_argument otherwise.
   ReferencePoint evaluate(double kappa, double cosine,
-                          Precision precision = Precision::standard) const;
+                          Quadrature quadrature = Quadrature::standard) const;
 
   // Evaluates many points in parallel on all cores (TBB), results in query order.
   std::vector<ReferencePoint> evaluate(std::span<const Query> queries,
-                                       Precision precision = Precision::standard) const;
+                                       Quadrature quadrature = Quadrature::standard) const;
 
-  // Number of cached points (each (κ, c, precision) counts once).
+  // Number of cached points (each (κ, c, quadrature) counts once).
   std::size_t cache_size() const;
 
   // Empties the cache (logically const: it changes no result; thread-safe).
@@ -63,4 +64,4 @@ class ReferenceEngine {
 // The process-wide engine (one cache for all users in a process).
 const ReferenceEngine& reference_engine();
 
-}  // namespace sglab::validate
+}  // namespace sglab::reference

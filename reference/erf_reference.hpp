@@ -1,4 +1,4 @@
-// validate/erf_reference.hpp — the correctly rounded erf the checker
+// reference/erf_reference.hpp — the correctly rounded erf the checker
 // (validate/erf_check.hpp) measures against.
 //
 // Float reference. erf(x) for x ∈ [0, 4) is a degree-6 Taylor expansion in
@@ -30,9 +30,9 @@
 
 #include <sglab/math.hpp>
 
-#include "validate/metrics.hpp"
+#include "reference/error_measures.hpp"
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 // ---------------------------------------------------------------------------
 // Single-point references
@@ -120,4 +120,4 @@ long double erf_special_expected_double(double x);
 
 }  // namespace detail
 
-}  // namespace sglab::validate
+}  // namespace sglab::reference

@@ -1,5 +1,5 @@
-// validate/reference_high.cpp — Precision::high: the same quadrature as
-// Precision::standard (reference_detail.hpp), run in 50-digit binary floating
+// reference/reference_high.cpp — Quadrature::high: the same quadrature as
+// Quadrature::standard (reference_detail.hpp), run in 50-digit binary floating
 // point (boost::multiprecision::cpp_bin_float_50 without expression
 // templates). About 1000x slower than double; meant to spot-check it.
 //
@@ -7,9 +7,9 @@
 // in the strict ISO mode this project builds in: CMAKE_CXX_EXTENSIONS OFF.)
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
-#include "validate/reference_detail.hpp"
+#include "reference/reference_detail.hpp"
 
-namespace sglab::validate::detail {
+namespace sglab::reference::detail {
 
 using HighReal = boost::multiprecision::number<boost::multiprecision::cpp_bin_float<50>,
                                                boost::multiprecision::et_off>;
@@ -18,4 +18,4 @@ ReferencePoint compute_high(double kappa, double cosine) {
   return to_reference_point(kappa, cosine, compute<HighReal>(kappa, cosine));
 }
 
-}  // namespace sglab::validate::detail
+}  // namespace sglab::reference::detail

@@ -1,9 +1,9 @@
-// validate/reference.cpp — the reference engine: validation, the cache, the
-// parallel batch, and the double (Precision::standard) instantiation of the
+// reference/reference.cpp — the reference engine: validation, the cache, the
+// parallel batch, and the double (Quadrature::standard) instantiation of the
 // quadrature in reference_detail.hpp. The high-precision instantiation lives
 // in reference_high.cpp (it is slow to compile; a separate unit builds in
 // parallel).
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
 #include <bit>
 #include <cmath>
@@ -17,9 +17,9 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "validate/reference_detail.hpp"
+#include "reference/reference_detail.hpp"
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 namespace detail {
 
@@ -40,18 +40,18 @@ void check_query(double kappa, double cosine) {
         fmt::format("reference: cosine must be in [-1, 1], got {}", cosine));
 }
 
-// Cache key: the bit patterns of (κ, c) and the precision (the two modes give
+// Cache key: the bit patterns of (κ, c) and the quadrature (the two modes give
 // different values for the same point).
 struct Key {
   std::uint64_t kappa, cosine;
-  Precision precision;
+  Quadrature quadrature;
   bool operator==(const Key&) const = default;
 };
 struct KeyHash {
   std::size_t operator()(const Key& k) const noexcept {
     std::uint64_t h = k.kappa * 0x9E3779B97F4A7C15ull;
     h ^= (k.cosine + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2));
-    h ^= static_cast<std::uint64_t>(k.precision) + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(k.quadrature) + (h << 6) + (h >> 2);
     return static_cast<std::size_t>(h ^ (h >> 29));
   }
 };
@@ -62,17 +62,18 @@ struct ReferenceEngine::Impl {
   std::shared_mutex mutex;
   std::unordered_map<Key, ReferencePoint, KeyHash> cache;
 
-  ReferencePoint evaluate(double kappa, double cosine, Precision precision) {
+  ReferencePoint evaluate(double kappa, double cosine, Quadrature quadrature) {
     const Key key{std::bit_cast<std::uint64_t>(kappa), std::bit_cast<std::uint64_t>(cosine),
-                  precision};
+                  quadrature};
     {
       std::shared_lock lock(mutex);
       if (auto it = cache.find(key); it != cache.end()) return it->second;
     }
     // Computed outside the lock; two threads racing on the same new point
     // both compute it (identical results) and the first insert wins.
-    const ReferencePoint p = precision == Precision::high ? detail::compute_high(kappa, cosine)
-                                                          : detail::compute_standard(kappa, cosine);
+    const ReferencePoint p = quadrature == Quadrature::high
+                                 ? detail::compute_high(kappa, cosine)
+                                 : detail::compute_standard(kappa, cosine);
     std::unique_lock lock(mutex);
     cache.emplace(key, p);
     return p;
@@ -82,17 +83,17 @@ struct ReferenceEngine::Impl {
 ReferenceEngine::ReferenceEngine() : impl_(new Impl) {}
 ReferenceEngine::~ReferenceEngine() { delete impl_; }
 
-ReferencePoint ReferenceEngine::evaluate(double kappa, double cosine, Precision precision) const {
+ReferencePoint ReferenceEngine::evaluate(double kappa, double cosine, Quadrature quadrature) const {
   check_query(kappa, cosine);
-  return impl_->evaluate(kappa, cosine, precision);
+  return impl_->evaluate(kappa, cosine, quadrature);
 }
 
 std::vector<ReferencePoint> ReferenceEngine::evaluate(std::span<const Query> queries,
-                                                      Precision precision) const {
+                                                      Quadrature quadrature) const {
   for (const Query& q : queries) check_query(q.kappa, q.cosine);  // fail before any work
   std::vector<ReferencePoint> out(queries.size());
   tbb::parallel_for(std::size_t{0}, queries.size(), [&](std::size_t i) {
-    out[i] = impl_->evaluate(queries[i].kappa, queries[i].cosine, precision);
+    out[i] = impl_->evaluate(queries[i].kappa, queries[i].cosine, quadrature);
   });
   return out;
 }
@@ -112,4 +113,4 @@ const ReferenceEngine& reference_engine() {
   return engine;
 }
 
-}  // namespace sglab::validate
+}  // namespace sglab::reference

@@ -1,6 +1,6 @@
-// validate/irradiance_table.hpp — the reference irradiance E(c, κ) of
+// reference/irradiance_table.hpp — the reference irradiance E(c, κ) of
 // docs/quantities.md at the cost of a polynomial: piecewise Chebyshev
-// interpolants of the reference engine's quadrature (validate/reference.hpp),
+// interpolants of the reference engine's quadrature (reference/reference.hpp),
 // built from it once, at first use. The quadrature stays the truth: the table
 // is checked against it at points no interpolant used (check_irradiance_table,
 // `sglab reference --check-table`, tests/test_irradiance_table.cpp).
@@ -50,9 +50,9 @@
 #include <span>
 #include <vector>
 
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
-namespace sglab::validate {
+namespace sglab::reference {
 
 // The stated bound, relative to the peak E(1, κ) (see above).
 inline constexpr double kIrradianceTableBound = 1e-10;
@@ -138,4 +138,4 @@ std::vector<Query> irradiance_table_check_points(int oversample);
 // between calls) at `points`, in parallel; `progress` on a terminal.
 IrradianceTableCheck check_irradiance_table(std::span<const Query> points, bool progress = false);
 
-}  // namespace sglab::validate
+}  // namespace sglab::reference

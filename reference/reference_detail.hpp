@@ -1,8 +1,8 @@
-// validate/reference_detail.hpp — the quadrature behind the reference engine
-// (validate/reference.hpp), written once as a template over the real type
-// `Real` it runs in: double for Precision::standard (reference.cpp), 50-digit
-// boost::multiprecision::cpp_bin_float for Precision::high
-// (reference_high.cpp). Internal to validate/; include reference.hpp instead.
+// reference/reference_detail.hpp — the quadrature behind the reference engine
+// (reference/reference.hpp), written once as a template over the real type
+// `Real` it runs in: double for Quadrature::standard (reference.cpp), 50-digit
+// boost::multiprecision::cpp_bin_float for Quadrature::high
+// (reference_high.cpp). Internal to reference/; include reference.hpp instead.
 //
 // Everything here follows docs/quantities.md and deliberately uses nothing from the
 // runtime headers (include/sglab/): this is the independent truth.
@@ -40,9 +40,9 @@
 #include <boost/math/special_functions/bessel.hpp>
 #include <boost/math/special_functions/expm1.hpp>
 
-#include "validate/reference.hpp"
+#include "reference/reference.hpp"
 
-namespace sglab::validate::detail {
+namespace sglab::reference::detail {
 
 // ---------------------------------------------------------------------------
 // Per-type settings.
@@ -546,4 +546,4 @@ ReferencePoint to_reference_point(double kappa, double cosine, const RawPoint<Re
 ReferencePoint compute_standard(double kappa, double cosine);  // Real = double
 ReferencePoint compute_high(double kappa, double cosine);      // Real = 50-digit cpp_bin_float
 
-}  // namespace sglab::validate::detail
+}  // namespace sglab::reference::detail
