@@ -445,7 +445,7 @@ PYBIND11_MODULE(_sglab, m) {
         py::arg("precision"));
   m.def("irradiance_grad", &irradiance_grad, py::arg("method"), py::arg("kappa"),
         py::arg("cosine"));
-  m.def("reference", &reference, py::arg("kappa"), py::arg("cosine"), py::arg("quantity"));
+  m.def("reference", &python::reference, py::arg("kappa"), py::arg("cosine"), py::arg("quantity"));
   m.def("export", &export_method, py::arg("method"), py::arg("lang"), py::arg("precision"),
         py::arg("split"));
   // The registry's float batch alone on float32 arrays of one size (no checks,
