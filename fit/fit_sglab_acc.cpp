@@ -269,6 +269,8 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
     if (!warm) f.floor = floors.floor(rung.member.n, train);
     out.converged = out.converged && f.converged;
     out.constant_sets.push_back(constant_set(spec, f, variant, measuring, rung.target));
+    // A rung's constants are named as its method: sglab_acc1 … sglab_acc4.
+    out.constant_sets.back()["cpp_name"] = cpp_identifier("sglab_" + variant);
     ordered_json r = member_report(f);
     r["variant"] = variant;
     const bool nested = std::any_of(done.begin(), done.end() - 1, [&](const MemberFit& e) {

@@ -204,7 +204,7 @@ inline constexpr Meder2018Params<double> meder2018_published{
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.8011426119274957,"lower_bound":0.8011426119274101,"within_percent_of_best_member":1.0680345496894006e-11,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.774866927705462,"max_peak_rel":0.00018596806264931087},"lp":{"working_rows":182,"rounds":6,"converged":true}}
-inline constexpr SglabAccParams<double, 1, 3, 2> sglab_acc_acc1{
+inline constexpr SglabAccParams<double, 1, 3, 2> sglab_acc1{
     .steep = {91.3284679317032, 180.85108468347798, 74.43215424337414, 165.1784084030511, 918.0282369820127},
     .num = {-0.027439765170804722, 0.297083490214733, 1.15904140179445, -1.2271888607577333},
     .scale = 1.8378739392929977};
@@ -219,7 +219,7 @@ inline constexpr SglabAccParams<double, 1, 3, 2> sglab_acc_acc1{
 //   tool: sglab 0.1.0
 //   date: 2026-12-03
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.9091442237813113,"lower_bound":0.9091442237765199,"within_percent_of_best_member":5.270228697895618e-10,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.8845235127917683,"max_peak_rel":2.8304752409336586e-05},"lp":{"working_rows":544,"rounds":9,"converged":true}}
-inline constexpr SglabAccParams<double, 2, 5, 2> sglab_acc_acc2{
+inline constexpr SglabAccParams<double, 2, 5, 2> sglab_acc2{
     .steep = {53.61225659803996, 52.38779104676473, 34.4311259564653, 54.69429946169936, 451.5756485479585},
     .num = {-0.1995837214911383, 1.5304522200256405, -5.830169736168146, 24.115074853351942, -34.640291785249836, 15.277425276565989, -0.02552808390159125, -0.8807865920256611, 5.115906171645935, -5.702523653946658, -1.1194404245957883, 2.6390879668502154},
     .scale = 1.8599831603502373};
@@ -234,7 +234,7 @@ inline constexpr SglabAccParams<double, 2, 5, 2> sglab_acc_acc2{
 //   tool: sglab 0.1.0
 //   date: 2026-12-03
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.7408728524233755,"lower_bound":0.7408728523852802,"within_percent_of_best_member":5.1419535296304275e-09,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.6120798815022246,"max_peak_rel":6.120798815022247e-06},"lp":{"working_rows":795,"rounds":12,"converged":true}}
-inline constexpr SglabAccParams<double, 3, 6, 3> sglab_acc_acc3{
+inline constexpr SglabAccParams<double, 3, 6, 3> sglab_acc3{
     .steep = {55.473482273729246, 3.806347121507849e-16, 344.13564033786054, 28.9367627740431, 25.38457258283587, 495.55159304340486, 1112.8311238637675},
     .num = {0.10493531494511586, -0.11381282274389505, -8.709802420976358, 72.28222825419459, -165.78365414314248, 151.4491703640923, -49.126198352365385, 0.10323821533309314, -1.295801829232867, 1.0042408306225037, 27.85154185170756, -86.19740477484372, 91.97467060518237, -33.51202264095178, 0.28167532512354404, -3.8792795798538773, 18.411456087753255, -39.500535701394, 41.82721753048381, -21.04705698024469, 3.9105946667261344},
     .scale = 2.4922442145534873};
@@ -249,7 +249,7 @@ inline constexpr SglabAccParams<double, 3, 6, 3> sglab_acc_acc3{
 //   tool: sglab 0.1.0
 //   date: 2026-12-03
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.9030994347094133,"lower_bound":0.9030994346823767,"within_percent_of_best_member":2.9937607948227196e-09,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.8517883904300819,"max_peak_rel":4.25894195215041e-06},"lp":{"working_rows":1112,"rounds":8,"converged":true}}
-inline constexpr SglabAccParams<double, 4, 6, 3> sglab_acc_acc4{
+inline constexpr SglabAccParams<double, 4, 6, 3> sglab_acc4{
     .steep = {42.17825236518257, 0.553950610335972, 1217.6901719935322, 21.169869656809485, 157.69692539638575, 6.7376534693363755e-19, 12127.123659995012},
     .num = {-0.36010479013929886, -1.273144409578082, -1.5163053693016408, 59.81854773752231, -154.96599008754785, 146.6772415996027, -48.3234536924817, -0.20452318590174284, -0.12663633870476837, -6.134355685395348, 50.2487339526675, -117.52036333072701, 111.79470522063755, -38.094587963733105, 0.355685913255914, -6.153078049271038, 32.86412470227131, -82.82065352546711, 109.79329720560358, -74.29053180956836, 20.249800150177325, 0.21335064942801246, -2.4231403446928406, 10.088267826188345, -20.743769488352157, 22.723496869840087, -12.741614264915022, 2.8895697185794007},
     .scale = 2.621035092555829};
