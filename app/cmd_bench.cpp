@@ -111,9 +111,7 @@ void add_bench_command(CLI::App& app) {
                                  "ns per evaluation of every method and erf variant (float/double, "
                                  "scalar/batch), Google Benchmark");
   cmd->add_flag("--json", args->json, "print the table as JSON on stdout");
-  cmd->add_option("--out", args->out, "output directory")
-      ->check(non_empty_path())
-      ->capture_default_str();
+  add_path_option(cmd, "--out", args->out, "output directory")->capture_default_str();
   cmd->add_option("--repetitions", args->repetitions,
                   "repetitions per case; the median is reported")
       ->check(count_in(1, std::numeric_limits<int>::max()))

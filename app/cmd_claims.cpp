@@ -29,8 +29,7 @@ void add_claims_command(CLI::App& app) {
       "claims",
       "Check every quantitative claim of the cited sources (docs/references.md) numerically");
   auto* out_option =
-      cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
-          ->check(non_empty_path())
+      add_path_option(cmd, "--out", args->out, "output directory (with --json: only when given)")
           ->capture_default_str();
   cmd->add_flag("--json", args->json,
                 "print the table as JSON on stdout (Markdown otherwise); writes no file unless "

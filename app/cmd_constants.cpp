@@ -15,14 +15,12 @@ void add_constants_command(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
   auto header = std::make_shared<std::string>();
   auto write = std::make_shared<bool>(false);
-  cmd->add_option("--dir", *dir,
+  add_path_option(cmd, "--dir", *dir,
                   "directory of constant-set JSON files (default: data/constants of the sglab "
-                  "project found at or above the working directory)")
-      ->check(non_empty_path());
-  cmd->add_option("--header", *header,
+                  "project found at or above the working directory)");
+  add_path_option(cmd, "--header", *header,
                   "header to write with --write-header (default: include/sglab/constants.hpp of "
-                  "the project when --dir is its data/constants, else DIR/constants.hpp)")
-      ->check(non_empty_path());
+                  "the project when --dir is its data/constants, else DIR/constants.hpp)");
   cmd->add_flag("--write-header", *write,
                 "regenerate the header from the JSON files (all or nothing: every set the code "
                 "uses must be present and valid)");

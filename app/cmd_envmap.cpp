@@ -378,10 +378,8 @@ void add_envmap_command(CLI::App& app) {
     auto a = std::make_shared<DownsampleArgs>();
     auto* cmd =
         env->add_subcommand("downsample", "Area-averaged copy of a map as float RGB OpenEXR");
-    cmd->add_option("IN", a->in, "input map (OpenEXR or Radiance .hdr)")
-        ->required()
-        ->check(non_empty_path());
-    cmd->add_option("OUT", a->out, "output OpenEXR file")->required()->check(non_empty_path());
+    add_path_option(cmd, "IN", a->in, "input map (OpenEXR or Radiance .hdr)")->required();
+    add_path_option(cmd, "OUT", a->out, "output OpenEXR file")->required();
     cmd->add_option("--width", a->width,
                     "output width (even, at most the input width; height width/2)")
         ->check(count_in(8, 1 << 20))
@@ -396,9 +394,7 @@ void add_envmap_command(CLI::App& app) {
     auto a = std::make_shared<IrradianceArgs>();
     auto* cmd = env->add_subcommand("irradiance",
                                     "The map's exact diffuse irradiance at Fibonacci normals, CSV");
-    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")
-        ->required()
-        ->check(non_empty_path());
+    add_path_option(cmd, "FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
     cmd->add_option("--normals", a->normals, "number of Fibonacci normals")
         ->check(count_in(1, 1000000))
         ->capture_default_str();
@@ -417,9 +413,7 @@ void add_envmap_command(CLI::App& app) {
     auto a = std::make_shared<FitArgs>();
     auto* cmd = env->add_subcommand(
         "fit", "SG lobes fitted to a map with Ceres; --out writes a scene file");
-    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")
-        ->required()
-        ->check(non_empty_path());
+    add_path_option(cmd, "FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
     cmd->add_option("--lobes", a->lobes, "number of SG lobes")
         ->required()
         ->check(count_in(0, 1 << 20));
@@ -429,8 +423,8 @@ void add_envmap_command(CLI::App& app) {
                     "search from the worst)")
         ->check(count_in(1, 100000))
         ->capture_default_str();
-    cmd->add_option("--out", a->out, "scene JSON for `sglab recommend --scene`, with provenance")
-        ->check(non_empty_path());
+    add_path_option(cmd, "--out", a->out,
+                    "scene JSON for `sglab recommend --scene`, with provenance");
     cmd->add_flag("--json", a->json, "print the scene file (with provenance) on stdout");
     cmd->callback([a, cmd] { run_fit(*a, command_line("sglab envmap fit " + a->file, cmd)); });
   }
@@ -439,9 +433,7 @@ void add_envmap_command(CLI::App& app) {
     auto* cmd = env->add_subcommand(
         "recommend",
         "Fewest lobes and cheapest irradiance method whose combined error meets a budget");
-    cmd->add_option("FILE", a->file, "map (OpenEXR or Radiance .hdr)")
-        ->required()
-        ->check(non_empty_path());
+    add_path_option(cmd, "FILE", a->file, "map (OpenEXR or Radiance .hdr)")->required();
     cmd->add_option("--budget", a->budget,
                     "max irradiance error allowed, relative to the largest irradiance (> 0)")
         ->required();
@@ -457,9 +449,8 @@ void add_envmap_command(CLI::App& app) {
                     "storage: the probe (SH L0-L4, ZH3, N lobes, SH L2 + K lobes) of fewest floats "
                     "meeting the budget, dense error on the full map; without --by: lobes x "
                     "cheapest irradiance method");
-    cmd->add_option("--write-probe", a->write_probe,
-                    "with --by storage: the chosen probe as JSON for `sglab export --probe`")
-        ->check(non_empty_path());
+    add_path_option(cmd, "--write-probe", a->write_probe,
+                    "with --by storage: the chosen probe as JSON for `sglab export --probe`");
     a->costs.add_to(cmd);
     cmd->callback([a, cmd] {
       if (!a->by.empty())
@@ -473,10 +464,9 @@ void add_envmap_command(CLI::App& app) {
     auto* cmd = env->add_subcommand(
         "baselines",
         "Every map: BakingLab baseline vs radiance and irradiance fits, tables and figures");
-    cmd->add_option("--maps", a->maps, "folder of maps (default: data/envmaps of the project)")
-        ->check(non_empty_path());
-    cmd->add_option("--out", a->out, "output folder (default: data/results of the project)")
-        ->check(non_empty_path());
+    add_path_option(cmd, "--maps", a->maps,
+                    "folder of maps (default: data/envmaps of the project)");
+    add_path_option(cmd, "--out", a->out, "output folder (default: data/results of the project)");
     cmd->add_flag("--quick", a->quick,
                   "12 lobes only, no curves or figures (--probes: every fourth map at 27 floats)");
     cmd->add_flag("--probes", a->probes,

@@ -120,10 +120,9 @@ void add_erf_command(CLI::App& app) {
       "--exhaustive", args->exhaustive,
       "float: every float in [0, 4] and every float from 4 to FLT_MAX (default: a dense sample)");
   cmd->add_flag("--json", args->json, "print the results as JSON on stdout instead of tables");
-  cmd->add_option("--out", args->out,
+  add_path_option(cmd, "--out", args->out,
                   "directory for per-variant CSV series of the ulp error over x, the summary (CSV, "
-                  "Markdown) and the histogram (CSV)")
-      ->check(non_empty_path());
+                  "Markdown) and the histogram (CSV)");
   cmd->add_option("--tail-stride", args->tail_stride,
                   "with --exhaustive: check every N-th float bit pattern in [64, FLT_MAX] (every "
                   "float in [4, 64) always; 1 = every float)")

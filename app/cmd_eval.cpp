@@ -30,9 +30,7 @@ void add_eval_command(CLI::App& app) {
   auto precision = std::make_shared<std::string>("float");
   auto quantity = std::make_shared<std::string>("irradiance");
   cmd->add_option("--method", *method, "method id (see `sglab methods`)")->required();
-  cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")
-      ->required()
-      ->check(non_empty_path());
+  add_path_option(cmd, "--points", *points, "CSV file with the header kappa,cosine")->required();
   cmd->add_option("--precision", *precision, "float | double")->capture_default_str();
   cmd->add_option("--quantity", *quantity, "irradiance | hemispherical | normalized")
       ->capture_default_str();

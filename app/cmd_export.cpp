@@ -178,14 +178,12 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("--lang", args->lang, "glsl, hlsl or cpp")->required();
   cmd->add_option("--method", args->method,
                   "irradiance method id (see `sglab methods`); this or --probe");
-  cmd->add_option("--probe", args->probe,
+  add_path_option(cmd, "--probe", args->probe,
                   "a fitted probe (JSON object as `sglab envmap recommend --write-probe` writes): "
-                  "exports probe_irradiance(n), its lobes with the method it names")
-      ->check(non_empty_path());
-  cmd->add_option("--constants", args->constants,
+                  "exports probe_irradiance(n), its lobes with the method it names");
+  add_path_option(cmd, "--constants", args->constants,
                   "constant-set JSON replacing the compiled-in set of the same type (e.g. one "
-                  "`sglab fit ... --out DIR` wrote)")
-      ->check(non_empty_path());
+                  "`sglab fit ... --out DIR` wrote)");
   cmd->add_flag("--split", args->split,
                 "per-light form: a light struct (std430), sglab_light_<ID>(float kappa) that fills "
                 "it once per light, and sglab_irradiance_<ID>(light, float cosine) per pixel");

@@ -29,23 +29,17 @@ void add_figures_command(CLI::App& app) {
   auto args = std::make_shared<FiguresArgs>();
   auto* cmd = app.add_subcommand("figures",
                                  "Render the figures (data CSV + gnuplot PNG/SVG) and an index.md");
-  cmd->add_option("--out", args->out, "output directory")
-      ->check(non_empty_path())
-      ->capture_default_str();
-  cmd->add_option("--pareto", args->pareto,
+  add_path_option(cmd, "--out", args->out, "output directory")->capture_default_str();
+  add_path_option(cmd, "--pareto", args->pareto,
                   "Pareto CSV written by `sglab pareto`, repeatable: figure e draws one panel per "
                   "cost source (--cost) in them, side by side (e.g. the GPU cost and the CPU batch "
                   "one; skipped when absent)")
-      ->check(non_empty_path())
       ->capture_default_str();
-  cmd->add_option("--costs", args->costs,
+  add_path_option(cmd, "--costs", args->costs,
                   "cost table whose \"gpu\" section figure e tables beside a GPU panel (the other "
                   "families' inverse throughput; default: data/results/costs.json of the project "
-                  "holding the working directory, if any)")
-      ->check(non_empty_path());
-  cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable")
-      ->check(non_empty_path())
-      ->capture_default_str();
+                  "holding the working directory, if any)");
+  add_path_option(cmd, "--gnuplot", args->gnuplot, "gnuplot executable")->capture_default_str();
   cmd->callback([args] {
     const auto start = std::chrono::steady_clock::now();
     report::FiguresOptions opt;

@@ -379,31 +379,28 @@ void add_fit_command(CLI::App& app) {
                     "fit from scratch instead of polishing the committed constant set" +
                         taken_by(&fit::FitTarget::cold_start));
   cmd->add_flag("--json", o->json, "print the fit results as JSON");
-  auto* costs = cmd->add_option("--costs", o->costs,
+  auto* costs = add_path_option(cmd, "--costs", o->costs,
                                 "cost table for the cost column: its GPU cycles on navi21 (`sglab "
                                 "gpucost --out DIR`), else "
                                 "its CPU batch ns (`sglab bench`) (default: "
                                 "data/results/costs.json of the project holding "
                                 "the working directory, if any)" +
-                                    taken_by(&fit::FitTarget::costs))
-                    ->check(non_empty_path());
+                                    taken_by(&fit::FitTarget::costs));
   cmd->add_flag("--force", o->force, "replace an existing constant set even when it is better");
   cmd->add_flag("--dry-run", o->dry_run, "fit and report, write nothing");
   cmd->add_option("--jobs", o->jobs,
                   "fits to run at once (fit all), each on a thread of its own; the results do not "
                   "depend on it (default: the number of cores)")
       ->check(count_in(1, 1024));
-  cmd->add_option("--out", o->out_dir,
+  add_path_option(cmd, "--out", o->out_dir,
                   "directory of constant-set JSON files (default: data/constants of the sglab "
-                  "project found at or above the working directory)")
-      ->check(non_empty_path());
-  cmd->add_option(
-         "--header", o->header,
-         "runtime header to regenerate (default: the project's include/sglab/constants.hpp when "
-         "--out is its data/constants, else OUT/constants.hpp; a fit into another folder never "
-         "touches the checkout). The header holds the project's sets with those of --out in their "
-         "place")
-      ->check(non_empty_path());
+                  "project found at or above the working directory)");
+  add_path_option(
+      cmd, "--header", o->header,
+      "runtime header to regenerate (default: the project's include/sglab/constants.hpp when "
+      "--out is its data/constants, else OUT/constants.hpp; a fit into another folder never "
+      "touches the checkout). The header holds the project's sets with those of --out in their "
+      "place");
   cmd->callback([o, precision, objective, kappa, max_error, alpha_free, cold_start, costs] {
     const GivenOptions given{precision->count() > 0,  objective->count() > 0,
                              kappa->count() > 0,      max_error->count() > 0,

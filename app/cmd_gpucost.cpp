@@ -399,9 +399,8 @@ void add_gpucost_command(CLI::App& app) {
                   "HLSL); default none")
       ->delimiter(',');
   cmd->add_flag("--json", args->json, "print the rows as JSON on stdout");
-  cmd->add_option("--out", args->out,
-                  "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json")
-      ->check(non_empty_path());
+  add_path_option(cmd, "--out", args->out,
+                  "write DIR/gpu_costs.md and the \"gpu\" section of DIR/costs.json");
   cmd->add_flag("--skip-unavailable", args->skip_unavailable,
                 "when RADV cannot create a null device, say why and exit 0 without writing "
                 "anything (sglab run)");

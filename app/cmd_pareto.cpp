@@ -45,9 +45,7 @@ void add_pareto_command(CLI::App& app) {
       "(docs/quantities.md)");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI")->capture_default_str();
   cmd->add_option("--precision", args->precision, "float or double")->capture_default_str();
-  cmd->add_option("--out", args->out, "output directory")
-      ->check(non_empty_path())
-      ->capture_default_str();
+  add_path_option(cmd, "--out", args->out, "output directory")->capture_default_str();
   args->costs.add_to(cmd);
   cmd->callback([args] {
     double lo = 0, hi = 0;

@@ -79,9 +79,7 @@ void add_range_command(CLI::App& app) {
   cmd->footer(
       "peak_rel = |Ê − E| / E(1, κ), the irradiance error relative to the lobe's peak "
       "(docs/quantities.md). Exit 1 when a card's bound fails on its stated range.");
-  cmd->add_option("--out", args->out, "output directory")
-      ->check(non_empty_path())
-      ->capture_default_str();
+  add_path_option(cmd, "--out", args->out, "output directory")->capture_default_str();
   cmd->add_option("--per-decade", args->per_decade, "κ per decade")
       ->check(count_in(1, 1000))
       ->capture_default_str();

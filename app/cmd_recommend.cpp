@@ -173,11 +173,10 @@ void add_recommend_command(CLI::App& app) {
                                  "The cheapest irradiance method whose max peak_rel over a κ range "
                                  "(or error on a scene) meets an error budget");
   cmd->add_option("--kappa", args->kappa, "κ range LO:HI");
-  cmd->add_option("--scene", args->scene,
+  add_path_option(cmd, "--scene", args->scene,
                   "scene JSON {\"lights\": [{\"axis\": [x, y, z], \"sharpness\": κ, \"amplitude\": "
                   "[r, g, b]}, …]}: rank the methods by their error on the scene's irradiance "
-                  "instead")
-      ->check(non_empty_path());
+                  "instead");
   cmd->add_option("--normals", args->normals, "--scene: number of Fibonacci normals")
       ->check(count_in(1, 1000000))
       ->capture_default_str();

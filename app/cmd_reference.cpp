@@ -177,8 +177,7 @@ void add_reference_command(CLI::App& app) {
   auto precision = std::make_shared<std::string>("standard");
   auto check = std::make_shared<bool>(false);
   auto oversample = std::make_shared<int>(9);
-  cmd->add_option("--points", *points, "CSV file with the header kappa,cosine")
-      ->check(non_empty_path());
+  add_path_option(cmd, "--points", *points, "CSV file with the header kappa,cosine");
   cmd->add_option("--precision", *precision,
                   "standard (double quadrature) or high (50-digit, slow)")
       ->check(CLI::IsMember({"standard", "high"}))

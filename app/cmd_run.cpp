@@ -524,9 +524,7 @@ void add_run_command(CLI::App& app) {
   auto quick = std::make_shared<bool>(false);
   auto full = std::make_shared<bool>(false);
   auto skip = std::make_shared<std::vector<std::string>>();
-  cmd->add_option("--out", *out, "output directory")
-      ->check(non_empty_path())
-      ->capture_default_str();
+  add_path_option(cmd, "--out", *out, "output directory")->capture_default_str();
   auto* full_flag = cmd->add_flag(
       "--full", *full,
       "every step's full work (scripts/results.sh): the exhaustive erf check, long benchmark "

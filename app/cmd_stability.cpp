@@ -140,8 +140,7 @@ void add_stability_command(CLI::App& app) {
                                  "NaN / Inf / negative / out-of-range outputs of every function "
                                  "and method over special inputs");
   auto* out_option =
-      cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
-          ->check(non_empty_path())
+      add_path_option(cmd, "--out", args->out, "output directory (with --json: only when given)")
           ->capture_default_str();
   cmd->add_flag("--json", args->json,
                 "print the full table as JSON on stdout; writes no file unless --out is given");

@@ -311,8 +311,7 @@ void add_sweep_command(CLI::App& app) {
           "{} points",
           validate::SweepGrid::kMaxPoints));
   auto* out_option =
-      cmd->add_option("--out", args->out, "output directory (with --json: only when given)")
-          ->check(non_empty_path())
+      add_path_option(cmd, "--out", args->out, "output directory (with --json: only when given)")
           ->capture_default_str();
   cmd->add_flag("--json", args->json,
                 "print the summary as JSON on stdout; writes no file unless --out is given");

@@ -33,6 +33,13 @@ inline CLI::Validator non_empty_path() {
       "PATH", "non-empty path");
 }
 
+// A path option of `cmd` (input or output), checked by non_empty_path().
+template <class T>
+CLI::Option* add_path_option(CLI::App* cmd, const std::string& name, T& value,
+                             const std::string& description) {
+  return cmd->add_option(name, value, description)->check(non_empty_path());
+}
+
 // --lang glsl|hlsl|both (gpucost, and the vulkan backend of sweep): the
 // shader languages, glsl first.
 inline std::vector<shader::Language> checked_languages(const std::string& lang) {

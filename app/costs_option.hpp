@@ -38,11 +38,10 @@ struct CostsOption {
         "method has one; from `sglab gpucost`), gpu-single:FAMILY (the same for one unsplit "
         "call), cpu-batch or cpu-scalar (ns/eval; from `sglab bench`). Default gpu:navi21; "
         "cpu-batch under --precision double or --live-timing");
-    cmd->add_option("--costs", costs,
+    add_path_option(cmd, "--costs", costs,
                     "cost table written by `sglab bench` and `sglab gpucost` (default: "
                     "data/results/costs.json of the project holding the working directory; "
-                    "outside a checkout, the one compiled into sglab)")
-        ->check(non_empty_path());
+                    "outside a checkout, the one compiled into sglab)");
     cmd->add_flag("--live-timing", live_timing,
                   "time the methods on this CPU now instead of reading a cost table (answers vary "
                   "from run to run)");

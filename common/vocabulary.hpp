@@ -9,6 +9,7 @@
 #include <array>
 #include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -79,8 +80,11 @@ E parse_option(std::string_view option, std::string_view text,
   return *parsed;
 }
 
-// The arithmetic of a value: binary16, binary32 or binary64.
-enum class Precision { float16, float32, float64 };
+// The arithmetic of a value: IEEE 754 binary16, binary32 or binary64, each
+// valued by its width in bits. No precision has the value 0, so a
+// value-initialized Precision{} is no precision (to_string: "?"), never
+// silently half; every member holding one states its value.
+enum class Precision { float16 = 16, float32 = 32, float64 = 64 };
 constexpr std::array<EnumName<Precision>, 3> names_of(Precision) {
   return {{{Precision::float16, "half"},
            {Precision::float32, "float"},
@@ -90,7 +94,8 @@ constexpr std::array<EnumName<Precision>, 3> names_of(Precision) {
 constexpr const NumberFormat& number_format(Precision p) {
   return p == Precision::float16   ? kHalfFormat
          : p == Precision::float32 ? kFloatFormat
-                                   : kDoubleFormat;
+         : p == Precision::float64 ? kDoubleFormat
+                                   : throw std::invalid_argument("number_format: not a precision");
 }
 
 // Where a method runs: the C++ runtime on the CPU, or its shader export on a Vulkan device.

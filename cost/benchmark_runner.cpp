@@ -94,8 +94,7 @@ BenchmarkTimings time_with_google_benchmark(const std::vector<CostCase>& cases, 
   for (const CostCase& c : cases) {
     const double ns = reporter.ns_per_iteration(c.name());
     if (ns < 0) throw std::runtime_error(fmt::format("bench: no result for {}", c.name()));
-    t.costs.push_back(Cost{c.kind, c.method, c.refit, c.precision, c.mode,
-                           ns / static_cast<double>(c.evaluations)});
+    t.costs.push_back(Cost{static_cast<const CostOf&>(c), ns / static_cast<double>(c.evaluations)});
   }
   return t;
 }

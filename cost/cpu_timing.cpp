@@ -245,8 +245,8 @@ std::vector<Cost> measure_costs(const CostOptions& options) {
   if (!selected.empty()) time_case(selected.front(), 1, 0.05);
   std::vector<Cost> out;
   for (const CostCase& c : selected)
-    out.push_back(Cost{c.kind, c.method, c.refit, c.precision, c.mode,
-                       time_case(c, options.repetitions, options.min_time)});
+    out.push_back(
+        Cost{static_cast<const CostOf&>(c), time_case(c, options.repetitions, options.min_time)});
   return out;
 }
 

@@ -79,14 +79,18 @@ struct CostWorkload {
 std::shared_ptr<CostWorkload> make_cost_workload(std::uint64_t seed = kCostSeed,
                                                  std::size_t n = kCostInputs);
 
-// One timed case: `run()` evaluates the method once per input (one pass of
-// `evaluations` evaluations).
-struct CostCase {
+// What a cost is of: a method of one kind, in one precision and mode.
+struct CostOf {
   CostKind kind = CostKind::irradiance;
   std::string method;
   bool refit = false;
   io::Precision precision = io::Precision::float32;
   CostMode mode = CostMode::scalar;
+};
+
+// One timed case: `run()` evaluates the method once per input (one pass of
+// `evaluations` evaluations).
+struct CostCase : CostOf {
   std::size_t evaluations = kCostInputs;
   std::function<void()> run;
   // "kind/method/precision/mode", what --filter matches.
@@ -98,12 +102,7 @@ struct CostCase {
 // and light_eval for methods with the per-light split, in registry order.
 std::vector<CostCase> cost_cases(const std::shared_ptr<CostWorkload>& workload);
 
-struct Cost {
-  CostKind kind = CostKind::irradiance;
-  std::string method;
-  bool refit = false;
-  io::Precision precision = io::Precision::float32;
-  CostMode mode = CostMode::scalar;
+struct Cost : CostOf {
   double ns_per_eval = 0;  // median over the repetitions
 };
 

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/io.hpp"
@@ -58,6 +59,12 @@ inline constexpr std::size_t kMinHeight = 4;
 // (naming the pixel and channel; see check_map for the tiny negatives of lossy
 // encoders), no positive value.
 Map read_map(const std::filesystem::path& path);
+
+// The maps in the folder `dir`: its .exr and .hdr files, sorted. Throws
+// io::InputError "OPTION DIR: …" (`option`: what named the folder) when the
+// folder cannot be listed or holds no map.
+std::vector<std::filesystem::path> map_files(const std::filesystem::path& dir,
+                                             std::string_view option);
 
 // A W × H map must be 2:1 (W = 2H), at least 8 × 4 and at most kMaxPixels;
 // throws io::InputError naming `source` and the size otherwise.
@@ -102,6 +109,17 @@ Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j);
 inline constexpr std::size_t kHorizonSubdivision = 16;
 std::vector<Vec3> irradiance(const Map& map, const std::vector<Vec3>& normals);
 
+// The pixel geometry above as a row factor times a column factor, so that the
+// per-pixel values are products of per-row and per-column ones.
+struct RowGeometry {
+  double sin_theta, cos_theta;  // at the pixel centre
+  double s2, sc;                // ∫ sin²θ dθ and ∫ sinθ cosθ dθ over the row
+};
+struct ColumnGeometry {
+  double cos_phi, sin_phi;  // at the pixel centre
+  double dsin, dcos, dphi;  // sin φ1 − sin φ0, cos φ1 − cos φ0, φ1 − φ0
+};
+
 // The same exact irradiance at any normal, one normal at a time (the dense
 // error's local search asks for normals it chooses). Pixels are grouped in
 // kTile × kTile tiles: a tile wholly above n's horizon contributes
@@ -127,8 +145,8 @@ class MapIrradiance {
   const Map& map_;
   std::vector<Tile> tiles_;
   double sin_rho_pixel_ = 0;
-  std::vector<double> sin_t_, cos_t_, s2_, sc_, cos_p_, sin_p_, dsin_, dcos_;  // per row / column
-  std::vector<double> sub_s2_, sub_sc_, sub_dsin_, sub_dcos_;  // per sub-row / column
+  std::vector<RowGeometry> rows_, sub_rows_;           // per row, per sub-row
+  std::vector<ColumnGeometry> columns_, sub_columns_;  // per column, per sub-column
   double sub_dphi_ = 0, dphi_ = 0;
 };
 

@@ -531,6 +531,32 @@ Map reconstruct(const std::vector<Lobe>& lobes, std::size_t width, std::size_t h
   return m;
 }
 
+namespace {
+
+// The previous step's probe with `lobe` at zero amplitude: never worse than that step.
+LadderStep with_zero_lobe(const Probe& previous, Lobe lobe, const std::string& start) {
+  LadderStep step;
+  step.probe = previous;
+  lobe.amplitude = {0, 0, 0};
+  step.probe.lobes.push_back(lobe);
+  step.start = start;
+  return step;
+}
+
+// Judges every candidate and appends the best (the first of equals) to `ladder`,
+// with the step's wall time since t0.
+void keep_best(std::vector<LadderStep>& candidates, const Judge& judge,
+               std::chrono::steady_clock::time_point t0, std::vector<LadderStep>& ladder) {
+  for (auto& c : candidates) c.judged = judge(c.probe);
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < candidates.size(); ++k)
+    if (candidates[k].judged < candidates[best].judged) best = k;
+  ladder.push_back(candidates[best]);
+  ladder.back().seconds = seconds_since(t0);
+}
+
+}  // namespace
+
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
                                         const Judge& judge, int max_iterations) {
@@ -570,20 +596,9 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       c.probe.lobes = lobes_of(p, scale);
       c.start = "warm";
       candidates.push_back(c);
-      // The (n − 1)-lobe solution with a lobe of zero amplitude: never worse than n − 1.
-      LadderStep keep = ladder.back();
-      Lobe zero = keep.probe.lobes.back();
-      zero.amplitude = {0, 0, 0};
-      keep.probe.lobes.push_back(zero);
-      keep.start = "kept n-1";
-      candidates.push_back(keep);
+      candidates.push_back(with_zero_lobe(prev, prev.lobes.back(), "kept n-1"));
     }
-    for (auto& c : candidates) c.judged = judge(c.probe);
-    std::size_t best = 0;
-    for (std::size_t k = 1; k < candidates.size(); ++k)
-      if (candidates[k].judged < candidates[best].judged) best = k;
-    ladder.push_back(candidates[best]);
-    ladder.back().seconds = seconds_since(t0);
+    keep_best(candidates, judge, t0, ladder);
   }
   return ladder;
 }
@@ -641,19 +656,9 @@ std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec
     std::vector<Lobe> lobes = prev.lobes;
     lobes.push_back(new_lobe(fit_normals, exact, evaluate(prev, fit_normals)));
     candidates.push_back(joint(lobes, "warm"));
-    LadderStep keep;
-    keep.probe = prev;
-    Lobe zero = new_lobe(fit_normals, exact, evaluate(prev, fit_normals));
-    zero.amplitude = {0, 0, 0};
-    keep.probe.lobes.push_back(zero);
-    keep.start = "kept k-1";
-    candidates.push_back(keep);
-    for (auto& c : candidates) c.judged = judge(c.probe);
-    std::size_t best = 0;
-    for (std::size_t q = 1; q < candidates.size(); ++q)
-      if (candidates[q].judged < candidates[best].judged) best = q;
-    ladder.push_back(candidates[best]);
-    ladder.back().seconds = seconds_since(t0);
+    candidates.push_back(with_zero_lobe(
+        prev, new_lobe(fit_normals, exact, evaluate(prev, fit_normals)), "kept k-1"));
+    keep_best(candidates, judge, t0, ladder);
   }
   return ladder;
 }

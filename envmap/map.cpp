@@ -220,6 +220,21 @@ Map read_map(const std::filesystem::path& path) {
   return map;
 }
 
+std::vector<std::filesystem::path> map_files(const std::filesystem::path& dir,
+                                             std::string_view option) {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const auto ext = e.path().extension().string();
+    if (ext == ".exr" || ext == ".hdr") files.push_back(e.path());
+  }
+  if (ec) throw InputError(fmt::format("{} {}: {}", option, dir.string(), ec.message()));
+  std::sort(files.begin(), files.end());
+  if (files.empty())
+    throw InputError(fmt::format("{} {}: no .exr or .hdr maps", option, dir.string()));
+  return files;
+}
+
 void write_exr(const std::filesystem::path& path, const Map& map) {
   std::string bytes;
   {
@@ -245,19 +260,10 @@ void write_exr(const std::filesystem::path& path, const Map& map) {
 
 namespace {
 
-// The pixel geometry of envmap.hpp as a row factor times a column factor, so
-// that the per-pixel values are products of per-row and per-column ones.
-struct RowGeometry {
-  double sin_theta, cos_theta;  // at the pixel centre
-  double s2, sc;                // ∫ sin²θ dθ and ∫ sinθ cosθ dθ over the row
-};
-struct ColumnGeometry {
-  double cos_phi, sin_phi;  // at the pixel centre
-  double dsin, dcos, dphi;  // sin φ1 − sin φ0, cos φ1 − cos φ0, φ1 − φ0
-};
-
-RowGeometry row_geometry(const Map& map, std::size_t j) {
-  const double h = static_cast<double>(map.height);
+// Row j of `rows` equal rows over θ ∈ [0, π] (a map's pixel rows, or its
+// sub-pixel rows).
+RowGeometry row_geometry(std::size_t rows, std::size_t j) {
+  const double h = static_cast<double>(rows);
   const double theta = M_PI * (static_cast<double>(j) + 0.5) / h;
   const double t0 = M_PI * static_cast<double>(j) / h, t1 = M_PI * static_cast<double>(j + 1) / h;
   return {std::sin(theta), std::cos(theta),
@@ -265,8 +271,9 @@ RowGeometry row_geometry(const Map& map, std::size_t j) {
           (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2};
 }
 
-ColumnGeometry column_geometry(const Map& map, std::size_t i) {
-  const double w = static_cast<double>(map.width);
+// Column i of `columns` equal columns over φ ∈ [0, 2π].
+ColumnGeometry column_geometry(std::size_t columns, std::size_t i) {
+  const double w = static_cast<double>(columns);
   const double phi = 2 * M_PI * (static_cast<double>(i) + 0.5) / w;
   const double p0 = 2 * M_PI * static_cast<double>(i) / w,
                p1 = 2 * M_PI * static_cast<double>(i + 1) / w;
@@ -316,11 +323,11 @@ double pixel_solid_angle(const Map& map, std::size_t row) {
 }
 
 Vec3 pixel_direction(const Map& map, std::size_t i, std::size_t j) {
-  return direction(row_geometry(map, j), column_geometry(map, i));
+  return direction(row_geometry(map.height, j), column_geometry(map.width, i));
 }
 
 Vec3 pixel_moment(const Map& map, std::size_t i, std::size_t j) {
-  return moment(row_geometry(map, j), column_geometry(map, i));
+  return moment(row_geometry(map.height, j), column_geometry(map.width, i));
 }
 
 Map downsample(const Map& map, std::size_t width) {
@@ -376,20 +383,8 @@ MapIrradiance::MapIrradiance(const Map& map) : map_(map) {
   const std::size_t W = map.width, H = map.height, S = kHorizonSubdivision;
   // Per-row and per-column factors of every pixel's centre and moment (memory
   // O(W + H) beside the map, whatever its size).
-  for (std::size_t j = 0; j < H; ++j) {
-    const RowGeometry r = row_geometry(map, j);
-    sin_t_.push_back(r.sin_theta);
-    cos_t_.push_back(r.cos_theta);
-    s2_.push_back(r.s2);
-    sc_.push_back(r.sc);
-  }
-  for (std::size_t i = 0; i < W; ++i) {
-    const ColumnGeometry c = column_geometry(map, i);
-    cos_p_.push_back(c.cos_phi);
-    sin_p_.push_back(c.sin_phi);
-    dsin_.push_back(c.dsin);
-    dcos_.push_back(c.dcos);
-  }
+  for (std::size_t j = 0; j < H; ++j) rows_.push_back(row_geometry(H, j));
+  for (std::size_t i = 0; i < W; ++i) columns_.push_back(column_geometry(W, i));
   dphi_ = 2 * M_PI / static_cast<double>(W);
   // A pixel lies within ρ = Δθ/2 + Δφ/2 of its centre ω_c (along the meridian,
   // then along the parallel, whose arc is at least the great circle's), so
@@ -397,18 +392,8 @@ MapIrradiance::MapIrradiance(const Map& map) : map_(map) {
   sin_rho_pixel_ = std::sin(M_PI / (2 * static_cast<double>(H)) + M_PI / static_cast<double>(W));
   // The pixels between: S × S sub-pixels, each with its own moment (the
   // closed form of pixel_moment, from per-sub-row and per-sub-column factors).
-  for (std::size_t r = 0; r < H * S; ++r) {
-    const double t0 = M_PI * static_cast<double>(r) / static_cast<double>(H * S);
-    const double t1 = M_PI * static_cast<double>(r + 1) / static_cast<double>(H * S);
-    sub_s2_.push_back((t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4);
-    sub_sc_.push_back((std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2);
-  }
-  for (std::size_t c = 0; c < W * S; ++c) {
-    const double p0 = 2 * M_PI * static_cast<double>(c) / static_cast<double>(W * S);
-    const double p1 = 2 * M_PI * static_cast<double>(c + 1) / static_cast<double>(W * S);
-    sub_dsin_.push_back(std::sin(p1) - std::sin(p0));
-    sub_dcos_.push_back(std::cos(p1) - std::cos(p0));
-  }
+  for (std::size_t r = 0; r < H * S; ++r) sub_rows_.push_back(row_geometry(H * S, r));
+  for (std::size_t c = 0; c < W * S; ++c) sub_columns_.push_back(column_geometry(W * S, c));
   sub_dphi_ = 2 * M_PI / static_cast<double>(W * S);
   // Tiles: the same bound with the tile's extent (ρ = Δθ_tile/2 + Δφ_tile/2).
   for (std::size_t j0 = 0; j0 < H; j0 += kTile)
@@ -427,7 +412,9 @@ MapIrradiance::MapIrradiance(const Map& map) : map_(map) {
       t.sin_rho = std::sin(std::min(M_PI / 2, (th1 - th0) / 2 + (ph1 - ph0) / 2));
       for (std::size_t j = t.j0; j < t.j1; ++j)
         for (std::size_t i = t.i0; i < t.i1; ++i) {
-          const Vec3 m = {s2_[j] * dsin_[i], s2_[j] * dcos_[i], sc_[j] * dphi_};
+          const RowGeometry& row = rows_[j];
+          const ColumnGeometry& column = columns_[i];
+          const Vec3 m = {row.s2 * column.dsin, row.s2 * column.dcos, row.sc * dphi_};
           for (std::size_t ch = 0; ch < 3; ++ch)
             for (std::size_t d = 0; d < 3; ++d) t.moment[ch][d] += map.at(i, j, ch) * m[d];
         }
@@ -436,18 +423,20 @@ MapIrradiance::MapIrradiance(const Map& map) : map_(map) {
 }
 
 double MapIrradiance::pixel_weight(const Vec3& nv, std::size_t i, std::size_t j) const {
-  const double nc = sin_t_[j] * (nv[0] * cos_p_[i] - nv[1] * sin_p_[i]) + nv[2] * cos_t_[j];
+  const RowGeometry& r = rows_[j];
+  const ColumnGeometry& c = columns_[i];
+  const double nc = r.sin_theta * (nv[0] * c.cos_phi - nv[1] * c.sin_phi) + nv[2] * r.cos_theta;
   if (nc >= sin_rho_pixel_)
-    return nv[0] * s2_[j] * dsin_[i] + nv[1] * s2_[j] * dcos_[i] + nv[2] * sc_[j] * dphi_;
+    return nv[0] * r.s2 * c.dsin + nv[1] * r.s2 * c.dcos + nv[2] * r.sc * dphi_;
   if (nc <= -sin_rho_pixel_) return 0;
   const std::size_t S = kHorizonSubdivision;
   double w = 0;
   for (std::size_t a = 0; a < S; ++a) {
-    const std::size_t row = j * S + a;
+    const RowGeometry& row = sub_rows_[j * S + a];
     for (std::size_t bb = 0; bb < S; ++bb) {
-      const std::size_t col = i * S + bb;
-      const double x = nv[0] * sub_s2_[row] * sub_dsin_[col] +
-                       nv[1] * sub_s2_[row] * sub_dcos_[col] + nv[2] * sub_sc_[row] * sub_dphi_;
+      const ColumnGeometry& col = sub_columns_[i * S + bb];
+      const double x =
+          nv[0] * row.s2 * col.dsin + nv[1] * row.s2 * col.dcos + nv[2] * row.sc * sub_dphi_;
       if (x > 0) w += x;
     }
   }

@@ -23,15 +23,7 @@ namespace sglab::shader::gpu {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 // The rows, statistics and harness names of the report (cost/gpu_report.hpp).
-using cost::gpu::CompilePath;
-using cost::gpu::Harness;
-using cost::gpu::kMaxLights;
-using cost::gpu::kStatisticFields;
-using cost::gpu::Report;
-using cost::gpu::Row;
-using cost::gpu::StatisticField;
-using cost::gpu::Statistics;
-using cost::gpu::statistics_from_json;
+using namespace cost::gpu;
 
 namespace {
 

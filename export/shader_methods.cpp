@@ -637,22 +637,22 @@ const std::vector<ShaderMethod>& shader_methods() {
        "  return {P}mid(cosine, kappa);\n"},
       {"sglab_acc1",
        [] {
-         return Slots{{"model", named("sglab_acc_acc1", constants::sglab_acc_acc1)}};
+         return Slots{{"model", named("sglab_acc1", constants::sglab_acc1)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc2",
        [] {
-         return Slots{{"model", named("sglab_acc_acc2", constants::sglab_acc_acc2)}};
+         return Slots{{"model", named("sglab_acc2", constants::sglab_acc2)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc3",
        [] {
-         return Slots{{"model", named("sglab_acc_acc3", constants::sglab_acc_acc3)}};
+         return Slots{{"model", named("sglab_acc3", constants::sglab_acc3)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
       {"sglab_acc4",
        [] {
-         return Slots{{"model", named("sglab_acc_acc4", constants::sglab_acc_acc4)}};
+         return Slots{{"model", named("sglab_acc4", constants::sglab_acc4)}};
        },
        ErfUse::tiered, kHelpersSglabAcc, kBodySglabAcc},
   };

@@ -45,6 +45,27 @@ std::string split_prologue(Language lang, std::string_view exported) {
   return fmt::format("{}\n", exported);
 }
 
+// A split-form wrapper's text in one language: a fmt template of {0} the light
+// struct, {1} the export's function it calls and {2} `check`, the bounds check
+// an any_size dispatch puts before the guarded statement.
+struct WrapperText {
+  std::string_view body;
+  std::string check;
+};
+
+// A compute wrapper of a split export (`who` names it in errors): its
+// prologue, then the text of `lang`.
+std::string split_wrapper(const char* who, Language lang, std::string_view exported,
+                          const ExportResult& ex, std::string_view function, Dispatch dispatch,
+                          const WrapperText& glsl, const WrapperText& hlsl) {
+  require_split(ex, who);
+  require_shader_language(lang, who);
+  const WrapperText& text = lang == Language::glsl ? glsl : hlsl;
+  return split_prologue(lang, exported) +
+         fmt::format(fmt::runtime(text.body), ex.light_struct, function,
+                     dispatch == Dispatch::any_size ? text.check : "");
+}
+
 }  // namespace
 
 std::string compute_shader(Language lang, std::string_view exported, std::string_view entry,
@@ -86,13 +107,9 @@ void main(uint3 id : SV_DispatchThreadID) {{
 
 std::string split_compute_shader(Language lang, std::string_view exported, const ExportResult& ex,
                                  Dispatch dispatch) {
-  require_split(ex, "split_compute_shader");
-  require_shader_language(lang, "split_compute_shader");
-  const bool checked = dispatch == Dispatch::any_size;
-  if (lang == Language::glsl)
-    return split_prologue(lang, exported) +
-           fmt::format(
-               R"(layout(std430, set = 0, binding = 0) readonly buffer Cosines {{ float cosines[]; }};
+  return split_wrapper(
+      "split_compute_shader", lang, exported, ex, ex.entry_point, dispatch,
+      {R"(layout(std430, set = 0, binding = 0) readonly buffer Cosines {{ float cosines[]; }};
 layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ float result[]; }};
 layout(std430, set = 0, binding = 2) readonly buffer Lights {{ {0} lights[]; }};
 
@@ -103,9 +120,8 @@ void main() {{
   {2}result[l * n + i] = {1}(lights[l], cosines[i]);
 }}
 )",
-               ex.light_struct, ex.entry_point, checked ? "if (i < n) " : "");
-  return split_prologue(lang, exported) +
-         fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float> cosines;
+       "if (i < n) "},
+      {R"([[vk::binding(0, 0)]] StructuredBuffer<float> cosines;
 [[vk::binding(1, 0)]] RWStructuredBuffer<float> result;
 [[vk::binding(2, 0)]] StructuredBuffer<{0}> lights;
 
@@ -116,18 +132,14 @@ void main(uint3 id : SV_DispatchThreadID, uint3 group : SV_GroupID) {{
   {2}result[group.y * n + id.x] = {1}(lights[group.y], cosines[id.x]);
 }}
 )",
-                     ex.light_struct, ex.entry_point, checked ? "if (id.x < n) " : "");
+       "if (id.x < n) "});
 }
 
 std::string light_compute_shader(Language lang, std::string_view exported, const ExportResult& ex,
                                  Dispatch dispatch) {
-  require_split(ex, "light_compute_shader");
-  require_shader_language(lang, "light_compute_shader");
-  const bool checked = dispatch == Dispatch::any_size;
-  if (lang == Language::glsl)
-    return split_prologue(lang, exported) +
-           fmt::format(
-               R"(layout(std430, set = 0, binding = 0) readonly buffer Kappas {{ float kappas[]; }};
+  return split_wrapper(
+      "light_compute_shader", lang, exported, ex, ex.light_function, dispatch,
+      {R"(layout(std430, set = 0, binding = 0) readonly buffer Kappas {{ float kappas[]; }};
 layout(std430, set = 0, binding = 1) writeonly buffer Lights {{ {0} lights[]; }};
 
 void main() {{
@@ -135,10 +147,8 @@ void main() {{
   {2}lights[i] = {1}(kappas[i]);
 }}
 )",
-               ex.light_struct, ex.light_function,
-               checked ? "if (i < uint(kappas.length())) " : "");
-  return split_prologue(lang, exported) +
-         fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float> kappas;
+       "if (i < uint(kappas.length())) "},
+      {R"([[vk::binding(0, 0)]] StructuredBuffer<float> kappas;
 [[vk::binding(1, 0)]] RWStructuredBuffer<{0}> lights;
 
 [numthreads(64, 1, 1)]
@@ -146,8 +156,7 @@ void main(uint3 id : SV_DispatchThreadID) {{
   {2}lights[id.x] = {1}(kappas[id.x]);
 }}
 )",
-                     ex.light_struct, ex.light_function,
-                     checked ? hlsl_bounds_check("kappas", "id.x") : "");
+       hlsl_bounds_check("kappas", "id.x")});
 }
 
 std::string loop_compute_shader(Language lang, std::string_view exported, std::string_view entry,

@@ -150,21 +150,25 @@ std::string render_constants_header(const std::vector<ordered_json>& sets) {
                        comment_text(set["variant"].get<std::string>()),
                        comment_text(set["form"].get<std::string>()));
     for (const auto& [key, value] : set["provenance"].items()) out += comment_line(key, value);
+    // Members in declaration order (designated initializers need it): a set of
+    // scalars on the declaration's line, one with arrays a member per line.
+    const bool scalars = std::all_of(type.members.begin(), type.members.end(),
+                                     [](const auto& member) { return member.second == 0; });
     std::string init;
-    for (const auto& [name, length] :
-         type.members) {  // declaration order: designated initializers need it
+    for (const auto& [name, length] : type.members) {
       const ordered_json& value = set["coefficients"].at(name);
-      if (!init.empty()) init += ",\n";
+      if (!init.empty()) init += scalars ? ", " : ",\n";
+      if (!scalars) init += "    ";
       if (length > 0) {
         std::string elems;
         for (const auto& v : value) elems += (elems.empty() ? "" : ", ") + number(v);
-        init += fmt::format("    .{} = {{{}}}", name, elems);
+        init += fmt::format(".{} = {{{}}}", name, elems);
       } else {
-        init += fmt::format("    .{} = {}", name, number(value));
+        init += fmt::format(".{} = {}", name, number(value));
       }
     }
-    out += fmt::format("inline constexpr {} {}{{\n{}}};\n", type.canonical,
-                       set["cpp_name"].get<std::string>(), init);
+    out += fmt::format("inline constexpr {} {}{{{}{}}};\n", type.canonical,
+                       set["cpp_name"].get<std::string>(), scalars ? "" : "\n", init);
   }
   out += "\n}  // namespace sglab::constants\n";
   return out;

@@ -186,8 +186,6 @@ ordered_json constant_set(const FitSpec& spec, const MemberFit& f, const std::st
 // --max-error: the cheapest member meeting the budget, each warm-started from the previous one.
 FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
   const auto& [train, dense, measuring] = g;
-  const auto& standard = measuring.standard;
-  const auto& held_out = measuring.held_out;
   FitOutcome out;
   // Model order: cheapest member first, each warm-started from the previous one.
   const double budget = *spec.max_error;
@@ -199,7 +197,7 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
     // A nested earlier member (or the stage-wise start: per-κ optima, then fade fits), then the
     // joint minimax.
     fits.push_back(fit_any(m, start_for(m, fits, floors, train), weighted(train, budget),
-                           weighted(dense, budget), standard, held_out));
+                           weighted(dense, budget), measuring));
     fits.back().cost = member_cost(m, spec.costs);
     fits.back().floor = floors.floor(m.n, train);
     if (fits.back().converged && fits.back().held_out.float_max <= budget &&
@@ -241,8 +239,6 @@ FitOutcome fit_model_order(const FitSpec& spec, const Grids& g) {
 // The shipped ladder, each rung warm-started from its committed set.
 FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
   const auto& [train, dense, measuring] = g;
-  const auto& standard = measuring.standard;
-  const auto& held_out = measuring.held_out;
   FitOutcome out;
   out.report = {{"target", spec.target},
                 {"objective", "peak-rel"},
@@ -262,13 +258,15 @@ FitOutcome fit_ladder(const FitSpec& spec, const Grids& g) {
     const auto warm = committed(variant, rung.member, spec.kappa_lo, spec.kappa_hi);
     MemberFit f =
         fit_any(rung.member, warm ? warm->first : start_for(rung.member, done, floors, train),
-                weighted(train, rung.target), weighted(dense, rung.target), standard, held_out,
+                weighted(train, rung.target), weighted(dense, rung.target), measuring,
                 warm && warm->second);
     done.push_back(f);
     f.cost = member_cost(rung.member, spec.costs);
     if (!warm) f.floor = floors.floor(rung.member.n, train);
     out.converged = out.converged && f.converged;
     out.constant_sets.push_back(constant_set(spec, f, variant, measuring, rung.target));
+    // A rung's constants are named as its method: sglab_acc1 … sglab_acc4.
+    out.constant_sets.back()["cpp_name"] = cpp_identifier("sglab_" + variant);
     ordered_json r = member_report(f);
     r["variant"] = variant;
     const bool nested = std::any_of(done.begin(), done.end() - 1, [&](const MemberFit& e) {

@@ -240,8 +240,7 @@ std::optional<std::pair<std::vector<double>, bool>> committed(const std::string&
 // polishes; measured on the standard and held-out grids, and certified.
 MemberFit fit_any(Member m, const std::vector<double>& start,
                   const std::vector<SglabAccSample>& train,
-                  const std::vector<SglabAccSample>& dense,
-                  const std::vector<reference::ReferencePoint>& standard,
-                  const std::vector<reference::ReferencePoint>& held_out, bool polish_only = false);
+                  const std::vector<SglabAccSample>& dense, const MeasuringGrids& measuring,
+                  bool polish_only = false);
 
 }  // namespace sglab::fit::acc

@@ -215,11 +215,11 @@ MemberFit certified_fit(const std::vector<double>& start, const std::vector<Sgla
 
 MemberFit fit_any(Member m, const std::vector<double>& start,
                   const std::vector<SglabAccSample>& train,
-                  const std::vector<SglabAccSample>& dense,
-                  const std::vector<reference::ReferencePoint>& standard,
-                  const std::vector<reference::ReferencePoint>& held_out, bool polish_only) {
+                  const std::vector<SglabAccSample>& dense, const MeasuringGrids& measuring,
+                  bool polish_only) {
   return with_member(m, [&](auto N, auto D, auto M) {
-    return certified_fit<N(), D(), M()>(start, train, dense, standard, held_out, polish_only);
+    return certified_fit<N(), D(), M()>(start, train, dense, measuring.standard, measuring.held_out,
+                                        polish_only);
   });
 }
 

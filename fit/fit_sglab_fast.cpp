@@ -6,6 +6,7 @@
 // fitted Q and V(κ), where the numerators of A, B and C enter linearly:
 // docs/models.md#sglab_fast.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -30,40 +31,17 @@ struct ShapeResidual {
   }
 };
 
-template <class T>
-SglabFastParams<T> params_from(const std::vector<T>& v, T kappa_max) {
-  SglabFastParams<T> p{};
-  std::size_t i = 0;
-  for (auto* poly : {p.a, p.b, p.c, p.v})
-    for (std::size_t j = 0; j <= kDegree; ++j) poly[j] = v[i++];
-  for (std::size_t j = 0; j < kDegree; ++j) p.q[j] = v[i++];
-  p.kappa_max = kappa_max;
-  return p;
-}
-
-// Step 3 residual: peak_rel of the runtime function with all coefficients as parameters.
-struct ModelResidual {
-  double kappa, cosine, reference, peak, kappa_max;
-  template <class T>
-  bool operator()(T const* const* p, T* r) const {
-    SglabFastParams<T> params{};
-    std::size_t i = 0;
-    for (auto* poly : {params.a, params.b, params.c, params.v})
-      for (std::size_t j = 0; j <= kDegree; ++j) poly[j] = p[i++][0];
-    for (std::size_t j = 0; j < kDegree; ++j) params.q[j] = p[i++][0];
-    params.kappa_max = T(kappa_max);
-    r[0] = (irradiance_sglab_fast(T(cosine), T(kappa), params) - T(reference)) / T(peak);
-    return true;
-  }
-};
-
 struct FastShape {
   static const RationalLayout& layout() {
     static const RationalLayout l{"sglab-fast", {"a", "b", "c", "v"}, kDegree};
     return l;
   }
-  using Residual = ModelResidual;
-  static constexpr const char* runtime = "sglab_fast";
+  template <class T>
+  using Params = SglabFastParams<T>;
+  template <class T>
+  static auto numerators(Params<T>& p) {
+    return std::array{p.a, p.b, p.c, p.v};
+  }
   static constexpr const char* cpp_type = "SglabFastParams<double>";
   static constexpr const char* form =
       "E = E(1,kappa)*max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | "
@@ -71,13 +49,15 @@ struct FastShape {
       "of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)";
   // At the fitted Q and V(κ), s' = E1(κ)·(A + B c + C ρ(V c + ½))/E(1, κ) is
   // linear in the numerators of A, B and C (the first in parameter order).
-  static constexpr const char* certificate_kind =
-      "lp_at_fitted_denominator_and_v: the numerators of A, B and C free, Q and V(kappa) as "
-      "fitted; bound min(LP optimum, L)";
-  static constexpr const char* numerators = "A, B, C";
-  static constexpr const char* fixed = "Q and V";
   static constexpr std::size_t certified = 3;
   static constexpr bool floor_from_committed = false;
+
+  // Step 2 fits the shape values themselves.
+  static double start_target(std::size_t n, const PerKappaShape& p) { return p.shape[n]; }
+  // s changes by about C·δV where V is off by δV: weight V's error by |C|.
+  static double start_weight(std::size_t n, const PerKappaShape& p) {
+    return n == 3 ? std::max(std::abs(p.shape[2]), 1e-6) : 1.0;
+  }
 
   // Step 1 at one κ: a minimax of the four values from the previous κ's
   // optimum (the first, the largest κ: a ramp of width 1/V around c = 0).
@@ -99,15 +79,8 @@ struct FastShape {
     const FitResult f = fit(residuals, params);
     return {k, {f.values.begin(), f.values.begin() + 4}, f.max_abs};
   }
-  static double start_target(std::size_t n, const PerKappaShape& p) { return p.shape[n]; }
-  // s changes by about C·δV where V is off by δV: weight V's error by |C|.
-  static double start_weight(std::size_t n, const PerKappaShape& p) {
-    return n == 3 ? std::max(std::abs(p.shape[2]), 1e-6) : 1.0;
-  }
-  static auto model(const std::vector<double>& values, double kappa_max) {
-    return [p = params_from(values, kappa_max)](auto c, auto k) {
-      return irradiance_sglab_fast(c, k, p);
-    };
+  static auto irradiance(const auto& c, const auto& k, const auto& p) {
+    return irradiance_sglab_fast(c, k, p);
   }
 };
 

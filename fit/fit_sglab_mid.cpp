@@ -26,7 +26,6 @@ namespace {
 
 constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
 constexpr std::size_t kShapeValues = 5;
-constexpr std::size_t kNumParams = kShapeValues * (kDegree + 1) + kDegree;
 
 // Step 1 residual: peak_rel of E(1)·s at one (κ, c), shape values as parameters (the clamp
 // at 0 left out: it can only lower the error, and without it the problem at fixed S, V is an LP).
@@ -35,30 +34,6 @@ struct ShapeResidual {
   template <class T>
   bool operator()(T const* const* p, T* r) const {
     r[0] = sglab_mid_shape(T(cosine), p[0][0], p[1][0], p[2][0], p[3][0], p[4][0]) - T(normalized);
-    return true;
-  }
-};
-
-template <class T>
-SglabMidParams<T> params_from(const std::vector<T>& v, T kappa_max) {
-  SglabMidParams<T> p{};
-  std::size_t i = 0;
-  for (auto* poly : {p.a, p.b, p.d, p.s, p.v})
-    for (std::size_t j = 0; j <= kDegree; ++j) poly[j] = v[i++];
-  for (std::size_t j = 0; j < kDegree; ++j) p.q[j] = v[i++];
-  p.kappa_max = kappa_max;
-  return p;
-}
-
-// Step 3 residual: peak_rel of the runtime function with all coefficients as parameters.
-struct ModelResidual {
-  double kappa, cosine, reference, peak, kappa_max;
-  template <class T>
-  bool operator()(T const* const* p, T* r) const {
-    std::vector<T> v(kNumParams);
-    for (std::size_t i = 0; i < kNumParams; ++i) v[i] = p[i][0];
-    const SglabMidParams<T> params = params_from(v, T(kappa_max));
-    r[0] = (irradiance_sglab_mid(T(cosine), T(kappa), params) - T(reference)) / T(peak);
     return true;
   }
 };
@@ -132,8 +107,12 @@ struct MidShape {
     static const RationalLayout l{"sglab-mid", {"a", "b", "d", "s", "v"}, kDegree};
     return l;
   }
-  using Residual = ModelResidual;
-  static constexpr const char* runtime = "sglab_mid";
+  template <class T>
+  using Params = SglabMidParams<T>;
+  template <class T>
+  static auto numerators(Params<T>& p) {
+    return std::array{p.a, p.b, p.d, p.s, p.v};
+  }
   static constexpr const char* cpp_type = "SglabMidParams<double>";
   static constexpr const char* form =
       "E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); "
@@ -144,29 +123,24 @@ struct MidShape {
   // At the fitted Q, S(κ) and V(κ), s' = E1(κ)·(A + B (c + √(c² + e^{S − V c²}))
   // + D c²)/E(1, κ) is linear in the numerators of A, B and D (the first in
   // parameter order).
-  static constexpr const char* certificate_kind =
-      "lp_at_fitted_denominator_s_and_v: the numerators of A, B and D free, Q, S(kappa) and "
-      "V(kappa) as fitted; bound min(LP optimum, L)";
-  static constexpr const char* numerators = "A, B, D";
-  static constexpr const char* fixed = "Q, S and V";
   static constexpr std::size_t certified = 3;
   static constexpr bool floor_from_committed = true;
 
-  static PerKappaShape per_kappa_at(double k, const std::vector<double>& cosines,
-                                    const std::vector<reference::ReferencePoint>& ref,
-                                    const std::optional<PerKappaShape>& previous) {
-    return mid_per_kappa_at(k, cosines, ref, previous);
-  }
   // Step 2 fits S + ln(1 + κ) and V/κ for Ps and Pv.
   static double start_target(std::size_t n, const PerKappaShape& p) {
     const auto& sh = p.shape;
     return n == 4 ? sh[4] / p.kappa : n == 3 ? sh[3] + std::log1p(p.kappa) : sh[n];
   }
   static double start_weight(std::size_t, const PerKappaShape&) { return 1.0; }
-  static auto model(const std::vector<double>& values, double kappa_max) {
-    return [p = params_from(values, kappa_max)](auto c, auto k) {
-      return irradiance_sglab_mid(c, k, p);
-    };
+
+  // Step 1 at one κ (above).
+  static PerKappaShape per_kappa_at(double k, const std::vector<double>& cosines,
+                                    const std::vector<reference::ReferencePoint>& ref,
+                                    const std::optional<PerKappaShape>& previous) {
+    return mid_per_kappa_at(k, cosines, ref, previous);
+  }
+  static auto irradiance(const auto& c, const auto& k, const auto& p) {
+    return irradiance_sglab_mid(c, k, p);
   }
 };
 

@@ -24,21 +24,21 @@
 // measured (float and double) and recorded in the constant set's provenance.
 //
 // A `Shape` provides:
-//   static const RationalLayout& layout();       the parameters and coefficients object
-//   using Residual = …;                           step 3's residual, Residual{κ, c, E, E(1, κ),
-//                                                 kappa_max}, all parameters in fit order
-//   static constexpr const char* runtime, cpp_type, form, certificate_kind,
-//                                numerators, fixed; (names in texts and provenance)
-//   static constexpr std::size_t certified;     the numerators the certificate frees
+//   static const RationalLayout& layout();  the parameters and coefficients object
+//                                            (its target names the runtime function, '-' as '_')
+//   template <class T> using Params = …;     the runtime's parameter struct (a, …, q, kappa_max)
+//   template <class T> static auto numerators(Params<T>&);  its numerator arrays, layout order
+//   static auto irradiance(c, κ, const Params<…>&);          the runtime function
+//   static constexpr const char* cpp_type, form;            (provenance)
+//   static constexpr std::size_t certified;  the first numerators, which the certificate frees
 //   static constexpr bool floor_from_committed;  a polish takes the floor its set records
-//   static PerKappaShape per_kappa_at(κ, cosines, ref at κ, previous optimum or nullopt);
 //   static double start_target(std::size_t n, const PerKappaShape&);  step 2's value n
 //   static double start_weight(std::size_t n, const PerKappaShape&);  and its weight
-//   static auto model(const std::vector<double>& values, double kappa_max);
-//        a generic callable (c, κ) → Ê of the runtime function at `values`
+//   static PerKappaShape per_kappa_at(κ, cosines, ref at κ, previous optimum or nullopt);
 #pragma once
 
 #include <algorithm>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -64,6 +64,51 @@ struct PerKappaShape {
   std::vector<double> shape;
   double error;
 };
+
+// The runtime parameters of `Shape` at the values value(0), value(1), … in fit
+// order: each numerator (layout order) lowest coefficient first, then Q's
+// lower coefficients (Q monic: one fewer than a numerator's), then kappa_max.
+template <class Shape, class T, class Value>
+typename Shape::template Params<T> rational_params(Value value, T kappa_max) {
+  typename Shape::template Params<T> p{};
+  const std::size_t degree = std::size(p.q);
+  std::size_t i = 0;
+  for (T* numerator : Shape::numerators(p))
+    for (std::size_t j = 0; j <= degree; ++j) numerator[j] = value(i++);
+  for (std::size_t j = 0; j < degree; ++j) p.q[j] = value(i++);
+  p.kappa_max = kappa_max;
+  return p;
+}
+
+// Step 3's residual: peak_rel of the runtime function at one (κ, c), every
+// coefficient a parameter (fit order).
+template <class Shape>
+struct RationalModelResidual {
+  double kappa, cosine, reference, peak, kappa_max;
+  template <class T>
+  bool operator()(T const* const* p, T* r) const {
+    const auto params =
+        rational_params<Shape>([p](std::size_t i) { return p[i][0]; }, T(kappa_max));
+    r[0] = (Shape::irradiance(T(cosine), T(kappa), params) - T(reference)) / T(peak);
+    return true;
+  }
+};
+
+// The runtime function at `values` (fit order): a generic callable (c, κ) → Ê.
+template <class Shape>
+auto rational_model(const std::vector<double>& values, double kappa_max) {
+  return [p = rational_params<Shape>([&values](std::size_t i) { return values[i]; }, kappa_max)](
+             auto c, auto k) { return Shape::irradiance(c, k, p); };
+}
+
+// The words of the certificate at the fitted denominator, from the layout:
+// the first `certified` numerators free, Q and the others as fitted.
+struct CertificateTexts {
+  std::string free;   // "A, B, C"
+  std::string fixed;  // "Q and V"
+  std::string kind;   // "lp_at_fitted_denominator_and_v: the numerators of A, B and C free, …"
+};
+CertificateTexts certificate_texts(const RationalLayout& layout, std::size_t certified);
 
 // The reference engine's irradiance on kappas × cosines, κ-major.
 std::vector<reference::ReferencePoint> rational_reference_grid(const std::vector<double>& kappas,
@@ -147,16 +192,18 @@ FitOutcome fit_rational_shape(const FitSpec& spec) {
   params.values = committed ? *committed : rational_start<Shape>(per, lo, hi);
 
   // 3. Joint minimax on the runtime function.
-  const auto [result, start_error] = layout.template joint_minimax<typename Shape::Residual>(
-      train, params, hi, committed.has_value());
+  using Residual = RationalModelResidual<Shape>;
+  const auto [result, start_error] =
+      layout.template joint_minimax<Residual>(train, params, hi, committed.has_value());
   const MeasuringGrids grids = measuring_grids(spec);
-  const Measurements m = measure_all(Shape::model(result.values, hi), train, grids);
+  const Measurements m = measure_all(rational_model<Shape>(result.values, hi), train, grids);
   const ordered_json coefficients = layout.coefficients_json(result.values, hi);
   const ordered_json achieved = achieved_json(result.max_abs, floor, m, grids);
 
   // 4. Certificate.
-  const ordered_json certificate = layout.template lp_certificate<typename Shape::Residual>(
-      train, result.values, Shape::certified, hi, Shape::certificate_kind);
+  const CertificateTexts texts = certificate_texts(layout, Shape::certified);
+  const ordered_json certificate = layout.template lp_certificate<Residual>(
+      train, result.values, Shape::certified, hi, texts.kind);
 
   FitSpec recorded = spec;
   recorded.kappa_count = kRationalTrainKappas;
@@ -168,7 +215,7 @@ FitOutcome fit_rational_shape(const FitSpec& spec) {
       fmt::format("minimax of the {} irradiance peak_rel error (double) over a training "
                   "grid of {} kappa (log-midpoints of {} cells of [{}, {}]) x {} uniform cosines; "
                   "start: {}",
-                  Shape::runtime, kRationalTrainKappas, kRationalTrainKappas, lo, hi,
+                  cpp_identifier(layout.target), kRationalTrainKappas, kRationalTrainKappas, lo, hi,
                   kRationalTrainCosines,
                   committed ? "the committed set (polish)"
                             : "per-kappa optimum, then rational least squares"),
@@ -189,9 +236,8 @@ FitOutcome fit_rational_shape(const FitSpec& spec) {
   out.report["certificate"] = certificate;
   out.report["coefficients"] = coefficients;
   out.report["per_kappa"] = per_kappa_json(per);
-  out.text =
-      rational_fit_text(layout.target, variant, floor, committed.has_value(), start_error,
-                        result.max_abs, grids, m, certificate, Shape::numerators, Shape::fixed);
+  out.text = rational_fit_text(layout.target, variant, floor, committed.has_value(), start_error,
+                               result.max_abs, grids, m, certificate, texts.free, texts.fixed);
   return out;
 }
 

@@ -67,7 +67,11 @@ double machine_epsilon(io::Precision p);
 std::vector<double> kappa_grid(double lo, double hi, int count);
 std::vector<double> cosine_grid(int count);
 
-// A constant set with provenance; `coefficients` in parameter-struct order.
+// `text` as a C++ identifier: every character but letters and digits as '_'.
+std::string cpp_identifier(std::string text);
+
+// A constant set with provenance; `coefficients` in parameter-struct order;
+// its cpp_name is cpp_identifier(target + "_" + variant).
 ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
                                const std::string& variant, const std::string& cpp_type,
                                const std::string& form, ordered_json coefficients,

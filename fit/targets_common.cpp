@@ -44,13 +44,17 @@ std::vector<double> cosine_grid(int count) {
   return c;
 }
 
+std::string cpp_identifier(std::string text) {
+  for (char& ch : text)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return text;
+}
+
 ordered_json make_constant_set(const FitSpec& spec, const std::string& target,
                                const std::string& variant, const std::string& cpp_type,
                                const std::string& form, ordered_json coefficients,
                                ordered_json objective, ordered_json achieved) {
-  std::string cpp_name = target + "_" + variant;
-  for (char& ch : cpp_name)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  const std::string cpp_name = cpp_identifier(target + "_" + variant);
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));

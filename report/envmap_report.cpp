@@ -228,17 +228,7 @@ std::pair<std::vector<std::filesystem::path>, std::filesystem::path> baseline_pa
     out = *root / "data" / "results";
   }
   io::check_output_folder(out);
-  std::vector<std::filesystem::path> files;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(maps_dir, ec)) {
-    const auto ext = e.path().extension().string();
-    if (ext == ".exr" || ext == ".hdr") files.push_back(e.path());
-  }
-  if (ec) throw InputError(fmt::format("--maps {}: {}", maps_dir.string(), ec.message()));
-  std::sort(files.begin(), files.end());
-  if (files.empty())
-    throw InputError(fmt::format("--maps {}: no .exr or .hdr maps", maps_dir.string()));
-  return {files, out};
+  return {envmap::map_files(maps_dir, "--maps"), out};
 }
 
 // Every map with its exact irradiance at the fit and the evaluation normals.

@@ -290,16 +290,7 @@ void run_probe_table(const std::string& maps_arg, const std::string& out_arg, bo
     out = *root / "data" / "results";
   }
   io::check_output_folder(out);
-  std::vector<std::filesystem::path> files;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(maps_dir, ec)) {
-    const auto ext = e.path().extension().string();
-    if (ext == ".exr" || ext == ".hdr") files.push_back(e.path());
-  }
-  if (ec) throw InputError(fmt::format("--maps {}: {}", maps_dir.string(), ec.message()));
-  std::sort(files.begin(), files.end());
-  if (files.empty())
-    throw InputError(fmt::format("--maps {}: no .exr or .hdr maps", maps_dir.string()));
+  std::vector<std::filesystem::path> files = envmap::map_files(maps_dir, "--maps");
   // quick: every fourth map at 27 floats (the envmap step of `sglab run`: two maps, one per core).
   const std::vector<std::size_t> budgets =
       quick ? std::vector<std::size_t>{27} : std::vector<std::size_t>{15, 27, 48, 75};

@@ -137,26 +137,45 @@ cost_table() {  # METHOD...: callgrind and GPU cost, ratios to the first
 cost_table tokuyoshi2024 sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4 | fill "$results/sglab_acc.md" cost
 range_table sglab_acc1 sglab_acc2 sglab_acc3 sglab_acc4 tokuyoshi2024 | fill "$results/sglab_acc.md" kappa-range
 
-# data/results/sglab_fast.md: the fit report, errors on both grids, the costs.
-fence <"$work/fit-sglab-fast.txt" | fill "$results/sglab_fast.md" fit
-{
+# accuracy_table METHOD...: each METHOD's max peak_rel in float and double on the standard and
+# held-out grids, and the κ of its held-out float worst.
+accuracy_table() {
   echo "| method | standard float | standard double | held-out float | held-out double | worst κ held-out (float) |"
   echo "|---|---:|---:|---:|---:|---:|"
-  for m in sglab_fast tokuyoshi2024 vsgl2015; do
+  for m in "$@"; do
     printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(peak "$standard" "$m")" "$(peak "$standard" "$m" double)" \
       "$(peak "$heldout" "$m")" "$(peak "$heldout" "$m" double)" "$(worst_kappa "$heldout" "$m")"
   done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), sig($4), sig($5), $6 }'
-} | fill "$results/sglab_fast.md" accuracy
-{
-  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split | navi21 per light |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
-  for m in sglab_fast vsgl2015 tokuyoshi2024; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
-      "$(instructions "$m" setup)" "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" \
-      "$(cycles "$m" navi21 true)" "$(per_light "$m" navi21)"
+}
+# model_cost_table "FAMILY..." METHOD...: each METHOD's callgrind instructions (scalar, batch,
+# per-light setup, per-point eval), GPU cycles of one call on navi21 and gfx1100, of the split
+# form on each FAMILY, and per light per pixel on navi21.
+model_cost_table() {
+  local families=($1) head rule
+  shift
+  head="| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 |"
+  rule="|---|---:|---:|---:|---:|---:|---:|"
+  for f in "${families[@]}"; do
+    head+=" $f split |"
+    rule+="---:|"
+  done
+  echo "$head navi21 per light |"
+  echo "$rule---:|"
+  for m in "$@"; do
+    local row=("$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" "$(instructions "$m" setup)"
+      "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)")
+    for f in "${families[@]}"; do row+=("$(cycles "$m" "$f" true)"); done
+    row+=("$(per_light "$m" navi21)")
+    (IFS=$'\t'; echo "${row[*]}")
   done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
-                        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.3g |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }'
-} | fill "$results/sglab_fast.md" cost
+                        line = "|"; for (i = 1; i < NF; ++i) line = line " " $i " |"
+                        printf "%s %.3g |\n", line, $NF }'
+}
+
+# data/results/sglab_fast.md: the fit report, errors on both grids, the costs.
+fence <"$work/fit-sglab-fast.txt" | fill "$results/sglab_fast.md" fit
+accuracy_table sglab_fast tokuyoshi2024 vsgl2015 | fill "$results/sglab_fast.md" accuracy
+model_cost_table navi21 sglab_fast vsgl2015 tokuyoshi2024 | fill "$results/sglab_fast.md" cost
 range_table sglab_fast tokuyoshi2024 vsgl2015 | fill "$results/sglab_fast.md" kappa-range
 for scene in studio sun_and_sky soft_room; do
   echo '```sh'
@@ -169,24 +188,8 @@ done | sed '$d' | fill "$results/sglab_fast.md" scenes
 
 # data/results/sglab_mid.md: the fit report, errors on both grids, the costs.
 fence <"$work/fit-sglab-mid.txt" | fill "$results/sglab_mid.md" fit
-{
-  echo "| method | standard float | standard double | held-out float | held-out double | worst κ held-out (float) |"
-  echo "|---|---:|---:|---:|---:|---:|"
-  for m in sglab_mid tokuyoshi2024 sglab_fast; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(peak "$standard" "$m")" "$(peak "$standard" "$m" double)" \
-      "$(peak "$heldout" "$m")" "$(peak "$heldout" "$m" double)" "$(worst_kappa "$heldout" "$m")"
-  done | awk -F'\t' "$fmt_awk"'{ printf "| %s | %s | %s | %s | %s | %.4g |\n", $1, sig($2), sig($3), sig($4), sig($5), $6 }'
-} | fill "$results/sglab_mid.md" accuracy
-{
-  echo "| method | scalar Ir | batch Ir | per-light setup Ir | per-point eval Ir | navi21 | gfx1100 | navi21 split | gfx1100 split | navi21 per light |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-  for m in sglab_mid tokuyoshi2024 sglab_fast; do
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$m" "$(instructions "$m" scalar)" "$(instructions "$m" batch)" \
-      "$(instructions "$m" setup)" "$(instructions "$m" eval)" "$(cycles "$m" navi21)" "$(cycles "$m" gfx1100)" \
-      "$(cycles "$m" navi21 true)" "$(cycles "$m" gfx1100 true)" "$(per_light "$m" navi21)"
-  done | awk -F'\t' '{ for (i = 2; i <= 5; ++i) if ($i == "") $i = "–"; else $i = sprintf("%.0f", $i);
-                        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.3g |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10 }'
-} | fill "$results/sglab_mid.md" cost
+accuracy_table sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" accuracy
+model_cost_table "navi21 gfx1100" sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" cost
 range_table sglab_mid tokuyoshi2024 sglab_fast | fill "$results/sglab_mid.md" kappa-range
 
 # data/results/vulkan_sweep.md: one row per method, one column per backend.

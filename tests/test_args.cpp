@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <variant>
 
@@ -264,6 +265,15 @@ TEST(Vocabulary, NamesParseBackToTheirValues) {
   EXPECT_EQ(sglab::io::to_string(sglab::io::Precision::float16), "half");
   EXPECT_EQ(sglab::io::to_string(sglab::io::Precision::float64), "double");
   EXPECT_FALSE(sglab::io::parse_enum<sglab::io::Precision>("Float"));
+}
+
+// A value-initialized Precision is no precision (not half): it has no name and
+// no number format.
+TEST(Vocabulary, AValueInitializedPrecisionIsNone) {
+  constexpr sglab::io::Precision none{};
+  for (const auto& n : names_of(sglab::io::Precision{})) EXPECT_NE(n.value, none) << n.name;
+  EXPECT_EQ(sglab::io::to_string(none), "?");
+  EXPECT_THROW(sglab::io::number_format(none), std::invalid_argument);
 }
 
 TEST(Vocabulary, AnOptionOutsideItsValuesNamesTheOptionAndTheValues) {

@@ -54,15 +54,17 @@ TEST(Constants, PublishedValuesAreThePublishedDigits) {
 // (a[0] of sglab_mid moved in its 5th digit fails both recorded maxima).
 TEST(Constants, SglabModelsHaveTheErrorsTheirFitRecorded) {
   const sglab::fit::MeasuringGrids grids = sglab::fit::measuring_grids(sglab::fit::FitSpec{});
+  const auto sets = sglab::fit::load_constant_sets(kRoot / "data" / "constants");
   std::size_t models = 0;
   for (const sglab::Method& m : sglab::irradiance_methods) {
     if (m.origin != sglab::Origin::sglab) continue;
     ++models;
-    std::string file(m.constants);  // one set: sglab_mid_float -> sglab-mid-float.json
-    std::replace(file.begin(), file.end(), '_', '-');
-    const auto set = nlohmann::json::parse(
-        sglab::io::read_file(kRoot / "data" / "constants" / (file + ".json")));
-    const auto& achieved = set.at("provenance").at("achieved");
+    // one set, the one whose cpp_name the card names
+    const auto set = std::find_if(sets.begin(), sets.end(), [&m](const auto& s) {
+      return s.at("cpp_name").template get<std::string>() == m.constants;
+    });
+    ASSERT_NE(set, sets.end()) << m.id << ": no constant set named " << m.constants;
+    const auto& achieved = set->at("provenance").at("achieved");
     const auto model = [&m](auto c, auto k) {
       if constexpr (std::is_same_v<decltype(c), float>)
         return double(m.f32(c, k));

@@ -19,9 +19,11 @@
 #include <sglab/sglab.hpp>
 
 #include "common/io.hpp"
+#include "fit/constants_io.hpp"
 #include "fit/constants_schema.hpp"
 #include "fit/minimax.hpp"
 #include "fit/model_family.hpp"
+#include "fit/rational_shape_fit.hpp"
 #include "fit/targets.hpp"
 #include "reference/reference.hpp"
 #include "tests/fit_guard.hpp"
@@ -578,6 +580,31 @@ TEST(RationalLayout, LeastSquaresStartRecoversAnExactRational) {
   }
   EXPECT_THROW(layout.least_squares_start(kappa, {targets[0]}, weights, lo, hi),
                std::invalid_argument);
+}
+
+// The words of a rational-shape certificate come from the layout: for sglab-fast
+// and sglab-mid they are the kind their committed sets record.
+TEST(RationalLayout, CertificateTextsAreThoseOfTheCommittedSets) {
+  struct Case {
+    sglab::fit::RationalLayout layout;
+    const char* file;
+    const char* free;
+    const char* fixed;
+  };
+  for (const Case& c :
+       {Case{
+            {"sglab-fast", {"a", "b", "c", "v"}, 4}, "sglab-fast-float.json", "A, B, C", "Q and V"},
+        Case{{"sglab-mid", {"a", "b", "d", "s", "v"}, 4},
+             "sglab-mid-float.json",
+             "A, B, D",
+             "Q, S and V"}}) {
+    const auto texts = sglab::fit::certificate_texts(c.layout, 3);
+    const auto set =
+        sglab::fit::load_constant_set(sglab::test::checkout_dir() / "data" / "constants" / c.file);
+    EXPECT_EQ(texts.kind, set["provenance"]["certificate"]["kind"].get<std::string>()) << c.file;
+    EXPECT_EQ(texts.free, c.free);
+    EXPECT_EQ(texts.fixed, c.fixed);
+  }
 }
 
 }  // namespace

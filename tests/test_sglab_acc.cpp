@@ -134,7 +134,7 @@ TEST(SglabAcc, NeverNaNAtTheEdges) {
 // so the whole model is the same function (to rounding) in the scalar and
 // the float batch paths, on both sides of κ = 1.
 TEST(SglabAcc, SteepnessOfOrderMIsTheRationalForm) {
-  const auto& a = sglab::constants::sglab_acc_acc1;
+  const auto& a = sglab::constants::sglab_acc1;
   const sglab::Steepness2024Params<double> s24{a.steep[0], a.steep[1], a.steep[2], a.steep[3],
                                                a.steep[4]};
   const auto rational = sglab::steepness_rational_of(s24);

@@ -29,6 +29,10 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 const char* verdict(bool holds) { return holds ? "holds" : "does not hold"; }
+// "holds", else "holds in part" when the weaker reading `in_part` holds.
+const char* verdict(bool holds, bool in_part) {
+  return holds ? "holds" : in_part ? "holds in part" : "does not hold";
+}
 
 // ∫_a^b f of a smooth f: adaptive 31-point Gauss-Kronrod (Boost.Math).
 template <class F>
@@ -168,7 +172,7 @@ std::vector<Claim> claims_lambda_d() {
        fmt::format("sphere LS λd = {:.4f} (recomputed {:.4f}), hemisphere LS λd = {:.4f} "
                    "(recomputed {:.4f}); sphere objective at λd = 2 is {:.3f}× its minimum",
                    c_sphere, ls_sphere, c_hemi, ls_hemi, obj2 / objls),
-       near ? "holds" : (rough ? "holds in part" : "does not hold")});
+       verdict(near, rough)});
   const double a2 = sphere_integral(2.0);
   out.push_back(
       {"lambda_d_A_pi", "A(λd) ≈ π for λd = 2 (Iwasaki et al.'s approximation)",
@@ -248,19 +252,27 @@ Claim claim_mjp_inner_product_back(const Kappa4Chart& c) {
                       "{:.4f}, front side {:.4f}; min (Ê-E) for θ > 90° = {:.3g}",
                       max_err, 100 * max_err / c.peak, max_theta * 180 / kPi, back_max, front_max,
                       back_min_diff),
-          stronger && biggest_back
-              ? "holds"
-              : (stronger || biggest_back ? "holds in part" : "does not hold")};
+          verdict(stronger && biggest_back, stronger || biggest_back)};
+}
+
+// The chart's points by θ: all, the side facing away from the light (θ > π/2), the front.
+enum class Side { all, back, front };
+
+// The max |Ê − E| of the method `id` (double) over the chart's points on `side`.
+double max_abs_error(const Kappa4Chart& c, const char* id, Side side = Side::all) {
+  const Method* m = registered_irradiance(id);
+  double out = 0;
+  for (int i = 0; i < c.n; ++i) {
+    const bool back = c.theta[i] > kPi / 2;
+    if (side == Side::all || back == (side == Side::back))
+      out = std::max(out, std::abs(m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance));
+  }
+  return out;
 }
 
 Claim claim_mjp_punctual(const Kappa4Chart& c) {
-  const Method* m = registered_irradiance("punctual");
-  double back_max = 0, front_max = 0;
-  for (int i = 0; i < c.n; ++i) {
-    const double d = std::abs(m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance);
-    (c.theta[i] > kPi / 2 ? back_max : front_max) =
-        std::max(c.theta[i] > kPi / 2 ? back_max : front_max, d);
-  }
+  const double back_max = max_abs_error(c, "punctual", Side::back),
+               front_max = max_abs_error(c, "punctual", Side::front);
   return {"mjp_punctual",
           "κ = 4 chart: pulling the cosine out (punctual) introduces quite a bit of error, "
           "particularly where θ > π/2",
@@ -269,19 +281,12 @@ Claim claim_mjp_punctual(const Kappa4Chart& c) {
           "peak",
           fmt::format("max peak_rel: θ > 90°: {:.2f}%, θ <= 90°: {:.2f}%", 100 * back_max / c.peak,
                       100 * front_max / c.peak),
-          back_max / c.peak > 0.05 && back_max > front_max        ? "holds"
-          : back_max / c.peak > 0.05 || front_max / c.peak > 0.05 ? "holds in part"
-                                                                  : "does not hold"};
+          verdict(back_max / c.peak > 0.05 && back_max > front_max,
+                  back_max / c.peak > 0.05 || front_max / c.peak > 0.05)};
 }
 
 Claim claim_mjp_hill_close(const Kappa4Chart& c) {
-  const Method* m = registered_irradiance("hill");
-  const Method* w = registered_irradiance("wang2009");
-  double hill_max = 0, wang_max = 0;
-  for (int i = 0; i < c.n; ++i) {
-    hill_max = std::max(hill_max, std::abs(m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance));
-    wang_max = std::max(wang_max, std::abs(w->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance));
-  }
+  const double hill_max = max_abs_error(c, "hill"), wang_max = max_abs_error(c, "wang2009");
   return {"mjp_hill_close",
           "κ = 4 chart: Stephen Hill's fitted curve is 'very close' to the ground truth (closer "
           "than the inner product)",
@@ -290,9 +295,7 @@ Claim claim_mjp_hill_close(const Kappa4Chart& c) {
           "(invisible on the chart)",
           fmt::format("hill max peak_rel = {:.3f}% (wang2009: {:.3f}%)", 100 * hill_max / c.peak,
                       100 * wang_max / c.peak),
-          hill_max / c.peak <= 0.01 && hill_max < wang_max ? "holds"
-          : hill_max < wang_max                            ? "holds in part"
-                                                           : "does not hold"};
+          verdict(hill_max / c.peak <= 0.01 && hill_max < wang_max, hill_max < wang_max)};
 }
 
 std::vector<Claim> claims_mjp() {
@@ -332,9 +335,7 @@ Claim claim_numerical_vs_approximation() {
                       "α·2^-24, half the approximation error; with a 1-ulp exp (GPU-style) it is "
                       "α·ε_float = {:.4g}, equal to the approximation error (how λ was balanced)",
                       approx, numerical, ratio, model),
-          ratio >= 0.8 && ratio <= 1.25
-              ? "holds"
-              : (ratio >= 0.25 && ratio <= 4 ? "holds in part" : "does not hold")};
+          verdict(ratio >= 0.8 && ratio <= 1.25, ratio >= 0.25 && ratio <= 4)};
 }
 
 std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness) {
@@ -361,10 +362,7 @@ std::vector<Claim> claims_steepness(const OptimalSteepnessFn& optimal_steepness)
                  "[Tokuyoshi2022] supplementary §1.2, Fig. 2",
                  "fit::optimal_steepness (minimax of erf-model s̃ - s over 201 cosines) at κ = "
                  "1e2..1e5; holds if |t*/√(κ/2) - 1| shrinks with κ and is < 2% at κ = 1e5",
-                 m,
-                 decreasing && dev.back() < 0.02
-                     ? "holds"
-                     : (dev.back() < 0.05 ? "holds in part" : "does not hold")});
+                 m, verdict(decreasing && dev.back() < 0.02, dev.back() < 0.05)});
 
   // Eq. 6 close to the dots, and itself → √(κ/2).
   std::vector<double> ks;

@@ -56,6 +56,14 @@ SGLAB_FORCE_INLINE float sqrt_bf(float y) {
   return s + 0.5f * r * (y - s * s);
 }
 
+// The Taylor polynomials of e^r (degree 7: 1/k!, k = 0 … 7) and of
+// (e^x − 1)/x (degree 7: 1/(k + 1)!), coefficients lowest order first (horner).
+inline constexpr float kExpTaylor[] = {1.0f,         1.0f,          0.5f,          1.0f / 6.0f,
+                                       1.0f / 24.0f, 1.0f / 120.0f, 1.0f / 720.0f, 1.0f / 5040.0f};
+inline constexpr float kExpm1Taylor[] = {1.0f,           0.5f,           1.0f / 6.0f,
+                                         1.0f / 24.0f,   1.0f / 120.0f,  1.0f / 720.0f,
+                                         1.0f / 5040.0f, 1.0f / 40320.0f};
+
 // e^x for x ≤ 88: x = n ln2 + r with |r| ≤ ln2/2 (Cody–Waite, two-part ln2),
 // e^r by its Taylor polynomial of degree 7 (truncation < 6e−9), times 2^n
 // built in the exponent bits. Below −87.3 the result is 0.
@@ -63,14 +71,7 @@ SGLAB_FORCE_INLINE float exp_bf(float x) {
   const float xc = clamp(x, -87.0f, 88.0f);
   const float n = round_nearest(xc * 1.44269504088896341f);
   const float r = (xc - n * 0.693145751953125f) - n * 1.428606765330187e-6f;
-  float p = 1.0f / 5040.0f;
-  p = p * r + 1.0f / 720.0f;
-  p = p * r + 1.0f / 120.0f;
-  p = p * r + 1.0f / 24.0f;
-  p = p * r + 1.0f / 6.0f;
-  p = p * r + 0.5f;
-  p = p * r + 1.0f;
-  p = p * r + 1.0f;
+  const float p = horner(r, kExpTaylor);
   const std::int32_t e = static_cast<std::int32_t>(n) + 127;
   const float scale = std::bit_cast<float>(static_cast<std::uint32_t>(e) << 23);
   return select(x < -87.0f, 0.0f, p * scale);
@@ -80,15 +81,7 @@ SGLAB_FORCE_INLINE float exp_bf(float x) {
 // x(1 + x/2 + … + x^7/8!) for x > −ln2/2 (truncation < 2e−8), e^x − 1
 // below (where e^x − 1 ≤ −0.29, so the subtraction costs at most 2 bits).
 SGLAB_FORCE_INLINE float expm1_bf(float x) {
-  float p = 1.0f / 40320.0f;
-  p = p * x + 1.0f / 5040.0f;
-  p = p * x + 1.0f / 720.0f;
-  p = p * x + 1.0f / 120.0f;
-  p = p * x + 1.0f / 24.0f;
-  p = p * x + 1.0f / 6.0f;
-  p = p * x + 0.5f;
-  p = p * x + 1.0f;
-  return select(x > -0.34657359f, p * x, exp_bf(x) - 1.0f);
+  return select(x > -0.34657359f, horner(x, kExpm1Taylor) * x, exp_bf(x) - 1.0f);
 }
 
 // erfc(x) from |x| and e^{−x²} (passed in so that a caller that needs e^{−x²}

@@ -17,9 +17,7 @@ namespace sglab::constants {
 //   command: sglab fit clamped-cosine --precision double
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr ClampedCosineParams<double> clamped_cosine_double{
-    .lambda = 3.650024149988861e-08,
-    .alpha = 27397078.66963852};
+inline constexpr ClampedCosineParams<double> clamped_cosine_double{.lambda = 3.650024149988861e-08, .alpha = 27397078.66963852};
 
 // clamped-cosine / float-alpha-free: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
 //   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = float machine epsilon (1.1920928955078125e-07); alpha free
@@ -30,9 +28,7 @@ inline constexpr ClampedCosineParams<double> clamped_cosine_double{
 //   command: sglab fit clamped-cosine --alpha-free
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr ClampedCosineParams<double> clamped_cosine_float_alpha_free{
-    .lambda = 0.00117874579300672,
-    .alpha = 847.9451773438616};
+inline constexpr ClampedCosineParams<double> clamped_cosine_float_alpha_free{.lambda = 0.00117874579300672, .alpha = 847.9451773438616};
 
 // clamped-cosine / float: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
 //   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = float machine epsilon (1.1920928955078125e-07); alpha tied by energy conservation
@@ -43,9 +39,7 @@ inline constexpr ClampedCosineParams<double> clamped_cosine_float_alpha_free{
 //   command: sglab fit clamped-cosine
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr ClampedCosineParams<double> clamped_cosine_float{
-    .lambda = 0.0008456087476123556,
-    .alpha = 1182.246698729149};
+inline constexpr ClampedCosineParams<double> clamped_cosine_float{.lambda = 0.0008456087476123556, .alpha = 1182.246698729149};
 
 // clamped-cosine / half: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
 //   objective: minimize max_u |alpha*(exp(lambda*u) - 1) - u| + alpha*eps, eps = half machine epsilon (0.0009765625); alpha tied by energy conservation
@@ -56,29 +50,22 @@ inline constexpr ClampedCosineParams<double> clamped_cosine_float{
 //   command: sglab fit clamped-cosine --precision half
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr ClampedCosineParams<double> clamped_cosine_half{
-    .lambda = 0.07558706178509061,
-    .alpha = 12.898554196827128};
+inline constexpr ClampedCosineParams<double> clamped_cosine_half{.lambda = 0.07558706178509061, .alpha = 12.898554196827128};
 
 // clamped-cosine / published: max(cos,0) ≈ alpha*(exp(lambda*cos) - 1) on the upper hemisphere
 //   objective: published
 //   source: [Tokuyoshi2022] Accurate Diffuse Lighting from Spherical Gaussian Lights, supplementary Listing 1
-inline constexpr ClampedCosineParams<double> clamped_cosine_published{
-    .lambda = 0.0008456087224148012,
-    .alpha = 1182.2467339678153};
+inline constexpr ClampedCosineParams<double> clamped_cosine_published{.lambda = 0.0008456087224148012, .alpha = 1182.2467339678153};
 
 // lambda-d / cosine-lobe-published: max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere
 //   objective: published
 //   source: [Wang2009] All-Frequency Rendering of Dynamic, Spatially-Varying Reflectance (quoted in [Pettineo2016])
-inline constexpr CosineLobeParams<double> cosine_lobe_published{
-    .lambda = 2.133,
-    .amplitude = 1.17};
+inline constexpr CosineLobeParams<double> cosine_lobe_published{.lambda = 2.133, .amplitude = 1.17};
 
 // lambda-d / diffuse-lobe-published: max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A(lambda_d) ≈ pi
 //   objective: published
 //   source: [Tokuyoshi2015] Fast Indirect Illumination Using Two Virtual Spherical Gaussian Lights, supplemental Eq. 1
-inline constexpr DiffuseLobeParams<double> diffuse_lobe_published{
-    .lambda_d = 2.0};
+inline constexpr DiffuseLobeParams<double> diffuse_lobe_published{.lambda_d = 2.0};
 
 // erf / as7125-float: erf(x) ≈ 1 - (a1 t + a2 t^2 + ...) exp(-x^2), t = 1/(1 + p x), x >= 0; odd
 //   objective: minimax of |erf_as(x) - erf(x)| on [0, 6] (Lawson IRLS), coefficients rounded to float one at a time with re-fits
@@ -130,8 +117,7 @@ inline constexpr Listing5Params<double, 6, 7> erf_listing5_published{
 // hill / published: Stephen Hill's fitted irradiance curve, c1 = 1/(4 c0)
 //   objective: published
 //   source: Stephen Hill, unpublished; quoted in [Pettineo2016]
-inline constexpr HillParams<double> hill_published{
-    .c0 = 0.36};
+inline constexpr HillParams<double> hill_published{.c0 = 0.36};
 
 // lambda-d / cosine-lobe-free-amplitude: max(cos,0) ≈ amplitude*exp(lambda*(cos - 1)) over the sphere
 //   objective: least squares: integral over the sphere of (max(cos,0) - amplitude*G(lambda))^2
@@ -142,9 +128,7 @@ inline constexpr HillParams<double> hill_published{
 //   command: sglab fit lambda-d
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr CosineLobeParams<double> lambda_d_cosine_lobe_free_amplitude{
-    .lambda = 2.1437711387451794,
-    .amplitude = 1.176637895667662};
+inline constexpr CosineLobeParams<double> lambda_d_cosine_lobe_free_amplitude{.lambda = 2.1437711387451794, .amplitude = 1.176637895667662};
 
 // lambda-d / diffuse-lobe-hemisphere-ls: max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)
 //   objective: least squares: integral over the upper hemisphere of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2
@@ -155,8 +139,7 @@ inline constexpr CosineLobeParams<double> lambda_d_cosine_lobe_free_amplitude{
 //   command: sglab fit lambda-d
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_hemisphere_ls{
-    .lambda_d = 2.2068842920855416};
+inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_hemisphere_ls{.lambda_d = 2.2068842920855416};
 
 // lambda-d / diffuse-lobe-irradiance: max(cos,0)/pi ≈ G(omega; n, lambda_d)/A(lambda_d), A ≈ pi, Iwasaki product integral (vsgl2015)
 //   objective: minimax of the vsgl2015 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
@@ -167,8 +150,7 @@ inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_hemisphere_ls{
 //   command: sglab fit lambda-d
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_irradiance{
-    .lambda_d = 1.9303713229721635};
+inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_irradiance{.lambda_d = 1.9303713229721635};
 
 // lambda-d / diffuse-lobe-sphere-ls: max(cos,0)/pi ≈ G(omega; n, lambda_d)/S(lambda_d)
 //   objective: least squares: integral over the sphere of (max(cos,0)/pi - G(lambda_d)/S(lambda_d))^2
@@ -179,20 +161,12 @@ inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_irradiance{
 //   command: sglab fit lambda-d
 //   tool: sglab 0.1.0
 //   date: 2026-11-21
-inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_sphere_ls{
-    .lambda_d = 2.292504216798945};
+inline constexpr DiffuseLobeParams<double> lambda_d_diffuse_lobe_sphere_ls{.lambda_d = 2.292504216798945};
 
 // meder2018 / published: t(kappa) = sqrt(kappa)*(a2*kappa^2 + a1*kappa)/(kappa^2 + b1*kappa + b0); cos ≈ amplitude*exp(sharpness*(cos - 1)) - offset
 //   objective: published
 //   source: Meder & Brüderlin 2018, Hemispherical Gaussians for Accurate Light Integration
-inline constexpr Meder2018Params<double> meder2018_published{
-    .a2 = 1.6988,
-    .a1 = 10.8438,
-    .b1 = 6.2201,
-    .b0 = 10.2415,
-    .amplitude = 32.708,
-    .sharpness = 0.0315,
-    .offset = 31.7003};
+inline constexpr Meder2018Params<double> meder2018_published{.a2 = 1.6988, .a1 = 10.8438, .b1 = 6.2201, .b0 = 10.2415, .amplitude = 32.708, .sharpness = 0.0315, .offset = 31.7003};
 
 // sglab-acc / acc1: E = 2*pi*lerp(E(-1)/2pi, E(1)/2pi, f), f = f2024(c, t) + (1 - c^2)*exp(-z^2)*sum_j b_j*z^(2j), z = t*c; t(kappa) = kappa*sqrt(0.5*((kappa + s0)*kappa + s1)/(((kappa + s2)*kappa + s3)*kappa + s4)) with s = steep; b_j = u*(1 - u)^3*(num[j*(D+1)] + num[j*(D+1)+1]*u + ... + num[j*(D+1)+D]*u^D), u = t/(t + scale)
 //   objective: minimax of the irradiance peak_rel |E^ - E|/E(1, kappa) (double) divided by w(kappa) = min(T, max(e2024(kappa), 8e-7)), T = 0.00024, e2024(kappa) the float error of tokuyoshi2024 at kappa (never worse than it), on a training grid of 72 kappa (40 log-spaced at half-step offsets, twice as dense in [0.5, 200], plus the ends) x (c = 0, 24 offset cosines, c = +-z_k/t, z_k = 0.1..3.1), 3020 points in all, kappa in [0.001, 10000] (Ceres, every parameter); alternating with the exact minimax of the coefficients of every P_j at the fitted t(kappa) and s (a linear program, COIN-OR CLP) on the dense training grid of the certificate, whose max is the objective
@@ -204,7 +178,7 @@ inline constexpr Meder2018Params<double> meder2018_published{
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.8011426119274957,"lower_bound":0.8011426119274101,"within_percent_of_best_member":1.0680345496894006e-11,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.774866927705462,"max_peak_rel":0.00018596806264931087},"lp":{"working_rows":182,"rounds":6,"converged":true}}
-inline constexpr SglabAccParams<double, 1, 3, 2> sglab_acc_acc1{
+inline constexpr SglabAccParams<double, 1, 3, 2> sglab_acc1{
     .steep = {91.3284679317032, 180.85108468347798, 74.43215424337414, 165.1784084030511, 918.0282369820127},
     .num = {-0.027439765170804722, 0.297083490214733, 1.15904140179445, -1.2271888607577333},
     .scale = 1.8378739392929977};
@@ -219,7 +193,7 @@ inline constexpr SglabAccParams<double, 1, 3, 2> sglab_acc_acc1{
 //   tool: sglab 0.1.0
 //   date: 2026-12-03
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.9091442237813113,"lower_bound":0.9091442237765199,"within_percent_of_best_member":5.270228697895618e-10,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.8845235127917683,"max_peak_rel":2.8304752409336586e-05},"lp":{"working_rows":544,"rounds":9,"converged":true}}
-inline constexpr SglabAccParams<double, 2, 5, 2> sglab_acc_acc2{
+inline constexpr SglabAccParams<double, 2, 5, 2> sglab_acc2{
     .steep = {53.61225659803996, 52.38779104676473, 34.4311259564653, 54.69429946169936, 451.5756485479585},
     .num = {-0.1995837214911383, 1.5304522200256405, -5.830169736168146, 24.115074853351942, -34.640291785249836, 15.277425276565989, -0.02552808390159125, -0.8807865920256611, 5.115906171645935, -5.702523653946658, -1.1194404245957883, 2.6390879668502154},
     .scale = 1.8599831603502373};
@@ -234,7 +208,7 @@ inline constexpr SglabAccParams<double, 2, 5, 2> sglab_acc_acc2{
 //   tool: sglab 0.1.0
 //   date: 2026-12-03
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.7408728524233755,"lower_bound":0.7408728523852802,"within_percent_of_best_member":5.1419535296304275e-09,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.6120798815022246,"max_peak_rel":6.120798815022247e-06},"lp":{"working_rows":795,"rounds":12,"converged":true}}
-inline constexpr SglabAccParams<double, 3, 6, 3> sglab_acc_acc3{
+inline constexpr SglabAccParams<double, 3, 6, 3> sglab_acc3{
     .steep = {55.473482273729246, 3.806347121507849e-16, 344.13564033786054, 28.9367627740431, 25.38457258283587, 495.55159304340486, 1112.8311238637675},
     .num = {0.10493531494511586, -0.11381282274389505, -8.709802420976358, 72.28222825419459, -165.78365414314248, 151.4491703640923, -49.126198352365385, 0.10323821533309314, -1.295801829232867, 1.0042408306225037, 27.85154185170756, -86.19740477484372, 91.97467060518237, -33.51202264095178, 0.28167532512354404, -3.8792795798538773, 18.411456087753255, -39.500535701394, 41.82721753048381, -21.04705698024469, 3.9105946667261344},
     .scale = 2.4922442145534873};
@@ -249,7 +223,7 @@ inline constexpr SglabAccParams<double, 3, 6, 3> sglab_acc_acc3{
 //   tool: sglab 0.1.0
 //   date: 2026-12-03
 //   certificate: {"kind":"lp_at_fitted_steepness","what":"lower_bound: the LP optimum (COIN-OR CLP) of the coefficients of every P_j at the fitted t(kappa) and scale s, the best member with those; achieved: the max at the shipped coefficients; both of max peak_rel/w(kappa) (double) on the grid below","grid":"dense training grid: 142 kappa x (c = 0, 64 offset cosines, c = +-z_k/t, z_k = 0.05..3.15), 14046 points, never a measuring grid","achieved":0.9030994347094133,"lower_bound":0.9030994346823767,"within_percent_of_best_member":2.9937607948227196e-09,"per_kappa_floor":{"kind":"b_j(kappa) free at each kappa, t(kappa) as fitted: no member with this steepness does better","weighted":0.8517883904300819,"max_peak_rel":4.25894195215041e-06},"lp":{"working_rows":1112,"rounds":8,"converged":true}}
-inline constexpr SglabAccParams<double, 4, 6, 3> sglab_acc_acc4{
+inline constexpr SglabAccParams<double, 4, 6, 3> sglab_acc4{
     .steep = {42.17825236518257, 0.553950610335972, 1217.6901719935322, 21.169869656809485, 157.69692539638575, 6.7376534693363755e-19, 12127.123659995012},
     .num = {-0.36010479013929886, -1.273144409578082, -1.5163053693016408, 59.81854773752231, -154.96599008754785, 146.6772415996027, -48.3234536924817, -0.20452318590174284, -0.12663633870476837, -6.134355685395348, 50.2487339526675, -117.52036333072701, 111.79470522063755, -38.094587963733105, 0.355685913255914, -6.153078049271038, 32.86412470227131, -82.82065352546711, 109.79329720560358, -74.29053180956836, 20.249800150177325, 0.21335064942801246, -2.4231403446928406, 10.088267826188345, -20.743769488352157, 22.723496869840087, -12.741614264915022, 2.8895697185794007},
     .scale = 2.621035092555829};
@@ -301,10 +275,7 @@ inline constexpr SglabMidParams<double> sglab_mid_float{
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
 //   certificate: {"kind":"per_kappa_floor: t free at each kappa (scan of log t, Brent, golden section to the resolution of double), no t(kappa) form does better","what":"|s~(c, t(kappa)) - s(c, kappa)|, the normalized hemispherical integral (max over the grid): the 2022 irradiance evaluates t at kappa and at the product's kappa3 = |kappa w + lambda n|, which varies with c, so a floor over one t per kappa bounds no irradiance error; s~ is what t(kappa) alone controls","grid":"dense training grid: 112 kappa (log-midpoints of 112 cells of [0.001, 10000]) x 201 uniform cosines, never a measuring grid","achieved":0.004644728145854482,"achieved_kappa":14.330125702369623,"lower_bound":0.003371703836330453,"lower_bound_kappa":8.058421877614819,"within_percent_of_best_member":37.75611297193608}
-inline constexpr Steepness2022Params<double> steepness2022_irradiance{
-    .A = 0.7751475279826382,
-    .B = 0.8759794997930127,
-    .C = 10.533593420178134};
+inline constexpr Steepness2022Params<double> steepness2022_irradiance{.A = 0.7751475279826382, .B = 0.8759794997930127, .C = 10.533593420178134};
 
 // steepness2022 / optimal-t: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: minimax of t(kappa)/t*(kappa) - 1 over 29 log-spaced kappa in [0.001, 10000]; t* minimaxes the normalized hemispherical integral s over 201 cosines
@@ -316,18 +287,12 @@ inline constexpr Steepness2022Params<double> steepness2022_irradiance{
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
 //   certificate: {"kind":"per_kappa_floor: t free at each kappa (scan of log t, Brent, golden section to the resolution of double), no t(kappa) form does better","what":"|s~(c, t(kappa)) - s(c, kappa)|, the normalized hemispherical integral (max over the grid): the 2022 irradiance evaluates t at kappa and at the product's kappa3 = |kappa w + lambda n|, which varies with c, so a floor over one t per kappa bounds no irradiance error; s~ is what t(kappa) alone controls","grid":"dense training grid: 112 kappa (log-midpoints of 112 cells of [0.001, 10000]) x 201 uniform cosines, never a measuring grid","achieved":0.004216669061153717,"achieved_kappa":6.978305848598669,"lower_bound":0.003371703836330453,"lower_bound_kappa":8.058421877614819,"within_percent_of_best_member":25.060481757581353}
-inline constexpr Steepness2022Params<double> steepness2022_optimal_t{
-    .A = 1.7830408027317328,
-    .B = 2.7134290208534346,
-    .C = 14.585956236775859};
+inline constexpr Steepness2022Params<double> steepness2022_optimal_t{.A = 1.7830408027317328, .B = 2.7134290208534346, .C = 14.585956236775859};
 
 // steepness2022 / published: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: published
 //   source: [Tokuyoshi2022] Eq. 6; supplementary Listing 3
-inline constexpr Steepness2022Params<double> steepness2022_published{
-    .A = 0.6517328826907056,
-    .B = 1.3418280033141288,
-    .C = 7.221668779895671};
+inline constexpr Steepness2022Params<double> steepness2022_published{.A = 0.6517328826907056, .B = 1.3418280033141288, .C = 7.221668779895671};
 
 // steepness2024 / irradiance: t(kappa) = kappa*sqrt(0.5*((kappa + A)*kappa + B)/(((kappa + C)*kappa + D)*kappa + E))
 //   objective: minimax of the tokuyoshi2024 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]
@@ -339,12 +304,7 @@ inline constexpr Steepness2022Params<double> steepness2022_published{
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
 //   certificate: {"kind":"per_kappa_floor: t free at each kappa (scan of log t, Brent, golden section to the resolution of double), no t(kappa) form does better","what":"tokuyoshi2024 irradiance max peak_rel (double) over the grid, for either objective (optimal-t's own measure t/t* - 1 has floor 0)","grid":"dense training grid: 112 kappa (log-midpoints of 112 cells of [0.001, 10000]) x 201 uniform cosines, never a measuring grid","achieved":0.0014558640093087372,"achieved_kappa":5.232991146814948,"lower_bound":0.0014314297120977795,"lower_bound_kappa":5.232991146814948,"within_percent_of_best_member":1.7069854708513077}
-inline constexpr Steepness2024Params<double> steepness2024_irradiance{
-    .A = 0.6432587251589651,
-    .B = 13.732849664288368,
-    .C = 1.9061654375443888,
-    .D = 10.653412521284464,
-    .E = 57.12831998211747};
+inline constexpr Steepness2024Params<double> steepness2024_irradiance{.A = 0.6432587251589651, .B = 13.732849664288368, .C = 1.9061654375443888, .D = 10.653412521284464, .E = 57.12831998211747};
 
 // steepness2024 / optimal-t: t(kappa) = kappa*sqrt(0.5*((kappa + A)*kappa + B)/(((kappa + C)*kappa + D)*kappa + E))
 //   objective: minimax of t(kappa)/t*(kappa) - 1 over 29 log-spaced kappa in [0.001, 10000]; t* minimaxes the 2024 interpolation factor over 201 cosines
@@ -356,21 +316,11 @@ inline constexpr Steepness2024Params<double> steepness2024_irradiance{
 //   tool: sglab 0.1.0
 //   date: 2026-12-02
 //   certificate: {"kind":"per_kappa_floor: t free at each kappa (scan of log t, Brent, golden section to the resolution of double), no t(kappa) form does better","what":"tokuyoshi2024 irradiance max peak_rel (double) over the grid, for either objective (optimal-t's own measure t/t* - 1 has floor 0)","grid":"dense training grid: 112 kappa (log-midpoints of 112 cells of [0.001, 10000]) x 201 uniform cosines, never a measuring grid","achieved":0.0014756298731197135,"achieved_kappa":5.232991146814948,"lower_bound":0.0014314297120977795,"lower_bound_kappa":5.232991146814948,"within_percent_of_best_member":3.08783313971861}
-inline constexpr Steepness2024Params<double> steepness2024_optimal_t{
-    .A = 3.829687107328736,
-    .B = 22.096099499008425,
-    .C = 5.1781346159873465,
-    .D = 18.708786863197954,
-    .E = 99.86178796730256};
+inline constexpr Steepness2024Params<double> steepness2024_optimal_t{.A = 3.829687107328736, .B = 22.096099499008425, .C = 5.1781346159873465, .D = 18.708786863197954, .E = 99.86178796730256};
 
 // steepness2024 / published: t(kappa) = kappa*sqrt(0.5*((kappa + A)*kappa + B)/(((kappa + C)*kappa + D)*kappa + E))
 //   objective: published
 //   source: Tokuyoshi et al. 2024, Hierarchical Light Sampling with Accurate Spherical Gaussian Lighting, supplementary Listing 7 (the author's VSGL code)
-inline constexpr Steepness2024Params<double> steepness2024_published{
-    .A = 2.736083161127256,
-    .B = 17.021297781741875,
-    .C = 4.010082672851042,
-    .D = 15.21915626314721,
-    .E = 76.08789627236074};
+inline constexpr Steepness2024Params<double> steepness2024_published{.A = 2.736083161127256, .B = 17.021297781741875, .C = 4.010082672851042, .D = 15.21915626314721, .E = 76.08789627236074};
 
 }  // namespace sglab::constants

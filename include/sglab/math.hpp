@@ -52,13 +52,15 @@ template <class T>
 constexpr T pi_v() {
   return detail::constant<T>(3.141592653589793238462643383279502884L);
 }
+// 2π and 4π as exact multiples of π in T (scaling by a power of two commutes
+// with rounding).
 template <class T>
 constexpr T two_pi_v() {
-  return detail::constant<T>(6.283185307179586476925286766559005768L);
+  return T(2) * pi_v<T>();
 }
 template <class T>
 constexpr T four_pi_v() {
-  return detail::constant<T>(12.56637061435917295385057353311801154L);
+  return T(4) * pi_v<T>();
 }
 template <class T>
 constexpr T inv_sqrt_pi_v() {

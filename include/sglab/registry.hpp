@@ -357,7 +357,7 @@ constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
           [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
       // The sglab_acc ladder (sglab_acc.hpp): the tokuyoshi2024 form with a fitted correction
       // of its lerp factor of 1, 2, 3, 4 terms.
-      detail::make_sglab_acc<constants::sglab_acc_acc1>(
+      detail::make_sglab_acc<constants::sglab_acc1>(
           {.id = "sglab_acc1",
            .origin = Origin::sglab,
            .source = "docs/models.md#sglab_acc1--sglab_acc4",
@@ -365,34 +365,34 @@ constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
                       "ends, N = 1, D = 3",
            .form = "2024 factor + (1 − c²)e^{−z²}b0(κ), z = tc, b0 = u(1 − u)³P0(u), u = t/(t + "
                    "s)",
-           .constants = "sglab_acc_acc1",
+           .constants = "sglab_acc1",
            .valid = {.max_peak_rel = 2e-4}}),
-      detail::make_sglab_acc<constants::sglab_acc_acc2>(
+      detail::make_sglab_acc<constants::sglab_acc2>(
           {.id = "sglab_acc2",
            .origin = Origin::sglab,
            .source = "docs/models.md#sglab_acc1--sglab_acc4",
            .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
                       "ends, N = 2, D = 5",
            .form = "sglab_acc1 + b1(κ)z², P_j of degree 5",
-           .constants = "sglab_acc_acc2",
+           .constants = "sglab_acc2",
            .valid = {.max_peak_rel = 3e-5}}),
-      detail::make_sglab_acc<constants::sglab_acc_acc3>(
+      detail::make_sglab_acc<constants::sglab_acc3>(
           {.id = "sglab_acc3",
            .origin = Origin::sglab,
            .source = "docs/models.md#sglab_acc1--sglab_acc4",
            .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
                       "ends, N = 3, D = 6, steepness of order M = 3",
            .form = "sglab_acc2 + b2(κ)z⁴, P_j of degree 6, t(κ) rational of order 3",
-           .constants = "sglab_acc_acc3",
+           .constants = "sglab_acc3",
            .valid = {.max_peak_rel = 7.8e-6}}),
-      detail::make_sglab_acc<constants::sglab_acc_acc4>(
+      detail::make_sglab_acc<constants::sglab_acc4>(
           {.id = "sglab_acc4",
            .origin = Origin::sglab,
            .source = "docs/models.md#sglab_acc1--sglab_acc4",
            .summary = "[Tokuyoshi2024] lerp factor + a fitted even correction fading at both "
                       "ends, N = 4, D = 6, steepness of order M = 3",
            .form = "sglab_acc3 + b3(κ)z⁶, P_j of degree 6, t(κ) rational of order 3",
-           .constants = "sglab_acc_acc4",
+           .constants = "sglab_acc4",
            .valid = {.max_peak_rel = 4.8e-6}}));
 }
 
