@@ -67,7 +67,10 @@ void add_figures_command(CLI::App& app) {
         continue;
       }
       std::string files;
-      for (const auto& p : f.files) files += (files.empty() ? "" : " ") + p.string();
+      for (const auto& p : f.files) {
+        if (!files.empty()) files += ' ';
+        files += p.string();
+      }
       fmt::print("{:<22} {}\n", f.id, files);
       if (!f.note.empty()) fmt::print("{:<22} note: {}\n", "", f.note);
     }

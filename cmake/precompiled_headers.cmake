@@ -20,3 +20,14 @@ function(sglab_precompile_headers target)
     target_precompile_headers(${target} PRIVATE ${SGLAB_PCH_COMMON} ${ARGN})
   endif()
 endfunction()
+
+# sglab_unity_build(TARGET): TARGET's files compile as a few unity batches of
+# SGLAB_UNITY_BATCH files each (CMake's UNITY_BUILD); SGLAB_UNITY=OFF compiles
+# every file on its own (what an editor or clang-tidy sees).
+option(SGLAB_UNITY "Compile the command's and the tests' files in unity batches" ON)
+set(SGLAB_UNITY_BATCH 8 CACHE STRING "Files per unity batch")
+function(sglab_unity_build target)
+  if(SGLAB_UNITY)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${SGLAB_UNITY_BATCH})
+  endif()
+endfunction()

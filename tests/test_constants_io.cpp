@@ -51,10 +51,7 @@ fs::path copy_constants(const fs::path& dir) {
   return to;
 }
 
-void write(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << text;
-}
+using sglab::test::write_file;
 
 std::string replace_once(std::string s, const std::string& from, const std::string& to) {
   const auto pos = s.find(from);
@@ -325,7 +322,7 @@ TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
     const fs::path file = dir / c.file;
     std::string text = slurp(file);
     for (const auto& [from, to] : c.edits) text = replace_once(text, from, to);
-    write(file, text);
+    write_file(file, text);
     const fs::path header = tmp.path / "out" / "constants.hpp";
     for (bool write_header : {true, false}) {
       if (c.collection && !write_header) continue;
@@ -408,7 +405,7 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-  write(file, replace_once(slurp(file), "\"objective\": \"published\"",
+  write_file(file, replace_once(slurp(file), "\"objective\": \"published\"",
                            "\"objective\": \"published\", \"x\": " + deep));
   for (bool write_header : {true, false}) {
     std::vector<std::string> args = {"constants", "--dir", dir.string()};
@@ -423,7 +420,7 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   }
   EXPECT_FALSE(fs::exists(tmp.path / "h.hpp"));
   // 64 levels are fine.
-  write(file,
+  write_file(file,
         replace_once(
             slurp(kConstants / "hill-published.json"), "\"objective\": \"published\"",
             "\"objective\": \"published\", \"x\": " + std::string(62, '[') + std::string(62, ']')));
@@ -434,7 +431,7 @@ TEST(UntrustedConstants, OversizedFileIsRefused) {
   TempDir tmp("constants_big");
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
-  write(file,
+  write_file(file,
         replace_once(slurp(file), "\"objective\": \"published\"",
                      "\"objective\": \"published\", \"x\": \"" + std::string(2 << 20, 'a') + "\""));
   const auto r = run_sglab({"constants", "--dir", dir.string()});
@@ -475,7 +472,7 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
                       "\"v\\u0000\\u001b[2J\\\\\", \"nested\": {\"a\\n#error nested\": "
                       "[\"\\u202e\\n#error\"]}");
   text = replace_once(text, "\"form\": \"", "\"form\": \"\\r\\n#error form\\\\");
-  write(file, text);
+  write_file(file, text);
   const fs::path header = tmp.path / "h.hpp";
   const auto r = run_sglab(
       {"constants", "--dir", dir.string(), "--write-header", "--header", header.string()});
@@ -508,7 +505,7 @@ TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   TempDir tmp("atomic");
   const fs::path a = tmp.path / "a.json", b = tmp.path / "b.json",
                  blocked = tmp.path / "header.hpp";
-  write(a, "old a");
+  write_file(a, "old a");
   // refused before any file is written (a rename over it would fail)
   fs::create_directories(blocked);
   try {
@@ -524,7 +521,7 @@ TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(tmp.path)) ++entries;
   EXPECT_EQ(entries, 2u) << "temporaries left behind";
   // A destination folder that cannot be created: nothing replaced.
-  write(tmp.path / "file", "x");
+  write_file(tmp.path / "file", "x");
   EXPECT_THROW(
       sglab::io::write_files_atomic({{a, "new a"}, {tmp.path / "file" / "sub" / "c", "c"}}),
       std::runtime_error);

@@ -27,10 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using sglab::test::run_sglab;
 
-void write(const fs::path& p, const std::string& text) {
-  std::ofstream out(p);
-  out << text;
-}
+using sglab::test::write_file;
 
 // A well-formed table with a float batch cost for every irradiance method.
 nlohmann::ordered_json hand_table(const std::map<std::string, double>& costs) {
@@ -93,7 +90,7 @@ TEST(CostTable, HandMadeTableDecidesTheRecommendation) {
   const fs::path& dir = tmp.path;
   auto costs = all_methods_cost(100);
   costs["tokuyoshi2024"] = 1;
-  write(dir / "a.json", hand_table(costs).dump(2));
+  write_file(dir / "a.json", hand_table(costs).dump(2));
   const auto a = recommend_json(dir / "a.json", "1:100", "1e-2");
   ASSERT_EQ(cheapest_qualifying(a, costs), "tokuyoshi2024");
   EXPECT_EQ(a.at("choice").at("method"), "tokuyoshi2024");
@@ -104,7 +101,7 @@ TEST(CostTable, HandMadeTableDecidesTheRecommendation) {
   // Now the refit is the cheapest: the answer follows the table.
   costs["tokuyoshi2024"] = 50;
   costs["tokuyoshi2024_refit"] = 2;
-  write(dir / "b.json", hand_table(costs).dump(2));
+  write_file(dir / "b.json", hand_table(costs).dump(2));
   const auto b = recommend_json(dir / "b.json", "1:100", "1e-2");
   ASSERT_EQ(cheapest_qualifying(b, costs), "tokuyoshi2024_refit");
   EXPECT_EQ(b.at("choice").at("method"), "tokuyoshi2024_refit");
@@ -117,7 +114,7 @@ TEST(CostTable, MissingMethodIsNamedAndLeftOut) {
   const fs::path& dir = tmp.path;
   auto costs = all_methods_cost(10);
   costs.erase("tokuyoshi2024");
-  write(dir / "t.json", hand_table(costs).dump(2));
+  write_file(dir / "t.json", hand_table(costs).dump(2));
   const auto r = run_sglab({"recommend", "--kappa", "1:100", "--budget", "1e-2", "--json",
                             "--costs", (dir / "t.json").string(), "--cost", "cpu-batch"},
                            /*merge_stderr=*/true);
@@ -181,7 +178,7 @@ TEST(CostTable, MissingOrMalformedTableExits2NamingTheFile) {
       {"array.json", "[1, 2, 3]"},
   };
   for (const auto& [name, text] : bad) {
-    write(dir / name, text);
+    write_file(dir / name, text);
     for (const char* cmd : {"recommend", "pareto"}) {
       std::vector<std::string> args{cmd, "--kappa", "1:100", "--costs", (dir / name).string()};
       if (std::string(cmd) == "recommend")

@@ -69,7 +69,7 @@ TEST(Engine, RecoversSteepnessCoefficientsFromSyntheticData) {
   for (Norm norm : {Norm::least_squares, Norm::minimax}) {
     FitOptions options;
     options.norm = norm;
-    const FitResult r = fit(residuals, start, options);
+    const FitResult r = sglab::fit::fit(residuals, start, options);
     ASSERT_TRUE(r.converged);
     EXPECT_GT(lre(r.values[0], truth.A), 8);
     EXPECT_GT(lre(r.values[1], truth.B), 8);
@@ -146,14 +146,14 @@ TEST(Engine, MinimaxMatchesChebyshevEquioscillation) {
   // Best uniform line for e^x on [0, 1]: slope e − 1, error (1 + b ln b − b)/2.
   Residuals residuals;
   for (int i = 0; i <= 1000; ++i) residuals.push_back(make_residual(LineResidual{i / 1000.0}, 2));
-  const FitResult r = fit(residuals, Parameters{{"a", "b"}, {1, 1}, {}});
+  const FitResult r = sglab::fit::fit(residuals, Parameters{{"a", "b"}, {1, 1}, {}});
   const double b = std::exp(1.0) - 1, e = (1 + b * std::log(b) - b) / 2;
   EXPECT_NEAR(r.values[1], b, 1e-5);
   EXPECT_NEAR(r.max_abs, e, 1e-7);
   // Least squares is not minimax: its max error is larger.
   FitOptions ls;
   ls.norm = Norm::least_squares;
-  EXPECT_GT(fit(residuals, Parameters{{"a", "b"}, {1, 1}, {}}, ls).max_abs, e * 1.1);
+  EXPECT_GT(sglab::fit::fit(residuals, Parameters{{"a", "b"}, {1, 1}, {}}, ls).max_abs, e * 1.1);
 }
 
 TEST(Engine, RoundingToFloatKeepsCoefficientsFloatExact) {

@@ -173,9 +173,7 @@ TEST(CardBound, IsTheWorstErrorOnTheFittedRange) {
   }
 }
 
-std::string method_name(const ::testing::TestParamInfo<sglab::Method>& p) {
-  return std::string(p.param.id);
-}
+using sglab::test::method_name;
 INSTANTIATE_TEST_SUITE_P(Registry, Card, ::testing::ValuesIn(sglab::irradiance_methods),
                          method_name);
 

@@ -191,9 +191,7 @@ TEST_P(PeakRel, AgainstTheReferenceOnPointsNoFitSaw) {
   EXPECT_GT(worst_d, 1e-3 * bound);
 }
 
-std::string method_name(const ::testing::TestParamInfo<sglab::Method>& info) {
-  return std::string(info.param.id);
-}
+using sglab::test::method_name;
 
 INSTANTIATE_TEST_SUITE_P(Registry, FloatVsDouble, ::testing::ValuesIn(sglab::irradiance_methods),
                          method_name);

@@ -25,8 +25,8 @@ namespace sr = sglab::reference;
 namespace sv = sglab::validate;
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using sglab::test::kInf;
+using sglab::test::kNaN;
 }  // namespace
 
 TEST(Metrics, AbsPeakRelRelOnOrdinaryValues) {

@@ -27,8 +27,8 @@ namespace {
 using sglab::report::MethodPoint;
 using sglab::report::recommend;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using sglab::test::kInf;
+using sglab::test::kNaN;
 
 MethodPoint pt(std::string id, double ns, double err) {
   MethodPoint p;

@@ -33,16 +33,16 @@ std::vector<Vec3> random_normals(std::size_t n, unsigned seed) {
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 TEST(Probes, TiledIrradianceOfAConstantMapIsPiL) {
-  const Vec3 L{1.5, 0.25, 3.0};
-  const Map m = map_of(128, [&](const Vec3&) { return L; });
+  const Vec3 radiance{1.5, 0.25, 3.0};
+  const Map m = map_of(128, [&](const Vec3&) { return radiance; });
   const envmap::MapIrradiance field(m);
   // Exact but for the sub-pixels n's horizon cuts (as envmap::irradiance: 8.4e−7 at this size).
   for (const Vec3& n : random_normals(200, 1))
     for (std::size_t ch = 0; ch < 3; ++ch)
-      EXPECT_NEAR(field.at(n)[ch], M_PI * L[ch], 2e-6 * M_PI * L[ch]);
+      EXPECT_NEAR(field.at(n)[ch], M_PI * radiance[ch], 2e-6 * M_PI * radiance[ch]);
   // At the poles the horizon runs along pixel edges: exact to rounding.
   for (std::size_t ch = 0; ch < 3; ++ch)
-    EXPECT_NEAR(field.at(Vec3{0, 0, -1})[ch], M_PI * L[ch], 1e-12 * M_PI * L[ch]);
+    EXPECT_NEAR(field.at(Vec3{0, 0, -1})[ch], M_PI * radiance[ch], 1e-12 * M_PI * radiance[ch]);
 }
 
 TEST(Probes, TiledIrradianceMatchesThePixelSum) {
@@ -80,13 +80,13 @@ TEST(Probes, TiledIrradianceMatchesThePixelSum) {
 }
 
 TEST(Probes, DenseErrorOfAConstantMap) {
-  const Vec3 L{2.0, 1.0, 0.5};
-  const Map m = map_of(32, [&](const Vec3&) { return L; });
+  const Vec3 radiance{2.0, 1.0, 0.5};
+  const Map m = map_of(32, [&](const Vec3&) { return radiance; });
   const envmap::MapIrradiance field(m);
   const envmap::DenseTruth truth = envmap::dense_truth(field, 2000);
   EXPECT_NEAR(truth.peak, 2 * M_PI, 3e-5 * 2 * M_PI);  // the horizon sub-pixels at 32 × 16
   const auto e = envmap::dense_error(truth, [&](const Vec3&) {
-    return Vec3{M_PI * L[0], M_PI * L[1], M_PI * L[2]};
+    return Vec3{M_PI * radiance[0], M_PI * radiance[1], M_PI * radiance[2]};
   });
   EXPECT_LT(e.max_rel, 3e-5);
   // A probe off by 1 % of the peak everywhere in one channel: exactly that.

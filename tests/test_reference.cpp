@@ -43,14 +43,12 @@ using sglab::reference::ReferencePoint;
 using sglab::test::hex;
 using mp = boost::multiprecision::cpp_bin_float_50;
 
-constexpr double kPi = 3.14159265358979323846;
+using sglab::test::kPi;
 constexpr double kRelTol = 1e-13;     // required relative accuracy of H, E
 constexpr double kAbsTolS = 1e-13;    // required absolute accuracy of s
 constexpr double kSmallest = 1e-290;  // relative accuracy required above this
 
-double rel_err(double got, double want) {
-  return want == 0 ? std::abs(got) : std::abs(got / want - 1);
-}
+using sglab::test::rel_err;
 
 // ---------------------------------------------------------------------------
 // closed forms of docs/quantities.md in 50-digit arithmetic, written naively on purpose:

@@ -17,9 +17,9 @@ namespace {
 
 using sglab::test::hex;
 using mp = boost::multiprecision::cpp_bin_float_50;
-constexpr double kPi = 3.14159265358979323846;
+using sglab::test::kPi;
 
-double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
+using sglab::test::rel_err;
 
 // ∫_{S²} G(ω; v, κ) w(ω·n) dω by brute-force 2-D Gauss–Kronrod in (θ, φ)
 // about n, with v at polar angle acos(c) in the x-z plane. Independent of the

@@ -20,7 +20,7 @@ using sglab::test::hex;
 
 // The bound on the model's registry card (max peak_rel; its κ range is checked in
 // tests/test_kappa_range.cpp).
-const double kBound =
+const double kFastBound =
     sglab::find_method(sglab::irradiance_methods, "sglab_fast")->valid.max_peak_rel;
 
 TEST(SglabFast, UpperPoleWithinBoundAndSeriesMatchesClosedForm) {
@@ -29,7 +29,7 @@ TEST(SglabFast, UpperPoleWithinBoundAndSeriesMatchesClosedForm) {
     const auto light = sglab::sglab_fast_light(kappa);
     const double s = sglab::sglab_fast_eval(light, 1.0);
     const double e1 = sglab::irradiance_upper(kappa);
-    EXPECT_NEAR(s / e1, 1.0, kBound) << "kappa " << kappa;
+    EXPECT_NEAR(s / e1, 1.0, kFastBound) << "kappa " << kappa;
   }
   // The series and the closed form of E(1, κ)/2π agree with closed_forms.hpp
   // on both sides of the switch κ = ¼.
@@ -69,7 +69,7 @@ TEST(SglabFast, FiniteAndNonNegativeOutsideTheFittedRange) {
     }
   // κ → 0: the light is uniform, E = π for every normal.
   for (float c : {-1.0f, 0.0f, 1.0f})
-    EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kBound * M_PI) << c;
+    EXPECT_NEAR(sglab::irradiance_sglab_fast(c, 0.0f), M_PI, kFastBound * M_PI) << c;
 }
 
 // The fit's residual (fit/fit_sglab_fast.cpp's ModelResidual): peak_rel of the

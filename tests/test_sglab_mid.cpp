@@ -21,7 +21,7 @@ using sglab::test::hex;
 
 // The bound on the model's registry card (max peak_rel; its κ range is checked in
 // tests/test_kappa_range.cpp).
-const double kBound =
+const double kMidBound =
     sglab::find_method(sglab::irradiance_methods, "sglab_mid")->valid.max_peak_rel;
 
 TEST(SglabMid, WithinBoundOnPointsNoFitUsed) {
@@ -40,8 +40,8 @@ TEST(SglabMid, WithinBoundOnPointsNoFitUsed) {
     const double ed =
         std::abs(sglab::irradiance_sglab_mid(r.cosine, r.kappa) - r.irradiance) / peak;
     worst_f = std::max(worst_f, ef), worst_d = std::max(worst_d, ed);
-    EXPECT_LE(ef, kBound) << "float kappa " << r.kappa << " c " << r.cosine;
-    EXPECT_LE(ed, kBound) << "double kappa " << r.kappa << " c " << r.cosine;
+    EXPECT_LE(ef, kMidBound) << "float kappa " << r.kappa << " c " << r.cosine;
+    EXPECT_LE(ed, kMidBound) << "double kappa " << r.kappa << " c " << r.cosine;
   }
   RecordProperty("max_peak_rel_float", std::to_string(worst_f));
   RecordProperty("max_peak_rel_double", std::to_string(worst_d));
@@ -81,7 +81,7 @@ TEST(SglabMid, FiniteAndNonNegativeOutsideTheFittedRange) {
     }
   // κ → 0: the light is uniform, E = π for every normal.
   for (float c : {-1.0f, 0.0f, 1.0f})
-    EXPECT_NEAR(sglab::irradiance_sglab_mid(c, 0.0f), M_PI, kBound * M_PI) << c;
+    EXPECT_NEAR(sglab::irradiance_sglab_mid(c, 0.0f), M_PI, kMidBound * M_PI) << c;
 }
 
 TEST(SglabMid, SoftMaxStaysFiniteAtTheExponentBounds) {

@@ -11,7 +11,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <initializer_list>
+#include <limits>
+#include <numbers>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -19,6 +22,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <sglab/registry.hpp>
 
@@ -28,6 +32,26 @@ inline void PrintTo(const Method& m, std::ostream* os) { *os << m.id; }
 }  // namespace sglab
 
 namespace sglab::test {
+
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// |got/want − 1|, or |got| where want is 0.
+inline double rel_err(double got, double want) {
+  return want == 0 ? std::abs(got) : std::abs(got / want - 1);
+}
+
+// A suite parameterized over methods names each instance by the method's id.
+inline std::string method_name(const ::testing::TestParamInfo<Method>& info) {
+  return std::string(info.param.id);
+}
+
+// Writes text to p, replacing what was there.
+inline void write_file(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out << text;
+}
 
 // A value printed exactly (hex float) and in decimal, for failure messages.
 template <class T>
