@@ -406,7 +406,7 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   const fs::path file = dir / "hill-published.json";
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   write_file(file, replace_once(slurp(file), "\"objective\": \"published\"",
-                           "\"objective\": \"published\", \"x\": " + deep));
+                                "\"objective\": \"published\", \"x\": " + deep));
   for (bool write_header : {true, false}) {
     std::vector<std::string> args = {"constants", "--dir", dir.string()};
     if (write_header)
@@ -421,9 +421,9 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   EXPECT_FALSE(fs::exists(tmp.path / "h.hpp"));
   // 64 levels are fine.
   write_file(file,
-        replace_once(
-            slurp(kConstants / "hill-published.json"), "\"objective\": \"published\"",
-            "\"objective\": \"published\", \"x\": " + std::string(62, '[') + std::string(62, ']')));
+             replace_once(slurp(kConstants / "hill-published.json"), "\"objective\": \"published\"",
+                          "\"objective\": \"published\", \"x\": " + std::string(62, '[') +
+                              std::string(62, ']')));
   EXPECT_NO_THROW(sglab::fit::load_constant_set(file));
 }
 
@@ -431,9 +431,9 @@ TEST(UntrustedConstants, OversizedFileIsRefused) {
   TempDir tmp("constants_big");
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
-  write_file(file,
-        replace_once(slurp(file), "\"objective\": \"published\"",
-                     "\"objective\": \"published\", \"x\": \"" + std::string(2 << 20, 'a') + "\""));
+  write_file(file, replace_once(slurp(file), "\"objective\": \"published\"",
+                                "\"objective\": \"published\", \"x\": \"" +
+                                    std::string(2 << 20, 'a') + "\""));
   const auto r = run_sglab({"constants", "--dir", dir.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output.substr(0, 1000);
   EXPECT_NE(r.output.find("more than the 1048576 bytes a constants file may have"),
