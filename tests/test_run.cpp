@@ -158,11 +158,12 @@ struct HostileOut {
 
 TEST(RunCommand, HostilePathWorksAndRunsNothing) {
   HostileOut dir;
-  // The fast steps only; the report checks below cover the rest.
+  // The two fastest steps only; the report checks below cover the rest.
   const auto r = sglab::test::run_sglab(
       {"run",    "--quick",    "--out",  dir.out.string(), "--skip", "fit",    "--skip",
        "erf",    "--skip",     "claims", "--skip",         "bench",  "--skip", "pareto",
-       "--skip", "pareto-cpu", "--skip", "figures",        "--skip", "envmap"});
+       "--skip", "pareto-cpu", "--skip", "figures",        "--skip", "envmap", "--skip",
+       "gpucost"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.marker)) << "a command in the output path was run";
   EXPECT_TRUE(fs::is_regular_file(dir.out / "sweep" / "summary.csv")) << r.output;
@@ -297,10 +298,12 @@ fs::path staging_of(const fs::path& out, pid_t pid) {
 TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   sglab::test::TempDir base("run-interrupted");
   const fs::path out = base.path / "out";
+  // The sweep and stability steps only (the run is interrupted in the first).
   const std::vector<std::string> args = {
       "run",    "--quick",    "--out",  out.string(), "--skip", "fit",    "--skip",
       "erf",    "--skip",     "claims", "--skip",     "bench",  "--skip", "pareto",
-      "--skip", "pareto-cpu", "--skip", "figures",    "--skip", "envmap"};
+      "--skip", "pareto-cpu", "--skip", "figures",    "--skip", "envmap", "--skip",
+      "gpucost"};
   // A complete earlier output, its files marked so that a change shows.
   ASSERT_EQ(sglab::test::run_sglab(args).exit_code, 0);
   for (const char* name : {"index.md", "logs/sweep.log", "sweep/summary.csv"})
