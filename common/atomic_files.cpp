@@ -31,8 +31,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string os_reason(int err) { return std::error_code(err, std::generic_category()).message(); }
-
 fs::path temporary_for(const fs::path& path) {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   return parent / fmt::format(".{}.{}.tmp", path.filename().string(), ::getpid());

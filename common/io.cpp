@@ -57,9 +57,9 @@ std::string file_type_name(const std::filesystem::path& path) {
   }
 }
 
-namespace {
-
 std::string os_reason(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+namespace {
 
 // Appends what `fd` holds to `out`, at most `limit` bytes; returns 0 or the errno.
 int read_at_most(int fd, std::size_t limit, std::string& out) {

@@ -34,6 +34,9 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 // goes through read_input_file.
 std::string read_file(const std::filesystem::path& path);
 
+// The operating system's message for the errno value `err`.
+std::string os_reason(int err);
+
 // What is at `path`, not following a final symbolic link, for messages: "a
 // regular file", "a directory", "a FIFO", "a symbolic link", "a character
 // device", "a block device", "a socket" (or "an unknown file type"); empty

@@ -23,6 +23,8 @@ namespace sglab::envmap {
 
 // Normals of the dense set (Fibonacci) every probe error is measured at.
 inline constexpr std::size_t kDenseNormals = 20000;
+// Normals (Fibonacci, other than the dense set) the probes' least squares fit.
+inline constexpr std::size_t kFitNormals = 1024;
 
 // The map's exact irradiance at the dense set, and the largest irradiance
 // (max over the dense set and RGB, raised by a local maximization of each

@@ -81,6 +81,7 @@ struct FadeResidual {
   double target;
   template <class T>
   bool operator()(T const* const* p, T* r) const {
+    using std::exp;
     SglabAccParams<T, N, D, 2> q{};  // the fade alone: the steepness is unused
     for (std::size_t i = 0; i < N * (D + 1); ++i) q.num[i] = p[i][0];
     q.scale = exp(p[N * (D + 1)][0]);

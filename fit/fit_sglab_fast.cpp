@@ -19,10 +19,10 @@ namespace sglab::fit {
 
 namespace {
 
-constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
+constexpr std::size_t kFastDegree = 4;  // numerators and the monic denominator
 
 // Step 1 residual: peak_rel of E(1)·max(0, s) at one (κ, c), shape values as parameters.
-struct ShapeResidual {
+struct FastShapeResidual {
   double cosine, normalized;  // E(c, κ)/E(1, κ)
   template <class T>
   bool operator()(T const* const* p, T* r) const {
@@ -33,7 +33,7 @@ struct ShapeResidual {
 
 struct FastShape {
   static const RationalLayout& layout() {
-    static const RationalLayout l{"sglab-fast", {"a", "b", "c", "v"}, kDegree};
+    static const RationalLayout l{"sglab-fast", {"a", "b", "c", "v"}, kFastDegree};
     return l;
   }
   template <class T>
@@ -75,7 +75,8 @@ struct FastShape {
     Parameters params{{"A", "B", "C", "V"}, start, {}};
     Residuals residuals;
     for (std::size_t j = 0; j < cosines.size(); ++j)
-      residuals.push_back(make_residual(ShapeResidual{ref[j].cosine, ref[j].irradiance / e1}, 4));
+      residuals.push_back(
+          make_residual(FastShapeResidual{ref[j].cosine, ref[j].irradiance / e1}, 4));
     const FitResult f = fit(residuals, params);
     return {k, {f.values.begin(), f.values.begin() + 4}, f.max_abs};
   }

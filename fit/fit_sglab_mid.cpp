@@ -24,12 +24,12 @@ namespace sglab::fit {
 
 namespace {
 
-constexpr std::size_t kDegree = 4;  // numerators and the monic denominator
+constexpr std::size_t kMidDegree = 4;  // numerators and the monic denominator
 constexpr std::size_t kShapeValues = 5;
 
 // Step 1 residual: peak_rel of E(1)·s at one (κ, c), shape values as parameters (the clamp
 // at 0 left out: it can only lower the error, and without it the problem at fixed S, V is an LP).
-struct ShapeResidual {
+struct MidShapeResidual {
   double cosine, normalized;  // E(c, κ)/E(1, κ)
   template <class T>
   bool operator()(T const* const* p, T* r) const {
@@ -78,7 +78,7 @@ PerKappaShape mid_per_kappa_at(double k, const std::vector<double>& cosines,
   Residuals residuals;
   for (std::size_t j = 0; j < cosines.size(); ++j)
     residuals.push_back(
-        make_residual(ShapeResidual{cosines[j], ref[j].irradiance / e1}, kShapeValues));
+        make_residual(MidShapeResidual{cosines[j], ref[j].irradiance / e1}, kShapeValues));
   const auto polish = [&](const std::vector<double>& start) {
     constexpr double inf = std::numeric_limits<double>::infinity();
     const FitResult f = fit(residuals, Parameters{{"A", "B", "D", "S", "V"},
@@ -104,7 +104,7 @@ PerKappaShape mid_per_kappa_at(double k, const std::vector<double>& cosines,
 struct MidShape {
   static const RationalLayout& layout() {
     // The numerators in SglabMidParams order.
-    static const RationalLayout l{"sglab-mid", {"a", "b", "d", "s", "v"}, kDegree};
+    static const RationalLayout l{"sglab-mid", {"a", "b", "d", "s", "v"}, kMidDegree};
     return l;
   }
   template <class T>

@@ -35,7 +35,8 @@ struct Layout {
   double kappa_lo, kappa_hi;
   int kappa_nodes, cosine_nodes;
 };
-constexpr double kInf = std::numeric_limits<double>::infinity();
+// The last piece of an axis runs to κ = ∞.
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 constexpr Layout kLayout[] = {
     {IrradianceTable::Axis::linear, 0, 1, 14, 12},
     {IrradianceTable::Axis::log, 1, 4, 19, 15},
@@ -43,7 +44,7 @@ constexpr Layout kLayout[] = {
     {IrradianceTable::Axis::log, 16, 64, 20, 36},
     {IrradianceTable::Axis::log, 64, 256, 13, 37},
     {IrradianceTable::Axis::log, 256, 1024, 12, 37},
-    {IrradianceTable::Axis::inverse, 1024, kInf, 6, 37},
+    {IrradianceTable::Axis::inverse, 1024, kUnbounded, 6, 37},
 };
 
 void check_kappa(double kappa) {
@@ -117,9 +118,9 @@ double IrradianceTable::Piece::kappa_at(double y) const {
     case Axis::log:
       return std::exp(std::log(kappa_lo) + (std::log(kappa_hi) - std::log(kappa_lo)) * u);
     case Axis::inverse:
-      return u > 0 ? kappa_lo / u : kInf;  // w = κ_lo/κ = (y + 1)/2
+      return u > 0 ? kappa_lo / u : kUnbounded;  // w = κ_lo/κ = (y + 1)/2
   }
-  return kInf;
+  return kUnbounded;
 }
 
 double IrradianceTable::Piece::y_of_kappa(double kappa) const {
@@ -282,7 +283,7 @@ IrradianceTableCheck check_irradiance_table(std::span<const Query> points, bool 
       const double e = table.irradiance(chunk[i].kappa, chunk[i].cosine);
       const double err = std::abs(e - ref[i].irradiance) / irradiance_upper(chunk[i].kappa);
       if (!(err <= out.max_error)) {  // NaN is the worst
-        out.max_error = std::isnan(err) ? kInf : err;
+        out.max_error = std::isnan(err) ? kUnbounded : err;
         out.worst_kappa = chunk[i].kappa;
         out.worst_cosine = chunk[i].cosine;
       }

@@ -40,25 +40,25 @@ void check_query(double kappa, double cosine) {
         fmt::format("reference: cosine must be in [-1, 1], got {}", cosine));
 }
 
-// Cache key: the bit patterns of (κ, c) and the quadrature (the two modes give
-// different values for the same point).
-struct Key {
-  std::uint64_t kappa, cosine;
-  Quadrature quadrature;
-  bool operator==(const Key&) const = default;
-};
-struct KeyHash {
-  std::size_t operator()(const Key& k) const noexcept {
-    std::uint64_t h = k.kappa * 0x9E3779B97F4A7C15ull;
-    h ^= (k.cosine + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2));
-    h ^= static_cast<std::uint64_t>(k.quadrature) + (h << 6) + (h >> 2);
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
-
 }  // namespace
 
 struct ReferenceEngine::Impl {
+  // Cache key: the bit patterns of (κ, c) and the quadrature (the two modes give
+  // different values for the same point).
+  struct Key {
+    std::uint64_t kappa, cosine;
+    Quadrature quadrature;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const noexcept {
+      std::uint64_t h = k.kappa * 0x9E3779B97F4A7C15ull;
+      h ^= (k.cosine + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2));
+      h ^= static_cast<std::uint64_t>(k.quadrature) + (h << 6) + (h >> 2);
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+
   std::shared_mutex mutex;
   std::unordered_map<Key, ReferencePoint, KeyHash> cache;
 

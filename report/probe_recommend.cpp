@@ -10,8 +10,6 @@ namespace sglab::report {
 
 namespace {
 
-constexpr std::size_t kFitNormals = 1024;  // as the probe table fits (probes_report.cpp)
-
 bool meets(const ProbeCandidate& c, double budget) { return c.error.max_rel <= budget; }
 
 // Indices of the candidates meeting the budget, fewest floats first (ties:
@@ -54,7 +52,7 @@ ProbeRecommendation recommend_probe_by_storage(
   note("exact irradiance of the full map at the dense normals");
   const envmap::MapIrradiance field(map);
   const envmap::DenseTruth truth = envmap::dense_truth(field);
-  const auto normals = reference::fibonacci_normals(kFitNormals);
+  const auto normals = reference::fibonacci_normals(envmap::kFitNormals);
   const auto exact = field.at(normals);
   const auto error = [&](const envmap::Probe& p) {
     return envmap::dense_error(truth, envmap::probe_irradiance_method(p));

@@ -26,7 +26,6 @@ using envmap::Probe;
 using io::InputError;
 
 constexpr const char* kBlenderWorlds = "/usr/share/blender/datafiles/studiolights/world";
-constexpr std::size_t kFitNormals = 1024;
 
 struct Row {
   std::string
@@ -64,7 +63,7 @@ MapResult run_map(const std::filesystem::path& file, const std::vector<std::size
   const envmap::Map work = envmap::working_copy(map);
   const envmap::MapIrradiance field(map);
   const envmap::DenseTruth truth = envmap::dense_truth(field);
-  const auto normals = reference::fibonacci_normals(kFitNormals);
+  const auto normals = reference::fibonacci_normals(envmap::kFitNormals);
   const auto exact = field.at(normals);
   const auto radiance = envmap::radiance_sh(map, envmap::kMaxShOrder);
   const auto judge = [&](const Probe& p) {
@@ -142,7 +141,7 @@ std::string markdown(const std::vector<MapResult>& results, const std::vector<st
       "one at a time, each kept fit the best (by the max error) of a fresh fit, the previous count "
       "plus a new lobe, and the previous count unchanged. Projection: E_lm = Â_l L_lm "
       "[Ramamoorthi2001]; ZH3 [Roughton2024].\n\n",
-      envmap::kDenseNormals, envmap::kDenseNormals, kFitNormals);
+      envmap::kDenseNormals, envmap::kDenseNormals, envmap::kFitNormals);
   md += "## Targets at 27 and 75 floats\n\n";
   md +=
       "| map | floats | SH max | SG lobes max | SH + lobes max | best / SH | SG / SH |\n"

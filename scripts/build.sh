@@ -15,5 +15,9 @@ while [ $# -gt 0 ]; do
   fi
 done
 scripts/deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${configure[@]}" >/dev/null
+# Ninja (scripts/deps.sh installs it) schedules every target's files on both
+# cores at once; a build/ configured before keeps its generator.
+generator=()
+[ -f build/CMakeCache.txt ] || generator=(-G Ninja)
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${configure[@]}" >/dev/null
 cmake --build build -j"$(nproc)" "${targets[@]}"

@@ -4,7 +4,7 @@
 # Python package builds against Debian's /usr/bin/python3 and these python3-*
 # packages (PyTorch for sglab.torch and its tests).
 set -euo pipefail
-packages=(build-essential cmake libceres-dev libeigen3-dev libboost-dev libfmt-dev libgtest-dev
+packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libboost-dev libfmt-dev libgtest-dev
           libbenchmark-dev libcli11-dev nlohmann-json3-dev libtbb-dev gnuplot-nox
           glslang-tools glslang-dev libvulkan-dev mesa-vulkan-drivers spirv-tools vulkan-tools
           libopenexr-dev coinor-libclp-dev pkg-config

@@ -160,10 +160,9 @@ TEST(RunCommand, HostilePathWorksAndRunsNothing) {
   HostileOut dir;
   // The two fastest steps only; the report checks below cover the rest.
   const auto r = sglab::test::run_sglab(
-      {"run",    "--quick",    "--out",  dir.out.string(), "--skip", "fit",    "--skip",
-       "erf",    "--skip",     "claims", "--skip",         "bench",  "--skip", "pareto",
-       "--skip", "pareto-cpu", "--skip", "figures",        "--skip", "envmap", "--skip",
-       "gpucost"});
+      {"run",    "--quick", "--out",  dir.out.string(), "--skip", "fit",    "--skip", "erf",
+       "--skip", "claims",  "--skip", "bench",          "--skip", "pareto", "--skip", "pareto-cpu",
+       "--skip", "figures", "--skip", "envmap",         "--skip", "gpucost"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.marker)) << "a command in the output path was run";
   EXPECT_TRUE(fs::is_regular_file(dir.out / "sweep" / "summary.csv")) << r.output;
@@ -300,10 +299,9 @@ TEST(RunCommand, InterruptedRunLeavesThePreviousOutputAsItWas) {
   const fs::path out = base.path / "out";
   // The sweep and stability steps only (the run is interrupted in the first).
   const std::vector<std::string> args = {
-      "run",    "--quick",    "--out",  out.string(), "--skip", "fit",    "--skip",
-      "erf",    "--skip",     "claims", "--skip",     "bench",  "--skip", "pareto",
-      "--skip", "pareto-cpu", "--skip", "figures",    "--skip", "envmap", "--skip",
-      "gpucost"};
+      "run",    "--quick", "--out",  out.string(), "--skip", "fit",    "--skip", "erf",
+      "--skip", "claims",  "--skip", "bench",      "--skip", "pareto", "--skip", "pareto-cpu",
+      "--skip", "figures", "--skip", "envmap",     "--skip", "gpucost"};
   // A complete earlier output, its files marked so that a change shows.
   ASSERT_EQ(sglab::test::run_sglab(args).exit_code, 0);
   for (const char* name : {"index.md", "logs/sweep.log", "sweep/summary.csv"})

@@ -26,8 +26,6 @@ namespace sglab::validate {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 const char* verdict(bool holds) { return holds ? "holds" : "does not hold"; }
 // "holds", else "holds in part" when the weaker reading `in_part` holds.
 const char* verdict(bool holds, bool in_part) {
@@ -75,10 +73,10 @@ std::vector<Claim> claims_circular() {
   double max_int = 0, max_int_lambda = 0;
   const int n_lambda = 200;
   for (int i = 0; i < n_lambda; ++i) {
-    const double lambda = 0.01 + (kPi / 6 - 0.01) * i / (n_lambda - 1);
+    const double lambda = 0.01 + (std::numbers::pi / 6 - 0.01) * i / (n_lambda - 1);
     const int n_phi = 20001;
     for (int j = 0; j < n_phi; ++j) {
-      const double phi = -kPi + 2 * kPi * j / (n_phi - 1);
+      const double phi = -std::numbers::pi + 2 * std::numbers::pi * j / (n_phi - 1);
       const double gc = circ_gauss(phi, 0, lambda), g = gauss(phi, 0, lambda);
       const double a = std::abs(gc - g);
       if (a > max_abs) max_abs = a, max_abs_lambda = lambda;
@@ -91,9 +89,11 @@ std::vector<Claim> claims_circular() {
     // Integral over [−π, π]: trapezoid on the periodic integrand (spectrally accurate).
     const int n_int = 40000;
     double sum = 0;
-    for (int j = 0; j < n_int; ++j) sum += circ_gauss(-kPi + 2 * kPi * j / n_int, 0, lambda);
-    const double exact = sum * 2 * kPi / n_int;
-    const double approx = std::sqrt(kPi) * lambda * std::erf(kPi / lambda);
+    for (int j = 0; j < n_int; ++j)
+      sum += circ_gauss(-std::numbers::pi + 2 * std::numbers::pi * j / n_int, 0, lambda);
+    const double exact = sum * 2 * std::numbers::pi / n_int;
+    const double approx =
+        std::sqrt(std::numbers::pi) * lambda * std::erf(std::numbers::pi / lambda);
     const double r = std::abs(approx / exact - 1);
     if (r > max_int) max_int = r, max_int_lambda = lambda;
   }
@@ -147,12 +147,12 @@ std::vector<Claim> claims_lambda_d() {
   auto objective = [](double lambda, bool sphere) {
     const double s = sphere_integral(lambda);
     auto sq = [&](double u) {
-      const double d = std::max(u, 0.0) / kPi - std::exp(lambda * (u - 1)) / s;
+      const double d = std::max(u, 0.0) / std::numbers::pi - std::exp(lambda * (u - 1)) / s;
       return d * d;
     };
     double v = integrate(sq, 0.0, 1.0);
     if (sphere) v += integrate(sq, -1.0, 0.0);
-    return 2 * kPi * v;
+    return 2 * std::numbers::pi * v;
   };
   const double ls_sphere = minimum_point([&](double l) { return objective(l, true); }, 0.5, 10);
   const double ls_hemi = minimum_point([&](double l) { return objective(l, false); }, 0.5, 10);
@@ -174,11 +174,12 @@ std::vector<Claim> claims_lambda_d() {
                    c_sphere, ls_sphere, c_hemi, ls_hemi, obj2 / objls),
        verdict(near, rough)});
   const double a2 = sphere_integral(2.0);
-  out.push_back(
-      {"lambda_d_A_pi", "A(λd) ≈ π for λd = 2 (Iwasaki et al.'s approximation)",
-       "[Tokuyoshi2015] supplemental §3.2 (after Eq. 7)", "A(2) = S(2) = 2π(1 - e^{-4})/2 vs π",
-       fmt::format("A(2) = {:.6f}, π = {:.6f}, relative error {:.3g}", a2, kPi, a2 / kPi - 1),
-       verdict(std::abs(a2 / kPi - 1) < 0.02)});
+  out.push_back({"lambda_d_A_pi", "A(λd) ≈ π for λd = 2 (Iwasaki et al.'s approximation)",
+                 "[Tokuyoshi2015] supplemental §3.2 (after Eq. 7)",
+                 "A(2) = S(2) = 2π(1 - e^{-4})/2 vs π",
+                 fmt::format("A(2) = {:.6f}, π = {:.6f}, relative error {:.3g}", a2,
+                             std::numbers::pi, a2 / std::numbers::pi - 1),
+                 verdict(std::abs(a2 / std::numbers::pi - 1) < 0.02)});
   return out;
 }
 
@@ -187,16 +188,16 @@ std::vector<Claim> claims_lambda_d() {
 Claim claim_wang_lobe_energy() {
   const double lam = constants::cosine_lobe_published.lambda,
                amp = constants::cosine_lobe_published.amplitude;
-  const double energy = amp * 2 * kPi * (1 - std::exp(-2 * lam)) / lam;
+  const double energy = amp * 2 * std::numbers::pi * (1 - std::exp(-2 * lam)) / lam;
   return {"wang_lobe_energy",
           "Wang et al.'s cosine-lobe SG (λ = 2.133, a = 1.17) keeps the area under the curve "
           "'somewhat consistent' with the clamped cosine",
           "[Pettineo2016] (Error Analysis)",
           "∫_{S²} 1.17·e^{2.133(cos-1)} dω = 1.17·2π(1-e^{-4.266})/2.133 vs ∫ max(cos,0) dω = π; "
           "'somewhat consistent' read as within 10%",
-          fmt::format("lobe energy {:.4f} vs π = {:.4f}: {:+.2f}%", energy, kPi,
-                      100 * (energy / kPi - 1)),
-          std::abs(energy / kPi - 1) < 0.10 ? "holds" : "does not hold"};
+          fmt::format("lobe energy {:.4f} vs π = {:.4f}: {:+.2f}%", energy, std::numbers::pi,
+                      100 * (energy / std::numbers::pi - 1)),
+          std::abs(energy / std::numbers::pi - 1) < 0.10 ? "holds" : "does not hold"};
 }
 
 // The κ = 4 charts of [Pettineo2016]: θ ∈ [0, π], 361 points, with the
@@ -212,7 +213,7 @@ struct Kappa4Chart {
 Kappa4Chart kappa4_chart() {
   Kappa4Chart c;
   for (int i = 0; i < c.n; ++i) {
-    c.theta.push_back(kPi * i / (c.n - 1));
+    c.theta.push_back(std::numbers::pi * i / (c.n - 1));
     c.q.push_back({c.kappa, std::clamp(std::cos(c.theta.back()), -1.0, 1.0)});
   }
   c.ref = reference::reference_engine().evaluate(c.q);
@@ -233,7 +234,7 @@ Claim claim_mjp_inner_product_back(const Kappa4Chart& c) {
   for (int i = 0; i < c.n; ++i) {
     const double d = m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance;
     if (std::abs(d) > max_err) max_err = std::abs(d), max_theta = c.theta[i];
-    if (c.theta[i] > kPi / 2) {
+    if (c.theta[i] > std::numbers::pi / 2) {
       back_min_diff = std::min(back_min_diff, d);
       back_max = std::max(back_max, std::abs(d));
     } else {
@@ -241,7 +242,7 @@ Claim claim_mjp_inner_product_back(const Kappa4Chart& c) {
     }
   }
   const bool stronger = back_min_diff > 0;
-  const bool biggest_back = max_theta > kPi / 2;
+  const bool biggest_back = max_theta > std::numbers::pi / 2;
   return {"mjp_inner_product_back",
           "κ = 4 chart: the SG inner product (wang2009) is not hugely off; its biggest difference "
           "is on the side facing away from the light, where it has a stronger tail",
@@ -250,8 +251,8 @@ Claim claim_mjp_inner_product_back(const Kappa4Chart& c) {
           "E| is largest",
           fmt::format("max |Ê-E| = {:.4f} ({:.2f}% of E(1)) at θ = {:.1f}°; max on back side "
                       "{:.4f}, front side {:.4f}; min (Ê-E) for θ > 90° = {:.3g}",
-                      max_err, 100 * max_err / c.peak, max_theta * 180 / kPi, back_max, front_max,
-                      back_min_diff),
+                      max_err, 100 * max_err / c.peak, max_theta * 180 / std::numbers::pi, back_max,
+                      front_max, back_min_diff),
           verdict(stronger && biggest_back, stronger || biggest_back)};
 }
 
@@ -263,7 +264,7 @@ double max_abs_error(const Kappa4Chart& c, const char* id, Side side = Side::all
   const Method* m = registered_irradiance(id);
   double out = 0;
   for (int i = 0; i < c.n; ++i) {
-    const bool back = c.theta[i] > kPi / 2;
+    const bool back = c.theta[i] > std::numbers::pi / 2;
     if (side == Side::all || back == (side == Side::back))
       out = std::max(out, std::abs(m->f64(c.q[i].cosine, c.kappa) - c.ref[i].irradiance));
   }
@@ -401,7 +402,7 @@ std::vector<Claim> claims_fresnel() {
       const double f0 = k / 20.0;
       double prev = -1;
       for (int i = 0; i <= 2000; ++i) {
-        const double th = kPi / 2 * i / 2000;
+        const double th = std::numbers::pi / 2 * i / 2000;
         const double f = f0 + (1 - f0) * std::pow(1 - std::cos(th), 5);
         if (f < prev - 1e-15) mono = false;
         prev = f;
@@ -409,7 +410,7 @@ std::vector<Claim> claims_fresnel() {
     }
     for (int i = 0; i <= 2000; ++i) {
       const double c = static_cast<double>(i) / 2000;
-      const double a = std::cos(0.5 * std::acos(c) + kPi / 4);
+      const double a = std::cos(0.5 * std::acos(c) + std::numbers::pi / 4);
       const double b = std::sqrt((1 - std::sqrt(1 - c * c)) / 2);
       cos_identity = std::max(cos_identity, std::abs(a - b));
     }
@@ -504,7 +505,7 @@ FresnelShape fresnel_shape(double eta, int theta_points, int incidence_points) {
   FresnelShape r;
   std::vector<double> f(theta_points);
   for (int i = 0; i < theta_points; ++i)
-    f[i] = fresnel_dielectric(std::cos(kPi / 2 * i / (theta_points - 1)), eta);
+    f[i] = fresnel_dielectric(std::cos(std::numbers::pi / 2 * i / (theta_points - 1)), eta);
   const double tol = 1e-12;
   r.monotone_increasing = true;
   for (int i = 1; i < theta_points; ++i)
@@ -518,9 +519,9 @@ FresnelShape fresnel_shape(double eta, int theta_points, int incidence_points) {
   // Eq. 6 against brute force.
   const int n_i = std::max(2, incidence_points);
   for (int k = 0; k < n_i; ++k) {
-    const double ti = kPi / 2 * k / (n_i - 1);
+    const double ti = std::numbers::pi / 2 * k / (n_i - 1);
     const double ci = std::cos(ti);
-    const double th_max = 0.5 * std::acos(std::clamp(ci, -1.0, 1.0)) + kPi / 4;
+    const double th_max = 0.5 * std::acos(std::clamp(ci, -1.0, 1.0)) + std::numbers::pi / 4;
     double brute = 0;
     for (int i = 0; i < theta_points; ++i)
       brute = std::max(brute, fresnel_dielectric(std::cos(th_max * i / (theta_points - 1)), eta));
@@ -547,8 +548,9 @@ GaussianProduct circular_gaussian_product(double mu1, double lambda1, double mu2
 
 double gaussian_product_max_rel_error(int trials, unsigned seed, bool circular) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> mu_d(circular ? -kPi : -2.0, circular ? kPi : 2.0),
-      lam_d(0.1, 2.0), x_d(circular ? -kPi : -3.0, circular ? kPi : 3.0);
+  std::uniform_real_distribution<double> mu_d(circular ? -std::numbers::pi : -2.0,
+                                              circular ? std::numbers::pi : 2.0),
+      lam_d(0.1, 2.0), x_d(circular ? -std::numbers::pi : -3.0, circular ? std::numbers::pi : 3.0);
   double worst = 0;
   for (int t = 0; t < trials; ++t) {
     const double m1 = mu_d(rng), l1 = lam_d(rng), m2 = mu_d(rng), l2 = lam_d(rng), x = x_d(rng);

@@ -1,3 +1,5 @@
+# What makes the build fast on two cores: precompiled headers and unity batches.
+#
 # Precompiled headers: the third-party headers that most translation units
 # include cost 1-3 s each to parse (nlohmann/json.hpp 2.2 s, Ceres 2.2 s,
 # Boost.Math's quadrature 2.1 s, gtest 1.6 s, CLI11 3.4 s of g++ 12 CPU), paid
@@ -21,10 +23,15 @@ function(sglab_precompile_headers target)
   endif()
 endfunction()
 
-# sglab_unity_build(TARGET): TARGET's files compile as a few unity batches of
-# SGLAB_UNITY_BATCH files each (CMake's UNITY_BUILD); SGLAB_UNITY=OFF compiles
-# every file on its own (what an editor or clang-tidy sees).
-option(SGLAB_UNITY "Compile the command's and the tests' files in unity batches" ON)
+# Unity builds: even with the headers precompiled, most of a file's compile time
+# is g++ generating, again in every file, the same inline code of Ceres, Eigen,
+# CLI11, fmt, nlohmann-json and gtest (four fit/ files compile in half the CPU
+# time as one batch). sglab_unity_build(TARGET): TARGET's files compile as
+# unity batches of SGLAB_UNITY_BATCH files each (CMake's UNITY_BUILD), so a
+# name at file scope (an anonymous namespace's too) must be unique within its
+# library. SGLAB_UNITY=OFF compiles every file on its own (what an editor or
+# clang-tidy sees).
+option(SGLAB_UNITY "Compile each target's files in unity batches" ON)
 set(SGLAB_UNITY_BATCH 8 CACHE STRING "Files per unity batch")
 function(sglab_unity_build target)
   if(SGLAB_UNITY)
