@@ -39,6 +39,13 @@ Map one_light_map() {
 
 const auto quiet = [](const std::string&) {};
 
+std::size_t nonzero_lobe_count(const envmap::Probe& p) {
+  std::size_t n = 0;
+  for (const auto& l : p.lobes)
+    n += l.amplitude[0] != 0 || l.amplitude[1] != 0 || l.amplitude[2] != 0 ? 1 : 0;
+  return n;
+}
+
 TEST(ProbeRecommend, ConstantMapIsShL0) {
   const Vec3 L{1.5, 0.25, 3.0};
   const Map m = map_of(32, [&](const Vec3&) { return L; });
@@ -189,6 +196,32 @@ TEST(ProbeRecommend, ByCostPicksTheLeastCostOfTheProbesMeetingTheBudget) {
   const auto s = report::recommend_probe_by_storage(m, budget, 4, quiet);
   ASSERT_TRUE(s.choice);
   EXPECT_LT(s.tried[*s.choice].probe.floats(), c.probe.floats());
+}
+
+// studio.exr at 0.02: 6 SG meets, and the ladder's 7 and 8 SG are 6 SG plus
+// zero lobes (same function, more floats); with floats as the cost the
+// runner-up is the next representation that is another function, never one
+// of those copies.
+TEST(ProbeRecommend, RunnerUpIsNoZeroLobeCopyOnStudio) {
+  const Map m = envmap::read_map(std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" /
+                                 "envmaps" / "studio.exr");
+  const auto floats = [](const std::vector<const envmap::Probe*>& probes) {
+    std::vector<double> out;
+    for (const envmap::Probe* p : probes) out.push_back(static_cast<double>(p->floats()));
+    return out;
+  };
+  const auto r = report::recommend_probe_by_cost(m, 0.02, 8, floats, quiet);
+  ASSERT_TRUE(r.choice && r.runner_up);
+  const auto& c = r.tried[*r.choice].probe;
+  const auto& u = r.tried[*r.runner_up].probe;
+  // The ladder holds a zero-lobe copy of the choice cheaper than the runner-up.
+  bool copy = false;
+  for (const auto& t : r.tried)
+    copy = copy || (t.probe.label() != c.label() && report::same_probe_function(t.probe, c) &&
+                    t.probe.floats() < u.floats());
+  EXPECT_TRUE(copy) << "no zero-lobe copy of " << c.label() << ": the test shows nothing";
+  EXPECT_FALSE(report::same_probe_function(c, u)) << c.label() << " / " << u.label();
+  EXPECT_EQ(u.lobes.size(), nonzero_lobe_count(u));
 }
 
 // ---------------------------------------------------------------------------
