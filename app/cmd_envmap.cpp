@@ -4,6 +4,7 @@
 //   fit FILE --lobes N            SG lobes fitted with Ceres, --out scene.json
 //   recommend FILE --budget E     fewest lobes × cheapest method meeting E
 //     … --by storage              the probe of fewest floats meeting E
+//     … --by gpu:FAMILY           the probe of least GPU cost (ACO, RADV) meeting E
 //   baselines [--maps DIR]        the BakingLab baseline against sglab's fits, all maps
 // Every error is against the map's exact irradiance (envmap::irradiance) at
 // --normals Fibonacci normals, relative to its largest value (max over
@@ -14,12 +15,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
@@ -29,8 +33,10 @@
 
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
+#include "app/probe_source.hpp"
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
+#include "cost/gpu_report.hpp"
 #include "envmap/envmap.hpp"
 #include "envmap/probe.hpp"
 #include "report/envmap_report.hpp"
@@ -199,26 +205,55 @@ double parse_budget(const std::string& text) {
   return budget;
 }
 
-json probe_candidate_json(const report::ProbeCandidate& c) {
-  return {{"label", c.probe.label()},     {"family", c.family},
-          {"floats", c.probe.floats()},   {"bytes", c.probe.bytes()},
-          {"max_rel", c.error.max_rel},   {"rms_rel", c.error.rms_rel},
-          {"worst_normal", c.error.worst}};
+json probe_candidate_json(const report::ProbeCandidate& c, bool by_gpu) {
+  json j = {{"label", c.probe.label()},     {"family", c.family},
+            {"floats", c.probe.floats()},   {"bytes", c.probe.bytes()},
+            {"max_rel", c.error.max_rel},   {"rms_rel", c.error.rms_rel},
+            {"worst_normal", c.error.worst}};
+  if (by_gpu) j["gpu_cost"] = c.cost ? json(*c.cost) : json(nullptr);
+  return j;
 }
 
-// `envmap recommend MAP --budget E --by storage`: the probe of fewest floats
-// meeting E (report/probe_recommend.hpp).
+// The family of `--by gpu:FAMILY` (nullopt for `--by storage`); anything else,
+// or a family RADV does not know (cost::gpu::kKnownFamilies), is refused.
+std::optional<std::string> gpu_family_of(const std::string& by) {
+  if (by == "storage") return std::nullopt;
+  constexpr std::string_view prefix = "gpu:";
+  if (by.rfind(prefix, 0) != 0)
+    throw InputError(fmt::format(
+        "--by: 'storage' (fewest floats) or 'gpu:FAMILY' (least GPU cost on an AMD family, "
+        "e.g. gpu:navi21); got {}",
+        io::quote_escaped(by)));
+  const std::string family = by.substr(prefix.size());
+  if (std::find(std::begin(cost::gpu::kKnownFamilies), std::end(cost::gpu::kKnownFamilies),
+                family) == std::end(cost::gpu::kKnownFamilies))
+    throw InputError(fmt::format("--by gpu:FAMILY: unknown family {}; the families RADV knows: {}",
+                                 io::quote_escaped(family),
+                                 fmt::join(cost::gpu::kKnownFamilies, ",")));
+  return family;
+}
+
+// `envmap recommend MAP --budget E --by storage|gpu:FAMILY`: the probe of
+// fewest floats, or of least GPU cost (app/probe_source.hpp's
+// probe_gpu_costs), meeting E (report/probe_recommend.hpp).
 void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
   const double budget = parse_budget(a.budget);
-  if (a.by != "storage")
-    throw InputError(fmt::format(
-        "--by: 'storage' (fewest floats) is the only measure of a probe; got '{}'", a.by));
+  const std::optional<std::string> family = gpu_family_of(a.by);
+  const bool by_gpu = family.has_value();
   if (!a.write_probe.empty()) io::check_output_path(a.write_probe);
   const auto t0 = std::chrono::steady_clock::now();
   const envmap::Map map = envmap::read_map(a.file);
   io::Progress progress(fmt::format("envmap recommend {}", a.file), 0);
-  const report::ProbeRecommendation rec = report::recommend_probe_by_storage(
-      map, budget, a.max_lobes, [&](const std::string& s) { progress.note(s); });
+  const auto note = [&](const std::string& s) { progress.note(s); };
+  std::string driver;
+  const report::ProbeRecommendation rec =
+      by_gpu ? report::recommend_probe_by_cost(
+                   map, budget, a.max_lobes,
+                   [&](const std::vector<const envmap::Probe*>& probes) {
+                     return probe_gpu_costs(*family, probes, driver);
+                   },
+                   note)
+             : report::recommend_probe_by_storage(map, budget, a.max_lobes, note);
   progress.finish();
   const auto& tried = rec.tried;
   if (rec.choice && !a.write_probe.empty()) {
@@ -226,6 +261,7 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
     j["map"] = a.file;
     j["max_rel"] = tried[*rec.choice].error.max_rel;
     j["rms_rel"] = tried[*rec.choice].error.rms_rel;
+    if (by_gpu) j["gpu_cost"] = *tried[*rec.choice].cost;
     j["command"] = command;
     io::write_file_atomic(a.write_probe, j.dump(1) + "\n");
   }
@@ -233,36 +269,61 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
       "max over 20000 Fibonacci normals and a local maximization from the 8 worst (RMS: the "
       "normals) of |E_probe - E_map| over RGB / max E_map; E_map every pixel of the full map, "
       "lobes through the probe's method";
+  const std::string cost_definition =
+      by_gpu ? fmt::format(
+                   "ACO's inverse throughput (cycles one wave keeps a SIMD busy, a compiler "
+                   "estimate, not a timing) on RADV's null device for {} ({}) of the probe's "
+                   "exported GLSL probe_irradiance(n) (`sglab export --probe FILE --lang glsl`), "
+                   "one call per shading point in `sglab gpucost`'s single harness (whole "
+                   "workgroups, the call in no branch) minus the same harness around "
+                   "`return n;`; costed for the probes meeting the budget",
+                   *family, driver.empty() ? std::string("no probe costed") : driver)
+             : std::string();
   if (a.json) {
     json doc;
     doc["map"] = a.file;
     doc["map_size"] = {map.width, map.height};
     doc["budget"] = budget;
-    doc["by"] = "storage: floats (4 bytes each, IEEE binary32)";
+    if (by_gpu) {
+      doc["by"] = fmt::format("gpu:{}", *family);
+      doc["gpu_family"] = *family;
+      doc["cost"] = cost_definition;
+    } else {
+      doc["by"] = "storage: floats (4 bytes each, IEEE binary32)";
+    }
     doc["error"] = definition;
-    doc["choice"] = rec.choice ? probe_candidate_json(tried[*rec.choice]) : json(nullptr);
-    doc["runner_up"] = rec.runner_up ? probe_candidate_json(tried[*rec.runner_up]) : json(nullptr);
+    doc["choice"] = rec.choice ? probe_candidate_json(tried[*rec.choice], by_gpu) : json(nullptr);
+    doc["runner_up"] =
+        rec.runner_up ? probe_candidate_json(tried[*rec.runner_up], by_gpu) : json(nullptr);
     doc["lobe_ladder_up_to"] = rec.lobe_cap;
     doc["hybrid_ladder_up_to"] = rec.hybrid_cap;
     json all = json::array();
-    for (const auto& c : tried) all.push_back(probe_candidate_json(c));
+    for (const auto& c : tried) all.push_back(probe_candidate_json(c, by_gpu));
     doc["tried"] = std::move(all);
     if (!a.write_probe.empty() && rec.choice) doc["wrote"] = a.write_probe;
     fmt::print("{}\n", doc.dump(2));
   } else {
-    fmt::print("map {} ({} x {}): budget {} on the probe's max irradiance error, by storage\n",
-               a.file, map.width, map.height, budget);
-    fmt::print("error = {}\n\n", definition);
-    fmt::print("  {:<22} {:<20} {:>6} {:>10} {:>10}  {}\n", "probe", "family", "floats", "max",
-               "RMS", "meets");
+    fmt::print("map {} ({} x {}): budget {} on the probe's max irradiance error, by {}\n", a.file,
+               map.width, map.height, budget,
+               by_gpu ? fmt::format("GPU cost on {}", *family) : std::string("storage"));
+    fmt::print("error = {}\n", definition);
+    if (by_gpu) fmt::print("cost = {}\n", cost_definition);
+    fmt::print("\n");
+    fmt::print("  {:<22} {:<20} {:>6} {:>10} {:>10}  {}{}\n", "probe", "family", "floats", "max",
+               "RMS", "meets", by_gpu ? "  cycles" : "");
     for (const auto& c : tried)
-      fmt::print("  {:<22} {:<20} {:>6} {:>10.4g} {:>10.4g}  {}\n", c.probe.label(), c.family,
+      fmt::print("  {:<22} {:<20} {:>6} {:>10.4g} {:>10.4g}  {}{}\n", c.probe.label(), c.family,
                  c.probe.floats(), c.error.max_rel, c.error.rms_rel,
-                 c.error.max_rel <= budget ? "yes" : "no");
-    const auto describe = [](const report::ProbeCandidate& c) {
-      return fmt::format("{} ({}): {} floats, {} bytes; max error {:.4g}, RMS {:.4g}",
-                         c.probe.label(), c.family, c.probe.floats(), c.probe.bytes(),
-                         c.error.max_rel, c.error.rms_rel);
+                 c.error.max_rel <= budget ? "yes" : "no",
+                 !by_gpu  ? std::string()
+                 : c.cost ? fmt::format("  {:>6}", *c.cost)
+                          : "       -");
+    const auto describe = [&](const report::ProbeCandidate& c) {
+      return fmt::format(
+          "{} ({}): {} floats, {} bytes; max error {:.4g}, RMS {:.4g}{}", c.probe.label(), c.family,
+          c.probe.floats(), c.probe.bytes(), c.error.max_rel, c.error.rms_rel,
+          by_gpu && c.cost ? fmt::format("; {} cycles per wave on {}", *c.cost, *family)
+                           : std::string());
     };
     fmt::print("\n");
     if (rec.choice) {
@@ -283,7 +344,8 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
 void run_recommend(const RecommendArgs& a) {
   if (!a.write_probe.empty())
     throw InputError(
-        "--write-probe: needs --by storage (the lobes-and-method choice has no probe)");
+        "--write-probe: needs --by storage or --by gpu:FAMILY (the lobes-and-method choice has "
+        "no probe)");
   const double budget = parse_budget(a.budget);
   const auto precision = io::parse_option("--precision", a.precision,
                                           {io::Precision::float32, io::Precision::float64});
@@ -447,10 +509,12 @@ void add_envmap_command(CLI::App& app) {
     cmd->add_flag("--json", a->json, "print the answer as JSON");
     cmd->add_option("--by", a->by,
                     "storage: the probe (SH L0-L4, ZH3, N lobes, SH L2 + K lobes) of fewest floats "
-                    "meeting the budget, dense error on the full map; without --by: lobes x "
-                    "cheapest irradiance method");
+                    "meeting the budget, dense error on the full map; gpu:FAMILY: the one whose "
+                    "exported evaluation has the least ACO inverse throughput on that AMD family "
+                    "(RADV null device, as `sglab gpucost`); without --by: lobes x cheapest "
+                    "irradiance method");
     add_path_option(cmd, "--write-probe", a->write_probe,
-                    "with --by storage: the chosen probe as JSON for `sglab export --probe`");
+                    "with --by: the chosen probe as JSON for `sglab export --probe`");
     a->costs.add_to(cmd);
     cmd->callback([a, cmd] {
       if (!a->by.empty())

@@ -1,9 +1,14 @@
 #include "app/probe_source.hpp"
 
+#include <filesystem>
+#include <map>
+#include <system_error>
+
 #include <fmt/format.h>
 
 #include "common/io.hpp"
 #include "common/json_input.hpp"
+#include "export/gpu_cost.hpp"
 
 namespace sglab::app {
 
@@ -38,6 +43,40 @@ shader::ProbeTerms probe_terms(const envmap::Probe& probe, const std::string& co
                        {l.amplitude[0], l.amplitude[1], l.amplitude[2]}});
   t.method = probe.method;
   return t;
+}
+
+std::vector<double> probe_gpu_costs(const std::string& family,
+                                    const std::vector<const envmap::Probe*>& probes,
+                                    std::string& driver) {
+  namespace gpu = shader::gpu;
+  const auto manifest = gpu::find_radv_manifest();
+  if (!manifest)
+    throw gpu::Unavailable(
+        "no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
+        "mesa-vulkan-drivers");
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw std::runtime_error(
+        fmt::format("envmap recommend: cannot find this executable: {}", ec.message()));
+  std::vector<gpu::Shader> shaders{gpu::probe_baseline_shader(shader::Language::glsl)};
+  std::map<std::string, std::size_t> row_of;  // distinct source -> its row in the report
+  std::vector<std::size_t> rows;
+  for (const envmap::Probe* p : probes) {
+    const std::string source =
+        shader::export_probe(shader::Language::glsl, probe_terms(*p, "")).source;
+    const auto [it, fresh] = row_of.emplace(source, shaders.size() - 1);
+    if (fresh) shaders.push_back(gpu::probe_shader(p->label(), shader::Language::glsl, source));
+    rows.push_back(it->second);
+  }
+  const cost::gpu::Report report = gpu::measure(self, *manifest, {family}, shaders);
+  if (report.rows.size() != shaders.size() - 1)
+    throw std::logic_error("probe_gpu_costs: one row per distinct probe expected");
+  driver = report.driver;
+  std::vector<double> costs;
+  for (std::size_t r : rows)
+    costs.push_back(static_cast<double>(report.rows[r].stats.inverse_throughput));
+  return costs;
 }
 
 }  // namespace sglab::app

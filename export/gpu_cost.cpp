@@ -16,6 +16,7 @@
 #include <spirv-tools/optimizer.hpp>
 
 #include "common/io.hpp"
+#include "export/probe_export.hpp"
 #include "export/vulkan_runner.hpp"
 
 namespace sglab::shader::gpu {
@@ -261,6 +262,21 @@ Shader export_shader(std::string_view method, shader::Language lang,
             : shader::compute_shader(lang, exported.source, exported.entry_point, precision,
                                      shader::Dispatch::whole_groups);
   return compiled(method, lang, source, precision, split, Harness::single, 1, CompilePath::none);
+}
+
+Shader probe_shader(std::string_view label, shader::Language lang,
+                    std::string_view exported_probe_source) {
+  return compiled(
+      label, lang,
+      shader::probe_compute_shader(lang, exported_probe_source, shader::Dispatch::whole_groups),
+      shader::Precision::float32, false, Harness::single, 1, CompilePath::none);
+}
+
+Shader probe_baseline_shader(shader::Language lang) {
+  const std::string body = lang == shader::Language::glsl
+                               ? "vec3 probe_irradiance(vec3 n) { return n; }\n"
+                               : "float3 probe_irradiance(float3 n) { return n; }\n";
+  return probe_shader(kBaseline, lang, body);
 }
 
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv) {

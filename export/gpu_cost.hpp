@@ -112,6 +112,17 @@ Shader export_shader(std::string_view method, shader::Language lang,
                      const shader::ExportResult& exported,
                      shader::Precision precision = shader::Precision::float32);
 
+// An exported probe's probe_irradiance(n) (export/probe_export.hpp: the text
+// `sglab export --probe` writes) in the single harness of a probe:
+// probe_compute_shader dispatched in whole groups, one normal loaded and one
+// evaluation stored per invocation, the call in no branch; compile path none,
+// float. `label` names its row. probe_baseline_shader is the same harness
+// around `return n;`; its key in measure() is the single harness's, so probes
+// are measured in a list of their own, the baseline first.
+Shader probe_shader(std::string_view label, shader::Language lang,
+                    std::string_view exported_probe_source);
+Shader probe_baseline_shader(shader::Language lang);
+
 // 64-bit FNV-1a of the SPIR-V words, as 16 hex digits: which code was costed.
 std::string spirv_hash(const std::vector<std::uint32_t>& spirv);
 

@@ -160,9 +160,10 @@ ProbeExport export_probe(Language lang, const ProbeTerms& probe) {
   return out;
 }
 
-std::string probe_compute_shader(Language lang, std::string_view exported) {
+std::string probe_compute_shader(Language lang, std::string_view exported, Dispatch dispatch) {
   if (lang == Language::cpp)
     throw std::invalid_argument("probe_compute_shader: C++ is not a shader language");
+  const bool checked = dispatch == Dispatch::any_size;
   if (lang == Language::glsl)
     return fmt::format(R"(#version 450
 layout(local_size_x = 64) in;
@@ -172,22 +173,22 @@ layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ vec4 result[]; 
 {}
 void main() {{
   uint i = gl_GlobalInvocationID.x;
-  if (i < uint(normals.length())) result[i] = vec4(probe_irradiance(normals[i].xyz), 0.0);
+  {}result[i] = vec4(probe_irradiance(normals[i].xyz), 0.0);
 }}
 )",
-                       exported);
-  return fmt::format(R"([[vk::binding(0, 0)]] StructuredBuffer<float4> normals;
+                       exported, checked ? "if (i < uint(normals.length())) " : "");
+  return fmt::format(
+      R"([[vk::binding(0, 0)]] StructuredBuffer<float4> normals;
 [[vk::binding(1, 0)]] RWStructuredBuffer<float4> result;
 
 {}
 [numthreads(64, 1, 1)]
 void main(uint3 id : SV_DispatchThreadID) {{
-  uint n, stride;
-  normals.GetDimensions(n, stride);
-  if (id.x < n) result[id.x] = float4(probe_irradiance(normals[id.x].xyz), 0.0f);
+{}result[id.x] = float4(probe_irradiance(normals[id.x].xyz), 0.0f);
 }}
 )",
-                     exported);
+      exported,
+      checked ? "  uint n, stride;\n  normals.GetDimensions(n, stride);\n  if (id.x < n) " : "  ");
 }
 
 }  // namespace sglab::shader

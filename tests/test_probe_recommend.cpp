@@ -1,14 +1,20 @@
-// `sglab envmap recommend --by storage` (report/probe_recommend.hpp) on maps
-// whose best probe is known: a constant map is exactly SH L0, a map that is one
-// SG light is one lobe (found where it is).
+// `sglab envmap recommend --by storage|gpu:FAMILY` (report/probe_recommend.hpp)
+// on maps whose best probe is known: a constant map is exactly SH L0, a map
+// that is one SG light is one lobe (found where it is). The OnRadv* tests cost
+// the probes on RADV's null device (navi21) and skip, with the reason, when
+// RADV cannot create one.
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/io.hpp"
 #include "envmap/envmap.hpp"
 #include "envmap/probe.hpp"
+#include "export/gpu_cost.hpp"
 #include "report/probe_recommend.hpp"
 #include "tests/map_of.hpp"
 #include "tests/test_support.hpp"
@@ -32,6 +38,13 @@ Map one_light_map() {
 }
 
 const auto quiet = [](const std::string&) {};
+
+std::size_t nonzero_lobe_count(const envmap::Probe& p) {
+  std::size_t n = 0;
+  for (const auto& l : p.lobes)
+    n += l.amplitude[0] != 0 || l.amplitude[1] != 0 || l.amplitude[2] != 0 ? 1 : 0;
+  return n;
+}
 
 TEST(ProbeRecommend, ConstantMapIsShL0) {
   const Vec3 L{1.5, 0.25, 3.0};
@@ -88,9 +101,225 @@ TEST(ProbeRecommend, CliWritesAProbeThatExports) {
   const auto e = sglab::test::run_sglab({"export", "--probe", probe_file, "--lang", "cpp"});
   ASSERT_EQ(e.exit_code, 0) << e.output;
   EXPECT_NE(e.output.find("probe_irradiance"), std::string::npos);
-  const auto bad = sglab::test::run_sglab(
-      {"envmap", "recommend", map_file, "--budget", "2e-3", "--by", "gpu:navi21"});
-  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+}
+
+// --by names storage or gpu:FAMILY with a family RADV knows; anything else is
+// refused before the map is read (exit 2), naming the option and the families.
+TEST(ProbeRecommend, CliRefusesAnUnknownMeasureOrFamily) {
+  const auto unknown = sglab::test::run_sglab(
+      {"envmap", "recommend", "no-such-map.exr", "--budget", "2e-3", "--by", "gpu:navi99"});
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--by gpu:FAMILY: unknown family 'navi99'"), std::string::npos)
+      << unknown.output;
+  EXPECT_NE(unknown.output.find("navi21"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("gfx1100"), std::string::npos) << unknown.output;
+  for (const char* by : {"gpu:", "speed", "gpu"}) {
+    const auto bad = sglab::test::run_sglab(
+        {"envmap", "recommend", "no-such-map.exr", "--budget", "2e-3", "--by", by});
+    EXPECT_EQ(bad.exit_code, 2) << by << ": " << bad.output;
+    EXPECT_NE(bad.output.find("--by"), std::string::npos) << by << ": " << bad.output;
+  }
+}
+
+// A probe with a lobe of zero amplitude added is the same function; a probe
+// whose lobe differs in any number, or of another kind, is not.
+TEST(ProbeRecommend, SameProbeFunctionIgnoresZeroLobesOnly) {
+  envmap::Probe one;
+  one.kind = envmap::ProbeKind::lobes;
+  one.lobes = {kLight};
+  envmap::Probe padded = one;
+  padded.lobes.push_back({{0, 0, 1}, 3.0, {0, 0, 0}});
+  EXPECT_TRUE(report::same_probe_function(one, padded));
+  EXPECT_NE(one.label(), padded.label());
+  envmap::Probe moved = padded;
+  moved.lobes[0].sharpness += 1e-9;
+  EXPECT_FALSE(report::same_probe_function(one, moved));
+  envmap::Probe second = padded;
+  second.lobes[1].amplitude = {1e-6, 0, 0};
+  EXPECT_FALSE(report::same_probe_function(one, second));
+  envmap::Probe hybrid = one;
+  hybrid.kind = envmap::ProbeKind::hybrid;
+  EXPECT_FALSE(report::same_probe_function(one, hybrid));
+}
+
+// The runner-up is another representation: another label and another
+// function than the choice (the lobe ladder's "kept n-1" step, the choice
+// plus a zero lobe, never is one).
+TEST(ProbeRecommend, RunnerUpIsAnotherFunction) {
+  const Map m = one_light_map();
+  for (double budget : {2e-3, 0.05}) {
+    const auto r = report::recommend_probe_by_storage(m, budget, 4, quiet);
+    ASSERT_TRUE(r.choice && r.runner_up) << budget;
+    const auto& c = r.tried[*r.choice].probe;
+    const auto& u = r.tried[*r.runner_up].probe;
+    EXPECT_NE(c.label(), u.label());
+    EXPECT_FALSE(report::same_probe_function(c, u)) << c.label() << " / " << u.label();
+    // Every candidate ranked between them is the choice's label or function.
+    for (const auto& t : r.tried)
+      if (t.error.max_rel <= budget && t.probe.floats() < u.floats() &&
+          t.probe.floats() >= c.floats()) {
+        EXPECT_TRUE(t.probe.label() == c.label() || report::same_probe_function(t.probe, c))
+            << t.probe.label();
+      }
+  }
+}
+
+// By cost: only the candidates meeting the budget are costed, in one call;
+// the choice is the one of least cost (here a cost that prefers more floats,
+// so it is not the storage choice), the runner-up the next of another
+// representation.
+TEST(ProbeRecommend, ByCostPicksTheLeastCostOfTheProbesMeetingTheBudget) {
+  const Map m = one_light_map();
+  const double budget = 0.05;
+  int calls = 0;
+  const auto cost = [&](const std::vector<const envmap::Probe*>& probes) {
+    ++calls;
+    std::vector<double> out;
+    for (const envmap::Probe* p : probes) out.push_back(1000.0 - static_cast<double>(p->floats()));
+    return out;
+  };
+  const auto r = report::recommend_probe_by_cost(m, budget, 4, cost, quiet);
+  EXPECT_EQ(calls, 1);
+  ASSERT_TRUE(r.choice && r.runner_up);
+  for (const auto& t : r.tried) {
+    EXPECT_EQ(t.cost.has_value(), t.error.max_rel <= budget) << t.probe.label();
+    if (t.cost) {
+      EXPECT_GE(t.cost.value(), r.tried[*r.choice].cost.value()) << t.probe.label();
+    }
+  }
+  const auto& c = r.tried[*r.choice];
+  const auto& u = r.tried[*r.runner_up];
+  EXPECT_LE(c.cost.value(), u.cost.value());
+  EXPECT_FALSE(report::same_probe_function(c.probe, u.probe));
+  EXPECT_NE(c.probe.label(), u.probe.label());
+  // The storage choice is the one of fewest floats: here the most costly.
+  const auto s = report::recommend_probe_by_storage(m, budget, 4, quiet);
+  ASSERT_TRUE(s.choice);
+  EXPECT_LT(s.tried[*s.choice].probe.floats(), c.probe.floats());
+}
+
+// studio.exr at 0.02: 6 SG meets, and the ladder's 7 and 8 SG are 6 SG plus
+// zero lobes (same function, more floats); with floats as the cost the
+// runner-up is the next representation that is another function, never one
+// of those copies.
+TEST(ProbeRecommend, RunnerUpIsNoZeroLobeCopyOnStudio) {
+  const Map m = envmap::read_map(std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / ".." / "data" /
+                                 "envmaps" / "studio.exr");
+  const auto floats = [](const std::vector<const envmap::Probe*>& probes) {
+    std::vector<double> out;
+    for (const envmap::Probe* p : probes) out.push_back(static_cast<double>(p->floats()));
+    return out;
+  };
+  const auto r = report::recommend_probe_by_cost(m, 0.02, 8, floats, quiet);
+  ASSERT_TRUE(r.choice && r.runner_up);
+  const auto& c = r.tried[*r.choice].probe;
+  const auto& u = r.tried[*r.runner_up].probe;
+  // The ladder holds a zero-lobe copy of the choice cheaper than the runner-up.
+  bool copy = false;
+  for (const auto& t : r.tried)
+    copy = copy || (t.probe.label() != c.label() && report::same_probe_function(t.probe, c) &&
+                    t.probe.floats() < u.floats());
+  EXPECT_TRUE(copy) << "no zero-lobe copy of " << c.label() << ": the test shows nothing";
+  EXPECT_FALSE(report::same_probe_function(c, u)) << c.label() << " / " << u.label();
+  EXPECT_EQ(u.lobes.size(), nonzero_lobe_count(u));
+}
+
+// ---------------------------------------------------------------------------
+// RADV's null device: the probes' exported GLSL costed as `sglab gpucost` does.
+
+class OnRadvProbeRecommend : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const auto manifest = shader::gpu::find_radv_manifest();
+    if (!manifest) {
+      skip_reason_ = "no radeon_icd.*.json (mesa-vulkan-drivers) in the Vulkan loader's folders";
+      return;
+    }
+    try {
+      shader::gpu::measure(SGLAB_BINARY, *manifest, {"navi21"},
+                           {shader::gpu::probe_baseline_shader(shader::Language::glsl)});
+    } catch (const shader::gpu::Unavailable& e) {
+      skip_reason_ = e.what();
+    }
+  }
+  void SetUp() override {
+    if (!skip_reason_.empty()) GTEST_SKIP() << "no RADV null device: " << skip_reason_;
+  }
+  static std::string skip_reason_;
+};
+std::string OnRadvProbeRecommend::skip_reason_;
+
+// A constant map: every SH order, ZH3 and the lobes meet a tight budget; SH L0
+// (three constants, no arithmetic on n) costs least on the GPU, and every other
+// meeting probe costs at least as much.
+TEST_F(OnRadvProbeRecommend, ConstantMapIsShL0OnNavi21) {
+  const sglab::test::TempDir dir("probe_recommend_gpu");
+  const auto map_file = (dir.path / "constant.exr").string();
+  envmap::write_exr(map_file, map_of(32, [](const Vec3&) { return Vec3{1.5, 0.25, 3.0}; }));
+  const auto r = sglab::test::run_sglab({"envmap", "recommend", map_file, "--budget", "1e-4",
+                                         "--by", "gpu:navi21", "--max-lobes", "2", "--json"},
+                                        false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  EXPECT_EQ(doc["by"], "gpu:navi21");
+  EXPECT_EQ(doc["gpu_family"], "navi21");
+  EXPECT_NE(doc["cost"].get<std::string>().find("inverse throughput"), std::string::npos);
+  EXPECT_EQ(doc["choice"]["label"], "SH L0");
+  const double best = doc["choice"]["gpu_cost"].get<double>();
+  ASSERT_TRUE(doc["runner_up"].is_object());
+  EXPECT_NE(doc["runner_up"]["label"], "SH L0");
+  EXPECT_GE(doc["runner_up"]["gpu_cost"].get<double>(), best);
+  int costed = 0;
+  for (const auto& t : doc["tried"]) {
+    if (t["max_rel"].get<double>() <= 1e-4) {
+      ASSERT_TRUE(t["gpu_cost"].is_number()) << t.dump();
+      EXPECT_GE(t["gpu_cost"].get<double>(), best) << t.dump();
+      ++costed;
+    } else {
+      EXPECT_TRUE(t["gpu_cost"].is_null()) << t.dump();
+    }
+  }
+  EXPECT_GE(costed, 4);
+  // SH L2 evaluates nine basis functions: it costs more than L0's constants.
+  for (const auto& t : doc["tried"])
+    if (t["label"] == "SH L2" && t["gpu_cost"].is_number()) {
+      EXPECT_GT(t["gpu_cost"].get<double>(), best) << t.dump();
+    }
+}
+
+// One SG light: one lobe meets the budget and no SH does; by GPU cost the
+// choice is that lobe, the runner-up another representation, and the written
+// probe exports.
+TEST_F(OnRadvProbeRecommend, OneSgLightIsOneLobeOnNavi21) {
+  const sglab::test::TempDir dir("probe_recommend_gpu");
+  const auto map_file = (dir.path / "light.exr").string();
+  envmap::write_exr(map_file, one_light_map());
+  const auto probe_file = (dir.path / "probe.json").string();
+  const auto r = sglab::test::run_sglab(
+      {"envmap", "recommend", map_file, "--budget", "2e-3", "--by", "gpu:navi21", "--max-lobes",
+       "4", "--write-probe", probe_file, "--json"},
+      false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(r.output);
+  EXPECT_EQ(doc["choice"]["label"], "1 SG");
+  const double best = doc["choice"]["gpu_cost"].get<double>();
+  EXPECT_GT(best, 0);
+  ASSERT_TRUE(doc["runner_up"].is_object());
+  EXPECT_NE(doc["runner_up"]["label"], "1 SG");
+  EXPECT_GT(doc["runner_up"]["gpu_cost"].get<double>(), best);
+  const auto probe = nlohmann::json::parse(sglab::io::read_file(probe_file));
+  EXPECT_EQ(probe["gpu_cost"].get<double>(), best);
+  const auto e = sglab::test::run_sglab({"export", "--probe", probe_file, "--lang", "glsl"});
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  EXPECT_NE(e.output.find("probe_irradiance"), std::string::npos);
+  // The text form states the family, the metric and each candidate's cost.
+  const auto text = sglab::test::run_sglab({"envmap", "recommend", map_file, "--budget", "2e-3",
+                                            "--by", "gpu:navi21", "--max-lobes", "4"},
+                                           false);
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("by GPU cost on navi21"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("ACO's inverse throughput"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("cycles per wave on navi21"), std::string::npos) << text.output;
 }
 
 }  // namespace
