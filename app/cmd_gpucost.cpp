@@ -290,16 +290,7 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
     throw InputError(
         "gpucost: nothing to cost (the loop and setup harnesses are float only, the setup is the "
         "split form's, legalization is HLSL's)");
-  const auto manifest = gpu::find_radv_manifest();
-  if (!manifest)
-    throw gpu::Unavailable(
-        "no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
-        "mesa-vulkan-drivers");
-
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec)
-    throw std::runtime_error(fmt::format("gpucost: cannot find this executable: {}", ec.message()));
+  const auto [self, manifest] = gpu::worker_setup("gpucost");
   if (a.disasm) {
     const bool split = a.form == "split";
     const shader::Language lang = p.languages[0];
@@ -336,7 +327,7 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
         "; sglab gpucost --disasm --method {} --family {} --lang {}{}\n; ACO's final assembly of "
         "the whole pipeline: the harness ({}) around the export\n{}",
         p.methods[0], families[0], shader::to_string(lang), options, what,
-        gpu::disassemble(self, *manifest, families[0], s));
+        gpu::disassemble(self, manifest, families[0], s));
     return;
   }
   io::Progress progress("gpucost", families.size() + count);
@@ -347,7 +338,7 @@ void measure_and_report(const GpucostArgs& a, const std::vector<std::string>& fa
     progress.advance();
   });
   cost::gpu::Report report =
-      gpu::measure(self, *manifest, families, shaders, [&](std::string_view family) {
+      gpu::measure(self, manifest, families, shaders, [&](std::string_view family) {
         progress.note(fmt::format("ACO, {}", family));
         progress.advance();
       });

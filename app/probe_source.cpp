@@ -49,16 +49,7 @@ std::vector<double> probe_gpu_costs(const std::string& family,
                                     const std::vector<const envmap::Probe*>& probes,
                                     std::string& driver) {
   namespace gpu = shader::gpu;
-  const auto manifest = gpu::find_radv_manifest();
-  if (!manifest)
-    throw gpu::Unavailable(
-        "no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
-        "mesa-vulkan-drivers");
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec)
-    throw std::runtime_error(
-        fmt::format("envmap recommend: cannot find this executable: {}", ec.message()));
+  const auto [self, manifest] = gpu::worker_setup("envmap recommend");
   std::vector<gpu::Shader> shaders{gpu::probe_baseline_shader(shader::Language::glsl)};
   std::map<std::string, std::size_t> row_of;  // distinct source -> its row in the report
   std::vector<std::size_t> rows;
@@ -69,7 +60,7 @@ std::vector<double> probe_gpu_costs(const std::string& family,
     if (fresh) shaders.push_back(gpu::probe_shader(p->label(), shader::Language::glsl, source));
     rows.push_back(it->second);
   }
-  const cost::gpu::Report report = gpu::measure(self, *manifest, {family}, shaders);
+  const cost::gpu::Report report = gpu::measure(self, manifest, {family}, shaders);
   if (report.rows.size() != shaders.size() - 1)
     throw std::logic_error("probe_gpu_costs: one row per distinct probe expected");
   driver = report.driver;

@@ -312,6 +312,19 @@ std::optional<fs::path> find_radv_manifest() {
   return std::nullopt;
 }
 
+WorkerSetup worker_setup(std::string_view who) {
+  const auto manifest = find_radv_manifest();
+  if (!manifest)
+    throw Unavailable(
+        "no radeon Vulkan driver (radeon_icd.*.json) in the Vulkan loader's folders: install "
+        "mesa-vulkan-drivers");
+  std::error_code ec;
+  fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw std::runtime_error(fmt::format("{}: cannot find this executable: {}", who, ec.message()));
+  return {std::move(self), *manifest};
+}
+
 std::vector<std::string> family_environment(const fs::path& manifest, std::string_view family) {
   return {
       // The radeon driver only: the loader's driver-file variable (and its

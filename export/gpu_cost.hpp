@@ -131,6 +131,15 @@ std::string spirv_hash(const std::vector<std::uint32_t>& spirv);
 // /usr/share, /etc), or nullopt.
 std::optional<std::filesystem::path> find_radv_manifest();
 
+// What `measure` needs to start its worker processes: this executable and the
+// radeon driver's manifest. Throws Unavailable without the driver, and
+// std::runtime_error (its message starting "`who`: ") when /proc/self/exe
+// cannot be read.
+struct WorkerSetup {
+  std::filesystem::path self, manifest;
+};
+WorkerSetup worker_setup(std::string_view who);
+
 // The environment a family's process runs with: the radeon driver only,
 // the family, no implicit layers, no on-disk shader cache.
 std::vector<std::string> family_environment(const std::filesystem::path& manifest,

@@ -62,6 +62,13 @@ std::vector<envmap::Lobe> nonzero_lobes(const envmap::Probe& p) {
 
 // The candidates both measures share: the map's exact irradiance, the error
 // of a probe, and the SH and ZH3 families.
+// The map's dense truth, after telling `note` that it is being computed.
+envmap::DenseTruth dense_truth_told(const envmap::MapIrradiance& field,
+                                    const std::function<void(const std::string&)>& note) {
+  note("exact irradiance of the full map at the dense normals");
+  return envmap::dense_truth(field);
+}
+
 struct Candidates {
   const envmap::Map& map;
   const std::function<void(const std::string&)>& note;
@@ -71,12 +78,11 @@ struct Candidates {
   std::vector<envmap::Vec3> exact;
   envmap::Map work;
 
-  // `n` is told "exact irradiance …" before the caller constructs this.
   Candidates(const envmap::Map& m, const std::function<void(const std::string&)>& n)
       : map(m),
         note(n),
         field(m),
-        truth(envmap::dense_truth(field)),
+        truth(dense_truth_told(field, n)),
         normals(reference::fibonacci_normals(envmap::kFitNormals)),
         exact(field.at(normals)),
         work(envmap::working_copy(m)) {}
@@ -149,7 +155,6 @@ ProbeRecommendation recommend_probe_by_storage(
     const envmap::Map& map, double budget, std::size_t max_lobes,
     const std::function<void(const std::string&)>& note) {
   ProbeRecommendation r;
-  note("exact irradiance of the full map at the dense normals");
   Candidates c(map, note);
   c.add_sh(r);
   const std::size_t supported = std::min(max_lobes, envmap::max_lobes(c.work));
@@ -180,7 +185,6 @@ ProbeRecommendation recommend_probe_by_cost(const envmap::Map& map, double budge
                                             std::size_t max_lobes, const ProbeCosts& cost,
                                             const std::function<void(const std::string&)>& note) {
   ProbeRecommendation r;
-  note("exact irradiance of the full map at the dense normals");
   Candidates c(map, note);
   c.add_sh(r);
   const std::size_t supported = std::min(max_lobes, envmap::max_lobes(c.work));
