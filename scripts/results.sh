@@ -14,7 +14,7 @@
 # between `<!-- generated: NAME (scripts/results.sh) -->` and
 # `<!-- end: NAME -->` and is replaced whole; the prose around it is not
 # touched. tests/test_readme_numbers.cpp checks their numbers against
-# the same sources. Takes about 15 minutes on 2 cores; the bench timings depend
+# the same sources. The bench timings depend
 # on the machine's load, the instruction counts and GPU statistics do not.
 # Extra arguments go to `sglab run`.
 set -euo pipefail
