@@ -107,7 +107,8 @@ struct FitArgs {
 };
 
 struct RecommendArgs {
-  std::string file, budget, precision = "float", by, write_probe;
+  std::string file, budget, precision = "float", by, write_probe, lang = "glsl";
+  bool lang_given = false;  // --lang on the command line (it needs --by)
   std::size_t max_lobes = 32, normals = envmap::kEvalNormals;
   bool json = false;
   CostsOption costs;
@@ -242,6 +243,8 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
   const double budget = parse_budget(a.budget);
   const std::optional<std::string> family = gpu_family_of(a.by);
   const bool by_gpu = family.has_value();
+  const auto lang = io::parse_option("--lang", a.lang, {io::Language::glsl, io::Language::hlsl});
+  const std::string lang_name(io::to_string(lang));
   if (!a.write_probe.empty()) io::check_output_path(a.write_probe);
   const auto t0 = std::chrono::steady_clock::now();
   const envmap::Map map = envmap::read_map(a.file);
@@ -252,7 +255,7 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
       by_gpu ? report::recommend_probe_by_cost(
                    map, budget, a.max_lobes,
                    [&](const std::vector<const envmap::Probe*>& probes) {
-                     return probe_gpu_costs(*family, probes, driver);
+                     return probe_gpu_costs(*family, lang, probes, driver);
                    },
                    note)
              : report::recommend_probe_by_storage(map, budget, a.max_lobes, note);
@@ -275,11 +278,12 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
       by_gpu ? fmt::format(
                    "ACO's inverse throughput (cycles one wave keeps a SIMD busy, a compiler "
                    "estimate, not a timing) on RADV's null device for {} ({}) of the probe's "
-                   "exported GLSL probe_irradiance(n) (`sglab export --probe FILE --lang glsl`), "
+                   "exported {} probe_irradiance(n) (`sglab export --probe FILE --lang {}`), "
                    "one call per shading point in `sglab gpucost`'s single harness (whole "
                    "workgroups, the call in no branch) minus the same harness around "
                    "`return n;`; costed for the probes meeting the budget",
-                   *family, driver.empty() ? std::string("no probe costed") : driver)
+                   *family, driver.empty() ? std::string("no probe costed") : driver,
+                   lang == io::Language::glsl ? "GLSL" : "HLSL", lang_name)
              : std::string();
   if (a.json) {
     json doc;
@@ -289,6 +293,7 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
     if (by_gpu) {
       doc["by"] = fmt::format("gpu:{}", *family);
       doc["gpu_family"] = *family;
+      doc["lang"] = lang_name;
       doc["cost"] = cost_definition;
     } else {
       doc["by"] = "storage: floats (4 bytes each, IEEE binary32)";
@@ -333,8 +338,8 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
       fmt::print("  runner-up: {}\n",
                  rec.runner_up ? describe(tried[*rec.runner_up]) : std::string("none"));
       if (!a.write_probe.empty())
-        fmt::print("wrote {} (sglab export --probe {} --lang glsl)\n", a.write_probe,
-                   a.write_probe);
+        fmt::print("wrote {} (sglab export --probe {} --lang {})\n", a.write_probe, a.write_probe,
+                   lang_name);
     } else {
       fmt::print("  no probe up to SH L4, ZH3, {} lobes and SH L2 + {} lobes meets the budget.\n",
                  rec.lobe_cap, rec.hybrid_cap);
@@ -348,6 +353,10 @@ void run_recommend(const RecommendArgs& a) {
     throw InputError(
         "--write-probe: needs --by storage or --by gpu:FAMILY (the lobes-and-method choice has "
         "no probe)");
+  if (a.lang_given)
+    throw InputError(
+        "--lang: needs --by gpu:FAMILY (the language the probe is costed in) or --by storage "
+        "(the language of the export it names); the lobes-and-method choice has no probe");
   const double budget = parse_budget(a.budget);
   const auto precision = io::parse_option("--precision", a.precision,
                                           {io::Precision::float32, io::Precision::float64});
@@ -542,8 +551,14 @@ void add_envmap_command(CLI::App& app) {
                     "irradiance method");
     add_path_option(cmd, "--write-probe", a->write_probe,
                     "with --by: the chosen probe as JSON for `sglab export --probe`");
+    auto* lang = cmd->add_option("--lang", a->lang,
+                                 "with --by gpu:FAMILY: glsl or hlsl, the language the probe's "
+                                 "evaluation is exported and costed in (as `sglab export --probe "
+                                 "FILE --lang`); with --by storage: the export --write-probe names")
+                     ->capture_default_str();
     a->costs.add_to(cmd);
-    cmd->callback([a, cmd] {
+    cmd->callback([a, cmd, lang] {
+      a->lang_given = lang->count() > 0;
       if (!a->by.empty())
         run_recommend_probe(*a, command_line("sglab envmap recommend " + a->file, cmd));
       else
