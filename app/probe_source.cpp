@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -45,19 +46,20 @@ shader::ProbeTerms probe_terms(const envmap::Probe& probe, const std::string& co
   return t;
 }
 
-std::vector<double> probe_gpu_costs(const std::string& family,
+std::vector<double> probe_gpu_costs(const std::string& family, shader::Language lang,
                                     const std::vector<const envmap::Probe*>& probes,
                                     std::string& driver) {
   namespace gpu = shader::gpu;
+  if (lang == shader::Language::cpp)
+    throw std::logic_error("probe_gpu_costs: a GPU costs GLSL or HLSL, not C++");
   const auto [self, manifest] = gpu::worker_setup("envmap recommend");
-  std::vector<gpu::Shader> shaders{gpu::probe_baseline_shader(shader::Language::glsl)};
+  std::vector<gpu::Shader> shaders{gpu::probe_baseline_shader(lang)};
   std::map<std::string, std::size_t> row_of;  // distinct source -> its row in the report
   std::vector<std::size_t> rows;
   for (const envmap::Probe* p : probes) {
-    const std::string source =
-        shader::export_probe(shader::Language::glsl, probe_terms(*p, "")).source;
+    const std::string source = shader::export_probe(lang, probe_terms(*p, "")).source;
     const auto [it, fresh] = row_of.emplace(source, shaders.size() - 1);
-    if (fresh) shaders.push_back(gpu::probe_shader(p->label(), shader::Language::glsl, source));
+    if (fresh) shaders.push_back(gpu::probe_shader(p->label(), lang, source));
     rows.push_back(it->second);
   }
   const cost::gpu::Report report = gpu::measure(self, manifest, {family}, shaders);

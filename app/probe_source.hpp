@@ -22,16 +22,17 @@ envmap::Probe read_probe_file(const std::string& path);
 // axis, the lobes with the probe's method; `command` for the header comment.
 shader::ProbeTerms probe_terms(const envmap::Probe& probe, const std::string& command);
 
-// What `envmap recommend --by gpu:FAMILY` costs a probe by: ACO's inverse
-// throughput (cycles per wave) of its exported GLSL probe_irradiance(n)
-// (export_probe, the text `sglab export --probe --lang glsl` writes) on
+// What `envmap recommend --by gpu:FAMILY --lang LANG` costs a probe by: ACO's
+// inverse throughput (cycles per wave) of its exported probe_irradiance(n) in
+// `lang`, GLSL or HLSL (export_probe, the text `sglab export --probe --lang
+// LANG` writes, compiled by glslang) on
 // RADV's null device for `family`, through `sglab gpucost`'s machinery
 // (export/gpu_cost.hpp): gpu::probe_shader, one call per shading point in
 // whole workgroups (no branch), minus the same harness around `return n;`.
 // All probes are measured in one worker process, each distinct source once.
 // `driver` receives the driver's name and version. Throws
 // shader::gpu::Unavailable when RADV cannot make the null device.
-std::vector<double> probe_gpu_costs(const std::string& family,
+std::vector<double> probe_gpu_costs(const std::string& family, shader::Language lang,
                                     const std::vector<const envmap::Probe*>& probes,
                                     std::string& driver);
 

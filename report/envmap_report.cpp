@@ -46,6 +46,21 @@ std::vector<envmap::Vec3> method_irradiance(const std::vector<envmap::Lobe>& lob
   return e;
 }
 
+// A method's irradiance of the lobes at one normal, as method_irradiance sums
+// it (validate::method_value per lobe, in `precision`; amplitudes in double).
+envmap::IrradianceFn method_irradiance_at(const std::vector<envmap::Lobe>& lobes, const Method& m,
+                                          io::Precision precision) {
+  return [lobes, &m, precision](const envmap::Vec3& n) {
+    envmap::Vec3 e{0, 0, 0};
+    for (const envmap::Lobe& l : lobes) {
+      const double v =
+          validate::method_value(m, precision, reference::scene_cosine(l.axis, n), l.sharpness);
+      for (std::size_t ch = 0; ch < 3; ++ch) e[ch] += l.amplitude[ch] * v;
+    }
+    return e;
+  };
+}
+
 }  // namespace
 
 std::vector<std::size_t> lobe_ladder(std::size_t max_lobes) {
@@ -54,6 +69,10 @@ std::vector<std::size_t> lobe_ladder(std::size_t max_lobes) {
     if (n <= max_lobes) out.push_back(n);
   if (out.empty() || out.back() != max_lobes) out.push_back(max_lobes);
   return out;
+}
+
+bool meets_budget(const EnvmapCandidate& c, double budget) {
+  return c.dense && c.dense->max_rel <= budget;
 }
 
 EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& work, double budget,
@@ -69,6 +88,14 @@ EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& 
   note("exact irradiance of the map");
   const auto exact_fit = irradiance(map, fit_normals);
   const auto exact = irradiance(map, normals);
+  double ranking_peak = 0;
+  for (const auto& e : exact)
+    for (double x : e) ranking_peak = std::max(ranking_peak, x);
+  note("exact irradiance of the full map at the dense normals");
+  const envmap::MapIrradiance field(map);
+  const envmap::DenseTruth truth =
+      envmap::dense_truth(field, std::max(normals_n, envmap::kDenseNormals));
+  sel.dense_normals = truth.normals.size();
   for (std::size_t n : lobe_ladder(max_lobes)) {
     note(fmt::format("{} lobes: fit", n));
     options.lobes = n;
@@ -78,6 +105,7 @@ EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& 
         n, envmap::irradiance_error(envmap::lobes_irradiance_exact(fit.lobes, normals), exact)
                .max_rel);
     std::vector<report::MethodPoint> points;
+    const std::size_t first = sel.tried.size();
     for (const report::MethodPoint& c : costs) {
       if (!std::isfinite(c.cost)) continue;
       const Method* m = find_method(irradiance_methods, c.method);
@@ -86,18 +114,32 @@ EnvmapSelection select_envmap_method(const envmap::Map& map, const envmap::Map& 
       p.max_peak_rel =
           envmap::irradiance_error(method_irradiance(fit.lobes, normals, *m, precision), exact)
               .max_rel;
+      EnvmapCandidate t{n,           p.method,    p.max_peak_rel,
+                        p.cost,      p.cost_unit, static_cast<double>(n) * p.cost,
+                        std::nullopt};
+      // The max over the sphere is at least the max over the ranking normals
+      // (here relative to the dense set's peak): a pair above the budget there
+      // fails it; the others are measured densely and checked on that.
+      const double lower_bound = p.max_peak_rel * ranking_peak / truth.peak;
+      if (std::isfinite(p.max_peak_rel) && lower_bound <= budget) {
+        t.dense = envmap::dense_error(truth, method_irradiance_at(fit.lobes, *m, precision));
+        p.max_peak_rel = t.dense->max_rel;
+      } else {
+        p.max_peak_rel = std::max(p.max_peak_rel, lower_bound);
+      }
       points.push_back(p);
-      sel.tried.push_back(
-          {n, p.method, p.max_peak_rel, p.cost, p.cost_unit, static_cast<double>(n) * p.cost});
+      sel.tried.push_back(t);
     }
     const report::Recommendation r = report::recommend(points, budget);
-    auto candidate = [&](const report::MethodPoint& p) {
-      return EnvmapCandidate{n,      p.method,    p.max_peak_rel,
-                             p.cost, p.cost_unit, static_cast<double>(n) * p.cost};
+    const auto candidate = [&](const report::MethodPoint& p) {
+      for (std::size_t k = first; k < sel.tried.size(); ++k)
+        if (sel.tried[k].method == p.method) return sel.tried[k];
+      throw std::logic_error("select_envmap_method: a ranked method was not tried");
     };
     if (r.choice) {
       sel.choice = candidate(*r.choice);
       if (r.runner_up) sel.runner_up = candidate(*r.runner_up);
+      sel.lobes = fit.lobes;
       break;
     }
   }

@@ -59,8 +59,10 @@ using ProbeCosts = std::function<std::vector<double>(const std::vector<const env
 // are costed, in one call. Each lobe adds a call of the method to the probe's
 // evaluation, so a ladder (from 4 counts, doubling, at most `max_lobes`; the
 // hybrid at most the lobe ladder's length) is fitted until two counts of
-// different functions meet the budget (a larger count costs more than
-// either), or until the counts after the first meeting one only add lobes of
+// different functions meet the budget (a larger count costs at least as much
+// as either: measured along both ladders on navi21 by
+// tests/test_probe_recommend.cpp, LadderCostGrowsWithTheLobeCount, not a
+// bound), or until the counts after the first meeting one only add lobes of
 // zero amplitude to it.
 ProbeRecommendation recommend_probe_by_cost(const envmap::Map& map, double budget,
                                             std::size_t max_lobes, const ProbeCosts& cost,

@@ -15,13 +15,13 @@
 
 namespace sglab::validate {
 
-namespace {
-
 double method_value(const Method& m, io::Precision precision, double cosine, double kappa) {
   return precision == io::Precision::float32
              ? static_cast<double>(m.f32(static_cast<float>(cosine), static_cast<float>(kappa)))
              : m.f64(cosine, kappa);
 }
+
+namespace {
 
 // The scene's RGB sums at every normal, exact (when `with_exact`) and with
 // each method, in units of the largest amplitude: visit(j, exact, approx) is

@@ -27,6 +27,10 @@
 
 namespace sglab::validate {
 
+// One method's value Ê(cosine, κ) as every scene sum here takes it: f32
+// (cosine and κ rounded to binary32, the value widened to double) or f64.
+double method_value(const Method& m, io::Precision precision, double cosine, double kappa);
+
 // Per-normal RGB irradiance of the scene with a method's f32 (binary32:
 // cosine and κ rounded to float, the per-light value in float, summed in
 // double) or f64, in units of the scene's largest amplitude.
