@@ -25,8 +25,8 @@
 #include <numeric>
 #include <optional>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include <sglab/sglab.hpp>
 #include <sglab/sglab_min.hpp>
@@ -109,7 +109,8 @@ std::vector<double> best_at(const std::vector<reference::ReferencePoint>& train,
     Eigen::Index col = 0;
     double cp = 1;  // c^n
     for (std::size_t n = 0; n < 3; ++n, cp *= r.cosine)
-      for (std::size_t j = 0; j < kMinSizes[n]; ++j) m(i, col++) = y * std::pow(y, double(j)) * cp / e1;
+      for (std::size_t j = 0; j < kMinSizes[n]; ++j)
+        m(i, col++) = y * std::pow(y, double(j)) * cp / e1;
     t(i) = r.irradiance / e1;
   }
   double level = 0;

@@ -105,8 +105,8 @@ struct MinResidual {
   bool operator()(T const* const* p, T* r) const {
     std::vector<T> v(8);
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = p[i][0];
-    r[0] = (sglab::irradiance_sglab_min(T(cosine), T(kappa), min_params(v)) - T(reference)) /
-           T(peak);
+    r[0] =
+        (sglab::irradiance_sglab_min(T(cosine), T(kappa), min_params(v)) - T(reference)) / T(peak);
     return true;
   }
 };

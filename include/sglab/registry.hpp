@@ -338,19 +338,15 @@ constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
           [](float k) { return sglab_fast_light(k); },
           [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
       with_light_split<SglabLiteLight<float>>(
-          with_batch32(
-              make_method({.id = "sglab_lite",
-                           .origin = Origin::sglab,
-                           .source = "docs/models.md#sglab_lite",
-                           .summary = "sglab_fast's line plus C² ramp with E(1, κ) folded into the "
-                                      "rationals: one division, no exp",
-                           .form = "A + Bc + Cρ(Vc + ½), rational A, B, C, V (E(1, κ) in A, B, C)",
-                           .constants = "sglab_lite_float",
-                           .valid = {.max_peak_rel = 3.7e-3, .kappa_hi = 1e4f}},
-                          [](auto c, auto k) { return irradiance_sglab_lite(c, k); }),
-              [](const float* c, const float* k, float* o, std::size_t n) {
-                irradiance_sglab_lite_batch(c, k, o, n);
-              }),
+          make_method({.id = "sglab_lite",
+                       .origin = Origin::sglab,
+                       .source = "docs/models.md#sglab_lite",
+                       .summary = "sglab_fast's line plus C² ramp with E(1, κ) folded into the "
+                                  "rationals: one division, no exp",
+                       .form = "A + Bc + Cρ(Vc + ½), rational A, B, C, V (E(1, κ) in A, B, C)",
+                       .constants = "sglab_lite_float",
+                       .valid = {.max_peak_rel = 3.7e-3, .kappa_hi = 1e4f}},
+                      [](auto c, auto k) { return irradiance_sglab_lite(c, k); }),
           [](float k) { return sglab_lite_light(k); },
           [](const SglabLiteLight<float>& l, float c) { return sglab_lite_eval(l, c); }),
       with_light_split<SglabMinLight<float>>(

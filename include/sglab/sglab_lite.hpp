@@ -13,8 +13,6 @@
 // range ends at kappa_max.
 #pragma once
 
-#include <cstddef>
-
 #include "constants.hpp"
 #include "math.hpp"
 #include "params.hpp"
@@ -54,16 +52,6 @@ template <class T, class S = double>
 T irradiance_sglab_lite(const T& cosine, const T& kappa,
                         const SglabLiteParams<S>& p = constants::sglab_lite_float) {
   return sglab_lite_eval(sglab_lite_light(kappa, p), cosine);
-}
-
-// Float batch of `sglab_lite`: the setup has no library call and selects
-// instead of branches, so the loop vectorizes as written.
-template <class S = double>
-SGLAB_FLATTEN void irradiance_sglab_lite_batch(
-    const float* __restrict cosine, const float* __restrict kappa, float* __restrict out,
-    std::size_t n, const SglabLiteParams<S>& p = constants::sglab_lite_float) {
-  for (std::size_t i = 0; i < n; ++i)
-    out[i] = sglab_lite_eval(sglab_lite_light(kappa[i], p), cosine[i]);
 }
 
 }  // namespace sglab
