@@ -81,6 +81,29 @@ ConstantSet named(std::string cpp_name, const SglabMidParams<double>& p) {
           {}};
 }
 
+ConstantSet named(std::string cpp_name, const SglabLiteParams<double>& p) {
+  const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
+  return {"SglabLiteParams<double>",
+          std::move(cpp_name),
+          {{"a", vec(p.a)},
+           {"b", vec(p.b)},
+           {"c", vec(p.c)},
+           {"v", vec(p.v)},
+           {"q", vec(p.q)},
+           {"kappa_max", {p.kappa_max}}},
+          {},
+          {}};
+}
+
+ConstantSet named(std::string cpp_name, const SglabMinParams<double>& p) {
+  const auto vec = [](const auto& a) { return std::vector<double>(std::begin(a), std::end(a)); };
+  return {"SglabMinParams<double>",
+          std::move(cpp_name),
+          {{"a", vec(p.a)}, {"b", vec(p.b)}, {"g", vec(p.g)}, {"s", {p.s}}},
+          {},
+          {}};
+}
+
 const std::vector<double>& member(const ConstantSet& set, std::string_view name) {
   for (const auto& [n, v] : set.members)
     if (n == name) return v;

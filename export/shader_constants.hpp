@@ -28,6 +28,8 @@ ConstantSet named(std::string cpp_name, const HillParams<double>& p);
 ConstantSet named(std::string cpp_name, const Meder2018Params<double>& p);
 ConstantSet named(std::string cpp_name, const SglabFastParams<double>& p);
 ConstantSet named(std::string cpp_name, const SglabMidParams<double>& p);
+ConstantSet named(std::string cpp_name, const SglabLiteParams<double>& p);
+ConstantSet named(std::string cpp_name, const SglabMinParams<double>& p);
 template <std::size_t NS, std::size_t NL>
 ConstantSet named(std::string cpp_name, const Listing5Params<double, NS, NL>& p) {
   return {fmt::format("Listing5Params<double, {}, {}>", NS, NL),

@@ -320,20 +320,26 @@ std::string upper_over_two_pi_text(const Ctx& c) {
 // The ramp's v^3 (2 - v), v = w/2, is written v^3 * 0.5 (4 - w): the same value
 // (halving is exact), but spirv-opt (HLSL legalization, -O) would fuse 2 - w/2
 // into an fma that ACO cannot fold the 1/2 into, 8 % more per light in the loop.
-std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
-  const ConstantSet& set = slot(slots, "model");
-  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
-  return upper_over_two_pi_text(c) +
-         subst(
-             fmt::format(
-                 R"(// The C2 ramp rho(u) = 0 | u^3 (2 - u) | 2u - 1 on u <= 0 | (0, 1) | u >= 1, branch-free.
-{{INLINE}}float {{P}}ramp(float u) {{
+std::string ramp_text(const Ctx& c) {
+  return subst(
+      R"(// The C2 ramp rho(u) = 0 | u^3 (2 - u) | 2u - 1 on u <= 0 | (0, 1) | u >= 1, branch-free.
+{INLINE}float {P}ramp(float u) {
   float over = abs(u - 1.0f);
   float w = abs(u) - over + 1.0f;
   float v = 0.5f * w;
   return v * v * v * (0.5f * (4.0f - w)) + (u - 1.0f + over);
-}}
-// sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
+}
+)",
+      c);
+}
+
+std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return upper_over_two_pi_text(c) + ramp_text(c) +
+         subst(
+             fmt::format(
+                 R"(// sglab_fast: E = E(1, kappa) max(0, A + B c + C rho(V c + 1/2)), A, B, C, V = P(k)/Q(k),
 // k = min(kappa, kappa_max), Q = k^4 + q3 k^3 + ... + q0 (sglab/sglab_fast.hpp).
 {{INLINE}}float {{P}}fast(float cosine, float kappa) {{
   float k = min(kappa, {0});
@@ -346,6 +352,53 @@ std::string helper_sglab_fast(const Ctx& c, const Slots& slots) {
                  names(c, "model", set, "kappa_max")[0], poly("q"), poly("a"), poly("b"), poly("c"),
                  poly("v")),
              c);
+}
+
+// The monic Q(k) = k^n + q[n-1] k^(n-1) + ... + q[0] as ((k + q[n-1]) k + ...) k + q[0].
+std::string monic_horner_text(std::string_view x, const std::vector<std::string>& q) {
+  std::string t = fmt::format("{} + {}", x, q.back());
+  for (std::size_t i = q.size() - 1; i-- > 0;) t = fmt::format("({}) * {} + {}", t, x, q[i]);
+  return t;
+}
+
+std::string helper_sglab_lite(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return ramp_text(c) +
+         subst(
+             fmt::format(
+                 R"(// sglab_lite: E = max(0, A + B c + C rho(V c + 1/2)), A, B, C = P(k)/((1 + k) Q(k)),
+// V = Pv(k)/Q(k) (E(1, kappa) folded into A, B, C), k = min(kappa, kappa_max),
+// Q = (((k + q3) k + q2) k + q1) k + q0 (sglab/sglab_lite.hpp).
+{{INLINE}}float {{P}}lite(float cosine, float kappa) {{
+  float k = min(kappa, {0});
+  float one_k = 1.0f + k;
+  float inv = 1.0f / (({1}) * one_k);
+  float s = ({2} + {3} * cosine + {4} * {{P}}ramp({5} * inv * one_k * cosine + 0.5f)) * inv;
+  return 0.5f * (s + abs(s));
+}}
+)",
+                 names(c, "model", set, "kappa_max")[0],
+                 monic_horner_text("k", names(c, "model", set, "q")), poly("a"), poly("b"),
+                 poly("c"), poly("v")),
+             c);
+}
+
+std::string helper_sglab_min(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("y", names(c, "model", set, m)); };
+  return subst(
+      fmt::format(
+          R"(// sglab_min: E = y max(0, A(y) + B(y) c + G(y) c^2), y = 1/(kappa + s), A quadratic,
+// B and G linear in y (sglab/sglab_min.hpp).
+{{INLINE}}float {{P}}min(float cosine, float kappa) {{
+  float y = 1.0f / (kappa + {0});
+  float e = ({1} + cosine * ({2} + cosine * {3})) * y;
+  return 0.5f * (e + abs(e));
+}}
+)",
+          names(c, "model", set, "s")[0], poly("a"), poly("b"), poly("g")),
+      c);
 }
 
 std::string helper_sglab_mid(const Ctx& c, const Slots& slots) {
@@ -628,6 +681,20 @@ const std::vector<ShaderMethod>& shader_methods() {
        ErfUse::none,
        {helper_sglab_fast},
        "  return {P}fast(cosine, kappa);\n"},
+      {"sglab_lite",
+       [] {
+         return Slots{{"model", named("sglab_lite_float", constants::sglab_lite_float)}};
+       },
+       ErfUse::none,
+       {helper_sglab_lite},
+       "  return {P}lite(cosine, kappa);\n"},
+      {"sglab_min",
+       [] {
+         return Slots{{"model", named("sglab_min_float", constants::sglab_min_float)}};
+       },
+       ErfUse::none,
+       {helper_sglab_min},
+       "  return {P}min(cosine, kappa);\n"},
       {"sglab_mid",
        [] {
          return Slots{{"model", named("sglab_mid_float", constants::sglab_mid_float)}};

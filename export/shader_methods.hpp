@@ -60,6 +60,10 @@ std::string helper_poles2024(const Ctx& c, const Slots&);
 std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots);
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots);
 std::string helper_sglab_mid(const Ctx& c, const Slots& slots);
+std::string helper_sglab_lite(const Ctx& c, const Slots& slots);
+std::string helper_sglab_min(const Ctx& c, const Slots& slots);
+// The monic Q(k) of sglab_lite in Horner form, its coefficients `q` lowest order first.
+std::string monic_horner_text(std::string_view x, const std::vector<std::string>& q);
 // The number of correction terms N, the degree D and the steepness order M
 // of an SglabAccParams set (from its type, SglabAccParams<double, N, D, M>,
 // checked against its member sizes: steep 2M + 1, num N (D + 1), scale 1).

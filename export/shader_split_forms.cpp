@@ -55,6 +55,50 @@ std::string pixel_sglab_fast(const Ctx& c, const Slots&) {
       c);
 }
 
+std::vector<LightField> fields_sglab_lite(const Slots&) {
+  return {{"a", "A(kappa), E(1, kappa) folded in"},
+          {"b", "B(kappa), E(1, kappa) folded in"},
+          {"c_ramp", "C(kappa), E(1, kappa) folded in"},
+          {"v", "V(kappa)"}};
+}
+std::string light_sglab_lite(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("k", names(c, "model", set, m)); };
+  return subst(fmt::format(R"(  float k = min(kappa, {});
+  float one_k = 1.0f + k;
+  float inv = 1.0f / (({}) * one_k);
+  light.a = {} * inv;
+  light.b = {} * inv;
+  light.c_ramp = {} * inv;
+  light.v = {} * inv * one_k;
+)",
+                           names(c, "model", set, "kappa_max")[0],
+                           monic_horner_text("k", names(c, "model", set, "q")), poly("a"),
+                           poly("b"), poly("c"), poly("v")),
+               c);
+}
+
+std::vector<LightField> fields_sglab_min(const Slots&) {
+  return {{"a", "A(y) y"}, {"b", "B(y) y"}, {"g", "G(y) y"}};
+}
+std::string light_sglab_min(const Ctx& c, const Slots& slots) {
+  const ConstantSet& set = slot(slots, "model");
+  const auto poly = [&](std::string_view m) { return horner_text("y", names(c, "model", set, m)); };
+  return subst(fmt::format(R"(  float y = 1.0f / (kappa + {0});
+  light.a = {1} * y;
+  light.b = {2} * y;
+  light.g = {3} * y;
+)",
+                           names(c, "model", set, "s")[0], poly("a"), poly("b"), poly("g")),
+               c);
+}
+std::string pixel_sglab_min(const Ctx& c, const Slots&) {
+  return subst(R"(  float e = light.a + cosine * (light.b + cosine * light.g);
+  return 0.5f * (e + abs(e));
+)",
+               c);
+}
+
 std::vector<LightField> fields_sglab_mid(const Slots&) {
   return {{"a", "A(kappa) E(1, kappa)"},
           {"b", "B(kappa) E(1, kappa)"},
@@ -286,6 +330,18 @@ const std::vector<SplitForm>& split_forms() {
                  {helper_sglab_fast},
                  light_sglab_fast,
                  pixel_sglab_fast});
+    v.push_back({"sglab_lite",
+                 "sglab::SglabLiteLight<float> (sglab/sglab_lite.hpp sglab_lite_light)",
+                 fields_sglab_lite,
+                 {helper_sglab_lite},
+                 light_sglab_lite,
+                 pixel_sglab_fast});
+    v.push_back({"sglab_min",
+                 "sglab::SglabMinLight<float> (sglab/sglab_min.hpp sglab_min_light)",
+                 fields_sglab_min,
+                 {helper_sglab_min},
+                 light_sglab_min,
+                 pixel_sglab_min});
     v.push_back({"sglab_mid",
                  "sglab::SglabMidLight<float> (sglab/sglab_mid.hpp sglab_mid_light)",
                  fields_sglab_mid,

@@ -35,6 +35,8 @@ std::span<const ParamStruct> param_structs() {
       {"Meder2018Params", {}, {"a2", "a1", "b1", "b0", "amplitude", "sharpness", "offset"}},
       {"SglabFastParams", {}, {"a[5]", "b[5]", "c[5]", "v[5]", "q[4]", "kappa_max"}},
       {"SglabMidParams", {}, {"a[5]", "b[5]", "d[5]", "s[5]", "v[5]", "q[4]", "kappa_max"}},
+      {"SglabLiteParams", {}, {"a[5]", "b[5]", "c[5]", "v[5]", "q[4]", "kappa_max"}},
+      {"SglabMinParams", {}, {"a[3]", "b[2]", "g[2]", "s"}},
       {"SglabAccParams", {"N", "D", "M"}, {"steep[2 * M + 1]", "num[N * (D + 1)]", "scale"}},
   };
   return table;
@@ -69,7 +71,9 @@ std::span<const RequiredSet> required_sets() {
       {"sglab_acc3", "SglabAccParams<double, 3, 6, 3>"},
       {"sglab_acc4", "SglabAccParams<double, 4, 6, 3>"},
       {"sglab_fast_float", "SglabFastParams<double>"},
+      {"sglab_lite_float", "SglabLiteParams<double>"},
       {"sglab_mid_float", "SglabMidParams<double>"},
+      {"sglab_min_float", "SglabMinParams<double>"},
       {"steepness2022_irradiance", "Steepness2022Params<double>"},
       {"steepness2022_optimal_t", "Steepness2022Params<double>"},
       {"steepness2022_published", "Steepness2022Params<double>"},

@@ -61,8 +61,10 @@ constexpr double kNegligible = 1e-15;
 // The LP on `rows`: unknowns x (free; columns scaled to unit max norm on
 // these rows) and E ≥ 0; per row two constraints, A'x − E ≤ y' and
 // A'x + E ≥ y', with A' = A/w, y' = y/w ([Cheney1966] ch. 2). Minimize E.
+// With `lower`, the second constraint only on the rows i where lower[i].
 LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
-                         const Eigen::VectorXd& w, const std::vector<std::size_t>& rows) {
+                         const Eigen::VectorXd& w, const std::vector<std::size_t>& rows,
+                         const std::vector<bool>* lower = nullptr) {
   const int n = int(a.cols()), m = int(rows.size());
   Eigen::MatrixXd as(m, n);
   Eigen::VectorXd ys(m);
@@ -103,6 +105,7 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
   for (int r = 0; r < m; ++r) {
     row_lo[std::size_t(2 * r)] = -COIN_DBL_MAX, row_hi[std::size_t(2 * r)] = ys[r];
     row_lo[std::size_t(2 * r + 1)] = ys[r], row_hi[std::size_t(2 * r + 1)] = COIN_DBL_MAX;
+    if (lower && !(*lower)[rows[std::size_t(r)]]) row_lo[std::size_t(2 * r + 1)] = -COIN_DBL_MAX;
   }
   // Dual simplex; where it ends without a clean optimum (the scaled problem
   // optimal but not the unscaled one, or a feasible LP reported infeasible),
@@ -184,6 +187,25 @@ LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y
   LpMinimaxResult out = solve_lp(a, y, w, rows);
   const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x).cwiseAbs();
   out.achieved = r.maxCoeff(&out.worst);
+  return out;
+}
+
+LpMinimaxResult lp_minimax_upper(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                                 const Eigen::VectorXd& w, const std::vector<bool>& lower) {
+  check_problem(a, y, w);
+  if (lower.size() != std::size_t(a.rows()))
+    throw std::invalid_argument(
+        fmt::format("lp_minimax: {} rows but {} lower flags", a.rows(), lower.size()));
+  std::vector<std::size_t> rows(std::size_t(a.rows()));
+  std::iota(rows.begin(), rows.end(), std::size_t(0));
+  LpMinimaxResult out = solve_lp(a, y, w, rows, &lower);
+  const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x);
+  out.achieved = 0;
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    const double v = lower[std::size_t(i)] ? std::abs(r[i]) : std::max(r[i], 0.0);
+    if (v > out.achieved) out.achieved = v, out.worst = std::size_t(i);
+  }
+  out.converged = true;
   return out;
 }
 

@@ -62,6 +62,15 @@ LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
 LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
                               const Eigen::VectorXd& w, const std::vector<std::size_t>& rows);
 
+// The one-sided form on every row: min_x E with (A x − y)_i ≤ w_i E on every
+// row and (A x − y)_i ≥ −w_i E on the rows where lower[i] (one LP). With y ≥ 0
+// and lower[i] = y_i/w_i > E, this is the minimax of |max(0, A x) − y|/w, the
+// clamped models' problem (fit/fit_sglab_min.cpp iterates the level).
+// `achieved`: the max over rows of (A x − y)_i/w_i, and of its absolute value
+// where lower[i].
+LpMinimaxResult lp_minimax_upper(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                                 const Eigen::VectorXd& w, const std::vector<bool>& lower);
+
 // The indices of the local maxima of |r_i| (r_i ≥ each neighbour in row
 // order) that exceed `level`, largest first, and the count of alternations
 // of sign among them: the equioscillation of a best approximation

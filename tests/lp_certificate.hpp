@@ -24,10 +24,13 @@
 namespace sglab::test {
 
 // The fitters' training grid (fit/fit_sglab_fast.cpp, fit/fit_sglab_mid.cpp): 56
-// log-midpoints of [1e−3, 1e4] × 161 uniform cosines.
-inline std::vector<reference::ReferencePoint> certificate_training_grid() {
-  return reference::reference_engine().evaluate(
-      fit::product_grid(fit::log_midpoints(1e-3, 1e4, 56), fit::cosine_grid(161)));
+// log-midpoints of [1e−3, 1e4] × 161 uniform cosines, then the κ of `extra`
+// (sglab-min's κ beyond the range, fit/fit_sglab_min.cpp) × the same cosines.
+inline std::vector<reference::ReferencePoint> certificate_training_grid(
+    const std::vector<double>& extra = {}) {
+  std::vector<double> kappas = fit::log_midpoints(1e-3, 1e4, 56);
+  kappas.insert(kappas.end(), extra.begin(), extra.end());
+  return reference::reference_engine().evaluate(fit::product_grid(kappas, fit::cosine_grid(161)));
 }
 
 // `residual(r)`: the fit's residual at r (all `values.size()` parameters);
@@ -39,14 +42,16 @@ inline std::vector<reference::ReferencePoint> certificate_training_grid() {
 // LP's best numerators (solved here again) err in the runtime by the LP's
 // value (so the model is linear in them: a wrong index or a nonlinear one
 // shows here), no less than the bound; random changes of the numerators do
-// no better than the bound. Returns the certificate.
+// no better than the bound. `extra_kappas`: as certificate_training_grid.
+// Returns the certificate.
 inline fit::ordered_json check_clamped_lp_certificate(
     const std::vector<double>& values, std::size_t linear_count,
     const std::function<std::unique_ptr<ceres::CostFunction>(const reference::ReferencePoint&)>&
         residual,
     const std::function<double(const std::vector<double>&, const reference::ReferencePoint&)>&
-        error) {
-  const auto train = certificate_training_grid();
+        error,
+    const std::vector<double>& extra_kappas = {}) {
+  const auto train = certificate_training_grid(extra_kappas);
   std::vector<std::size_t> linear(linear_count);
   std::iota(linear.begin(), linear.end(), 0);
   const fit::ordered_json c = fit::clamped_lp_certificate(train, values, linear, residual, "test");

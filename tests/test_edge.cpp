@@ -251,6 +251,8 @@ constexpr SubnormalLimit kSubnormalLimits[] = {
     {"sglab_fast", 2.6e-3,
      "exact E(1, κ) × fitted shape: its max peak_rel 2.52e−3 (sglab_fast.hpp)"},
     {"sglab_mid", 4.6e-4, "exact E(1, κ) × fitted shape: its max peak_rel 4.2e−4 (sglab_mid.hpp)"},
+    {"sglab_lite", 3.7e-3, "fitted rationals at κ̃ = 0: its card's bound (sglab_lite.hpp)"},
+    {"sglab_min", 0.043, "fitted polynomials at y = 1/s: its card's bound (sglab_min.hpp)"},
     {"sglab_acc1", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc2", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc3", kRounding, "exact poles, as tokuyoshi2024"},

@@ -408,8 +408,8 @@ TEST(RecommendScene, SubnormalSharpnessGivesFiniteErrors) {
 }
 
 // A light beyond a method's valid κ range (its registry card) puts the method out of the
-// ranking, flagged in JSON and in text: sglab_fast above 1.1e4, punctual and Hill's curves
-// below 1e-3.
+// ranking, flagged in JSON and in text: sglab_fast above 1.1e4, sglab_lite above 1e4,
+// punctual and Hill's curves below 1e-3.
 TEST(RecommendScene, FlagsMethodsOutsideTheirValidRange) {
   const sglab::test::TempDir dir("scene-range");
   const auto scene = write_temp(dir, "sharp.json", R"({"lights": [
@@ -432,10 +432,13 @@ TEST(RecommendScene, FlagsMethodsOutsideTheirValidRange) {
       EXPECT_NE(doc["choice"]["method"], row["method"]);
     }
   }
-  EXPECT_EQ(outside, (std::vector<std::string>{"punctual", "hill", "hill_exact", "sglab_fast"}));
+  EXPECT_EQ(outside, (std::vector<std::string>{"punctual", "hill", "hill_exact", "sglab_fast",
+                                               "sglab_lite"}));
   EXPECT_EQ(doc["outside_valid_range"], nlohmann::json(outside));
   for (const auto& m : doc["errors_on_kappa_range"]["models"])
-    EXPECT_EQ(m["in_valid_range"].get<bool>(), m["method"] != "sglab_fast") << m.dump();
+    EXPECT_EQ(m["in_valid_range"].get<bool>(),
+              m["method"] != "sglab_fast" && m["method"] != "sglab_lite")
+        << m.dump();
   EXPECT_NE(doc["errors_on_kappa_range"]["sufficient"], "sglab_fast");
   const auto text = sglab::test::run_sglab(
       {"recommend", "--scene", scene.string(), "--budget", "1", "--normals", "64"});

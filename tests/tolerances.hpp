@@ -104,6 +104,8 @@ inline constexpr Tolerance kTolerances[] = {
     {"wang2009_refit", float_vs_double, f32, 2e-6, kWellConditioned},
     {"sglab_fast", float_vs_double, f32, 2e-6, kWellConditioned},
     {"sglab_mid", float_vs_double, f32, 2e-6, kWellConditioned},
+    {"sglab_lite", float_vs_double, f32, 2e-6, kWellConditioned},
+    {"sglab_min", float_vs_double, f32, 2e-6, kWellConditioned},
     {"sglab_acc1", float_vs_double, f32, 2e-6, kWellConditioned},
     {"sglab_acc2", float_vs_double, f32, 2e-6, kWellConditioned},
     {"sglab_acc3", float_vs_double, f32, 2e-6, kWellConditioned},
@@ -130,6 +132,10 @@ inline constexpr Tolerance kTolerances[] = {
     {"sglab_mid", batch_vs_double, f32, 2e-6,
      "the same algebra with branch_free.hpp's exp, square root and selects: float rounding of the "
      "peak, far below the model's own error"},
+    {"sglab_lite", batch_vs_double, f32, kNone, kNoKernel},
+    {"sglab_min", batch_vs_double, f32, 2e-6,
+     "the scalar algebra (no library call), vectorized: float rounding of the peak, far below "
+     "the model's own error"},
     {"sglab_acc1", batch_vs_double, f32, 1e-6, kKernel},
     {"sglab_acc2", batch_vs_double, f32, 1e-6, kKernel},
     {"sglab_acc3", batch_vs_double, f32, 1e-6, kKernel},
@@ -155,6 +161,10 @@ inline constexpr Tolerance kTolerances[] = {
      "same operations in the same order (sglab_fast_light)"},
     {"sglab_mid", split_vs_plain, f32, kFourFloatUlps,
      "same operations in the same order (sglab_mid_light)"},
+    {"sglab_lite", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (sglab_lite_light)"},
+    {"sglab_min", split_vs_plain, f32, kFourFloatUlps,
+     "same operations in the same order (sglab_min_light)"},
     {"sglab_acc1", split_vs_plain, f32, kFourFloatUlps,
      "same operations in the same order (sglab_acc_light)"},
     {"sglab_acc2", split_vs_plain, f32, kFourFloatUlps,
@@ -184,6 +194,8 @@ inline constexpr Tolerance kTolerances[] = {
      "its own half form (the κ-only part in float: κ⁴ overflows half); half rounding (~1e-3 of "
      "each "
      "term) dominates the model's 4.2e-4"},
+    {"sglab_lite", half_peak_rel, f16, kNone, kNoHalfClaim},
+    {"sglab_min", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc1", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc2", half_peak_rel, f16, kNone, kNoHalfClaim},
     {"sglab_acc4", half_peak_rel, f16, kNone, kNoHalfClaim},
@@ -209,6 +221,8 @@ inline constexpr Tolerance kTolerances[] = {
      "half rounding of its own half form; survives [1e-2, 1e3]"},
     {"sglab_mid", half_vs_float, f16, 1e-2,
      "half rounding of its own half form; survives [1e-2, 1e3]"},
+    {"sglab_lite", half_vs_float, f16, kNone, kNoHalfClaim},
+    {"sglab_min", half_vs_float, f16, kNone, kNoHalfClaim},
     {"sglab_acc1", half_vs_float, f16, kNone, kNoHalfClaim},
     {"sglab_acc2", half_vs_float, f16, kNone, kNoHalfClaim},
     {"sglab_acc4", half_vs_float, f16, kNone, kNoHalfClaim},

@@ -246,6 +246,24 @@ inline constexpr SglabFastParams<double> sglab_fast_float{
     .q = {21325.41915528404, 16994.59337458461, 6529.2015402335455, 388.8615338427354},
     .kappa_max = 10000.0};
 
+// sglab-lite / float: E = max(0, A + B*c + C*rho(V*c + 1/2)), rho(u) = 0 | u^3(2-u) | 2u-1 on u<=0 | (0,1) | u>=1; A, B, C = P(k)/((1 + k)Q(k)), V = Pv(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, c, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first); E(1, kappa) folded into A, B, C
+//   objective: minimax of the sglab_lite irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; start: per-kappa optimum, then rational least squares
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":56,"cosine_count":161}
+//   achieved: {"objective":0.0034852619370249723,"training_max_peak_rel_float":0.003485650668677545,"per_kappa_floor":0.0013453413589298458,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":0.003533564748878239,"standard_max_peak_rel_double":0.0035335746235918516,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":0.0035371427280511225,"held_out_max_peak_rel_double":0.0035371477574784576,"held_out_worst_float":[9700.0,0.06000000000000005],"held_out_never_worse_ratio":3537.1427280511225}
+//   command: sglab fit sglab-lite --cold-start
+//   tool: sglab 0.1.0
+//   date: 2026-12-04
+//   certificate: {"kind":"lp_at_fitted_denominator_and_v: the numerators of A, B and C free, Q and V(kappa) as fitted; bound min(LP optimum, L)","grid":"the 6876 training points with E/E(1) >= L = 0.05 (of 9016)","achieved":0.0034852619370249723,"lower_bound":0.0026391546437251013,"within_percent_of_best_member":32.05978457198748,"lp":{"working_rows":263,"rounds":4,"converged":true}}
+inline constexpr SglabLiteParams<double> sglab_lite_float{
+    .a = {8319.986442978456, 3591.364640932338, -305.92935725329676, 17.651201738756953, -0.027440026623652556},
+    .b = {-752.9839179160691, 5790.792765492099, -391.5425322835611, 9.058234728974973, 0.4355051434824956},
+    .c = {27820.768013584107, 5508.2330415545675, 14438.003090876848, 147.38336138676578, 0.3760301189379566},
+    .v = {116.75563840122204, 491.23702868518205, 650.7923824848368, 151.60196977613708, 7.843948025286803},
+    .q = {4310.777473507835, 1591.4337566782297, 1750.7838419154118, 202.47887058114387},
+    .kappa_max = 10000.0};
+
 // sglab-mid / float: E = E(1,kappa)*max(0, A + B*(c + sqrt(c^2 + exp(clamp(S - V*c^2, -80, 80)))) + D*c^2); A, B, D = P(k)/Q(k), S = Ps(k)/Q(k) - ln(1 + kappa), V = kappa*Pv(k)/Q(k) with k = min(kappa, kappa_max), numerators a, b, d, s, v of degree 4 and Q = k^4 + q[3]k^3 + ... + q[0] (coefficients lowest order first)
 //   objective: minimax of the sglab_mid irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) x 161 uniform cosines; start: the committed set (polish)
 //   precision: float
@@ -264,6 +282,22 @@ inline constexpr SglabMidParams<double> sglab_mid_float{
     .v = {0.46881706382955146, -0.16925230674279962, 2.3348563315874946, -0.22718881875270652, 0.5864501994441071},
     .q = {1.3454154061409183, 4.368828173234344, 3.941091077215681, 1.2347668664191032},
     .kappa_max = 10000.0};
+
+// sglab-min / float: E = y*max(0, A(y) + B(y)*c + G(y)*c^2), y = 1/(kappa + s); A = a[0] + a[1]*y + a[2]*y^2, B = b[0] + b[1]*y, G = g[0] + g[1]*y
+//   objective: minimax of the sglab_min irradiance peak_rel error (double) over a training grid of 56 kappa (log-midpoints of 56 cells of [0.001, 10000]) and kappa 1e5, 1e6, 1e8, 1e20 x 161 uniform cosines; start: exact LP coefficients at fixed s, s by golden-section search
+//   precision: float
+//   kappa_range: [0.001,10000.0]
+//   grid: {"kappa_count":56,"cosine_count":161}
+//   achieved: {"objective":0.041677849466172416,"training_max_peak_rel_float":0.041677849466172416,"per_kappa_floor":0.024754686598505406,"standard_grid":"29 log-spaced kappa x 41 uniform cosines over [0.001, 10000]","standard_max_peak_rel_float":0.041953853064104964,"standard_max_peak_rel_double":0.04195380282729964,"held_out_grid":"217 log-spaced kappa x 401 uniform cosines over [0.0011, 9700], never used in fitting","held_out_max_peak_rel_float":0.042406330786168143,"held_out_max_peak_rel_double":0.042406330786168143,"held_out_worst_float":[5.484839684286692,-0.45499999999999996],"held_out_never_worse_ratio":41684.5756483492}
+//   command: sglab fit sglab-min --cold-start
+//   tool: sglab 0.1.0
+//   date: 2026-12-04
+//   certificate: {"kind":"lp_at_fitted_s: the coefficients of A, B and G free, s as fitted; bound min(LP optimum, L)","grid":"the 7184 training points with E/E(1) >= L = 0.05 (of 9660)","achieved":0.041677508051858006,"lower_bound":0.03591121569740899,"within_percent_of_best_member":16.057079222926607,"lp":{"working_rows":224,"rounds":6,"converged":true}}
+inline constexpr SglabMinParams<double> sglab_min_float{
+    .a = {0.2618675064819541, 8.815668779986295, -4.0596518723564605},
+    .b = {4.591105224698247, -6.266054041061236},
+    .g = {1.3665664994242348, -2.311021491923755},
+    .s = 1.3808541023601666};
 
 // steepness2022 / irradiance: t(kappa) = kappa*sqrt((0.5*kappa + A)/((kappa + B)*kappa + C))
 //   objective: minimax of the tokuyoshi2022 irradiance peak_rel error over 29 kappa x 41 cosines, kappa in [0.001, 10000]

@@ -105,6 +105,27 @@ struct SglabFastParams {
   S kappa_max;
 };
 
+// The coefficients of sglab_lite (include/sglab/sglab_lite.hpp, docs/models.md#sglab_lite):
+// Ê = max(0, A + B c + C ρ(V c + ½)) with A = Pa(κ̃)/((1 + κ̃)Q(κ̃)), B = Pb/((1 + κ̃)Q),
+// C = Pc/((1 + κ̃)Q), V = Pv/Q,
+// κ̃ = min(κ, kappa_max), numerators of degree 4 and one shared monic quartic
+// Q = κ̃⁴ + q[3]κ̃³ + … + q[0] (coefficients lowest order first); E(1, κ) is folded into A, B, C.
+template <class S>
+struct SglabLiteParams {
+  S a[5], b[5], c[5], v[5];
+  S q[4];
+  S kappa_max;
+};
+
+// The coefficients of sglab_min (include/sglab/sglab_min.hpp, docs/models.md#sglab_min):
+// Ê = y·max(0, A(y) + B(y) c + G(y) c²), y = 1/(κ + s), with A(y) = a[0] + a[1]y + a[2]y²,
+// B(y) = b[0] + b[1]y, G(y) = g[0] + g[1]y (coefficients lowest order first), s > 0.
+template <class S>
+struct SglabMinParams {
+  S a[3], b[2], g[2];
+  S s;
+};
+
 // sglab's middle irradiance model (include/sglab/sglab_mid.hpp):
 // Ê = E(1, κ)·max(0, A + B(c + √(c² + e^{S − V c²})) + D c²) with
 // A = Pa(κ̃)/Q(κ̃), B = Pb/Q, D = Pd/Q, S = Ps/Q − ln(1 + κ̃), V = κ̃ Pv/Q, κ̃ = min(κ, kappa_max),

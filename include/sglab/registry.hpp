@@ -15,7 +15,9 @@
 #include "irradiance.hpp"
 #include "sglab_acc.hpp"
 #include "sglab_fast.hpp"
+#include "sglab_lite.hpp"
 #include "sglab_mid.hpp"
+#include "sglab_min.hpp"
 
 namespace sglab {
 
@@ -335,6 +337,35 @@ constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
               }),
           [](float k) { return sglab_fast_light(k); },
           [](const SglabFastLight<float>& l, float c) { return sglab_fast_eval(l, c); }),
+      with_light_split<SglabLiteLight<float>>(
+          make_method({.id = "sglab_lite",
+                       .origin = Origin::sglab,
+                       .source = "docs/models.md#sglab_lite",
+                       .summary = "sglab_fast's line plus C² ramp with E(1, κ) folded into the "
+                                  "rationals: one division, no exp",
+                       .form = "A + Bc + Cρ(Vc + ½), rational A, B, C, V (E(1, κ) in A, B, C)",
+                       .constants = "sglab_lite_float",
+                       .valid = {.max_peak_rel = 3.7e-3, .kappa_hi = 1e4f}},
+                      [](auto c, auto k) { return irradiance_sglab_lite(c, k); }),
+          [](float k) { return sglab_lite_light(k); },
+          [](const SglabLiteLight<float>& l, float c) { return sglab_lite_eval(l, c); }),
+      with_light_split<SglabMinLight<float>>(
+          with_batch32(
+              make_method(
+                  {.id = "sglab_min",
+                   .origin = Origin::sglab,
+                   .source = "docs/models.md#sglab_min",
+                   .summary = "a clamped quadratic in c over κ + s, quadratics in x = κ/(κ + s): "
+                              "one division",
+                   .form = "max(0, A(x) + B(x)c + G(x)c²)/(κ + s), x = κ/(κ + s)",
+                   .constants = "sglab_min_float",
+                   .valid = {.max_peak_rel = 0.043}},
+                  [](auto c, auto k) { return irradiance_sglab_min(c, k); }),
+              [](const float* c, const float* k, float* o, std::size_t n) {
+                irradiance_sglab_min_batch(c, k, o, n);
+              }),
+          [](float k) { return sglab_min_light(k); },
+          [](const SglabMinLight<float>& l, float c) { return sglab_min_eval(l, c); }),
       with_light_split<SglabMidLight<float>>(
           with_batch32(
               make_method(

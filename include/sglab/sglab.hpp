@@ -15,4 +15,6 @@
 #include "sg.hpp"
 #include "sglab_acc.hpp"
 #include "sglab_fast.hpp"
+#include "sglab_lite.hpp"
 #include "sglab_mid.hpp"
+#include "sglab_min.hpp"
