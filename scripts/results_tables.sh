@@ -70,7 +70,8 @@ trap 'rm -f "$cards"' EXIT
 "$sglab" methods --json >"$cards"
 
 # README.md: sglab's own models (origin sglab on their cards) beside the published methods they
-# are measured against, the most accurate held-out error in bold.
+# are measured against, the most accurate held-out error in bold; "—" where a source has no
+# row for the method yet.
 models_table() {
   echo "| method | form | held-out max peak_rel | standard grid | GPU cycles per light per pixel | GPU cycles, one call | batch ns |"
   echo "|---|---|---:|---:|---:|---:|---:|"
@@ -80,13 +81,15 @@ models_table() {
       printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$method" "$origin" "$form" "$(peak "$heldout" "$method")" \
         "$(peak "$standard" "$method")" "$(per_light "$method" navi21)" "$(cycles "$method" navi21)" "$(batch_ns "$method")"
     done | awk -F'\t' "$fmt_awk"'
-    { row[NR] = $0; if (best == "" || $4 + 0 < best) { best = $4 + 0; at = NR } }
+    function cell(x) { return x == "" ? "—" : sprintf("%.3g", x) }
+    function num(x) { return x == "" ? "—" : sig(x) }
+    { row[NR] = $0; if ($4 != "" && (best == "" || $4 + 0 < best)) { best = $4 + 0; at = NR } }
     END {
       for (i = 1; i <= NR; ++i) {
         split(row[i], f, "\t")
         name = f[2] == "sglab" ? "`" f[1] "`" : f[1] " (" f[2] ")"
-        h = sig(f[4]); s = sig(f[5]); if (i == at) { h = "**" h "**"; s = "**" s "**" }
-        printf "| %s | %s | %s | %s | %s | %s | %s |\n", name, f[3], h, s, sprintf("%.3g", f[6]), f[7], sprintf("%.3g", f[8])
+        h = num(f[4]); s = num(f[5]); if (i == at) { h = "**" h "**"; s = "**" s "**" }
+        printf "| %s | %s | %s | %s | %s | %s | %s |\n", name, f[3], h, s, cell(f[6]), num(f[7]) == "—" ? "—" : f[7], cell(f[8])
       }
     }'
 }
