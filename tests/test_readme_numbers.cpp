@@ -641,15 +641,15 @@ TEST(ReadmeNumbers, WordedClaimsHold) {
   EXPECT_LT(r.cycles("sglab_mid"), 0.75 * r.cycles("tokuyoshi2024")) << mid;
   EXPECT_LT(r.per_light("sglab_mid"), 0.75 * r.per_light("tokuyoshi2024")) << mid;
   EXPECT_LE(r.per_light("sglab_mid"), r.per_light("sglab_fast")) << mid;
-  // "the half form saves at most 5 % over the float one on ACO's estimate on navi21 and gfx1100"
-  const std::string half = "the half form saves at most 5 % over the float one";
+  // "the half form saves at most 10 % over the float one on ACO's estimate on navi21 and gfx1100"
+  const std::string half = "the half form saves at most 10 % over the float one";
   ASSERT_NE(readme.find(half), std::string::npos)
       << "README.md and docs/ no longer say '" << half << "'";
   ASSERT_FALSE(r.gpu_half.empty());
   for (const auto& [key, cycles] : r.gpu_half) {
     const auto& [method, family, lang] = key;
     if (family != "navi21" && family != "gfx1100") continue;
-    EXPECT_GE(cycles, 0.95 * r.gpu_float_by_lang.at(key)) << half << ": " << method << " " << lang;
+    EXPECT_GE(cycles, 0.90 * r.gpu_float_by_lang.at(key)) << half << ": " << method << " " << lang;
   }
   const std::string point =
       "a `sglab_fast` shading point then costs fewer instructions\nthan vsgl2015's";
@@ -737,7 +737,11 @@ TEST(ReadmeNumbers, SglabModelsTableMatchesTheResults) {
     expect_matches(number(row[3], m), r.standard_err(m), m + ", standard grid");
     expect_matches(number(row[4], m), r.per_light(m), m + ", GPU cycles per light per pixel");
     expect_matches(number(row[5], m), r.cycles(m), m + ", GPU cycles, one call");
-    expect_matches(number(row[6], m), r.ns_per_eval(m, "batch"), m + ", batch ns");
+    // "—": the cost table has no CPU batch row for the method yet (and truly none).
+    if (row[6] == "—")
+      EXPECT_THROW(r.ns_per_eval(m, "batch"), std::runtime_error) << m << ": batch ns is measured";
+    else
+      expect_matches(number(row[6], m), r.ns_per_eval(m, "batch"), m + ", batch ns");
   }
 }
 
