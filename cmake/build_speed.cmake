@@ -23,18 +23,6 @@ function(sglab_precompile_headers target)
   endif()
 endfunction()
 
-# sglab_reuse_precompiled_headers(TARGET DONOR): TARGET's files use DONOR's
-# precompiled header instead of building their own (g++ spends 5-19 s on each).
-# g++ accepts a header precompiled with the same flags and macros only, so a
-# DONOR shares TARGET's compile options and definitions (position independence
-# included; -Winvalid-pch under SGLAB_WERROR turns a mismatch into an error) and
-# precompiles the headers of the targets that reuse it.
-function(sglab_reuse_precompiled_headers target donor)
-  if(SGLAB_PCH)
-    target_precompile_headers(${target} REUSE_FROM ${donor})
-  endif()
-endfunction()
-
 # Unity builds: even with the headers precompiled, most of a file's compile time
 # is g++ generating, again in every file, the same inline code of Ceres, Eigen,
 # CLI11, fmt, nlohmann-json and gtest (four fit/ files compile in half the CPU
@@ -48,21 +36,5 @@ set(SGLAB_UNITY_BATCH 8 CACHE STRING "Files per unity batch")
 function(sglab_unity_build target)
   if(SGLAB_UNITY)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${SGLAB_UNITY_BATCH})
-  endif()
-endfunction()
-
-# Optimization where it pays: the libraries keep the build type's -O3 (their
-# loops are what sglab times and fits with), while the tests' own code runs
-# each assertion a few times and calls into the libraries for the heavy work.
-# At -O1 g++ compiles a test batch in about two thirds of its -O3 CPU time.
-# An inline function that a test file and a library both emit may run as the
-# test's -O1 copy inside sglab_tests: slower, never different (no -O level
-# changes floating-point semantics; the shipped command keeps -O3 throughout).
-# sglab_light_optimization(TARGET): TARGET's own files compile at -O1 in
-# Release (SGLAB_LIGHT_OPT=OFF keeps -O3).
-option(SGLAB_LIGHT_OPT "Compile the tests' own files at -O1" ON)
-function(sglab_light_optimization target)
-  if(SGLAB_LIGHT_OPT)
-    target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-O1>)
   endif()
 endfunction()
