@@ -147,7 +147,8 @@ TEST(AtomicWrite, ASignalDuringTheWriteRemovesTheTemporaries) {
       for (int i = 0; i < 200000 && !seen; ++i) seen = holds_temporary(dir.path);
       ::kill(pid, signal);
       int status = 0;
-      for (int i = 0; i < 500 && ::waitpid(pid, &status, WNOHANG) == 0; ++i) ::usleep(10'000);
+      // Generous for a loaded machine: the loop ends as soon as the child does.
+      for (int i = 0; i < 3000 && ::waitpid(pid, &status, WNOHANG) == 0; ++i) ::usleep(10'000);
       if (::waitpid(pid, &status, WNOHANG) == 0) {
         ::kill(pid, SIGKILL);
         ::waitpid(pid, &status, 0);
