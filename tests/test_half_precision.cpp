@@ -30,6 +30,7 @@
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 #include "tests/vulkan_fixture.hpp"
+#include "validate/sweep.hpp"
 
 namespace {
 
@@ -262,33 +263,47 @@ TEST(HalfFloor, NoHalfResultMeets1e3InTheWorstCell) {
   EXPECT_LT(inputs.half_output, 1e-3);
 }
 
-// On the standard grid (29 κ × 41 c) the exact E at the half inputs errs at most 4.51e-4, and
-// rounded to half 6.14e-4: the grid does not see the floor above.
-TEST(HalfFloor, TheStandardGridLeavesRoomBelow1e3) {
-  const auto& engine = sglab::reference::reference_engine();
+// The exact E at the half inputs, and rounded to half, against E(c, κ): max over a sweep grid.
+struct GridFloor {
+  double inputs = 0, with_result = 0;
+};
+GridFloor grid_floor(const sglab::validate::SweepGrid& grid) {
   std::vector<sglab::reference::Query> exact, rounded;
-  for (int i = -12; i <= 16; ++i) {
-    const double kappa = std::pow(10.0, i / 4.0);
+  const std::vector<double> cosines = grid.cosines();
+  for (double kappa : grid.kappas()) {
     exact.push_back({kappa, 1.0});
     rounded.push_back({kappa, 1.0});  // keeps the two lists aligned
-    for (int j = 0; j <= 40; ++j) {
-      const double c = -1 + 2.0 * j / 40;
+    for (double c : cosines) {
       exact.push_back({kappa, c});
       rounded.push_back({to_half(kappa), to_half(c)});
     }
   }
+  const auto& engine = sglab::reference::reference_engine();
   const auto e = engine.evaluate(exact), eh = engine.evaluate(rounded);
-  double inputs = 0, with_result = 0, e1 = 0;
+  GridFloor out;
+  double e1 = 0;
   for (std::size_t i = 0; i < e.size(); ++i) {
-    if (i % 42 == 0) {
+    if (i % (cosines.size() + 1) == 0) {
       e1 = e[i].irradiance;
       continue;
     }
-    inputs = std::max(inputs, std::abs(eh[i].irradiance - e[i].irradiance) / e1);
-    with_result = std::max(with_result, std::abs(to_half(eh[i].irradiance) - e[i].irradiance) / e1);
+    const double v = eh[i].irradiance, truth = e[i].irradiance;
+    out.inputs = std::max(out.inputs, std::abs(v - truth) / e1);
+    out.with_result = std::max(out.with_result, std::abs(to_half(v) - truth) / e1);
   }
-  EXPECT_NEAR(inputs, 4.51e-4, 0.01e-4);
-  EXPECT_NEAR(with_result, 6.14e-4, 0.01e-4);
+  return out;
+}
+
+// The exact E at the half inputs errs at most 4.51e-4 on the standard grid (29 κ × 41 c), and
+// rounded to half 6.14e-4: the grid does not see the floor above. On the held-out grid (217 κ
+// over [1.1e-3, 9.7e3] × 401 c) 6.83e-4 and 9.50e-4.
+TEST(HalfFloor, TheSweepGridsSeeLessThanTheFloor) {
+  const GridFloor standard = grid_floor({});
+  EXPECT_NEAR(standard.inputs, 4.51e-4, 0.01e-4);
+  EXPECT_NEAR(standard.with_result, 6.14e-4, 0.01e-4);
+  const GridFloor held_out = grid_floor({1.1e-3, 9.7e3, 217, 401});
+  EXPECT_NEAR(held_out.inputs, 6.83e-4, 0.01e-4);
+  EXPECT_NEAR(held_out.with_result, 9.50e-4, 0.01e-4);
 }
 
 // `sweep --backend vulkan --precision half`: the rows vulkan_half and
