@@ -5,7 +5,9 @@
 // shaderFloat16 (lavapipe) the device rounds to half, the target methods meet
 // 5e-3 of the peak against the reference engine over κ ∈ [1e-2, 1e3], and
 // `stability --half` finds κ beyond the largest half; on RADV's null devices
-// `gpucost --precision half` reports half rows. Device tests skip with the reason.
+// `gpucost --precision half` reports half rows; the floor of any function of half
+// (c, κ) returning half (docs/models.md). Device tests skip with the reason.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -24,9 +26,11 @@
 #include "export/gpu_cost.hpp"
 #include "export/shader_export.hpp"
 #include "export/vulkan_runner.hpp"
+#include "reference/reference.hpp"
 #include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 #include "tests/vulkan_fixture.hpp"
+#include "validate/sweep.hpp"
 
 namespace {
 
@@ -183,6 +187,123 @@ TEST_F(OnVulkanHalf, TheDeviceRoundsToHalf) {
     EXPECT_EQ(out[0], 6280.0f);
     EXPECT_EQ(out[1], h(h(0.5f) * h(h(6.28318548f) / h(3.0f)))) << sh::to_string(lang);
   }
+}
+
+// The floor of the sweep's half column (docs/models.md, "Half precision: the floor"): the
+// device gets c and κ rounded float → half and returns a half, so every (c, κ) whose halves
+// are (ĉ, κ̂), a cell, gets the same half value v. Over a cell's corners and midpoints, the v
+// that minimaxes |v − E(c, κ)|/E(1, κ) bounds every function of the half inputs, and the
+// halves on either side of it every such function returning half (the error is convex in v).
+double to_half(double x) {
+  return static_cast<double>(static_cast<_Float16>(static_cast<float>(x)));
+}
+double half_spacing(double x) { return std::ldexp(1.0, std::ilogb(x) - 10); }  // normal halves
+
+struct CellFloor {
+  double exact_output = 0;  // the minimax v's error
+  double half_output = 0;   // the better of the two halves around it
+};
+CellFloor cell_floor(double kappa_h, double cos_h) {
+  const auto& engine = sglab::reference::reference_engine();
+  EXPECT_EQ(to_half(kappa_h), kappa_h);
+  EXPECT_EQ(to_half(cos_h), cos_h);
+  // Just under half a spacing either side rounds to (κ̂, ĉ) through float (a float step from the
+  // midpoint would make it a tie); c stops at 1.
+  const double dk = 0.5 * half_spacing(kappa_h) * (1 - 1e-3);
+  const double dc = 0.5 * half_spacing(cos_h) * (1 - 1e-3);
+  std::vector<double> value, weight;
+  for (double kappa : {kappa_h - dk, kappa_h, kappa_h + dk}) {
+    EXPECT_EQ(to_half(kappa), kappa_h);
+    const double e1 = engine.evaluate(kappa, 1.0).irradiance;
+    for (double c : {cos_h - dc, cos_h, std::min(1.0, cos_h + dc)}) {
+      EXPECT_EQ(to_half(c), cos_h);
+      value.push_back(engine.evaluate(kappa, c).irradiance);
+      weight.push_back(e1);
+    }
+  }
+  const auto error = [&](double v) {
+    double e = 0;
+    for (std::size_t i = 0; i < value.size(); ++i)
+      e = std::max(e, std::abs(v - value[i]) / weight[i]);
+    return e;
+  };
+  // The minimax v: bisection on the level e, feasible when the intervals [E − e w, E + e w] meet.
+  double lo = 0, hi = 1;
+  for (int it = 0; it < 80; ++it) {
+    const double e = 0.5 * (lo + hi);
+    double v_lo = -1e300, v_hi = 1e300;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      v_lo = std::max(v_lo, value[i] - e * weight[i]);
+      v_hi = std::min(v_hi, value[i] + e * weight[i]);
+    }
+    (v_lo <= v_hi ? hi : lo) = e;
+  }
+  double v_star = -1e300;
+  for (std::size_t i = 0; i < value.size(); ++i)
+    v_star = std::max(v_star, value[i] - hi * weight[i]);
+  const double below =
+      to_half(v_star) <= v_star ? to_half(v_star) : to_half(v_star) - half_spacing(v_star);
+  const double above = below + half_spacing(below);
+  EXPECT_LE(below, v_star);
+  EXPECT_GE(above, v_star);
+  return {error(v_star), std::min(error(below), error(above))};
+}
+
+// κ̂ = 399.75 (spacing 0.25), ĉ = 1 − 2⁻¹⁰ (spacing 2⁻¹¹): the inputs' rounding alone costs
+// 5.56e-4, but the minimax value lies halfway between two halves, and both err 1.042e-3: no half
+// export of any model holds 1e-3 there. κ̂ = 8200, ĉ = 1 − 2⁻¹¹: the largest floor of the
+// inputs' rounding alone, 7.32e-4 at the cell's edges (7.31e-4 a float step inside them).
+TEST(HalfFloor, NoHalfResultMeets1e3InTheWorstCell) {
+  const CellFloor worst = cell_floor(399.75, 1.0 - std::ldexp(1.0, -10));
+  EXPECT_NEAR(worst.exact_output, 5.56e-4, 0.01e-4);
+  EXPECT_GT(worst.half_output, 1e-3);
+  EXPECT_NEAR(worst.half_output, 1.042e-3, 0.001e-3);
+  const CellFloor inputs = cell_floor(8200.0, 1.0 - std::ldexp(1.0, -11));
+  EXPECT_NEAR(inputs.exact_output, 7.31e-4, 0.01e-4);
+  EXPECT_LT(inputs.half_output, 1e-3);
+}
+
+// The exact E at the half inputs, and rounded to half, against E(c, κ): max over a sweep grid.
+struct GridFloor {
+  double inputs = 0, with_result = 0;
+};
+GridFloor grid_floor(const sglab::validate::SweepGrid& grid) {
+  std::vector<sglab::reference::Query> exact, rounded;
+  const std::vector<double> cosines = grid.cosines();
+  for (double kappa : grid.kappas()) {
+    exact.push_back({kappa, 1.0});
+    rounded.push_back({kappa, 1.0});  // keeps the two lists aligned
+    for (double c : cosines) {
+      exact.push_back({kappa, c});
+      rounded.push_back({to_half(kappa), to_half(c)});
+    }
+  }
+  const auto& engine = sglab::reference::reference_engine();
+  const auto e = engine.evaluate(exact), eh = engine.evaluate(rounded);
+  GridFloor out;
+  double e1 = 0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (i % (cosines.size() + 1) == 0) {
+      e1 = e[i].irradiance;
+      continue;
+    }
+    const double v = eh[i].irradiance, truth = e[i].irradiance;
+    out.inputs = std::max(out.inputs, std::abs(v - truth) / e1);
+    out.with_result = std::max(out.with_result, std::abs(to_half(v) - truth) / e1);
+  }
+  return out;
+}
+
+// The exact E at the half inputs errs at most 4.51e-4 on the standard grid (29 κ × 41 c), and
+// rounded to half 6.14e-4: the grid does not see the floor above. On the held-out grid (217 κ
+// over [1.1e-3, 9.7e3] × 401 c) 6.83e-4 and 9.50e-4.
+TEST(HalfFloor, TheSweepGridsSeeLessThanTheFloor) {
+  const GridFloor standard = grid_floor({});
+  EXPECT_NEAR(standard.inputs, 4.51e-4, 0.01e-4);
+  EXPECT_NEAR(standard.with_result, 6.14e-4, 0.01e-4);
+  const GridFloor held_out = grid_floor({1.1e-3, 9.7e3, 217, 401});
+  EXPECT_NEAR(held_out.inputs, 6.83e-4, 0.01e-4);
+  EXPECT_NEAR(held_out.with_result, 9.50e-4, 0.01e-4);
 }
 
 // `sweep --backend vulkan --precision half`: the rows vulkan_half and
