@@ -359,9 +359,10 @@ TEST_F(OnRadvProbeRecommend, OneSgLightIsOneLobeOnNavi21) {
   const auto e = sglab::test::run_sglab({"export", "--probe", probe_file, "--lang", "glsl"});
   ASSERT_EQ(e.exit_code, 0) << e.output;
   EXPECT_NE(e.output.find("probe_irradiance"), std::string::npos);
-  // The text form states the family, the metric and each candidate's cost.
+  // The text form states the family, the metric and each candidate's cost (a
+  // ladder of one lobe is enough for that).
   const auto text = sglab::test::run_sglab({"envmap", "recommend", map_file, "--budget", "2e-3",
-                                            "--by", "gpu:navi21", "--max-lobes", "4"},
+                                            "--by", "gpu:navi21", "--max-lobes", "1"},
                                            false);
   ASSERT_EQ(text.exit_code, 0) << text.output;
   EXPECT_NE(text.output.find("by GPU cost on navi21"), std::string::npos) << text.output;
