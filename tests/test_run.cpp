@@ -202,8 +202,8 @@ TEST(RunCommand, QuickRunIndexHasNoBrokenLinkAndEachFigureOnce) {
       << "the step itself ran without --exhaustive: " << section("erf");
   EXPECT_NE(section("stability").find("Form: full.\n"), std::string::npos) << section("stability");
   // GPU costs: navi21 in GLSL, the full form every chip in both languages.
-  EXPECT_TRUE(section("gpucost").starts_with(
-      "## gpucost\n\n`sglab gpucost --skip-unavailable --out "))
+  EXPECT_TRUE(
+      section("gpucost").starts_with("## gpucost\n\n`sglab gpucost --skip-unavailable --out "))
       << section("gpucost");
   EXPECT_NE(section("gpucost").find(" --family navi21`"), std::string::npos) << section("gpucost");
   EXPECT_NE(section("gpucost").find("Form: quick ("), std::string::npos) << section("gpucost");
