@@ -440,6 +440,12 @@ std::vector<Step> run_steps(const fs::path& root, Form form, bool bench_skipped)
     std::string what;
   };
   const std::vector<Sample> samples = {
+      {"gpucost",
+       Form::quick,
+       {"--lang", "both"},
+       {"--family", "navi21"},
+       "navi21 (the chip of the Pareto chart's cost) in GLSL instead of five chips in GLSL and "
+       "HLSL"},
       {"erf",
        Form::representative,
        {"--exhaustive"},
@@ -532,7 +538,8 @@ void add_run_command(CLI::App& app) {
       "index.md names its form and the full command");
   cmd->add_flag("--quick", *quick,
                 "the smallest samples: erf on a dense sample of floats, short benchmark "
-                "repetitions, envmap fits at 12 lobes only")
+                "repetitions, GPU costs on navi21 in GLSL, envmap probes of every fourth map "
+                "at 27 floats")
       ->excludes(full_flag);
   cmd->add_option("--skip", *skip, "skip a step by name (repeatable)");
   cmd->callback([out, quick, full, skip] {

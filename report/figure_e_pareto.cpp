@@ -127,12 +127,52 @@ std::string pareto_labels(const std::vector<ParetoRow>& rows, const PanelFrame& 
   return labels;
 }
 
+// Open/filled point-type pairs: circle, square, triangle up, triangle down, diamond, pentagon.
+constexpr int kOpen[] = {6, 4, 8, 10, 12, 14};
+
+// How a row is drawn, the same in every panel and in the legend: shape and colour per method
+// family (`families`, family_of), open = published, filled = refit or sglab's own (larger).
+struct PointStyle {
+  int shape;
+  double size;
+  const char* colour;
+};
+PointStyle point_style(const ParetoRow& r, const std::vector<std::string>& families) {
+  const std::size_t fam = static_cast<std::size_t>(
+      std::find(families.begin(), families.end(), family_of(r.method)) - families.begin());
+  return {kOpen[fam % 6] + (r.origin == Origin::published ? 0 : 1),
+          r.origin == Origin::sglab ? 2.5 : (r.origin == Origin::published ? 2.2 : 1.5),
+          kPalette[fam % kPaletteSize]};
+}
+
+// The rows of every panel, each (method, precision) once, for the legend: a method a panel
+// lacks (no cost of that kind yet) is still named. Each panel's order is kept (registry
+// order): a row missing from the rows so far goes right after the one it follows in its panel.
+std::vector<ParetoRow> legend_rows(const std::vector<ParetoPanel>& panels) {
+  std::vector<ParetoRow> legend;
+  for (const ParetoPanel& p : panels) {
+    std::size_t at = 0;
+    for (const ParetoRow& r : p.rows) {
+      const auto it = std::find_if(legend.begin(), legend.end(), [&](const ParetoRow& x) {
+        return x.method == r.method && x.precision == r.precision;
+      });
+      if (it != legend.end()) {
+        at = static_cast<std::size_t>(it - legend.begin()) + 1;
+        continue;
+      }
+      legend.insert(legend.begin() + static_cast<std::ptrdiff_t>(at++), r);
+    }
+  }
+  return legend;
+}
+
 // Writes the points and frontier CSVs of one panel (file names in `files`) and
-// returns its gnuplot `plot` command; with `key`, the legend entries too.
+// returns its gnuplot `plot` command; with `legend`, an entry for each of its rows too.
 std::string pareto_plot(const FiguresOptions& opt, const std::string& stem,
                         const std::vector<ParetoRow>& rows,
-                        const std::vector<std::string>& families, double band_y, bool key,
-                        std::vector<fs::path>& files) {
+                        const std::vector<std::string>& families, double band_y,
+                        const std::vector<ParetoRow>* legend, std::vector<fs::path>& files) {
+  const bool key = legend != nullptr;
   std::vector<std::string> precisions;
   for (const ParetoRow& r : rows)
     if (std::find(precisions.begin(), precisions.end(), r.precision) == precisions.end())
@@ -170,8 +210,6 @@ std::string pareto_plot(const FiguresOptions& opt, const std::string& stem,
   io::write_file_atomic(opt.out / fcsv, fr.empty() ? "cost,max_peak_rel,precision\n" : fr);
   files.push_back(csv);
   files.push_back(fcsv);
-  // Open/filled point-type pairs: circle, square, triangle up, triangle down, diamond, pentagon.
-  static const int kOpen[] = {6, 4, 8, 10, 12, 14};
   static const char* kFrontier[] = {"#444444", "#d62728", "#2ca02c", "#9467bd"};
   std::string plot = "plot ";
   for (std::size_t b = 0; b < frontier_blocks.size(); ++b)
@@ -190,30 +228,27 @@ std::string pareto_plot(const FiguresOptions& opt, const std::string& stem,
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return (rows[a].origin == Origin::published) < (rows[b].origin == Origin::published);
   });
-  std::vector<std::string> elements(rows.size());
   for (std::size_t idx : order) {
     const ParetoRow& r = rows[idx];
-    const std::size_t fam = static_cast<std::size_t>(
-        std::find(families.begin(), families.end(), family_of(r.method)) - families.begin());
-    const int shape = kOpen[fam % 6] + (r.origin == Origin::published ? 0 : 1);
-    const char* colour = kPalette[fam % kPaletteSize];
-    const std::string title =
-        r.method + origin_suffix(r.origin) + (precisions.size() > 1 ? ", " + r.precision : "");
+    const PointStyle style = point_style(r, families);
     const std::string sel = fmt::format("($0 == {} ? $3 : 1/0)", idx);
     if (r.origin == Origin::sglab)
       plot += fmt::format("{} u 1:{} w p pt 7 ps 3.4 lc rgb '#000000' notitle, \\\n     ",
                           gp_quote(csv), sel);
-    const double size =
-        r.origin == Origin::sglab ? 2.5 : (r.origin == Origin::published ? 2.2 : 1.5);
     plot += fmt::format("{} u 1:{} w p pt {} ps {} lw 2 lc rgb '{}' notitle, \\\n     ",
-                        gp_quote(csv), sel, shape, size, colour);
-    elements[idx] = fmt::format("keyentry w p pt {} ps {} lw 2 lc rgb '{}' title {}", shape, size,
-                                colour, gp_quote(title));
+                        gp_quote(csv), sel, style.shape, style.size, style.colour);
   }
-  if (!key) return plot + "1/0 notitle\n";
-  // The legend in the points' order (registry order; keyentry: a key line without data).
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    plot += elements[i] + (i + 1 < rows.size() ? ", \\\n     " : "\n");
+  if (!key || legend->empty()) return plot + "1/0 notitle\n";
+  // The legend (keyentry: a key line without data).
+  for (std::size_t i = 0; i < legend->size(); ++i) {
+    const ParetoRow& r = (*legend)[i];
+    const PointStyle style = point_style(r, families);
+    const std::string title =
+        r.method + origin_suffix(r.origin) + (precisions.size() > 1 ? ", " + r.precision : "");
+    plot +=
+        fmt::format("keyentry w p pt {} ps {} lw 2 lc rgb '{}' title {}{}", style.shape, style.size,
+                    style.colour, gp_quote(title), i + 1 < legend->size() ? ", \\\n     " : "\n");
+  }
   return plot;
 }
 
@@ -319,6 +354,7 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
         ymin = std::min(ymin, r.max_peak_rel);
     }
   if (!std::isfinite(ymin)) ymin = 1e-3;
+  const std::vector<ParetoRow> legend = legend_rows(panels);
   const std::string range = ranges.size() == 1
                                 ? fmt::format("κ ∈ [{}, {}]", short_number(ranges.begin()->first),
                                               short_number(ranges.begin()->second))
@@ -328,8 +364,18 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
   const double y_hi = any_fail ? band_hi : kParetoFail * 3;
   // Layout in pixels: a 640-pixel slot per panel (80 of margin on its left), the legend after them
   // (wider when the GPU families' table goes under it).
-  const double slot = 640, plot_w = 540, legend_w = opt.gpu ? 450 : 330, H = 800, top = 0.1 * H,
-               bottom = 0.91 * H;
+  // The legend (one line per method and per frontier, about 17 pixels each at font 10 and
+  // spacing 1.15) is at the top right, the GPU families' table (13 pixels a line) under it; the
+  // image grows taller when the two would not fit in 800 pixels.
+  std::size_t table_lines = 0;
+  if (opt.gpu)
+    for (const ParetoPanel& p : panels) table_lines = std::max(table_lines, 3 + p.rows.size());
+  const double key_line = 17, table_line = 13, top = 80;
+  const double table_top =
+      top + key_line * static_cast<double>(legend.size() + precisions.size()) + 30;
+  const double slot = 640, plot_w = 540, legend_w = opt.gpu ? 450 : 330,
+               H = std::max(800.0, table_top + table_line * static_cast<double>(table_lines) + 20),
+               bottom = H - 72;
   const double W = slot * static_cast<double>(panels.size()) + legend_w;
   std::string body = fmt::format(
       "set multiplot title 'Cost vs accuracy of the irradiance methods: {}, {} (29 κ × 41 c)' font "
@@ -381,12 +427,12 @@ Figure render_pareto(const FiguresOptions& opt, const std::vector<ParetoPanel>& 
     // The other GPU families of the first GPU panel under the legend (screen positions: set with
     // the last panel).
     for (std::size_t k = 0; last && k < panels.size(); ++k) {
-      const std::string table =
-          gpu_family_table(opt, panels[k], stem_of(k), (g.right + 30) / W, 0.43, 13 / H, f.files);
+      const std::string table = gpu_family_table(opt, panels[k], stem_of(k), (g.right + 30) / W,
+                                                 1 - table_top / H, table_line / H, f.files);
       body += table;
       if (!table.empty()) break;
     }
-    body += pareto_plot(opt, stem, p.rows, families, band_y, last, f.files);
+    body += pareto_plot(opt, stem, p.rows, families, band_y, last ? &legend : nullptr, f.files);
   }
   for (auto& x : render(opt, f.id, body, static_cast<int>(W), static_cast<int>(H)))
     f.files.push_back(x);

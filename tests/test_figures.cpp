@@ -108,7 +108,8 @@ TEST(Figures, CommandWritesPngAndSvg) {
 
 // Figure (e) draws one panel per cost source of the Pareto CSVs it is given
 // (`sglab pareto --cost …`), in their order, each with its own points file and
-// axis label.
+// axis label; its legend names every method of every panel (sglab_min has a GPU
+// cost only), in the panels' order.
 TEST(Figures, OnePanelPerCostSource) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   sglab::test::TempDir dir("figures-panels");
@@ -119,6 +120,7 @@ TEST(Figures, OnePanelPerCostSource) {
       dir.path / "gpu.csv",
       header +
           "vsgl2015,published,float,0.001,10000,3,cycles,gpu:navi21,8-light loop (split),0.15,1\n"
+          "sglab_min,sglab,float,0.001,10000,6,cycles,gpu:navi21,8-light loop (split),0.042,1\n"
           "sglab_acc3,sglab,float,0.001,10000,169,cycles,gpu:navi21,8-light loop (split),3e-5,"
           "1\n");
   sglab::io::write_file_atomic(
@@ -156,7 +158,7 @@ TEST(Figures, OnePanelPerCostSource) {
        (dir.path / "cpu.csv").string(), "--costs", (dir.path / "costs.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(sglab::io::read_file(out / "e_pareto_1_families.csv"),
-            "method,navi10\nvsgl2015,4.5\nsglab_acc3,177\n");
+            "method,navi10\nvsgl2015,4.5\nsglab_min,\nsglab_acc3,177\n");
   EXPECT_FALSE(fs::exists(out / "e_pareto_2_families.csv"));  // the CPU panel has none
   const std::string gpu = sglab::io::read_file(out / "e_pareto_1_points.csv");
   const std::string cpu = sglab::io::read_file(out / "e_pareto_2_points.csv");
@@ -169,6 +171,21 @@ TEST(Figures, OnePanelPerCostSource) {
             std::string::npos);
   EXPECT_NE(script.find("set title '--cost cpu-batch'"), std::string::npos);
   EXPECT_NE(script.find("set xlabel 'CPU batch ns/eval'"), std::string::npos);
+  const std::size_t published = script.find("title 'vsgl2015'"),
+                    min = script.find("title 'sglab_min [sglab]'"),
+                    acc3 = script.find("title 'sglab_acc3 [sglab]'");
+  ASSERT_NE(min, std::string::npos) << script;
+  ASSERT_NE(published, std::string::npos) << script;
+  ASSERT_NE(acc3, std::string::npos) << script;
+  EXPECT_LT(published, min);
+  EXPECT_LT(min, acc3);
+  // Once per rendering (the script draws the PNG and then the SVG), as every method.
+  const auto count = [&script](const std::string& s) {
+    std::size_t n = 0;
+    for (std::size_t at = script.find(s); at != std::string::npos; at = script.find(s, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("title 'sglab_min [sglab]'"), count("title 'sglab_acc3 [sglab]'"));
   EXPECT_GT(fs::file_size(out / "e_pareto.png"), 1000u);
   // A header with cost but not its unit and source is refused.
   sglab::io::write_file_atomic(

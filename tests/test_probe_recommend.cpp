@@ -235,10 +235,12 @@ TEST(ProbeRecommend, ByCostPicksTheLeastCostOfTheProbesMeetingTheBudget) {
   EXPECT_LE(c.cost.value(), u.cost.value());
   EXPECT_FALSE(report::same_probe_function(c.probe, u.probe));
   EXPECT_NE(c.probe.label(), u.probe.label());
-  // The storage choice is the one of fewest floats: here the most costly.
-  const auto s = report::recommend_probe_by_storage(m, budget, 4, quiet);
-  ASSERT_TRUE(s.choice);
-  EXPECT_LT(s.tried[*s.choice].probe.floats(), c.probe.floats());
+  // The storage choice would be the meeting candidate of fewest floats: here it
+  // is not the choice, which costs least because it has the most floats.
+  std::size_t fewest = c.probe.floats();
+  for (const auto& t : r.tried)
+    if (t.error.max_rel <= budget) fewest = std::min(fewest, t.probe.floats());
+  EXPECT_LT(fewest, c.probe.floats());
 }
 
 // night.exr at 64 × 32: the hybrid ladder's SH L2 + 2 SG is SH L2 + 1 SG plus
@@ -359,9 +361,10 @@ TEST_F(OnRadvProbeRecommend, OneSgLightIsOneLobeOnNavi21) {
   const auto e = sglab::test::run_sglab({"export", "--probe", probe_file, "--lang", "glsl"});
   ASSERT_EQ(e.exit_code, 0) << e.output;
   EXPECT_NE(e.output.find("probe_irradiance"), std::string::npos);
-  // The text form states the family, the metric and each candidate's cost.
+  // The text form states the family, the metric and each candidate's cost (a
+  // ladder of one lobe is enough for that).
   const auto text = sglab::test::run_sglab({"envmap", "recommend", map_file, "--budget", "2e-3",
-                                            "--by", "gpu:navi21", "--max-lobes", "4"},
+                                            "--by", "gpu:navi21", "--max-lobes", "1"},
                                            false);
   ASSERT_EQ(text.exit_code, 0) << text.output;
   EXPECT_NE(text.output.find("by GPU cost on navi21"), std::string::npos) << text.output;

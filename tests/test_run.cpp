@@ -201,6 +201,15 @@ TEST(RunCommand, QuickRunIndexHasNoBrokenLinkAndEachFigureOnce) {
   EXPECT_TRUE(section("erf").starts_with("## erf\n\n`sglab erf --out "))
       << "the step itself ran without --exhaustive: " << section("erf");
   EXPECT_NE(section("stability").find("Form: full.\n"), std::string::npos) << section("stability");
+  // GPU costs: navi21 in GLSL, the full form every chip in both languages.
+  EXPECT_TRUE(
+      section("gpucost").starts_with("## gpucost\n\n`sglab gpucost --skip-unavailable --out "))
+      << section("gpucost");
+  EXPECT_NE(section("gpucost").find(" --family navi21`"), std::string::npos) << section("gpucost");
+  EXPECT_NE(section("gpucost").find("Form: quick ("), std::string::npos) << section("gpucost");
+  EXPECT_NE(section("gpucost").find("`sglab gpucost --skip-unavailable --lang both --out "),
+            std::string::npos)
+      << section("gpucost");
   EXPECT_NE(index.find("Produced by `sglab run --out "), std::string::npos);
   EXPECT_NE(index.find(" --quick --skip fit"), std::string::npos) << index.substr(0, 400);
 }
