@@ -12,7 +12,7 @@
 # only those two precompile theirs; g++ includes it first in each of their
 # files. SGLAB_PCH=OFF builds without them (every file then compiles on its
 # own includes alone).
-option(SGLAB_PCH "Precompile the heavy third-party headers of each target" ON)
+option(SGLAB_PCH "Precompile the heavy third-party headers of the command and report/" ON)
 
 # Included by every target's precompiled header.
 set(SGLAB_PCH_COMMON
