@@ -19,11 +19,7 @@ namespace {
 
 using sglab::test::run_sglab;
 
-const sglab::Method& method(std::string_view id) {
-  const sglab::Method* m = sglab::find_method(sglab::irradiance_methods, id);
-  if (!m) throw std::runtime_error("method not registered: " + std::string(id));
-  return *m;
-}
+using sglab::test::method;
 
 // Writes `text` to dir/name and returns the path.
 std::filesystem::path temp_file(const sglab::test::TempDir& dir, const std::string& name,

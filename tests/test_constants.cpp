@@ -22,7 +22,7 @@
 namespace {
 
 // The checkout's files, named explicitly (the tests run in the build folder).
-const std::filesystem::path kRoot = std::filesystem::path(SGLAB_TEST_SOURCE_DIR).parent_path();
+using sglab::test::kRoot;
 
 TEST(Constants, HeaderMatchesJson) {
   const auto sets = sglab::fit::load_constant_sets(kRoot / "data" / "constants");

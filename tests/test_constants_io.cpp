@@ -27,20 +27,12 @@ namespace fs = std::filesystem;
 using sglab::fit::ordered_json;
 using sglab::test::run_sglab;
 
-const fs::path kRoot = fs::path(SGLAB_TEST_SOURCE_DIR).parent_path();
+using sglab::test::kRoot;
 const fs::path kConstants = kRoot / "data" / "constants";
-const fs::path kHeader = kRoot / "include" / "sglab" / "constants.hpp";
-
-std::string slurp(const fs::path& p) { return sglab::io::read_file(p); }
 
 using sglab::test::TempDir;
 
-// Runs in `dir` for the lifetime of the object (run_sglab spawns with our cwd).
-struct WorkingDirectory {
-  fs::path old = fs::current_path();
-  explicit WorkingDirectory(const fs::path& dir) { fs::current_path(dir); }
-  ~WorkingDirectory() { fs::current_path(old); }
-};
+using sglab::test::WorkingDirectory;
 
 // A copy of the checkout's constant sets in dir/constants.
 fs::path copy_constants(const fs::path& dir) {
@@ -71,7 +63,7 @@ std::string squeeze(std::string s) {
 TEST(Schema, MatchesParamsHpp) {
   // Every `template <class S, std::size_t X...> struct Name { S members; };`
   // of params.hpp, member by member, against the table.
-  const std::string text = slurp(kRoot / "include" / "sglab" / "params.hpp");
+  const std::string text = sglab::io::read_file(kRoot / "include" / "sglab" / "params.hpp");
   const std::regex decl(
       R"(template\s*<\s*class\s+S((?:\s*,\s*std::size_t\s+\w+)*)\s*>\s*struct\s+(\w+)\s*\{([^}]*)\};)");
   std::map<std::string, std::pair<std::vector<std::string>, std::vector<std::string>>> in_header;
@@ -141,7 +133,7 @@ TEST(Schema, RequiredSetsCoverEveryReferenceInTheCode) {
     for (const auto& e : fs::recursive_directory_iterator(kRoot / folder)) {
       const auto ext = e.path().extension();
       if (e.path().filename() == "constants.hpp" || (ext != ".hpp" && ext != ".cpp")) continue;
-      const std::string text = slurp(e.path());
+      const std::string text = sglab::io::read_file(e.path());
       for (auto it = std::sregex_iterator(text.begin(), text.end(), ref);
            it != std::sregex_iterator(); ++it) {
         ++references;
@@ -320,7 +312,7 @@ TEST(UntrustedConstants, EveryMalformedFileIsRefusedAndNothingWritten) {
     fs::remove_all(tmp.path / "constants");
     const fs::path dir = copy_constants(tmp.path);
     const fs::path file = dir / c.file;
-    std::string text = slurp(file);
+    std::string text = sglab::io::read_file(file);
     for (const auto& [from, to] : c.edits) text = replace_once(text, from, to);
     write_file(file, text);
     const fs::path header = tmp.path / "out" / "constants.hpp";
@@ -405,7 +397,7 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-  write_file(file, replace_once(slurp(file), "\"objective\": \"published\"",
+  write_file(file, replace_once(sglab::io::read_file(file), "\"objective\": \"published\"",
                                 "\"objective\": \"published\", \"x\": " + deep));
   for (bool write_header : {true, false}) {
     std::vector<std::string> args = {"constants", "--dir", dir.string()};
@@ -420,10 +412,10 @@ TEST(UntrustedConstants, DeepNestingIsRefusedNotACrash) {
   }
   EXPECT_FALSE(fs::exists(tmp.path / "h.hpp"));
   // 64 levels are fine.
-  write_file(file,
-             replace_once(slurp(kConstants / "hill-published.json"), "\"objective\": \"published\"",
-                          "\"objective\": \"published\", \"x\": " + std::string(62, '[') +
-                              std::string(62, ']')));
+  write_file(file, replace_once(sglab::io::read_file(kConstants / "hill-published.json"),
+                                "\"objective\": \"published\"",
+                                "\"objective\": \"published\", \"x\": " + std::string(62, '[') +
+                                    std::string(62, ']')));
   EXPECT_NO_THROW(sglab::fit::load_constant_set(file));
 }
 
@@ -431,7 +423,7 @@ TEST(UntrustedConstants, OversizedFileIsRefused) {
   TempDir tmp("constants_big");
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
-  write_file(file, replace_once(slurp(file), "\"objective\": \"published\"",
+  write_file(file, replace_once(sglab::io::read_file(file), "\"objective\": \"published\"",
                                 "\"objective\": \"published\", \"x\": \"" +
                                     std::string(2 << 20, 'a') + "\""));
   const auto r = run_sglab({"constants", "--dir", dir.string()});
@@ -466,7 +458,7 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
   TempDir tmp("constants_text");
   const fs::path dir = copy_constants(tmp.path);
   const fs::path file = dir / "hill-published.json";
-  std::string text = slurp(file);
+  std::string text = sglab::io::read_file(file);
   text = replace_once(text, "\"objective\": \"published\"",
                       "\"objective\": \"published\\n#error objective\", \"key\\n#error key\": "
                       "\"v\\u0000\\u001b[2J\\\\\", \"nested\": {\"a\\n#error nested\": "
@@ -477,7 +469,7 @@ TEST(UntrustedConstants, TextFieldsBecomeSafeComments) {
   const auto r = run_sglab(
       {"constants", "--dir", dir.string(), "--write-header", "--header", header.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string h = slurp(header);
+  const std::string h = sglab::io::read_file(header);
   EXPECT_EQ(h.find('\0'), std::string::npos);
   EXPECT_EQ(h.find('\r'), std::string::npos);
   EXPECT_EQ(h.find('\x1b'), std::string::npos);
@@ -515,7 +507,7 @@ TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
     const std::string m = e.what();
     EXPECT_NE(m.find(blocked.string() + ": is a directory"), std::string::npos) << m;
   }
-  EXPECT_EQ(slurp(a), "old a");
+  EXPECT_EQ(sglab::io::read_file(a), "old a");
   EXPECT_FALSE(fs::exists(b));
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(tmp.path)) ++entries;
@@ -525,10 +517,10 @@ TEST(AtomicFiles, ADestinationThatIsNotARegularFileReplacesNothing) {
   EXPECT_THROW(
       sglab::io::write_files_atomic({{a, "new a"}, {tmp.path / "file" / "sub" / "c", "c"}}),
       std::runtime_error);
-  EXPECT_EQ(slurp(a), "old a");
+  EXPECT_EQ(sglab::io::read_file(a), "old a");
   sglab::io::write_files_atomic({{a, "new a"}, {b, "new b"}});
-  EXPECT_EQ(slurp(a), "new a");
-  EXPECT_EQ(slurp(b), "new b");
+  EXPECT_EQ(sglab::io::read_file(a), "new a");
+  EXPECT_EQ(sglab::io::read_file(b), "new b");
 }
 
 // ---- the project is found from the working directory ---------------------------
@@ -545,7 +537,7 @@ TEST(Project, FoundFromTheWorkingDirectory) {
   fs::create_directories(other / "data");
   fs::copy(kConstants, other / "data" / "constants");
   fs::create_directories(other / "deep" / "er");
-  const std::string checkout_header = slurp(kHeader);
+  const std::string checkout_header = sglab::io::read_file(sglab::test::kConstantsHeader);
   {
     WorkingDirectory cwd(other / "deep" / "er");
     const auto r = run_sglab({"constants", "--write-header"});
@@ -554,8 +546,8 @@ TEST(Project, FoundFromTheWorkingDirectory) {
               std::string::npos)
         << r.output;
   }
-  EXPECT_EQ(slurp(other / "include" / "sglab" / "constants.hpp"), checkout_header);
-  EXPECT_EQ(slurp(kHeader), checkout_header);
+  EXPECT_EQ(sglab::io::read_file(other / "include" / "sglab" / "constants.hpp"), checkout_header);
+  EXPECT_EQ(sglab::io::read_file(sglab::test::kConstantsHeader), checkout_header);
   // No project: a clear error naming the options, for listing, header and fit.
   WorkingDirectory cwd(tmp.path);
   for (const std::vector<std::string>& args : {std::vector<std::string>{"constants"},
@@ -570,7 +562,7 @@ TEST(Project, FoundFromTheWorkingDirectory) {
   const fs::path copy = copy_constants(tmp.path);
   const auto r = run_sglab({"constants", "--dir", copy.string(), "--write-header"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(slurp(copy / "constants.hpp"), checkout_header);
+  EXPECT_EQ(sglab::io::read_file(copy / "constants.hpp"), checkout_header);
   // A dry run needs no project.
   const auto d = run_sglab({"fit", "lambda-d", "--objective", "sphere-ls", "--dry-run"});
   EXPECT_EQ(d.exit_code, 0) << d.output;

@@ -22,10 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using sglab::test::run_sglab;
 
-const fs::path kRoot = fs::path(SGLAB_TEST_SOURCE_DIR).parent_path();
-const fs::path kHeader = kRoot / "include" / "sglab" / "constants.hpp";
-
-std::string slurp(const fs::path& p) { return sglab::io::read_file(p); }
+using sglab::test::kRoot;
 
 using sglab::test::TempDir;
 
@@ -47,11 +44,12 @@ std::vector<std::string> quick_fit(std::vector<std::string> more) {
 TEST(FitCli, FitIntoAFolderNeverTouchesTheCheckout) {
   InCheckout cwd;
   TempDir tmp("fit_out");
-  const std::string header_before = slurp(kHeader);
+  const std::string header_before = sglab::io::read_file(sglab::test::kConstantsHeader);
   const fs::path out = tmp.path / "mine";
   const auto r = run_sglab(quick_fit({"--out", out.string(), "--force"}));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(slurp(kHeader), header_before) << "the checkout's header changed";
+  EXPECT_EQ(sglab::io::read_file(sglab::test::kConstantsHeader), header_before)
+      << "the checkout's header changed";
   ASSERT_TRUE(fs::exists(out / "constants.hpp")) << r.output;
   ASSERT_TRUE(fs::exists(out / "lambda-d-diffuse-lobe-sphere-ls.json")) << r.output;
   EXPECT_NE(r.output.find("regenerated " + (out / "constants.hpp").string()), std::string::npos)
@@ -63,7 +61,7 @@ TEST(FitCli, FitIntoAFolderNeverTouchesTheCheckout) {
     sets.push_back(f.file.filename() == "lambda-d-diffuse-lobe-sphere-ls.json"
                        ? sglab::fit::load_constant_set(out / "lambda-d-diffuse-lobe-sphere-ls.json")
                        : f.set);
-  const std::string header = slurp(out / "constants.hpp");
+  const std::string header = sglab::io::read_file(out / "constants.hpp");
   EXPECT_EQ(header, sglab::fit::render_constants_header(sets));
   for (const auto& req : sglab::fit::required_sets())
     EXPECT_NE(header.find(fmt::format(" {}{{", req.cpp_name)), std::string::npos) << req.cpp_name;
@@ -76,7 +74,7 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   fs::create_directories(out);
   const fs::path json = out / "lambda-d-diffuse-lobe-sphere-ls.json";
   fs::copy_file(kRoot / "data" / "constants" / "lambda-d-diffuse-lobe-sphere-ls.json", json);
-  const std::string before = slurp(json);
+  const std::string before = sglab::io::read_file(json);
   // The header cannot be written (a directory is in its place): the set is not replaced either.
   const fs::path blocked = tmp.path / "header.hpp";
   fs::create_directories(blocked);
@@ -85,7 +83,7 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   EXPECT_NE(r.output.find(blocked.string() + ": is a directory, not a regular file"),
             std::string::npos)
       << r.output;
-  EXPECT_EQ(slurp(json), before);
+  EXPECT_EQ(sglab::io::read_file(json), before);
   // An invalid set already in --out (tagged as a constant set): refused before anything is written.
   std::ofstream(out / "zz-bad.json")
       << "{\"format\": \"sglab-constants\", \"version\": 1, \"target\": 1}";
@@ -94,7 +92,7 @@ TEST(FitCli, SetsAndHeaderAreOneUnit) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("nothing was written"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("zz-bad.json"), std::string::npos) << r.output;
-  EXPECT_EQ(slurp(json), before);
+  EXPECT_EQ(sglab::io::read_file(json), before);
   EXPECT_FALSE(fs::exists(header));
 }
 
@@ -111,11 +109,11 @@ TEST(FitCli, ABetterSetIsKeptOnlyForTheSameObjective) {
                                            "lambda-d-diffuse-lobe-sphere-ls.json");
   set["provenance"]["achieved"]["objective"] = 1e-300;  // better than any fit
   std::ofstream(json) << set.dump(2);
-  const std::string better = slurp(json);
+  const std::string better = sglab::io::read_file(json);
   auto r = run_sglab(quick_fit({"--out", out.string()}));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("kept " + json.string()), std::string::npos) << r.output;
-  EXPECT_EQ(slurp(json), better);
+  EXPECT_EQ(sglab::io::read_file(json), better);
 
   set["provenance"]["objective"] = "another objective";
   std::ofstream(json) << set.dump(2);
@@ -201,7 +199,7 @@ TEST(FitCli, ForeignFilesInTheOutputFolderAreSkippedAndNamed) {
   fs::create_directories(out);
   const std::vector<std::pair<std::string, std::string>> foreign = {
       {"r.json", ""},
-      {"costs.json", slurp(kRoot / "data" / "results" / "costs.json")},
+      {"costs.json", sglab::io::read_file(kRoot / "data" / "results" / "costs.json")},
       {"notes.json", "[1, 2]"},
       {"partial.json", "sglab-acc model order, kappa in [2, 50]\n"}};
   for (const auto& [name, text] : foreign) std::ofstream(out / name, std::ios::binary) << text;
@@ -217,7 +215,8 @@ TEST(FitCli, ForeignFilesInTheOutputFolderAreSkippedAndNamed) {
   }
   EXPECT_EQ(skipped, (std::set<std::string>{"r.json", "costs.json", "notes.json", "partial.json"}))
       << r.output;
-  for (const auto& [name, text] : foreign) EXPECT_EQ(slurp(out / name), text) << name;
+  for (const auto& [name, text] : foreign)
+    EXPECT_EQ(sglab::io::read_file(out / name), text) << name;
   // The text report names them too.
   const auto t = run_sglab(quick_fit({"--out", out.string(), "--force"}));
   ASSERT_EQ(t.exit_code, 0) << t.output;

@@ -679,12 +679,7 @@ TEST(GpuCostTable, MalformedSectionIsRefusedNamingTheKey) {
   EXPECT_EQ(sglab::cost::read_cost_table(dir.path / "costs.json").gpu->rows.size(), 1u);
 }
 
-// Runs in `dir` for the lifetime of the object (run_sglab spawns with our cwd).
-struct WorkingDirectory {
-  fs::path old = fs::current_path();
-  explicit WorkingDirectory(const fs::path& dir) { fs::current_path(dir); }
-  ~WorkingDirectory() { fs::current_path(old); }
-};
+using sglab::test::WorkingDirectory;
 
 // `sglab export`'s header states the GPU cost that the project's cost table
 // holds for exactly the exported code: the rows of the method and language

@@ -39,7 +39,7 @@ Map one_light_map() {
   });
 }
 
-const auto quiet = [](const std::string&) {};
+const auto no_messages = [](const std::string&) {};
 
 // Three lights of a map with a sky (LadderCostGrowsWithTheLobeCount).
 const envmap::Lobe kLights[] = {
@@ -77,9 +77,9 @@ std::size_t nonzero_lobe_count(const envmap::Probe& p) {
 }
 
 TEST(ProbeRecommend, ConstantMapIsShL0) {
-  const Vec3 L{1.5, 0.25, 3.0};
-  const Map m = map_of(32, [&](const Vec3&) { return L; });
-  const auto r = report::recommend_probe_by_storage(m, 1e-4, 4, quiet);
+  const Vec3 radiance{1.5, 0.25, 3.0};
+  const Map m = map_of(32, [&](const Vec3&) { return radiance; });
+  const auto r = report::recommend_probe_by_storage(m, 1e-4, 4, no_messages);
   ASSERT_TRUE(r.choice);
   const auto& c = r.tried[*r.choice];
   EXPECT_EQ(c.probe.label(), "SH L0");
@@ -88,7 +88,8 @@ TEST(ProbeRecommend, ConstantMapIsShL0) {
   // Â_0 = π), to the map's own horizon sub-pixel error at 32 × 16 (~1e−5: the
   // least-squares L0, of equal floats and smaller error, may be chosen).
   const auto e = envmap::probe_irradiance_method(c.probe)(Vec3{0.6, 0, 0.8});
-  for (std::size_t ch = 0; ch < 3; ++ch) EXPECT_NEAR(e[ch], M_PI * L[ch], 1e-4 * M_PI * L[ch]);
+  for (std::size_t ch = 0; ch < 3; ++ch)
+    EXPECT_NEAR(e[ch], M_PI * radiance[ch], 1e-4 * M_PI * radiance[ch]);
   ASSERT_TRUE(r.runner_up);
   EXPECT_NE(r.tried[*r.runner_up].probe.label(), "SH L0");
   EXPECT_GE(r.tried[*r.runner_up].probe.floats(), 3u);
@@ -97,7 +98,7 @@ TEST(ProbeRecommend, ConstantMapIsShL0) {
 TEST(ProbeRecommend, OneSgLightIsOneLobeWhereItIs) {
   const Map m = one_light_map();
   const double budget = 2e-3;
-  const auto r = report::recommend_probe_by_storage(m, budget, 4, quiet);
+  const auto r = report::recommend_probe_by_storage(m, budget, 4, no_messages);
   ASSERT_TRUE(r.choice);
   const auto& c = r.tried[*r.choice];
   EXPECT_EQ(c.probe.label(), "1 SG");
@@ -191,7 +192,7 @@ TEST(ProbeRecommend, SameProbeFunctionIgnoresZeroLobesOnly) {
 TEST(ProbeRecommend, RunnerUpIsAnotherFunction) {
   const Map m = one_light_map();
   for (double budget : {2e-3, 0.05}) {
-    const auto r = report::recommend_probe_by_storage(m, budget, 4, quiet);
+    const auto r = report::recommend_probe_by_storage(m, budget, 4, no_messages);
     ASSERT_TRUE(r.choice && r.runner_up) << budget;
     const auto& c = r.tried[*r.choice].probe;
     const auto& u = r.tried[*r.runner_up].probe;
@@ -221,7 +222,7 @@ TEST(ProbeRecommend, ByCostPicksTheLeastCostOfTheProbesMeetingTheBudget) {
     for (const envmap::Probe* p : probes) out.push_back(1000.0 - static_cast<double>(p->floats()));
     return out;
   };
-  const auto r = report::recommend_probe_by_cost(m, budget, 4, cost, quiet);
+  const auto r = report::recommend_probe_by_cost(m, budget, 4, cost, no_messages);
   EXPECT_EQ(calls, 1);
   ASSERT_TRUE(r.choice && r.runner_up);
   for (const auto& t : r.tried) {
@@ -259,7 +260,7 @@ TEST(ProbeRecommend, RunnerUpIsNoZeroLobeCopy) {
                     (p->kind == envmap::ProbeKind::hybrid ? 0.0 : 100.0));
     return out;
   };
-  const auto r = report::recommend_probe_by_cost(m, 0.06, 3, hybrid_first, quiet);
+  const auto r = report::recommend_probe_by_cost(m, 0.06, 3, hybrid_first, no_messages);
   ASSERT_TRUE(r.choice && r.runner_up);
   const auto& c = r.tried[*r.choice].probe;
   const auto& u = r.tried[*r.runner_up].probe;
@@ -452,7 +453,7 @@ TEST_F(OnRadvProbeRecommend, LadderCostGrowsWithTheLobeCount) {
     return out;
   };
   const std::size_t lobes = 4;
-  const auto r = report::recommend_probe_by_cost(m, 10.0, lobes, cost, quiet);
+  const auto r = report::recommend_probe_by_cost(m, 10.0, lobes, cost, no_messages);
   ASSERT_EQ(r.lobe_cap, lobes);
   ASSERT_EQ(r.hybrid_cap, lobes);
   for (const char* family : {"SG lobes", "SH L2 + SG lobes"}) {

@@ -28,20 +28,15 @@
 
 #include <sglab/registry.hpp>
 
+#include "common/io.hpp"
+#include "tests/test_support.hpp"
 #include "tests/tolerances.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kRoot = fs::path(SGLAB_TEST_SOURCE_DIR) / "..";
+using sglab::test::kRoot;
 const fs::path kResults = kRoot / "data" / "results";
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // README.md and the pages of docs/ (the CLI, costs, shaders, environment maps, models, …): the
 // reference text README links moves between them, so a claim is checked in whichever of them
@@ -58,7 +53,7 @@ std::vector<fs::path> doc_pages() {
 const std::string& docs_text() {
   static const std::string text = [] {
     std::string t;
-    for (const fs::path& p : doc_pages()) t += slurp(p) + "\n\n";
+    for (const fs::path& p : doc_pages()) t += sglab::io::read_file(p) + "\n\n";
     return t;
   }();
   return text;
@@ -285,10 +280,10 @@ struct Results {
 };
 
 void read_sweeps(Results& r) {
-  const std::string summary = slurp(kResults / "sweep_summary.md");
+  const std::string summary = sglab::io::read_file(kResults / "sweep_summary.md");
   for (const auto& row : table_after(summary, {"method", "quantity", "precision", "max_peak_rel"}))
     if (row[1] == "irradiance") r.standard[{row[0], row[2]}] = std::stod(row[3]);
-  const auto held = nlohmann::json::parse(slurp(kResults / "heldout_sweep.json"));
+  const auto held = nlohmann::json::parse(sglab::io::read_file(kResults / "heldout_sweep.json"));
   // The grid README names: 217 κ over [1.1e−3, 9.7e3] × 401 cosines, none a fit used.
   EXPECT_EQ(held.at("grid").at("kappa_count"), 217);
   EXPECT_EQ(held.at("grid").at("cosine_count"), 401);
@@ -298,7 +293,7 @@ void read_sweeps(Results& r) {
       r.held_out[k] = e.at("max_peak_rel");
       r.held_out_worst_kappa[k] = e.at("worst_kappa");
     }
-  const auto vk = nlohmann::json::parse(slurp(kResults / "vulkan_sweep.json"));
+  const auto vk = nlohmann::json::parse(sglab::io::read_file(kResults / "vulkan_sweep.json"));
   for (const auto& e : vk.at("results"))
     if (e.at("quantity") == "irradiance" && e.at("max_peak_rel").is_number())
       r.vulkan[{e.at("method"), e.at("precision")}] = e.at("max_peak_rel");
@@ -308,7 +303,7 @@ void read_sweeps(Results& r) {
 }
 
 void read_costs(Results& r) {
-  const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
+  const auto costs = nlohmann::json::parse(sglab::io::read_file(kResults / "costs.json"));
   std::map<std::pair<std::string, std::string>, bool> per_light_split;
   for (const auto& e : costs.at("gpu").at("rows"))
     if (e.at("harness") == "single" && e.at("compile") == "none" && !e.at("split").get<bool>())
@@ -343,7 +338,7 @@ struct Csv {
   std::vector<std::vector<std::string>> rows;
 };
 Csv read_csv(const std::string& name) {
-  std::istringstream in(slurp(kResults / name));
+  std::istringstream in(sglab::io::read_file(kResults / name));
   Csv csv;
   std::getline(in, csv.header);
   for (std::string line; std::getline(in, line);) {
@@ -579,7 +574,8 @@ TEST(ReadmeNumbers, ProseMatchesTheResults) {
   std::map<std::string, std::string> text;
   for (const Claim& c : kClaims) {
     if (!text.count(c.file))
-      text[c.file] = c.file == std::string(kDocs) ? docs_text() : slurp(kRoot / c.file);
+      text[c.file] =
+          c.file == std::string(kDocs) ? docs_text() : sglab::io::read_file(kRoot / c.file);
     const std::string what =
         fmt::format("{}: number {} after '{}' ({})", c.file, c.nth, c.anchor, c.from);
     const Stated s = stated_after(text[c.file], c.anchor, c.nth, c.file);
@@ -594,7 +590,7 @@ TEST(ReadmeNumbers, ProseMatchesTheResults) {
 // README's times of its two commands and of the main job are the ones
 // scripts/time_readme_commands.sh measured into data/results/job_times.md.
 TEST(ReadmeNumbers, JobTimesAreTheMeasuredOnes) {
-  const std::string readme = slurp(kRoot / "README.md");
+  const std::string readme = sglab::io::read_file(kRoot / "README.md");
   const std::string begin = "<!-- generated: job-times (scripts/time_readme_commands.sh) -->\n";
   const std::size_t at = readme.find(begin);
   ASSERT_NE(at, std::string::npos) << "README.md has no block job-times";
@@ -605,7 +601,8 @@ TEST(ReadmeNumbers, JobTimesAreTheMeasuredOnes) {
     EXPECT_EQ(block, "") << "README states times that data/results/job_times.md does not hold";
     GTEST_SKIP() << "no data/results/job_times.md yet: scripts/time_readme_commands.sh measures it";
   }
-  const auto rows = table_after(slurp(kResults / "job_times.md"), {"command", "wall"});
+  const auto rows =
+      table_after(sglab::io::read_file(kResults / "job_times.md"), {"command", "wall"});
   const auto wall = [&rows](std::string_view command) {
     for (const auto& row : rows)
       if (row[0].starts_with(command)) return row[1];
@@ -786,7 +783,7 @@ TEST(ReadmeNumbers, EnvmapTableMatchesTheResults) {
 // from the sets' provenance), the held-out table and the cost table with every
 // ratio to tokuyoshi2024.
 TEST(ResultsDocs, SglabAccMatchesTheResults) {
-  const std::string doc = slurp(kResults / "sglab_acc.md");
+  const std::string doc = sglab::io::read_file(kResults / "sglab_acc.md");
   const Results& r = results();
   for (int n = 1; n <= 4; ++n) {
     const std::size_t line = doc.find(fmt::format("  N={} D=", n));
@@ -860,7 +857,7 @@ TEST(ResultsDocs, SglabAccMatchesTheResults) {
 // its cost table (callgrind.csv and the cost table's GPU rows; '–' where a
 // method has no per-light split on the CPU).
 TEST(ResultsDocs, SglabFastMatchesTheResults) {
-  const std::string doc = slurp(kResults / "sglab_fast.md");
+  const std::string doc = sglab::io::read_file(kResults / "sglab_fast.md");
   const Results& r = results();
   const auto acc =
       table_after(doc, {"method", "standard float", "standard double", "held-out float"});
@@ -904,8 +901,8 @@ TEST(ResultsDocs, SglabFastMatchesTheResults) {
 // vulkan_sweep.md's table: the irradiance rows of vulkan_sweep.json (an empty
 // cell: the sweep has no such row).
 TEST(ResultsDocs, VulkanSweepTableMatchesItsJson) {
-  const auto rows =
-      table_after(slurp(kResults / "vulkan_sweep.md"), {"method", "double (model)", "C++ float"});
+  const auto rows = table_after(sglab::io::read_file(kResults / "vulkan_sweep.md"),
+                                {"method", "double (model)", "C++ float"});
   const Results& r = results();
   ASSERT_GE(rows.size(), 17u);
   const char* precisions[] = {"double",       "float",       "vulkan",          "vulkan_hlsl",
@@ -931,7 +928,7 @@ TEST(ResultsDocs, VulkanSweepTableMatchesItsJson) {
 // `sglab gpucost --out` and `sglab bench --out`: every number in them is the
 // table's, and every row of the table is in them.
 TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
-  const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
+  const auto costs = nlohmann::json::parse(sglab::io::read_file(kResults / "costs.json"));
   // (method, family, lang, compile, harness, lights, split, precision)
   using GpuKey = std::tuple<std::string, std::string, std::string, std::string, std::string, int,
                             bool, std::string>;
@@ -939,7 +936,7 @@ TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
   for (const auto& e : costs.at("gpu").at("rows"))
     table[{e.at("method"), e.at("family"), e.at("lang"), e.at("compile"), e.at("harness"),
            e.at("lights"), e.at("split"), e.at("precision")}] = e;
-  const std::string doc = slurp(kResults / "gpu_costs.md");
+  const std::string doc = sglab::io::read_file(kResults / "gpu_costs.md");
   const char* stats[] = {"instructions", "inverse_throughput", "latency", "vgprs",
                          "sgprs",        "code_size",          "branches"};
   std::size_t checked = 0;
@@ -995,7 +992,7 @@ TEST(ResultsDocs, GpuCostsMatchTheCostTable) {
 // every row.
 TEST(ResultsDocs, LoopLightsMatchTheCostTable) {
   const Results& r = results();
-  const std::string doc = slurp(kResults / "gpu_loop_lights.md");
+  const std::string doc = sglab::io::read_file(kResults / "gpu_loop_lights.md");
   // (family, method cell, N) → cycles per light
   std::map<std::tuple<std::string, std::string, int>, double> per_light;
   for (std::size_t at = doc.find("\n## "); at != std::string::npos;
@@ -1023,12 +1020,12 @@ TEST(ResultsDocs, LoopLightsMatchTheCostTable) {
 }
 
 TEST(ResultsDocs, BenchSummaryMatchesTheCostTable) {
-  const auto costs = nlohmann::json::parse(slurp(kResults / "costs.json"));
+  const auto costs = nlohmann::json::parse(sglab::io::read_file(kResults / "costs.json"));
   // kind method precision mode
   std::map<std::tuple<std::string, std::string, std::string, std::string>, double> ns;
   for (const auto& e : costs.at("costs"))
     ns[{e.at("kind"), e.at("method"), e.at("precision"), e.at("mode")}] = e.at("ns_per_eval");
-  const auto rows = table_after(slurp(kResults / "bench_summary.md"),
+  const auto rows = table_after(sglab::io::read_file(kResults / "bench_summary.md"),
                                 {"kind", "method", "precision", "scalar_ns"});
   ASSERT_FALSE(rows.empty());
   std::size_t checked = 0;
@@ -1059,7 +1056,7 @@ TEST(ResultsDocs, BenchSummaryMatchesTheCostTable) {
 
 // envmaps.md (`sglab envmap baselines`): its tables are envmaps.csv's rows.
 TEST(ResultsDocs, EnvmapsMatchTheirCsv) {
-  const std::string doc = slurp(kResults / "envmaps.md");
+  const std::string doc = sglab::io::read_file(kResults / "envmaps.md");
   const Results& r = results();
   const auto rows = table_after(doc, {"map", "lobes", "(a) baseline max"});
   ASSERT_EQ(rows.size(), r.maps.size() * std::size(kTableLobes));
@@ -1125,9 +1122,9 @@ TEST(ResultsDocs, KappaRangeIsTheRegistryCards) {
   }
   const std::tuple<std::string, std::string, std::size_t> docs[] = {
       {kDocs, docs_text(), csv.size()},
-      {"sglab_fast.md", slurp(kResults / "sglab_fast.md"), 3},
-      {"sglab_mid.md", slurp(kResults / "sglab_mid.md"), 3},
-      {"sglab_acc.md", slurp(kResults / "sglab_acc.md"), 5}};
+      {"sglab_fast.md", sglab::io::read_file(kResults / "sglab_fast.md"), 3},
+      {"sglab_mid.md", sglab::io::read_file(kResults / "sglab_mid.md"), 3},
+      {"sglab_acc.md", sglab::io::read_file(kResults / "sglab_acc.md"), 5}};
   for (const auto& [doc, text, count] : docs) {
     const auto rows = table_after(text, {"method", "bound (card)", "valid κ (card)"});
     EXPECT_EQ(rows.size(), count) << doc;
@@ -1169,8 +1166,8 @@ TEST(ResultsDocs, ParetoMatchesItsSources) {
         << "pareto.csv max_peak_rel " << f[0];
     csv[f[0]] = f;
   }
-  const auto rows =
-      table_after(slurp(kResults / "pareto.md"), {"method", "origin", "precision", "kappa_lo"});
+  const auto rows = table_after(sglab::io::read_file(kResults / "pareto.md"),
+                                {"method", "origin", "precision", "kappa_lo"});
   ASSERT_EQ(rows.size(), csv.size());
   for (const auto& row : rows) {
     ASSERT_EQ(row.size(), 12u);
@@ -1194,7 +1191,7 @@ TEST(Docs, RelativeLinksReachExistingFiles) {
   const std::regex link(R"(\]\(([^)\s]+)\))");
   std::size_t checked = 0;
   for (const fs::path& page : doc_pages()) {
-    std::istringstream in(slurp(page));
+    std::istringstream in(sglab::io::read_file(page));
     bool code = false;
     std::size_t lineno = 0;
     for (std::string line; std::getline(in, line);) {

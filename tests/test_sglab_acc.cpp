@@ -36,11 +36,7 @@ using sglab::test::run_sglab;
 // tests/test_methods.cpp and tests/test_kappa_range.cpp with every method.
 constexpr const char* kRungs[] = {"sglab_acc1", "sglab_acc2", "sglab_acc3", "sglab_acc4"};
 
-const sglab::Method& method(std::string_view id) {
-  const sglab::Method* m = sglab::find_method(sglab::irradiance_methods, id);
-  if (!m) throw std::runtime_error("method not registered: " + std::string(id));
-  return *m;
-}
+using sglab::test::method;
 
 // The ladder is a ladder: more terms never lose accuracy, and the best rung
 // beats tokuyoshi2024 (published) by at least 40x on the same points.

@@ -28,13 +28,13 @@ namespace sv = sglab::validate;
 
 namespace {
 
-const sv::StabilityReport& report() {
+const sv::StabilityReport& stability_report() {
   static const sv::StabilityReport r = sv::stability();
   return r;
 }
 
 const sv::StabilityRow& row(const std::string& function, sglab::io::Precision f, bool valid) {
-  const sv::StabilityRow* r = report().find(function, f, valid);
+  const sv::StabilityRow* r = stability_report().find(function, f, valid);
   if (!r) throw std::runtime_error("no stability row for " + function);
   return *r;
 }
@@ -45,7 +45,7 @@ constexpr sglab::io::Precision kFormats[] = {sglab::io::Precision::float32,
 }  // namespace
 
 TEST(Stability, EveryFunctionHasFourRows) {
-  const auto& rows = report().rows;
+  const auto& rows = stability_report().rows;
   ASSERT_FALSE(rows.empty());
   ASSERT_EQ(rows.size() % 4, 0u);
   for (std::size_t i = 0; i < rows.size(); i += 4) {
@@ -58,12 +58,12 @@ TEST(Stability, EveryFunctionHasFourRows) {
     EXPECT_GT(rows[i + 1].evaluations, 0u) << rows[i].function;
   }
   for (const auto& m : sglab::irradiance_methods)
-    EXPECT_NE(
-        report().find(fmt::format("irradiance/{}", m.id), sglab::io::Precision::float64, true),
-        nullptr)
+    EXPECT_NE(stability_report().find(fmt::format("irradiance/{}", m.id),
+                                      sglab::io::Precision::float64, true),
+              nullptr)
         << m.id;
   // Probed inputs include κ = 0, the smallest denormal, FLT_MAX, DBL_MAX (double), +inf, NaN.
-  const auto& kd = report().kappas_double;
+  const auto& kd = stability_report().kappas_double;
   EXPECT_NE(std::find(kd.begin(), kd.end(), 0.0), kd.end());
   EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::denorm_min()), kd.end());
   EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::max()), kd.end());
@@ -71,7 +71,7 @@ TEST(Stability, EveryFunctionHasFourRows) {
             kd.end());
   EXPECT_NE(std::find(kd.begin(), kd.end(), std::numeric_limits<double>::infinity()), kd.end());
   EXPECT_TRUE(std::any_of(kd.begin(), kd.end(), [](double k) { return std::isnan(k); }));
-  const auto& kf = report().kappas_float;
+  const auto& kf = stability_report().kappas_float;
   EXPECT_NE(std::find(kf.begin(), kf.end(),
                       static_cast<double>(std::numeric_limits<float>::denorm_min())),
             kf.end());
@@ -111,7 +111,7 @@ TEST(Stability, InvalidInputsAreCountedSeparately) {
 }
 
 TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
-  const auto failures = sv::own_failures_on_valid_inputs(report());
+  const auto failures = sv::own_failures_on_valid_inputs(stability_report());
   for (const sv::StabilityRow* r : failures) {
     std::string what;
     for (std::size_t k = 0; k < sv::kFailureKinds; ++k)
@@ -122,7 +122,7 @@ TEST(Stability, SglabPrimitivesHaveNoFailureOnValidInputs) {
                   << ") on valid inputs:" << what;
   }
   // The list is drawn from the sglab and refit rows only.
-  for (const sv::StabilityRow& r : report().rows) {
+  for (const sv::StabilityRow& r : stability_report().rows) {
     if (r.function == "sg_product_with_normal.sharpness") {
       EXPECT_EQ(r.origin, sglab::Origin::sglab);
     }
@@ -169,15 +169,15 @@ void expect_subnormal_binades(const std::vector<double>& probed) {
 }
 
 TEST(Stability, ProbesCoverEverySubnormalBinade) {
-  expect_subnormal_binades<float>(report().kappas_float);
-  expect_subnormal_binades<double>(report().kappas_double);
+  expect_subnormal_binades<float>(stability_report().kappas_float);
+  expect_subnormal_binades<double>(stability_report().kappas_double);
 }
 
 // The κ probes include every method's own lobe sharpness (κ = λ gives κ3 = 0 at
 // c = −1, the 0/0 of the published wang2009 form), in both precisions.
 TEST(Stability, ProbesIncludeTheMethodsSharpnessConstants) {
-  const auto& kf = report().kappas_float;
-  const auto& kd = report().kappas_double;
+  const auto& kf = stability_report().kappas_float;
+  const auto& kd = stability_report().kappas_double;
   ASSERT_FALSE(sv::method_sharpness_constants().empty());
   for (double lambda : sv::method_sharpness_constants()) {
     EXPECT_NE(std::find(kd.begin(), kd.end(), lambda), kd.end()) << sglab::test::hex(lambda);
@@ -249,7 +249,7 @@ TEST(Stability, FixedTranscriptionDefectsStayFixed) {
 }
 
 TEST(Stability, FindingsSayWhyPublishedFailuresRemain) {
-  const sv::Table t = sv::stability_findings_table(report());
+  const sv::Table t = sv::stability_findings_table(stability_report());
   const std::size_t why = t.column_index("why"), function = t.column_index("function"),
                     origin = t.column_index("origin"), inputs = t.column_index("inputs");
   std::size_t published_valid = 0;
@@ -271,8 +271,8 @@ TEST(Stability, FindingsSayWhyPublishedFailuresRemain) {
 }
 
 TEST(Stability, TableHasCountsAndKappaSpans) {
-  const sv::Table t = sv::stability_table(report());
-  EXPECT_EQ(t.rows().size(), report().rows.size());
+  const sv::Table t = sv::stability_table(stability_report());
+  EXPECT_EQ(t.rows().size(), stability_report().rows.size());
   for (const char* c : {"function", "origin", "precision", "inputs", "nan", "nan_kappa_min",
                         "nan_kappa_max", "inf", "inf_kappa_min", "overflow", "negative",
                         "out_of_range", "out_of_range_kappa_max", "approximation", "first_failure"})
@@ -287,7 +287,7 @@ TEST(StabilityCli, JsonParses) {
   const auto j = nlohmann::json::parse(r.output);
   ASSERT_TRUE(j.contains("results"));
   ASSERT_TRUE(j.contains("inputs"));
-  EXPECT_EQ(j.at("results").size(), report().rows.size());
+  EXPECT_EQ(j.at("results").size(), stability_report().rows.size());
   for (const auto& e : j.at("results"))
     for (const char* k : {"function", "origin", "precision", "inputs", "nan", "inf", "overflow",
                           "negative", "out_of_range"})

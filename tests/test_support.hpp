@@ -97,6 +97,28 @@ inline std::filesystem::path checkout_dir() {
   return std::filesystem::path(SGLAB_TEST_SOURCE_DIR) / "..";
 }
 
+// The checkout as a path (its folders are named from it: kRoot / "data").
+inline const std::filesystem::path kRoot =
+    std::filesystem::path(SGLAB_TEST_SOURCE_DIR).parent_path();
+// The runtime's generated constants header in the checkout.
+inline const std::filesystem::path kConstantsHeader = kRoot / "include" / "sglab" / "constants.hpp";
+
+// The registered irradiance method `id` (throws if there is none).
+inline const Method& method(std::string_view id) {
+  const Method* m = find_method(irradiance_methods, id);
+  if (!m) throw std::runtime_error("method not registered: " + std::string(id));
+  return *m;
+}
+
+// Runs in `dir` for the lifetime of the object (run_sglab spawns with our cwd).
+struct WorkingDirectory {
+  std::filesystem::path old = std::filesystem::current_path();
+  explicit WorkingDirectory(const std::filesystem::path& dir) {
+    std::filesystem::current_path(dir);
+  }
+  ~WorkingDirectory() { std::filesystem::current_path(old); }
+};
+
 // Makes `dir` a project as `sglab export` and gpucost find one: include/sglab/
 // and data/results/ created, the checkout's data/constants copied in.
 inline void make_scratch_project(const std::filesystem::path& dir) {
