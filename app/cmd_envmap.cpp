@@ -51,7 +51,7 @@ namespace sglab::app {
 namespace {
 
 using envmap::Vec3;
-using json = nlohmann::ordered_json;
+using ordered_json = nlohmann::ordered_json;
 
 bool terminal() { return ::isatty(STDERR_FILENO) == 1; }
 
@@ -70,8 +70,8 @@ std::string command_line(const std::string& head, CLI::App* cmd) {
   return s;
 }
 
-json lobes_json(const std::vector<envmap::Lobe>& lobes) {
-  json a = json::array();
+ordered_json lobes_json(const std::vector<envmap::Lobe>& lobes) {
+  ordered_json a = ordered_json::array();
   for (const auto& l : lobes)
     a.push_back({{"axis", {l.axis[0], l.axis[1], l.axis[2]}},
                  {"sharpness", l.sharpness},
@@ -106,7 +106,7 @@ struct FitArgs {
   bool json = false;
 };
 
-struct RecommendArgs {
+struct EnvmapRecommendArgs {
   std::string file, budget, precision = "float", by, write_probe, lang = "glsl";
   bool lang_given = false;  // --lang on the command line (it needs --by)
   std::size_t max_lobes = 32, normals = envmap::kEvalNormals;
@@ -151,7 +151,7 @@ void run_fit(const FitArgs& a, const std::string& command) {
   const auto e_fit = dense(report.lobes);
   progress.finish();
 
-  json prov;
+  ordered_json prov;
   prov["map"] = a.file;
   prov["map_size"] = {map.width, map.height};
   prov["fitted_at"] = {work.width, work.height};
@@ -171,7 +171,7 @@ void run_fit(const FitArgs& a, const std::string& command) {
   prov["converged"] = report.converged;
   prov["command"] = command;
   prov["tool"] = std::string("sglab ") + SGLAB_VERSION;
-  json scene;
+  ordered_json scene;
   scene["lights"] = lobes_json(report.lobes);
   scene["provenance"] = prov;
   if (!a.out.empty()) io::write_file_atomic(a.out, scene.dump(2) + "\n");
@@ -208,12 +208,12 @@ double parse_budget(const std::string& text) {
   return budget;
 }
 
-json probe_candidate_json(const report::ProbeCandidate& c, bool by_gpu) {
-  json j = {{"label", c.probe.label()},     {"family", c.family},
-            {"floats", c.probe.floats()},   {"bytes", c.probe.bytes()},
-            {"max_rel", c.error.max_rel},   {"rms_rel", c.error.rms_rel},
-            {"worst_normal", c.error.worst}};
-  if (by_gpu) j["gpu_cost"] = c.cost ? json(*c.cost) : json(nullptr);
+ordered_json probe_candidate_json(const report::ProbeCandidate& c, bool by_gpu) {
+  ordered_json j = {{"label", c.probe.label()},     {"family", c.family},
+                    {"floats", c.probe.floats()},   {"bytes", c.probe.bytes()},
+                    {"max_rel", c.error.max_rel},   {"rms_rel", c.error.rms_rel},
+                    {"worst_normal", c.error.worst}};
+  if (by_gpu) j["gpu_cost"] = c.cost ? ordered_json(*c.cost) : ordered_json(nullptr);
   return j;
 }
 
@@ -239,7 +239,7 @@ std::optional<std::string> gpu_family_of(const std::string& by) {
 // `envmap recommend MAP --budget E --by storage|gpu:FAMILY`: the probe of
 // fewest floats, or of least GPU cost (app/probe_source.hpp's
 // probe_gpu_costs), meeting E (report/probe_recommend.hpp).
-void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
+void run_recommend_probe(const EnvmapRecommendArgs& a, const std::string& command) {
   const double budget = parse_budget(a.budget);
   const std::optional<std::string> family = gpu_family_of(a.by);
   const bool by_gpu = family.has_value();
@@ -286,7 +286,7 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
                    lang == io::Language::glsl ? "GLSL" : "HLSL", lang_name)
              : std::string();
   if (a.json) {
-    json doc;
+    ordered_json doc;
     doc["map"] = a.file;
     doc["map_size"] = {map.width, map.height};
     doc["budget"] = budget;
@@ -299,12 +299,13 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
       doc["by"] = "storage: floats (4 bytes each, IEEE binary32)";
     }
     doc["error"] = definition;
-    doc["choice"] = rec.choice ? probe_candidate_json(tried[*rec.choice], by_gpu) : json(nullptr);
+    doc["choice"] =
+        rec.choice ? probe_candidate_json(tried[*rec.choice], by_gpu) : ordered_json(nullptr);
     doc["runner_up"] =
-        rec.runner_up ? probe_candidate_json(tried[*rec.runner_up], by_gpu) : json(nullptr);
+        rec.runner_up ? probe_candidate_json(tried[*rec.runner_up], by_gpu) : ordered_json(nullptr);
     doc["lobe_ladder_up_to"] = rec.lobe_cap;
     doc["hybrid_ladder_up_to"] = rec.hybrid_cap;
-    json all = json::array();
+    ordered_json all = ordered_json::array();
     for (const auto& c : tried) all.push_back(probe_candidate_json(c, by_gpu));
     doc["tried"] = std::move(all);
     if (!a.write_probe.empty() && rec.choice) doc["wrote"] = a.write_probe;
@@ -348,7 +349,7 @@ void run_recommend_probe(const RecommendArgs& a, const std::string& command) {
   if (terminal()) fmt::print(stderr, "envmap recommend: {:.2f} s\n", seconds_since(t0));
 }
 
-void run_recommend(const RecommendArgs& a) {
+void run_envmap_recommend(const EnvmapRecommendArgs& a) {
   if (!a.write_probe.empty())
     throw InputError(
         "--write-probe: needs --by storage or --by gpu:FAMILY (the lobes-and-method choice has "
@@ -390,7 +391,7 @@ void run_recommend(const RecommendArgs& a) {
       "checked on it",
       sel.dense_normals);
   if (a.json) {
-    json doc;
+    ordered_json doc;
     doc["map"] = a.file;
     doc["budget"] = budget;
     doc["precision"] = std::string(io::to_string(precision));
@@ -401,12 +402,12 @@ void run_recommend(const RecommendArgs& a) {
         "; error, rms_error: the dense error, " + dense;
     doc["cost"] = "lobes x the method's cost per evaluation (--cost; unit per row)";
     doc["cost_source"] = cost_source;
-    auto pair = [](const std::optional<report::EnvmapCandidate>& c) -> json {
+    auto pair = [](const std::optional<report::EnvmapCandidate>& c) -> ordered_json {
       if (!c) return nullptr;
       return {{"lobes", c->lobes},
               {"method", c->method},
-              {"error", c->dense ? json(c->dense->max_rel) : json(nullptr)},
-              {"rms_error", c->dense ? json(c->dense->rms_rel) : json(nullptr)},
+              {"error", c->dense ? ordered_json(c->dense->max_rel) : ordered_json(nullptr)},
+              {"rms_error", c->dense ? ordered_json(c->dense->rms_rel) : ordered_json(nullptr)},
               {"ranking_error", c->error},
               {"cost", c->cost},
               {"cost_unit", c->cost_unit},
@@ -414,10 +415,10 @@ void run_recommend(const RecommendArgs& a) {
     };
     doc["choice"] = pair(sel.choice);
     doc["runner_up"] = pair(sel.runner_up);
-    json tried = json::array();
+    ordered_json tried = ordered_json::array();
     for (const auto& c : sel.tried) tried.push_back(pair(c));
     doc["tried"] = std::move(tried);
-    doc["lobe_fit_error"] = json::array();
+    doc["lobe_fit_error"] = ordered_json::array();
     for (const auto& [n, e] : sel.fit_error)
       doc["lobe_fit_error"].push_back({{"lobes", n}, {"max_rel", e}});
     fmt::print("{}\n", doc.dump(2));
@@ -524,7 +525,7 @@ void add_envmap_command(CLI::App& app) {
     cmd->callback([a, cmd] { run_fit(*a, command_line("sglab envmap fit " + a->file, cmd)); });
   }
   {
-    auto a = std::make_shared<RecommendArgs>();
+    auto a = std::make_shared<EnvmapRecommendArgs>();
     auto* cmd = env->add_subcommand(
         "recommend",
         "Fewest lobes and cheapest irradiance method whose combined error meets a budget");
@@ -562,7 +563,7 @@ void add_envmap_command(CLI::App& app) {
       if (!a->by.empty())
         run_recommend_probe(*a, command_line("sglab envmap recommend " + a->file, cmd));
       else
-        run_recommend(*a);
+        run_envmap_recommend(*a);
     });
   }
   {

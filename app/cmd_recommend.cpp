@@ -44,17 +44,12 @@ struct RecommendArgs {
   CostsOption costs;
 };
 
-nlohmann::ordered_json number(double x) {
-  if (!std::isfinite(x)) return nullptr;
-  return x;
-}
-
 nlohmann::ordered_json point_json(const std::optional<report::MethodPoint>& p) {
   if (!p) return nullptr;
   return {{"method", p->method},
           {"origin", std::string(to_string(p->origin))},
-          {"max_peak_rel", number(p->max_peak_rel)},
-          {"cost", number(p->cost)},
+          {"max_peak_rel", json_number(p->max_peak_rel)},
+          {"cost", json_number(p->cost)},
           {"cost_unit", p->cost_unit},
           {"cost_form", p->cost_form},
           {"in_valid_range", p->in_valid_range}};

@@ -31,11 +31,6 @@ namespace sglab::app {
 
 namespace {
 
-nlohmann::ordered_json number(double x) {
-  if (!std::isfinite(x)) return nullptr;
-  return x;
-}
-
 reference::Scene read_scene(const SceneRecommendArgs& args) {
   std::string text;
   try {
@@ -87,8 +82,8 @@ void print_json(const SceneOutput& o) {
   auto point = [](const std::optional<report::MethodPoint>& p) -> nlohmann::ordered_json {
     if (!p) return nullptr;
     return {{"method", p->method},
-            {"scene_error", number(p->max_peak_rel)},
-            {"cost", number(p->cost)},
+            {"scene_error", json_number(p->max_peak_rel)},
+            {"cost", json_number(p->cost)},
             {"cost_unit", p->cost_unit},
             {"cost_form", p->cost_form}};
   };
@@ -99,8 +94,8 @@ void print_json(const SceneOutput& o) {
   for (const auto& p : o.points)
     methods.push_back({{"method", p.method},
                        {"origin", std::string(to_string(p.origin))},
-                       {"scene_error", number(p.max_peak_rel)},
-                       {"cost", number(p.cost)},
+                       {"scene_error", json_number(p.max_peak_rel)},
+                       {"cost", json_number(p.cost)},
                        {"cost_unit", p.cost_unit},
                        {"cost_form", p.cost_form},
                        {"in_valid_range", p.in_valid_range},
@@ -114,7 +109,7 @@ void print_json(const SceneOutput& o) {
   nlohmann::ordered_json sg = nlohmann::ordered_json::array();
   for (const auto& m : o.ranking.models_on_range)
     sg.push_back({{"method", m.method},
-                  {"range_max_peak_rel", number(m.max_peak_rel)},
+                  {"range_max_peak_rel", json_number(m.max_peak_rel)},
                   {"in_valid_range", m.in_valid_range},
                   {"meets_budget", m.max_peak_rel <= o.args.budget}});
   // sglab's models' errors over the scene's κ range alone (not its lights), and the cheapest
@@ -185,6 +180,11 @@ void print_text(const SceneOutput& o) {
 }
 
 }  // namespace
+
+nlohmann::ordered_json json_number(double x) {
+  if (!std::isfinite(x)) return nullptr;
+  return x;
+}
 
 void recommend_scene(const SceneRecommendArgs& args) {
   // a bad --cost before any work

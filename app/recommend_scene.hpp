@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "app/costs_option.hpp"
 #include "validate/sweep.hpp"
 
@@ -17,6 +19,10 @@ struct SceneRecommendArgs {
   bool json = false;
   CostsOption costs;  // the cost table (or live timing), as for `recommend --kappa`
 };
+
+// x as a JSON number, or null where x is not finite (JSON has no inf or NaN):
+// the answers of `sglab recommend`, both modes.
+nlohmann::ordered_json json_number(double x);
 
 // Throws InputError (exit 2) on an unreadable or invalid scene.
 void recommend_scene(const SceneRecommendArgs& args);
