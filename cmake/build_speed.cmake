@@ -1,46 +1,34 @@
-# What makes the build fast on two cores: precompiled headers and unity batches.
+# What makes the build fast on two cores: unity batches and light optimization
+# where nothing is timed.
 #
-# Precompiled headers: the third-party headers that most translation units
-# include cost 1-3 s each to parse (nlohmann/json.hpp 2.2 s, Ceres 2.2 s,
-# Boost.Math's quadrature 2.1 s, gtest 1.6 s, CLI11 3.4 s of g++ 12 CPU), paid
-# again in every file. With unity batches (below) a target parses them once per
-# batch, and a precompiled header pays only where it is shared by enough of
-# them: measured with g++ 12 (CPU s, the header's own build included), it saves
-# in the command (117 against 122) and report/ (48 against 54) and costs more
-# than it saves in every other library (common/ 12.5 against 8.8, fit/ 86
-# against 80, reference/, validate/, cost/, export/, envmap/ 1.5-7 more), so
-# only those two precompile theirs; g++ includes it first in each of their
-# files. SGLAB_PCH=OFF builds without them (every file then compiles on its
-# own includes alone).
-option(SGLAB_PCH "Precompile the heavy third-party headers of the command and report/" ON)
-
-# Included by every target's precompiled header.
-set(SGLAB_PCH_COMMON
-  <algorithm> <cmath> <cstdint> <filesystem> <functional> <map> <memory> <optional> <set>
-  <sstream> <string> <string_view> <vector>
-  <fmt/format.h> <nlohmann/json.hpp>)
-
-# sglab_precompile_headers(TARGET [HEADER...]): TARGET's files are compiled
-# with a precompiled header of SGLAB_PCH_COMMON and the HEADERs (<...> form).
-function(sglab_precompile_headers target)
-  if(SGLAB_PCH)
-    target_precompile_headers(${target} PRIVATE ${SGLAB_PCH_COMMON} ${ARGN})
-  endif()
-endfunction()
-
-# Unity builds: even with the headers precompiled, most of a file's compile time
-# is g++ generating, again in every file, the same inline code of Ceres, Eigen,
-# CLI11, fmt, nlohmann-json and gtest (four fit/ files compile in half the CPU
-# time as one batch). sglab_unity_build(TARGET): TARGET's files compile as
-# unity batches of SGLAB_UNITY_BATCH files each (CMake's UNITY_BUILD), so a
-# name at file scope (an anonymous namespace's too) must be unique within its
-# library. SGLAB_UNITY=OFF compiles every file on its own (what an editor or
-# clang-tidy sees).
+# Unity builds: most of a file's compile time is g++ parsing, and generating,
+# again in every file, the same headers and inline code of Ceres, Eigen,
+# Boost.Math, CLI11, fmt, nlohmann-json and gtest (four fit/ files compile in
+# half the CPU time as one batch). sglab_unity_build(TARGET
+# [BATCHES N]): TARGET's files compile as N unity batches (CMake's
+# UNITY_BUILD; default 1, the whole target in one file), so a name at file
+# scope (an anonymous namespace's too) must be unique within its target. The
+# libraries and the command are one batch each: the build compiles them side by
+# side, so fewer batches cost less CPU at no loss of parallelism (fit/, g++ 12,
+# idle: 65 CPU s as one batch, 72 as two, 80 as three). The tests, compiled
+# last, are two, one per core of the machines sglab targets (the 43 test files:
+# 122 CPU s as two batches, 142 as three, 167 as four, 180 as six). With one
+# batch per target a precompiled header would be parsed once anyway, so there
+# is none.
+# SGLAB_UNITY=OFF compiles every file on its own (what an editor or clang-tidy
+# sees).
 option(SGLAB_UNITY "Compile each target's files in unity batches" ON)
-set(SGLAB_UNITY_BATCH 8 CACHE STRING "Files per unity batch")
 function(sglab_unity_build target)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "BATCHES" "")
+  if(NOT arg_BATCHES)
+    set(arg_BATCHES 1)
+  endif()
   if(SGLAB_UNITY)
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${SGLAB_UNITY_BATCH})
+    get_target_property(sources ${target} SOURCES)
+    list(FILTER sources INCLUDE REGEX "\\.cpp$")
+    list(LENGTH sources n)
+    math(EXPR size "(${n} + ${arg_BATCHES} - 1) / ${arg_BATCHES}")
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${size})
   endif()
 endfunction()
 
