@@ -38,38 +38,58 @@ bool is_listing5(const ConstantSet& s) { return s.cpp_type.rfind("Listing5Params
 bool is_as(const ConstantSet& s) { return s.cpp_type.rfind("AbramowitzStegunParams", 0) == 0; }
 
 // The C++ twin of the exported erf/erfc (same structure, same float
-// arithmetic), for measuring the elementary error in-process.
+// arithmetic), for measuring the elementary error in-process. The set's
+// members are looked up once, not at every point measured.
 template <class T>
 T horner_v(T x, const std::vector<double>& c) {
   T y = T(static_cast<float>(c.back()));
   for (std::size_t i = c.size() - 1; i-- > 0;) y = y * x + T(static_cast<float>(c[i]));
   return y;
 }
-float twin_erfc_pos(const ConstantSet& s, float a) {
-  if (is_listing5(s)) {
-    if (a >= float(member(s, "cutoff")[0])) return 0.0f;
-    if (a > float(member(s, "split")[0])) return std::exp2(-a * horner_v(a, member(s, "large")));
-    return 1.0f - a * horner_v(a * a, member(s, "small"));
+class TwinErf {
+ public:
+  explicit TwinErf(const ConstantSet& s) : listing5_(is_listing5(s)) {
+    if (listing5_) {
+      cutoff_ = float(member(s, "cutoff")[0]);
+      split_ = float(member(s, "split")[0]);
+      small_ = member(s, "small");
+      large_ = member(s, "large");
+    } else {
+      p_ = float(member(s, "p")[0]);
+      a_ = member(s, "a");
+    }
   }
-  const float t = 1.0f / (1.0f + float(member(s, "p")[0]) * a);
-  return t * horner_v(t, member(s, "a")) * std::exp(-a * a);
-}
-float twin_erf(const ConstantSet& s, float x) {
-  const float a = std::fabs(x);
-  float y;
-  if (is_listing5(s)) {
-    y = a >= float(member(s, "cutoff")[0]) ? 1.0f
-        : a > float(member(s, "split")[0]) ? 1.0f - std::exp2(-a * horner_v(a, member(s, "large")))
-                                           : a * horner_v(a * a, member(s, "small"));
-  } else {
-    y = 1.0f - twin_erfc_pos(s, a);
+  float erfc_pos(float a) const {
+    if (listing5_) {
+      if (a >= cutoff_) return 0.0f;
+      if (a > split_) return std::exp2(-a * horner_v(a, large_));
+      return 1.0f - a * horner_v(a * a, small_);
+    }
+    const float t = 1.0f / (1.0f + p_ * a);
+    return t * horner_v(t, a_) * std::exp(-a * a);
   }
-  return x < 0.0f ? -y : y;
-}
-float twin_erfc(const ConstantSet& s, float x) {
-  const float r = twin_erfc_pos(s, std::fabs(x));
-  return x < 0.0f ? 2.0f - r : r;
-}
+  float erf(float x) const {
+    const float a = std::fabs(x);
+    float y;
+    if (listing5_) {
+      y = a >= cutoff_ ? 1.0f
+          : a > split_ ? 1.0f - std::exp2(-a * horner_v(a, large_))
+                       : a * horner_v(a * a, small_);
+    } else {
+      y = 1.0f - erfc_pos(a);
+    }
+    return x < 0.0f ? -y : y;
+  }
+  float erfc(float x) const {
+    const float r = erfc_pos(std::fabs(x));
+    return x < 0.0f ? 2.0f - r : r;
+  }
+
+ private:
+  bool listing5_;
+  float cutoff_ = 0, split_ = 0, p_ = 0;
+  std::vector<double> small_, large_, a_;
+};
 
 // (e^x − 1)/x: Taylor series Σ x^n/(n+1)! for |x| < 1, n = 0…10 (the first
 // omitted term is below 1/12! < 2.1e−9), (e^x − 1)/x beyond.
@@ -82,8 +102,8 @@ std::vector<double> expm1_over_x_series() {
   }
   return c;
 }
-float twin_expm1_over_x(float x) {
-  if (std::fabs(x) < 1.0f) return horner_v(x, expm1_over_x_series());
+float twin_expm1_over_x(float x, const std::vector<double>& series) {
+  if (std::fabs(x) < 1.0f) return horner_v(x, series);
   return (std::exp(x) - 1.0f) / x;
 }
 
@@ -102,31 +122,30 @@ std::vector<double> pole_series(bool lower) {
 ElementaryError measure(const ConstantSet* erf_set) {
   ElementaryError e;
   if (erf_set) {
+    const TwinErf twin(*erf_set);
     const int n = 400000;
     for (int i = 0; i <= n; ++i) {
       const float x = float(-6.0 + 12.0 * i / n);
-      e.erf_abs =
-          std::max(e.erf_abs, std::fabs(double(twin_erf(*erf_set, x)) - std::erf(double(x))));
+      e.erf_abs = std::max(e.erf_abs, std::fabs(double(twin.erf(x)) - std::erf(double(x))));
     }
     for (int i = 0; i <= n; ++i) {
       const float x = float(-6.0 + 16.0 * i / n);
-      e.erfc_abs =
-          std::max(e.erfc_abs, std::fabs(double(twin_erfc(*erf_set, x)) - std::erfc(double(x))));
+      e.erfc_abs = std::max(e.erfc_abs, std::fabs(double(twin.erfc(x)) - std::erfc(double(x))));
     }
     for (int i = 0; i <= n; ++i) {  // log-spaced 1e-6 … 1
       const float x = float(std::pow(10.0, -6.0 + 6.0 * i / n));
       const double ref = std::erf(double(x));
-      e.erf_rel_small =
-          std::max(e.erf_rel_small, std::fabs(double(twin_erf(*erf_set, x)) - ref) / ref);
+      e.erf_rel_small = std::max(e.erf_rel_small, std::fabs(double(twin.erf(x)) - ref) / ref);
     }
   }
+  const std::vector<double> series = expm1_over_x_series();
   for (int i = 0; i <= 200000; ++i) {
     // x = −100 … −1e−7, log-spaced in |x|, and 0.
     const float x = i == 0 ? 0.0f : -float(std::pow(10.0, -7.0 + 9.0 * i / 200000));
     const double xd = x;
     const double ref = xd == 0 ? 1.0 : std::expm1(xd) / xd;
     e.expm1_over_x_rel =
-        std::max(e.expm1_over_x_rel, std::fabs(double(twin_expm1_over_x(x)) - ref) / ref);
+        std::max(e.expm1_over_x_rel, std::fabs(double(twin_expm1_over_x(x, series)) - ref) / ref);
   }
   return e;
 }
