@@ -141,13 +141,19 @@ class MapIrradiance {
     double sin_rho;              // every pixel of the tile is within ρ of the centre
     std::array<Vec3, 3> moment;  // per channel, Σ_p L_p m_p
   };
+  // A pixel the horizon cuts is visited in kBlock × kBlock blocks of
+  // sub-pixels, with the same bound as the tiles: a block wholly above the
+  // horizon contributes n · its moment (the sum of its sub-pixels' n · m), one
+  // below nothing, and only the blocks the horizon cuts sub-pixel by sub-pixel.
+  static constexpr std::size_t kBlock = 4;
+  static_assert(kHorizonSubdivision % kBlock == 0);
   double pixel_weight(const Vec3& n, std::size_t i, std::size_t j) const;
   const Map& map_;
   std::vector<Tile> tiles_;
-  double sin_rho_pixel_ = 0;
-  std::vector<RowGeometry> rows_, sub_rows_;           // per row, per sub-row
-  std::vector<ColumnGeometry> columns_, sub_columns_;  // per column, per sub-column
-  double sub_dphi_ = 0, dphi_ = 0;
+  double sin_rho_pixel_ = 0, sin_rho_block_ = 0;
+  std::vector<RowGeometry> rows_, block_rows_, sub_rows_;  // per row, block row, sub-row
+  std::vector<ColumnGeometry> columns_, block_columns_, sub_columns_;
+  double sub_dphi_ = 0, block_dphi_ = 0, dphi_ = 0;
 };
 
 // ---- SG fits ------------------------------------------------------------------

@@ -395,6 +395,12 @@ MapIrradiance::MapIrradiance(const Map& map) : map_(map) {
   for (std::size_t r = 0; r < H * S; ++r) sub_rows_.push_back(row_geometry(H * S, r));
   for (std::size_t c = 0; c < W * S; ++c) sub_columns_.push_back(column_geometry(W * S, c));
   sub_dphi_ = 2 * M_PI / static_cast<double>(W * S);
+  // Blocks of kBlock × kBlock sub-pixels, bounded as the pixels are.
+  const std::size_t BH = H * S / kBlock, BW = W * S / kBlock;
+  for (std::size_t r = 0; r < BH; ++r) block_rows_.push_back(row_geometry(BH, r));
+  for (std::size_t c = 0; c < BW; ++c) block_columns_.push_back(column_geometry(BW, c));
+  block_dphi_ = 2 * M_PI / static_cast<double>(BW);
+  sin_rho_block_ = std::sin(M_PI / (2 * static_cast<double>(BH)) + M_PI / static_cast<double>(BW));
   // Tiles: the same bound with the tile's extent (ρ = Δθ_tile/2 + Δφ_tile/2).
   for (std::size_t j0 = 0; j0 < H; j0 += kTile)
     for (std::size_t i0 = 0; i0 < W; i0 += kTile) {
@@ -429,15 +435,29 @@ double MapIrradiance::pixel_weight(const Vec3& nv, std::size_t i, std::size_t j)
   if (nc >= sin_rho_pixel_)
     return nv[0] * r.s2 * c.dsin + nv[1] * r.s2 * c.dcos + nv[2] * r.sc * dphi_;
   if (nc <= -sin_rho_pixel_) return 0;
-  const std::size_t S = kHorizonSubdivision;
+  const std::size_t S = kHorizonSubdivision, K = S / kBlock;
   double w = 0;
-  for (std::size_t a = 0; a < S; ++a) {
-    const RowGeometry& row = sub_rows_[j * S + a];
-    for (std::size_t bb = 0; bb < S; ++bb) {
-      const ColumnGeometry& col = sub_columns_[i * S + bb];
-      const double x =
-          nv[0] * row.s2 * col.dsin + nv[1] * row.s2 * col.dcos + nv[2] * row.sc * sub_dphi_;
-      if (x > 0) w += x;
+  for (std::size_t ba = 0; ba < K; ++ba) {
+    const RowGeometry& brow = block_rows_[j * K + ba];
+    for (std::size_t bb = 0; bb < K; ++bb) {
+      const ColumnGeometry& bcol = block_columns_[i * K + bb];
+      const double bc =
+          brow.sin_theta * (nv[0] * bcol.cos_phi - nv[1] * bcol.sin_phi) + nv[2] * brow.cos_theta;
+      if (bc >= sin_rho_block_) {
+        w += nv[0] * brow.s2 * bcol.dsin + nv[1] * brow.s2 * bcol.dcos +
+             nv[2] * brow.sc * block_dphi_;
+        continue;
+      }
+      if (bc <= -sin_rho_block_) continue;
+      for (std::size_t a = ba * kBlock; a < (ba + 1) * kBlock; ++a) {
+        const RowGeometry& row = sub_rows_[j * S + a];
+        for (std::size_t b = bb * kBlock; b < (bb + 1) * kBlock; ++b) {
+          const ColumnGeometry& col = sub_columns_[i * S + b];
+          const double x =
+              nv[0] * row.s2 * col.dsin + nv[1] * row.s2 * col.dcos + nv[2] * row.sc * sub_dphi_;
+          if (x > 0) w += x;
+        }
+      }
     }
   }
   return w;
