@@ -35,12 +35,12 @@
 
 #include "app/commands.hpp"
 #include "app/costs_option.hpp"
-#include "app/probe_source.hpp"
 #include "common/atomic_files.hpp"
 #include "common/io.hpp"
 #include "cost/gpu_report.hpp"
 #include "envmap/envmap.hpp"
 #include "envmap/probe.hpp"
+#include "probe/probe_source.hpp"
 #include "report/envmap_report.hpp"
 #include "report/pareto.hpp"
 #include "report/probe_recommend.hpp"
@@ -237,7 +237,7 @@ std::optional<std::string> gpu_family_of(const std::string& by) {
 }
 
 // `envmap recommend MAP --budget E --by storage|gpu:FAMILY`: the probe of
-// fewest floats, or of least GPU cost (app/probe_source.hpp's
+// fewest floats, or of least GPU cost (probe/probe_source.hpp's
 // probe_gpu_costs), meeting E (report/probe_recommend.hpp).
 void run_recommend_probe(const EnvmapRecommendArgs& a, const std::string& command) {
   const double budget = parse_budget(a.budget);
@@ -255,7 +255,7 @@ void run_recommend_probe(const EnvmapRecommendArgs& a, const std::string& comman
       by_gpu ? report::recommend_probe_by_cost(
                    map, budget, a.max_lobes,
                    [&](const std::vector<const envmap::Probe*>& probes) {
-                     return probe_gpu_costs(*family, lang, probes, driver);
+                     return probe::probe_gpu_costs(*family, lang, probes, driver);
                    },
                    note)
              : report::recommend_probe_by_storage(map, budget, a.max_lobes, note);

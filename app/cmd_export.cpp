@@ -14,12 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
-#include "app/probe_source.hpp"
 #include "common/io.hpp"
 #include "cost/cost_table.hpp"
 #include "export/gpu_cost.hpp"
 #include "export/shader_export.hpp"
 #include "fit/constants_io.hpp"
+#include "probe/probe_source.hpp"
 
 namespace sglab::app {
 
@@ -142,11 +142,11 @@ void export_probe(const ExportArgs& args, io::Language lang) {
     throw InputError(
         "--probe: exports a fitted probe with the method it names; --method, --constants, --split "
         "and --precision do not apply");
-  const envmap::Probe probe = read_probe_file(args.probe);
+  const envmap::Probe probe = probe::read_probe_file(args.probe);
   const std::string command =
       fmt::format("sglab export --probe {} --lang {}", args.probe, io::to_string(lang));
   try {
-    fmt::print("{}", shader::export_probe(lang, probe_terms(probe, command)).source);
+    fmt::print("{}", shader::export_probe(lang, probe::probe_terms(probe, command)).source);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("{}: {}", args.probe, e.what()));
   }

@@ -30,7 +30,7 @@
 #include "tests/test_support.hpp"
 
 // A steepness form that is one t at every sharpness (found by argument-dependent lookup).
-namespace probe {
+namespace constant_steepness {
 struct ConstantSteepness {
   double t;
 };
@@ -38,7 +38,7 @@ template <class T>
 T steepness(const T&, const ConstantSteepness& p) {
   return T(p.t);
 }
-}  // namespace probe
+}  // namespace constant_steepness
 
 namespace {
 
@@ -514,7 +514,7 @@ TEST(SteepnessCertificate, OneTPerKappaDoesNotBoundThe2022Irradiance) {
   double one_t = std::numeric_limits<double>::infinity();
   const double t0 = sglab::steepness2022(k, fitted);
   for (int i = -300; i <= 300; ++i)
-    one_t = std::min(one_t, error(probe::ConstantSteepness{t0 * std::exp(0.01 * i)}));
+    one_t = std::min(one_t, error(constant_steepness::ConstantSteepness{t0 * std::exp(0.01 * i)}));
   EXPECT_GT(one_t, 2 * error(fitted));
 }
 

@@ -17,6 +17,7 @@
 #include "envmap/probe.hpp"
 #include "export/gpu_cost.hpp"
 #include "export/probe_export.hpp"
+#include "probe/probe_source.hpp"
 #include "report/probe_recommend.hpp"
 #include "tests/map_of.hpp"
 #include "tests/test_support.hpp"
@@ -47,27 +48,6 @@ const envmap::Lobe kLights[] = {
     {{-0.8, 0.0, -0.6}, 6.0, {0.5, 0.8, 1.2}},
     {{0.0, -1.0, 0.0}, 15.0, {1.5, 1.0, 0.5}},
 };
-
-// The export's terms of a probe, as `sglab export --probe` takes them
-// (app::probe_terms, which the tests do not link): SH, ZH3's zonal term along
-// its derived axis, the lobes with the probe's method.
-shader::ProbeTerms terms_of(const envmap::Probe& p) {
-  shader::ProbeTerms t;
-  t.label = p.label();
-  for (const Vec3& c : p.sh) t.sh.push_back({c[0], c[1], c[2]});
-  if (p.kind == envmap::ProbeKind::zh3) {
-    t.has_zonal = true;
-    t.zonal = {p.zonal[0], p.zonal[1], p.zonal[2]};
-    const Vec3 d = p.zonal_axis();
-    t.zonal_axis = {d[0], d[1], d[2]};
-  }
-  for (const envmap::Lobe& l : p.lobes)
-    t.lobes.push_back({{l.axis[0], l.axis[1], l.axis[2]},
-                       l.sharpness,
-                       {l.amplitude[0], l.amplitude[1], l.amplitude[2]}});
-  t.method = p.method;
-  return t;
-}
 
 std::size_t nonzero_lobe_count(const envmap::Probe& p) {
   std::size_t n = 0;
@@ -403,7 +383,7 @@ TEST_F(OnRadvProbeRecommend, LangHlslCostsTheHlslExport) {
   ASSERT_TRUE(manifest);
   double cost[2] = {0, 0};
   for (const auto lang : {shader::Language::glsl, shader::Language::hlsl}) {
-    const std::string source = shader::export_probe(lang, terms_of(probe)).source;
+    const std::string source = shader::export_probe(lang, probe::probe_terms(probe, "")).source;
     const auto report = shader::gpu::measure(SGLAB_BINARY, *manifest, {"navi21"},
                                              {shader::gpu::probe_baseline_shader(lang),
                                               shader::gpu::probe_shader("probe", lang, source)});
@@ -444,7 +424,7 @@ TEST_F(OnRadvProbeRecommend, LadderCostGrowsWithTheLobeCount) {
       if (probes[k]->lobes.empty()) continue;
       shaders.push_back(shader::gpu::probe_shader(
           probes[k]->label(), shader::Language::glsl,
-          shader::export_probe(shader::Language::glsl, terms_of(*probes[k])).source));
+          shader::export_probe(shader::Language::glsl, probe::probe_terms(*probes[k], "")).source));
       costed.push_back(k);
     }
     const auto report = shader::gpu::measure(SGLAB_BINARY, *manifest, {"navi21"}, shaders);

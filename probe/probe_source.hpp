@@ -1,4 +1,4 @@
-// app/probe_source.hpp — a fitted probe (envmap::Probe) as the export's terms
+// probe/probe_source.hpp — a fitted probe (envmap::Probe) as the export's terms
 // (shader::ProbeTerms), the probe file `sglab export --probe` reads, and what
 // its exported evaluation costs on a GPU (`envmap recommend --by gpu:FAMILY`).
 #pragma once
@@ -9,7 +9,7 @@
 #include "envmap/probe.hpp"
 #include "export/probe_export.hpp"
 
-namespace sglab::app {
+namespace sglab::probe {
 
 // Largest probe file read (a probe of 256 lobes is about 60 kB of JSON).
 inline constexpr std::size_t kMaxProbeFileBytes = std::size_t{1} << 22;
@@ -36,4 +36,4 @@ std::vector<double> probe_gpu_costs(const std::string& family, shader::Language 
                                     const std::vector<const envmap::Probe*>& probes,
                                     std::string& driver);
 
-}  // namespace sglab::app
+}  // namespace sglab::probe

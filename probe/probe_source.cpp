@@ -1,4 +1,4 @@
-#include "app/probe_source.hpp"
+#include "probe/probe_source.hpp"
 
 #include <filesystem>
 #include <map>
@@ -11,7 +11,7 @@
 #include "common/json_input.hpp"
 #include "export/gpu_cost.hpp"
 
-namespace sglab::app {
+namespace sglab::probe {
 
 envmap::Probe read_probe_file(const std::string& path) {
   const auto j = io::read_json_file(path, kMaxProbeFileBytes, "a probe file");
@@ -72,4 +72,4 @@ std::vector<double> probe_gpu_costs(const std::string& family, shader::Language 
   return costs;
 }
 
-}  // namespace sglab::app
+}  // namespace sglab::probe
