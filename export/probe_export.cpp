@@ -173,7 +173,10 @@ layout(std430, set = 0, binding = 1) writeonly buffer Outputs {{ vec4 result[]; 
 {}
 void main() {{
   uint i = gl_GlobalInvocationID.x;
-  {}result[i] = vec4(probe_irradiance(normals[i].xyz), 0.0);
+  {}{{
+    vec3 normal = normals[i].xyz;
+    result[i] = vec4(probe_irradiance(normal), normal.x);
+  }}
 }}
 )",
                        exported, checked ? "if (i < uint(normals.length())) " : "");
@@ -184,7 +187,10 @@ void main() {{
 {}
 [numthreads(64, 1, 1)]
 void main(uint3 id : SV_DispatchThreadID) {{
-{}result[id.x] = float4(probe_irradiance(normals[id.x].xyz), 0.0f);
+{}{{
+    float3 normal = normals[id.x].xyz;
+    result[id.x] = float4(probe_irradiance(normal), normal.x);
+  }}
 }}
 )",
       exported,

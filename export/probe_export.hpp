@@ -54,8 +54,10 @@ struct ProbeExport {
 ProbeExport export_probe(Language lang, const ProbeTerms& probe);
 
 // A compute shader over the exported probe: binding 0 holds normals (vec4,
-// xyz), binding 1 receives probe_irradiance(normal) (vec4, xyz; w = 0), 64
-// threads per group. Dispatch::any_size: any buffer length (each invocation
+// xyz), binding 1 receives probe_irradiance(normal) (vec4, xyz; w = the
+// normal's x, so that every harness loads the normal, as a shading point has
+// it anyway: a probe that ignores it, SH L0's constant, is not credited with
+// the load and costs no less than `return n;`), 64 threads per group. Dispatch::any_size: any buffer length (each invocation
 // checks its index); whole_groups: no check, the call in no branch (the
 // harness `envmap recommend --by gpu:FAMILY` costs a probe in).
 std::string probe_compute_shader(Language lang, std::string_view exported_source,

@@ -296,6 +296,9 @@ TEST_F(OnRadvProbeRecommend, ConstantMapIsShL0OnNavi21) {
   EXPECT_NE(doc["cost"].get<std::string>().find("inverse throughput"), std::string::npos);
   EXPECT_EQ(doc["choice"]["label"], "SH L0");
   const double best = doc["choice"]["gpu_cost"].get<double>();
+  // L0's constants cost nothing beyond the harness around `return n;`, and not
+  // less: every harness loads the normal (a shading point has it anyway).
+  EXPECT_EQ(best, 0);
   ASSERT_TRUE(doc["runner_up"].is_object());
   EXPECT_NE(doc["runner_up"]["label"], "SH L0");
   EXPECT_GE(doc["runner_up"]["gpu_cost"].get<double>(), best);
