@@ -57,9 +57,10 @@ ProbeExport export_probe(Language lang, const ProbeTerms& probe);
 // xyz), binding 1 receives probe_irradiance(normal) (vec4, xyz; w = the
 // normal's x, so that every harness loads the normal, as a shading point has
 // it anyway: a probe that ignores it, SH L0's constant, is not credited with
-// the load and costs no less than `return n;`), 64 threads per group. Dispatch::any_size: any buffer length (each invocation
-// checks its index); whole_groups: no check, the call in no branch (the
-// harness `envmap recommend --by gpu:FAMILY` costs a probe in).
+// the load and costs no less than `return n;`), 64 threads per group.
+// Dispatch::any_size: any buffer length (each invocation checks its index);
+// whole_groups: no check, the call in no branch (the harness `envmap recommend
+// --by gpu:FAMILY` costs a probe in).
 std::string probe_compute_shader(Language lang, std::string_view exported_source,
                                  Dispatch dispatch = Dispatch::any_size);
 
