@@ -163,17 +163,20 @@ IrrValue sg_irradiance_d(double c, double kappa) {
 
 // Irradiance residuals of a chunk of normals:
 // (Σ_k a_k Ê(a_k·n, κ_k) [+ Σ_lm c_lm Y_lm(n)] − E(n)) / π, the SH block (order
-// sh_order ≥ 0, 3 per coefficient) after the lobes' blocks.
+// sh_order ≥ 0, 3 per coefficient) after the lobes' blocks; each multiplied by
+// its `scale` (3 per normal, all normals; none: 1) when given.
 class NormalsCost final : public ceres::CostFunction {
  public:
   NormalsCost(const std::vector<Vec3>& normals, const std::vector<Vec3>& target, std::size_t first,
-              std::size_t count, std::size_t lobes, int sh_order = -1)
+              std::size_t count, std::size_t lobes, int sh_order = -1,
+              const std::vector<double>* scale = nullptr)
       : normals_(normals),
         target_(target),
         first_(first),
         count_(count),
         lobes_(lobes),
-        sh_order_(sh_order) {
+        sh_order_(sh_order),
+        scale_(scale) {
     set_num_residuals(static_cast<int>(3 * count));
     for (std::size_t k = 0; k < lobes; ++k) {
       mutable_parameter_block_sizes()->push_back(3);
@@ -224,6 +227,19 @@ class NormalsCost final : public ceres::CostFunction {
           }
       }
     }
+    if (scale_) {
+      const auto& sizes = parameter_block_sizes();
+      for (std::size_t i = 0; i < 3 * count_; ++i) {
+        const double w = (*scale_)[3 * first_ + i];
+        r[i] *= w;
+        if (!jac) continue;
+        for (std::size_t b = 0; b < sizes.size(); ++b)
+          if (double* J = jac[b]) {
+            const auto cols = static_cast<std::size_t>(sizes[b]);
+            for (std::size_t d = 0; d < cols; ++d) J[i * cols + d] *= w;
+          }
+      }
+    }
     return true;
   }
 
@@ -232,6 +248,7 @@ class NormalsCost final : public ceres::CostFunction {
   const std::vector<Vec3>& target_;
   std::size_t first_, count_, lobes_;
   int sh_order_;
+  const std::vector<double>* scale_;
 };
 
 // The sharpest lobe: standard deviation 1/√κ no smaller than one pixel
@@ -341,7 +358,8 @@ std::vector<Lobe> lobes_of(const Params& p, double scale) {
 // Every parameter of p (and the SH block `sh`, 3 per coefficient of order 2,
 // when given) jointly on the irradiance at the normals.
 SolveOutcome refine_irradiance(Params& p, std::vector<double>* sh, const std::vector<Vec3>& normals,
-                               const std::vector<Vec3>& target, double kmax, int max_iterations) {
+                               const std::vector<Vec3>& target, double kmax, int max_iterations,
+                               const std::vector<double>* scale = nullptr) {
   ceres::Problem problem;
   std::vector<double*> blocks;
   for (std::size_t k = 0; k < p.size(); ++k) {
@@ -354,10 +372,68 @@ SolveOutcome refine_irradiance(Params& p, std::vector<double>* sh, const std::ve
   for (std::size_t m = 0; m < normals.size(); m += chunk)
     problem.AddResidualBlock(
         new NormalsCost(normals, target, m, std::min(chunk, normals.size() - m), p.size(),
-                        sh ? 2 : -1),
+                        sh ? 2 : -1, scale),
         nullptr, blocks);
   configure(problem, p, kmax, false);
   return solve(problem, max_iterations);
+}
+
+// The residuals of p (and `sh`) at every normal, 3 per normal, unscaled.
+std::vector<double> irradiance_residuals(const Params& p, std::vector<double>* sh,
+                                         const std::vector<Vec3>& normals,
+                                         const std::vector<Vec3>& target) {
+  std::vector<const double*> blocks;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    blocks.push_back(p.axis[k].data());
+    blocks.push_back(&p.kappa[k]);
+    blocks.push_back(p.amp[k].data());
+  }
+  if (sh) blocks.push_back(sh->data());
+  std::vector<double> r(3 * normals.size());
+  const NormalsCost cost(normals, target, 0, normals.size(), p.size(), sh ? 2 : -1);
+  cost.Evaluate(blocks.data(), r.data(), nullptr);
+  return r;
+}
+
+double max_abs(const std::vector<double>& r) {
+  double m = 0;
+  for (double x : r) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// The minimax of the residuals at the normals by Lawson's iteration
+// [Lawson1961]: weighted least squares with weights u_i ← u_i |r_i| / Σ u_j |r_j|
+// from the least-squares solution p (u = 1), each round refining every
+// parameter from the last; p (and `sh`) become the round with the smallest max
+// |r_i| (p itself when no round improves on it). Deterministic.
+void minimax_irradiance(Params& p, std::vector<double>* sh, const std::vector<Vec3>& normals,
+                        const std::vector<Vec3>& target, double kmax, int rounds,
+                        int max_iterations) {
+  std::vector<double> r = irradiance_residuals(p, sh, normals, target);
+  Params best = p;
+  std::vector<double> best_sh = sh ? *sh : std::vector<double>{};
+  double best_max = max_abs(r);
+  std::vector<double> u(r.size(), 1.0), scale(r.size());
+  for (int round = 0; round < rounds; ++round) {
+    double total = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) total += u[i] *= std::abs(r[i]);
+    if (!(total > 0)) break;
+    const double mean = total / static_cast<double>(u.size());
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      u[i] /= mean;
+      scale[i] = std::sqrt(u[i]);
+    }
+    refine_irradiance(p, sh, normals, target, kmax, max_iterations, &scale);
+    r = irradiance_residuals(p, sh, normals, target);
+    const double m = max_abs(r);
+    if (m < best_max) {
+      best_max = m;
+      best = p;
+      if (sh) best_sh = *sh;
+    }
+  }
+  p = best;
+  if (sh) *sh = best_sh;
 }
 
 Params params_of(const std::vector<Lobe>& lobes, double scale) {
@@ -559,7 +635,8 @@ void keep_best(std::vector<LadderStep>& candidates, const Judge& judge,
 
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
-                                        const Judge& judge, int max_iterations) {
+                                        const Judge& judge, int max_iterations,
+                                        int minimax_rounds) {
   check_lobe_count(work, max_lobes);
   const double scale = irradiance_scale(exact);
   const double kmax = kappa_max(samples_of(work));
@@ -599,6 +676,16 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       candidates.push_back(with_zero_lobe(prev, prev.lobes.back(), "kept n-1"));
     }
     keep_best(candidates, judge, t0, ladder);
+    if (minimax_rounds > 0) {
+      LadderStep c = ladder.back();
+      Params p = params_of(c.probe.lobes, scale);
+      minimax_irradiance(p, nullptr, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
+      c.probe.lobes = lobes_of(p, scale);
+      c.start += " minimax";
+      c.judged = judge(c.probe);
+      if (c.judged < ladder.back().judged) ladder.back() = c;
+      ladder.back().seconds = seconds_since(t0);
+    }
   }
   return ladder;
 }
@@ -607,7 +694,7 @@ std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec
                                           const std::vector<Vec3>& exact,
                                           const std::vector<LadderStep>& lobe_ladder,
                                           std::size_t max_lobes, const Judge& judge,
-                                          int max_iterations) {
+                                          int max_iterations, int minimax_rounds) {
   const double scale = irradiance_scale(exact);
   const double kmax = kappa_max(samples_of(work));
   std::vector<Vec3> target(exact.size());
@@ -659,6 +746,21 @@ std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec
     candidates.push_back(with_zero_lobe(
         prev, new_lobe(fit_normals, exact, evaluate(prev, fit_normals)), "kept k-1"));
     keep_best(candidates, judge, t0, ladder);
+    if (minimax_rounds > 0) {
+      LadderStep c = ladder.back();
+      Params p = params_of(c.probe.lobes, scale);
+      std::vector<double> block;
+      for (const Vec3& q : c.probe.sh)
+        for (double x : q) block.push_back(x / scale);
+      minimax_irradiance(p, &block, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
+      c.probe.lobes = lobes_of(p, scale);
+      for (std::size_t q = 0; q < sh_count(2); ++q)
+        c.probe.sh[q] = {block[3 * q] * scale, block[3 * q + 1] * scale, block[3 * q + 2] * scale};
+      c.start += " minimax";
+      c.judged = judge(c.probe);
+      if (c.judged < ladder.back().judged) ladder.back() = c;
+      ladder.back().seconds = seconds_since(t0);
+    }
   }
   return ladder;
 }

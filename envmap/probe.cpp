@@ -471,9 +471,41 @@ std::vector<Vec3> least_squares(const Eigen::MatrixXd& basis, const std::vector<
     out[static_cast<std::size_t>(k)] = {x(k, 0), x(k, 1), x(k, 2)};
   return out;
 }
+
+// The minimax of |basis x − exact| per channel by Lawson's iteration
+// [Lawson1961]: weighted least squares with weights u_i ← u_i |r_i| / Σ u_j |r_j|
+// from least squares (u = 1); per channel the round with the smallest max |r_i|.
+std::vector<Vec3> lawson_minimax(const Eigen::MatrixXd& basis, const std::vector<Vec3>& exact,
+                                 int rounds) {
+  std::vector<Vec3> out = least_squares(basis, exact);
+  const auto rows = static_cast<Eigen::Index>(exact.size());
+  for (std::size_t ch = 0; ch < 3; ++ch) {
+    Eigen::VectorXd b(rows), x(basis.cols());
+    for (Eigen::Index k = 0; k < rows; ++k) b(k) = exact[static_cast<std::size_t>(k)][ch];
+    for (Eigen::Index c = 0; c < x.size(); ++c) x(c) = out[static_cast<std::size_t>(c)][ch];
+    Eigen::VectorXd r = basis * x - b, u = Eigen::VectorXd::Ones(rows);
+    double best = r.cwiseAbs().maxCoeff();
+    for (int round = 0; round < rounds; ++round) {
+      u = u.cwiseProduct(r.cwiseAbs());
+      const double total = u.sum();
+      if (!(total > 0)) break;
+      u *= static_cast<double>(rows) / total;
+      const Eigen::VectorXd w = u.cwiseSqrt();
+      x = (w.asDiagonal() * basis).colPivHouseholderQr().solve(w.cwiseProduct(b));
+      r = basis * x - b;
+      const double m = r.cwiseAbs().maxCoeff();
+      if (m < best) {
+        best = m;
+        for (Eigen::Index c = 0; c < x.size(); ++c) out[static_cast<std::size_t>(c)][ch] = x(c);
+      }
+    }
+  }
+  return out;
+}
 }  // namespace
 
-Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, int order) {
+Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, int order,
+             LinearFit how) {
   const std::size_t K = sh_count(order);
   Eigen::MatrixXd a(static_cast<Eigen::Index>(normals.size()), static_cast<Eigen::Index>(K));
   std::array<double, sh_count(kMaxShOrder)> y{};
@@ -485,12 +517,14 @@ Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, i
   Probe p;
   p.kind = ProbeKind::sh;
   p.order = order;
-  p.fit = "fit";
-  p.sh = least_squares(a, exact);
+  p.fit = how == LinearFit::minimax ? "minimax" : "fit";
+  p.sh = how == LinearFit::minimax ? lawson_minimax(a, exact, kLinearMinimaxRounds)
+                                   : least_squares(a, exact);
   return p;
 }
 
-Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, const Vec3& axis) {
+Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, const Vec3& axis,
+              LinearFit how) {
   Eigen::MatrixXd a(static_cast<Eigen::Index>(normals.size()), 5);
   std::array<double, sh_count(kMaxShOrder)> y{};
   for (std::size_t k = 0; k < normals.size(); ++k) {
@@ -499,11 +533,13 @@ Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, 
       a(static_cast<Eigen::Index>(k), c) = y[static_cast<std::size_t>(c)];
     a(static_cast<Eigen::Index>(k), 4) = y20(dot(axis, normals[k]));
   }
-  const std::vector<Vec3> x = least_squares(a, exact);
+  const std::vector<Vec3> x = how == LinearFit::minimax
+                                  ? lawson_minimax(a, exact, kLinearMinimaxRounds)
+                                  : least_squares(a, exact);
   Probe p;
   p.kind = ProbeKind::zh3;
   p.order = 1;
-  p.fit = "fit";
+  p.fit = how == LinearFit::minimax ? "minimax" : "fit";
   p.sh.assign(x.begin(), x.begin() + 4);
   p.zonal = x[4];
   // Evaluated along the axis its own L1 implies (zonal_axis), which the fit

@@ -157,11 +157,16 @@ Probe project_sh(const std::vector<Vec3>& radiance_sh, int order);
 Probe project_sh_nonneg(const std::vector<Vec3>& radiance_sh);
 Probe project_zh3(const std::vector<Vec3>& radiance_sh);
 
-// The same families fitted on the irradiance objective the lobes are fitted
-// on: linear least squares of E_map at `normals` (ZH3: with the projection's
-// axis).
-Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, int order);
-Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, const Vec3& axis);
+// The same families fitted on the irradiance objectives the lobes are fitted
+// on: E_map at `normals` by linear least squares, or their minimax per channel
+// by kLinearMinimaxRounds rounds of Lawson's iteration [Lawson1961] (ZH3: with
+// the projection's axis).
+enum class LinearFit { least_squares, minimax };
+inline constexpr int kLinearMinimaxRounds = 50;
+Probe fit_sh(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, int order,
+             LinearFit how = LinearFit::least_squares);
+Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, const Vec3& axis,
+              LinearFit how = LinearFit::least_squares);
 
 // ---- Fits of lobes and hybrids (envmap/fit.cpp) -------------------------------
 
@@ -169,9 +174,15 @@ Probe fit_zh3(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact, 
 FitReport fit_with_normals(const Map& work, const std::vector<Vec3>& normals,
                            const std::vector<Vec3>& exact, const FitOptions& options);
 
+// Rounds of Lawson's minimax iteration [Lawson1961] after least squares, and
+// the Ceres iterations of each (a round starts from the last one's solution).
+inline constexpr int kMinimaxRounds = 8;
+inline constexpr int kMinimaxIterations = 10;
+
 struct LadderStep {
   Probe probe;
-  std::string start;   // the candidate kept: "fresh", "warm", "lobes", "kept n-1", "kept k-1"
+  std::string start;   // the candidate kept: "fresh", "warm", "lobes", "kept n-1", "kept k-1",
+                       // with " minimax" when its minimax refinement was kept
   double judged = 0;   // the judge's value of the probe
   double seconds = 0;  // wall time of the step, every candidate
 };
@@ -185,19 +196,26 @@ using Judge = std::function<double(const Probe&)>;
 // then the irradiance), the previous count's solution plus the best new lobe
 // (at the largest residual) refined jointly, and the previous solution with a
 // zero-amplitude lobe; the one the judge rates lowest is kept, so the judged
-// error never increases with the count. Deterministic.
+// error never increases with the count. The kept candidate is then refined
+// toward the minimax at `normals` (`minimax_rounds` rounds of Lawson's
+// iteration [Lawson1961], kMinimaxIterations Ceres iterations each; the round
+// with the smallest max residual there) and replaced when the judge rates the
+// refinement lower. Deterministic.
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& normals,
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
-                                        const Judge& judge, int max_iterations = 100);
+                                        const Judge& judge, int max_iterations = 100,
+                                        int minimax_rounds = kMinimaxRounds);
 
 // L2 SH + k lobes, k = 1 … max_lobes, fitted jointly: candidates the k-lobe
 // probe of `lobe_ladder` with SH fitted to what it leaves, the (k − 1) hybrid
 // plus the best new lobe (k = 1: the fitted L2 SH), and the (k − 1) hybrid
-// with a zero lobe; each refined jointly, the judge's lowest kept.
+// with a zero lobe; each refined jointly, the judge's lowest kept, then its
+// minimax refinement as in fit_lobe_ladder.
 std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec3>& normals,
                                           const std::vector<Vec3>& exact,
                                           const std::vector<LadderStep>& lobe_ladder,
                                           std::size_t max_lobes, const Judge& judge,
-                                          int max_iterations = 100);
+                                          int max_iterations = 100,
+                                          int minimax_rounds = kMinimaxRounds);
 
 }  // namespace sglab::envmap

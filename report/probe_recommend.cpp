@@ -101,11 +101,14 @@ struct Candidates {
     for (int l = 0; l <= envmap::kMaxShOrder; ++l) {
       add(r, "SH projection", envmap::project_sh(radiance, l));
       add(r, "SH fit", envmap::fit_sh(normals, exact, l));
+      add(r, "SH minimax", envmap::fit_sh(normals, exact, l, envmap::LinearFit::minimax));
     }
     add(r, "SH L1 non-negative", envmap::project_sh_nonneg(radiance));
     const envmap::Probe zh3 = envmap::project_zh3(radiance);
     add(r, "ZH3 projection", zh3);
     add(r, "ZH3 fit", envmap::fit_zh3(normals, exact, zh3.zonal_axis()));
+    add(r, "ZH3 minimax",
+        envmap::fit_zh3(normals, exact, zh3.zonal_axis(), envmap::LinearFit::minimax));
   }
 };
 
