@@ -637,14 +637,27 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
                                         const Judge& judge, int max_iterations,
                                         int minimax_rounds) {
+  std::vector<std::size_t> counts(max_lobes);
+  for (std::size_t n = 0; n < max_lobes; ++n) counts[n] = n + 1;
   check_lobe_count(work, max_lobes);
+  return fit_lobe_ladder(work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds);
+}
+
+std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
+                                        const std::vector<Vec3>& exact,
+                                        const std::vector<std::size_t>& counts, const Judge& judge,
+                                        int max_iterations, int minimax_rounds) {
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    if (counts[k] == 0 || (k > 0 && counts[k] <= counts[k - 1]))
+      throw std::logic_error("fit_lobe_ladder: lobe counts must increase from 1 or more");
+  if (!counts.empty()) check_lobe_count(work, counts.back());
   const double scale = irradiance_scale(exact);
   const double kmax = kappa_max(samples_of(work));
   std::vector<Vec3> target(exact.size());
   for (std::size_t m = 0; m < exact.size(); ++m)
     for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact[m][ch] / scale;
   std::vector<LadderStep> ladder;
-  for (std::size_t n = 1; n <= max_lobes; ++n) {
+  for (const std::size_t n : counts) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<LadderStep> candidates;
     // A fresh fit: radiance stage, then the irradiance.
@@ -661,11 +674,13 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       candidates.push_back(c);
     }
     if (!ladder.empty()) {
-      // Warm: the (n − 1)-lobe solution plus the best new lobe, then every parameter.
+      // Warm: the previous count's solution plus the best new lobes (each at
+      // the largest residual the lobes before it leave), then every parameter.
       const Probe& prev = ladder.back().probe;
-      std::vector<Lobe> lobes = prev.lobes;
-      lobes.push_back(new_lobe(fit_normals, exact, evaluate(prev, fit_normals)));
-      Params p = params_of(lobes, scale);
+      Probe grown = prev;
+      while (grown.lobes.size() < n)
+        grown.lobes.push_back(new_lobe(fit_normals, exact, evaluate(grown, fit_normals)));
+      Params p = params_of(grown.lobes, scale);
       refine_irradiance(p, nullptr, fit_normals, target, kmax, max_iterations);
       LadderStep c;
       c.probe.kind = ProbeKind::lobes;
@@ -673,10 +688,13 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       c.probe.lobes = lobes_of(p, scale);
       c.start = "warm";
       candidates.push_back(c);
-      candidates.push_back(with_zero_lobe(prev, prev.lobes.back(), "kept n-1"));
+      LadderStep kept = with_zero_lobe(prev, prev.lobes.back(), "kept n-1");
+      while (kept.probe.lobes.size() < n) kept.probe.lobes.push_back(kept.probe.lobes.back());
+      candidates.push_back(kept);
     }
     keep_best(candidates, judge, t0, ladder);
-    if (minimax_rounds > 0) {
+    // A kept previous step was refined as that step already.
+    if (minimax_rounds > 0 && ladder.back().start.rfind("kept", 0) != 0) {
       LadderStep c = ladder.back();
       Params p = params_of(c.probe.lobes, scale);
       minimax_irradiance(p, nullptr, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
@@ -746,7 +764,8 @@ std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec
     candidates.push_back(with_zero_lobe(
         prev, new_lobe(fit_normals, exact, evaluate(prev, fit_normals)), "kept k-1"));
     keep_best(candidates, judge, t0, ladder);
-    if (minimax_rounds > 0) {
+    // A kept previous step was refined as that step already.
+    if (minimax_rounds > 0 && ladder.back().start.rfind("kept", 0) != 0) {
       LadderStep c = ladder.back();
       Params p = params_of(c.probe.lobes, scale);
       std::vector<double> block;

@@ -196,7 +196,8 @@ using Judge = std::function<double(const Probe&)>;
 // then the irradiance), the previous count's solution plus the best new lobe
 // (at the largest residual) refined jointly, and the previous solution with a
 // zero-amplitude lobe; the one the judge rates lowest is kept, so the judged
-// error never increases with the count. The kept candidate is then refined
+// error never increases with the count. The kept candidate (unless it is the
+// previous step, refined as that step already) is then refined
 // toward the minimax at `normals` (`minimax_rounds` rounds of Lawson's
 // iteration [Lawson1961], kMinimaxIterations Ceres iterations each; the round
 // with the smallest max residual there) and replaced when the judge rates the
@@ -204,6 +205,14 @@ using Judge = std::function<double(const Probe&)>;
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& normals,
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
                                         const Judge& judge, int max_iterations = 100,
+                                        int minimax_rounds = kMinimaxRounds);
+// The same ladder at the given increasing lobe counts only: a step from m to n
+// lobes warm-starts with the n − m best new lobes, each at the largest
+// residual the lobes before it leave.
+std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& normals,
+                                        const std::vector<Vec3>& exact,
+                                        const std::vector<std::size_t>& counts, const Judge& judge,
+                                        int max_iterations = 100,
                                         int minimax_rounds = kMinimaxRounds);
 
 // L2 SH + k lobes, k = 1 … max_lobes, fitted jointly: candidates the k-lobe

@@ -293,3 +293,91 @@ TEST(Probes, LobeLadderIsMonotoneAndRecoversKnownLobes) {
 }
 
 }  // namespace
+
+namespace {
+
+// Max over normals and RGB of |E_probe − exact| (the fit normals' own error).
+double max_residual(const Probe& p, const std::vector<Vec3>& normals,
+                    const std::vector<Vec3>& exact) {
+  const auto f = envmap::probe_irradiance(p);
+  double m = 0;
+  for (std::size_t k = 0; k < normals.size(); ++k) {
+    const Vec3 e = f(normals[k]);
+    for (std::size_t ch = 0; ch < 3; ++ch) m = std::max(m, std::abs(e[ch] - exact[k][ch]));
+  }
+  return m;
+}
+
+TEST(Probes, MinimaxShL0IsTheMidrange) {
+  // The best constant in the max norm is (max + min)/2 (least squares: the
+  // mean, far from it for these skewed values).
+  const auto normals = sglab::reference::fibonacci_normals(512);
+  std::vector<Vec3> exact;
+  for (const Vec3& n : normals)
+    exact.push_back({std::exp(3 * n[2]), 1 + n[0] * n[0], 2 + std::sin(5 * n[1])});
+  const Probe p = envmap::fit_sh(normals, exact, 0, envmap::LinearFit::minimax);
+  const Probe ls = envmap::fit_sh(normals, exact, 0);
+  EXPECT_EQ(p.fit, "minimax");
+  for (std::size_t ch = 0; ch < 3; ++ch) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const Vec3& e : exact) {
+      lo = std::min(lo, e[ch]);
+      hi = std::max(hi, e[ch]);
+    }
+    // Lawson's iteration converges linearly: its max residual within 0.5 % of
+    // the minimax (hi − lo)/2 (least squares: 33 % above it on channel 1).
+    const double at = envmap::probe_irradiance(p)(Vec3{0, 0, 1})[ch];
+    EXPECT_LE(std::max(at - lo, hi - at), 1.005 * (hi - lo) / 2) << ch;
+  }
+  EXPECT_LT(max_residual(p, normals, exact), 0.9 * max_residual(ls, normals, exact));
+}
+
+TEST(Probes, MinimaxRefinementLowersTheLobesMaxError) {
+  // Two lobes cannot fit three: the least-squares fit leaves a max residual
+  // the minimax refinement (judged at the fit normals) lowers.
+  const std::vector<envmap::Lobe> known = {
+      {{0.0, 0.0, 1.0}, 6.0, {2.0, 1.5, 1.0}},
+      {{0.8, 0.0, -0.6}, 3.0, {0.4, 0.6, 0.9}},
+      {{0.0, -0.6, 0.8}, 20.0, {3.0, 2.0, 1.0}},
+  };
+  const Map m = map_of(32, [&](const Vec3& w) {
+    Vec3 v{0, 0, 0};
+    for (const auto& l : known) {
+      const double g = std::exp(l.sharpness * (dot(w, l.axis) - 1));
+      for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += l.amplitude[ch] * g;
+    }
+    return v;
+  });
+  const envmap::MapIrradiance field(m);
+  const auto normals = sglab::reference::fibonacci_normals(256);
+  const auto exact = field.at(normals);
+  const auto judge = [&](const Probe& p) { return max_residual(p, normals, exact); };
+  const std::vector<std::size_t> counts{1, 2};
+  const auto ls = envmap::fit_lobe_ladder(m, normals, exact, counts, judge, 50, 0);
+  const auto mm = envmap::fit_lobe_ladder(m, normals, exact, counts, judge, 50);
+  ASSERT_EQ(ls.size(), 2u);
+  ASSERT_EQ(mm.size(), 2u);
+  EXPECT_EQ(mm[1].probe.lobes.size(), 2u);
+  EXPECT_LT(mm[1].judged, 0.9 * ls[1].judged);
+  EXPECT_LE(mm[1].judged, mm[0].judged);
+}
+
+TEST(Probes, LadderAtGivenCountsGrowsBySeveralLobes) {
+  const Map m = map_of(32, [](const Vec3& w) {
+    const double s = 1 + 4 * std::exp(10 * (w[2] - 1)) + 2 * std::exp(5 * (w[0] - 1));
+    return Vec3{s, s, 0.5 * s};
+  });
+  const envmap::MapIrradiance field(m);
+  const auto normals = sglab::reference::fibonacci_normals(256);
+  const auto exact = field.at(normals);
+  const auto judge = [&](const Probe& p) { return max_residual(p, normals, exact); };
+  const auto ladder =
+      envmap::fit_lobe_ladder(m, normals, exact, std::vector<std::size_t>{1, 4}, judge, 50);
+  ASSERT_EQ(ladder.size(), 2u);
+  EXPECT_EQ(ladder[1].probe.lobes.size(), 4u);
+  EXPECT_LE(ladder[1].judged, ladder[0].judged);
+  EXPECT_THROW(envmap::fit_lobe_ladder(m, normals, exact, std::vector<std::size_t>{2, 2}, judge),
+               std::logic_error);
+}
+
+}  // namespace
