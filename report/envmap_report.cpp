@@ -168,6 +168,9 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
                       const envmap::Map& work, const std::vector<envmap::Lobe>& lobes,
                       std::size_t n_lobes) {
   const envmap::Map recon = envmap::reconstruct(lobes, work.width, work.height);
+  const auto nonzero = std::count_if(lobes.begin(), lobes.end(), [](const envmap::Lobe& l) {
+    return l.amplitude[0] > 0 || l.amplitude[1] > 0 || l.amplitude[2] > 0;
+  });
   double mean = 0;
   for (float v : work.rgb) mean += v;
   mean /= static_cast<double>(work.rgb.size());
@@ -223,8 +226,8 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
   const std::string script = fmt::format(
       "set terminal pngcairo size 1500,620 font 'sans,10'\n"
       "set output '{0}.png'\n"
-      "set multiplot layout 2,3 title 'Environment map {1}: {2} SG lobes, irradiance objective "
-      "(sglab envmap fit --lobes {2})'\n"
+      "set multiplot layout 2,3 title 'Environment map {1}: the {2}-lobe irradiance fit (c) of "
+      "envmaps.md, {4} of its lobes of nonzero amplitude'\n"
       "unset key; unset xtics; unset ytics; set size ratio -1\n"
       "set title 'map (tone-mapped)'\nplot '{0}.dat' index 0 using 1:2:3:4:5 with rgbimage\n"
       "set title 'SG reconstruction'\nplot '{0}.dat' index 1 using 1:2:3:4:5 with rgbimage\n"
@@ -237,7 +240,7 @@ void write_map_figure(const std::filesystem::path& out, const std::string& name,
       "34,35,36\nset colorbox\n"
       "plot '{0}.dat' index 4 using 1:2:3 with image\n"
       "unset multiplot\n",
-      stem, name, n_lobes, worst * 100);
+      stem, name, n_lobes, worst * 100, nonzero);
   io::write_file_atomic(out / (stem + ".gp"), script);
   if (io::run_program({"gnuplot", stem + ".gp"}, out, {}) != 0)
     throw std::runtime_error(fmt::format("gnuplot failed on {}", (out / (stem + ".gp")).string()));
