@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -619,11 +620,28 @@ LadderStep with_zero_lobe(const Probe& previous, Lobe lobe, const std::string& s
   return step;
 }
 
-// Judges every candidate and appends the best (the first of equals) to `ladder`,
-// with the step's wall time since t0.
+using Refine = std::function<LadderStep(const LadderStep&)>;
+
+// Judges every candidate; with `refine`, the best new one (a fresh or grown
+// fit, not the previous step kept) refined and judged too; appends the best of
+// all (the first of equals) to `ladder`, with the step's wall time since t0.
 void keep_best(std::vector<LadderStep>& candidates, const Judge& judge,
-               std::chrono::steady_clock::time_point t0, std::vector<LadderStep>& ladder) {
+               std::chrono::steady_clock::time_point t0, std::vector<LadderStep>& ladder,
+               const std::function<LadderStep(const LadderStep&)>& refine) {
   for (auto& c : candidates) c.judged = judge(c.probe);
+  if (refine) {
+    std::size_t fresh = candidates.size();
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      if (candidates[k].start.rfind("kept", 0) != 0 &&
+          (fresh == candidates.size() || candidates[k].judged < candidates[fresh].judged))
+        fresh = k;
+    if (fresh < candidates.size()) {
+      LadderStep r = refine(candidates[fresh]);
+      r.start = candidates[fresh].start + " minimax";
+      r.judged = judge(r.probe);
+      candidates.push_back(r);
+    }
+  }
   std::size_t best = 0;
   for (std::size_t k = 1; k < candidates.size(); ++k)
     if (candidates[k].judged < candidates[best].judged) best = k;
@@ -656,6 +674,14 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
   std::vector<Vec3> target(exact.size());
   for (std::size_t m = 0; m < exact.size(); ++m)
     for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact[m][ch] / scale;
+  // The minimax refinement of a candidate (keep_best).
+  const Refine refine = minimax_rounds <= 0 ? Refine{} : Refine{[&](const LadderStep& from) {
+    LadderStep c = from;
+    Params p = params_of(c.probe.lobes, scale);
+    minimax_irradiance(p, nullptr, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
+    c.probe.lobes = lobes_of(p, scale);
+    return c;
+  }};
   std::vector<LadderStep> ladder;
   for (const std::size_t n : counts) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -692,18 +718,7 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       while (kept.probe.lobes.size() < n) kept.probe.lobes.push_back(kept.probe.lobes.back());
       candidates.push_back(kept);
     }
-    keep_best(candidates, judge, t0, ladder);
-    // A kept previous step was refined as that step already.
-    if (minimax_rounds > 0 && ladder.back().start.rfind("kept", 0) != 0) {
-      LadderStep c = ladder.back();
-      Params p = params_of(c.probe.lobes, scale);
-      minimax_irradiance(p, nullptr, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
-      c.probe.lobes = lobes_of(p, scale);
-      c.start += " minimax";
-      c.judged = judge(c.probe);
-      if (c.judged < ladder.back().judged) ladder.back() = c;
-      ladder.back().seconds = seconds_since(t0);
-    }
+    keep_best(candidates, judge, t0, ladder, refine);
   }
   return ladder;
 }
@@ -745,6 +760,19 @@ std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec
     c.start = start;
     return c;
   };
+  // The minimax refinement of a candidate, lobes and SH jointly (keep_best).
+  const Refine refine = minimax_rounds <= 0 ? Refine{} : Refine{[&](const LadderStep& from) {
+    LadderStep c = from;
+    Params p = params_of(c.probe.lobes, scale);
+    std::vector<double> block;
+    for (const Vec3& q : c.probe.sh)
+      for (double x : q) block.push_back(x / scale);
+    minimax_irradiance(p, &block, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
+    c.probe.lobes = lobes_of(p, scale);
+    for (std::size_t q = 0; q < sh_count(2); ++q)
+      c.probe.sh[q] = {block[3 * q] * scale, block[3 * q + 1] * scale, block[3 * q + 2] * scale};
+    return c;
+  }};
   std::vector<LadderStep> ladder;
   for (std::size_t k = 1; k <= max_lobes; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -763,23 +791,7 @@ std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec
     candidates.push_back(joint(lobes, "warm"));
     candidates.push_back(with_zero_lobe(
         prev, new_lobe(fit_normals, exact, evaluate(prev, fit_normals)), "kept k-1"));
-    keep_best(candidates, judge, t0, ladder);
-    // A kept previous step was refined as that step already.
-    if (minimax_rounds > 0 && ladder.back().start.rfind("kept", 0) != 0) {
-      LadderStep c = ladder.back();
-      Params p = params_of(c.probe.lobes, scale);
-      std::vector<double> block;
-      for (const Vec3& q : c.probe.sh)
-        for (double x : q) block.push_back(x / scale);
-      minimax_irradiance(p, &block, fit_normals, target, kmax, minimax_rounds, kMinimaxIterations);
-      c.probe.lobes = lobes_of(p, scale);
-      for (std::size_t q = 0; q < sh_count(2); ++q)
-        c.probe.sh[q] = {block[3 * q] * scale, block[3 * q + 1] * scale, block[3 * q + 2] * scale};
-      c.start += " minimax";
-      c.judged = judge(c.probe);
-      if (c.judged < ladder.back().judged) ladder.back() = c;
-      ladder.back().seconds = seconds_since(t0);
-    }
+    keep_best(candidates, judge, t0, ladder, refine);
   }
   return ladder;
 }

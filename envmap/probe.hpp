@@ -195,13 +195,12 @@ using Judge = std::function<double(const Probe&)>;
 // template). At each count the candidates are a fresh fit (radiance stage,
 // then the irradiance), the previous count's solution plus the best new lobe
 // (at the largest residual) refined jointly, and the previous solution with a
-// zero-amplitude lobe; the one the judge rates lowest is kept, so the judged
-// error never increases with the count. The kept candidate (unless it is the
-// previous step, refined as that step already) is then refined
-// toward the minimax at `normals` (`minimax_rounds` rounds of Lawson's
+// zero-amplitude lobe; the best of the first two (by the judge) is also
+// refined toward the minimax at `normals` (`minimax_rounds` rounds of Lawson's
 // iteration [Lawson1961], kMinimaxIterations Ceres iterations each; the round
-// with the smallest max residual there) and replaced when the judge rates the
-// refinement lower. Deterministic.
+// with the smallest max residual there), and that refinement is a candidate
+// too. The one the judge rates lowest is kept, so the judged error never
+// increases with the count. Deterministic.
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& normals,
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
                                         const Judge& judge, int max_iterations = 100,
@@ -218,8 +217,8 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
 // L2 SH + k lobes, k = 1 … max_lobes, fitted jointly: candidates the k-lobe
 // probe of `lobe_ladder` with SH fitted to what it leaves, the (k − 1) hybrid
 // plus the best new lobe (k = 1: the fitted L2 SH), and the (k − 1) hybrid
-// with a zero lobe; each refined jointly, the judge's lowest kept, then its
-// minimax refinement as in fit_lobe_ladder.
+// with a zero lobe; each refined jointly, plus the minimax refinement of the
+// best of the first two as in fit_lobe_ladder; the judge's lowest kept.
 std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec3>& normals,
                                           const std::vector<Vec3>& exact,
                                           const std::vector<LadderStep>& lobe_ladder,

@@ -376,9 +376,10 @@ std::string baselines_markdown(const BaselineRun& run) {
       "sglab irradiance fit: every parameter jointly on the irradiance at 1024 other Fibonacci "
       "normals, the lobe counts as a ladder (envmap::fit_lobe_ladder): at each count the best, by "
       "the max error here, of a fresh fit (a radiance fit as (b) on a 64 × 32 copy, then the "
-      "irradiance), the previous count's lobes plus new ones refined jointly, and the previous "
-      "count unchanged, then refined toward the minimax at the fit normals ({} rounds of Lawson's "
-      "iteration [Lawson1961]); so (c) never rises with the count. Ratio = (a) max / (c) max; the "
+      "irradiance), the previous count's lobes plus new ones refined jointly, the better of those "
+      "two refined toward the minimax at the fit normals ({} rounds of Lawson's iteration "
+      "[Lawson1961]), and the previous count unchanged; so (c) never rises with the count. Ratio = "
+      "(a) max / (c) max; the "
       "target is ≥ 2.\n\n",
       envmap::kEvalNormals, envmap::kMinimaxRounds);
   std::size_t met = 0, total = 0;

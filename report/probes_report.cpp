@@ -141,9 +141,9 @@ std::string markdown(const std::vector<MapResult>& results, const std::vector<st
       "Fits: least squares of the full map's irradiance at {} other Fibonacci normals (SH, ZH3: "
       "linear; lobes and SH + lobes: Ceres, derivatives of sglab_acc3 by Jets); lobe counts grow "
       "one at a time, each kept fit the best (by the max error) of a fresh fit, the previous count "
-      "plus a new lobe, and the previous count unchanged, then refined toward the minimax at the "
-      "fit normals ({} rounds of Lawson's iteration [Lawson1961], kept when the max error drops). "
-      "SH and ZH3 minimax: {} rounds of Lawson's iteration from their least squares. Projection: "
+      "plus a new lobe, the better of those two refined toward the minimax at the fit normals ({} "
+      "rounds of Lawson's iteration [Lawson1961]), and the previous count unchanged. SH and ZH3 "
+      "minimax: {} rounds of Lawson's iteration from their least squares. Projection: "
       "E_lm = Â_l L_lm [Ramamoorthi2001]; ZH3 [Roughton2024].\n\n",
       envmap::kDenseNormals, envmap::kDenseNormals, envmap::kFitNormals, envmap::kMinimaxRounds,
       envmap::kLinearMinimaxRounds);

@@ -224,14 +224,14 @@ TEST(ProbeRecommend, ByCostPicksTheLeastCostOfTheProbesMeetingTheBudget) {
   EXPECT_LT(fewest, c.probe.floats());
 }
 
-// night.exr at 64 × 32: the hybrid ladder's SH L2 + 2 SG is SH L2 + 1 SG plus
+// sunset.exr at 64 × 32: the hybrid ladder's SH L2 + 4 SG is SH L2 + 3 SG plus
 // a lobe of zero amplitude (same function, more floats). With a cost that
-// ranks the hybrids first (floats, +100 for every other family), SH L2 + 1 SG
-// is the choice and the runner-up is the next representation that is another
-// function, never that copy.
+// ranks the hybrids first (floats, +100 for every other family), SH L2 + 3 SG
+// is the choice at a budget of 0.009 and the runner-up is the next
+// representation that is another function (SH L4), never that copy.
 TEST(ProbeRecommend, RunnerUpIsNoZeroLobeCopy) {
   const Map m = envmap::downsample(envmap::read_map(std::filesystem::path(SGLAB_TEST_SOURCE_DIR) /
-                                                    ".." / "data" / "envmaps" / "night.exr"),
+                                                    ".." / "data" / "envmaps" / "sunset.exr"),
                                    64);
   const auto hybrid_first = [](const std::vector<const envmap::Probe*>& probes) {
     std::vector<double> out;
@@ -240,7 +240,7 @@ TEST(ProbeRecommend, RunnerUpIsNoZeroLobeCopy) {
                     (p->kind == envmap::ProbeKind::hybrid ? 0.0 : 100.0));
     return out;
   };
-  const auto r = report::recommend_probe_by_cost(m, 0.06, 3, hybrid_first, no_messages);
+  const auto r = report::recommend_probe_by_cost(m, 0.009, 4, hybrid_first, no_messages);
   ASSERT_TRUE(r.choice && r.runner_up);
   const auto& c = r.tried[*r.choice].probe;
   const auto& u = r.tried[*r.runner_up].probe;
