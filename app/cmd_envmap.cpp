@@ -110,6 +110,7 @@ struct EnvmapRecommendArgs {
   std::string file, budget, precision = "float", by, write_probe, lang = "glsl";
   bool lang_given = false;  // --lang on the command line (it needs --by)
   std::size_t max_lobes = 32, normals = envmap::kEvalNormals;
+  int restarts = 0;
   bool json = false;
   CostsOption costs;
 };
@@ -257,8 +258,8 @@ void run_recommend_probe(const EnvmapRecommendArgs& a, const std::string& comman
                    [&](const std::vector<const envmap::Probe*>& probes) {
                      return probe::probe_gpu_costs(*family, lang, probes, driver);
                    },
-                   note)
-             : report::recommend_probe_by_storage(map, budget, a.max_lobes, note);
+                   note, a.restarts)
+             : report::recommend_probe_by_storage(map, budget, a.max_lobes, note, a.restarts);
   progress.finish();
   const auto& tried = rec.tried;
   if (rec.choice && !a.write_probe.empty()) {
@@ -358,6 +359,10 @@ void run_envmap_recommend(const EnvmapRecommendArgs& a) {
     throw InputError(
         "--lang: needs --by gpu:FAMILY (the language the probe is costed in) or --by storage "
         "(the language of the export it names); the lobes-and-method choice has no probe");
+  if (a.restarts > 0)
+    throw InputError(
+        "--restarts: needs --by storage or --by gpu:FAMILY (the lobe ladder it restarts); the "
+        "lobes-and-method choice fits each count once");
   const double budget = parse_budget(a.budget);
   const auto precision = io::parse_option("--precision", a.precision,
                                           {io::Precision::float32, io::Precision::float64});
@@ -550,6 +555,12 @@ void add_envmap_command(CLI::App& app) {
                     "exported evaluation has the least ACO inverse throughput on that AMD family "
                     "(RADV null device, as `sglab gpucost`); without --by: lobes x cheapest "
                     "irradiance method");
+    cmd->add_option("--restarts", a->restarts,
+                    "with --by: also fit a second lobe ladder whose every step tries this many "
+                    "starts drawn from the map's light, and keep the better of the two at each "
+                    "count (slower; never a larger error)")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     add_path_option(cmd, "--write-probe", a->write_probe,
                     "with --by: the chosen probe as JSON for `sglab export --probe`");
     auto* lang = cmd->add_option("--lang", a->lang,

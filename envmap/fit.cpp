@@ -479,6 +479,41 @@ Lobe new_lobe(const std::vector<Vec3>& normals, const std::vector<Vec3>& exact,
   return l;
 }
 
+// The start of the ladder's restart `r` at n lobes: the axes drawn from the
+// working copy's light (each pixel's luminance × solid angle, by the inverse of
+// its cumulative sum) at the points r·n + 1 … r·n + n of the 2-D R2 sequence
+// [Roberts2018], the second coordinate setting κ log-uniform on
+// [1, min(kmax, 256)]; each lobe carries 1/n of the map's light,
+// a = 2κ/n in fitting units (∫ a e^{κ(μ·ω − 1)} dω ≈ 2πa/κ against 4π).
+// Deterministic.
+Params restart_params(const Samples& s, std::size_t n, std::size_t r, double kmax) {
+  std::vector<double> cdf(s.dir.size());
+  double total = 0;
+  for (std::size_t q = 0; q < s.dir.size(); ++q) {
+    const double w = s.weight[q / s.width];
+    const double* v = &s.value[3 * q];
+    total += w * w * (kLuminance[0] * v[0] + kLuminance[1] * v[1] + kLuminance[2] * v[2]);
+    cdf[q] = total;
+  }
+  const double g = 1.32471795724474602596;  // the plastic number, R2's constant
+  const double a1 = 1 / g, a2 = 1 / (g * g);
+  const double kappa_hi = std::min(kmax, 256.0);
+  Params p;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double q = static_cast<double>(r * n + k + 1);
+    const double u = std::fmod(0.5 + a1 * q, 1.0), v = std::fmod(0.5 + a2 * q, 1.0);
+    const std::size_t at = std::min<std::size_t>(
+        std::lower_bound(cdf.begin(), cdf.end(), u * total) - cdf.begin(), cdf.size() - 1);
+    const Vec3& d = s.dir[at];
+    const double kappa = std::exp(v * std::log(kappa_hi));
+    const double a = 2 * kappa / static_cast<double>(n);
+    p.axis.push_back({d[0], d[1], d[2]});
+    p.kappa.push_back(kappa);
+    p.amp.push_back({a, a, a});
+  }
+  return p;
+}
+
 std::vector<Vec3> evaluate(const Probe& probe, const std::vector<Vec3>& normals) {
   const IrradianceFn f = probe_irradiance(probe);
   std::vector<Vec3> out;
@@ -622,22 +657,28 @@ LadderStep with_zero_lobe(const Probe& previous, Lobe lobe, const std::string& s
 
 using Refine = std::function<LadderStep(const LadderStep&)>;
 
-// Judges every candidate; with `refine`, the best new one (a fresh or grown
-// fit, not the previous step kept) refined and judged too; appends the best of
-// all (the first of equals) to `ladder`, with the step's wall time since t0.
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// Judges every candidate; with `refine`, the best of the fresh and grown fits
+// and the restart (each new, not the previous step kept) refined and judged
+// too; appends the best of all (the first of equals) to `ladder`, with the
+// step's wall time since t0.
 void keep_best(std::vector<LadderStep>& candidates, const Judge& judge,
                std::chrono::steady_clock::time_point t0, std::vector<LadderStep>& ladder,
                const std::function<LadderStep(const LadderStep&)>& refine) {
   for (auto& c : candidates) c.judged = judge(c.probe);
   if (refine) {
-    std::size_t fresh = candidates.size();
-    for (std::size_t k = 0; k < candidates.size(); ++k)
-      if (candidates[k].start.rfind("kept", 0) != 0 &&
-          (fresh == candidates.size() || candidates[k].judged < candidates[fresh].judged))
-        fresh = k;
-    if (fresh < candidates.size()) {
-      LadderStep r = refine(candidates[fresh]);
-      r.start = candidates[fresh].start + " minimax";
+    const std::size_t none = candidates.size();
+    std::size_t fresh = none, restart = none;
+    for (std::size_t k = 0; k < none; ++k) {
+      if (starts_with(candidates[k].start, "kept")) continue;
+      std::size_t& best = starts_with(candidates[k].start, "restart") ? restart : fresh;
+      if (best == none || candidates[k].judged < candidates[best].judged) best = k;
+    }
+    for (const std::size_t k : {fresh, restart}) {
+      if (k == none) continue;
+      LadderStep r = refine(candidates[k]);
+      r.start = candidates[k].start + " minimax";
       r.judged = judge(r.probe);
       candidates.push_back(r);
     }
@@ -651,26 +692,32 @@ void keep_best(std::vector<LadderStep>& candidates, const Judge& judge,
 
 }  // namespace
 
-std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
-                                        const std::vector<Vec3>& exact, std::size_t max_lobes,
-                                        const Judge& judge, int max_iterations,
-                                        int minimax_rounds) {
-  std::vector<std::size_t> counts(max_lobes);
-  for (std::size_t n = 0; n < max_lobes; ++n) counts[n] = n + 1;
-  check_lobe_count(work, max_lobes);
-  return fit_lobe_ladder(work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds);
+std::vector<Lobe> restart_lobes(const Map& work, std::size_t lobes, std::size_t restart) {
+  const Samples s = samples_of(work);
+  return lobes_of(restart_params(s, lobes, restart, kappa_max(s)), s.scale);
 }
 
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
-                                        const std::vector<Vec3>& exact,
-                                        const std::vector<std::size_t>& counts, const Judge& judge,
-                                        int max_iterations, int minimax_rounds) {
-  for (std::size_t k = 0; k < counts.size(); ++k)
-    if (counts[k] == 0 || (k > 0 && counts[k] <= counts[k - 1]))
-      throw std::logic_error("fit_lobe_ladder: lobe counts must increase from 1 or more");
-  if (!counts.empty()) check_lobe_count(work, counts.back());
+                                        const std::vector<Vec3>& exact, std::size_t max_lobes,
+                                        const Judge& judge, int max_iterations, int minimax_rounds,
+                                        int restarts) {
+  std::vector<std::size_t> counts(max_lobes);
+  for (std::size_t n = 0; n < max_lobes; ++n) counts[n] = n + 1;
+  check_lobe_count(work, max_lobes);
+  return fit_lobe_ladder(work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds,
+                         restarts);
+}
+
+namespace {
+
+// One ladder (fit_lobe_ladder), with `restarts` restarts at each step.
+std::vector<LadderStep> lobe_ladder_path(const Map& work, const std::vector<Vec3>& fit_normals,
+                                         const std::vector<Vec3>& exact,
+                                         const std::vector<std::size_t>& counts, const Judge& judge,
+                                         int max_iterations, int minimax_rounds, int restarts) {
   const double scale = irradiance_scale(exact);
-  const double kmax = kappa_max(samples_of(work));
+  const Samples samples = samples_of(work);
+  const double kmax = kappa_max(samples);
   std::vector<Vec3> target(exact.size());
   for (std::size_t m = 0; m < exact.size(); ++m)
     for (std::size_t ch = 0; ch < 3; ++ch) target[m][ch] = exact[m][ch] / scale;
@@ -699,6 +746,31 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       c.start = "fresh";
       candidates.push_back(c);
     }
+    // Restarts from the map's light, each fitted like the warm start; the one
+    // with the smallest max residual at the normals is a candidate.
+    {
+      Params best;
+      double best_max = HUGE_VAL;
+      int best_r = 0;
+      for (int r = 0; r < restarts; ++r) {
+        Params p = restart_params(samples, n, static_cast<std::size_t>(r), kmax);
+        refine_irradiance(p, nullptr, fit_normals, target, kmax, max_iterations);
+        const double m = max_abs(irradiance_residuals(p, nullptr, fit_normals, target));
+        if (m < best_max) {
+          best_max = m;
+          best = p;
+          best_r = r;
+        }
+      }
+      if (best.size() == n) {
+        LadderStep c;
+        c.probe.kind = ProbeKind::lobes;
+        c.probe.fit = "fit";
+        c.probe.lobes = lobes_of(best, scale);
+        c.start = fmt::format("restart {}", best_r + 1);
+        candidates.push_back(c);
+      }
+    }
     if (!ladder.empty()) {
       // Warm: the previous count's solution plus the best new lobes (each at
       // the largest residual the lobes before it leave), then every parameter.
@@ -719,6 +791,33 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
       candidates.push_back(kept);
     }
     keep_best(candidates, judge, t0, ladder, refine);
+  }
+  return ladder;
+}
+
+}  // namespace
+
+std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& fit_normals,
+                                        const std::vector<Vec3>& exact,
+                                        const std::vector<std::size_t>& counts, const Judge& judge,
+                                        int max_iterations, int minimax_rounds, int restarts) {
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    if (counts[k] == 0 || (k > 0 && counts[k] <= counts[k - 1]))
+      throw std::logic_error("fit_lobe_ladder: lobe counts must increase from 1 or more");
+  if (!counts.empty()) check_lobe_count(work, counts.back());
+  std::vector<LadderStep> ladder =
+      lobe_ladder_path(work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds, 0);
+  if (restarts > 0) {
+    // A second ladder with restarts; at each count the better of the two (the
+    // first of equals), so neither ladder's error is exceeded and both being
+    // non-increasing, the result is too.
+    const std::vector<LadderStep> other = lobe_ladder_path(
+        work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds, restarts);
+    for (std::size_t k = 0; k < ladder.size(); ++k) {
+      const double seconds = ladder[k].seconds + other[k].seconds;
+      if (other[k].judged < ladder[k].judged) ladder[k] = other[k];
+      ladder[k].seconds = seconds;
+    }
   }
   return ladder;
 }

@@ -181,7 +181,8 @@ inline constexpr int kMinimaxIterations = 10;
 
 struct LadderStep {
   Probe probe;
-  std::string start;   // the candidate kept: "fresh", "warm", "lobes", "kept n-1", "kept k-1",
+  std::string start;   // the candidate kept: "fresh", "warm", "restart r", "lobes", "kept n-1",
+                       // "kept k-1",
                        // with " minimax" when its minimax refinement was kept
   double judged = 0;   // the judge's value of the probe
   double seconds = 0;  // wall time of the step, every candidate
@@ -200,11 +201,22 @@ using Judge = std::function<double(const Probe&)>;
 // iteration [Lawson1961], kMinimaxIterations Ceres iterations each; the round
 // with the smallest max residual there), and that refinement is a candidate
 // too. The one the judge rates lowest is kept, so the judged error never
-// increases with the count. Deterministic.
+// increases with the count. With `restarts` > 0 a second ladder runs whose
+// steps also try that many fits started from lobes drawn from the map's light
+// (quasi-random axes by luminance × solid angle [Roberts2018], log-uniform
+// sharpness; the one with the smallest max residual at `normals` is a
+// candidate, and it too is refined toward the minimax); each count keeps the
+// better of the two ladders, so restarts never raise an error (they cost the
+// second ladder and its restarts' fits). Deterministic.
 std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>& normals,
                                         const std::vector<Vec3>& exact, std::size_t max_lobes,
                                         const Judge& judge, int max_iterations = 100,
-                                        int minimax_rounds = kMinimaxRounds);
+                                        int minimax_rounds = kMinimaxRounds, int restarts = 0);
+// The starting lobes of the ladder's restart `restart` at `lobes` lobes: axes
+// drawn from the working copy's light (each pixel's luminance × solid angle)
+// at points of the R2 sequence [Roberts2018], sharpness log-uniform on
+// [1, min(κ_max, 256)], each carrying 1/lobes of the map's light.
+std::vector<Lobe> restart_lobes(const Map& work, std::size_t lobes, std::size_t restart);
 // The same ladder at the given increasing lobe counts only: a step from m to n
 // lobes warm-starts with the n − m best new lobes, each at the largest
 // residual the lobes before it leave.
@@ -212,7 +224,7 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
                                         const std::vector<Vec3>& exact,
                                         const std::vector<std::size_t>& counts, const Judge& judge,
                                         int max_iterations = 100,
-                                        int minimax_rounds = kMinimaxRounds);
+                                        int minimax_rounds = kMinimaxRounds, int restarts = 0);
 
 // L2 SH + k lobes, k = 1 … max_lobes, fitted jointly: candidates the k-lobe
 // probe of `lobe_ladder` with SH fitted to what it leaves, the (k − 1) hybrid

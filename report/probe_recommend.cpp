@@ -154,9 +154,10 @@ bool same_probe_function(const envmap::Probe& a, const envmap::Probe& b) {
   return true;
 }
 
-ProbeRecommendation recommend_probe_by_storage(
-    const envmap::Map& map, double budget, std::size_t max_lobes,
-    const std::function<void(const std::string&)>& note) {
+ProbeRecommendation recommend_probe_by_storage(const envmap::Map& map, double budget,
+                                               std::size_t max_lobes,
+                                               const std::function<void(const std::string&)>& note,
+                                               int restarts) {
   ProbeRecommendation r;
   Candidates c(map, note);
   c.add_sh(r);
@@ -166,7 +167,8 @@ ProbeRecommendation recommend_probe_by_storage(
   std::vector<envmap::LadderStep> lobes;
   if (r.lobe_cap > 0) {
     note(fmt::format("SG lobes, 1 to {}", r.lobe_cap));
-    lobes = envmap::fit_lobe_ladder(c.work, c.normals, c.exact, r.lobe_cap, c.judge());
+    lobes = envmap::fit_lobe_ladder(c.work, c.normals, c.exact, r.lobe_cap, c.judge(), 100,
+                                    envmap::kMinimaxRounds, restarts);
     for (const auto& s : lobes) c.add(r, "SG lobes", s.probe);
   }
   bound = float_bound(r.tried, budget);
@@ -186,14 +188,16 @@ ProbeRecommendation recommend_probe_by_storage(
 
 ProbeRecommendation recommend_probe_by_cost(const envmap::Map& map, double budget,
                                             std::size_t max_lobes, const ProbeCosts& cost,
-                                            const std::function<void(const std::string&)>& note) {
+                                            const std::function<void(const std::string&)>& note,
+                                            int restarts) {
   ProbeRecommendation r;
   Candidates c(map, note);
   c.add_sh(r);
   const std::size_t supported = std::min(max_lobes, envmap::max_lobes(c.work));
   const auto lobes = ladder_until_done(supported, budget, [&](std::size_t cap) {
     note(fmt::format("SG lobes, 1 to {}", cap));
-    return envmap::fit_lobe_ladder(c.work, c.normals, c.exact, cap, c.judge());
+    return envmap::fit_lobe_ladder(c.work, c.normals, c.exact, cap, c.judge(), 100,
+                                   envmap::kMinimaxRounds, restarts);
   });
   for (const auto& s : lobes) c.add(r, "SG lobes", s.probe);
   r.lobe_cap = lobes.size();

@@ -44,10 +44,12 @@ bool same_probe_function(const envmap::Probe& a, const envmap::Probe& b);
 // (at most `max_lobes`). The choice is the candidate of fewest floats with
 // max error ≤ budget (ties: the smaller error), the runner-up the next such
 // candidate of another representation: another label, and not the choice's
-// function (same_probe_function). Deterministic.
+// function (same_probe_function). `restarts`: the lobe ladder's
+// (envmap::fit_lobe_ladder). Deterministic.
 ProbeRecommendation recommend_probe_by_storage(const envmap::Map& map, double budget,
                                                std::size_t max_lobes,
-                                               const std::function<void(const std::string&)>& note);
+                                               const std::function<void(const std::string&)>& note,
+                                               int restarts = 0);
 
 // The cost of each probe, in the order given (by the GPU: ACO's inverse
 // throughput of its exported evaluation per shading point).
@@ -66,6 +68,7 @@ using ProbeCosts = std::function<std::vector<double>(const std::vector<const env
 // zero amplitude to it.
 ProbeRecommendation recommend_probe_by_cost(const envmap::Map& map, double budget,
                                             std::size_t max_lobes, const ProbeCosts& cost,
-                                            const std::function<void(const std::string&)>& note);
+                                            const std::function<void(const std::string&)>& note,
+                                            int restarts = 0);
 
 }  // namespace sglab::report

@@ -145,6 +145,20 @@ TEST(ProbeRecommend, CliRefusesLangCppOrWithoutBy) {
   EXPECT_NE(no_by.output.find("--lang: needs --by"), std::string::npos) << no_by.output;
 }
 
+// --restarts restarts the lobe ladder of --by; without --by (no ladder) it is
+// refused before the map is read (exit 2), as is a negative count.
+TEST(ProbeRecommend, CliRefusesRestartsWithoutBy) {
+  const auto no_by = sglab::test::run_sglab(
+      {"envmap", "recommend", "no-such-map.exr", "--budget", "2e-3", "--restarts", "4"});
+  EXPECT_EQ(no_by.exit_code, 2) << no_by.output;
+  EXPECT_NE(no_by.output.find("--restarts: needs --by"), std::string::npos) << no_by.output;
+  const auto negative =
+      sglab::test::run_sglab({"envmap", "recommend", "no-such-map.exr", "--budget", "2e-3", "--by",
+                              "storage", "--restarts", "-1"});
+  EXPECT_EQ(negative.exit_code, 2) << negative.output;
+  EXPECT_NE(negative.output.find("--restarts"), std::string::npos) << negative.output;
+}
+
 // A probe with a lobe of zero amplitude added is the same function; a probe
 // whose lobe differs in any number, or of another kind, is not.
 TEST(ProbeRecommend, SameProbeFunctionIgnoresZeroLobesOnly) {

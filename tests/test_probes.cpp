@@ -380,4 +380,75 @@ TEST(Probes, LadderAtGivenCountsGrowsBySeveralLobes) {
                std::logic_error);
 }
 
+TEST(Probes, RestartLobesAreDrawnFromTheMapsLight) {
+  // Light only in two caps of equal solid angle, the one about +z three times
+  // as bright: every starting axis lies in a cap, about 3 in 4 in the bright
+  // one, and each restart's lobes carry the map's light between them.
+  const Vec3 za{0, 0, 1}, xa{1, 0, 0};
+  const Map m = map_of(64, [&](const Vec3& w) {
+    if (dot(w, za) > 0.95) return Vec3{3, 3, 3};
+    if (dot(w, xa) > 0.95) return Vec3{1, 1, 1};
+    return Vec3{0, 0, 0};
+  });
+  double light = 0;
+  for (std::size_t j = 0; j < m.height; ++j)
+    for (std::size_t i = 0; i < m.width; ++i)
+      light += envmap::pixel_solid_angle(m, j) * m.at(i, j, 0);
+  const double kmax = std::pow(static_cast<double>(m.height) / M_PI, 2);
+  std::size_t bright = 0, total = 0;
+  double kappa_lo = HUGE_VAL, kappa_hi = 0;
+  for (std::size_t r = 0; r < 16; ++r) {
+    const auto lobes = envmap::restart_lobes(m, 4, r);
+    ASSERT_EQ(lobes.size(), 4u);
+    double carried = 0;
+    for (const auto& l : lobes) {
+      const Vec3 a{l.axis[0], l.axis[1], l.axis[2]};
+      EXPECT_TRUE(dot(a, za) > 0.95 || dot(a, xa) > 0.95) << a[0] << " " << a[1] << " " << a[2];
+      bright += dot(a, za) > 0.95;
+      ++total;
+      EXPECT_GE(l.sharpness, 1.0);
+      EXPECT_LE(l.sharpness, std::min(kmax, 256.0) * (1 + 1e-12));
+      kappa_lo = std::min(kappa_lo, l.sharpness);
+      kappa_hi = std::max(kappa_hi, l.sharpness);
+      carried += 2 * M_PI * l.amplitude[0] / l.sharpness;
+    }
+    EXPECT_NEAR(carried, light, 1e-9 * light);
+  }
+  EXPECT_NEAR(static_cast<double>(bright) / static_cast<double>(total), 0.75, 0.08);
+  EXPECT_LT(kappa_lo, 2.0);
+  EXPECT_GT(kappa_hi, 0.5 * std::min(kmax, 256.0));
+}
+
+TEST(Probes, RestartsNeverRaiseTheLaddersError) {
+  const std::vector<envmap::Lobe> known = {
+      {{0.0, 0.0, 1.0}, 40.0, {2.0, 2.0, 2.0}},
+      {{0.8, 0.0, -0.6}, 3.0, {0.4, 0.6, 0.9}},
+      {{0.0, -0.6, 0.8}, 20.0, {3.0, 2.0, 1.0}},
+      {{-0.6, 0.8, 0.0}, 60.0, {1.0, 3.0, 1.0}},
+  };
+  const Map m = map_of(32, [&](const Vec3& w) {
+    Vec3 v{0.2, 0.3, 0.4};
+    for (const auto& l : known) {
+      const double g = std::exp(l.sharpness * (dot(w, l.axis) - 1));
+      for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += l.amplitude[ch] * g;
+    }
+    return v;
+  });
+  const envmap::MapIrradiance field(m);
+  const auto normals = sglab::reference::fibonacci_normals(256);
+  const auto exact = field.at(normals);
+  const auto judge = [&](const Probe& p) { return max_residual(p, normals, exact); };
+  const auto plain = envmap::fit_lobe_ladder(m, normals, exact, 4, judge, 50);
+  const auto restarted =
+      envmap::fit_lobe_ladder(m, normals, exact, 4, judge, 50, envmap::kMinimaxRounds, 4);
+  ASSERT_EQ(plain.size(), 4u);
+  ASSERT_EQ(restarted.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_LE(restarted[k].judged, plain[k].judged) << k + 1 << " lobes";
+    if (k > 0) {
+      EXPECT_LE(restarted[k].judged, restarted[k - 1].judged) << k + 1 << " lobes";
+    }
+  }
+}
+
 }  // namespace
