@@ -163,14 +163,19 @@ ProbeRecommendation recommend_probe_by_storage(const envmap::Map& map, double bu
   c.add_sh(r);
   const std::size_t supported = std::min(max_lobes, envmap::max_lobes(c.work));
   std::size_t bound = float_bound(r.tried, budget);
-  r.lobe_cap = std::min<std::size_t>(supported, bound / 7);
+  // Counts of more floats than SH's runner-up can be neither; within that,
+  // the ladder stops once two counts meet the budget (more lobes, more floats).
+  const std::size_t limit = std::min<std::size_t>(supported, bound / 7);
   std::vector<envmap::LadderStep> lobes;
-  if (r.lobe_cap > 0) {
-    note(fmt::format("SG lobes, 1 to {}", r.lobe_cap));
-    lobes = envmap::fit_lobe_ladder(c.work, c.normals, c.exact, r.lobe_cap, c.judge(), 100,
-                                    envmap::kMinimaxRounds, restarts);
+  if (limit > 0) {
+    lobes = ladder_until_done(limit, budget, [&](std::size_t cap) {
+      note(fmt::format("SG lobes, 1 to {}", cap));
+      return envmap::fit_lobe_ladder(c.work, c.normals, c.exact, cap, c.judge(), 100,
+                                     envmap::kMinimaxRounds, restarts);
+    });
     for (const auto& s : lobes) c.add(r, "SG lobes", s.probe);
   }
+  r.lobe_cap = lobes.size();
   bound = float_bound(r.tried, budget);
   const std::size_t sh2 = 3 * envmap::sh_count(2);
   r.hybrid_cap = bound >= sh2 + 7 ? std::min(lobes.size(), (bound - sh2) / 7) : 0;

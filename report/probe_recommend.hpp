@@ -41,7 +41,12 @@ bool same_probe_function(const envmap::Probe& a, const envmap::Probe& b);
 // least squares), then the lobe ladder and the SH L2 + lobes ladder
 // (envmap::fit_lobe_ladder, fit_hybrid_ladder, judged by the same error) up to
 // the lobe counts that can still be among the two cheapest meeting `budget`
-// (at most `max_lobes`). The choice is the candidate of fewest floats with
+// (at most `max_lobes`): the lobe ladder, below the floats of SH's runner-up,
+// from 4 counts, doubling, until a count meeting the budget is followed by
+// another (a later count has more floats; one of another function meeting the
+// budget bounds the runner-up, one of the same function means the fits found
+// nothing better), as recommend_probe_by_cost does; the hybrid below the
+// runner-up's floats then. The choice is the candidate of fewest floats with
 // max error ≤ budget (ties: the smaller error), the runner-up the next such
 // candidate of another representation: another label, and not the choice's
 // function (same_probe_function). `restarts`: the lobe ladder's

@@ -96,6 +96,21 @@ TEST(ProbeRecommend, OneSgLightIsOneLobeWhereItIs) {
     }
 }
 
+// By storage the lobe ladder stops once a count meeting the budget is
+// followed by another: the counts not fitted have more floats than the
+// runner-up, so they could be neither answer.
+TEST(ProbeRecommend, ByStorageLadderStopsOnceTheAnswerIsBounded) {
+  const Map m = one_light_map();
+  const double budget = 2e-3;
+  const std::size_t max_lobes = 16;
+  const auto r = report::recommend_probe_by_storage(m, budget, max_lobes, no_messages);
+  ASSERT_TRUE(r.choice && r.runner_up);
+  EXPECT_EQ(r.tried[*r.choice].probe.label(), "1 SG");
+  EXPECT_LT(r.lobe_cap, max_lobes);
+  EXPECT_LT(r.tried[*r.runner_up].probe.floats(), 7 * (r.lobe_cap + 1))
+      << r.tried[*r.runner_up].probe.label() << ", ladder to " << r.lobe_cap;
+}
+
 TEST(ProbeRecommend, CliWritesAProbeThatExports) {
   const sglab::test::TempDir dir("probe_recommend");
   const auto map_file = (dir.path / "light.exr").string();
