@@ -257,6 +257,18 @@ TEST(Probes, OneLobeIsTheExactSgIrradiance) {
 
 namespace {
 
+// A 32 × 16 map of SG lights over a constant sky.
+Map lobes_map(const std::vector<envmap::Lobe>& lights, const Vec3& sky) {
+  return map_of(32, [&](const Vec3& w) {
+    Vec3 v = sky;
+    for (const auto& l : lights) {
+      const double g = std::exp(l.sharpness * (dot(w, l.axis) - 1));
+      for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += l.amplitude[ch] * g;
+    }
+    return v;
+  });
+}
+
 TEST(Probes, LobeLadderIsMonotoneAndRecoversKnownLobes) {
   // A 32 × 16 map made of three lobes; fits on its irradiance, judged densely.
   const std::vector<envmap::Lobe> known = {
@@ -264,14 +276,7 @@ TEST(Probes, LobeLadderIsMonotoneAndRecoversKnownLobes) {
       {{0.8, 0.0, -0.6}, 3.0, {0.4, 0.6, 0.9}},
       {{0.0, -0.6, 0.8}, 20.0, {3.0, 2.0, 1.0}},
   };
-  const Map m = map_of(32, [&](const Vec3& w) {
-    Vec3 v{0, 0, 0};
-    for (const auto& l : known) {
-      const double g = std::exp(l.sharpness * (dot(w, l.axis) - 1));
-      for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += l.amplitude[ch] * g;
-    }
-    return v;
-  });
+  const Map m = lobes_map(known, {0, 0, 0});
   const envmap::MapIrradiance field(m);
   const auto truth = envmap::dense_truth(field, 1000);
   const auto normals = sglab::reference::fibonacci_normals(256);
@@ -340,14 +345,7 @@ TEST(Probes, MinimaxRefinementLowersTheLobesMaxError) {
       {{0.8, 0.0, -0.6}, 3.0, {0.4, 0.6, 0.9}},
       {{0.0, -0.6, 0.8}, 20.0, {3.0, 2.0, 1.0}},
   };
-  const Map m = map_of(32, [&](const Vec3& w) {
-    Vec3 v{0, 0, 0};
-    for (const auto& l : known) {
-      const double g = std::exp(l.sharpness * (dot(w, l.axis) - 1));
-      for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += l.amplitude[ch] * g;
-    }
-    return v;
-  });
+  const Map m = lobes_map(known, {0, 0, 0});
   const envmap::MapIrradiance field(m);
   const auto normals = sglab::reference::fibonacci_normals(256);
   const auto exact = field.at(normals);
@@ -426,14 +424,7 @@ TEST(Probes, RestartsNeverRaiseTheLaddersError) {
       {{0.0, -0.6, 0.8}, 20.0, {3.0, 2.0, 1.0}},
       {{-0.6, 0.8, 0.0}, 60.0, {1.0, 3.0, 1.0}},
   };
-  const Map m = map_of(32, [&](const Vec3& w) {
-    Vec3 v{0.2, 0.3, 0.4};
-    for (const auto& l : known) {
-      const double g = std::exp(l.sharpness * (dot(w, l.axis) - 1));
-      for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += l.amplitude[ch] * g;
-    }
-    return v;
-  });
+  const Map m = lobes_map(known, {0.2, 0.3, 0.4});
   const envmap::MapIrradiance field(m);
   const auto normals = sglab::reference::fibonacci_normals(256);
   const auto exact = field.at(normals);
