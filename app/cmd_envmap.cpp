@@ -558,7 +558,8 @@ void add_envmap_command(CLI::App& app) {
     cmd->add_option("--restarts", a->restarts,
                     "with --by: also fit a second lobe ladder whose every step tries this many "
                     "starts drawn from the map's light, and keep the better of the two at each "
-                    "count (slower; never a larger error)")
+                    "count (slower; no lobe count's error rises, the SH + lobes ladder grown from "
+                    "it may move either way)")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
     add_path_option(cmd, "--write-probe", a->write_probe,
