@@ -710,11 +710,12 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
 
 namespace {
 
-// One ladder (fit_lobe_ladder), with `restarts` restarts at each step.
-std::vector<LadderStep> lobe_ladder_path(const Map& work, const std::vector<Vec3>& fit_normals,
-                                         const std::vector<Vec3>& exact,
-                                         const std::vector<std::size_t>& counts, const Judge& judge,
-                                         int max_iterations, int minimax_rounds, int restarts) {
+// One ladder (fit_lobe_ladder), with `restarts` restarts at each step: the
+// steps of `counts` appended to `ladder` (each larger than its last count).
+void lobe_ladder_path(std::vector<LadderStep>& ladder, const Map& work,
+                      const std::vector<Vec3>& fit_normals, const std::vector<Vec3>& exact,
+                      const std::vector<std::size_t>& counts, const Judge& judge,
+                      int max_iterations, int minimax_rounds, int restarts) {
   const double scale = irradiance_scale(exact);
   const Samples samples = samples_of(work);
   const double kmax = kappa_max(samples);
@@ -729,7 +730,6 @@ std::vector<LadderStep> lobe_ladder_path(const Map& work, const std::vector<Vec3
     c.probe.lobes = lobes_of(p, scale);
     return c;
   }};
-  std::vector<LadderStep> ladder;
   for (const std::size_t n : counts) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<LadderStep> candidates;
@@ -792,7 +792,18 @@ std::vector<LadderStep> lobe_ladder_path(const Map& work, const std::vector<Vec3
     }
     keep_best(candidates, judge, t0, ladder, refine);
   }
-  return ladder;
+}
+
+// The better of two ladders at each count (the first of equals), each step's
+// seconds the sum of both.
+std::vector<LadderStep> better_of(const std::vector<LadderStep>& a,
+                                  const std::vector<LadderStep>& b) {
+  std::vector<LadderStep> out = a;
+  for (std::size_t k = 0; k < out.size() && k < b.size(); ++k) {
+    if (b[k].judged < a[k].judged) out[k] = b[k];
+    out[k].seconds = a[k].seconds + b[k].seconds;
+  }
+  return out;
 }
 
 }  // namespace
@@ -805,21 +816,45 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
     if (counts[k] == 0 || (k > 0 && counts[k] <= counts[k - 1]))
       throw std::logic_error("fit_lobe_ladder: lobe counts must increase from 1 or more");
   if (!counts.empty()) check_lobe_count(work, counts.back());
-  std::vector<LadderStep> ladder =
-      lobe_ladder_path(work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds, 0);
-  if (restarts > 0) {
-    // A second ladder with restarts; at each count the better of the two (the
-    // first of equals), so neither ladder's error is exceeded and both being
-    // non-increasing, the result is too.
-    const std::vector<LadderStep> other = lobe_ladder_path(
-        work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds, restarts);
-    for (std::size_t k = 0; k < ladder.size(); ++k) {
-      const double seconds = ladder[k].seconds + other[k].seconds;
-      if (other[k].judged < ladder[k].judged) ladder[k] = other[k];
-      ladder[k].seconds = seconds;
-    }
+  std::vector<LadderStep> ladder;
+  lobe_ladder_path(ladder, work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds,
+                   0);
+  if (restarts <= 0) return ladder;
+  // A second ladder with restarts; at each count the better of the two, so
+  // neither ladder's error is exceeded and both being non-increasing, the
+  // result is too.
+  std::vector<LadderStep> other;
+  lobe_ladder_path(other, work, fit_normals, exact, counts, judge, max_iterations, minimax_rounds,
+                   restarts);
+  return better_of(ladder, other);
+}
+
+LobeLadder::LobeLadder(const Map& work, const std::vector<Vec3>& normals,
+                       const std::vector<Vec3>& exact, Judge judge, int max_iterations,
+                       int minimax_rounds, int restarts)
+    : work_(work),
+      normals_(normals),
+      exact_(exact),
+      judge_(std::move(judge)),
+      max_iterations_(max_iterations),
+      minimax_rounds_(minimax_rounds),
+      restarts_(restarts) {}
+
+const std::vector<LadderStep>& LobeLadder::grow_to(std::size_t max_lobes) {
+  if (max_lobes <= plain_.size()) return steps_;
+  check_lobe_count(work_, max_lobes);
+  std::vector<std::size_t> counts;
+  for (std::size_t n = plain_.size() + 1; n <= max_lobes; ++n) counts.push_back(n);
+  lobe_ladder_path(plain_, work_, normals_, exact_, counts, judge_, max_iterations_,
+                   minimax_rounds_, 0);
+  if (restarts_ > 0) {
+    lobe_ladder_path(restarted_, work_, normals_, exact_, counts, judge_, max_iterations_,
+                     minimax_rounds_, restarts_);
+    steps_ = better_of(plain_, restarted_);
+  } else {
+    steps_ = plain_;
   }
-  return ladder;
+  return steps_;
 }
 
 std::vector<LadderStep> fit_hybrid_ladder(const Map& work, const std::vector<Vec3>& fit_normals,

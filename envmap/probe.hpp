@@ -226,6 +226,26 @@ std::vector<LadderStep> fit_lobe_ladder(const Map& work, const std::vector<Vec3>
                                         int max_iterations = 100,
                                         int minimax_rounds = kMinimaxRounds, int restarts = 0);
 
+// fit_lobe_ladder grown on demand: grow_to(n) fits the counts after those
+// already fitted up to n and returns every step, so growing to 4 and then to 8
+// gives exactly fit_lobe_ladder to 8 (deterministic) at the cost of 8 steps,
+// not 12. The map, normals and irradiance are referenced, not copied.
+class LobeLadder {
+ public:
+  LobeLadder(const Map& work, const std::vector<Vec3>& normals, const std::vector<Vec3>& exact,
+             Judge judge, int max_iterations = 100, int minimax_rounds = kMinimaxRounds,
+             int restarts = 0);
+  const std::vector<LadderStep>& grow_to(std::size_t max_lobes);
+
+ private:
+  const Map& work_;
+  const std::vector<Vec3>& normals_;
+  const std::vector<Vec3>& exact_;
+  Judge judge_;
+  int max_iterations_, minimax_rounds_, restarts_;
+  std::vector<LadderStep> plain_, restarted_, steps_;  // the two ladders, the better of each
+};
+
 // L2 SH + k lobes, k = 1 … max_lobes, fitted jointly: candidates the k-lobe
 // probe of `lobe_ladder` with SH fitted to what it leaves, the (k − 1) hybrid
 // plus the best new lobe (k = 1: the fitted L2 SH), and the (k − 1) hybrid

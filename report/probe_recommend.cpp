@@ -129,7 +129,8 @@ bool ladder_done(const std::vector<envmap::LadderStep>& steps, double budget) {
 }
 
 // The ladder `fit(cap)` from 4 steps, doubled until ladder_done or `limit`
-// (each fit deterministic: a longer ladder starts with the shorter one's steps).
+// (each fit deterministic: a longer ladder starts with the shorter one's steps;
+// the lobe ladder's fit grows an envmap::LobeLadder, so its steps are fitted once).
 template <class Fit>
 std::vector<envmap::LadderStep> ladder_until_done(std::size_t limit, double budget, Fit fit) {
   std::vector<envmap::LadderStep> steps;
@@ -168,10 +169,11 @@ ProbeRecommendation recommend_probe_by_storage(const envmap::Map& map, double bu
   const std::size_t limit = std::min<std::size_t>(supported, bound / 7);
   std::vector<envmap::LadderStep> lobes;
   if (limit > 0) {
+    envmap::LobeLadder ladder(c.work, c.normals, c.exact, c.judge(), 100, envmap::kMinimaxRounds,
+                              restarts);
     lobes = ladder_until_done(limit, budget, [&](std::size_t cap) {
       note(fmt::format("SG lobes, 1 to {}", cap));
-      return envmap::fit_lobe_ladder(c.work, c.normals, c.exact, cap, c.judge(), 100,
-                                     envmap::kMinimaxRounds, restarts);
+      return ladder.grow_to(cap);
     });
     for (const auto& s : lobes) c.add(r, "SG lobes", s.probe);
   }
@@ -199,10 +201,11 @@ ProbeRecommendation recommend_probe_by_cost(const envmap::Map& map, double budge
   Candidates c(map, note);
   c.add_sh(r);
   const std::size_t supported = std::min(max_lobes, envmap::max_lobes(c.work));
+  envmap::LobeLadder ladder(c.work, c.normals, c.exact, c.judge(), 100, envmap::kMinimaxRounds,
+                            restarts);
   const auto lobes = ladder_until_done(supported, budget, [&](std::size_t cap) {
     note(fmt::format("SG lobes, 1 to {}", cap));
-    return envmap::fit_lobe_ladder(c.work, c.normals, c.exact, cap, c.judge(), 100,
-                                   envmap::kMinimaxRounds, restarts);
+    return ladder.grow_to(cap);
   });
   for (const auto& s : lobes) c.add(r, "SG lobes", s.probe);
   r.lobe_cap = lobes.size();

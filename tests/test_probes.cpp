@@ -442,4 +442,48 @@ TEST(Probes, RestartsNeverRaiseTheLaddersError) {
   }
 }
 
+// Grown to 2 lobes and then to 4, a LobeLadder is fit_lobe_ladder to 4, lobe
+// for lobe, and judges no more probes than it (its first steps are not refitted).
+TEST(Probes, LobeLadderGrownInTwoStepsIsTheLadder) {
+  const Map m = lobes_map({{{0.0, 0.0, 1.0}, 30.0, {2.0, 2.0, 2.0}},
+                           {{0.8, 0.0, -0.6}, 3.0, {0.4, 0.6, 0.9}},
+                           {{0.0, -0.6, 0.8}, 12.0, {3.0, 2.0, 1.0}}},
+                          {0.2, 0.3, 0.4});
+  const envmap::MapIrradiance field(m);
+  const auto normals = sglab::reference::fibonacci_normals(256);
+  const auto exact = field.at(normals);
+  for (int restarts : {0, 2}) {
+    std::size_t judged_whole = 0, judged_grown = 0;
+    const auto whole = envmap::fit_lobe_ladder(
+        m, normals, exact, 4,
+        [&](const Probe& p) {
+          ++judged_whole;
+          return max_residual(p, normals, exact);
+        },
+        50, envmap::kMinimaxRounds, restarts);
+    envmap::LobeLadder ladder(
+        m, normals, exact,
+        [&](const Probe& p) {
+          ++judged_grown;
+          return max_residual(p, normals, exact);
+        },
+        50, envmap::kMinimaxRounds, restarts);
+    EXPECT_EQ(ladder.grow_to(2).size(), 2u);
+    const auto grown = ladder.grow_to(4);
+    EXPECT_EQ(ladder.grow_to(3).size(), 4u);  // never shrinks, fits nothing
+    ASSERT_EQ(grown.size(), whole.size());
+    for (std::size_t k = 0; k < whole.size(); ++k) {
+      EXPECT_EQ(grown[k].judged, whole[k].judged) << restarts << " restarts, " << k + 1;
+      EXPECT_EQ(grown[k].start, whole[k].start) << restarts << " restarts, " << k + 1;
+      ASSERT_EQ(grown[k].probe.lobes.size(), whole[k].probe.lobes.size());
+      for (std::size_t l = 0; l < whole[k].probe.lobes.size(); ++l) {
+        EXPECT_EQ(grown[k].probe.lobes[l].axis, whole[k].probe.lobes[l].axis);
+        EXPECT_EQ(grown[k].probe.lobes[l].sharpness, whole[k].probe.lobes[l].sharpness);
+        EXPECT_EQ(grown[k].probe.lobes[l].amplitude, whole[k].probe.lobes[l].amplitude);
+      }
+    }
+    EXPECT_EQ(judged_grown, judged_whole) << restarts << " restarts";
+  }
+}
+
 }  // namespace
