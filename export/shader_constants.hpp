@@ -59,6 +59,15 @@ ConstantSet named(std::string cpp_name, const SglabAccParams<double, N, D, M>& p
           {}};
 }
 
+template <std::size_t N, std::size_t D>
+ConstantSet named(std::string cpp_name, const SglabTabParams<double, N, D>& p) {
+  return {fmt::format("SglabTabParams<double, {}, {}>", N, D),
+          std::move(cpp_name),
+          {{"coef", std::vector<double>(std::begin(p.coef), std::end(p.coef))}},
+          {},
+          {}};
+}
+
 // The values of a member; throws std::invalid_argument naming the set when it has none.
 const std::vector<double>& member(const ConstantSet& set, std::string_view name);
 

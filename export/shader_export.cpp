@@ -42,6 +42,7 @@ std::string prelude(const Ctx& c) {
   return "#include <cmath>\n\nnamespace sglab_export_{ID} {\n" + subst(R"(using std::abs;
 using std::exp;
 using std::exp2;
+using std::floor;
 using std::log;
 using std::sqrt;
 inline float min(float a, float b) { return b < a ? b : a; }
@@ -54,6 +55,10 @@ struct float3 {
 struct float2 {
   float x, y;
   float2(float a, float b) : x(a), y(b) {}
+};
+struct float4 {
+  float x, y, z, w;
+  constexpr float4(float a, float b, float c, float d) : x(a), y(b), z(c), w(d) {}
 };
 inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 

@@ -428,6 +428,56 @@ std::string helper_sglab_mid(const Ctx& c, const Slots& slots) {
              c);
 }
 
+// sglab_tab's κ-only part: the cell of u = √κ/(1 + √κ) and its seven cubics (the table
+// {P}model_coef, a row of four coefficients per cubic, 7 rows a cell), as sglab/sglab_tab.hpp
+// sglab_tab_light, E(1, κ) apart: `lhs`A = …; … `lhs`V = …; in the caller's scope.
+std::string sglab_tab_values_text(const Ctx& c, const Slots& slots, const std::string& lhs) {
+  const ConstantSet& set = slot(slots, "model");
+  const std::string table = names(c, "model", set, "coef")[0];
+  const std::size_t cells = member(set, "coef").size() / 28;
+  // Row 7j + m of the table holds the cubic of value m on cell j, lowest order first.
+  const auto cubic = [&](int m) {
+    return fmt::format("{0}[o + {1}].x + t * ({0}[o + {1}].y + t * ({0}[o + {1}].z + t * "
+                       "{0}[o + {1}].w))",
+                       table, m);
+  };
+  return subst(fmt::format(R"(  float r = sqrt(kappa);
+  float x = r / (1.0f + r) * {0}.0f;
+  float j = min(floor(x), {1}.0f);
+  float t = 2.0f * (x - j) - 1.0f;
+  int o = int(j) * 7;
+  {2}A = {3};
+  {2}B = {4};
+  {2}D = {5};
+  {2}G = {6};
+  {2}H = {7};
+  {2}S = {8} - log(1.0f + kappa);
+  {2}V = kappa * ({9});
+)",
+                           cells, cells - 1, lhs, cubic(0), cubic(1), cubic(2), cubic(3), cubic(4),
+                           cubic(5), cubic(6)),
+               c);
+}
+
+std::string helper_sglab_tab(const Ctx& c, const Slots& slots) {
+  return upper_over_two_pi_text(c) +
+         subst(R"(// sglab_tab: E = E(1, kappa) max(0, A + B (c + sqrt(c^2 + g)) + D c^2 + (G + H c^2) g),
+// g = exp(clamp(S - V c^2, -80, 80)), S = s - ln(1 + kappa), V = kappa v; A, B, D, G, H, s, v
+// cubics in t on the cell j of u = sqrt(kappa)/(1 + sqrt(kappa)) (equal cells of [0, 1],
+// t = 2(u cells - j) - 1), 28 coefficients a cell in the table (sglab/sglab_tab.hpp).
+{INLINE}float {P}tab(float cosine, float kappa) {
+)",
+               c) +
+         sglab_tab_values_text(c, slots, "float ") + subst(R"(  float c2 = cosine * cosine;
+  float g = exp(clamp(S - V * c2, -80.0f, 80.0f));
+  float e = (A + B * (cosine + sqrt(c2 + g)) + D * c2 + (G + H * c2) * g) *
+            (6.28318548f * {P}upper_over_two_pi(kappa));
+  return 0.5f * (e + abs(e));
+}
+)",
+                                                          c);
+}
+
 // The half form of sglab_fast: its κ-only part (E(1, κ) and the rational A, B,
 // C, V, whose κ^4 overflows half above κ = 16) in float, the per-pixel shape in
 // half: the runtime's per-light split (sglab/sglab_fast.hpp sglab_fast_light,
@@ -702,6 +752,13 @@ const std::vector<ShaderMethod>& shader_methods() {
        ErfUse::none,
        {helper_sglab_mid},
        "  return {P}mid(cosine, kappa);\n"},
+      {"sglab_tab",
+       [] {
+         return Slots{{"model", named("sglab_tab_float", constants::sglab_tab_float)}};
+       },
+       ErfUse::none,
+       {helper_sglab_tab},
+       "  return {P}tab(cosine, kappa);\n"},
       {"sglab_acc1",
        [] {
          return Slots{{"model", named("sglab_acc1", constants::sglab_acc1)}};

@@ -60,6 +60,9 @@ std::string helper_poles2024(const Ctx& c, const Slots&);
 std::string helper_sglab_acc_steepness(const Ctx& c, const Slots& slots);
 std::string helper_sglab_fast(const Ctx& c, const Slots& slots);
 std::string helper_sglab_mid(const Ctx& c, const Slots& slots);
+std::string helper_sglab_tab(const Ctx& c, const Slots& slots);
+// sglab_tab's A … V of κ as `lhs`A = …; (shader_methods.cpp).
+std::string sglab_tab_values_text(const Ctx& c, const Slots& slots, const std::string& lhs);
 std::string helper_sglab_lite(const Ctx& c, const Slots& slots);
 std::string helper_sglab_min(const Ctx& c, const Slots& slots);
 // The monic Q(k) of sglab_lite in Horner form, its coefficients `q` lowest order first.

@@ -132,6 +132,35 @@ std::string pixel_sglab_mid(const Ctx& c, const Slots&) {
       c);
 }
 
+std::vector<LightField> fields_sglab_tab(const Slots&) {
+  return {{"a", "A(kappa) E(1, kappa)"}, {"b", "B(kappa) E(1, kappa)"},
+          {"d", "D(kappa) E(1, kappa)"}, {"g", "G(kappa) E(1, kappa)"},
+          {"h", "H(kappa) E(1, kappa)"}, {"s", "S(kappa) = s - ln(1 + kappa)"},
+          {"v", "V(kappa) = kappa v"}};
+}
+std::string light_sglab_tab(const Ctx& c, const Slots& slots) {
+  return sglab_tab_values_text(c, slots, "float ") +
+         subst(R"(  float e1 = 6.28318548f * {P}upper_over_two_pi(kappa);
+  light.a = A * e1;
+  light.b = B * e1;
+  light.d = D * e1;
+  light.g = G * e1;
+  light.h = H * e1;
+  light.s = S;
+  light.v = V;
+)",
+               c);
+}
+std::string pixel_sglab_tab(const Ctx& c, const Slots&) {
+  return subst(
+      R"(  float c2 = cosine * cosine;
+  float e = exp(clamp(light.s - light.v * c2, -80.0f, 80.0f));
+  float f = light.a + light.b * (cosine + sqrt(c2 + e)) + light.d * c2 + (light.g + light.h * c2) * e;
+  return 0.5f * (f + abs(f));
+)",
+      c);
+}
+
 std::vector<LightField> fields_sglab_acc(const Slots& slots) {
   std::vector<LightField> f = {{"t", "steepness t(kappa)"},
                                {"half_erfc_t", "erfc(t)/2"},
@@ -348,6 +377,12 @@ const std::vector<SplitForm>& split_forms() {
                  {helper_sglab_mid},
                  light_sglab_mid,
                  pixel_sglab_mid});
+    v.push_back({"sglab_tab",
+                 "sglab::SglabTabLight<float> (sglab/sglab_tab.hpp sglab_tab_light)",
+                 fields_sglab_tab,
+                 {helper_sglab_tab},
+                 light_sglab_tab,
+                 pixel_sglab_tab});
     for (std::string_view id : {"sglab_acc1", "sglab_acc2", "sglab_acc3", "sglab_acc4"})
       v.push_back(acc), v.back().id = id;
     return v;

@@ -39,12 +39,13 @@ std::string replace_all(std::string s, std::string_view from, std::string_view t
   return s;
 }
 
-// {P}: the method's prefix; {VEC3}, {VEC2}: the vector types; {INLINE}: `inline ` in C++.
+// {P}: the method's prefix; {VEC4}, {VEC3}, {VEC2}: the vector types; {INLINE}: `inline ` in C++.
 std::string subst(std::string_view tmpl, const Ctx& c) {
   std::string s(tmpl);
   s = replace_all(s, "{P}", c.prefix);
   s = replace_all(s, "{VEC3}", c.lang == Language::glsl ? "vec3" : "float3");
   s = replace_all(s, "{VEC2}", c.lang == Language::glsl ? "vec2" : "float2");
+  s = replace_all(s, "{VEC4}", c.lang == Language::glsl ? "vec4" : "float4");
   s = replace_all(s, "{INLINE}", c.lang == Language::cpp ? "inline " : "");
   s = replace_all(s, "{ENTRY}", "sglab_irradiance_" + c.id);
   return s;
@@ -55,7 +56,7 @@ std::vector<std::string> names(const Ctx& c, std::string_view role, const Consta
                                std::string_view m) {
   const auto& v = member(s, m);
   std::vector<std::string> out;
-  if (v.size() == 1) {
+  if (v.size() == 1 || is_table(v)) {
     out.push_back(fmt::format("{}{}_{}", c.prefix, role, m));
   } else {
     for (std::size_t i = 0; i < v.size(); ++i)
@@ -72,6 +73,28 @@ std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSe
                                 io::comment_text(s.cpp_name));
   for (const auto& [m, v] : s.members) {
     const auto n = names(c, role, s, m);
+    if (is_table(v)) {
+      // One array of 4-vectors, a row of four values each: GLSL `vec4 x[n] = vec4[n](vec4(…),
+      // …);`, HLSL `static float4 x[n] = {float4(…), …};`, C++ `inline constexpr float4 …`.
+      // A private global the code never writes, not a `const` one: glslang makes a constant
+      // array indexed by a varying index a copy at every use, and Mesa took 80 s (GLSL) and
+      // 100 s (HLSL) to compile eight inlined calls of sglab_tab (the loop harness of `sglab
+      // gpucost`), against 0.3 s now, for the same code (ACO's inverse throughput is the
+      // same); an array of floats instead of 4-vectors took 20 s for one call.
+      const std::string vec = c.lang == Language::glsl ? "vec4" : "float4";
+      std::string items;
+      for (std::size_t i = 0; i < v.size(); i += 4)
+        items += fmt::format("{}\n    {}({}, {}, {}, {})", i == 0 ? "" : ",", vec, lit(v[i]),
+                             lit(v[i + 1]), lit(v[i + 2]), lit(v[i + 3]));
+      const std::string_view vkw = c.lang == Language::glsl   ? ""
+                                   : c.lang == Language::hlsl ? "static "
+                                                              : "inline constexpr ";
+      out += c.lang == Language::glsl
+                 ? fmt::format("{}{} {}[{}] = {}[{}]({});\n", vkw, vec, n[0], v.size() / 4, vec,
+                               v.size() / 4, items)
+                 : fmt::format("{}{} {}[{}] = {{{}}};\n", vkw, vec, n[0], v.size() / 4, items);
+      continue;
+    }
     for (std::size_t i = 0; i < v.size(); ++i)
       out += fmt::format("{} {} = {};\n", kw, n[i], lit(v[i]));
   }

@@ -28,10 +28,16 @@ std::string replace_all(std::string s, std::string_view from, std::string_view t
 // {P}: the method's prefix; {VEC3}, {VEC2}: the vector types; {INLINE}: `inline ` in C++.
 std::string subst(std::string_view tmpl, const Ctx& c);
 
-// The constant names of a slot: {P}<role>_<member>, arrays <member><i>.
+// The constant names of a slot: {P}<role>_<member>, arrays <member><i>; a member longer
+// than kTableMembers (sglab_tab's table) is one array of 4-vectors, {P}<role>_<member>, row i
+// its values 4i … 4i + 3, which the code indexes.
+inline constexpr std::size_t kTableMembers = 64;
+inline bool is_table(const std::vector<double>& v) {
+  return v.size() > kTableMembers && v.size() % 4 == 0;
+}
 std::vector<std::string> names(const Ctx& c, std::string_view role, const ConstantSet& s,
                                std::string_view m);
-// The declarations of a slot's constants, one per value.
+// The declarations of a slot's constants, one per value (a table: one array).
 std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSet& s);
 
 // The half type of a language: GLSL float16_t, HLSL `half`.

@@ -37,6 +37,7 @@ std::span<const ParamStruct> param_structs() {
       {"SglabMidParams", {}, {"a[5]", "b[5]", "d[5]", "s[5]", "v[5]", "q[4]", "kappa_max"}},
       {"SglabLiteParams", {}, {"a[5]", "b[5]", "c[5]", "v[5]", "q[4]", "kappa_max"}},
       {"SglabMinParams", {}, {"a[3]", "b[2]", "g[2]", "s"}},
+      {"SglabTabParams", {"N", "D"}, {"coef[N * 7 * (D + 1)]"}},
       {"SglabAccParams", {"N", "D", "M"}, {"steep[2 * M + 1]", "num[N * (D + 1)]", "scale"}},
   };
   return table;
@@ -74,6 +75,7 @@ std::span<const RequiredSet> required_sets() {
       {"sglab_lite_float", "SglabLiteParams<double>"},
       {"sglab_mid_float", "SglabMidParams<double>"},
       {"sglab_min_float", "SglabMinParams<double>"},
+      {"sglab_tab_float", "SglabTabParams<double, 32, 3>"},
       {"steepness2022_irradiance", "Steepness2022Params<double>"},
       {"steepness2022_optimal_t", "Steepness2022Params<double>"},
       {"steepness2022_published", "Steepness2022Params<double>"},
@@ -305,9 +307,9 @@ ResolvedType resolve_cpp_type(std::string_view text, const std::string& where) {
     const auto length =
         LengthExpression(m.substr(bracket + 1, m.size() - bracket - 2), vars).evaluate();
     if (!length) throw bad(fmt::format("internal: cannot evaluate the length of member {}", m));
-    if (*length < 1 || *length > static_cast<long long>(kMaxArrayLength))
+    if (*length < 1 || *length > static_cast<long long>(kMaxArrayMembers))
       throw bad(fmt::format("member {} would have {} elements (must be 1 to {})",
-                            m.substr(0, bracket), *length, kMaxArrayLength));
+                            m.substr(0, bracket), *length, kMaxArrayMembers));
     r.members.emplace_back(std::string(m.substr(0, bracket)), static_cast<std::size_t>(*length));
   }
   return r;

@@ -45,7 +45,9 @@ struct ConstantsError : std::runtime_error {
 // Limits on a constants file.
 inline constexpr std::size_t kMaxConstantsFileBytes = 1 << 20;  // 1 MiB (a set is a few KB)
 inline constexpr int kMaxJsonDepth = io::kMaxJsonDepth;         // nesting of objects and arrays
-inline constexpr std::size_t kMaxArrayLength = 64;              // size parameters and array members
+inline constexpr std::size_t kMaxArrayLength = 64;              // size parameters
+// array members (sglab_tab's table: 32 cells × 7 cubics = 896)
+inline constexpr std::size_t kMaxArrayMembers = 1024;
 // cpp_name, target, variant, coefficient names
 inline constexpr std::size_t kMaxIdentifierLength = 128;
 
@@ -83,8 +85,8 @@ struct ResolvedType {
   std::vector<std::pair<std::string, std::size_t>> members;
 };
 // Throws ConstantsError (with `where` in front) for an unknown struct, a wrong
-// number of size parameters, a malformed spelling or an array length outside
-// [1, kMaxArrayLength].
+// number of size parameters, a malformed spelling, a size parameter outside
+// [0, kMaxArrayLength] or an array length outside [1, kMaxArrayMembers].
 ResolvedType resolve_cpp_type(std::string_view text, const std::string& where);
 
 // Parses untrusted JSON text (at most kMaxConstantsFileBytes) with the one

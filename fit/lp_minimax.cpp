@@ -64,7 +64,9 @@ constexpr double kNegligible = 1e-15;
 // With `lower`, the second constraint only on the rows i where lower[i].
 LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& w, const std::vector<std::size_t>& rows,
-                         const std::vector<bool>* lower = nullptr) {
+                         const std::vector<bool>* lower = nullptr,
+                         const Eigen::VectorXd* x_lo = nullptr,
+                         const Eigen::VectorXd* x_hi = nullptr) {
   const int n = int(a.cols()), m = int(rows.size());
   Eigen::MatrixXd as(m, n);
   Eigen::VectorXd ys(m);
@@ -99,6 +101,11 @@ LpMinimaxResult solve_lp(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
   std::vector<double> col_lo(std::size_t(n + 1), -COIN_DBL_MAX),
       col_hi(std::size_t(n + 1), COIN_DBL_MAX);
   col_lo[std::size_t(n)] = 0;
+  // A box on x, in the scaled unknowns x' = x·scale (infinite entries stay unbounded).
+  for (int j = 0; j < n; ++j) {
+    if (x_lo && std::isfinite((*x_lo)[j])) col_lo[std::size_t(j)] = (*x_lo)[j] * scale[j];
+    if (x_hi && std::isfinite((*x_hi)[j])) col_hi[std::size_t(j)] = (*x_hi)[j] * scale[j];
+  }
   std::vector<double> obj(std::size_t(n + 1), 0.0);
   obj[std::size_t(n)] = 1;
   std::vector<double> row_lo(std::size_t(2 * m)), row_hi(std::size_t(2 * m));
@@ -199,6 +206,33 @@ LpMinimaxResult lp_minimax_upper(const Eigen::MatrixXd& a, const Eigen::VectorXd
   std::vector<std::size_t> rows(std::size_t(a.rows()));
   std::iota(rows.begin(), rows.end(), std::size_t(0));
   LpMinimaxResult out = solve_lp(a, y, w, rows, &lower);
+  const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x);
+  out.achieved = 0;
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    const double v = lower[std::size_t(i)] ? std::abs(r[i]) : std::max(r[i], 0.0);
+    if (v > out.achieved) out.achieved = v, out.worst = std::size_t(i);
+  }
+  out.converged = true;
+  return out;
+}
+
+LpMinimaxResult lp_minimax_upper_boxed(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                                       const Eigen::VectorXd& w, const std::vector<bool>& lower,
+                                       const Eigen::VectorXd& x_lo, const Eigen::VectorXd& x_hi) {
+  const auto m = a.rows(), n = a.cols();
+  if (n == 0 || y.size() != m || w.size() != m || std::size_t(m) != lower.size() ||
+      x_lo.size() != n || x_hi.size() != n)
+    throw std::invalid_argument(
+        fmt::format("lp_minimax: A is {}x{} but y has {} rows, w {}, lower {}, the box {} and {}",
+                    m, n, y.size(), w.size(), lower.size(), x_lo.size(), x_hi.size()));
+  if (!a.allFinite() || !y.allFinite())
+    throw std::invalid_argument("lp_minimax: A or y has a non-finite entry");
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (!(x_lo[j] <= x_hi[j]))
+      throw std::invalid_argument(fmt::format("lp_minimax: the box of unknown {} is empty", j));
+  std::vector<std::size_t> rows(std::size_t(a.rows()));
+  std::iota(rows.begin(), rows.end(), std::size_t(0));
+  LpMinimaxResult out = solve_lp(a, y, w, rows, &lower, &x_lo, &x_hi);
   const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x);
   out.achieved = 0;
   for (Eigen::Index i = 0; i < r.size(); ++i) {

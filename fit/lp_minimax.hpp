@@ -71,6 +71,13 @@ LpMinimaxResult lp_minimax_on(const Eigen::MatrixXd& a, const Eigen::VectorXd& y
 LpMinimaxResult lp_minimax_upper(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
                                  const Eigen::VectorXd& w, const std::vector<bool>& lower);
 
+// lp_minimax_upper with x held in the box x_lo ≤ x ≤ x_hi (±inf entries: unbounded): the
+// step of a sequential LP with a trust region (fit/fit_sglab_tab.cpp). The box keeps the
+// LP bounded, so dependent or zero columns are allowed here (x is then one of the optima).
+LpMinimaxResult lp_minimax_upper_boxed(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                                       const Eigen::VectorXd& w, const std::vector<bool>& lower,
+                                       const Eigen::VectorXd& x_lo, const Eigen::VectorXd& x_hi);
+
 // The indices of the local maxima of |r_i| (r_i ≥ each neighbour in row
 // order) that exceed `level`, largest first, and the count of alternations
 // of sign among them: the equioscillation of a best approximation

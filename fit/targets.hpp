@@ -86,6 +86,7 @@ FitOutcome fit_sglab_fast(const FitSpec& spec);  // sglab_fast (fit/fit_sglab_fa
 FitOutcome fit_sglab_mid(const FitSpec& spec);   // sglab_mid (fit/fit_sglab_mid.cpp)
 FitOutcome fit_sglab_lite(const FitSpec& spec);  // sglab_lite (fit/fit_sglab_fast.cpp)
 FitOutcome fit_sglab_min(const FitSpec& spec);   // sglab_min (fit/fit_sglab_min.cpp)
+FitOutcome fit_sglab_tab(const FitSpec& spec);   // sglab_tab (fit/fit_sglab_tab.cpp)
 // sglab_acc<N> ladder, or its model order with max_error
 FitOutcome fit_sglab_acc(const FitSpec& spec);
 

@@ -149,6 +149,11 @@ constexpr FitTarget kTargets[] = {
      .kappa = true,
      .cold_start = true,
      .all = kDefaultAll},
+    {.name = "sglab-tab",
+     .fit = fit_sglab_tab,
+     .help = "sglab_tab's table of cubics",
+     .cold_start = true,
+     .all = kDefaultAll},
     // --kappa with --max-error: the model order for a range
     {.name = "sglab-acc",
      .fit = fit_sglab_acc,

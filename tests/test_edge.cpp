@@ -253,6 +253,7 @@ constexpr SubnormalLimit kSubnormalLimits[] = {
     {"sglab_mid", 4.6e-4, "exact E(1, κ) × fitted shape: its max peak_rel 4.2e−4 (sglab_mid.hpp)"},
     {"sglab_lite", 3.7e-3, "fitted rationals at κ̃ = 0: its card's bound (sglab_lite.hpp)"},
     {"sglab_min", 0.043, "fitted polynomials at y = 1/s: its card's bound (sglab_min.hpp)"},
+    {"sglab_tab", 1.2e-6, "exact E(1, κ) × the first cell's cubics at t = −1: its card's bound"},
     {"sglab_acc1", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc2", kRounding, "exact poles, as tokuyoshi2024"},
     {"sglab_acc3", kRounding, "exact poles, as tokuyoshi2024"},

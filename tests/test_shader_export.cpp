@@ -553,6 +553,8 @@ std::vector<std::pair<float, std::string>> fixed_constants() {
       {2.0f, "two (erfc(-x) = 2 - erfc(x), product of SGs)"},
       {4.0f, "Hill: c1 = 1/(4 c0)"},
       {80.0f, "sglab_fast: e^-kappa argument stop"},
+      {32.0f, "sglab_tab: its 32 cells"},
+      {31.0f, "sglab_tab: its last cell"},
       {0x1p-13f, "[Tokuyoshi2022] Listing 3: erf ratio is c below t = 2^-13"},
       {static_cast<float>(2 * std::numbers::pi), "2 pi"},
       {static_cast<float>(4 * std::numbers::pi), "4 pi, S(d) of [Wang2009]"},
@@ -601,13 +603,42 @@ std::vector<std::string> check_export_literals(
   static const std::regex set_line(R"(// (\w+): \w+<[^>]*> (\w+))");
   static const std::regex decl(
       R"((?:const float|static const float|inline constexpr float) (\w+) = ([^;]+);)");
+  // A table (export/shader_text.hpp is_table): one array of 4-vectors over several lines,
+  // GLSL `vec4 x[n] = vec4[n](vec4(v0, v1, v2, v3), …);`, HLSL `static float4 x[n] =
+  // {float4(v0, …), …};`, C++ `inline constexpr float4 …`.
+  static const std::regex table_decl(
+      R"((?:vec4|static float4|inline constexpr float4) (\w+)\[(\d+)\] = (?:vec4\[\d+\]\(|\{)(.*))");
   static const auto fixed = fixed_constants();
   std::vector<std::string> declared_sets;
   std::string role, set_name, code;
   std::set<std::string> seen;  // "set.member[i]" declared
+  bool has_table = false;
   std::istringstream lines(source);
   for (std::string line; std::getline(lines, line);) {
     std::smatch m;
+    if (std::regex_match(line, m, table_decl)) {
+      const std::string name = m[1];
+      const auto size = 4 * std::stoul(m[2]);
+      has_table = true;
+      std::string text = m[3];
+      while (text.find(';') == std::string::npos && std::getline(lines, line)) text += line;
+      text = text.substr(0, text.find_last_of(")}"));
+      const auto lits = numeric_literals(text);
+      const std::string member = name.substr(prefix.size() + role.size() + 1);
+      const bool known = sets.count(set_name) && sets.at(set_name).contains(member);
+      EXPECT_TRUE(known) << what << ": " << name << " is no member of " << set_name;
+      if (!known) continue;
+      const auto& value = sets.at(set_name).at(member);
+      EXPECT_EQ(lits.size(), size) << what << ": " << name;
+      EXPECT_EQ(value.size(), size) << what << ": " << name;
+      if (lits.size() != size || value.size() != size) continue;
+      for (std::size_t i = 0; i < size; ++i) {
+        EXPECT_EQ(bits(lits[i].value), bits(static_cast<float>(value[i].get<double>())))
+            << what << ": " << name << "[" << i << "]";
+        seen.insert(fmt::format("{}.{}[{}]", set_name, member, i));
+      }
+      continue;
+    }
     if (std::regex_match(line, m, set_line)) {
       role = m[1];
       set_name = m[2];
@@ -652,10 +683,13 @@ std::vector<std::string> check_export_literals(
         EXPECT_TRUE(seen.count(fmt::format("{}.{}[{}]", name, member, i)))
             << what << ": " << name << "." << member << "[" << i << "] is not declared";
   }
-  // Every other literal is a fixed constant of the snippets.
+  // Every other literal is a fixed constant of the snippets; an export with a table also
+  // indexes it, with integer literals (the rows of a cell, 0 … 7).
   const std::vector<Literal> inline_literals = numeric_literals(code);
   EXPECT_FALSE(inline_literals.empty()) << what;
+  static const std::regex index_literal(R"(\d{1,2})");
   for (const Literal& l : inline_literals) {
+    if (has_table && std::regex_match(l.text, index_literal) && std::stoi(l.text) <= 7) continue;
     const bool known = std::any_of(fixed.begin(), fixed.end(),
                                    [&](const auto& f) { return bits(f.first) == bits(l.value); });
     EXPECT_TRUE(known) << what << ": literal " << l.text << " (" << sglab::test::hex(l.value)

@@ -126,6 +126,16 @@ struct SglabMinParams {
   S s;
 };
 
+// The table of sglab_tab (include/sglab/sglab_tab.hpp, docs/models.md#sglab_tab): N equal
+// cells of u = √κ/(1 + √κ) ∈ [0, 1]; on cell j, with local t = 2(uN − j) − 1 ∈ [−1, 1], each
+// of the kSglabTabValues values A, B, D, G, H, s, v is a polynomial of degree D in t,
+// coef[(j·7 + m)(D + 1) + i] the coefficient of t^i of value m (lowest order first).
+inline constexpr std::size_t kSglabTabValues = 7;
+template <class S, std::size_t N, std::size_t D>
+struct SglabTabParams {
+  S coef[N * 7 * (D + 1)];
+};
+
 // sglab's middle irradiance model (include/sglab/sglab_mid.hpp):
 // Ê = E(1, κ)·max(0, A + B(c + √(c² + e^{S − V c²})) + D c²) with
 // A = Pa(κ̃)/Q(κ̃), B = Pb/Q, D = Pd/Q, S = Ps/Q − ln(1 + κ̃), V = κ̃ Pv/Q, κ̃ = min(κ, kappa_max),

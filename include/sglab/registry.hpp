@@ -18,6 +18,7 @@
 #include "sglab_lite.hpp"
 #include "sglab_mid.hpp"
 #include "sglab_min.hpp"
+#include "sglab_tab.hpp"
 
 namespace sglab {
 
@@ -386,6 +387,23 @@ constexpr decltype(auto) with_irradiance_methods(Visitor&& visit) {
               }),
           [](float k) { return sglab_mid_light(k); },
           [](const SglabMidLight<float>& l, float c) { return sglab_mid_eval(l, c); }),
+      with_light_split<SglabTabLight<float>>(
+          with_batch32(
+              make_method({.id = "sglab_tab",
+                           .origin = Origin::sglab,
+                           .source = "docs/models.md#sglab_tab",
+                           .summary = "sglab_mid's shape with two more terms, its seven values "
+                                      "read from a table of cubics over 32 cells of κ",
+                           .form = "exact E(1, κ) × A + B(c + √(c² + g)) + Dc² + (G + Hc²)g, "
+                                   "g = e^{S − Vc²}, cubics per cell of √κ/(1 + √κ)",
+                           .constants = "sglab_tab_float",
+                           .valid = {.max_peak_rel = 1.2e-6}},
+                          [](auto c, auto k) { return irradiance_sglab_tab(c, k); }),
+              [](const float* c, const float* k, float* o, std::size_t n) {
+                irradiance_sglab_tab_batch(c, k, o, n);
+              }),
+          [](float k) { return sglab_tab_light(k); },
+          [](const SglabTabLight<float>& l, float c) { return sglab_tab_eval(l, c); }),
       // The sglab_acc ladder (sglab_acc.hpp): the tokuyoshi2024 form with a fitted correction
       // of its lerp factor of 1, 2, 3, 4 terms.
       detail::make_sglab_acc<constants::sglab_acc1>(

@@ -18,3 +18,4 @@
 #include "sglab_lite.hpp"
 #include "sglab_mid.hpp"
 #include "sglab_min.hpp"
+#include "sglab_tab.hpp"
