@@ -437,9 +437,10 @@ std::string sglab_tab_values_text(const Ctx& c, const Slots& slots, const std::s
   const std::size_t cells = member(set, "coef").size() / 28;
   // Row 7j + m of the table holds the cubic of value m on cell j, lowest order first.
   const auto cubic = [&](int m) {
-    return fmt::format("{0}[o + {1}].x + t * ({0}[o + {1}].y + t * ({0}[o + {1}].z + t * "
-                       "{0}[o + {1}].w))",
-                       table, m);
+    return fmt::format(
+        "{0}[o + {1}].x + t * ({0}[o + {1}].y + t * ({0}[o + {1}].z + t * "
+        "{0}[o + {1}].w))",
+        table, m);
   };
   return subst(fmt::format(R"(  float r = sqrt(kappa);
   float x = r / (1.0f + r) * {0}.0f;
@@ -461,21 +462,23 @@ std::string sglab_tab_values_text(const Ctx& c, const Slots& slots, const std::s
 
 std::string helper_sglab_tab(const Ctx& c, const Slots& slots) {
   return upper_over_two_pi_text(c) +
-         subst(R"(// sglab_tab: E = E(1, kappa) max(0, A + B (c + sqrt(c^2 + g)) + D c^2 + (G + H c^2) g),
+         subst(
+             R"(// sglab_tab: E = E(1, kappa) max(0, A + B (c + sqrt(c^2 + g)) + D c^2 + (G + H c^2) g),
 // g = exp(clamp(S - V c^2, -80, 80)), S = s - ln(1 + kappa), V = kappa v; A, B, D, G, H, s, v
 // cubics in t on the cell j of u = sqrt(kappa)/(1 + sqrt(kappa)) (equal cells of [0, 1],
 // t = 2(u cells - j) - 1), 28 coefficients a cell in the table (sglab/sglab_tab.hpp).
 {INLINE}float {P}tab(float cosine, float kappa) {
 )",
-               c) +
-         sglab_tab_values_text(c, slots, "float ") + subst(R"(  float c2 = cosine * cosine;
+             c) +
+         sglab_tab_values_text(c, slots, "float ") +
+         subst(R"(  float c2 = cosine * cosine;
   float g = exp(clamp(S - V * c2, -80.0f, 80.0f));
   float e = (A + B * (cosine + sqrt(c2 + g)) + D * c2 + (G + H * c2) * g) *
             (6.28318548f * {P}upper_over_two_pi(kappa));
   return 0.5f * (e + abs(e));
 }
 )",
-                                                          c);
+               c);
 }
 
 // The half form of sglab_fast: its κ-only part (E(1, κ) and the rational A, B,

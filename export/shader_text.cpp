@@ -143,8 +143,9 @@ std::size_t number_end(std::string_view text, std::size_t i) {
 
 // The HLSL intrinsics an export calls, which glslang's HLSL front end (12.0)
 // declares for float only: a half export calls {P}h_<name> (hlsl_half_prelude).
-constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2", "log",   "sqrt", "abs",
-                                                    "min", "max",  "clamp", "dot"};
+// (and int(x), which it does not construct from a half).
+constexpr std::string_view kHlslHalfIntrinsics[] = {"exp", "exp2",  "log", "sqrt",  "abs", "min",
+                                                    "max", "clamp", "dot", "floor", "int"};
 
 // One identifier of the code translated to half: float and the vector types
 // become half types; in HLSL the intrinsics become the prelude's functions.
@@ -153,6 +154,7 @@ std::string half_identifier(std::string_view id, bool call, const Ctx& c) {
   if (id == "float") return std::string(half_type(c.lang));
   if (id == "vec2" || id == "float2") return glsl ? "f16vec2" : "half2";
   if (id == "vec3" || id == "float3") return glsl ? "f16vec3" : "half3";
+  if (id == "vec4" || id == "float4") return glsl ? "f16vec4" : "half4";
   if (!glsl && call &&
       std::find(std::begin(kHlslHalfIntrinsics), std::end(kHlslHalfIntrinsics), id) !=
           std::end(kHlslHalfIntrinsics))
@@ -194,8 +196,9 @@ std::string to_half_code(std::string_view text, const Ctx& c) {
 }
 
 // The functions an HLSL half export calls in place of the float-only
-// intrinsics: min, max, clamp, abs and dot in half arithmetic; exp, exp2, log
-// and sqrt evaluated in float and rounded once to half.
+// intrinsics: min, max, clamp, abs and dot in half arithmetic; exp, exp2, log,
+// sqrt and floor evaluated in float and rounded once to half (floor exactly); int(x) through
+// float.
 std::string hlsl_half_prelude(const Ctx& c) {
   return subst(R"(// glslang's HLSL front end declares its intrinsics for float only: half versions.
 half {P}h_min(half a, half b) { return b < a ? b : a; }
@@ -207,6 +210,8 @@ half {P}h_exp(half x) { return (half)exp((float)x); }
 half {P}h_exp2(half x) { return (half)exp2((float)x); }
 half {P}h_log(half x) { return (half)log((float)x); }
 half {P}h_sqrt(half x) { return (half)sqrt((float)x); }
+half {P}h_floor(half x) { return (half)floor((float)x); }
+int {P}h_int(half x) { return (int)(float)x; }
 )",
                c);
 }

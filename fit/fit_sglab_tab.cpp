@@ -45,9 +45,9 @@ namespace {
 
 constexpr std::size_t kCells = 32, kDegree = 3;
 using TabParams = SglabTabParams<double, kCells, kDegree>;
-constexpr std::size_t kValues = kSglabTabValues;           // A, B, D, G, H, s, v
-constexpr std::size_t kLinearValues = 5;                   // A, B, D, G, H
-constexpr std::size_t kCoefs = kValues * (kDegree + 1);    // per cell
+constexpr std::size_t kValues = kSglabTabValues;         // A, B, D, G, H, s, v
+constexpr std::size_t kLinearValues = 5;                 // A, B, D, G, H
+constexpr std::size_t kCoefs = kValues * (kDegree + 1);  // per cell
 constexpr std::size_t kLinearCoefs = kLinearValues * (kDegree + 1);
 constexpr int kKappasPerCell = 10;  // equally spaced in u, both ends of the cell
 constexpr int kCosines = 201;       // uniform over [−1, 1]
@@ -64,7 +64,9 @@ constexpr int kPolishIterations = 0;
 constexpr const char* kValueNames[] = {"A", "B", "D", "G", "H", "s", "v"};
 
 double u_of(double kappa) { return std::sqrt(kappa) / (1 + std::sqrt(kappa)); }
-double kappa_of(double u) { return u >= 1 ? std::numeric_limits<double>::infinity() : std::pow(u / (1 - u), 2); }
+double kappa_of(double u) {
+  return u >= 1 ? std::numeric_limits<double>::infinity() : std::pow(u / (1 - u), 2);
+}
 
 // One cell's training points: κ, its local t, cosine and E/E(1, κ), κ-major.
 struct Cell {
@@ -84,7 +86,8 @@ struct Eval {
 // The shape at every row of `cell` (and its Jacobian in the coefficients when `jacobian`).
 Eval evaluate(const Cell& cell, const Poly& p, bool jacobian) {
   const auto n = static_cast<Eigen::Index>(cell.rows());
-  Eval out{Eigen::VectorXd(n), jacobian ? Eigen::MatrixXd(n, Eigen::Index(kCoefs)) : Eigen::MatrixXd()};
+  Eval out{Eigen::VectorXd(n),
+           jacobian ? Eigen::MatrixXd(n, Eigen::Index(kCoefs)) : Eigen::MatrixXd()};
   for (Eigen::Index r = 0; r < n; ++r) {
     const auto i = std::size_t(r);
     const double t = cell.t[i], k = cell.kappa[i], c = cell.cosine[i], c2 = c * c;
@@ -163,7 +166,8 @@ std::optional<Poly> lp_step(const Cell& cell, const Poly& p, double region) {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant(Eigen::Index(kCoefs), -inf);
   Eigen::VectorXd hi = Eigen::VectorXd::Constant(Eigen::Index(kCoefs), inf);
   for (std::size_t j = kLinearCoefs; j < kCoefs; ++j)
-    lo[Eigen::Index(j)] = -region * (1 + std::abs(p[j])), hi[Eigen::Index(j)] = -lo[Eigen::Index(j)];
+    lo[Eigen::Index(j)] = -region * (1 + std::abs(p[j])),
+    hi[Eigen::Index(j)] = -lo[Eigen::Index(j)];
   // The columns that are not 0 on this cell (a cell of one κ at t = 0 moves only the
   // constant terms).
   std::vector<Eigen::Index> cols;
@@ -384,7 +388,7 @@ TabParams table_of(const std::vector<CellFit>& fits) {
 }
 
 std::optional<std::vector<Poly>> tab_committed_start(const std::string& variant, double lo,
-                                                 double hi) {
+                                                     double hi) {
   const auto c = committed_coefficients("sglab-tab", variant, lo, hi);
   if (!c || !c->contains("coef") || c->at("coef").size() != kCells * kCoefs) return std::nullopt;
   std::vector<Poly> out(kCells);
@@ -536,15 +540,15 @@ FitOutcome fit_sglab_tab(const FitSpec& spec) {
   std::string text = fmt::format("sglab-tab/{}: per-kappa floor {:.3g}; training max {:.3g}\n",
                                  variant, floor, objective);
   for (std::size_t j = 0; j < kCells; ++j)
-    text += fmt::format("  cell {:2} kappa [{:.4g}, {:.4g}]: {:.3g}\n", j,
-                        cells[j].kappa.front(), cells[j].kappa.back(), fits[j].error);
+    text += fmt::format("  cell {:2} kappa [{:.4g}, {:.4g}]: {:.3g}\n", j, cells[j].kappa.front(),
+                        cells[j].kappa.back(), fits[j].error);
   text += fmt::format(
       "  {}: max peak_rel float {:.3g}, double {:.3g}\n  {}: max peak_rel float {:.3g} at "
       "kappa {:.4g}, c {:.4g}, double {:.3g}\n  certificate: achieved {:.3g} on the points with "
       "E/E(1) >= {}, no A, B, D, G, H cubics at the fitted s, v do better than {:.3g}\n",
       grids.standard_name, m.standard.float_max, m.standard.double_max, grids.held_out_name,
-      m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine,
-      m.held_out.double_max, achieved, kCertificateLevel, bound);
+      m.held_out.float_max, m.held_out.float_kappa, m.held_out.float_cosine, m.held_out.double_max,
+      achieved, kCertificateLevel, bound);
   out.text = std::move(text);
   return out;
 }

@@ -136,8 +136,8 @@ TEST(SglabTab, CertificateIsThatOfTheCommittedTable) {
   for (double k : {1e16, 1e24, 1e32}) kappas.push_back(k), cell_of.push_back(kCells - 1);
   std::vector<double> cosines;
   for (int i = 0; i <= 200; ++i) cosines.push_back(-1 + i / 100.0);
-  const auto ref = sglab::reference::reference_engine().evaluate(
-      sglab::fit::product_grid(kappas, cosines));
+  const auto ref =
+      sglab::reference::reference_engine().evaluate(sglab::fit::product_grid(kappas, cosines));
   double bound = 0, achieved = 0;
   std::size_t rows = 0;
   for (std::size_t j = 0; j < kCells; ++j) {
@@ -151,8 +151,8 @@ TEST(SglabTab, CertificateIsThatOfTheCommittedTable) {
       for (std::size_t c = 0; c < cosines.size(); ++c) {
         const auto& r = ref[i * cosines.size() + c];
         if (r.irradiance < sglab::fit::kCertificateLevel * e1) continue;
-        residuals.push_back(sglab::fit::make_residual(
-            CellResidual{k, t, r.cosine, r.irradiance / e1, fixed}, 20));
+        residuals.push_back(
+            sglab::fit::make_residual(CellResidual{k, t, r.cosine, r.irradiance / e1, fixed}, 20));
       }
     }
     const std::vector<double> start(fixed.begin(), fixed.begin() + 20);
@@ -161,8 +161,8 @@ TEST(SglabTab, CertificateIsThatOfTheCommittedTable) {
     const auto sub = sglab::fit::linear_subproblem(residuals, start, linear);
     const auto lp = sglab::fit::lp_minimax(sub.a, sub.y, Eigen::VectorXd::Ones(sub.y.size()));
     bound = std::max(bound, std::min(lp.lower_bound, sglab::fit::kCertificateLevel));
-    achieved = std::max(achieved, sglab::fit::max_abs_residual(
-                                      sglab::fit::evaluate_residuals(residuals, start)));
+    achieved = std::max(
+        achieved, sglab::fit::max_abs_residual(sglab::fit::evaluate_residuals(residuals, start)));
     rows += residuals.size();
   }
   EXPECT_EQ(recorded["grid"].get<std::string>().find(std::to_string(rows) + " training points"),

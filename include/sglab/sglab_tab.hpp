@@ -70,8 +70,8 @@ T sglab_tab_shape(const T& cosine, const T& A, const T& B, const T& D, const T& 
   using std::exp;
   using std::sqrt;
   const T c2 = cosine * cosine;
-  const T g = exp(min_of(max_of(S - V * c2, T(-kSglabTabExponentBound)),
-                         T(kSglabTabExponentBound)));
+  const T g =
+      exp(min_of(max_of(S - V * c2, T(-kSglabTabExponentBound)), T(kSglabTabExponentBound)));
   return A + B * (cosine + sqrt(c2 + g)) + D * c2 + (G + H * c2) * g;
 }
 
@@ -92,8 +92,9 @@ SglabTabLight<T> sglab_tab_light(const T& kappa, const SglabTabParams<S, N, D>& 
     value[m] = acc;
   }
   const T e1 = two_pi_v<T>() * detail::upper_over_two_pi_fast(kappa);
-  return {value[0] * e1,          value[1] * e1, value[2] * e1, value[3] * e1, value[4] * e1,
-          value[5] - log(T(1) + kappa), kappa * value[6]};
+  return {value[0] * e1,   value[1] * e1, value[2] * e1,
+          value[3] * e1,   value[4] * e1, value[5] - log(T(1) + kappa),
+          kappa * value[6]};
 }
 template <class T>
 SglabTabLight<T> sglab_tab_light(const T& kappa) {
