@@ -53,12 +53,15 @@ SglabTabCell<T> sglab_tab_cell(const T& kappa) {
   const T r = sqrt(kappa);
   const T x = r / (T(1) + r) * T(N);  // u N ∈ [0, N]
   const T j = min_of(floor(x), T(N - 1));
-  // The index from the value (a Ceres Jet's value member `a`: its cell does not move with it).
-  std::size_t index = 0;
+  // The index from the value (a Ceres Jet's value member `a`: its cell does not move with it),
+  // cell 0 for a NaN (κ NaN, negative or +inf, outside the domain: no float-to-integer
+  // conversion of a value out of range).
+  double value = 0;
   if constexpr (requires { j.a; })
-    index = static_cast<std::size_t>(j.a);
+    value = static_cast<double>(j.a);
   else
-    index = static_cast<std::size_t>(j);
+    value = static_cast<double>(j);
+  const std::size_t index = value >= 0 ? static_cast<std::size_t>(value) : 0;
   return {index, T(2) * (x - j) - T(1)};
 }
 
