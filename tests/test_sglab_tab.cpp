@@ -44,8 +44,8 @@ TEST(SglabTab, CellsCoverEveryKappa) {
   EXPECT_EQ(top.index, kCells - 1);
   EXPECT_EQ(top.t, 1.0f);
   // Outside the domain (NaN, κ < 0, +inf) the index stays a cell of the table.
-  for (float k : {std::numeric_limits<float>::quiet_NaN(), -1.0f,
-                  std::numeric_limits<float>::infinity()})
+  for (float k :
+       {std::numeric_limits<float>::quiet_NaN(), -1.0f, std::numeric_limits<float>::infinity()})
     EXPECT_LT(sglab::detail::sglab_tab_cell<kCells>(k).index, kCells) << k;
   // u = 1/2 is κ = 1: the start of cell 16.
   const auto one = sglab::detail::sglab_tab_cell<kCells>(1.0);
