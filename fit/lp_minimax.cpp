@@ -165,6 +165,25 @@ std::vector<std::size_t> rows_to_add(const Eigen::VectorXd& r, double level,
   return add;
 }
 
+// The one-sided LP on every row (lp_minimax_upper, lp_minimax_upper_boxed) and its achieved
+// max: (A x − y)_i/w_i, and its absolute value where lower[i].
+LpMinimaxResult solve_upper(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
+                            const Eigen::VectorXd& w, const std::vector<bool>& lower,
+                            const Eigen::VectorXd* x_lo = nullptr,
+                            const Eigen::VectorXd* x_hi = nullptr) {
+  std::vector<std::size_t> rows(std::size_t(a.rows()));
+  std::iota(rows.begin(), rows.end(), std::size_t(0));
+  LpMinimaxResult out = solve_lp(a, y, w, rows, &lower, x_lo, x_hi);
+  const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x);
+  out.achieved = 0;
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    const double v = lower[std::size_t(i)] ? std::abs(r[i]) : std::max(r[i], 0.0);
+    if (v > out.achieved) out.achieved = v, out.worst = std::size_t(i);
+  }
+  out.converged = true;
+  return out;
+}
+
 }  // namespace
 
 Extrema extrema(const Eigen::VectorXd& r, double level) {
@@ -203,17 +222,7 @@ LpMinimaxResult lp_minimax_upper(const Eigen::MatrixXd& a, const Eigen::VectorXd
   if (lower.size() != std::size_t(a.rows()))
     throw std::invalid_argument(
         fmt::format("lp_minimax: {} rows but {} lower flags", a.rows(), lower.size()));
-  std::vector<std::size_t> rows(std::size_t(a.rows()));
-  std::iota(rows.begin(), rows.end(), std::size_t(0));
-  LpMinimaxResult out = solve_lp(a, y, w, rows, &lower);
-  const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x);
-  out.achieved = 0;
-  for (Eigen::Index i = 0; i < r.size(); ++i) {
-    const double v = lower[std::size_t(i)] ? std::abs(r[i]) : std::max(r[i], 0.0);
-    if (v > out.achieved) out.achieved = v, out.worst = std::size_t(i);
-  }
-  out.converged = true;
-  return out;
+  return solve_upper(a, y, w, lower);
 }
 
 LpMinimaxResult lp_minimax_upper_boxed(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
@@ -230,17 +239,7 @@ LpMinimaxResult lp_minimax_upper_boxed(const Eigen::MatrixXd& a, const Eigen::Ve
   for (Eigen::Index j = 0; j < n; ++j)
     if (!(x_lo[j] <= x_hi[j]))
       throw std::invalid_argument(fmt::format("lp_minimax: the box of unknown {} is empty", j));
-  std::vector<std::size_t> rows(std::size_t(a.rows()));
-  std::iota(rows.begin(), rows.end(), std::size_t(0));
-  LpMinimaxResult out = solve_lp(a, y, w, rows, &lower, &x_lo, &x_hi);
-  const Eigen::VectorXd r = weighted_residuals(a, y, w, out.x);
-  out.achieved = 0;
-  for (Eigen::Index i = 0; i < r.size(); ++i) {
-    const double v = lower[std::size_t(i)] ? std::abs(r[i]) : std::max(r[i], 0.0);
-    if (v > out.achieved) out.achieved = v, out.worst = std::size_t(i);
-  }
-  out.converged = true;
-  return out;
+  return solve_upper(a, y, w, lower, &x_lo, &x_hi);
 }
 
 LpMinimaxResult lp_minimax(const Eigen::MatrixXd& a, const Eigen::VectorXd& y,
