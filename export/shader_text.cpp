@@ -76,11 +76,11 @@ std::string constant_decls(const Ctx& c, std::string_view role, const ConstantSe
     if (is_table(v)) {
       // One array of 4-vectors, a row of four values each: GLSL `vec4 x[n] = vec4[n](vec4(…),
       // …);`, HLSL `static float4 x[n] = {float4(…), …};`, C++ `inline constexpr float4 …`.
-      // A private global the code never writes, not a `const` one: glslang makes a constant
-      // array indexed by a varying index a copy at every use, and Mesa took 80 s (GLSL) and
-      // 100 s (HLSL) to compile eight inlined calls of sglab_tab (the loop harness of `sglab
-      // gpucost`), against 0.3 s now, for the same code (ACO's inverse throughput is the
-      // same); an array of floats instead of 4-vectors took 20 s for one call.
+      // A private global the code never writes, not a `const` one: glslang copies a constant
+      // array indexed by a varying index at every use, and Mesa takes about 80 s (GLSL) and
+      // 100 s (HLSL) to compile eight inlined calls of sglab_tab that way (the loop harness of
+      // `sglab gpucost`) against 0.3 s for the private global, at the same ACO inverse
+      // throughput; an array of floats instead of 4-vectors takes 20 s for one call.
       const std::string vec = c.lang == Language::glsl ? "vec4" : "float4";
       std::string items;
       for (std::size_t i = 0; i < v.size(); i += 4)

@@ -59,7 +59,7 @@ constexpr double kLimitKappas[] = {1e16, 1e24, 1e32};
 constexpr double kLowerLevel = 1e-6;
 constexpr int kSlpIterations = 100;
 // A polish of the committed table: the exact linear coefficients at its s and v only (each
-// step of the sequential LP costs about 0.3 s a cell; `fit all` runs in the main job).
+// step of the sequential LP costs about 0.6 s a cell; `fit all` runs in the main job).
 constexpr int kPolishIterations = 0;
 constexpr const char* kValueNames[] = {"A", "B", "D", "G", "H", "s", "v"};
 
